@@ -1,0 +1,45 @@
+"""``python -m backlash_monitor <command>``: the project's command line.
+
+Every command calls the same numpy cores as the ROS 2 nodes. ``--help`` after any command explains
+its options.
+"""
+import argparse
+import sys
+
+from backlash_monitor.commands import UsageError, discover_commands
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="python -m backlash_monitor",
+        description="Backlash-width monitor of an electric drive: simulate, record, analyse, "
+                    "train, evaluate and run the ROS 2 pipeline.",
+    )
+    sub = parser.add_subparsers(dest="command", metavar="<command>")
+    for module in discover_commands():
+        command_parser = sub.add_parser(
+            module.NAME, help=module.HELP, description=getattr(module, "DESCRIPTION", module.HELP),
+            formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        module.add_arguments(command_parser)
+        command_parser.set_defaults(_run=module.run)
+    return parser
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "_run", None):
+        parser.print_help()
+        return 2
+    try:
+        return int(args._run(args) or 0)
+    except UsageError as error:
+        print(f"{parser.prog} {args.command}: error: {error}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print(f"{parser.prog} {args.command}: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

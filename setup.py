@@ -1,0 +1,35 @@
+"""ament_python package backlash_monitor: nodes, cores and the `python -m backlash_monitor` CLI."""
+from glob import glob
+
+from setuptools import find_packages, setup
+
+PACKAGE_NAME = "backlash_monitor"
+
+# One entry per executable that `ros2 run backlash_monitor <executable>` finds in lib/backlash_monitor.
+EXECUTABLES = {
+    "chunk_talker": "backlash_monitor.nodes.chunk_talker:main",
+    "chunk_listener": "backlash_monitor.nodes.chunk_listener:main",
+}
+
+setup(
+    name=PACKAGE_NAME,
+    version="0.1.0",
+    packages=find_packages(exclude=["test", "test.*"]),
+    data_files=[
+        ("share/ament_index/resource_index/packages", ["resource/" + PACKAGE_NAME]),
+        ("share/" + PACKAGE_NAME, ["package.xml"]),
+        ("share/" + PACKAGE_NAME + "/config", glob("config/*.yaml")),
+        ("share/" + PACKAGE_NAME + "/msg_defs/msg", glob("msg_defs/msg/*.msg")),
+    ],
+    package_data={PACKAGE_NAME: ["data/*"]},
+    install_requires=["setuptools"],
+    zip_safe=True,
+    maintainer="backlash_monitor maintainers",
+    maintainer_email="maintainers@users.noreply.h-seed-6ea24cd3.example",
+    description="Online backlash-width identification for electric drives (ROS 2 Jazzy).",
+    license="Apache-2.0",
+    tests_require=["pytest"],
+    entry_points={
+        "console_scripts": [f"{name} = {target}" for name, target in EXECUTABLES.items()],
+    },
+)

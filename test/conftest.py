@@ -1,0 +1,34 @@
+"""Shared fixtures. Every test process keeps DDS on loopback and on a domain of its own."""
+import itertools
+import os
+import pathlib
+
+import pytest
+
+REPO_ROOT = pathlib.Path(__file__).resolve().parent.parent
+
+# Set before any test imports rclpy: loopback discovery and a domain of this pytest run's own.
+os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+os.environ.setdefault("ROS_DOMAIN_ID", str(os.getpid() % 100 + 1))
+
+_domain_ids = itertools.count(int(os.environ["ROS_DOMAIN_ID"]))
+
+
+def fresh_domain_id() -> int:
+    """A domain ID for one test's processes, distinct from the other tests of this run (1..101)."""
+    return (next(_domain_ids) % 101) + 1
+
+
+@pytest.fixture
+def ros_env():
+    """Environment for child processes that use DDS: loopback only, a domain of this test's own."""
+    env = dict(os.environ)
+    env["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+    env["ROS_DOMAIN_ID"] = str(fresh_domain_id())
+    env["PYTHONUNBUFFERED"] = "1"
+    return env
+
+
+@pytest.fixture
+def repo_root():
+    return REPO_ROOT
