@@ -1,0 +1,332 @@
+"""Plant configuration: dataclasses, YAML loading and validation (SPEC section 3).
+
+The defaults live in ``config/plant.yaml``; :func:`load_plant_config` reads it (or another file,
+or a dict of overrides), checks every key against its allowed range and returns a frozen
+:class:`PlantConfig`. Bad input raises ``ValueError`` naming the key and the allowed range.
+"""
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import os
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+from typing import Any, Mapping
+
+import yaml
+
+DEFAULT_CONFIG_PATH = Path(__file__).resolve().parents[2] / "config" / "plant.yaml"
+
+
+@dataclass(frozen=True)
+class MotorConfig:
+    r_s_pu: float = 0.059
+    r_r_pu: float = 0.048
+    x_s_pu: float = 1.92
+    x_r_pu: float = 1.92
+    x_m_pu: float = 1.82
+    mechanical_time_constant_s: float = 0.86
+    supply_voltage_pu: float = 1.0
+    supply_frequency_hz: float = 50.0
+    pole_pairs: int = 2
+    base_torque_Nm: float = 20.0
+
+    @property
+    def w_pu(self) -> float:
+        """w = x_s*x_r - x_m^2 (0.374 for the paper's values)."""
+        return self.x_s_pu * self.x_r_pu - self.x_m_pu ** 2
+
+    @property
+    def base_angular_frequency_rad_s(self) -> float:
+        """Omega_b = 2*pi*f."""
+        return 2.0 * math.pi * self.supply_frequency_hz
+
+    @property
+    def base_mechanical_speed_rad_s(self) -> float:
+        """Omega_mb = Omega_b / p."""
+        return self.base_angular_frequency_rad_s / self.pole_pairs
+
+    @property
+    def rotor_inertia_kgm2(self) -> float:
+        """J1 = T_m * T_b / Omega_mb."""
+        return self.mechanical_time_constant_s * self.base_torque_Nm / self.base_mechanical_speed_rad_s
+
+
+@dataclass(frozen=True)
+class ClutchConfig:
+    contact_stiffness_Nm_per_rad: float = 3000.0
+    contact_damping_Nms_per_rad: float = 20.0
+
+
+@dataclass(frozen=True)
+class LoadConfig:
+    mass_kg: float = 10.0
+    spring_stiffness_N_per_m: float = 100.0
+    wheel_radius_m: float = 0.15
+    wheel_inertia_kgm2: float = 0.2
+    absorber_area_m2: float = 0.00311565
+    absorber_gap_m: float = 1.0e-6
+    working_resistance_N: float = 30.0
+
+
+@dataclass(frozen=True)
+class PulseLoadConfig:
+    amplitude_pu: float = 1.6
+    duration_s: float = 0.06
+    period_s: float = 0.25
+    first_s: float = 0.05
+
+
+@dataclass(frozen=True)
+class DisturbanceConfig:
+    gaussian_mean_pu: float = 0.0
+    gaussian_variance_pu2: float = 0.05
+    gaussian_hold_s: float = 2.0e-4
+    pulse_mean_pu: float = 0.0
+    pulse_variance_pu2: float = 0.05
+    pulse_hold_s: float = 2.0e-3
+
+
+@dataclass(frozen=True)
+class SimulationConfig:
+    sample_rate_hz: float = 50000.0
+    window_samples: int = 2048
+    backend: str = "auto"
+    run_in_s: float = 4.0
+
+    @property
+    def sample_period_s(self) -> float:
+        return 1.0 / self.sample_rate_hz
+
+
+@dataclass(frozen=True)
+class EffectsConfig:
+    """On/off switch of every named physical term (see :mod:`backlash_monitor.plant.effects`)."""
+    backlash_clutch: bool = True
+    spring: bool = True
+    absorber_power_law: bool = True
+    working_resistance: bool = True
+    pulse_load: bool = True
+    gaussian_disturbance: bool = True
+    pulse_disturbance: bool = True
+    constant_motor_load: bool = False
+
+
+@dataclass(frozen=True)
+class PlantConfig:
+    motor: MotorConfig = field(default_factory=MotorConfig)
+    clutch: ClutchConfig = field(default_factory=ClutchConfig)
+    load: LoadConfig = field(default_factory=LoadConfig)
+    pulse_load: PulseLoadConfig = field(default_factory=PulseLoadConfig)
+    disturbances: DisturbanceConfig = field(default_factory=DisturbanceConfig)
+    simulation: SimulationConfig = field(default_factory=SimulationConfig)
+    effects: EffectsConfig = field(default_factory=EffectsConfig)
+    constant_motor_load_pu: float = 0.0
+
+    def to_dict(self) -> dict:
+        return dataclasses.asdict(self)
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), sort_keys=True)
+
+    def with_overrides(self, overrides: Mapping[str, Any]) -> "PlantConfig":
+        """A validated copy with ``{"section.key": value}`` or nested-dict overrides applied."""
+        data = self.to_dict()
+        _merge(data, _unflatten(overrides))
+        return config_from_dict(data)
+
+
+_SECTIONS = {
+    "motor": MotorConfig,
+    "clutch": ClutchConfig,
+    "load": LoadConfig,
+    "pulse_load": PulseLoadConfig,
+    "disturbances": DisturbanceConfig,
+    "simulation": SimulationConfig,
+    "effects": EffectsConfig,
+}
+
+# (low, high, low_inclusive, high_inclusive) for numbers; a tuple of strings for choices.
+INF = float("inf")
+RANGES: dict[str, Any] = {
+    "motor.r_s_pu": (0.0, 1.0, False, True),
+    "motor.r_r_pu": (0.0, 1.0, False, True),
+    "motor.x_s_pu": (0.0, 20.0, False, True),
+    "motor.x_r_pu": (0.0, 20.0, False, True),
+    "motor.x_m_pu": (0.0, 20.0, False, True),
+    "motor.mechanical_time_constant_s": (0.0, 100.0, False, True),
+    "motor.supply_voltage_pu": (0.0, 2.0, False, True),
+    "motor.supply_frequency_hz": (0.0, 1000.0, False, True),
+    "motor.pole_pairs": (1, 64, True, True),
+    "motor.base_torque_Nm": (0.0, 1.0e6, False, True),
+    "clutch.contact_stiffness_Nm_per_rad": (0.0, 1.0e7, False, True),
+    "clutch.contact_damping_Nms_per_rad": (0.0, 1.0e5, True, True),
+    "load.mass_kg": (0.0, 1.0e5, False, True),
+    "load.spring_stiffness_N_per_m": (0.0, 1.0e7, True, True),
+    "load.wheel_radius_m": (0.0, 10.0, False, True),
+    "load.wheel_inertia_kgm2": (0.0, 1.0e4, False, True),
+    "load.absorber_area_m2": (0.0, 10.0, True, True),
+    "load.absorber_gap_m": (0.0, 1.0, False, True),
+    "load.working_resistance_N": (0.0, 1.0e5, True, True),
+    "pulse_load.amplitude_pu": (-10.0, 10.0, True, True),
+    "pulse_load.duration_s": (0.0, 1.0e4, True, True),
+    "pulse_load.period_s": (0.0, 1.0e4, False, True),
+    "pulse_load.first_s": (0.0, 1.0e4, True, True),
+    "disturbances.gaussian_mean_pu": (-10.0, 10.0, True, True),
+    "disturbances.gaussian_variance_pu2": (0.0, 10.0, True, True),
+    "disturbances.gaussian_hold_s": (0.0, 1.0e4, False, True),
+    "disturbances.pulse_mean_pu": (-10.0, 10.0, True, True),
+    "disturbances.pulse_variance_pu2": (0.0, 10.0, True, True),
+    "disturbances.pulse_hold_s": (0.0, 1.0e4, False, True),
+    "simulation.sample_rate_hz": (1000.0, 1.0e7, True, True),
+    "simulation.window_samples": (1, 1 << 24, True, True),
+    "simulation.backend": ("auto", "numba", "numpy"),
+    "simulation.run_in_s": (0.0, 1.0e4, True, True),
+    "constant_motor_load_pu": (-10.0, 10.0, True, True),
+}
+
+
+def _describe_range(spec) -> str:
+    if isinstance(spec[0], str):
+        return "one of " + ", ".join(repr(s) for s in spec)
+    lo, hi, lo_inc, hi_inc = spec
+    return f"{lo} {'<=' if lo_inc else '<'} value {'<=' if hi_inc else '<'} {hi}"
+
+
+def _check_value(key: str, value: Any, expected_type: type) -> Any:
+    spec = RANGES.get(key)
+    if expected_type is bool:
+        if not isinstance(value, bool):
+            raise ValueError(f"plant config: {key} = {value!r} is not allowed; allowed: true or false")
+        return value
+    if expected_type is str:
+        if not isinstance(value, str) or (spec is not None and value not in spec):
+            raise ValueError(f"plant config: {key} = {value!r} is not allowed; allowed: {_describe_range(spec)}")
+        return value
+    if isinstance(value, str):  # YAML 1.1 reads "1e-6" (no dot) as a string
+        try:
+            value = float(value)
+        except ValueError:
+            pass
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError(f"plant config: {key} = {value!r} is not a number; allowed: {_describe_range(spec)}")
+    if expected_type is int:
+        if float(value) != int(value):
+            raise ValueError(f"plant config: {key} = {value!r} is not an integer; allowed: {_describe_range(spec)}")
+        value = int(value)
+    else:
+        value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"plant config: {key} = {value!r} is not finite; allowed: {_describe_range(spec)}")
+    lo, hi, lo_inc, hi_inc = spec
+    ok_lo = value >= lo if lo_inc else value > lo
+    ok_hi = value <= hi if hi_inc else value < hi
+    if not (ok_lo and ok_hi):
+        raise ValueError(f"plant config: {key} = {value!r} is out of range; allowed: {_describe_range(spec)}")
+    return value
+
+
+def _field_type(f) -> type:
+    t = f.type if not isinstance(f.type, str) else {"float": float, "int": int, "bool": bool, "str": str}[f.type]
+    return t
+
+
+def _build_section(name: str, cls, data: Any):
+    if data is None:
+        data = {}
+    if not isinstance(data, Mapping):
+        raise ValueError(f"plant config: section {name!r} must be a mapping of keys to values")
+    known = {f.name: f for f in fields(cls)}
+    unknown = sorted(set(data) - set(known))
+    if unknown:
+        raise ValueError(f"plant config: unknown key {name}.{unknown[0]}; allowed keys in {name!r}: "
+                         + ", ".join(sorted(known)))
+    kwargs = {}
+    for key, value in data.items():
+        kwargs[key] = _check_value(f"{name}.{key}", value, _field_type(known[key]))
+    # validate the defaults too (keeps one code path) and the cross-key rules below
+    return cls(**kwargs)
+
+
+def config_from_dict(data: Mapping[str, Any] | None) -> PlantConfig:
+    """Validated :class:`PlantConfig` from a (possibly partial) nested dict; missing keys take defaults."""
+    data = dict(data or {})
+    allowed_top = set(_SECTIONS) | {"constant_motor_load_pu"}
+    unknown = sorted(set(data) - allowed_top)
+    if unknown:
+        raise ValueError(f"plant config: unknown key {unknown[0]!r}; allowed top-level keys: "
+                         + ", ".join(sorted(allowed_top)))
+    kwargs = {name: _build_section(name, cls, data.get(name)) for name, cls in _SECTIONS.items()}
+    if "constant_motor_load_pu" in data:
+        kwargs["constant_motor_load_pu"] = _check_value("constant_motor_load_pu", data["constant_motor_load_pu"], float)
+    cfg = PlantConfig(**kwargs)
+    _check_cross_rules(cfg)
+    return cfg
+
+
+def _check_cross_rules(cfg: PlantConfig) -> None:
+    m = cfg.motor
+    if m.w_pu <= 0.0:
+        raise ValueError(f"plant config: motor.x_m_pu = {m.x_m_pu} gives w = x_s*x_r - x_m^2 = {m.w_pu:.4g}; "
+                         "allowed: x_m_pu^2 < x_s_pu*x_r_pu")
+    fs = cfg.simulation.sample_rate_hz
+    for key, value in (("pulse_load.duration_s", cfg.pulse_load.duration_s),
+                       ("pulse_load.period_s", cfg.pulse_load.period_s),
+                       ("pulse_load.first_s", cfg.pulse_load.first_s),
+                       ("disturbances.gaussian_hold_s", cfg.disturbances.gaussian_hold_s),
+                       ("disturbances.pulse_hold_s", cfg.disturbances.pulse_hold_s)):
+        n = value * fs
+        if abs(n - round(n)) > 1e-6 * max(1.0, n):
+            raise ValueError(f"plant config: {key} = {value} is not a whole number of sample periods "
+                             f"(1/{fs:g} s); allowed: integer multiples of the sample period")
+    for key in ("disturbances.gaussian_hold_s", "disturbances.pulse_hold_s", "pulse_load.period_s"):
+        section, name = key.split(".")
+        if round(getattr(getattr(cfg, section), name) * fs) < 1:
+            raise ValueError(f"plant config: {key} is shorter than one sample period; allowed: >= {1.0 / fs:g} s")
+    if cfg.pulse_load.duration_s > cfg.pulse_load.period_s:
+        raise ValueError(f"plant config: pulse_load.duration_s = {cfg.pulse_load.duration_s} exceeds "
+                         f"pulse_load.period_s = {cfg.pulse_load.period_s}; allowed: 0 <= duration_s <= period_s")
+
+
+def _unflatten(overrides: Mapping[str, Any]) -> dict:
+    out: dict = {}
+    for key, value in overrides.items():
+        if isinstance(value, Mapping):
+            _merge(out.setdefault(key, {}), _unflatten(value))
+            continue
+        parts = key.split(".")
+        node = out
+        for p in parts[:-1]:
+            node = node.setdefault(p, {})
+        node[parts[-1]] = value
+    return out
+
+
+def _merge(base: dict, extra: Mapping) -> None:
+    for key, value in extra.items():
+        if isinstance(value, Mapping) and isinstance(base.get(key), dict):
+            _merge(base[key], value)
+        else:
+            base[key] = value
+
+
+def load_plant_config(path: str | os.PathLike | None = None,
+                      overrides: Mapping[str, Any] | None = None) -> PlantConfig:
+    """Load and validate the plant config (default: ``config/plant.yaml``).
+
+    ``overrides``: ``{"load.mass_kg": 12.0}`` or nested dicts, applied on top of the file.
+    Raises ``ValueError`` naming the key and its allowed range on bad input.
+    """
+    p = Path(path) if path is not None else DEFAULT_CONFIG_PATH
+    if not p.is_file():
+        raise ValueError(f"plant config: file {str(p)!r} does not exist")
+    try:
+        data = yaml.safe_load(p.read_text()) or {}
+    except yaml.YAMLError as exc:
+        raise ValueError(f"plant config: {p} is not valid YAML: {exc}") from None
+    if not isinstance(data, dict):
+        raise ValueError(f"plant config: {p} must hold a mapping of sections")
+    if overrides:
+        _merge(data, _unflatten(overrides))
+    return config_from_dict(data)

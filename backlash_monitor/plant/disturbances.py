@@ -1,0 +1,109 @@
+"""Inputs held over each sample step: the pulse load and the two disturbance generators (SPEC section 3).
+
+All act on the motor's load moment, in p.u. Every input is a function of the global sample index
+k (t = k/fs) and is held over the step [k, k+1). The generators draw their values in fixed blocks,
+so the sequence does not depend on how the stream is cut into chunks.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+_BLOCK = 1024  # hold intervals drawn per block (fixed: makes the stream independent of chunking)
+
+
+def pulse_load_pu(first_sample: int, n_samples: int, cfg) -> np.ndarray:
+    """t_pulse for samples first_sample .. first_sample+n-1: amplitude while (k - k0) mod P < D and k >= k0.
+
+    Negative k (the run-in before sample 0) see the same train extended periodically backwards, so
+    the run-in ends in the pulse train's periodic steady state with the next pulse at k0."""
+    fs = cfg.simulation.sample_rate_hz
+    pl = cfg.pulse_load
+    k0 = int(round(pl.first_s * fs))
+    period = int(round(pl.period_s * fs))
+    duration = int(round(pl.duration_s * fs))
+    k = np.arange(first_sample, first_sample + n_samples, dtype=np.int64)
+    on = ((k >= k0) | (k < 0)) & (np.mod(k - k0, period) < duration)
+    return np.where(on, pl.amplitude_pu, 0.0)
+
+
+class HeldSequence:
+    """A random sequence whose values are held for ``hold_samples`` samples each.
+
+    ``draw(rng, n)`` returns n new interval values. ``samples(k0, n)`` gives the held values for
+    samples k0..k0+n-1; calls must move forward in the stream (they may overlap the last interval).
+    """
+
+    def __init__(self, rng: np.random.Generator, draw, hold_samples: int):
+        self._rng = rng
+        self._draw = draw
+        self.hold_samples = int(hold_samples)
+        self._values = np.empty(0)
+        self._first_interval = 0  # interval index of self._values[0]
+
+    def samples(self, k0: int, n: int) -> np.ndarray:
+        if n == 0:
+            return np.empty(0)
+        i0 = k0 // self.hold_samples
+        i1 = (k0 + n - 1) // self.hold_samples
+        if i0 < self._first_interval:
+            raise ValueError("HeldSequence: samples must be requested in forward order")
+        # drop intervals before i0, draw blocks until i1 is covered
+        drop = min(i0 - self._first_interval, len(self._values))
+        self._values = self._values[drop:]
+        self._first_interval += drop
+        parts = [self._values]
+        have = self._first_interval + len(self._values)
+        while have <= i1:
+            block_start = (have // _BLOCK) * _BLOCK
+            block = self._draw(self._rng, _BLOCK)
+            parts.append(block[have - block_start:])
+            have = block_start + _BLOCK
+        self._values = np.concatenate(parts)
+        k = np.arange(k0, k0 + n, dtype=np.int64)
+        return self._values[k // self.hold_samples - self._first_interval]
+
+
+def gaussian_generator(seed_sequence: np.random.SeedSequence, cfg) -> HeldSequence:
+    """Normally distributed values, mean and variance from the config, a new value every gaussian_hold_s."""
+    d = cfg.disturbances
+    mean, std = d.gaussian_mean_pu, math.sqrt(d.gaussian_variance_pu2)
+    hold = int(round(d.gaussian_hold_s * cfg.simulation.sample_rate_hz))
+    return HeldSequence(np.random.default_rng(seed_sequence), lambda rng, n: rng.normal(mean, std, n), hold)
+
+
+def telegraph_generator(seed_sequence: np.random.SeedSequence, cfg) -> HeldSequence:
+    """Rectangular impulses: mean +- sqrt(variance) with a random sign, a new value every pulse_hold_s."""
+    d = cfg.disturbances
+    mean, amp = d.pulse_mean_pu, math.sqrt(d.pulse_variance_pu2)
+    hold = int(round(d.pulse_hold_s * cfg.simulation.sample_rate_hz))
+    return HeldSequence(np.random.default_rng(seed_sequence),
+                        lambda rng, n: mean + amp * np.where(rng.random(n) < 0.5, -1.0, 1.0), hold)
+
+
+class MotorLoadInput:
+    """The held motor load moment [p.u.] of one scenario: the sum of the switched-on input terms."""
+
+    def __init__(self, seed: int, cfg):
+        self.cfg = cfg
+        gauss_seq, tele_seq = np.random.SeedSequence(seed).spawn(2)
+        self.gaussian = gaussian_generator(gauss_seq, cfg)
+        self.telegraph = telegraph_generator(tele_seq, cfg)
+
+    def samples(self, k0: int, n: int, noise: bool, pulse: np.ndarray | None = None) -> np.ndarray:
+        e = self.cfg.effects
+        out = np.zeros(n)
+        if e.pulse_load:
+            out += pulse if pulse is not None else pulse_load_pu(k0, n, self.cfg)
+        if e.constant_motor_load:
+            out += self.cfg.constant_motor_load_pu
+        if noise:
+            # always advance both generators so that switching one off does not change the other
+            g = self.gaussian.samples(k0, n)
+            t = self.telegraph.samples(k0, n)
+            if e.gaussian_disturbance:
+                out += g
+            if e.pulse_disturbance:
+                out += t
+        return out

@@ -1,0 +1,38 @@
+"""The settled start: the computed steady state of the whole plant before the first pulse.
+
+With the clutch engaged and no pulse, everything turns at one speed and the mass follows the rim:
+v = 0, F = F0 (working resistance), z = F/k, T_c = r*F, Delta = beta + T_c/k_c, and the motor runs at
+the slip where the equivalent circuit gives t_e = T_c/T_b + constant load (stable branch). The
+motor's flux phasors are taken at supply angle 0 (sample 0 of the stream, t = 0).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .drivetrain import (N_STATES, S_ALPHA1, S_ALPHA2, S_DELTA, S_OMEGA2, S_PRA, S_PRB, S_PSA, S_PSB, S_W1,
+                         S_XDOT, S_Z)
+from .motor import MotorSteadyState, steady_state_at_torque
+
+
+def settled_state(beta: np.ndarray, cfg) -> tuple[np.ndarray, MotorSteadyState]:
+    """(n_scenarios, 11) start state for half-gaps ``beta`` [rad], and the motor's steady state."""
+    e, ld = cfg.effects, cfg.load
+    force_N = ld.working_resistance_N if e.working_resistance else 0.0
+    clutch_torque_Nm = ld.wheel_radius_m * force_N
+    load_pu = clutch_torque_Nm / cfg.motor.base_torque_Nm
+    if e.constant_motor_load:
+        load_pu += cfg.constant_motor_load_pu
+    ms = steady_state_at_torque(load_pu, cfg.motor)
+    beta = np.asarray(beta, dtype=np.float64)
+    x = np.zeros((beta.size, N_STATES))
+    x[:, S_PSA], x[:, S_PSB] = ms.psi_s.real, ms.psi_s.imag
+    x[:, S_PRA], x[:, S_PRB] = ms.psi_r.real, ms.psi_r.imag
+    x[:, S_W1] = ms.w1_pu
+    omega = ms.w1_pu * cfg.motor.base_mechanical_speed_rad_s
+    x[:, S_OMEGA2] = omega
+    x[:, S_XDOT] = ld.wheel_radius_m * omega
+    x[:, S_Z] = force_N / ld.spring_stiffness_N_per_m if (e.spring and ld.spring_stiffness_N_per_m > 0) else 0.0
+    x[:, S_DELTA] = beta + clutch_torque_Nm / cfg.clutch.contact_stiffness_Nm_per_rad
+    x[:, S_ALPHA1] = x[:, S_DELTA]  # alpha2 = 0 at the start
+    x[:, S_ALPHA2] = 0.0
+    return x, ms
