@@ -1,0 +1,48 @@
+"""Messages <-> numpy, shared by the nodes, the recorder and the offline analysis.
+
+float64[] fields are handed to the generated message classes as ``array.array('d')`` (their fast
+path: no per-element type check) and read back without a copy through the buffer protocol.
+"""
+from __future__ import annotations
+
+import array
+import math
+
+import numpy as np
+
+from builtin_interfaces.msg import Time
+
+# Signals a drive streams, with their SI units (the topic is plant/<name>).
+SIGNAL_UNITS = {
+    "a1": "m/s^2",
+    "a2": "m/s^2",
+    "omega1": "rad/s",
+    "omega2": "rad/s",
+    "angle_difference": "rad",
+}
+
+
+def to_float64_array(values) -> array.array:
+    """A float64 sequence for a message field (fast path of the generated setters)."""
+    return array.array("d", np.ascontiguousarray(values, dtype=np.float64).tobytes())
+
+
+def from_float64_field(field) -> np.ndarray:
+    """A message's float64[] field as a numpy array (no copy for array.array fields)."""
+    if isinstance(field, array.array):
+        return np.frombuffer(field, dtype=np.float64)
+    return np.asarray(field, dtype=np.float64)
+
+
+def time_from_seconds(seconds: float) -> Time:
+    sec = math.floor(seconds)
+    return Time(sec=int(sec), nanosec=int(round((seconds - sec) * 1e9)) % 1_000_000_000)
+
+
+def seconds_from_time(stamp: Time) -> float:
+    return stamp.sec + stamp.nanosec * 1e-9
+
+
+def stamp_of_sample(start_time_s: float, sample_index: int, sample_period_s: float) -> Time:
+    """The time stamp of sample ``sample_index`` of a stream that started at ``start_time_s``."""
+    return time_from_seconds(start_time_s + sample_index * sample_period_s)

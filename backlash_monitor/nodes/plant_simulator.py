@@ -1,0 +1,133 @@
+"""plant_simulator: the paper's drive (SPEC section 3) streamed at 50 kHz as SignalChunk messages.
+
+    ros2 run backlash_monitor plant_simulator --ros-args -p width_m:=0.005 -p rate_factor:=1.0
+
+Publishes, per chunk of ``chunk_samples`` samples, one SignalChunk on each of ``plant/a1``,
+``plant/a2``, ``plant/omega1``, ``plant/omega2`` and (the encoders' measurement)
+``plant/angle_difference``, with sensor-data QoS by default; and the simulated width, latched, on
+``plant/true_width_m`` (std_msgs/Float64) so that downstream nodes can report it. Chunks are
+stamped with the time of their first sample and indexed by ``first_sample_index``.
+"""
+from __future__ import annotations
+
+import sys
+import time
+
+from rclpy.node import Node
+from rclpy.qos import (DurabilityPolicy, QoSProfile, ReliabilityPolicy, HistoryPolicy,
+                       qos_profile_sensor_data)
+from std_msgs.msg import Float64
+
+from backlash_monitor.nodes.conversions import SIGNAL_UNITS, stamp_of_sample, to_float64_array
+from backlash_monitor.nodes.parameters import ParameterSpec, declare_and_validate, run_node
+from backlash_monitor.plant import Scenario, PlantSimulator, load_plant_config
+from backlash_monitor_msgs.msg import SignalChunk
+
+TICK_PERIOD_S = 0.01      # the publishing timer; each tick publishes every chunk that is due
+MAX_CHUNKS_PER_TICK = 64  # bound on the catch-up after a stall
+
+PARAMETERS = (
+    ParameterSpec("drive_name", "drive", "the drive's name: frame_id of every message"),
+    ParameterSpec("width_m", 0.005, "backlash width K2 of the simulated clutch [m]", 1e-4, 0.05),
+    ParameterSpec("eta_k", 0.025, "absorber fluid consistency [Pa*s^n]", 1e-4, 1.0),
+    ParameterSpec("n1", 0.89, "absorber fluid flow (creep) index [-]", 0.5, 1.5),
+    ParameterSpec("seed", 0, "seed of the disturbance generators", 0, 2**31 - 1),
+    ParameterSpec("noise", True, "Gaussian and pulse disturbances on the load moment"),
+    ParameterSpec("plant_config", "", "plant YAML (empty: the packaged config/plant.yaml)"),
+    ParameterSpec("chunk_samples", 1000, "samples per chunk (1000 = 20 ms at 50 kHz)", 64, 50000),
+    ParameterSpec("rate_factor", 1.0, "simulated seconds per wall second (1 = real time; "
+                  "0 = as fast as the simulation runs)", 0.0, 1000.0),
+    ParameterSpec("duration_s", 0.0, "simulated seconds to publish, then stop (0 = forever)",
+                  0.0, 1e7),
+    ParameterSpec("qos", "sensor_data", "QoS of the chunk topics",
+                  choices=("sensor_data", "reliable")),
+)
+
+LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                     durability=DurabilityPolicy.TRANSIENT_LOCAL, history=HistoryPolicy.KEEP_LAST)
+
+
+def chunk_qos(name: str) -> QoSProfile:
+    if name == "reliable":
+        return QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE,
+                          history=HistoryPolicy.KEEP_LAST)
+    return qos_profile_sensor_data
+
+
+class PlantSimulatorNode(Node):
+    def __init__(self, **overrides):
+        super().__init__("plant_simulator", **overrides)
+        p = declare_and_validate(self, PARAMETERS)
+        self.params = p
+        config = load_plant_config(p["plant_config"] or None) if p["plant_config"] else load_plant_config()
+        try:
+            scenario = Scenario(width_m=p["width_m"], eta_k=p["eta_k"], n1=p["n1"], seed=p["seed"])
+        except ValueError as error:
+            from backlash_monitor.nodes.parameters import ParameterValueError
+            raise ParameterValueError(str(error)) from None
+        self.simulator = PlantSimulator([scenario], config=config, noise=p["noise"])
+        self.sample_period_s = self.simulator.sample_period_s
+        qos = chunk_qos(p["qos"])
+        self.publishers_by_signal = {name: self.create_publisher(SignalChunk, f"plant/{name}", qos)
+                                     for name in SIGNAL_UNITS}
+        self.width_publisher = self.create_publisher(Float64, "plant/true_width_m", LATCHED)
+        self.width_publisher.publish(Float64(data=float(p["width_m"])))
+        self.total_chunks = (int(round(p["duration_s"] / self.sample_period_s / p["chunk_samples"]))
+                             if p["duration_s"] > 0 else None)
+        self.chunks_published = 0
+        self.stream_start_s = self.get_clock().now().nanoseconds * 1e-9
+        self.wall_start = time.monotonic()
+        self.finished = False
+        self.timer = self.create_timer(TICK_PERIOD_S, self.on_tick)
+        self.get_logger().info(
+            f"simulating {p['drive_name']}: width {p['width_m'] * 1e3:g} mm, eta_k {p['eta_k']:g}, "
+            f"n1 {p['n1']:g}, {p['chunk_samples']} samples/chunk at x{p['rate_factor']:g} real time")
+
+    def due_chunks(self) -> int:
+        rate = self.params["rate_factor"]
+        if rate == 0.0:
+            due = MAX_CHUNKS_PER_TICK
+        else:
+            simulated_s = (time.monotonic() - self.wall_start) * rate
+            due = int(simulated_s / (self.sample_period_s * self.params["chunk_samples"])) \
+                - self.chunks_published
+        if self.total_chunks is not None:
+            due = min(due, self.total_chunks - self.chunks_published)
+        return max(0, min(due, MAX_CHUNKS_PER_TICK))
+
+    def on_tick(self):
+        for _ in range(self.due_chunks()):
+            self.publish_chunk()
+        if self.total_chunks is not None and self.chunks_published >= self.total_chunks \
+                and not self.finished:
+            self.finished = True
+            self.timer.cancel()
+            self.get_logger().info(f"published {self.chunks_published} chunks "
+                                   f"({self.chunks_published * self.params['chunk_samples'] * self.sample_period_s:g} s)")
+
+    def publish_chunk(self):
+        chunk = self.simulator.run(self.params["chunk_samples"])
+        stamp = stamp_of_sample(self.stream_start_s, chunk.first_sample_index, self.sample_period_s)
+        for name, publisher in self.publishers_by_signal.items():
+            msg = SignalChunk()
+            msg.header.stamp = stamp
+            msg.header.frame_id = self.params["drive_name"]
+            msg.signal_name = name
+            msg.unit = SIGNAL_UNITS[name]
+            msg.sample_period_s = self.sample_period_s
+            msg.first_sample_index = chunk.first_sample_index
+            msg.samples = to_float64_array(getattr(chunk, name)[0])
+            publisher.publish(msg)
+        self.chunks_published += 1
+
+
+def main(args=None):
+    def spin(node):
+        import rclpy
+        while rclpy.ok() and not node.finished:
+            rclpy.spin_once(node, timeout_sec=0.1)
+    return run_node(PlantSimulatorNode, args=args, spin=spin)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
