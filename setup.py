@@ -8,6 +8,8 @@ PACKAGE_NAME = "backlash_monitor"
 # One entry per executable that `ros2 run backlash_monitor <executable>` finds in lib/backlash_monitor.
 EXECUTABLES = {
     "plant_simulator": "backlash_monitor.nodes.plant_simulator:main",
+    "windowing": "backlash_monitor.nodes.windowing:main",
+    "denoise": "backlash_monitor.nodes.denoise:main",
     "chunk_talker": "backlash_monitor.nodes.chunk_talker:main",
     "chunk_listener": "backlash_monitor.nodes.chunk_listener:main",
 }

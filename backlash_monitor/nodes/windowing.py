@@ -1,0 +1,140 @@
+"""windowing: detects backlash-zone entries in a drive's stream and publishes the windows after them.
+
+    ros2 run backlash_monitor windowing --ros-args -p trigger:=contact_loss
+
+Subscribes to ``plant/a1``, ``plant/a2`` and ``plant/angle_difference`` (or ``plant/omega1`` and
+``plant/omega2`` with ``angle_source:=integrated``), joins the chunks of one sample range, feeds the
+windowing core (backlash_monitor.windowing) and publishes each captured window (a1 and a2, 2048
+samples from the entry, tagged onset/return) on ``windows/raw``. A window that spans a dropped or
+out-of-order chunk is discarded with its reason (logged, counted on ``/diagnostics``), never used.
+"""
+from __future__ import annotations
+
+import math
+import sys
+
+from rclpy.node import Node
+from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
+from std_msgs.msg import Float64
+
+from backlash_monitor.nodes.conversions import (from_float64_field, stamp_of_sample,
+                                                 seconds_from_time, to_float64_array)
+from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
+from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
+                                               declare_and_validate, run_node)
+from backlash_monitor.nodes.plant_simulator import LATCHED, chunk_qos
+from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture
+from backlash_monitor_msgs.msg import BacklashWindow, SignalChunk
+
+WINDOW_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE,
+                        history=HistoryPolicy.KEEP_LAST)
+MAX_PENDING_CHUNKS = 16  # incomplete sample ranges kept while waiting for their other signals
+
+PARAMETERS = (
+    ParameterSpec("drive_name", "drive", "the drive's name: frame_id and diagnostics hardware_id"),
+    ParameterSpec("trigger", "contact_loss", "entry trigger: 'contact_loss' (angle difference "
+                  "alone, for recordings and real drives) or 'paper' (eq. 1 with width_m)",
+                  choices=("contact_loss", "paper")),
+    ParameterSpec("width_m", 0.0, "backlash width K2 for the 'paper' trigger [m] (0 with "
+                  "'contact_loss')", 0.0, 0.05),
+    ParameterSpec("angle_source", "measured", "'measured': plant/angle_difference (encoders); "
+                  "'integrated': integrate plant/omega1 - plant/omega2 (eq. 2-3)",
+                  choices=("measured", "integrated")),
+    ParameterSpec("window_length", 2048, "samples captured after each entry", 64, 65536),
+    ParameterSpec("qos", "sensor_data", "QoS of the chunk subscriptions",
+                  choices=("sensor_data", "reliable")),
+)
+
+
+class WindowingNode(Node):
+    def __init__(self, **overrides):
+        super().__init__("windowing", **overrides)
+        p = declare_and_validate(self, PARAMETERS)
+        if p["trigger"] == "paper" and p["width_m"] <= 0:
+            raise ParameterValueError("parameter 'width_m' = 0.0: the 'paper' trigger needs the "
+                                      "backlash width; allowed: 0 < width_m <= 0.05")
+        self.params = p
+        self.angle_signals = (("angle_difference",) if p["angle_source"] == "measured"
+                              else ("omega1", "omega2"))
+        self.signals = ("a1", "a2") + self.angle_signals
+        try:
+            self.detector = BacklashEntryDetector(
+                trigger=p["trigger"], width_m=p["width_m"] if p["trigger"] == "paper" else None,
+                angle_source=p["angle_source"])
+            self.capture = WindowCapture(window_length=p["window_length"], signals=("a1", "a2"))
+        except ValueError as error:
+            raise ParameterValueError(str(error)) from None
+        self.pending: dict[int, dict[str, SignalChunk]] = {}
+        self.true_width_m = math.nan
+        self.stream_start_s = None
+        self.counts = {"windows": 0, "discarded": 0, "chunks": 0, "incomplete_chunks": 0}
+        self.last_discard = ""
+        qos = chunk_qos(p["qos"])
+        for name in self.signals:
+            self.create_subscription(SignalChunk, f"plant/{name}",
+                                     lambda msg, n=name: self.on_chunk(n, msg), qos)
+        self.create_subscription(Float64, "plant/true_width_m", self.on_true_width, LATCHED)
+        self.publisher = self.create_publisher(BacklashWindow, "windows/raw", WINDOW_QOS)
+        self.diagnostics = DriveDiagnostics(self, "windowing", p["drive_name"])
+        self.get_logger().info(f"trigger {p['trigger']}, angles {p['angle_source']}, "
+                               f"{p['window_length']} samples per window")
+
+    def on_true_width(self, msg: Float64):
+        self.true_width_m = msg.data
+
+    def on_chunk(self, name: str, msg: SignalChunk):
+        group = self.pending.setdefault(msg.first_sample_index, {})
+        group[name] = msg
+        if len(group) < len(self.signals):
+            if len(self.pending) > MAX_PENDING_CHUNKS:
+                oldest = min(self.pending)
+                del self.pending[oldest]
+                self.counts["incomplete_chunks"] += 1
+            return
+        del self.pending[msg.first_sample_index]
+        self.process(group)
+
+    def process(self, group: dict[str, SignalChunk]):
+        first_msg = group["a1"]
+        first = first_msg.first_sample_index
+        period = first_msg.sample_period_s
+        if self.stream_start_s is None:
+            self.stream_start_s = seconds_from_time(first_msg.header.stamp) - first * period
+        arrays = {name: from_float64_field(m.samples) for name, m in group.items()}
+        entries = self.detector.feed(first, arrays, period)
+        windows, discarded = self.capture.feed(first, arrays, entries=entries, sample_period_s=period)
+        self.counts["chunks"] += 1
+        for window in windows:
+            self.publish_window(window, first_msg.header.frame_id or self.params["drive_name"])
+        for item in discarded:
+            self.counts["discarded"] += 1
+            self.last_discard = f"entry {item.entry_sample_index}: {item.reason}"
+            self.get_logger().warning(f"window discarded ({self.last_discard})")
+        level = "WARN" if self.counts["discarded"] or self.counts["incomplete_chunks"] else "OK"
+        self.diagnostics.set(level, f"{self.counts['windows']} windows, "
+                                    f"{self.counts['discarded']} discarded",
+                             last_discard=self.last_discard, **self.counts)
+
+    def publish_window(self, window, frame_id: str):
+        msg = BacklashWindow()
+        msg.header.stamp = stamp_of_sample(self.stream_start_s, window.entry_sample_index,
+                                           window.sample_period_s)
+        msg.header.frame_id = frame_id
+        msg.entry_sample_index = window.entry_sample_index
+        msg.entry_kind = window.kind
+        msg.trigger = window.trigger
+        msg.sample_period_s = window.sample_period_s
+        msg.denoising = ""
+        msg.a1 = to_float64_array(window.signals["a1"])
+        msg.a2 = to_float64_array(window.signals["a2"])
+        msg.true_width_m = self.true_width_m
+        self.publisher.publish(msg)
+        self.counts["windows"] += 1
+
+
+def main(args=None):
+    return run_node(WindowingNode, args=args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
