@@ -1,0 +1,168 @@
+"""`python -m backlash_monitor bag-info BAG`: what `ros2 bag info` shows, plus integrity/recovery.
+
+Exit codes: 0 = the bag is complete and every topic's schema decodes (or `--recover` read what was
+intact); 1 = the bag is damaged (truncated: recorder killed; corrupt chunk; a schema that cannot be
+decoded); 2 = bad input (no such file, not an MCAP/ROS 2 bag, `--topic` not in the bag).
+"""
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import json
+import sys
+
+NAME = "bag-info"
+HELP = "show a recorded MCAP bag: duration, topics, types, counts, integrity (like ros2 bag info)"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("bag", metavar="BAG", help="the .mcap file (or a rosbag2 directory holding one)")
+    parser.add_argument("--recover", action="store_true",
+                        help="read what is intact in a bag whose recorder was killed (no summary)")
+    parser.add_argument("--topic", action="append", default=[], metavar="TOPIC",
+                        help="also decode this topic and show its details (SignalChunk: samples, "
+                             "sample rate, gaps); repeatable")
+    parser.add_argument("--json", action="store_true", help="print one JSON object instead of text")
+
+
+def _fmt_time(ns: int | None) -> str:
+    if ns is None:
+        return "-"
+    t = _dt.datetime.fromtimestamp(ns / 1e9, tz=_dt.timezone.utc)
+    return f"{t.strftime('%b %d %Y %H:%M:%S')}.{ns % 1_000_000_000:09d} ({ns // 1_000_000_000}.{ns % 1_000_000_000:09d})"
+
+
+def _fmt_size(n: int) -> str:
+    for unit in ("B", "KiB", "MiB", "GiB"):
+        if n < 1024 or unit == "GiB":
+            return f"{n:.1f} {unit}" if unit != "B" else f"{n} B"
+        n /= 1024
+    return str(n)
+
+
+def _err(msg: str) -> None:
+    print(f"bag-info: error: {msg}", file=sys.stderr)
+
+
+def run(args) -> int:
+    from ..bag import BagError, BagReader, MissingTopicError, NotABagError, TruncatedBagError
+    from ..bag import UnknownSchemaError
+
+    try:
+        reader = BagReader(args.bag, recover=args.recover)
+    except FileNotFoundError as exc:
+        _err(f"{exc}")
+        return 2
+    except NotABagError as exc:
+        _err(f"{exc} (expected a rosbag2 MCAP file, profile 'ros2')")
+        return 2
+    except TruncatedBagError as exc:
+        _err(f"{exc}")
+        return 1
+    except (BagError, OSError) as exc:
+        _err(f"cannot read {args.bag}: {exc}")
+        return 1
+
+    status = 0
+    with reader:
+        topics = reader.topics
+        for t in args.topic:
+            if t not in topics:
+                _err(str(MissingTopicError(t, topics)))
+                return 2
+        schema_errors = {}
+        for name in topics:
+            try:
+                reader.codec(name)
+            except (UnknownSchemaError, BagError) as exc:
+                schema_errors[name] = str(exc)
+        meta = reader.rosbag2_metadata or {}
+        info = {
+            "file": str(reader.path),
+            "bag_size_bytes": reader.file_size,
+            "storage_id": "mcap",
+            "ros_distro": meta.get("ros_distro", ""),
+            "duration_ns": reader.duration_ns,
+            "start_ns": reader.start_ns,
+            "end_ns": reader.end_ns,
+            "messages": reader.message_count,
+            "topics": [{"topic": t.name, "type": t.type, "count": t.count,
+                        "serialization_format": t.message_encoding,
+                        **({"schema_error": schema_errors[t.name]} if t.name in schema_errors else {})}
+                       for t in topics.values()],
+            "complete": reader.recovery.complete,
+            "integrity": reader.recovery.describe(),
+            "lost_bytes": reader.recovery.lost_bytes,
+        }
+        details = {}
+        for t in args.topic:
+            try:
+                details[t] = _topic_details(reader, t)
+            except BagError as exc:
+                schema_errors.setdefault(t, str(exc))
+        if details:
+            info["details"] = details
+
+    if args.json:
+        print(json.dumps(info, indent=2))
+    else:
+        _print_text(info)
+    if schema_errors:
+        for t, e in schema_errors.items():
+            _err(f"topic {t}: {e}")
+        status = 1
+    if reader.recovery.corrupt_chunks:
+        status = 1
+    return status
+
+
+def _topic_details(reader, topic: str) -> dict:
+    info = reader.topics[topic]
+    if info.type.endswith("/SignalChunk"):
+        s = reader.read_signal(topic)
+        return {"samples": int(s.samples.size), "signal_name": s.signal_name, "unit": s.unit,
+                "sample_period_s": s.sample_period_s,
+                "sample_rate_hz": (1.0 / s.sample_period_s) if s.sample_period_s else None,
+                "first_sample_index": int(s.sample_index[0]) if s.samples.size else None,
+                "chunks": int(s.chunk_first_index.size), "gaps": s.gaps[:20],
+                "gap_count": len(s.gaps)}
+    n = 0
+    for _ in reader.messages([topic]):
+        n += 1
+    return {"decoded_messages": n}
+
+
+def _print_text(info: dict) -> None:
+    w = 19
+    print(f"{'Files:':<{w}}{info['file']}")
+    print(f"{'Bag size:':<{w}}{_fmt_size(info['bag_size_bytes'])}")
+    print(f"{'Storage id:':<{w}}{info['storage_id']}")
+    print(f"{'ROS Distro:':<{w}}{info['ros_distro'] or '-'}")
+    print(f"{'Duration:':<{w}}{info['duration_ns'] / 1e9:.9f}s")
+    print(f"{'Start:':<{w}}{_fmt_time(info['start_ns'])}")
+    print(f"{'End:':<{w}}{_fmt_time(info['end_ns'])}")
+    print(f"{'Messages:':<{w}}{info['messages']}")
+    first = True
+    for t in info["topics"]:
+        label = "Topic information:" if first else ""
+        first = False
+        extra = " | SCHEMA ERROR" if "schema_error" in t else ""
+        print(f"{label:<{w}}Topic: {t['topic']} | Type: {t['type']} | Count: {t['count']} | "
+              f"Serialization Format: {t['serialization_format']}{extra}")
+    if first:
+        print(f"{'Topic information:':<{w}}")
+    print(f"{'Integrity:':<{w}}{info['integrity']}")
+    for topic, d in info.get("details", {}).items():
+        print(f"{'Details ' + topic + ':'}")
+        for k, v in d.items():
+            print(f"  {k}: {v}")
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog=f"python -m backlash_monitor {NAME}", description=HELP)
+    add_arguments(parser)
+    return run(parser.parse_args(argv))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
