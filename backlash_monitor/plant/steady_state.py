@@ -18,7 +18,8 @@ def settled_state(beta: np.ndarray, cfg) -> tuple[np.ndarray, MotorSteadyState]:
     """(n_scenarios, 11) start state for half-gaps ``beta`` [rad], and the motor's steady state."""
     e, ld = cfg.effects, cfg.load
     force_N = ld.working_resistance_N if e.working_resistance else 0.0
-    clutch_torque_Nm = ld.wheel_radius_m * force_N
+    # the motor carries the working resistance only through an engaged clutch
+    clutch_torque_Nm = ld.wheel_radius_m * force_N if e.backlash_clutch else 0.0
     load_pu = clutch_torque_Nm / cfg.motor.base_torque_Nm
     if e.constant_motor_load:
         load_pu += cfg.constant_motor_load_pu

@@ -1,0 +1,38 @@
+"""Fixed-step RK4 against scipy's solve_ivp (DOP853, rtol 1e-9) on noise-free scenarios:
+within 0.5 % of each window's peak |a1| and |a2| (measured worst: 0.23 % at 0.0025 m, the error of
+the step in which the clutch's damper engages with a jump)."""
+import numpy as np
+import pytest
+
+from backlash_monitor.plant import PlantSimulator, Scenario, load_plant_config
+from backlash_monitor.plant.reference import reference_run
+
+
+@pytest.mark.parametrize("scenario", [Scenario(0.0025, 0.025, 0.89), Scenario(0.01, 0.05, 0.97)])
+def test_rk4_matches_solve_ivp_in_every_window(scenario):
+    cfg = load_plant_config(overrides={"simulation.run_in_s": 1.0})
+    sim = PlantSimulator([scenario], config=cfg, noise=False)
+    x0 = sim.state[0].copy()
+    n = 15_000                                                # 0.3 s: onset and return windows
+    load = sim.motor_load_pu(0, n)[0]
+    ref = reference_run(sim, 0, load, method="DOP853", rtol=1e-9, atol=1e-12, state0=x0)
+    ch = sim.run(n)
+    assert [kind for _, kind in ch.entries[0]] == ["onset", "return"]
+    for k, _ in ch.entries[0]:
+        for sig in ("a1", "a2"):
+            r = ref[sig][k:k + 2048]
+            s = getattr(ch, sig)[0, k:k + 2048]
+            assert np.max(np.abs(s - r)) <= 0.005 * np.max(np.abs(r)), sig
+
+
+def test_numba_and_numpy_backends_agree():
+    cfg = load_plant_config(overrides={"simulation.run_in_s": 0.0})
+    scen = [Scenario(0.005, 0.025, 0.89, seed=1), Scenario(0.0025, 0.05, 0.97, seed=2)]
+    out = {}
+    for backend in ("numba", "numpy"):
+        sim = PlantSimulator(scen, config=cfg, noise=True, backend=backend)
+        sim.run(2400)
+        out[backend] = sim.run(600)                           # across the pulse start at sample 2500
+    for sig in ("a1", "a2", "omega1", "angle_difference"):
+        a, b = getattr(out["numba"], sig), getattr(out["numpy"], sig)
+        assert np.allclose(a, b, rtol=1e-9, atol=1e-9 * np.abs(b).max()), sig
