@@ -1,0 +1,256 @@
+"""pipeline: the main job — plant_simulator -> windowing -> denoise -> classifier, with a live view.
+
+    ros2 run backlash_monitor pipeline                       # in a ROS 2 install
+    python -m backlash_monitor pipeline --duration 10        # from this repo (source env.sh)
+
+Runs the whole graph (one process by default, each node in its own process with --processes),
+prints every estimate and the fused estimate against the simulator's true width as it arrives, and
+ends with a summary table. With no arguments it runs its embedded default: a 5 mm clutch at
+eta_k = 0.025 Pa*s^n, n1 = 0.89, real time, for 10 simulated seconds.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+
+DEFAULTS = dict(width_m=0.005, eta_k=0.025, n1=0.89, seed=0, duration=10.0, rate_factor=1.0)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--width-m", type=float, default=DEFAULTS["width_m"],
+                        help="backlash width of the simulated clutch [m] (the truth the estimates "
+                             "are compared with)")
+    parser.add_argument("--eta-k", type=float, default=DEFAULTS["eta_k"],
+                        help="absorber fluid consistency [Pa*s^n]")
+    parser.add_argument("--n1", type=float, default=DEFAULTS["n1"],
+                        help="absorber flow (creep) index; the classifier uses the patterns of this n1")
+    parser.add_argument("--seed", type=int, default=DEFAULTS["seed"],
+                        help="seed of the simulator's disturbance generators")
+    parser.add_argument("--duration", type=float, default=DEFAULTS["duration"],
+                        help="simulated seconds to run (8 backlash entries per second, 4 onsets)")
+    parser.add_argument("--events", type=int, default=0,
+                        help="stop after this many onset estimates (0 = run for --duration)")
+    parser.add_argument("--rate-factor", type=float, default=DEFAULTS["rate_factor"],
+                        help="simulated seconds per wall second (1 = real time)")
+    parser.add_argument("--trigger", choices=("contact_loss", "paper"), default="contact_loss",
+                        help="entry trigger of the windowing node")
+    parser.add_argument("--mode", default="",
+                        help="classifier mode (empty: the classifier's default, the best mode)")
+    parser.add_argument("--drive-name", default="drive", help="the drive's name (hardware_id)")
+    parser.add_argument("--processes", action="store_true",
+                        help="run each node in its own process (as `ros2 run` would) instead of one")
+    parser.add_argument("--record", metavar="FILE.mcap", default="",
+                        help="also record every topic of the run into this MCAP file")
+
+
+def validate(args) -> None:
+    from backlash_monitor.commands import UsageError
+    checks = [("--width-m", args.width_m, 1e-4, 0.05), ("--eta-k", args.eta_k, 1e-4, 1.0),
+              ("--n1", args.n1, 0.5, 1.5), ("--duration", args.duration, 0.1, 1e6),
+              ("--rate-factor", args.rate_factor, 0.01, 1000.0)]
+    for name, value, lo, hi in checks:
+        if not (lo <= value <= hi):
+            raise UsageError(f"{name} = {value:g} is out of range; allowed: {lo:g} .. {hi:g}")
+    if args.events < 0:
+        raise UsageError(f"--events = {args.events}; allowed: 0 (no limit) or more")
+    if args.seed < 0:
+        raise UsageError(f"--seed = {args.seed}; allowed: 0 or more")
+
+
+def node_parameters(args) -> dict[str, dict]:
+    """The parameters each node of the graph is started with."""
+    return {
+        "plant_simulator": dict(drive_name=args.drive_name, width_m=args.width_m, eta_k=args.eta_k,
+                                n1=args.n1, seed=args.seed, rate_factor=args.rate_factor,
+                                duration_s=args.duration, qos="reliable"),
+        "windowing": dict(drive_name=args.drive_name, trigger=args.trigger, qos="reliable",
+                          width_m=args.width_m if args.trigger == "paper" else 0.0),
+        "denoise": {},
+        "classifier": dict(drive_name=args.drive_name, n1=args.n1, trigger=args.trigger,
+                           **({"mode": args.mode} if args.mode else {})),
+    }
+
+
+@dataclass
+class SignalTally:
+    estimates: int = 0
+    correct: int = 0
+    fused_width_m: float = math.nan
+    fused_events: int = 0
+    margins: list = field(default_factory=list)
+    continuous: list = field(default_factory=list)
+
+
+class LiveView:
+    """Prints estimates as they arrive and keeps the tallies for the summary table."""
+
+    def __init__(self, true_width_m: float, out=sys.stdout):
+        self.true_width_m = true_width_m
+        self.out = out
+        self.tally: dict[str, SignalTally] = {}
+        self.onset_entries: set[int] = set()
+        self.diagnostic = ""
+        self.mode = ""
+
+    def on_estimate(self, msg) -> None:
+        from backlash_monitor.nodes.conversions import seconds_from_time
+        t = self.tally.setdefault(msg.signal_name, SignalTally())
+        self.mode = msg.mode
+        true_w = msg.true_width_m if not math.isnan(msg.true_width_m) else self.true_width_m
+        ok = abs(msg.width_m - true_w) < 1e-9
+        t.estimates += 1
+        t.correct += int(ok)
+        t.fused_width_m, t.fused_events = msg.fused_width_m, msg.fused_events
+        t.margins.append(msg.b_margin)
+        if not math.isnan(msg.continuous_width_m):
+            t.continuous.append(msg.continuous_width_m)
+        self.onset_entries.add(msg.entry_sample_index)
+        fused_ok = abs(msg.fused_width_m - true_w) < 1e-9
+        cont = ("" if math.isnan(msg.continuous_width_m)
+                else f"  cont {msg.continuous_width_m * 1e3:5.2f} mm")
+        print(f"t={seconds_from_time(msg.header.stamp) % 1e4:9.3f} s  {msg.signal_name:>5} "
+              f"[{msg.mode}] {msg.width_m * 1e3:5.2f} mm {'ok ' if ok else 'MISS'} "
+              f"margin {msg.b_margin:5.2f}{cont}  fused {msg.fused_width_m * 1e3:5.2f} mm over "
+              f"{msg.fused_events} {'ok' if fused_ok else 'MISS'}  (true {true_w * 1e3:.2f} mm)",
+              file=self.out, flush=True)
+
+    def on_diagnostics(self, msg) -> None:
+        for status in msg.status:
+            if "classifier" in status.name:
+                self.diagnostic = f"{['OK', 'WARN', 'ERROR', 'STALE'][min(status.level, 3)]}: " \
+                                  f"{status.message}"
+
+    def summary(self) -> str:
+        rows = [("signal", "estimates", "correct", "accuracy", "median margin", "fused width",
+                 "fused events", "fused ok")]
+        for name, t in sorted(self.tally.items()):
+            margins = sorted(t.margins)
+            rows.append((name, str(t.estimates), str(t.correct),
+                         f"{t.correct / t.estimates:.0%}" if t.estimates else "-",
+                         f"{margins[len(margins) // 2]:.2f}" if margins else "-",
+                         f"{t.fused_width_m * 1e3:.2f} mm", str(t.fused_events),
+                         "yes" if abs(t.fused_width_m - self.true_width_m) < 1e-9 else "no"))
+        widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
+        lines = ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
+        lines.insert(1, "  ".join("-" * w for w in widths))
+        head = (f"summary: true width {self.true_width_m * 1e3:.2f} mm, mode {self.mode or '-'}, "
+                f"{len(self.onset_entries)} onset windows classified")
+        tail = f"diagnostics: {self.diagnostic}" if self.diagnostic else ""
+        return "\n".join([head] + lines + ([tail] if tail else []))
+
+
+def _executable(name: str) -> str:
+    from ament_index_python.packages import get_package_prefix
+    return os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor", name)
+
+
+def _ros_args(params: dict) -> list[str]:
+    out = ["--ros-args"]
+    for key, value in params.items():
+        if isinstance(value, bool):
+            value = str(value).lower()
+        out += ["-p", f"{key}:={value}"]
+    return out
+
+
+def run(args) -> int:
+    validate(args)
+    import rclpy
+    from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+    from rclpy.parameter import Parameter
+    from diagnostic_msgs.msg import DiagnosticArray
+    from backlash_monitor_msgs.msg import BacklashEstimate
+    from backlash_monitor.nodes.parameters import ParameterValueError
+
+    params = node_parameters(args)
+    view = LiveView(args.width_m)
+    children: list[subprocess.Popen] = []
+    rclpy.init()
+    nodes = []
+    try:
+        monitor = rclpy.create_node("pipeline_monitor")
+        nodes.append(monitor)
+        monitor.create_subscription(BacklashEstimate, "estimate", view.on_estimate, 100)
+        monitor.create_subscription(DiagnosticArray, "/diagnostics", view.on_diagnostics, 10)
+        if args.record:
+            from backlash_monitor.nodes.record import RecordNode
+            nodes.append(RecordNode(parameter_overrides=[Parameter("output", value=args.record)]))
+        if args.processes:
+            for name in ("classifier", "denoise", "windowing", "plant_simulator"):
+                children.append(subprocess.Popen([_executable(name)] + _ros_args(params[name])))
+        else:
+            from backlash_monitor.nodes.classifier import ClassifierNode
+            from backlash_monitor.nodes.denoise import DenoiseNode
+            from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode
+            from backlash_monitor.nodes.windowing import WindowingNode
+            for cls, name in ((ClassifierNode, "classifier"), (DenoiseNode, "denoise"),
+                              (WindowingNode, "windowing"), (PlantSimulatorNode, "plant_simulator")):
+                nodes.append(cls(parameter_overrides=[Parameter(k, value=v)
+                                                      for k, v in params[name].items()]))
+        executor = SingleThreadedExecutor()
+        for node in nodes:
+            executor.add_node(node)
+        print(f"pipeline: {args.drive_name}, true width {args.width_m * 1e3:g} mm, eta_k "
+              f"{args.eta_k:g}, n1 {args.n1:g}, trigger {args.trigger}, "
+              f"{'one process per node' if args.processes else 'one process'}; "
+              f"{args.duration:g} simulated s at x{args.rate_factor:g}", flush=True)
+        wall_limit = args.duration / args.rate_factor + 30.0
+        started = time.monotonic()
+        # 4 onsets per second; the last one's window ends 41 ms after it, plus the hops.
+        expected_onsets = int(args.duration * 4 - 1e-9)
+        while rclpy.ok() and time.monotonic() - started < wall_limit:
+            executor.spin_once(timeout_sec=0.05)
+            done = len(view.onset_entries)
+            if args.events and done >= args.events:
+                break
+            sim_time = (time.monotonic() - started) * args.rate_factor
+            if sim_time > args.duration + 1.0 and done >= expected_onsets - 1:
+                break
+            for child in children:
+                if child.poll() not in (None, 0):
+                    print(f"pipeline: a node exited with code {child.returncode}", file=sys.stderr)
+                    return 1
+    except ParameterValueError as error:
+        print(f"pipeline: error: {error}", file=sys.stderr)
+        return 2
+    except (KeyboardInterrupt, ExternalShutdownException):
+        print("pipeline: interrupted", file=sys.stderr)
+    finally:
+        for child in children:
+            if child.poll() is None:
+                child.send_signal(signal.SIGINT)
+        for child in children:
+            try:
+                child.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                child.kill()
+        for node in nodes:
+            node.destroy_node()
+        rclpy.try_shutdown()
+    print(view.summary(), flush=True)
+    return 0 if view.tally else 1
+
+
+def main(argv=None) -> int:
+    """`ros2 run backlash_monitor pipeline [options]` (ROS arguments are passed through)."""
+    from rclpy.utilities import remove_ros_args
+    from backlash_monitor.commands import UsageError
+    parser = argparse.ArgumentParser(prog="pipeline", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_arguments(parser)
+    args = parser.parse_args(remove_ros_args(sys.argv if argv is None else argv)[1:])
+    try:
+        return run(args)
+    except UsageError as error:
+        print(f"pipeline: error: {error}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

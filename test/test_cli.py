@@ -1,0 +1,48 @@
+"""Every command of `python -m backlash_monitor` explains itself and refuses bad input cleanly."""
+import subprocess
+import sys
+
+import pytest
+
+from backlash_monitor.commands import discover_commands
+
+COMMANDS = [module.NAME for module in discover_commands()]
+
+
+def _run(*args):
+    return subprocess.run([sys.executable, "-m", "backlash_monitor", *args],
+                          capture_output=True, text=True, timeout=120)
+
+
+def test_top_level_help_lists_every_command():
+    out = _run("--help")
+    assert out.returncode == 0
+    for name in COMMANDS:
+        assert name in out.stdout
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+def test_every_command_has_help_that_explains_every_option(command):
+    out = _run(command, "--help")
+    assert out.returncode == 0, out.stderr
+    assert "usage:" in out.stdout
+    # every option line has some explanation after it
+    for line in out.stdout.splitlines():
+        stripped = line.strip()
+        if stripped.startswith("--") and "  " not in stripped:
+            # argparse puts long help on the next line; then that next line must exist
+            index = out.stdout.splitlines().index(line)
+            assert out.stdout.splitlines()[index + 1].startswith(" " * 10), line
+
+
+def test_unknown_command_is_an_error_not_a_traceback():
+    out = _run("frobnicate")
+    assert out.returncode == 2
+    assert "invalid choice" in out.stderr and "Traceback" not in out.stderr
+
+
+def test_pipeline_refuses_an_out_of_range_width_with_the_allowed_range():
+    out = _run("pipeline", "--width-m", "-1")
+    assert out.returncode == 2
+    assert "--width-m" in out.stderr and "allowed" in out.stderr
+    assert "Traceback" not in out.stderr
