@@ -4,6 +4,7 @@ import sys
 
 import pytest
 
+from backlash_monitor.__main__ import build_parser
 from backlash_monitor.commands import discover_commands
 
 COMMANDS = [module.NAME for module in discover_commands()]
@@ -26,13 +27,10 @@ def test_every_command_has_help_that_explains_every_option(command):
     out = _run(command, "--help")
     assert out.returncode == 0, out.stderr
     assert "usage:" in out.stdout
-    # every option line has some explanation after it
-    for line in out.stdout.splitlines():
-        stripped = line.strip()
-        if stripped.startswith("--") and "  " not in stripped:
-            # argparse puts long help on the next line; then that next line must exist
-            index = out.stdout.splitlines().index(line)
-            assert out.stdout.splitlines()[index + 1].startswith(" " * 10), line
+    parser = build_parser()
+    sub = next(a for a in parser._actions if a.dest == "command").choices[command]
+    for action in sub._actions:
+        assert action.help and action.help.strip(), f"{command}: option {action.option_strings} has no help"
 
 
 def test_unknown_command_is_an_error_not_a_traceback():
