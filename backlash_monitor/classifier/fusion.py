@@ -1,0 +1,111 @@
+"""Fusion of the consecutive onset events of one drive into one width estimate (no rclpy).
+
+A clutch's backlash changes over hours, a single window's gap-traversal time varies by ~1 ms from
+event to event (the disturbances act on the load moment), so the classifier fuses the last N onset
+events of a drive.
+
+Rule (``sum_normalised_b``, the default): each event's B vector is divided by its own mean (so paper-
+mode B, whose scale depends on l2 and epochs, and shape-mode B, squared Mahalanobis distances, fuse the
+same way and no single event dominates through its scale), the normalised vectors of the last
+``window_events`` onset events are summed, and the fused width is the candidate with the smallest sum.
+``vote`` is the alternative (majority of the per-event argmins, ties broken by the normalised sum).
+Both are measured in docs/classifier.md.
+"""
+from __future__ import annotations
+
+from collections import deque
+from dataclasses import dataclass
+
+import numpy as np
+
+FUSION_RULES = ("sum_normalised_b", "vote")
+DEFAULT_WINDOW_EVENTS = 8
+
+
+def normalise_b(b) -> np.ndarray:
+    """B divided by its mean (all-zero B stays zero)."""
+    b = np.asarray(b, dtype=float)
+    m = b.mean(axis=-1, keepdims=True)
+    return np.divide(b, m, out=np.zeros_like(b), where=m > 0)
+
+
+def fuse_b_vectors(bs, rule: str = "sum_normalised_b") -> tuple[int, np.ndarray]:
+    """Fuse B vectors (n_events, n_widths) -> (index, summed normalised B; smaller is better)."""
+    if rule not in FUSION_RULES:
+        raise ValueError(f"unknown fusion rule {rule!r}; allowed: {', '.join(FUSION_RULES)}")
+    bs = np.atleast_2d(np.asarray(bs, dtype=float))
+    if bs.shape[0] == 0:
+        raise ValueError("no events to fuse")
+    score = normalise_b(bs).sum(axis=0)
+    if rule == "vote":
+        votes = np.bincount(np.argmin(bs, axis=1), minlength=bs.shape[1]).astype(float)
+        best = np.flatnonzero(votes == votes.max())
+        return int(best[np.argmin(score[best])]), score
+    return int(np.argmin(score)), score
+
+
+@dataclass
+class FusedEstimate:
+    index: int
+    width_m: float
+    events: int
+    score: np.ndarray       # fused score per candidate width (smaller is better)
+    margin: float           # second-smallest over smallest score
+
+
+class WidthFusion:
+    """Keeps the B vectors of the last ``window_events`` onset events of one drive.
+
+    >>> f = WidthFusion(widths_m, window_events=8)
+    >>> est = f.add(b_vector)        # after each onset window's classification -> FusedEstimate
+    ``reset()`` when the drive changes (e.g. a new bag, a different drive name). Return entries must
+    not be added (classification uses onset entries); ``add`` takes ``kind`` and ignores non-onsets.
+    """
+
+    def __init__(self, widths_m, window_events: int = DEFAULT_WINDOW_EVENTS, rule: str = "sum_normalised_b"):
+        if int(window_events) < 1:
+            raise ValueError(f"window_events must be >= 1, got {window_events}")
+        if rule not in FUSION_RULES:
+            raise ValueError(f"unknown fusion rule {rule!r}; allowed: {', '.join(FUSION_RULES)}")
+        self.widths_m = np.asarray(widths_m, dtype=float)
+        self.window_events = int(window_events)
+        self.rule = rule
+        self._bs: deque = deque(maxlen=self.window_events)
+
+    def reset(self) -> None:
+        self._bs.clear()
+
+    def __len__(self) -> int:
+        return len(self._bs)
+
+    def add(self, b, kind: str = "onset") -> FusedEstimate | None:
+        b = np.asarray(b, dtype=float)
+        if b.shape != self.widths_m.shape:
+            raise ValueError(f"B vector has {b.size} entries, expected {self.widths_m.size}")
+        if kind == "onset":
+            self._bs.append(b)
+        return self.estimate()
+
+    def estimate(self) -> FusedEstimate | None:
+        if not self._bs:
+            return None
+        idx, score = fuse_b_vectors(np.array(self._bs), self.rule)
+        s = np.sort(score)
+        margin = float(s[1] / s[0]) if s[0] > 0 else (1.0 if s[1] == s[0] else float("inf"))
+        return FusedEstimate(index=idx, width_m=float(self.widths_m[idx]), events=len(self._bs),
+                             score=score, margin=margin)
+
+
+def fused_indices(b_sequence, window_events: int = DEFAULT_WINDOW_EVENTS, rule: str = "sum_normalised_b",
+                  full_only: bool = True) -> np.ndarray:
+    """Offline: fused index after each event of one drive's ordered B sequence (n_events, n_widths).
+
+    With ``full_only`` the first window_events-1 events (a not yet full buffer) are left out.
+    """
+    bs = np.atleast_2d(np.asarray(b_sequence, dtype=float))
+    out = []
+    start = window_events - 1 if full_only else 0
+    for k in range(min(start, len(bs) - 1) if len(bs) else 0, len(bs)):
+        lo = max(0, k + 1 - window_events)
+        out.append(fuse_b_vectors(bs[lo:k + 1], rule)[0])
+    return np.array(out, dtype=int)

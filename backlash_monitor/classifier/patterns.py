@@ -1,0 +1,160 @@
+"""The versioned pattern library: one ``.npz`` file (no pickles) holding every mode's patterns.
+
+Layout (format version 1, documented in docs/classifier.md):
+
+``meta``                              0-d unicode array: JSON with ``format_version``, ``settings``,
+                                      ``widths_m``, ``n1_values``, ``signals``, ``modes``, ``training``
+                                      (how the data were made) and ``created_utc``.
+``paper/<signal>/m3``                 (n_n1, 6) M3 used for each n1 (eq. 14: the n1 = 0.89, eta_k = 0.025
+                                      windows, so every row is the same in the paper's rule).
+``paper/<signal>/w5``                 (n_n1, 6, 6) W5 per n1 (eq. 29, eta_k = 0.025, same n1).
+``paper_corrected/<signal>/m3|w5``    the same for the corrected variant.
+``shape/<name>``                      arrays of the improved mode's model (see shape.py).
+
+``load_library(path, **expected)`` refuses a library whose format version or settings differ from the
+ones requested (``PatternLibraryMismatch`` names every mismatching key with both values).
+"""
+from __future__ import annotations
+
+import datetime as _dt
+import hashlib
+import json
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .cpn import CPN_VARIANTS, CounterPropagationNetwork
+
+FORMAT_VERSION = 1
+SIGNALS = ("a1", "a2")
+DEFAULT_LIBRARY_PATH = Path(__file__).resolve().parents[1] / "data" / "patterns.npz"
+
+# Settings a library is made with; load_library compares the ones the caller passes.
+SETTING_KEYS = ("trigger", "epochs", "l1", "l2", "denoising", "window_length", "sample_period_s",
+                "plant_config_hash")
+
+
+class PatternLibraryError(ValueError):
+    """The library file cannot be used (missing, unreadable, wrong format)."""
+
+
+class PatternLibraryMismatch(PatternLibraryError):
+    """The library was made with other settings than requested."""
+
+    def __init__(self, path, mismatches: dict[str, tuple[Any, Any]]):
+        self.mismatches = mismatches
+        parts = [f"{k}: library has {lib!r}, requested {req!r}" for k, (lib, req) in mismatches.items()]
+        super().__init__(f"pattern library {path} was made with other settings than requested ("
+                         + "; ".join(parts) + "); rebuild it with `python -m backlash_monitor train` "
+                         "using the requested settings, or request the library's settings")
+
+
+def config_hash(obj) -> str:
+    """Short stable hash of a (nested) config: dataclass, dict or anything JSON-able via repr."""
+    import dataclasses
+    if dataclasses.is_dataclass(obj):
+        obj = dataclasses.asdict(obj)
+    text = json.dumps(obj, sort_keys=True, default=repr)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _same(a, b) -> bool:
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)) and not isinstance(a, bool):
+        return bool(np.isclose(float(a), float(b), rtol=1e-9, atol=0.0))
+    return a == b
+
+
+@dataclass
+class PatternLibrary:
+    settings: dict
+    widths_m: np.ndarray
+    n1_values: np.ndarray
+    arrays: dict = field(default_factory=dict)   # "paper/a1/w5" -> ndarray, "shape/..." -> ndarray
+    training: dict = field(default_factory=dict)
+    shape_meta: dict = field(default_factory=dict)
+    created_utc: str = ""
+    path: str = ""
+
+    # ---------------------------------------------------------------- queries
+    @property
+    def modes(self) -> list[str]:
+        return sorted({k.split("/", 1)[0] for k in self.arrays})
+
+    def n1_index(self, n1: float) -> int:
+        d = np.abs(self.n1_values - float(n1))
+        i = int(np.argmin(d))
+        if d[i] > 1e-9:
+            raise ValueError(f"creep index n1={n1} has no patterns in {self.path or 'the library'}; "
+                             f"allowed: {', '.join(f'{v:g}' for v in self.n1_values)}")
+        return i
+
+    def cpn(self, variant: str, signal: str, n1: float) -> CounterPropagationNetwork:
+        """The paper-mode network for one signal and n1, patterns loaded (no processing needed)."""
+        if variant not in CPN_VARIANTS:
+            raise ValueError(f"unknown variant {variant!r}; allowed: {', '.join(CPN_VARIANTS)}")
+        if signal not in SIGNALS:
+            raise ValueError(f"unknown signal {signal!r}; allowed: {', '.join(SIGNALS)}")
+        key = f"{variant}/{signal}/"
+        if key + "w5" not in self.arrays:
+            raise PatternLibraryError(f"library {self.path} has no {variant} patterns for {signal}")
+        i = self.n1_index(n1)
+        s = self.settings
+        return CounterPropagationNetwork(self.arrays[key + "m3"][i], variant=variant, epochs=s["epochs"],
+                                         l1=s["l1"], l2=s["l2"], w5=self.arrays[key + "w5"][i])
+
+    def shape_arrays(self) -> dict:
+        return {k.split("/", 1)[1]: v for k, v in self.arrays.items() if k.startswith("shape/")}
+
+    # ---------------------------------------------------------------- file
+    def save(self, path) -> Path:
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        meta = {
+            "format_version": FORMAT_VERSION,
+            "settings": self.settings,
+            "widths_m": [float(w) for w in self.widths_m],
+            "n1_values": [float(v) for v in self.n1_values],
+            "signals": list(SIGNALS),
+            "modes": self.modes,
+            "training": self.training,
+            "shape_meta": self.shape_meta,
+            "created_utc": self.created_utc or _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        }
+        tmp = path.with_name(path.name + ".tmp.npz")
+        np.savez_compressed(tmp, meta=np.array(json.dumps(meta, sort_keys=True)), **self.arrays)
+        os.replace(tmp, path)
+        return path
+
+
+def load_library(path=None, **expected) -> PatternLibrary:
+    """Load a pattern library; ``expected`` settings (e.g. trigger="contact_loss", epochs=30) must match.
+
+    ``None`` values in ``expected`` are not checked. Raises PatternLibraryError / PatternLibraryMismatch.
+    """
+    path = Path(path) if path is not None else DEFAULT_LIBRARY_PATH
+    unknown = sorted(set(expected) - set(SETTING_KEYS))
+    if unknown:
+        raise ValueError(f"unknown library setting(s) {', '.join(unknown)}; allowed: {', '.join(SETTING_KEYS)}")
+    if not path.is_file():
+        raise PatternLibraryError(f"pattern library {path} does not exist; make one with "
+                                  "`python -m backlash_monitor train --out {path}`")
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            meta = json.loads(str(z["meta"]))
+            arrays = {k: z[k] for k in z.files if k != "meta"}
+    except Exception as exc:  # noqa: BLE001 - any unreadable file is the same problem for the user
+        raise PatternLibraryError(f"pattern library {path} is unreadable: {exc}") from exc
+    version = meta.get("format_version")
+    if version != FORMAT_VERSION:
+        raise PatternLibraryMismatch(path, {"format_version": (version, FORMAT_VERSION)})
+    settings = meta.get("settings", {})
+    mism = {k: (settings.get(k), v) for k, v in expected.items() if v is not None and not _same(settings.get(k), v)}
+    if mism:
+        raise PatternLibraryMismatch(path, mism)
+    return PatternLibrary(settings=settings, widths_m=np.asarray(meta["widths_m"]),
+                          n1_values=np.asarray(meta["n1_values"]), arrays=arrays,
+                          training=meta.get("training", {}), shape_meta=meta.get("shape_meta", {}),
+                          created_utc=meta.get("created_utc", ""), path=str(path))
