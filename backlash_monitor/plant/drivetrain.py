@@ -97,22 +97,28 @@ def plant_derivatives(psa, psb, pra, prb, w1, delta, omega2, z, xdot, ua, ub, lo
 
 
 @jitable
-def plant_derivatives_scalar(psa, psb, pra, prb, w1, delta, omega2, z, xdot, ua, ub, load_pu, beta, c, n1, p):
+def plant_derivatives_scalar(psa, psb, pra, prb, w1, delta, omega2, z, xdot, ua, ub, load_pu, beta, c, n1, p,
+                             mode=0):
     """:func:`plant_derivatives` for one scenario on floats, written for the compiled kernel (branches
-    instead of masks, exp/log instead of pow). Same equations; the tests check both agree."""
+    instead of masks, exp/log instead of pow). Same equations; the tests check both agree.
+
+    ``mode``: 0 = the zone test |Delta| < beta decides; 1 = in contact, 2 = in the zone (forced; used by
+    the integrator on either side of a located zone crossing, where |Delta| = beta up to rounding)."""
     dpsa, dpsb, dpra, dprb, te = flux_derivatives(psa, psb, pra, prb, w1, ua, ub, p[P_RS], p[P_RR], p[P_XS],
                                                   p[P_XR], p[P_XM], p[P_W], p[P_OMEGA_B])
     omega1 = w1 * p[P_OMEGA_MB]
     rel = omega1 - omega2
     tc = 0.0
-    if delta >= beta:
-        tc = p[P_KC] * (delta - beta) + p[P_DC] * rel
-        if tc < 0.0:
-            tc = 0.0
-    elif delta <= -beta:
-        tc = p[P_KC] * (delta + beta) + p[P_DC] * rel
-        if tc > 0.0:
-            tc = 0.0
+    engaged = (abs(delta) >= beta) if mode == 0 else (mode == 1)
+    if engaged:
+        if delta > 0.0:
+            tc = p[P_KC] * (delta - beta) + p[P_DC] * rel
+            if tc < 0.0:
+                tc = 0.0
+        else:
+            tc = p[P_KC] * (delta + beta) + p[P_DC] * rel
+            if tc > 0.0:
+                tc = 0.0
     tc *= p[P_ON_CLUTCH]
     v = p[P_R] * omega2 - xdot
     av = abs(v)

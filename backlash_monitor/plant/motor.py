@@ -93,6 +93,16 @@ def steady_state_at_torque(load_torque_pu: float, motor) -> MotorSteadyState:
     return equivalent_circuit(s, motor)
 
 
+def supply_phase(sample_index, sample_rate_hz: float, frequency_hz: float):
+    """Supply angle Omega_b*t [rad] at t = sample_index/fs, reduced to [0, 2*pi) exactly (see supply_voltage)."""
+    k = np.asarray(sample_index, dtype=np.int64)
+    if float(frequency_hz).is_integer() and float(sample_rate_hz).is_integer():
+        cycles = np.mod(k * int(frequency_hz), int(sample_rate_hz)) / sample_rate_hz
+    else:
+        cycles = np.mod(k * (frequency_hz / sample_rate_hz), 1.0)
+    return 2.0 * math.pi * cycles
+
+
 def supply_voltage(sample_index, offset_samples, sample_rate_hz: float, frequency_hz: float, amplitude_pu: float):
     """u_s = U (cos Omega_b t, sin Omega_b t) at t = (sample_index + offset)/fs, phase reduced exactly.
 

@@ -10,7 +10,7 @@ from .config import PlantConfig, load_plant_config
 from .disturbances import MotorLoadInput, pulse_load_pu
 from .drivetrain import STATE_NAMES, absorber_coefficient, global_parameters, half_gap_rad
 from .integrator import rk4_advance, resolve_backend
-from .motor import supply_voltage
+from .motor import supply_phase, supply_voltage
 from .scenarios import Scenario
 from .steady_state import settled_state
 
@@ -109,12 +109,15 @@ class PlantSimulator:
         for ia, ib in ((0, 1), (2, 3)):
             z = (self.state[:, ia] + 1j * self.state[:, ib]) * rot
             self.state[:, ia], self.state[:, ib] = z.real, z.imag
-        ua, ub = self._supply(-n, n)
-        pulse = pulse_load_pu(-n, n, cfg)
         run_in_inputs = [MotorLoadInput(_noise_seed(s) ^ 0x5EED, cfg) for s in self.scenarios]
-        load = np.stack([inp.samples(0, n, self.noise, pulse=pulse) for inp in run_in_inputs])
-        rk4_advance(self.backend, self.state, load, ua, ub, self.beta, self.c, self.n1, self.params,
-                    self.sample_period_s)
+        step = 12_500  # in chunks: bounded memory
+        for k0 in range(-n, 0, step):
+            m = min(step, -k0)
+            ua, ub, phase = self._supply(k0, m)
+            pulse = pulse_load_pu(k0, m, cfg)
+            load = np.stack([inp.samples(k0 + n, m, self.noise, pulse=pulse) for inp in run_in_inputs])
+            rk4_advance(self.backend, self.state, load, ua, ub, phase, cfg.motor.supply_voltage_pu, self.beta,
+                        self.c, self.n1, self.params, self.sample_period_s)
 
     def _supply(self, k0: int, n: int):
         m = self.config.motor
@@ -125,7 +128,7 @@ class PlantSimulator:
             a, b = supply_voltage(k, off, fs, m.supply_frequency_hz, m.supply_voltage_pu)
             cols_a.append(a)
             cols_b.append(b)
-        return np.stack(cols_a, axis=1), np.stack(cols_b, axis=1)
+        return np.stack(cols_a, axis=1), np.stack(cols_b, axis=1), supply_phase(k, fs, m.supply_frequency_hz)
 
     def motor_load_pu(self, k0: int, n: int) -> np.ndarray:
         """The held motor load moment [p.u.] of every scenario for samples k0..k0+n-1 (advances the generators)."""
@@ -139,9 +142,9 @@ class PlantSimulator:
             raise ValueError(f"PlantSimulator.run: n_samples = {n_samples} is negative; allowed: >= 0")
         k0 = self.sample_index
         load = self.motor_load_pu(k0, n)
-        ua, ub = self._supply(k0, n)
-        out, states = rk4_advance(self.backend, self.state, load, ua, ub, self.beta, self.c, self.n1, self.params,
-                                  self.sample_period_s, self.record_states)
+        ua, ub, phase = self._supply(k0, n)
+        out, states = rk4_advance(self.backend, self.state, load, ua, ub, phase, self.config.motor.supply_voltage_pu,
+                                  self.beta, self.c, self.n1, self.params, self.sample_period_s, self.record_states)
         entries = find_entries(out[4], self.beta, self._last_delta, k0)
         if n > 0:
             self._last_delta = out[4][:, -1].copy()
