@@ -131,6 +131,7 @@ class BagReader:
         self._data_start = 0
         self._data_end = self.file_size
         self._have_stats = False
+        self._zstd = None
         self._corrupt: set[int] = set()
         try:
             self._open()
@@ -388,9 +389,11 @@ class BagReader:
             if comp == "":
                 out = data
             elif comp == "zstd":
-                import zstandard
+                if self._zstd is None:
+                    import zstandard
 
-                out = zstandard.ZstdDecompressor().decompress(bytes(data), max_output_size=usize)
+                    self._zstd = zstandard.ZstdDecompressor()
+                out = self._zstd.decompress(data, max_output_size=usize)
             elif comp == "lz4":
                 import lz4.frame
 
@@ -531,31 +534,47 @@ class BagReader:
     def read_signal(self, topic: str) -> SignalSeries:
         """Concatenate a SignalChunk topic. Chunks are ordered by first_sample_index; a missing
         or overlapping range is listed in `gaps` (and the samples simply follow each other)."""
-        info = self.topics.get(topic)
-        if info is None:
-            raise MissingTopicError(topic, self.topics)
-        if not info.type.endswith("/SignalChunk"):
-            raise BagError(f"topic {topic!r} has type {info.type}, not SignalChunk")
-        msgs = [(m.message, m.log_time_ns) for m in self.messages([topic])]
-        msgs.sort(key=lambda x: x[0].first_sample_index)
-        if not msgs:
-            e = np.zeros(0)
-            return SignalSeries(topic, "", "", float("nan"), e, np.zeros(0, np.uint64),
-                                np.zeros(0, np.uint64), np.zeros(0, np.int64))
-        first = msgs[0][0]
-        samples = np.concatenate([m.samples for m, _ in msgs]) if msgs else np.zeros(0)
-        idx = np.concatenate([np.arange(m.first_sample_index, m.first_sample_index + len(m.samples),
-                                        dtype=np.uint64) for m, _ in msgs])
-        gaps = []
-        expected = first.first_sample_index
-        for m, _ in msgs:
-            if m.first_sample_index != expected:
-                gaps.append((int(expected), int(m.first_sample_index)))
-            expected = m.first_sample_index + len(m.samples)
-        return SignalSeries(topic, first.signal_name, first.unit, first.sample_period_s, samples, idx,
-                            np.array([m.first_sample_index for m, _ in msgs], dtype=np.uint64),
-                            np.array([t for _, t in msgs], dtype=np.int64),
-                            first.header.frame_id, gaps)
+        return self.read_signals([topic])[topic]
+
+    def read_signals(self, topics: Iterable[str] | None = None) -> dict[str, SignalSeries]:
+        """read_signal for several SignalChunk topics in one pass over the file (default: all)."""
+        infos = self.topics
+        if topics is None:
+            topics = [t for t, i in infos.items() if i.type.endswith("/SignalChunk")]
+        topics = list(topics)
+        for topic in topics:
+            info = infos.get(topic)
+            if info is None:
+                raise MissingTopicError(topic, infos)
+            if not info.type.endswith("/SignalChunk"):
+                raise BagError(f"topic {topic!r} has type {info.type}, not SignalChunk")
+        per: dict[str, list] = {t: [] for t in topics}
+        if topics:
+            for m in self.messages(topics):
+                per[m.topic].append((m.message, m.log_time_ns))
+        return {t: _series(t, msgs) for t, msgs in per.items()}
+
+
+def _series(topic: str, msgs: list) -> SignalSeries:
+    msgs.sort(key=lambda x: x[0].first_sample_index)
+    if not msgs:
+        return SignalSeries(topic, "", "", float("nan"), np.zeros(0), np.zeros(0, np.uint64),
+                            np.zeros(0, np.uint64), np.zeros(0, np.int64))
+    first = msgs[0][0]
+    samples = np.concatenate([m.samples for m, _ in msgs])
+    starts = np.array([m.first_sample_index for m, _ in msgs], dtype=np.uint64)
+    lengths = np.array([len(m.samples) for m, _ in msgs], dtype=np.int64)
+    offsets = np.concatenate(([0], np.cumsum(lengths)[:-1])).astype(np.uint64)
+    idx = (np.repeat(starts - offsets, lengths)
+           + np.arange(samples.size, dtype=np.uint64)) if samples.size else np.zeros(0, np.uint64)
+    ends = starts + lengths.astype(np.uint64)
+    bad = np.nonzero(starts[1:] != ends[:-1])[0]
+    gaps = [(int(ends[k]), int(starts[k + 1])) for k in bad]
+    if starts[0] != first.first_sample_index:  # pragma: no cover - sorted above
+        gaps.insert(0, (int(first.first_sample_index), int(starts[0])))
+    return SignalSeries(topic, first.signal_name, first.unit, first.sample_period_s, samples, idx,
+                        starts, np.array([t for _, t in msgs], dtype=np.int64),
+                        first.header.frame_id, gaps)
 
 
 def _iter_plain(buf):

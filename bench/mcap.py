@@ -1,0 +1,261 @@
+"""MCAP record/replay benchmark. Prints ONE JSON object.
+
+    python bench/mcap.py [--seconds 3] [--factor 10]
+
+- lost_messages: a publisher process streams SignalChunk messages (1000 samples = 20 ms at 50 kHz)
+  on plant/a1, a2, omega1, omega2, angle_difference at `factor` x the nominal rate (10x = 2500
+  messages/s, 2.5 M samples/s, ~20 MB/s) through real DDS (loopback, reliable, keep-last 100) into
+  the record node in another process for `seconds`; published minus recorded.
+- bytes_per_sample: bag size / samples, against 8 bytes of a float64 (zstd chunks; plant-like
+  signals: a smooth waveform plus noise; white float64 noise does not compress).
+- write_samples_per_s: BagWriter.write_raw of serialized chunks (the recorder's path);
+  write_encode_samples_per_s includes our CDR encoding.
+- read_samples_per_s: BagReader, every message decoded to numpy and each topic concatenated
+  (read_signal).
+- rosbags_read_samples_per_s: the same bag read and deserialized by rosbags (time_rosbags_read()).
+
+`time_rosbags_read(path)` and `time_project_read(path)` are importable for other benchmarks.
+With `--role publish` this file is the publisher process of the DDS part (prints its own JSON).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parents[1]
+if str(REPO) not in sys.path:
+    sys.path.insert(0, str(REPO))
+
+SIGNALS = ("a1", "a2", "omega1", "omega2", "angle_difference")
+UNITS = {"a1": "m/s^2", "a2": "m/s^2", "omega1": "rad/s", "omega2": "rad/s",
+         "angle_difference": "rad"}
+CHUNK = 1000
+FS = 50_000.0
+SIGNAL_CHUNK = "backlash_monitor_msgs/msg/SignalChunk"
+
+
+def plant_like(name: str, first: int, n: int, rng) -> np.ndarray:
+    t = (first + np.arange(n)) / FS
+    base = {"a1": 3.0 * np.sin(2 * np.pi * 4 * t), "a2": 0.5 * np.sin(2 * np.pi * 4 * t + 1),
+            "omega1": 150 + 2 * np.sin(2 * np.pi * 4 * t), "omega2": 150 + 2 * np.sin(2 * np.pi * 4 * t),
+            "angle_difference": 0.01 * np.sin(2 * np.pi * 4 * t)}[name]
+    return base + 0.05 * rng.standard_normal(n)
+
+
+def encoded_chunks(n_chunks: int, seed: int = 0):
+    """[(topic, log_time_ns, cdr bytes, samples)] of a plant-like stream, in time order."""
+    from backlash_monitor.bag import Codec
+
+    codec = Codec.for_type(SIGNAL_CHUNK)
+    rng = np.random.default_rng(seed)
+    t0 = 1_763_000_000_000_000_000
+    out = []
+    for i in range(n_chunks):
+        t = t0 + i * 20_000_000
+        for name in SIGNALS:
+            msg = codec.new(signal_name=name, unit=UNITS[name], sample_period_s=1 / FS,
+                            first_sample_index=i * CHUNK, samples=plant_like(name, i * CHUNK, CHUNK, rng))
+            msg.header.stamp.sec, msg.header.stamp.nanosec = divmod(t, 1_000_000_000)
+            msg.header.frame_id = "drive"
+            out.append((f"/plant/{name}", t, codec.encode(msg), msg))
+    return out
+
+
+def time_write(path: Path, chunks, encode: bool = False) -> float:
+    from backlash_monitor.bag import BagWriter
+
+    start = time.perf_counter()
+    with BagWriter(path) as w:
+        for name in SIGNALS:
+            w.add_topic(f"/plant/{name}", SIGNAL_CHUNK)
+        if encode:
+            for topic, t, _data, msg in chunks:
+                w.write(topic, msg, log_time_ns=t)
+        else:
+            for topic, t, data, _msg in chunks:
+                w.write_raw(topic, data, log_time_ns=t)
+    return time.perf_counter() - start
+
+
+def time_project_read(path) -> tuple[int, float]:
+    """(samples, seconds) for reading every SignalChunk topic of `path` into numpy arrays."""
+    from backlash_monitor.bag import BagReader
+
+    start = time.perf_counter()
+    n = 0
+    with BagReader(path) as bag:
+        for series in bag.read_signals().values():
+            n += series.samples.size
+    return n, time.perf_counter() - start
+
+
+def time_rosbags_read(path, topics=None) -> tuple[int, float]:
+    """(samples, seconds) for reading and deserializing `path` with rosbags (AnyReader).
+
+    Counts the samples of SignalChunk messages (float64[] `samples`); other messages are
+    deserialized and counted as 0 samples. `topics`: restrict to these topics."""
+    from rosbags.highlevel import AnyReader
+    from rosbags.typesys import Stores, get_typestore
+
+    start = time.perf_counter()
+    n = 0
+    with AnyReader([Path(path)], default_typestore=get_typestore(Stores.ROS2_JAZZY)) as reader:
+        conns = [c for c in reader.connections if topics is None or c.topic in topics]
+        for conn, _ts, raw in reader.messages(connections=conns):
+            msg = reader.deserialize(raw, conn.msgtype)
+            samples = getattr(msg, "samples", None)
+            if samples is not None:
+                n += len(samples)
+    return n, time.perf_counter() - start
+
+
+# ----------------------------------------------------------------------------------------------
+# DDS part
+
+
+def publisher_main(argv) -> int:
+    """Child process: publish the 5 signal topics at `factor` x 50 kHz for `seconds`."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--role")
+    ap.add_argument("--seconds", type=float, default=3.0)
+    ap.add_argument("--factor", type=float, default=10.0)
+    ap.add_argument("--depth", type=int, default=100)
+    ap.add_argument("--wait-subscribers", type=float, default=20.0)
+    a = ap.parse_args(argv)
+    import rclpy
+    from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
+
+    from backlash_monitor.bag import Codec
+    from backlash_monitor_msgs.msg import SignalChunk
+
+    rclpy.init()
+    node = rclpy.create_node("bench_mcap_publisher")
+    qos = QoSProfile(depth=a.depth, history=HistoryPolicy.KEEP_LAST,
+                     reliability=ReliabilityPolicy.RELIABLE)
+    pubs = {name: node.create_publisher(SignalChunk, f"plant/{name}", qos) for name in SIGNALS}
+    deadline = time.monotonic() + a.wait_subscribers
+    while time.monotonic() < deadline and not all(p.get_subscription_count() for p in pubs.values()):
+        time.sleep(0.02)
+    matched = all(p.get_subscription_count() for p in pubs.values())
+    time.sleep(0.3)  # let the reliable readers finish matching both ways
+    codec = Codec.for_type(SIGNAL_CHUNK)
+    rng = np.random.default_rng(0)
+    templates = {name: codec.new(signal_name=name, unit=UNITS[name], sample_period_s=1 / FS,
+                                 samples=plant_like(name, 0, CHUNK, rng)) for name in SIGNALS}
+    period = CHUNK / FS / a.factor
+    n_chunks = int(round(a.seconds / period))
+    sent = {name: 0 for name in SIGNALS}
+    start = time.monotonic()
+    for i in range(n_chunks):
+        target = start + i * period
+        now = time.monotonic()
+        if target > now:
+            time.sleep(target - now)
+        stamp = time.time_ns()
+        for name in SIGNALS:
+            msg = templates[name]
+            msg.first_sample_index = i * CHUNK
+            msg.header.stamp.sec, msg.header.stamp.nanosec = divmod(stamp, 1_000_000_000)
+            pubs[name].publish(codec.encode(msg))
+            sent[name] += 1
+    elapsed = time.monotonic() - start
+    from rclpy.duration import Duration
+
+    acked = all(p.wait_for_all_acked(Duration(seconds=10)) for p in pubs.values())
+    print(json.dumps({"published": {f"/plant/{k}": v for k, v in sent.items()},
+                      "elapsed_s": elapsed, "matched": matched, "acked": acked}), flush=True)
+    node.destroy_node()
+    rclpy.try_shutdown()
+    return 0
+
+
+def dds_record(out: Path, seconds: float, factor: float, env: dict) -> dict:
+    rec = subprocess.Popen(
+        [sys.executable, "-m", "backlash_monitor.nodes.record", "--ros-args",
+         "-p", f"output:={out}", "-p", "topics:=plant/*", "-p", "queue_depth:=1000",
+         "-p", "discovery_period_s:=0.05"],
+        env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, cwd=REPO)
+    try:
+        pub = subprocess.run([sys.executable, __file__, "--role", "publish", "--seconds", str(seconds),
+                              "--factor", str(factor)], env=env, capture_output=True, text=True,
+                             timeout=seconds * 4 + 60, cwd=REPO)
+        if pub.returncode != 0:
+            raise RuntimeError(f"publisher failed: {pub.stderr[-2000:]}")
+        result = json.loads(pub.stdout.strip().splitlines()[-1])
+        time.sleep(0.5)
+    finally:
+        rec.send_signal(signal.SIGINT)
+        try:
+            rec.communicate(timeout=30)
+        except subprocess.TimeoutExpired:
+            rec.kill()
+            rec.communicate()
+    from backlash_monitor.bag import BagReader
+
+    with BagReader(out) as bag:
+        recorded = {t: i.count for t, i in bag.topics.items()}
+    published = result["published"]
+    lost = sum(max(0, n - recorded.get(t, 0)) for t, n in published.items())
+    return {"published": sum(published.values()), "recorded": sum(recorded.values()),
+            "lost": lost, "publish_elapsed_s": result["elapsed_s"], "acked": result["acked"]}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--seconds", type=float, default=3.0, help="DDS streaming time [s]")
+    ap.add_argument("--factor", type=float, default=10.0, help="x the nominal rate")
+    ap.add_argument("--chunks", type=int, default=500, help="chunk periods (20 ms) in the I/O bench")
+    ap.add_argument("--role", default="bench", choices=("bench", "publish"))
+    a, rest = ap.parse_known_args(argv)
+    if a.role == "publish":
+        return publisher_main(argv if argv is not None else sys.argv[1:])
+    env = dict(os.environ)
+    env["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+    env.setdefault("ROS_DOMAIN_ID", "53")
+    env["PYTHONPATH"] = str(REPO) + os.pathsep + env.get("PYTHONPATH", "")
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        chunks = encoded_chunks(a.chunks)
+        samples = len(chunks) * CHUNK
+        t_raw = min(time_write(tmp / "w.mcap", chunks) for _ in range(2))
+        t_enc = time_write(tmp / "we.mcap", chunks, encode=True)
+        size = (tmp / "w.mcap").stat().st_size
+        n_read, t_read = min((time_project_read(tmp / "w.mcap") for _ in range(2)), key=lambda x: x[1])
+        n_rb, t_rb = time_rosbags_read(tmp / "w.mcap")
+        assert n_read == n_rb == samples, (n_read, n_rb, samples)
+        try:
+            dds = dds_record(tmp / "dds.mcap", a.seconds, a.factor, env)
+        except Exception as exc:  # noqa: BLE001 - report, do not hide the I/O numbers
+            dds = {"error": str(exc)}
+    result = {
+        "lost_messages": dds.get("lost"),
+        "dds_published_messages": dds.get("published"),
+        "dds_recorded_messages": dds.get("recorded"),
+        "dds_rate_factor": a.factor,
+        "dds_publish_elapsed_s": dds.get("publish_elapsed_s"),
+        "bytes_per_sample": size / samples,
+        "bytes_per_sample_float64": 8,
+        "write_samples_per_s": samples / t_raw,
+        "write_encode_samples_per_s": samples / t_enc,
+        "read_samples_per_s": n_read / t_read,
+        "rosbags_read_samples_per_s": n_rb / t_rb,
+        "realtime_samples_per_s": FS * len(SIGNALS),
+        "io_bench_samples": samples,
+    }
+    if "error" in dds:
+        result["dds_error"] = dds["error"]
+    print(json.dumps(result))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,185 @@
+"""record / replay nodes through real DDS (loopback, a domain per test): signals close the file
+properly, a SIGKILL loses at most the open chunk, replay reproduces the recording."""
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("rclpy")
+pytest.importorskip("backlash_monitor_msgs.msg")
+
+from backlash_monitor.bag import BagReader, TruncatedBagError  # noqa: E402
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bag_helpers import write_sample_bag  # noqa: E402
+
+
+def _start_recorder(env, out, *params):
+    args = [sys.executable, "-m", "backlash_monitor.nodes.record", "--ros-args",
+            "-p", f"output:={out}", "-p", "discovery_period_s:=0.05", *sum((["-p", p] for p in params), [])]
+    return subprocess.Popen(args, env=env, cwd=REPO, stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True)
+
+
+def _publish(env, seconds, factor, wait=True):
+    args = [sys.executable, str(REPO / "bench" / "mcap.py"), "--role", "publish",
+            "--seconds", str(seconds), "--factor", str(factor)]
+    if not wait:
+        return subprocess.Popen(args, env=env, cwd=REPO, stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True)
+    proc = subprocess.run(args, env=env, cwd=REPO, capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def _stop(proc, sig=signal.SIGINT, timeout=20):
+    if proc.poll() is None:
+        proc.send_signal(sig)
+    try:
+        out, _ = proc.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        out, _ = proc.communicate()
+        pytest.fail(f"process did not stop on {sig!r}:\n{out}")
+    return proc.returncode, out
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+def test_signal_closes_the_bag_properly(ros_env, tmp_path, sig):
+    out = tmp_path / "rec.mcap"
+    rec = _start_recorder(ros_env, out, "topics:=plant/*", "chunk_duration_s:=0.2")
+    try:
+        result = _publish(ros_env, 1.0, 2.0)
+        time.sleep(0.3)
+    finally:
+        rc, log = _stop(rec, sig)
+    assert rc == 0, log
+    assert "Traceback" not in log
+    assert result["matched"]
+    with BagReader(out) as bag:  # strict: footer, summary, statistics present
+        assert bag.recovery.complete
+        assert {t: i.count for t, i in bag.topics.items()} == result["published"]
+        info = bag.topics["/plant/a1"]
+        assert "reliability: reliable" in info.offered_qos_profiles
+        assert info.type_hash.startswith("RIHS01_")
+        series = bag.read_signals()
+        assert all(s.gaps == [] and s.samples.size == 100 * 1000 for s in series.values())
+    from mcap.reader import make_reader
+
+    with open(out, "rb") as f:
+        summary = make_reader(f).get_summary()
+    assert summary.statistics.message_count == sum(result["published"].values())
+
+
+def test_sigkill_loses_at_most_the_open_chunk(ros_env, tmp_path):
+    out = tmp_path / "killed.mcap"
+    chunk_s = 0.25
+    rec = _start_recorder(ros_env, out, "topics:=plant/*", f"chunk_duration_s:={chunk_s}")
+    pub = _publish(ros_env, 4.0, 1.0, wait=False)
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and (not out.exists() or out.stat().st_size < 600_000):
+            time.sleep(0.05)
+        assert out.exists() and out.stat().st_size >= 600_000, "recorder did not record"
+        killed_ns = time.time_ns()
+        rec.kill()
+        rec.wait(timeout=10)
+    finally:
+        if rec.poll() is None:
+            rec.kill()
+        pub.wait(timeout=60)
+    with pytest.raises(TruncatedBagError):
+        BagReader(out)
+    with BagReader(out, recover=True) as bag:
+        rep = bag.recovery
+        assert not rep.complete and rep.complete_chunks >= 1
+        msgs = list(bag.messages())
+        assert msgs and len(msgs) == rep.messages
+        last = max(m.log_time_ns for m in msgs)
+        # at most one chunk (0.25 s) plus the flush timer's period and scheduling slack is lost
+        assert killed_ns - last < (chunk_s * 2 + 0.3) * 1e9, (killed_ns - last) / 1e9
+        for series in bag.read_signals().values():
+            assert series.gaps == [] and series.sample_index[0] == 0
+    cli = [sys.executable, "-m", "backlash_monitor", "bag-info", str(out)]
+    strict = subprocess.run(cli, capture_output=True, text=True, cwd=REPO, timeout=60)
+    assert strict.returncode == 1 and "incomplete" in strict.stderr and "--recover" in strict.stderr
+    assert "Traceback" not in strict.stderr + strict.stdout
+    recovered = subprocess.run(cli + ["--recover"], capture_output=True, text=True, cwd=REPO, timeout=60)
+    assert recovered.returncode == 0, recovered.stderr
+    assert "INCOMPLETE" in recovered.stdout and "recovered" in recovered.stdout
+
+
+def test_replay_flow_controlled_reproduces_the_bag_and_fresh_stamps_shift(ros_env, tmp_path):
+    src = tmp_path / "src.mcap"
+    write_sample_bag(src, n_chunks=100)
+    out = tmp_path / "replayed.mcap"
+    rec = _start_recorder(ros_env, out)
+    try:
+        play = subprocess.run(
+            [sys.executable, "-m", "backlash_monitor.nodes.replay", "--ros-args", "-p", f"bag:={src}",
+             "-p", "rate:=0.0", "-p", "stamps:=fresh", "-p", "wait_timeout_s:=30.0"],
+            env=ros_env, cwd=REPO, capture_output=True, text=True, timeout=90)
+        assert play.returncode == 0, play.stdout + play.stderr
+        time.sleep(0.3)
+    finally:
+        rc, log = _stop(rec)
+    assert rc == 0, log
+    with BagReader(src) as a, BagReader(out) as b:
+        assert {t: i.count for t, i in a.topics.items()} == {t: i.count for t, i in b.topics.items()}
+        for topic in a.topics:
+            ma = [m.message for m in a.messages(topic)]
+            mb = [m.message for m in b.messages(topic)]
+            shift = None
+            for x, y in zip(ma, mb):
+                dx = x.header.stamp.sec * 10**9 + x.header.stamp.nanosec
+                dy = y.header.stamp.sec * 10**9 + y.header.stamp.nanosec
+                shift = dy - dx if shift is None else shift
+                assert dy - dx == shift  # one constant offset
+                x.header.stamp, y.header.stamp = None, None
+                assert x == y
+            assert shift > 0  # stamps moved to the replay's (later) time
+
+
+def test_replay_at_recorded_rate_keeps_the_timing(ros_env, tmp_path):
+    src = tmp_path / "src.mcap"
+    write_sample_bag(src, n_chunks=50)  # 1 s of stream
+    out = tmp_path / "timed.mcap"
+    rec = _start_recorder(ros_env, out, "topics:=/plant/a1")
+    try:
+        play = subprocess.run(
+            [sys.executable, "-m", "backlash_monitor.nodes.replay", "--ros-args", "-p", f"bag:={src}",
+             "-p", "rate:=2.0", "-p", "topics:=plant/a1", "-p", "wait_for_subscribers:=1",
+             "-p", "qos:=reliable"],
+            env=ros_env, cwd=REPO, capture_output=True, text=True, timeout=90)
+        assert play.returncode == 0, play.stdout + play.stderr
+        time.sleep(0.3)
+    finally:
+        _stop(rec)
+    with BagReader(out) as bag:
+        assert bag.topics["/plant/a1"].count == 50
+        # 49 intervals of 20 ms at 2x: 0.49 s
+        assert 0.40e9 < bag.duration_ns < 0.75e9, bag.duration_ns / 1e9
+
+
+@pytest.mark.parametrize("node, params, named", [
+    ("record", ["compression:=gzip"], "compression"),
+    ("record", ["chunk_duration_s:=0.0"], "chunk_duration_s"),
+    ("record", ["exclude_regex:=(("], "exclude_regex"),
+    ("replay", ["bag:=/nonexistent/run.mcap"], "bag"),
+    ("replay", ["bag:=x.mcap", "rate:=-1.0"], "rate"),
+    ("replay", ["bag:=x.mcap", "stamps:=now"], "stamps"),
+])
+def test_nodes_reject_bad_parameters_clearly(ros_env, tmp_path, node, params, named):
+    proc = subprocess.run([sys.executable, "-m", f"backlash_monitor.nodes.{node}", "--ros-args",
+                           *sum((["-p", p] for p in params), [])],
+                          env=ros_env, cwd=tmp_path, capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2, proc.stdout + proc.stderr
+    assert f"parameter '{named}'" in proc.stderr and "allowed" in proc.stderr
+    assert "Traceback" not in proc.stderr + proc.stdout
