@@ -1,0 +1,80 @@
+"""Windowing constants: defaults (mirrored in config/windowing.yaml) and the YAML loader."""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any, Mapping
+
+__all__ = ["DEFAULTS", "DEFAULT_CONFIG_PATH", "load_windowing_config", "TRIGGERS", "ANGLE_SOURCES",
+           "INTEGRATION_RULES", "KIND_ONSET", "KIND_RETURN"]
+
+TRIGGERS = ("contact_loss", "paper")
+ANGLE_SOURCES = ("auto", "measured", "integrated")
+INTEGRATION_RULES = ("trapezoid", "rectangle")
+KIND_ONSET = "onset"
+KIND_RETURN = "return"
+
+# Keep in step with config/windowing.yaml (a test checks they agree).
+DEFAULTS: dict[str, Any] = {
+    "detector": {
+        "trigger": "contact_loss",
+        "width_m": None,
+        "radius_m": 0.15,
+        "sample_period_s": 2.0e-5,
+        "holdoff_samples": 2048,
+        "angle_source": "auto",
+        "integration": "trapezoid",
+        "confirm_rad": 0.015,
+        "reference_tau_s": 0.02,
+        "settle_samples": 100,
+        "settle_range_rad": 1.5e-3,
+        "fit_samples": 2048,
+        "contact_deflection_rad": 1.5e-3,
+        "initial_contact_side": 1,
+        "rereference_interval_s": 0.05,
+    },
+    "capture": {
+        "window_length": 2048,
+        "signals": ["a1", "a2"],
+        "history_samples": 4096,
+    },
+}
+
+DEFAULT_CONFIG_PATH = Path(__file__).resolve().parents[2] / "config" / "windowing.yaml"
+
+
+def _share_path() -> Path | None:
+    try:  # installed package: share/backlash_monitor/config/windowing.yaml
+        from ament_index_python.packages import get_package_share_directory  # type: ignore
+
+        return Path(get_package_share_directory("backlash_monitor")) / "config" / "windowing.yaml"
+    except Exception:  # noqa: BLE001 - no ROS, or package not installed
+        return None
+
+
+def load_windowing_config(path: str | os.PathLike | None = None) -> dict[str, Any]:
+    """Load ``config/windowing.yaml`` (or ``path``) merged over ``DEFAULTS``.
+
+    Keys not known to DEFAULTS raise ValueError (a typo must not silently fall back to a default).
+    Each value in the YAML is ``{value: ..., unit: ..., reason: ...}`` or a plain value.
+    """
+    import yaml
+
+    if path is None:
+        candidates = [DEFAULT_CONFIG_PATH, _share_path()]
+        path = next((p for p in candidates if p is not None and Path(p).is_file()), None)
+    cfg = {sec: dict(vals) for sec, vals in DEFAULTS.items()}
+    if path is None:
+        return cfg
+    with open(path, "r", encoding="utf-8") as fh:
+        raw = yaml.safe_load(fh) or {}
+    for sec, vals in raw.items():
+        if sec not in cfg:
+            raise ValueError(f"{path}: unknown section {sec!r} (allowed: {sorted(cfg)})")
+        for key, val in (vals or {}).items():
+            if key not in cfg[sec]:
+                raise ValueError(f"{path}: unknown key {sec}.{key} (allowed: {sorted(cfg[sec])})")
+            if isinstance(val, Mapping) and "value" in val:
+                val = val["value"]
+            cfg[sec][key] = val
+    return cfg
