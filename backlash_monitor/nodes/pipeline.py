@@ -88,36 +88,50 @@ class SignalTally:
 
 
 class LiveView:
-    """Prints estimates as they arrive and keeps the tallies for the summary table."""
+    """Prints one line per onset event as its estimates arrive; keeps tallies for the summary."""
 
-    def __init__(self, true_width_m: float, out=sys.stdout):
+    def __init__(self, true_width_m: float, signals: tuple[str, ...], out=sys.stdout):
         self.true_width_m = true_width_m
+        self.signals = signals
         self.out = out
         self.tally: dict[str, SignalTally] = {}
         self.onset_entries: set[int] = set()
+        self.pending: dict[int, dict] = {}
         self.diagnostic = ""
         self.mode = ""
 
     def on_estimate(self, msg) -> None:
-        from backlash_monitor.nodes.conversions import seconds_from_time
         t = self.tally.setdefault(msg.signal_name, SignalTally())
         self.mode = msg.mode
-        true_w = msg.true_width_m if not math.isnan(msg.true_width_m) else self.true_width_m
-        ok = abs(msg.width_m - true_w) < 1e-9
+        if not math.isnan(msg.true_width_m):
+            self.true_width_m = msg.true_width_m
         t.estimates += 1
-        t.correct += int(ok)
+        t.correct += int(abs(msg.width_m - self.true_width_m) < 1e-9)
         t.fused_width_m, t.fused_events = msg.fused_width_m, msg.fused_events
         t.margins.append(msg.b_margin)
         if not math.isnan(msg.continuous_width_m):
             t.continuous.append(msg.continuous_width_m)
         self.onset_entries.add(msg.entry_sample_index)
-        fused_ok = abs(msg.fused_width_m - true_w) < 1e-9
-        cont = ("" if math.isnan(msg.continuous_width_m)
-                else f"  cont {msg.continuous_width_m * 1e3:5.2f} mm")
-        print(f"t={seconds_from_time(msg.header.stamp) % 1e4:9.3f} s  {msg.signal_name:>5} "
-              f"[{msg.mode}] {msg.width_m * 1e3:5.2f} mm {'ok ' if ok else 'MISS'} "
-              f"margin {msg.b_margin:5.2f}{cont}  fused {msg.fused_width_m * 1e3:5.2f} mm over "
-              f"{msg.fused_events} {'ok' if fused_ok else 'MISS'}  (true {true_w * 1e3:.2f} mm)",
+        event = self.pending.setdefault(msg.entry_sample_index, {})
+        event[msg.signal_name] = msg
+        if len(event) >= len(self.signals):
+            self.print_event(self.pending.pop(msg.entry_sample_index))
+
+    def print_event(self, event: dict) -> None:
+        from backlash_monitor.nodes.conversions import seconds_from_time
+        first = next(iter(event.values()))
+        parts = []
+        for name, msg in event.items():
+            ok = abs(msg.width_m - self.true_width_m) < 1e-9
+            cont = ("" if math.isnan(msg.continuous_width_m)
+                    else f" ({msg.continuous_width_m * 1e3:4.2f})")
+            parts.append(f"{name} {msg.width_m * 1e3:5.2f}{cont} {'ok' if ok else 'MISS'}")
+        last = event.get("a1+a2", first)
+        fused_ok = abs(last.fused_width_m - self.true_width_m) < 1e-9
+        print(f"t={seconds_from_time(first.header.stamp) % 1e4:9.3f} s  onset  "
+              + " | ".join(parts)
+              + f" | fused {last.fused_width_m * 1e3:5.2f} mm over {last.fused_events} "
+              f"{'ok' if fused_ok else 'MISS'}   true {self.true_width_m * 1e3:.2f} mm",
               file=self.out, flush=True)
 
     def on_diagnostics(self, msg) -> None:
@@ -168,8 +182,9 @@ def run(args) -> int:
     from backlash_monitor_msgs.msg import BacklashEstimate
     from backlash_monitor.nodes.parameters import ParameterValueError
 
+    from backlash_monitor.estimation import DEFAULT_MODE, default_signals
     params = node_parameters(args)
-    view = LiveView(args.width_m)
+    view = LiveView(args.width_m, default_signals(args.mode or DEFAULT_MODE))
     children: list[subprocess.Popen] = []
     rclpy.init()
     nodes = []

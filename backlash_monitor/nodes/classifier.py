@@ -1,0 +1,132 @@
+"""classifier: identifies the backlash width from each denoised onset window and reports it.
+
+    ros2 run backlash_monitor classifier --ros-args -p mode:=shape -p n1:=0.89
+
+Subscribes to ``windows/denoised``; for every onset window publishes one BacklashEstimate per
+signal on ``estimate`` (width, index, candidate widths, B vector, margin, continuous width, fused
+width over the last onset events) and keeps a ``diagnostic_msgs/DiagnosticArray`` on
+``/diagnostics``: OK / WARN / ERROR by the fused width against ``warn_width_m`` and
+``error_width_m`` (config/diagnostics.yaml), hardware_id = the drive's name.
+"""
+from __future__ import annotations
+
+import math
+import sys
+
+from rclpy.node import Node
+from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
+
+from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
+from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator
+from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
+from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
+from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
+                                               declare_and_validate, run_node)
+from backlash_monitor.nodes.windowing import WINDOW_QOS
+from backlash_monitor_msgs.msg import BacklashEstimate, BacklashWindow
+
+ESTIMATE_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE,
+                          history=HistoryPolicy.KEEP_LAST)
+
+PARAMETERS = (
+    ParameterSpec("drive_name", "drive", "the drive's name: diagnostics hardware_id"),
+    ParameterSpec("mode", DEFAULT_MODE, "classifier mode: 'paper' (the paper's equations as "
+                  "written), 'paper_corrected', or 'shape' (the improved mode)", choices=MODES),
+    ParameterSpec("signals", [""], "signals to classify (a1, a2, a1+a2); [''] = the mode's "
+                  "default"),
+    ParameterSpec("n1", 0.89, "absorber flow index of the drive: which patterns the paper modes "
+                  "use", 0.5, 1.5),
+    ParameterSpec("trigger", "contact_loss", "trigger the windows were captured with; the "
+                  "library must have been trained with it", choices=("contact_loss", "paper")),
+    ParameterSpec("library", "", "pattern library file (empty: the packaged default)"),
+    ParameterSpec("fusion_events", DEFAULT_FUSION_EVENTS, "onset events fused into one estimate",
+                  1, 1000),
+    ParameterSpec("warn_width_m", 0.0075, "fused width from which the drive is WARN [m]",
+                  0.0, 1.0),
+    ParameterSpec("error_width_m", 0.009, "fused width from which the drive is ERROR [m]",
+                  0.0, 1.0),
+)
+
+
+class ClassifierNode(Node):
+    def __init__(self, **overrides):
+        super().__init__("classifier", **overrides)
+        p = declare_and_validate(self, PARAMETERS)
+        if p["error_width_m"] < p["warn_width_m"]:
+            raise ParameterValueError(
+                f"parameter 'error_width_m' = {p['error_width_m']} is below warn_width_m = "
+                f"{p['warn_width_m']}; allowed: error_width_m >= warn_width_m")
+        self.params = p
+        signals = tuple(s for s in p["signals"] if s) or None
+        try:
+            library = load_library(p["library"] or None, trigger=p["trigger"])
+            self.estimator = DriveEstimator(library, mode=p["mode"], n1=p["n1"], signals=signals,
+                                            fusion_events=p["fusion_events"])
+        except (PatternLibraryError, ValueError) as error:
+            raise ParameterValueError(str(error)) from None
+        self.publisher = self.create_publisher(BacklashEstimate, "estimate", ESTIMATE_QOS)
+        self.create_subscription(BacklashWindow, "windows/denoised", self.on_window, WINDOW_QOS)
+        self.diagnostics = DriveDiagnostics(self, "backlash width", p["drive_name"])
+        self.classified = 0
+        self.get_logger().info(f"mode {p['mode']}, signals {', '.join(self.estimator.signals)}, "
+                               f"library {library.path}")
+
+    def on_window(self, msg: BacklashWindow):
+        if not msg.denoising:
+            self.get_logger().warning(f"window at sample {msg.entry_sample_index} is not denoised; "
+                                      "classifying raw windows against denoised patterns is wrong: "
+                                      "skipped", throttle_duration_sec=10.0)
+            return
+        try:
+            estimates = self.estimator.estimate(from_float64_field(msg.a1),
+                                                from_float64_field(msg.a2), msg.entry_kind)
+        except ValueError as error:
+            self.diagnostics.set("ERROR", f"window at sample {msg.entry_sample_index} not "
+                                          f"classified: {error}")
+            return
+        for estimate in estimates:
+            self.publisher.publish(self.to_message(msg, estimate))
+        if estimates:
+            self.classified += 1
+            # Both signals together is the most informative estimate where the mode has it.
+            primary = next((e for e in estimates if e.signal_name == "a1+a2"), estimates[0])
+            self.update_diagnostics(primary)
+
+    def to_message(self, window: BacklashWindow, estimate) -> BacklashEstimate:
+        out = BacklashEstimate()
+        out.header = window.header
+        out.signal_name = estimate.signal_name
+        out.mode = estimate.mode
+        out.entry_sample_index = window.entry_sample_index
+        out.entry_kind = window.entry_kind
+        out.candidate_widths_m = to_float64_array(estimate.candidate_widths_m)
+        out.b_vector = to_float64_array(estimate.b_vector)
+        out.width_index = estimate.width_index
+        out.width_m = estimate.width_m
+        out.b_margin = estimate.b_margin
+        out.continuous_width_m = estimate.continuous_width_m
+        out.fused_width_m = estimate.fused_width_m
+        out.fused_events = estimate.fused_events
+        out.true_width_m = window.true_width_m
+        return out
+
+    def update_diagnostics(self, estimate):
+        p = self.params
+        width = estimate.fused_width_m
+        level = ("ERROR" if width >= p["error_width_m"] else
+                 "WARN" if width >= p["warn_width_m"] else "OK")
+        self.diagnostics.set(
+            level, f"backlash {width * 1e3:.2f} mm (fused over {estimate.fused_events} events)",
+            fused_width_m=f"{width:.5f}", last_width_m=f"{estimate.width_m:.5f}",
+            continuous_width_m="" if math.isnan(estimate.continuous_width_m)
+            else f"{estimate.continuous_width_m:.5f}",
+            signal=estimate.signal_name, mode=estimate.mode, windows_classified=self.classified,
+            warn_width_m=p["warn_width_m"], error_width_m=p["error_width_m"])
+
+
+def main(args=None):
+    return run_node(ClassifierNode, args=args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

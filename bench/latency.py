@@ -1,0 +1,154 @@
+"""Latency and throughput of the node graph over DDS (prints one JSON object).
+
+latency: the windowing, denoise and classifier nodes run each in its own process (as `ros2 run`
+starts them); this process runs the plant simulator in real time and a monitor. For every estimate,
+latency = the wall time it is received - the wall time the chunk holding its window's last sample
+was published. Reported: median and p99 [ms].
+
+realtime_factor: the same graph with the simulator unthrottled-by-factor (rate_factor R) and
+reliable QoS; simulated seconds per wall second until the last expected estimate arrives, for a
+rising R; the result is the highest R whose run lost nothing (discarded_windows == 0 and every
+onset window classified).
+"""
+import json
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+os.environ.setdefault("ROS_DOMAIN_ID", str(os.getpid() % 90 + 5))
+
+import rclpy  # noqa: E402
+from ament_index_python.packages import get_package_prefix  # noqa: E402
+from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
+from rclpy.executors import SingleThreadedExecutor  # noqa: E402
+from rclpy.parameter import Parameter  # noqa: E402
+
+from backlash_monitor.nodes.classifier import ESTIMATE_QOS  # noqa: E402
+from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode  # noqa: E402
+from backlash_monitor_msgs.msg import BacklashEstimate  # noqa: E402
+
+CHUNK = 1000
+WINDOW = 2048
+
+
+def start_chain(trigger="contact_loss"):
+    prefix = os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor")
+    specs = [("classifier", ["-p", f"trigger:={trigger}"]),
+             ("denoise", []),
+             ("windowing", ["-p", "qos:=reliable", "-p", f"trigger:={trigger}"])]
+    return [subprocess.Popen([os.path.join(prefix, name), "--ros-args", *params],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            for name, params in specs]
+
+
+def stop(children):
+    for child in children:
+        child.terminate()
+    for child in children:
+        try:
+            child.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            child.kill()
+
+
+def run_graph(duration_s, rate_factor):
+    """Returns (latencies_s, wall_s, n_onset_estimates, discarded_windows)."""
+    children = start_chain()
+    rclpy.init()
+    try:
+        monitor = rclpy.create_node("bench_monitor")
+        received = {}
+        discarded = [0]
+
+        def on_estimate(msg):
+            received.setdefault(msg.entry_sample_index, time.time())
+
+        def on_diag(msg):
+            for status in msg.status:
+                if status.name.endswith("windowing: windowing"):
+                    for kv in status.values:
+                        if kv.key == "discarded":
+                            discarded[0] = max(discarded[0], int(kv.value))
+
+        monitor.create_subscription(BacklashEstimate, "estimate", on_estimate, ESTIMATE_QOS)
+        monitor.create_subscription(DiagnosticArray, "/diagnostics", on_diag, 10)
+        # Wait until the chain's subscriptions exist before the stream starts.
+        probe = rclpy.create_node("bench_probe")
+        deadline = time.time() + 60
+        while time.time() < deadline and probe.count_subscribers("plant/a1") == 0:
+            rclpy.spin_once(monitor, timeout_sec=0.1)
+        while time.time() < deadline and monitor.count_publishers("estimate") == 0:
+            rclpy.spin_once(monitor, timeout_sec=0.1)
+        time.sleep(1.0)
+        plant = PlantSimulatorNode(parameter_overrides=[
+            Parameter("rate_factor", value=float(rate_factor)),
+            Parameter("duration_s", value=float(duration_s)), Parameter("qos", value="reliable"),
+            Parameter("chunk_samples", value=CHUNK)])
+        published = {}
+        original = plant.publish_chunk
+
+        def publish_chunk():
+            first = plant.simulator.sample_index
+            original()
+            published[first] = time.time()
+
+        plant.publish_chunk = publish_chunk
+        executor = SingleThreadedExecutor()
+        executor.add_node(plant)
+        executor.add_node(monitor)
+        started = time.time()
+        expected = int(duration_s * 4) - 1          # onsets whose window ends inside the run
+        limit = started + duration_s / rate_factor + 30
+        last_count, last_change = 0, time.time()
+        while time.time() < limit:
+            executor.spin_once(timeout_sec=0.01)
+            if len(received) != last_count:
+                last_count, last_change = len(received), time.time()
+            if plant.finished and (len(received) >= expected or time.time() - last_change > 3.0):
+                break
+        wall = (max(received.values()) if received else time.time()) - started
+        latencies = []
+        for entry, t_recv in received.items():
+            last_chunk = (entry + WINDOW - 1) // CHUNK * CHUNK
+            if last_chunk in published:
+                latencies.append(t_recv - published[last_chunk])
+        for node in (plant, monitor, probe):
+            node.destroy_node()
+        return latencies, wall, len(received), discarded[0], expected
+    finally:
+        rclpy.try_shutdown()
+        stop(children)
+
+
+def main():
+    latencies, _, n_rt, discarded_rt, expected_rt = run_graph(duration_s=15.0, rate_factor=1.0)
+    lat_ms = np.array(latencies) * 1e3
+    throughput = []
+    for factor in (5.0, 10.0, 20.0, 40.0):
+        _, wall, n, discarded, expected = run_graph(duration_s=20.0, rate_factor=factor)
+        throughput.append({"rate_factor": factor, "realtime_factor": 20.0 / wall,
+                           "onset_windows_classified": n, "expected": expected,
+                           "discarded_windows": discarded})
+    sustained = [t for t in throughput
+                 if t["discarded_windows"] == 0 and t["onset_windows_classified"] >= t["expected"]]
+    best = max(sustained, key=lambda t: t["realtime_factor"]) if sustained else None
+    print(json.dumps({
+        "latency_ms": {"median": float(np.median(lat_ms)) if lat_ms.size else None,
+                       "p99": float(np.percentile(lat_ms, 99)) if lat_ms.size else None,
+                       "max": float(lat_ms.max()) if lat_ms.size else None,
+                       "n": int(lat_ms.size)},
+        "latency_run": {"onset_windows_classified": n_rt, "expected": expected_rt,
+                        "discarded_windows": discarded_rt},
+        "realtime_factor": best["realtime_factor"] if best else None,
+        "discarded_windows": best["discarded_windows"] if best else None,
+        "throughput_runs": throughput,
+        "goal": {"latency_p99_ms": 10.0, "realtime_factor": 10.0, "discarded_windows": 0},
+    }))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
