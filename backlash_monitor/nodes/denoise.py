@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import sys
 
-import numpy as np
 from rclpy.node import Node
 
-from backlash_monitor.denoise import DEFAULT_MODE, denoise_sym5
+from backlash_monitor.chain import denoise_pair, denoising_label
+from backlash_monitor.denoise import DEFAULT_MODE
 from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate, run_node)
@@ -37,20 +37,19 @@ class DenoiseNode(Node):
             raise ParameterValueError(f"parameter 'details_removed' = {list(details)}: allowed: "
                                       f"levels between 1 and level = {p['level']}")
         self.options = dict(level=p["level"], details_removed=details, mode=p["mode"])
-        self.label = (f"sym5 level {p['level']}, details {','.join(map(str, details))} removed, "
-                      f"mode {p['mode']}")
+        self.label = denoising_label(p["level"], details, p["mode"])
         self.publisher = self.create_publisher(BacklashWindow, "windows/denoised", WINDOW_QOS)
         self.create_subscription(BacklashWindow, "windows/raw", self.on_window, WINDOW_QOS)
 
     def on_window(self, msg: BacklashWindow):
-        both = np.stack([from_float64_field(msg.a1), from_float64_field(msg.a2)])
         try:
-            clean = denoise_sym5(both, **self.options)
+            a1, a2 = denoise_pair(from_float64_field(msg.a1), from_float64_field(msg.a2),
+                                  **self.options)
         except ValueError as error:
             self.get_logger().error(f"window at sample {msg.entry_sample_index} not denoised: {error}")
             return
-        msg.a1 = to_float64_array(clean[0])
-        msg.a2 = to_float64_array(clean[1])
+        msg.a1 = to_float64_array(a1)
+        msg.a2 = to_float64_array(a2)
         msg.denoising = self.label
         self.publisher.publish(msg)
 

@@ -23,12 +23,11 @@ from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate, run_node)
 from backlash_monitor.nodes.plant_simulator import LATCHED, chunk_qos
-from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture
+from backlash_monitor.chain import ChunkJoiner, WindowingStage
 from backlash_monitor_msgs.msg import BacklashWindow, SignalChunk
 
 WINDOW_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE,
                         history=HistoryPolicy.KEEP_LAST)
-MAX_PENDING_CHUNKS = 16  # incomplete sample ranges kept while waiting for their other signals
 
 PARAMETERS = (
     ParameterSpec("drive_name", "drive", "the drive's name: frame_id and diagnostics hardware_id"),
@@ -54,20 +53,17 @@ class WindowingNode(Node):
             raise ParameterValueError("parameter 'width_m' = 0.0: the 'paper' trigger needs the "
                                       "backlash width; allowed: 0 < width_m <= 0.05")
         self.params = p
-        self.angle_signals = (("angle_difference",) if p["angle_source"] == "measured"
-                              else ("omega1", "omega2"))
-        self.signals = ("a1", "a2") + self.angle_signals
         try:
-            self.detector = BacklashEntryDetector(
+            self.stage = WindowingStage(
                 trigger=p["trigger"], width_m=p["width_m"] if p["trigger"] == "paper" else None,
-                angle_source=p["angle_source"])
-            self.capture = WindowCapture(window_length=p["window_length"], signals=("a1", "a2"))
+                angle_source=p["angle_source"], window_length=p["window_length"])
         except ValueError as error:
             raise ParameterValueError(str(error)) from None
-        self.pending: dict[int, dict[str, SignalChunk]] = {}
+        self.signals = self.stage.input_signals
+        self.joiner = ChunkJoiner(self.signals)
         self.true_width_m = math.nan
         self.stream_start_s = None
-        self.counts = {"windows": 0, "discarded": 0, "chunks": 0, "incomplete_chunks": 0}
+        self.counts = {"windows": 0, "discarded": 0, "chunks": 0}
         self.last_discard = ""
         qos = chunk_qos(p["qos"])
         for name in self.signals:
@@ -83,37 +79,30 @@ class WindowingNode(Node):
         self.true_width_m = msg.data
 
     def on_chunk(self, name: str, msg: SignalChunk):
-        group = self.pending.setdefault(msg.first_sample_index, {})
-        group[name] = msg
-        if len(group) < len(self.signals):
-            if len(self.pending) > MAX_PENDING_CHUNKS:
-                oldest = min(self.pending)
-                del self.pending[oldest]
-                self.counts["incomplete_chunks"] += 1
-            return
-        del self.pending[msg.first_sample_index]
-        self.process(group)
+        joined = self.joiner.add(name, msg.first_sample_index, msg.sample_period_s,
+                                 from_float64_field(msg.samples), msg.header.stamp,
+                                 msg.header.frame_id)
+        if joined is not None:
+            self.process(joined)
 
-    def process(self, group: dict[str, SignalChunk]):
-        first_msg = group["a1"]
-        first = first_msg.first_sample_index
-        period = first_msg.sample_period_s
+    def process(self, joined):
         if self.stream_start_s is None:
-            self.stream_start_s = seconds_from_time(first_msg.header.stamp) - first * period
-        arrays = {name: from_float64_field(m.samples) for name, m in group.items()}
-        entries = self.detector.feed(first, arrays, period)
-        windows, discarded = self.capture.feed(first, arrays, entries=entries, sample_period_s=period)
+            self.stream_start_s = (seconds_from_time(joined.stamp)
+                                   - joined.first_sample_index * joined.sample_period_s)
+        windows, discarded = self.stage.feed(joined)
         self.counts["chunks"] += 1
         for window in windows:
-            self.publish_window(window, first_msg.header.frame_id or self.params["drive_name"])
+            self.publish_window(window, joined.frame_id or self.params["drive_name"])
         for item in discarded:
             self.counts["discarded"] += 1
             self.last_discard = f"entry {item.entry_sample_index}: {item.reason}"
             self.get_logger().warning(f"window discarded ({self.last_discard})")
-        level = "WARN" if self.counts["discarded"] or self.counts["incomplete_chunks"] else "OK"
+        incomplete = self.joiner.dropped_ranges
+        level = "WARN" if self.counts["discarded"] or incomplete else "OK"
         self.diagnostics.set(level, f"{self.counts['windows']} windows, "
                                     f"{self.counts['discarded']} discarded",
-                             last_discard=self.last_discard, **self.counts)
+                             last_discard=self.last_discard, incomplete_chunks=incomplete,
+                             **self.counts)
 
     def publish_window(self, window, frame_id: str):
         msg = BacklashWindow()

@@ -1,0 +1,214 @@
+"""`python -m backlash_monitor analyze BAG`: the signal chain offline, without DDS.
+
+Reads the drive's SignalChunk topics (plant/a1, plant/a2, plant/angle_difference — or
+plant/omega1/omega2 with --angle-source integrated) in the order they were recorded, runs the same
+stages as the live graph (backlash_monitor.chain: join, detect entries, capture, denoise, classify,
+fuse) and writes the estimates to OUT.csv, OUT.json and OUT.mcap (topic `estimate`, the live
+pipeline's message type). Given the same recorded chunks, the estimates equal the live pipeline's.
+"""
+from __future__ import annotations
+
+import csv
+import json
+import math
+import pathlib
+import sys
+import time
+
+NAME = "analyze"
+HELP = "run the chain offline on an MCAP bag: estimates to CSV, JSON and MCAP"
+DESCRIPTION = __doc__
+
+CSV_COLUMNS = ("entry_sample_index", "entry_time_s", "signal", "mode", "width_m", "width_index",
+               "b_margin", "continuous_width_m", "fused_width_m", "fused_events", "true_width_m",
+               "b_vector")
+
+
+def add_arguments(parser) -> None:
+    parser.add_argument("bag", help="MCAP file recorded from a drive (or by `simulate --mcap`)")
+    parser.add_argument("--out", default="",
+                        help="output prefix (default: the bag's path without .mcap, plus "
+                             "'.estimates'): writes PREFIX.csv, PREFIX.json, PREFIX.mcap")
+    parser.add_argument("--namespace", default="",
+                        help="namespace of the drive's topics in the bag (e.g. /line1/drive7)")
+    parser.add_argument("--trigger", choices=("contact_loss", "paper"), default="contact_loss",
+                        help="entry trigger (the library must be trained with it)")
+    parser.add_argument("--width-m", type=float, default=0.0,
+                        help="backlash width for the 'paper' trigger [m] (eq. 1)")
+    parser.add_argument("--angle-source", choices=("measured", "integrated"), default="measured",
+                        help="angle difference from the encoders' topic or integrated speeds")
+    parser.add_argument("--mode", default="",
+                        help="classifier mode: paper, paper_corrected or shape (default: shape)")
+    parser.add_argument("--n1", type=float, default=0.89,
+                        help="absorber flow index (the paper modes use this n1's patterns)")
+    parser.add_argument("--library", default="", help="pattern library (default: the packaged one)")
+    parser.add_argument("--fusion-events", type=int, default=8,
+                        help="onset events fused into one estimate")
+    parser.add_argument("--recover", action="store_true",
+                        help="read what is intact of a bag whose recorder was killed")
+
+
+def _topic(namespace: str, name: str) -> str:
+    ns = namespace.strip("/")
+    return f"/{ns}/plant/{name}" if ns else f"/plant/{name}"
+
+
+def _find_topic(available, namespace, name):
+    for candidate in (_topic(namespace, name), _topic(namespace, name).lstrip("/")):
+        if candidate in available:
+            return candidate
+    return None
+
+
+def run(args) -> int:
+    from backlash_monitor.commands import UsageError
+    from backlash_monitor.bag import BagError, BagReader, BagWriter
+    from backlash_monitor.chain import ChunkJoiner, WindowingStage, denoise_pair
+    from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
+    from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator
+
+    bag_path = pathlib.Path(args.bag)
+    if not bag_path.is_file():
+        raise UsageError(f"bag {bag_path} does not exist; give the path of an .mcap file")
+    if args.trigger == "paper" and not (0 < args.width_m <= 0.05):
+        raise UsageError(f"--width-m = {args.width_m:g}: the paper trigger needs the width; "
+                         "allowed: 0 < width <= 0.05 m")
+    if args.fusion_events < 1:
+        raise UsageError(f"--fusion-events = {args.fusion_events}; allowed: 1 or more")
+    mode = args.mode or DEFAULT_MODE
+    try:
+        library = load_library(args.library or None, trigger=args.trigger)
+        estimator = DriveEstimator(library, mode=mode, n1=args.n1,
+                                   fusion_events=args.fusion_events)
+        stage = WindowingStage(trigger=args.trigger,
+                               width_m=args.width_m if args.trigger == "paper" else None,
+                               angle_source=args.angle_source)
+    except (PatternLibraryError, ValueError) as error:
+        raise UsageError(str(error)) from None
+
+    out_prefix = pathlib.Path(args.out) if args.out else bag_path.with_suffix("").with_name(
+        bag_path.with_suffix("").name + ".estimates")
+    started = time.perf_counter()
+    rows, estimates_msgs, discarded = [], [], []
+    n_samples = 0
+    try:
+        with BagReader(bag_path, recover=args.recover) as reader:
+            available = set(reader.topics)
+            topics = {}
+            for name in stage.input_signals:
+                topic = _find_topic(available, args.namespace, name)
+                if topic is None:
+                    raise UsageError(
+                        f"bag {bag_path} has no topic {_topic(args.namespace, name)}; it has: "
+                        f"{', '.join(sorted(available))}")
+                topics[topic] = name
+            width_topic = _find_topic(available, args.namespace, "true_width_m")
+            true_width = math.nan
+            if width_topic:
+                for m in reader.messages([width_topic]):
+                    true_width = float(m.message.data)
+            joiner = ChunkJoiner(stage.input_signals)
+            period = None
+            for m in reader.messages(list(topics)):
+                chunk = m.message
+                joined = joiner.add(topics[m.topic], int(chunk.first_sample_index),
+                                    float(chunk.sample_period_s), chunk.samples,
+                                    chunk.header.stamp, chunk.header.frame_id)
+                if joined is None:
+                    continue
+                period = joined.sample_period_s
+                n_samples += len(joined.arrays["a1"])
+                windows, dropped = stage.feed(joined)
+                discarded.extend(dropped)
+                for window in windows:
+                    a1, a2 = denoise_pair(window.signals["a1"], window.signals["a2"])
+                    for est in estimator.estimate(a1, a2, window.kind):
+                        entry_time_s = window.entry_sample_index * window.sample_period_s
+                        rows.append({
+                            "entry_sample_index": window.entry_sample_index,
+                            "entry_time_s": entry_time_s, "signal": est.signal_name,
+                            "mode": est.mode, "width_m": est.width_m,
+                            "width_index": est.width_index, "b_margin": est.b_margin,
+                            "continuous_width_m": est.continuous_width_m,
+                            "fused_width_m": est.fused_width_m,
+                            "fused_events": est.fused_events, "true_width_m": true_width,
+                            "b_vector": [float(b) for b in est.b_vector],
+                            "candidate_widths_m": [float(w) for w in est.candidate_widths_m],
+                            "entry_kind": window.kind,
+                        })
+                        estimates_msgs.append((joined, window, est))
+    except BagError as error:
+        raise UsageError(str(error)) from None
+    elapsed = time.perf_counter() - started
+
+    out_prefix.parent.mkdir(parents=True, exist_ok=True)
+    with open(out_prefix.with_suffix(".csv"), "w", newline="") as f:
+        writer = csv.writer(f)
+        writer.writerow(CSV_COLUMNS)
+        for r in rows:
+            writer.writerow([r[c] if c != "b_vector" else " ".join(f"{b:.9g}" for b in r[c])
+                             for c in CSV_COLUMNS])
+    summary = _summary(rows, true_width)
+    with open(out_prefix.with_suffix(".json"), "w") as f:
+        json.dump({"bag": str(bag_path), "mode": mode, "trigger": args.trigger,
+                   "samples_analysed": n_samples, "seconds": elapsed,
+                   "discarded_windows": [{"entry_sample_index": d.entry_sample_index,
+                                          "reason": d.reason} for d in discarded],
+                   "summary": summary, "estimates": rows}, f, indent=1, allow_nan=True)
+    _write_estimate_bag(out_prefix.with_suffix(".mcap"), estimates_msgs, true_width)
+    _print_summary(summary, rows, discarded, n_samples, elapsed, out_prefix)
+    return 0
+
+
+def _summary(rows, true_width):
+    per = {}
+    for r in rows:
+        s = per.setdefault(r["signal"], {"estimates": 0, "correct": 0})
+        s["estimates"] += 1
+        s["correct"] += int(not math.isnan(true_width) and abs(r["width_m"] - true_width) < 1e-9)
+        s["fused_width_m"] = r["fused_width_m"]
+        s["fused_events"] = r["fused_events"]
+    return {"true_width_m": true_width, "per_signal": per}
+
+
+def _print_summary(summary, rows, discarded, n_samples, elapsed, out_prefix):
+    true_width = summary["true_width_m"]
+    print(f"analyzed {n_samples} samples in {elapsed:.2f} s; {len({r['entry_sample_index'] for r in rows})} "
+          f"onset windows, {len(discarded)} discarded")
+    header = ("signal", "estimates", "accuracy", "fused width", "fused events")
+    lines = [header]
+    for signal, s in sorted(summary["per_signal"].items()):
+        acc = "-" if math.isnan(true_width) else f"{s['correct'] / s['estimates']:.0%}"
+        lines.append((signal, str(s["estimates"]), acc, f"{s['fused_width_m'] * 1e3:.2f} mm",
+                      str(s["fused_events"])))
+    widths = [max(len(line[i]) for line in lines) for i in range(len(header))]
+    for i, line in enumerate(lines):
+        print("  ".join(c.rjust(w) for c, w in zip(line, widths)))
+        if i == 0:
+            print("  ".join("-" * w for w in widths))
+    if not math.isnan(true_width):
+        print(f"true width: {true_width * 1e3:.2f} mm")
+    print(f"wrote {out_prefix.with_suffix('.csv')}, .json, .mcap")
+
+
+def _write_estimate_bag(path, estimates_msgs, true_width):
+    from backlash_monitor.bag import BACKLASH_ESTIMATE, BagWriter
+    with BagWriter(path) as writer:
+        writer.add_topic("/estimate", BACKLASH_ESTIMATE)
+        for joined, window, est in estimates_msgs:
+            stamp_ns = int(round(window.entry_sample_index * window.sample_period_s * 1e9))
+            if joined.stamp is not None:
+                base = joined.stamp.sec * 1_000_000_000 + joined.stamp.nanosec - int(round(
+                    joined.first_sample_index * joined.sample_period_s * 1e9))
+                stamp_ns += base
+            writer.write("/estimate", {
+                "header": {"stamp": {"sec": stamp_ns // 1_000_000_000,
+                                     "nanosec": stamp_ns % 1_000_000_000},
+                           "frame_id": joined.frame_id},
+                "signal_name": est.signal_name, "mode": est.mode,
+                "entry_sample_index": window.entry_sample_index, "entry_kind": window.kind,
+                "candidate_widths_m": est.candidate_widths_m, "b_vector": est.b_vector,
+                "width_index": est.width_index, "width_m": est.width_m,
+                "b_margin": est.b_margin, "continuous_width_m": est.continuous_width_m,
+                "fused_width_m": est.fused_width_m, "fused_events": est.fused_events,
+                "true_width_m": true_width}, log_time_ns=stamp_ns)
