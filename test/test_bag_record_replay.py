@@ -78,7 +78,7 @@ def test_signal_closes_the_bag_properly(ros_env, tmp_path, sig):
     assert summary.statistics.message_count == sum(result["published"].values())
 
 
-def test_sigkill_loses_at_most_the_open_chunk(ros_env, tmp_path):
+def test_sigkill_loses_at_most_the_open_chunk(ros_env, tmp_path, capsys):
     out = tmp_path / "killed.mcap"
     chunk_s = 0.25
     rec = _start_recorder(ros_env, out, "topics:=plant/*", f"chunk_duration_s:={chunk_s}")
@@ -94,7 +94,8 @@ def test_sigkill_loses_at_most_the_open_chunk(ros_env, tmp_path):
     finally:
         if rec.poll() is None:
             rec.kill()
-        pub.wait(timeout=60)
+        pub.kill()  # the load generator: no need to wait for acks from a dead recorder
+        pub.communicate(timeout=30)
     with pytest.raises(TruncatedBagError):
         BagReader(out)
     with BagReader(out, recover=True) as bag:
@@ -111,9 +112,11 @@ def test_sigkill_loses_at_most_the_open_chunk(ros_env, tmp_path):
     strict = subprocess.run(cli, capture_output=True, text=True, cwd=REPO, timeout=60)
     assert strict.returncode == 1 and "incomplete" in strict.stderr and "--recover" in strict.stderr
     assert "Traceback" not in strict.stderr + strict.stdout
-    recovered = subprocess.run(cli + ["--recover"], capture_output=True, text=True, cwd=REPO, timeout=60)
-    assert recovered.returncode == 0, recovered.stderr
-    assert "INCOMPLETE" in recovered.stdout and "recovered" in recovered.stdout
+    from backlash_monitor.__main__ import main as cli_main
+
+    assert cli_main(["bag-info", str(out), "--recover"]) == 0
+    printed = capsys.readouterr().out
+    assert "INCOMPLETE" in printed and "recovered" in printed
 
 
 def test_replay_flow_controlled_reproduces_the_bag_and_fresh_stamps_shift(ros_env, tmp_path):
