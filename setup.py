@@ -10,6 +10,10 @@ EXECUTABLES = {
     "plant_simulator": "backlash_monitor.nodes.plant_simulator:main",
     "windowing": "backlash_monitor.nodes.windowing:main",
     "denoise": "backlash_monitor.nodes.denoise:main",
+    "classifier": "backlash_monitor.nodes.classifier:main",
+    "pipeline": "backlash_monitor.nodes.pipeline:main",
+    "record": "backlash_monitor.nodes.record:main",
+    "replay": "backlash_monitor.nodes.replay:main",
     "chunk_talker": "backlash_monitor.nodes.chunk_talker:main",
     "chunk_listener": "backlash_monitor.nodes.chunk_listener:main",
 }
