@@ -2,7 +2,7 @@
 
 The 2-hour runs use the cheap synthetic record (exact entries known) fed in 1-s chunks at the full
 50 kHz: 3.6e8 samples, 57 600 entries.  Set BACKLASH_LONG_TESTS=1 to also run the contact-loss
-trigger over the full 2 h (about 20 s); by default it runs 10 min starting from the 2-hour drift
+trigger over the full 2 h (about 60 s); by default it runs 10 min starting from the 2-hour drift
 offset (its detection is local, so the absolute offset is the only thing hours add).
 """
 import os
