@@ -87,7 +87,7 @@ def run_graph(duration_s, rate_factor):
         plant = PlantSimulatorNode(parameter_overrides=[
             Parameter("rate_factor", value=float(rate_factor)),
             Parameter("duration_s", value=float(duration_s)), Parameter("qos", value="reliable"),
-            Parameter("chunk_samples", value=CHUNK)])
+            Parameter("chunk_samples", value=CHUNK), Parameter("wait_for_subscriptions", value=3)])
         published = {}
         original = plant.publish_chunk
 

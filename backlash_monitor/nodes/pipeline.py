@@ -68,7 +68,9 @@ def node_parameters(args) -> dict[str, dict]:
     return {
         "plant_simulator": dict(drive_name=args.drive_name, width_m=args.width_m, eta_k=args.eta_k,
                                 n1=args.n1, seed=args.seed, rate_factor=args.rate_factor,
-                                duration_s=args.duration, qos="reliable"),
+                                duration_s=args.duration, qos="reliable",
+                                # windowing: a1, a2, angle_difference; a recorder: all five
+                                wait_for_subscriptions=8 if args.record else 3),
         "windowing": dict(drive_name=args.drive_name, trigger=args.trigger, qos="reliable",
                           width_m=args.width_m if args.trigger == "paper" else 0.0),
         "denoise": {},

@@ -41,6 +41,9 @@ PARAMETERS = (
                   0.0, 1e7),
     ParameterSpec("qos", "sensor_data", "QoS of the chunk topics",
                   choices=("sensor_data", "reliable")),
+    ParameterSpec("wait_for_subscriptions", 0, "start the stream only once the chunk topics have "
+                  "this many matched subscriptions in total (so the chain or a recorder misses "
+                  "nothing; the windowing node has 3, a recorder 5)", 0, 1000),
 )
 
 LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
@@ -75,8 +78,7 @@ class PlantSimulatorNode(Node):
         self.total_chunks = (int(round(p["duration_s"] / self.sample_period_s / p["chunk_samples"]))
                              if p["duration_s"] > 0 else None)
         self.chunks_published = 0
-        self.stream_start_s = self.get_clock().now().nanoseconds * 1e-9
-        self.wall_start = time.monotonic()
+        self.started = False
         self.finished = False
         self.timer = self.create_timer(TICK_PERIOD_S, self.on_tick)
         self.get_logger().info(
@@ -95,7 +97,19 @@ class PlantSimulatorNode(Node):
             due = min(due, self.total_chunks - self.chunks_published)
         return max(0, min(due, MAX_CHUNKS_PER_TICK))
 
+    def start_stream(self) -> bool:
+        """Start the clock of the stream once the required subscribers are there."""
+        matched = sum(pub.get_subscription_count() for pub in self.publishers_by_signal.values())
+        if matched < self.params["wait_for_subscriptions"]:
+            return False
+        self.stream_start_s = self.get_clock().now().nanoseconds * 1e-9
+        self.wall_start = time.monotonic()
+        self.started = True
+        return True
+
     def on_tick(self):
+        if not self.started and not self.start_stream():
+            return
         for _ in range(self.due_chunks()):
             self.publish_chunk()
         if self.total_chunks is not None and self.chunks_published >= self.total_chunks \
