@@ -23,13 +23,15 @@ setup: $(BUILD_STAMP)  ## create .venv (pinned requirements) and colcon-build bo
 
 $(REQUIREMENTS_STAMP): requirements.txt tools/fix_wheel_cmake_paths.py
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "backlash_monitor needs Python 3.11 (the ROS 2 Jazzy wheels are cp311); set PYTHON=python3.11")'
-	@[ -x $(VENV)/bin/python ] || $(PYTHON) -m venv $(VENV)
-	$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check -r requirements.txt
-	$(VENV)/bin/python tools/fix_wheel_cmake_paths.py
+	@[ -x $(VENV)/bin/python ] || { echo "setup: creating $(VENV)"; $(PYTHON) -m venv $(VENV); }
+	@echo "setup: installing the pinned requirements into $(VENV) (ROS 2 Jazzy wheels, numpy, ...)"
+	@$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check -r requirements.txt
+	@$(VENV)/bin/python tools/fix_wheel_cmake_paths.py
 	@touch $@
 
 $(BUILD_STAMP): $(REQUIREMENTS_STAMP) $(MSG_SOURCES) package.xml setup.py setup.cfg resource/backlash_monitor $(wildcard config/*.yaml)
-	source $(VENV)/bin/activate && export HOME="$${HOME:-$$PWD}" AMENT_PREFIX_PATH="$$PWD/$(VENV)" CMAKE_PREFIX_PATH="$$PWD/$(VENV)" \
+	@echo "setup: colcon build of backlash_monitor_msgs and backlash_monitor into install/"
+	@source $(VENV)/bin/activate && export HOME="$${HOME:-$$PWD}" AMENT_PREFIX_PATH="$$PWD/$(VENV)" CMAKE_PREFIX_PATH="$$PWD/$(VENV)" \
 	  && colcon --log-base log build --symlink-install --base-paths . msg_defs \
 	     --event-handlers console_cohesion- summary+ status- \
 	     --cmake-args -DPython3_EXECUTABLE="$$PWD/$(VENV)/bin/python" -DBUILD_TESTING=OFF > log/colcon-build.txt 2>&1 \
