@@ -3,7 +3,7 @@
 - realtime_factor: simulated seconds across all scenarios per wall second, for the 120 grid scenarios
   plus the 30 pattern scenarios (eta_k = 0.025, 5 n1 x 6 widths, seed 1), 1 s each with noise, the
   numba RK4 kernel (the settled start's run-in is timed separately: settle_wall_s).
-- realtime_factor_numpy: the same step vectorised over the scenarios with numpy (a short run, scaled).
+- realtime_factor_numba_scalar / realtime_factor_numpy: the other two backends (short runs, scaled).
 - speedup_vs_solve_ivp: the same model and the same noisy run integrated by scipy's solve_ivp RK45
   (rtol 1e-6, atol 1e-9, restarted at every change of the held inputs) on a sample of scenarios,
   compared per scenario-second with the numba kernel.
@@ -68,6 +68,15 @@ def main() -> dict:
     np_wall = time.perf_counter() - t0
     rtf_numpy = len(scenarios) * n_np / fs / np_wall
 
+    # numba-scalar backend (scenarios outer, libm exp/log): 0.1 s
+    sim_sc = PlantSimulator(scenarios, config=cfg0, noise=True, backend="numba-scalar")
+    sim_sc.run(10)
+    n_sc = 5000
+    t0 = time.perf_counter()
+    sim_sc.run(n_sc)
+    sc_wall = time.perf_counter() - t0
+    rtf_scalar = len(scenarios) * n_sc / fs / sc_wall
+
     # solve_ivp RK45 on the same noisy run, a sample of scenarios, 0.1 s each
     sample = [scenarios[i] for i in (2, 57, 119)]
     n_ivp = int(0.1 * fs)
@@ -119,6 +128,7 @@ def main() -> dict:
         "realtime_factor_incl_settle": round(len(scenarios) * (duration_s + cfg.simulation.run_in_s)
                                              / (run_wall + settle_wall), 1),
         "ns_per_scenario_step": round(run_wall / (len(scenarios) * n) * 1e9, 1),
+        "realtime_factor_numba_scalar": round(rtf_scalar, 1),
         "realtime_factor_numpy": round(rtf_numpy, 2),
         "numba_vs_numpy": round(rtf / rtf_numpy, 1),
         "speedup_vs_solve_ivp": round(speedup, 1),

@@ -23,7 +23,7 @@ def test_defaults_file_matches_the_spec():
     ({"motor.r_s_pu": -0.1}, "motor.r_s_pu", "0.0 < value <= 1.0"),
     ({"load.mass_kg": 0}, "load.mass_kg", "0.0 < value"),
     ({"clutch.contact_stiffness_Nm_per_rad": "stiff"}, "clutch.contact_stiffness_Nm_per_rad", "allowed"),
-    ({"simulation.backend": "cuda"}, "simulation.backend", "'auto', 'numba', 'numpy'"),
+    ({"simulation.backend": "cuda"}, "simulation.backend", "'auto', 'numba', 'numba-scalar', 'numpy'"),
     ({"effects.spring": "yes"}, "effects.spring", "true or false"),
     ({"motor.pole_pairs": 2.5}, "motor.pole_pairs", "integer"),
     ({"disturbances.gaussian_hold_s": 1.1e-5}, "disturbances.gaussian_hold_s", "sample period"),

@@ -30,10 +30,36 @@ def test_numba_and_numpy_backends_agree():
     cfg = load_plant_config(overrides={"simulation.run_in_s": 0.0})
     scen = [Scenario(0.005, 0.025, 0.89, seed=1), Scenario(0.0025, 0.05, 0.97, seed=2)]
     out = {}
-    for backend in ("numba", "numpy"):
+    for backend in ("numba", "numba-scalar", "numpy"):
         sim = PlantSimulator(scen, config=cfg, noise=True, backend=backend)
         sim.run(2400)
         out[backend] = sim.run(600)                           # across the pulse start at sample 2500
-    for sig in ("a1", "a2", "omega1", "angle_difference"):
-        a, b = getattr(out["numba"], sig), getattr(out["numpy"], sig)
-        assert np.allclose(a, b, rtol=1e-9, atol=1e-9 * np.abs(b).max()), sig
+    for backend in ("numba", "numba-scalar"):
+        for sig in ("a1", "a2", "omega1", "angle_difference", "transmitted_torque_Nm"):
+            a, b = getattr(out[backend], sig), getattr(out["numpy"], sig)
+            assert np.allclose(a, b, rtol=1e-9, atol=1e-9 * np.abs(b).max()), (backend, sig)
+        assert out[backend].entries == out["numpy"].entries
+
+
+def test_simd_power_law_matches_numpy_power():
+    """The SIMD kernel's polynomial |v|^n1 (one RK4 stage on crafted states) against numpy's power."""
+    from backlash_monitor.plant.drivetrain import S_OMEGA2, S_XDOT, global_parameters
+    from backlash_monitor.plant.integrator import _stage_simd_jit
+    cfg = load_plant_config()
+    v = np.concatenate([-np.geomspace(1e-12, 50, 400), [0.0], np.geomspace(1e-12, 50, 400)])
+    S = v.size
+    n1 = np.resize(np.array([0.89, 0.91, 0.93, 0.95, 0.97, 1.0, 0.5]), S)
+    c = np.full(S, 17.0)
+    Y = np.zeros((11, S))
+    Y[S_XDOT] = -v                      # omega2 = 0 -> v = r*omega2 - xdot = v
+    p = global_parameters(cfg)
+    p[[i for i, n in enumerate(__import__("backlash_monitor.plant.drivetrain", fromlist=["PARAM_NAMES"]).PARAM_NAMES)
+       if n in ("on_spring", "on_resistance", "on_clutch")]] = 0.0
+    K = np.empty_like(Y)
+    scratch = [np.empty(S) for _ in range(2)]
+    AV = np.empty(S); MI = np.empty(S, np.int64); KI = np.empty(S, np.int64)
+    _stage_simd_jit(Y, K, 1.0, 0.0, np.zeros(S), np.full(S, 0.01), c, n1, p, scratch[0], AV, AV.view(np.int64),
+                    MI, MI.view(np.float64), np.empty(S), scratch[1], KI, KI.view(np.float64))
+    force = K[10] * cfg.load.mass_kg     # m*x'' = F
+    expected = c * np.abs(v) ** n1 * np.sign(v)
+    assert np.allclose(force, expected, rtol=1e-13, atol=0.0)

@@ -181,7 +181,7 @@ RANGES: dict[str, Any] = {
     "disturbances.pulse_hold_s": (0.0, 1.0e4, False, True),
     "simulation.sample_rate_hz": (1000.0, 1.0e7, True, True),
     "simulation.window_samples": (1, 1 << 24, True, True),
-    "simulation.backend": ("auto", "numba", "numpy"),
+    "simulation.backend": ("auto", "numba", "numba-scalar", "numpy"),
     "simulation.run_in_s": (0.0, 1.0e4, True, True),
     "constant_motor_load_pu": (-10.0, 10.0, True, True),
 }

@@ -51,18 +51,21 @@ def find_entries(delta: np.ndarray, beta: np.ndarray, previous_delta: np.ndarray
     ``previous_delta``: last sample of the previous chunk per scenario (None at the stream start).
     """
     n_scen, n = delta.shape
-    if previous_delta is None:
-        prev = delta[:, :1]  # no entry at sample 0 of the stream
-    else:
-        prev = previous_delta[:, None]
-    full = np.concatenate([prev, delta], axis=1)
+    if n == 0:
+        return [[] for _ in range(n_scen)]
     b = beta[:, None]
-    inside = np.abs(full) < b
-    entering = inside[:, 1:] & ~inside[:, :-1]
+    inside = np.abs(delta) < b
+    entering = np.empty_like(inside)
+    entering[:, 1:] = inside[:, 1:] & ~inside[:, :-1]
+    if previous_delta is None:
+        entering[:, 0] = False  # no entry at sample 0 of the stream
+    else:
+        entering[:, 0] = inside[:, 0] & ~(np.abs(previous_delta) < beta)
     out = []
     for s in range(n_scen):
         ks = np.flatnonzero(entering[s])
-        before = full[s, ks]  # Delta at k-1 (index shift by the prepended column)
+        before = np.where(ks > 0, delta[s, np.maximum(ks - 1, 0)],
+                          previous_delta[s] if previous_delta is not None else 0.0)  # Delta at k-1
         out.append([(int(first_sample_index + k), ENTRY_ONSET if d > 0 else ENTRY_RETURN)
                     for k, d in zip(ks, before)])
     return out
@@ -117,7 +120,7 @@ class PlantSimulator:
             pulse = pulse_load_pu(k0, m, cfg)
             load = np.stack([inp.samples(k0 + n, m, self.noise, pulse=pulse) for inp in run_in_inputs])
             rk4_advance(self.backend, self.state, load, ua, ub, phase, cfg.motor.supply_voltage_pu, self.beta,
-                        self.c, self.n1, self.params, self.sample_period_s)
+                        self.c, self.n1, self.params, self.sample_period_s, record_outputs=False)
 
     def _supply(self, k0: int, n: int):
         m = self.config.motor
