@@ -72,7 +72,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
                         help="override one config value, e.g. --set load.mass_kg=12 or --set effects.spring=false; "
                              "repeatable")
-    parser.add_argument("--backend", choices=("auto", "numba", "numpy"), default=None,
+    parser.add_argument("--backend", choices=("auto", "numba", "numba-scalar", "numpy"), default=None,
                         help="integration backend (default: simulation.backend of the config)")
     parser.add_argument("--chunk", type=float, default=0.05, metavar="SECONDS",
                         help="simulated time per progress step [s], 0 < chunk <= duration")

@@ -10,9 +10,11 @@ Each term contributes to one named *balance* of the model:
 
 The switch of every term is ``effects.<name>`` in ``config/plant.yaml``. How to add a term:
 register it here, add its field to :class:`~backlash_monitor.plant.config.EffectsConfig`, and add
-its contribution to its balance in :func:`backlash_monitor.plant.drivetrain.plant_derivatives`
-(one place, shared by the numba and numpy backends and the solve_ivp reference), or, for inputs
-held over a step (loads, disturbances), in :mod:`backlash_monitor.plant.disturbances`.
+its contribution to its balance in the three forms of the right-hand side:
+:func:`drivetrain.plant_derivatives` (numpy; solve_ivp reference), :func:`drivetrain.plant_derivatives_scalar`
+(numba-scalar backend, zone-crossing step) and :func:`integrator._stage_simd` (default kernel);
+the tests check that the three agree. Inputs held over a step (loads, disturbances) go into
+:mod:`backlash_monitor.plant.disturbances` only.
 """
 from __future__ import annotations
 
