@@ -76,6 +76,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="integration backend (default: simulation.backend of the config)")
     parser.add_argument("--chunk", type=float, default=0.05, metavar="SECONDS",
                         help="simulated time per progress step [s], 0 < chunk <= duration")
+    parser.add_argument("--mcap", default=None, metavar="DIR",
+                        help="also write one rosbag2 MCAP bag per scenario into DIR (created if missing), "
+                             "with the live graph's topics (/plant/a1, ..., /plant/true_width_m), chunked as "
+                             "the plant_simulator node publishes; for `analyze`, `replay` and Foxglove")
+    parser.add_argument("--no-npz", action="store_true", help="write no NPZ (use with --mcap)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar and no summary table")
 
 
@@ -107,6 +112,8 @@ def run(args) -> int:
         return _error(f"--duration {args.duration:g} is out of range; allowed: 0 < duration <= 3600 s")
     if not (0.0 < args.chunk):
         return _error(f"--chunk {args.chunk:g} is out of range; allowed: 0 < chunk <= duration")
+    if args.no_npz and not args.mcap:
+        return _error("--no-npz without --mcap would write nothing; allowed: --mcap DIR with --no-npz")
     out_path = Path(args.output)
     if not out_path.parent.exists() and str(out_path.parent) != "":
         return _error(f"--output {args.output!r}: directory {str(out_path.parent)!r} does not exist")
@@ -155,6 +162,15 @@ def run(args) -> int:
         bar.close()
     wall = time.perf_counter() - t0
 
+    if args.mcap:
+        bags = _write_bags(Path(args.mcap), scenarios, data, 1.0 / fs, quiet=args.quiet)
+        if not args.quiet:
+            print(f"wrote {len(bags)} bag(s) into {args.mcap}", file=sys.stderr)
+    if args.no_npz:
+        if not args.quiet:
+            _print_summary(scenarios, data, entries, sim, args.duration, wall, Path(args.mcap or "."), fs,
+                           impact_times_ms)
+        return 0
     entry_rows = np.array([(i, k_, ENTRY_KINDS.index(kind)) for i in range(n_scen) for k_, kind in entries[i]],
                           dtype=np.int64).reshape(-1, 3)
     np.savez(out_path if out_path.suffix == ".npz" else str(out_path),
@@ -174,6 +190,26 @@ def run(args) -> int:
     if not args.quiet:
         _print_summary(scenarios, data, entries, sim, args.duration, wall, out_path, fs, impact_times_ms)
     return 0
+
+
+def bag_name(scenario) -> str:
+    """File name of a scenario's bag: width [mm], eta_k, n1 and seed."""
+    return (f"w{scenario.width_m * 1e3:g}mm_eta{scenario.eta_k:g}_n{scenario.n1:g}_s{scenario.seed}.mcap")
+
+
+def _write_bags(directory: Path, scenarios, data, sample_period_s: float, quiet: bool) -> list[Path]:
+    from backlash_monitor.bag.simulated import DEFAULT_CHUNK_SAMPLES, SimulationBagWriter
+    directory.mkdir(parents=True, exist_ok=True)
+    paths = []
+    n_total = data["a1"].shape[1]
+    for i, scenario in enumerate(scenarios):
+        path = directory / bag_name(scenario)
+        with SimulationBagWriter(path, true_width_m=scenario.width_m) as bag:
+            for k in range(0, n_total, DEFAULT_CHUNK_SAMPLES):
+                bag.write_chunk(k, sample_period_s,
+                                {s: data[s][i, k:k + DEFAULT_CHUNK_SAMPLES] for s in SIGNALS})
+        paths.append(path)
+    return paths
 
 
 def _print_summary(scenarios, data, entries, sim, duration, wall, out_path, fs, impact_times_ms):
