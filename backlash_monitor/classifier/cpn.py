@@ -71,14 +71,19 @@ def initial_w2(m3: np.ndarray) -> np.ndarray:
     return np.full((m3.size, m3.size), m3.mean())
 
 
-def kohonen_step(w1: np.ndarray, x1: np.ndarray, l1: float) -> tuple[np.ndarray, np.ndarray, int | np.ndarray]:
+def kohonen_step(w1: np.ndarray, x1: np.ndarray, l1: float, inplace: bool = False) -> tuple[np.ndarray, np.ndarray, int | np.ndarray]:
     """Eq. 15-18 (batched on leading axes): E1 = W1 X1, t = argmax E1, Y1 = one-hot(t),
-    W1(t, :) += l1 (X1 - W1(t, :)). Returns (new W1, Y1, t). Ties go to the first (lowest) index."""
+    W1(t, :) += l1 (X1 - W1(t, :)). Returns (new W1, Y1, t). Ties go to the first (lowest) index.
+    ``inplace``: update w1 itself (the batch loop) instead of a copy."""
     e1 = np.einsum("...ij,...j->...i", w1, x1)
     t = np.argmax(e1, axis=-1)
     y1 = np.zeros(e1.shape)
     np.put_along_axis(y1, np.asarray(t)[..., None], 1.0, axis=-1)
-    w1 = w1 + l1 * y1[..., :, None] * (x1[..., None, :] - w1)
+    if not inplace:
+        w1 = w1.copy()
+    ti = np.asarray(t)[..., None, None]
+    row = np.take_along_axis(w1, ti, axis=-2)                  # only the winner's row changes (eq. 18)
+    np.put_along_axis(w1, ti, row + l1 * (x1[..., None, :] - row), axis=-2)
     return w1, y1, t
 
 
@@ -171,7 +176,7 @@ class CounterPropagationNetwork:
             w1 = np.broadcast_to(w1_0, (len(x), k, length)).copy()
             w2 = np.broadcast_to(w2_0, (len(x), k, k)).copy()
             for e in range(self.epochs):
-                w1, y1, t = kohonen_step(w1, x1, self.l1)               # eq. 15-18
+                w1, y1, t = kohonen_step(w1, x1, self.l1, True)             # eq. 15-18
                 w2 = grossberg_step(w2, y1, z1, self.l2, self.variant)  # eq. 19, 22-23 (X2 = Y1)
                 winners[s:s + _CHUNK, e] = t
             w2_out[s:s + _CHUNK] = w2
@@ -229,3 +234,24 @@ def paper_w4_from_mean(m2: float, m3, n_samples: int, *, rms: float | None = Non
         x2[t] = 1.0
         w2 = grossberg_step(w2, x2, z1, l2, variant)
     return w4_from_w2(w2)
+
+
+def continuous_width_from_b(b, widths_m) -> np.ndarray:
+    """A width between the candidates from a B vector (any mode): the winner i and its better neighbour j
+    share the step in proportion to their B, w = K2(i) + (K2(j) - K2(i)) B(i) / (B(i) + B(j)).
+    For the paper mode (B ~ |m2 - m2_i| times a common gain) this is linear interpolation of the window
+    mean between the two nearest pattern means. b (k,) or (n, k) -> (n,)."""
+    b = np.atleast_2d(np.asarray(b, dtype=float))
+    k = np.asarray(widths_m, dtype=float)
+    i = np.argmin(b, axis=1)
+    rows = np.arange(len(b))
+    left = np.where(i > 0, b[rows, np.maximum(i - 1, 0)], np.inf)
+    right = np.where(i < k.size - 1, b[rows, np.minimum(i + 1, k.size - 1)], np.inf)
+    j = np.where(left <= right, i - 1, i + 1)
+    j = np.clip(j, 0, k.size - 1)
+    bi, bj = b[rows, i], b[rows, j]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        frac = np.where(bi + bj > 0, bi / (bi + bj), 0.0)
+    frac = np.where(j == i, 0.0, frac)
+    out = k[i] + (k[j] - k[i]) * frac
+    return out

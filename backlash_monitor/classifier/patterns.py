@@ -30,7 +30,18 @@ from .cpn import CPN_VARIANTS, CounterPropagationNetwork
 
 FORMAT_VERSION = 1
 SIGNALS = ("a1", "a2")
-DEFAULT_LIBRARY_PATH = Path(__file__).resolve().parents[1] / "data" / "patterns.npz"
+DATA_DIR = Path(__file__).resolve().parents[1] / "data"
+DEFAULT_TRIGGER = "contact_loss"      # the windowing node's default trigger
+DEFAULT_LIBRARY_PATH = DATA_DIR / "patterns.npz"          # made with trigger contact_loss
+TRIGGER_LIBRARY_PATHS = {"contact_loss": DEFAULT_LIBRARY_PATH, "paper": DATA_DIR / "patterns_paper.npz"}
+
+
+def default_library_path(trigger: str | None = None) -> Path:
+    """The packaged library for a trigger (None: the default trigger's)."""
+    trigger = trigger or DEFAULT_TRIGGER
+    if trigger not in TRIGGER_LIBRARY_PATHS:
+        raise ValueError(f"unknown trigger {trigger!r}; allowed: {', '.join(TRIGGER_LIBRARY_PATHS)}")
+    return TRIGGER_LIBRARY_PATHS[trigger]
 
 # Settings a library is made with; load_library compares the ones the caller passes.
 SETTING_KEYS = ("trigger", "epochs", "l1", "l2", "denoising", "window_length", "sample_period_s",
@@ -132,15 +143,19 @@ class PatternLibrary:
 def load_library(path=None, **expected) -> PatternLibrary:
     """Load a pattern library; ``expected`` settings (e.g. trigger="contact_loss", epochs=30) must match.
 
-    ``None`` values in ``expected`` are not checked. Raises PatternLibraryError / PatternLibraryMismatch.
+    ``path`` None: the packaged library of the requested trigger (default_library_path). ``None`` values in
+    ``expected`` are not checked. Raises PatternLibraryError / PatternLibraryMismatch.
     """
-    path = Path(path) if path is not None else DEFAULT_LIBRARY_PATH
+    if path is None:
+        trig = expected.get("trigger")
+        path = default_library_path(trig if trig in TRIGGER_LIBRARY_PATHS else None)
+    path = Path(path)
     unknown = sorted(set(expected) - set(SETTING_KEYS))
     if unknown:
         raise ValueError(f"unknown library setting(s) {', '.join(unknown)}; allowed: {', '.join(SETTING_KEYS)}")
     if not path.is_file():
         raise PatternLibraryError(f"pattern library {path} does not exist; make one with "
-                                  "`python -m backlash_monitor train --out {path}`")
+                                  f"`python -m backlash_monitor train --trigger {expected.get('trigger') or DEFAULT_TRIGGER} --out {path}`")
     try:
         with np.load(path, allow_pickle=False) as z:
             meta = json.loads(str(z["meta"]))

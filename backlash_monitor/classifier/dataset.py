@@ -1,0 +1,160 @@
+"""Simulated, denoised onset windows for training and evaluation (plant + windowing + denoise).
+
+``collect_windows(seeds, trigger)`` simulates the grid (widths x eta_k x n1) for each noise seed as one
+vectorised batch, captures the windows with the project's windowing core (``trigger`` "paper": eq. 1
+with the scenario's true width; "contact_loss": the angle difference alone), keeps the onset windows,
+denoises them with the project's sym5 stage and returns a ``WindowSet``. Each (seed, trigger, grid,
+settings) piece is cached under ``.cache/windows/`` (gitignored) keyed by a hash of everything that
+makes it, so evaluate/bench/train do not resimulate.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Iterable, Sequence
+
+import numpy as np
+
+from ..denoise import DEFAULT_DETAILS_REMOVED, DEFAULT_LEVEL, DEFAULT_MODE, DEFAULT_WAVELET, denoise_sym5
+from ..plant import (ETA_K_VALUES, K2_WIDTHS_M, N1_VALUES, grid_scenarios, load_plant_config,
+                     simulate_batch)
+from ..windowing import TRIGGERS, extract_windows_batch
+from .patterns import config_hash
+
+DATASET_VERSION = 1
+DEFAULT_DURATION_S = 2.0      # 8 onset entries per scenario (4 per second)
+CACHE_DIR = Path(os.environ.get("BACKLASH_MONITOR_CACHE", Path(__file__).resolve().parents[2] / ".cache"))
+DENOISING = f"{DEFAULT_WAVELET} level {DEFAULT_LEVEL}, details {','.join(map(str, DEFAULT_DETAILS_REMOVED))} removed, mode {DEFAULT_MODE}"
+
+META_FIELDS = ("width_m", "eta_k", "n1", "seed", "scenario", "event", "entry_sample_index")
+
+
+@dataclass
+class WindowSet:
+    """Onset windows of many scenarios. Arrays indexed by window; ``meta`` columns: META_FIELDS."""
+    a1: np.ndarray                 # (n, L) denoised
+    a2: np.ndarray                 # (n, L) denoised
+    meta: np.ndarray               # (n, len(META_FIELDS)) float
+    trigger: str
+    sample_period_s: float
+    raw_a1: np.ndarray | None = None   # (n, L) float32, raw windows (for plots)
+    raw_a2: np.ndarray | None = None
+    info: dict = field(default_factory=dict)
+
+    def __len__(self) -> int:
+        return int(self.a1.shape[0])
+
+    def col(self, name: str) -> np.ndarray:
+        return self.meta[:, META_FIELDS.index(name)]
+
+    @property
+    def width_m(self) -> np.ndarray:
+        return self.col("width_m")
+
+    def signal(self, name: str) -> np.ndarray:
+        if name == "a1":
+            return self.a1
+        if name == "a2":
+            return self.a2
+        raise ValueError(f"unknown signal {name!r}; allowed: a1, a2")
+
+    def subset(self, mask) -> "WindowSet":
+        mask = np.asarray(mask)
+        return WindowSet(self.a1[mask], self.a2[mask], self.meta[mask], self.trigger, self.sample_period_s,
+                         None if self.raw_a1 is None else self.raw_a1[mask],
+                         None if self.raw_a2 is None else self.raw_a2[mask], dict(self.info))
+
+    @staticmethod
+    def concat(sets: Sequence["WindowSet"]) -> "WindowSet":
+        sets = [s for s in sets if s is not None]
+        if not sets:
+            raise ValueError("no window sets to concatenate")
+        raw = all(s.raw_a1 is not None for s in sets)
+        return WindowSet(np.concatenate([s.a1 for s in sets]), np.concatenate([s.a2 for s in sets]),
+                         np.concatenate([s.meta for s in sets]), sets[0].trigger, sets[0].sample_period_s,
+                         np.concatenate([s.raw_a1 for s in sets]) if raw else None,
+                         np.concatenate([s.raw_a2 for s in sets]) if raw else None, dict(sets[0].info))
+
+
+def _key(parts: dict) -> str:
+    return hashlib.sha256(json.dumps(parts, sort_keys=True, default=repr).encode()).hexdigest()[:20]
+
+
+def _windows_from_batch(res, scenarios, trigger: str, seed: int, window_length: int) -> WindowSet:
+    sig = {"a1": res.a1, "a2": res.a2, "angle_difference": res.angle_difference}
+    widths = np.array([s.width_m for s in scenarios]) if trigger == "paper" else None
+    per_row = extract_windows_batch(sig, width_m=widths, trigger=trigger, window_length=window_length,
+                                    sample_period_s=res.sample_period_s)
+    raw1, raw2, meta = [], [], []
+    for i, (s, wins) in enumerate(zip(scenarios, per_row)):
+        ev = 0
+        for w in wins:
+            if w.kind != "onset":
+                continue
+            raw1.append(w.signals["a1"])
+            raw2.append(w.signals["a2"])
+            meta.append((s.width_m, s.eta_k, s.n1, seed, i, ev, w.entry_sample_index))
+            ev += 1
+    raw1 = np.array(raw1, dtype=float).reshape(-1, window_length)
+    raw2 = np.array(raw2, dtype=float).reshape(-1, window_length)
+    return WindowSet(denoise_sym5(raw1), denoise_sym5(raw2), np.array(meta, dtype=float).reshape(-1, len(META_FIELDS)),
+                     trigger, res.sample_period_s, raw1.astype(np.float32), raw2.astype(np.float32))
+
+
+def collect_windows(seeds: Iterable[int], trigger: str | Sequence[str] = "paper", *,
+                    widths_m=K2_WIDTHS_M, eta_k_values=ETA_K_VALUES, n1_values=N1_VALUES,
+                    duration_s: float = DEFAULT_DURATION_S, config=None, window_length: int = 2048,
+                    cache: bool = True, progress=None):
+    """Denoised onset windows of the grid for each seed. ``trigger`` one name -> WindowSet; a list of
+    names -> dict trigger -> WindowSet (one simulation per seed serves every trigger).
+    ``progress``: optional callable(n) called once per seed done (e.g. a tqdm's update)."""
+    triggers = [trigger] if isinstance(trigger, str) else list(trigger)
+    for t in triggers:
+        if t not in TRIGGERS:
+            raise ValueError(f"unknown trigger {t!r}; allowed: {', '.join(TRIGGERS)}")
+    config = config if config is not None else load_plant_config()
+    chash = config_hash(config)
+    out = {t: [] for t in triggers}
+    for seed in seeds:
+        scen = grid_scenarios(seeds=(int(seed),), widths_m=tuple(widths_m), eta_k_values=tuple(eta_k_values),
+                              n1_values=tuple(n1_values))
+        files = {}
+        for t in triggers:
+            key = _key({"v": DATASET_VERSION, "seed": int(seed), "trigger": t, "widths": list(map(float, widths_m)),
+                        "eta": list(map(float, eta_k_values)), "n1": list(map(float, n1_values)),
+                        "duration": float(duration_s), "L": int(window_length), "plant": chash,
+                        "denoise": DENOISING})
+            files[t] = CACHE_DIR / "windows" / f"{t}_seed{int(seed)}_{key}.npz"
+        missing = [t for t in triggers if not (cache and files[t].is_file())]
+        if missing:
+            res = simulate_batch(scen, duration_s=duration_s, config=config, noise=True)
+            for t in missing:
+                ws = _windows_from_batch(res, scen, t, int(seed), window_length)
+                if cache:
+                    files[t].parent.mkdir(parents=True, exist_ok=True)
+                    tmp = files[t].with_name(files[t].name + ".tmp.npz")
+                    np.savez(tmp, a1=ws.a1, a2=ws.a2, meta=ws.meta, raw_a1=ws.raw_a1, raw_a2=ws.raw_a2,
+                             sample_period_s=ws.sample_period_s)
+                    os.replace(tmp, files[t])
+                out[t].append(ws)
+            del res
+        for t in triggers:
+            if t in missing:
+                continue
+            with np.load(files[t]) as z:
+                out[t].append(WindowSet(z["a1"], z["a2"], z["meta"], t, float(z["sample_period_s"]),
+                                        z["raw_a1"], z["raw_a2"]))
+        if progress is not None:
+            progress(1)
+    sets = {}
+    for t in triggers:
+        ws = WindowSet.concat(out[t])
+        ws.info = {"seeds": [int(s) for s in seeds], "trigger": t, "widths_m": list(map(float, widths_m)),
+                   "eta_k_values": list(map(float, eta_k_values)), "n1_values": list(map(float, n1_values)),
+                   "duration_s": float(duration_s), "plant_config_hash": chash, "denoising": DENOISING,
+                   "window_length": int(window_length)}
+        sets[t] = ws
+    return sets[triggers[0]] if isinstance(trigger, str) else sets

@@ -1,0 +1,100 @@
+"""`python -m backlash_monitor train`: simulate training drives and write the versioned pattern library.
+
+Layout of the library: docs/classifier.md. The packaged defaults are made by
+``python -m backlash_monitor train --trigger contact_loss`` (-> backlash_monitor/data/patterns.npz) and
+``python -m backlash_monitor train --trigger paper`` (-> backlash_monitor/data/patterns_paper.npz).
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+
+from backlash_monitor.commands import UsageError
+
+NAME = "train"
+HELP = "simulate noisy training drives and write the versioned pattern library (all classifier modes)"
+DESCRIPTION = (
+    "Simulate the paper's grid (6 widths x 4 eta_k x 5 n1) for each training noise seed, capture the onset "
+    "windows with the chosen trigger, denoise them (sym5, details 1-6 removed) and fit every classifier mode: "
+    "the paper's counter-propagation patterns (M3, W5 per n1 for a1 and a2; 'paper' and 'paper_corrected') "
+    "and the improved 'shape' regression (a1, a2, a1+a2). The library records the settings that made it; "
+    "the classifier refuses a library made with other settings. Simulated windows are cached in .cache/.")
+
+TRIGGERS = ("contact_loss", "paper")
+
+
+def _seed_list(text: str) -> list[int]:
+    try:
+        values = [int(x) for x in text.replace(" ", "").split(",") if x != ""]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a comma-separated list of integers, e.g. 1000,1001") from None
+    if not values or any(v < 0 for v in values):
+        raise argparse.ArgumentTypeError(f"{text!r}: give one or more integers >= 0, e.g. 1000,1001")
+    return values
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    from backlash_monitor.classifier.cpn import DEFAULT_EPOCHS, DEFAULT_L1, DEFAULT_L2
+    from backlash_monitor.classifier.shape import DEFAULT_RIDGE
+    from backlash_monitor.classifier.training import DEFAULT_TRAIN_SEEDS
+    parser.add_argument("--out", default=None, metavar="FILE.npz",
+                        help="where to write the library (default: the packaged library of the trigger, "
+                             "backlash_monitor/data/patterns.npz for contact_loss, patterns_paper.npz for paper)")
+    parser.add_argument("--trigger", default="contact_loss", choices=TRIGGERS,
+                        help="backlash-entry trigger of the training windows: 'contact_loss' (angle difference "
+                             "alone, the pipeline's default) or 'paper' (eq. 1 with the true width)")
+    parser.add_argument("--seeds", type=_seed_list, default=list(DEFAULT_TRAIN_SEEDS), metavar="S[,S...]",
+                        help="training noise seeds (each one is the full 120-scenario grid, 8 onset windows per "
+                             "scenario); keep them apart from the evaluation seeds 0-4")
+    parser.add_argument("--epochs", type=int, default=DEFAULT_EPOCHS,
+                        help="counter-propagation epochs per window (paper: 30), >= 1")
+    parser.add_argument("--l1", type=float, default=DEFAULT_L1,
+                        help="Kohonen-layer learning coefficient l1 (paper: 0.1), 0 < l1 <= 1")
+    parser.add_argument("--l2", type=float, default=DEFAULT_L2,
+                        help="Grossberg-layer learning coefficient l2 (paper: 0.09), 0 < l2 <= 1")
+    parser.add_argument("--ridge", type=float, default=DEFAULT_RIDGE,
+                        help="ridge penalty of the shape mode's regression (per window, standardised features), > 0")
+    parser.add_argument("--duration", type=float, default=2.0, metavar="S",
+                        help="simulated seconds per scenario (4 onset windows per second), 0.5 <= S <= 60")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def _check(args) -> None:
+    if args.epochs < 1:
+        raise UsageError(f"--epochs {args.epochs}: must be an integer >= 1 (paper: 30)")
+    for name in ("l1", "l2"):
+        v = getattr(args, name)
+        if not (math.isfinite(v) and 0 < v <= 1):
+            raise UsageError(f"--{name} {v}: must be in (0, 1] (paper: l1 = 0.1, l2 = 0.09)")
+    if not (math.isfinite(args.ridge) and args.ridge > 0):
+        raise UsageError(f"--ridge {args.ridge}: must be a number > 0 (default 1e-4)")
+    if not (math.isfinite(args.duration) and 0.5 <= args.duration <= 60):
+        raise UsageError(f"--duration {args.duration}: must be between 0.5 and 60 s")
+    if args.out is not None and not str(args.out).endswith(".npz"):
+        raise UsageError(f"--out {args.out}: the library is an .npz file; give a name ending in .npz")
+
+
+def run(args) -> int:
+    _check(args)
+    from tqdm import tqdm
+
+    from backlash_monitor.classifier.patterns import default_library_path
+    from backlash_monitor.classifier.training import build_library
+    out = args.out or default_library_path(args.trigger)
+    t0 = time.time()
+    with tqdm(total=len(args.seeds), desc=f"simulate+window ({args.trigger})", unit="seed",
+              disable=args.no_progress, file=sys.stderr) as bar:
+        lib = build_library(args.trigger, args.seeds, epochs=args.epochs, l1=args.l1, l2=args.l2,
+                            ridge=args.ridge, duration_s=args.duration, progress=bar.update)
+    path = lib.save(out)
+    fit = lib.training["shape"]["fit"]
+    print(f"pattern library written: {path}")
+    print(f"  trigger {args.trigger}, seeds {','.join(map(str, args.seeds))}, "
+          f"{lib.training['n_onset_windows']} onset windows, epochs {args.epochs}, l1 {args.l1}, l2 {args.l2}")
+    print("  shape mode training residual: " + ", ".join(
+        f"{s} {v['training_residual_std_m'] * 1e3:.3f} mm" for s, v in fit.items()))
+    print(f"  modes: {', '.join(lib.modes)}; plant config {lib.settings['plant_config_hash']}; "
+          f"{time.time() - t0:.0f} s")
+    return 0
