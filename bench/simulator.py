@@ -2,7 +2,9 @@
 
 - realtime_factor: simulated seconds across all scenarios per wall second, for the 120 grid scenarios
   plus the 30 pattern scenarios (eta_k = 0.025, 5 n1 x 6 widths, seed 1), 1 s each with noise, the
-  numba RK4 kernel (the settled start's run-in is timed separately: settle_wall_s).
+  numba RK4 kernel (the settled start's run-in is timed separately: settle_wall_s), recording the
+  outputs the pipeline uses (PIPELINE_OUTPUTS: a1, a2, omega1, omega2, angle_difference) and the entries;
+  realtime_factor_all_outputs: the same with all eight outputs recorded (0.2 s, scaled).
 - realtime_factor_numba_scalar / realtime_factor_numpy: the other two backends (short runs, scaled).
 - speedup_vs_solve_ivp: the same model and the same noisy run integrated by scipy's solve_ivp RK45
   (rtol 1e-6, atol 1e-9, restarted at every change of the held inputs) on a sample of scenarios,
@@ -33,6 +35,9 @@ from backlash_monitor.plant import (K2_WIDTHS_M, PlantSimulator, Scenario, grid_
 from backlash_monitor.plant.reference import reference_run  # noqa: E402
 
 
+PIPELINE_OUTPUTS = ("a1", "a2", "omega1", "omega2", "angle_difference")
+
+
 def main() -> dict:
     cfg = load_plant_config()
     fs = cfg.simulation.sample_rate_hz
@@ -44,7 +49,7 @@ def main() -> dict:
     PlantSimulator(scenarios[:1], config=cfg.with_overrides({"simulation.run_in_s": 0.0}), noise=True).run(10)
 
     t0 = time.perf_counter()
-    sim = PlantSimulator(scenarios, config=cfg, noise=True, backend="numba")
+    sim = PlantSimulator(scenarios, config=cfg, noise=True, backend="numba", outputs=PIPELINE_OUTPUTS)
     settle_wall = time.perf_counter() - t0
     # streamed as the ROS node does it: 0.1 s chunks (bounded memory)
     run_wall = 0.0
@@ -59,8 +64,16 @@ def main() -> dict:
     rtf = scen_seconds / run_wall
     entries_ok = all(sorted(k for _, k in e) == ["onset"] * 4 + ["return"] * 4 for e in entries)
 
-    # numpy backend: same scheme vectorised over the scenarios, short run
     cfg0 = cfg.with_overrides({"simulation.run_in_s": 0.0})
+    # all eight outputs (alpha1, alpha2, transmitted_torque_Nm too): 0.2 s in 0.1 s chunks
+    sim_all = PlantSimulator(scenarios, config=cfg0, noise=True, backend="numba")
+    sim_all.run(10)
+    t0 = time.perf_counter()
+    for _ in range(2):
+        sim_all.run(n // 10)
+    rtf_all = len(scenarios) * 2 * (n // 10) / fs / (time.perf_counter() - t0)
+
+    # numpy backend: same scheme vectorised over the scenarios, short run
     sim_np = PlantSimulator(scenarios, config=cfg0, noise=True, backend="numpy")
     n_np = 500
     t0 = time.perf_counter()
@@ -124,10 +137,12 @@ def main() -> dict:
         "run_wall_s": round(run_wall, 3),
         "settle_wall_s": round(settle_wall, 3),
         "settle_run_in_s": cfg.simulation.run_in_s,
+        "outputs_recorded": list(PIPELINE_OUTPUTS),
         "realtime_factor": round(rtf, 1),
         "realtime_factor_incl_settle": round(len(scenarios) * (duration_s + cfg.simulation.run_in_s)
                                              / (run_wall + settle_wall), 1),
         "ns_per_scenario_step": round(run_wall / (len(scenarios) * n) * 1e9, 1),
+        "realtime_factor_all_outputs": round(rtf_all, 1),
         "realtime_factor_numba_scalar": round(rtf_scalar, 1),
         "realtime_factor_numpy": round(rtf_numpy, 2),
         "numba_vs_numpy": round(rtf / rtf_numpy, 1),

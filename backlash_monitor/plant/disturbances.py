@@ -60,9 +60,13 @@ class HeldSequence:
             block = self._draw(self._rng, _BLOCK)
             parts.append(block[have - block_start:])
             have = block_start + _BLOCK
-        self._values = np.concatenate(parts)
-        k = np.arange(k0, k0 + n, dtype=np.int64)
-        return self._values[k // self.hold_samples - self._first_interval]
+        self._values = np.concatenate(parts) if len(parts) > 1 else self._values
+        # the held values: intervals i0..i1 repeated, cut to k0..k0+n-1 (same values as indexing
+        # self._values[k // hold - first] per sample, ~5x cheaper)
+        a = i0 - self._first_interval
+        held = np.repeat(self._values[a:a + i1 - i0 + 1], self.hold_samples)
+        start = k0 - i0 * self.hold_samples
+        return held[start:start + n]
 
 
 def gaussian_generator(seed_sequence: np.random.SeedSequence, cfg) -> HeldSequence:
@@ -107,3 +111,28 @@ class MotorLoadInput:
             if e.pulse_disturbance:
                 out += t
         return out
+
+
+def motor_load_batch(inputs, k0: int, n: int, noise: bool, pulse: np.ndarray | None = None) -> np.ndarray:
+    """``np.stack([inp.samples(k0, n, noise, pulse) for inp in inputs])``, bit-identical (the same additions
+    in the same order), written row by row into one array (each row stays in cache)."""
+    out = np.zeros((len(inputs), n))
+    if len(inputs) == 0 or n == 0:
+        return out
+    cfg = inputs[0].cfg
+    e = cfg.effects
+    if e.pulse_load and pulse is None:
+        pulse = pulse_load_pu(k0, n, cfg)
+    for inp, row in zip(inputs, out):
+        if e.pulse_load:
+            row += pulse
+        if e.constant_motor_load:
+            row += cfg.constant_motor_load_pu
+        if noise:
+            g = inp.gaussian.samples(k0, n)
+            t = inp.telegraph.samples(k0, n)
+            if e.gaussian_disturbance:
+                row += g
+            if e.pulse_disturbance:
+                row += t
+    return out

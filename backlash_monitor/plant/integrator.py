@@ -178,6 +178,7 @@ _SQRT2 = 1.4142135623730951
 _MANT = np.int64(0x000FFFFFFFFFFFFF)
 _ONE_BITS = np.int64(0x3FF0000000000000)
 _OUT_BLOCK = 32
+_LANES = 8    # pad the scenario axis to whole AVX-512 vectors of doubles
 
 
 def _stage_simd(Y, K, ua, ub, load, beta, c, n1, p, TC, AV, AVI, MI, MF, E, G, KI, KF):
@@ -232,17 +233,36 @@ def _stage_simd(Y, K, ua, ub, load, beta, c, n1, p, TC, AV, AVI, MI, MF, E, G, K
         K[10,s]=(f-f0)*im
 
 
-def _rk4_simd_loop(x, load, ua, ub, phase, u_amp, beta, c, n1, p, h, out, states, record_states, record_outputs):
-    """The RK4 scheme of _rk4_loop with the samples outer and the scenarios inner (vectorised)."""
+def _rk4_simd_loop(x, load, ua, ub, phase, u_amp, beta, c, n1, p, h, out, states, record_states, record_outputs, sel):
+    """The RK4 scheme of _rk4_loop with the samples outer and the scenarios inner (vectorised).
+
+    The scenario axis is padded to a multiple of _LANES with copies of the last scenario, so every
+    loop over the scenarios runs whole SIMD vectors (no scalar remainder iterations); the padding
+    lanes are never written out and never take the crossing step. Without fastmath reassociation or
+    contraction every lane computes the same IEEE operations whether in a vector or not, so the
+    padding does not change any real scenario's result."""
     S=x.shape[0]; n=load.shape[1]
-    Y=np.ascontiguousarray(x.T); T=np.empty_like(Y)
+    Sp=((S+_LANES-1)//_LANES)*_LANES
+    Y=np.empty((11,Sp))
+    for i in range(11):
+        for s in range(Sp):
+            Y[i,s]=x[min(s,S-1),i]
+    T=np.empty_like(Y)
     K1=np.empty_like(Y); K2=np.empty_like(Y); K3=np.empty_like(Y); K4=np.empty_like(Y)
-    TC=np.empty(S); AV=np.empty(S); AVI=AV.view(np.int64); MI=np.empty(S,np.int64); MF=MI.view(np.float64)
-    E=np.empty(S); G=np.empty(S); KI=np.empty(S,np.int64); KF=KI.view(np.float64)
-    LT=np.ascontiguousarray(load.T)
+    TC=np.empty(Sp); AV=np.empty(Sp); AVI=AV.view(np.int64); MI=np.empty(Sp,np.int64); MF=MI.view(np.float64)
+    E=np.empty(Sp); G=np.empty(Sp); KI=np.empty(Sp,np.int64); KF=KI.view(np.float64)
+    LT=np.empty((n,Sp))
+    for k in range(n):
+        for s in range(Sp):
+            LT[k,s]=load[min(s,S-1),k]
+    beta_=np.empty(Sp); c_=np.empty(Sp); n1_=np.empty(Sp)
+    for s in range(Sp):
+        beta_[s]=beta[min(s,S-1)]; c_[s]=c[min(s,S-1)]; n1_[s]=n1[min(s,S-1)]
+    beta=beta_; c=c_; n1=n1_
     r=p[P_R]; omb=p[P_OMEGA_MB]; hh=0.5*h; h6=h/6.0
     y0=np.empty(11); y1=np.empty(11)
-    buf = np.empty((8, _OUT_BLOCK, S))
+    nsel = sel.shape[0]
+    buf = np.empty((nsel, _OUT_BLOCK, Sp))
     for k in range(n):
         ld=LT[k]
         _stage_simd_jit(Y,K1,ua[k,0],ub[k,0],ld,beta,c,n1,p,TC,AV,AVI,MI,MF,E,G,KI,KF)
@@ -251,35 +271,45 @@ def _rk4_simd_loop(x, load, ua, ub, phase, u_amp, beta, c, n1, p, h, out, states
                 for s in range(S):
                     states[i, s, k] = Y[i, s]
         if record_outputs:
-            # outputs go through a (N_OUTPUTS, B, S) buffer, written contiguously per step and flushed
-            # to out (N_OUTPUTS, S, n) every B steps (avoids 8*S scattered stores per step)
+            # the requested outputs (sel: indices into OUTPUT_NAMES) go through a (nsel, B, S) buffer,
+            # written contiguously per step and flushed to out (nsel, S, n) every B steps (avoids
+            # nsel*S scattered stores per step)
             b = k % _OUT_BLOCK
-            for s in range(S):
-                buf[0, b, s] = r * omb * K1[4, s]
-                buf[1, b, s] = K1[10, s]
-                buf[2, b, s] = Y[4, s] * omb
-                buf[3, b, s] = Y[8, s]
-                buf[4, b, s] = Y[5, s]
-                buf[5, b, s] = Y[6, s]
-                buf[6, b, s] = Y[7, s]
-                buf[7, b, s] = TC[s]
+            for j in range(nsel):
+                o = sel[j]
+                if o == 0:
+                    for s in range(Sp): buf[j, b, s] = r * omb * K1[4, s]
+                elif o == 1:
+                    for s in range(Sp): buf[j, b, s] = K1[10, s]
+                elif o == 2:
+                    for s in range(Sp): buf[j, b, s] = Y[4, s] * omb
+                elif o == 3:
+                    for s in range(Sp): buf[j, b, s] = Y[8, s]
+                elif o == 4:
+                    for s in range(Sp): buf[j, b, s] = Y[5, s]
+                elif o == 5:
+                    for s in range(Sp): buf[j, b, s] = Y[6, s]
+                elif o == 6:
+                    for s in range(Sp): buf[j, b, s] = Y[7, s]
+                else:
+                    for s in range(Sp): buf[j, b, s] = TC[s]
             if b == _OUT_BLOCK - 1 or k == n - 1:
                 k_start = k - b
-                for j in range(8):
+                for j in range(nsel):
                     for s in range(S):
                         for bb in range(b + 1):
                             out[j, s, k_start + bb] = buf[j, bb, s]
         for i in range(11):
-            for s in range(S): T[i,s]=Y[i,s]+hh*K1[i,s]
+            for s in range(Sp): T[i,s]=Y[i,s]+hh*K1[i,s]
         _stage_simd_jit(T,K2,ua[k,1],ub[k,1],ld,beta,c,n1,p,TC,AV,AVI,MI,MF,E,G,KI,KF)
         for i in range(11):
-            for s in range(S): T[i,s]=Y[i,s]+hh*K2[i,s]
+            for s in range(Sp): T[i,s]=Y[i,s]+hh*K2[i,s]
         _stage_simd_jit(T,K3,ua[k,1],ub[k,1],ld,beta,c,n1,p,TC,AV,AVI,MI,MF,E,G,KI,KF)
         for i in range(11):
-            for s in range(S): T[i,s]=Y[i,s]+h*K3[i,s]
+            for s in range(Sp): T[i,s]=Y[i,s]+h*K3[i,s]
         _stage_simd_jit(T,K4,ua[k,2],ub[k,2],ld,beta,c,n1,p,TC,AV,AVI,MI,MF,E,G,KI,KF)
         for i in range(11):
-            for s in range(S): T[i,s]=Y[i,s]+h6*(K1[i,s]+2.0*K2[i,s]+2.0*K3[i,s]+K4[i,s])
+            for s in range(Sp): T[i,s]=Y[i,s]+h6*(K1[i,s]+2.0*K2[i,s]+2.0*K3[i,s]+K4[i,s])
         if p[P_ON_CLUTCH]!=0.0:
             for s in range(S):
                 if (abs(Y[5,s])<beta[s]) != (abs(T[5,s])<beta[s]):
@@ -288,7 +318,9 @@ def _rk4_simd_loop(x, load, ua, ub, phase, u_amp, beta, c, n1, p, h, out, states
                     crossing_step(y0,y1,h,phase[k],u_amp,ld[s],beta[s],c[s],n1[s],p)
                     for i in range(11): T[i,s]=y1[i]
         Y, T = T, Y
-    x[:,:]=Y.T
+    for s in range(S):
+        for i in range(11):
+            x[s,i]=Y[i,s]
 
 
 if HAVE_NUMBA:
@@ -360,18 +392,24 @@ def resolve_backend(name: str) -> str:
 
 
 def rk4_advance(backend, x, load, ua, ub, phase, u_amp, beta, c, n1, p, h, record_states=False,
-                record_outputs=True):
-    """Advance ``x`` (n_scen, 11) in place by ``load.shape[1]`` steps; return (outputs (N_OUTPUTS, n_scen, n)
-    or None when ``record_outputs`` is false (numba backend only), states (N_STATES, n_scen, n) or None)."""
+                record_outputs=True, outputs=None):
+    """Advance ``x`` (n_scen, 11) in place by ``load.shape[1]`` steps; return (outputs (n_out, n_scen, n)
+    or None when ``record_outputs`` is false (numba backend only), states (N_STATES, n_scen, n) or None).
+
+    ``outputs``: indices into OUTPUT_NAMES of the outputs to record, in that order (None: all N_OUTPUTS);
+    the numba kernel writes only those, the other backends compute all and return the selected rows."""
     n_scen, n = load.shape
+    sel = np.arange(N_OUTPUTS, dtype=np.int64) if outputs is None else np.asarray(outputs, dtype=np.int64)
+    if sel.ndim != 1 or np.any((sel < 0) | (sel >= N_OUTPUTS)):
+        raise ValueError(f"rk4_advance: outputs = {outputs!r}; allowed: indices 0..{N_OUTPUTS - 1} into OUTPUT_NAMES")
     if backend == "numba":
-        out = np.empty((N_OUTPUTS, n_scen, n)) if record_outputs else np.empty((N_OUTPUTS, 0, 0))
+        out = np.empty((sel.size, n_scen, n)) if record_outputs else np.empty((sel.size, 0, 0))
         states = np.empty((N_STATES, n_scen, n)) if record_states else np.empty((N_STATES, 0, 0))
         _rk4_numba_simd(x, np.ascontiguousarray(load), np.ascontiguousarray(ua), np.ascontiguousarray(ub),
                         np.ascontiguousarray(phase, dtype=np.float64), float(u_amp),
                         np.ascontiguousarray(beta, dtype=np.float64), np.ascontiguousarray(c, dtype=np.float64),
                         np.ascontiguousarray(n1, dtype=np.float64), p, float(h), out, states,
-                        bool(record_states), bool(record_outputs))
+                        bool(record_states), bool(record_outputs), sel)
         return (out if record_outputs else None), (states if record_states else None)
     out = np.empty((N_OUTPUTS, n_scen, n))
     states = np.empty((N_STATES, n_scen, n)) if record_states else np.empty((N_STATES, 0, 0))
@@ -383,4 +421,6 @@ def rk4_advance(backend, x, load, ua, ub, phase, u_amp, beta, c, n1, p, h, recor
         _rk4_numba_scalar(*args)
     else:
         _rk4_numpy(*args)
+    if outputs is not None:
+        out = out[sel]
     return out, (states if record_states else None)

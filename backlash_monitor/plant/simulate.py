@@ -7,9 +7,9 @@ from typing import Sequence
 import numpy as np
 
 from .config import PlantConfig, load_plant_config
-from .disturbances import MotorLoadInput, pulse_load_pu
+from .disturbances import MotorLoadInput, motor_load_batch, pulse_load_pu
 from .drivetrain import STATE_NAMES, absorber_coefficient, global_parameters, half_gap_rad
-from .integrator import rk4_advance, resolve_backend
+from .integrator import OUTPUT_NAMES, rk4_advance, resolve_backend
 from .motor import supply_phase, supply_voltage
 from .scenarios import Scenario
 from .steady_state import settled_state
@@ -21,14 +21,15 @@ ENTRY_RETURN = "return"  # entered from Delta <= -beta: the motor catches up (af
 @dataclass
 class SimulationChunk:
     """``n_samples`` consecutive samples of every scenario; arrays shaped (n_scenarios, n_samples)."""
-    a1: np.ndarray                 # r*dOmega1/dt [m/s^2], drive-wheel circumference, motor side
-    a2: np.ndarray                 # x'' [m/s^2], the mass
-    omega1: np.ndarray             # [rad/s]
-    omega2: np.ndarray             # [rad/s]
-    angle_difference: np.ndarray   # Delta = alpha1 - alpha2 [rad], integrated as a state
-    alpha1: np.ndarray             # [rad]
-    alpha2: np.ndarray             # [rad]
-    transmitted_torque_Nm: np.ndarray  # T_c [N*m]
+    # (every output but angle_difference is None when the simulator was built without it in ``outputs``)
+    a1: np.ndarray | None          # r*dOmega1/dt [m/s^2], drive-wheel circumference, motor side
+    a2: np.ndarray | None          # x'' [m/s^2], the mass
+    omega1: np.ndarray | None      # [rad/s]
+    omega2: np.ndarray | None      # [rad/s]
+    angle_difference: np.ndarray   # Delta = alpha1 - alpha2 [rad], integrated as a state (always recorded)
+    alpha1: np.ndarray | None      # [rad]
+    alpha2: np.ndarray | None      # [rad]
+    transmitted_torque_Nm: np.ndarray | None  # T_c [N*m]
     first_sample_index: int
     sample_period_s: float
     entries: list                  # per scenario: list of (sample_index, kind), kind "onset" | "return"
@@ -37,7 +38,7 @@ class SimulationChunk:
 
     @property
     def n_samples(self) -> int:
-        return self.a1.shape[1]
+        return self.angle_difference.shape[1]
 
     @property
     def time_s(self) -> np.ndarray:
@@ -61,13 +62,13 @@ def find_entries(delta: np.ndarray, beta: np.ndarray, previous_delta: np.ndarray
         entering[:, 0] = False  # no entry at sample 0 of the stream
     else:
         entering[:, 0] = inside[:, 0] & ~(np.abs(previous_delta) < beta)
-    out = []
-    for s in range(n_scen):
-        ks = np.flatnonzero(entering[s])
-        before = np.where(ks > 0, delta[s, np.maximum(ks - 1, 0)],
-                          previous_delta[s] if previous_delta is not None else 0.0)  # Delta at k-1
-        out.append([(int(first_sample_index + k), ENTRY_ONSET if d > 0 else ENTRY_RETURN)
-                    for k, d in zip(ks, before)])
+    ss, ks = np.nonzero(entering)                   # row-major: by scenario, then sample
+    prev = np.zeros(n_scen) if previous_delta is None else np.asarray(previous_delta, dtype=np.float64)
+    before = np.where(ks > 0, delta[ss, np.maximum(ks - 1, 0)], prev[ss])   # Delta at k-1
+    kinds = np.where(before > 0, ENTRY_ONSET, ENTRY_RETURN)
+    out = [[] for _ in range(n_scen)]
+    for s, k, kind in zip(ss.tolist(), (ks + first_sample_index).tolist(), kinds.tolist()):
+        out[s].append((k, kind))
     return out
 
 
@@ -76,11 +77,14 @@ class PlantSimulator:
 
     noise: the two disturbance generators on/off (their effect switches still apply).
     record_states: also return the full state (for energy checks and the workbench).
-    backend: "auto" | "numba" | "numpy" (default from the config).
+    backend: "auto" | "numba" | "numba-scalar" | "numpy" (default from the config).
+    outputs: names (OUTPUT_NAMES) of the signals to record, None = all eight; angle_difference is always
+    recorded (entries need it), the chunk's fields of the others are None (the numba kernel then
+    writes less: e.g. the five the pipeline uses, a1 a2 omega1 omega2 angle_difference).
     """
 
     def __init__(self, scenarios: Sequence[Scenario], config: PlantConfig | None = None, noise: bool = True,
-                 record_states: bool = False, backend: str | None = None):
+                 record_states: bool = False, backend: str | None = None, outputs: Sequence[str] | None = None):
         if len(scenarios) == 0:
             raise ValueError("PlantSimulator: no scenarios given; allowed: one or more Scenario")
         self.config = config if config is not None else load_plant_config()
@@ -88,6 +92,16 @@ class PlantSimulator:
         self.noise = bool(noise)
         self.record_states = bool(record_states)
         self.backend = resolve_backend(backend or self.config.simulation.backend)
+        if outputs is None:
+            self.outputs = OUTPUT_NAMES
+        else:
+            unknown = [o for o in outputs if o not in OUTPUT_NAMES]
+            if unknown or isinstance(outputs, str):
+                raise ValueError(f"PlantSimulator: outputs = {outputs!r}; allowed: a sequence of "
+                                 + ", ".join(repr(o) for o in OUTPUT_NAMES))
+            wanted = set(outputs) | {"angle_difference"}
+            self.outputs = tuple(o for o in OUTPUT_NAMES if o in wanted)
+        self._output_index = None if self.outputs == OUTPUT_NAMES else [OUTPUT_NAMES.index(o) for o in self.outputs]
         cfg = self.config
         self.sample_period_s = cfg.simulation.sample_period_s
         self.beta = np.array([half_gap_rad(s.width_m, cfg) for s in self.scenarios])
@@ -118,7 +132,7 @@ class PlantSimulator:
             m = min(step, -k0)
             ua, ub, phase = self._supply(k0, m)
             pulse = pulse_load_pu(k0, m, cfg)
-            load = np.stack([inp.samples(k0 + n, m, self.noise, pulse=pulse) for inp in run_in_inputs])
+            load = motor_load_batch(run_in_inputs, k0 + n, m, self.noise, pulse=pulse)
             rk4_advance(self.backend, self.state, load, ua, ub, phase, cfg.motor.supply_voltage_pu, self.beta,
                         self.c, self.n1, self.params, self.sample_period_s, record_outputs=False)
 
@@ -136,7 +150,7 @@ class PlantSimulator:
     def motor_load_pu(self, k0: int, n: int) -> np.ndarray:
         """The held motor load moment [p.u.] of every scenario for samples k0..k0+n-1 (advances the generators)."""
         pulse = pulse_load_pu(k0, n, self.config)
-        return np.stack([inp.samples(k0, n, self.noise, pulse=pulse) for inp in self.inputs])
+        return motor_load_batch(self.inputs, k0, n, self.noise, pulse=pulse)
 
     def run(self, n_samples: int) -> SimulationChunk:
         """Advance every scenario by ``n_samples`` samples and return them."""
@@ -147,13 +161,16 @@ class PlantSimulator:
         load = self.motor_load_pu(k0, n)
         ua, ub, phase = self._supply(k0, n)
         out, states = rk4_advance(self.backend, self.state, load, ua, ub, phase, self.config.motor.supply_voltage_pu,
-                                  self.beta, self.c, self.n1, self.params, self.sample_period_s, self.record_states)
-        entries = find_entries(out[4], self.beta, self._last_delta, k0)
+                                  self.beta, self.c, self.n1, self.params, self.sample_period_s, self.record_states,
+                                  outputs=self._output_index)
+        sig = dict.fromkeys(OUTPUT_NAMES)
+        sig.update(zip(self.outputs, out))
+        delta = sig["angle_difference"]
+        entries = find_entries(delta, self.beta, self._last_delta, k0)
         if n > 0:
-            self._last_delta = out[4][:, -1].copy()
+            self._last_delta = delta[:, -1].copy()
         self.sample_index += n
-        return SimulationChunk(a1=out[0], a2=out[1], omega1=out[2], omega2=out[3], angle_difference=out[4],
-                               alpha1=out[5], alpha2=out[6], transmitted_torque_Nm=out[7], first_sample_index=k0,
+        return SimulationChunk(**sig, first_sample_index=k0,
                                sample_period_s=self.sample_period_s, entries=entries,
                                states=None if states is None else dict(zip(STATE_NAMES, states)),
                                scenarios=self.scenarios)
@@ -167,9 +184,11 @@ def _noise_seed(s: Scenario) -> int:
 
 
 def simulate_batch(scenarios: Sequence[Scenario], duration_s: float = 1.0, config: PlantConfig | None = None,
-                   noise: bool = True, record_states: bool = False, backend: str | None = None) -> SimulationChunk:
+                   noise: bool = True, record_states: bool = False, backend: str | None = None,
+                   outputs: Sequence[str] | None = None) -> SimulationChunk:
     """One ``run()`` of the whole duration from the settled start."""
-    sim = PlantSimulator(scenarios, config=config, noise=noise, record_states=record_states, backend=backend)
+    sim = PlantSimulator(scenarios, config=config, noise=noise, record_states=record_states, backend=backend,
+                         outputs=outputs)
     n = int(round(duration_s / sim.sample_period_s))
     if n <= 0:
         raise ValueError(f"simulate_batch: duration_s = {duration_s} gives no samples; allowed: >= "
