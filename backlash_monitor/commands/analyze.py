@@ -64,7 +64,8 @@ def run(args) -> int:
     from backlash_monitor.commands import UsageError
     from backlash_monitor.bag import BagError, BagReader, BagWriter
     from backlash_monitor.chain import ChunkJoiner, WindowingStage, denoise_pair
-    from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
+    from backlash_monitor.classifier.patterns import (PatternLibraryError, default_library_path,
+                                               load_library)
     from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator
 
     bag_path = pathlib.Path(args.bag)
@@ -77,7 +78,8 @@ def run(args) -> int:
         raise UsageError(f"--fusion-events = {args.fusion_events}; allowed: 1 or more")
     mode = args.mode or DEFAULT_MODE
     try:
-        library = load_library(args.library or None, trigger=args.trigger)
+        library = load_library(args.library or default_library_path(args.trigger),
+                               trigger=args.trigger)
         estimator = DriveEstimator(library, mode=mode, n1=args.n1,
                                    fusion_events=args.fusion_events)
         stage = WindowingStage(trigger=args.trigger,

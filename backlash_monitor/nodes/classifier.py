@@ -16,7 +16,8 @@ import sys
 from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 
-from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
+from backlash_monitor.classifier.patterns import (PatternLibraryError, default_library_path,
+                                               load_library)
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator
 from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
@@ -59,7 +60,8 @@ class ClassifierNode(Node):
         self.params = p
         signals = tuple(s for s in p["signals"] if s) or None
         try:
-            library = load_library(p["library"] or None, trigger=p["trigger"])
+            library = load_library(p["library"] or default_library_path(p["trigger"]),
+                                   trigger=p["trigger"])
             self.estimator = DriveEstimator(library, mode=p["mode"], n1=p["n1"], signals=signals,
                                             fusion_events=p["fusion_events"])
         except (PatternLibraryError, ValueError) as error:

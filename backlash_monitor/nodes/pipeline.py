@@ -92,8 +92,10 @@ class SignalTally:
 class LiveView:
     """Prints one line per onset event as its estimates arrive; keeps tallies for the summary."""
 
-    def __init__(self, true_width_m: float, signals: tuple[str, ...], out=sys.stdout):
+    def __init__(self, true_width_m: float, signals: tuple[str, ...],
+                 sample_period_s: float = 2e-5, out=sys.stdout):
         self.true_width_m = true_width_m
+        self.sample_period_s = sample_period_s
         self.signals = signals
         self.out = out
         self.tally: dict[str, SignalTally] = {}
@@ -120,7 +122,6 @@ class LiveView:
             self.print_event(self.pending.pop(msg.entry_sample_index))
 
     def print_event(self, event: dict) -> None:
-        from backlash_monitor.nodes.conversions import seconds_from_time
         first = next(iter(event.values()))
         parts = []
         for name, msg in event.items():
@@ -130,7 +131,7 @@ class LiveView:
             parts.append(f"{name} {msg.width_m * 1e3:5.2f}{cont} {'ok' if ok else 'MISS'}")
         last = event.get("a1+a2", first)
         fused_ok = abs(last.fused_width_m - self.true_width_m) < 1e-9
-        print(f"t={seconds_from_time(first.header.stamp) % 1e4:9.3f} s  onset  "
+        print(f"t={first.entry_sample_index * self.sample_period_s:8.3f} s  onset  "
               + " | ".join(parts)
               + f" | fused {last.fused_width_m * 1e3:5.2f} mm over {last.fused_events} "
               f"{'ok' if fused_ok else 'MISS'}   true {self.true_width_m * 1e3:.2f} mm",
@@ -139,7 +140,8 @@ class LiveView:
     def on_diagnostics(self, msg) -> None:
         for status in msg.status:
             if "classifier" in status.name:
-                self.diagnostic = f"{['OK', 'WARN', 'ERROR', 'STALE'][min(status.level, 3)]}: " \
+                level = status.level if isinstance(status.level, int) else ord(status.level)
+                self.diagnostic = f"{['OK', 'WARN', 'ERROR', 'STALE'][min(level, 3)]}: " \
                                   f"{status.message}"
 
     def summary(self) -> str:
