@@ -79,6 +79,18 @@ class WindowSet:
                          np.concatenate([s.raw_a2 for s in sets]) if raw else None, dict(sets[0].info))
 
 
+def source_hash() -> str:
+    """Hash of the code that makes the windows (plant, windowing, denoise): a cache entry made by other code
+    is not reused."""
+    root = Path(__file__).resolve().parents[1]
+    files = sorted([*(root / "plant").glob("*.py"), *(root / "windowing").glob("*.py"), root / "denoise.py"])
+    h = hashlib.sha256()
+    for f in files:
+        h.update(f.name.encode())
+        h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
 def _key(parts: dict) -> str:
     return hashlib.sha256(json.dumps(parts, sort_keys=True, default=repr).encode()).hexdigest()[:20]
 
@@ -117,6 +129,7 @@ def collect_windows(seeds: Iterable[int], trigger: str | Sequence[str] = "paper"
             raise ValueError(f"unknown trigger {t!r}; allowed: {', '.join(TRIGGERS)}")
     config = config if config is not None else load_plant_config()
     chash = config_hash(config)
+    code = source_hash()
     out = {t: [] for t in triggers}
     for seed in seeds:
         scen = grid_scenarios(seeds=(int(seed),), widths_m=tuple(widths_m), eta_k_values=tuple(eta_k_values),
@@ -125,7 +138,7 @@ def collect_windows(seeds: Iterable[int], trigger: str | Sequence[str] = "paper"
         for t in triggers:
             key = _key({"v": DATASET_VERSION, "seed": int(seed), "trigger": t, "widths": list(map(float, widths_m)),
                         "eta": list(map(float, eta_k_values)), "n1": list(map(float, n1_values)),
-                        "duration": float(duration_s), "L": int(window_length), "plant": chash,
+                        "duration": float(duration_s), "L": int(window_length), "plant": chash, "code": code,
                         "denoise": DENOISING})
             files[t] = CACHE_DIR / "windows" / f"{t}_seed{int(seed)}_{key}.npz"
         missing = [t for t in triggers if not (cache and files[t].is_file())]
@@ -154,7 +167,7 @@ def collect_windows(seeds: Iterable[int], trigger: str | Sequence[str] = "paper"
         ws = WindowSet.concat(out[t])
         ws.info = {"seeds": [int(s) for s in seeds], "trigger": t, "widths_m": list(map(float, widths_m)),
                    "eta_k_values": list(map(float, eta_k_values)), "n1_values": list(map(float, n1_values)),
-                   "duration_s": float(duration_s), "plant_config_hash": chash, "denoising": DENOISING,
+                   "duration_s": float(duration_s), "plant_config_hash": chash, "code_hash": code, "denoising": DENOISING,
                    "window_length": int(window_length)}
         sets[t] = ws
     return sets[triggers[0]] if isinstance(trigger, str) else sets

@@ -127,7 +127,7 @@ def window_features(signal: str, a1=None, a2=None, dt: float = 2e-5) -> np.ndarr
     return np.column_stack(parts)
 
 
-DEFAULT_RIDGE = 1e-4   # ridge penalty per training window on the standardised expanded features
+DEFAULT_RIDGE = 1e-5   # ridge penalty per training window on the standardised expanded features
 Z_CLIP = 8.0   # standardised features are clipped to +-8 (a window unlike any training window)
 
 
@@ -149,7 +149,7 @@ class ShapeModel:
     intercept: float
     sigma_m: float          # training residual std [m]
     sample_period_s: float
-    ridge: float = 1e-4
+    ridge: float = 1e-5
 
     @classmethod
     def fit(cls, signal: str, widths_m, y_m, a1=None, a2=None, sample_period_s: float = 2e-5,

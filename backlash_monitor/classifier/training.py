@@ -77,7 +77,7 @@ def build_library(trigger: str = "contact_loss", seeds=DEFAULT_TRAIN_SEEDS, *, e
     training = {
         "seeds": info.get("seeds"), "duration_s": info.get("duration_s"), "widths_m": info.get("widths_m"),
         "eta_k_values": info.get("eta_k_values", list(ETA_K_VALUES)), "n1_values": info.get("n1_values"),
-        "n_onset_windows": int(len(ws)),
+        "n_onset_windows": int(len(ws)), "code_hash": info.get("code_hash"),
         "paper_patterns": f"M2 row = mean of the denoised onset windows at eta_k = {PATTERN_ETA_K} of that n1 and "
                           f"width over the training seeds; M3 from n1 = {M3_N1} (eq. 14) for every n1; "
                           "W5 = W4 of each pattern window (eq. 29)",

@@ -69,7 +69,7 @@ def _check(args) -> None:
         if not (math.isfinite(v) and 0 < v <= 1):
             raise UsageError(f"--{name} {v}: must be in (0, 1] (paper: l1 = 0.1, l2 = 0.09)")
     if not (math.isfinite(args.ridge) and args.ridge > 0):
-        raise UsageError(f"--ridge {args.ridge}: must be a number > 0 (default 1e-4)")
+        raise UsageError(f"--ridge {args.ridge}: must be a number > 0 (default 1e-5)")
     if not (math.isfinite(args.duration) and 0.5 <= args.duration <= 60):
         raise UsageError(f"--duration {args.duration}: must be between 0.5 and 60 s")
     if args.out is not None and not str(args.out).endswith(".npz"):

@@ -1,0 +1,63 @@
+"""Fusion of consecutive onset events (documented rule: sum of mean-normalised B vectors)."""
+import numpy as np
+import pytest
+
+from backlash_monitor.classifier.fusion import WidthFusion, fuse_b_vectors, fused_indices, normalise_b
+
+WIDTHS = np.array([0.0025, 0.00375, 0.005, 0.0075, 0.009, 0.01])
+
+
+def test_normalise_b_divides_by_mean():
+    np.testing.assert_allclose(normalise_b([1.0, 2.0, 3.0]), [0.5, 1.0, 1.5])
+    np.testing.assert_allclose(normalise_b([0.0, 0.0]), [0.0, 0.0])
+
+
+def test_sum_rule_by_hand():
+    bs = np.array([[1.0, 2.0, 3.0],      # normalised [0.5, 1, 1.5]
+                   [4.0, 1.0, 1.0]])     # normalised [2, 0.5, 0.5]
+    idx, score = fuse_b_vectors(bs)
+    np.testing.assert_allclose(score, [2.5, 1.5, 2.0])
+    assert idx == 1
+
+
+def test_scale_of_one_event_does_not_dominate():
+    # event 2 has a 1000x larger B scale but the same shape as event 1 would if it were small
+    bs = np.array([[0.1, 1.0, 1.0], [0.1, 1.0, 1.0], [3000.0, 1000.0, 3000.0]])
+    assert fuse_b_vectors(bs)[0] == 0
+
+
+def test_vote_rule_and_tie_break():
+    bs = np.array([[0.0, 1.0, 1.0], [1.0, 0.0, 1.0], [0.2, 0.1, 9.0]])
+    idx, _ = fuse_b_vectors(bs, "vote")      # votes: 0 once, 1 twice
+    assert idx == 1
+    with pytest.raises(ValueError, match="allowed: sum_normalised_b, vote"):
+        fuse_b_vectors(bs, "mean")
+
+
+def test_width_fusion_keeps_last_events_and_ignores_returns():
+    f = WidthFusion(WIDTHS, window_events=3)
+    b_small = np.array([0.1, 1, 2, 3, 4, 5.0])
+    b_large = np.array([5, 4, 3, 2, 1, 0.1])
+    assert f.estimate() is None
+    for _ in range(3):
+        est = f.add(b_small)
+    assert est.index == 0 and est.events == 3 and est.width_m == 0.0025
+    f.add(b_large, kind="return")            # not an onset: ignored
+    assert len(f) == 3
+    for _ in range(2):
+        est = f.add(b_large)
+    assert est.index == 5 and est.events == 3 and est.margin > 1
+    f.reset()
+    assert f.estimate() is None
+    with pytest.raises(ValueError, match="expected 6"):
+        f.add(np.ones(5))
+    with pytest.raises(ValueError, match="window_events must be >= 1"):
+        WidthFusion(WIDTHS, window_events=0)
+
+
+def test_fused_indices_offline_equals_streaming():
+    rng = np.random.default_rng(0)
+    bs = rng.uniform(size=(12, 6))
+    f = WidthFusion(WIDTHS, window_events=8)
+    stream = [f.add(b).index for b in bs][7:]
+    np.testing.assert_array_equal(fused_indices(bs, 8), stream)
