@@ -209,6 +209,38 @@ def dds_record(out: Path, seconds: float, factor: float, env: dict) -> dict:
             "lost": lost, "publish_elapsed_s": result["elapsed_s"], "acked": result["acked"]}
 
 
+def time_analyze(tmp: Path, seconds: float = 10.0) -> dict:
+    """The whole offline analysis (`analyze`: read, join, window, denoise, classify, write) of a
+    simulated bag against merely reading and decoding the same bag with rosbags, same run."""
+    import argparse as _argparse
+    import contextlib
+    import io
+
+    from backlash_monitor.bag.simulated import write_simulation_bag
+    from backlash_monitor.commands import analyze
+    from backlash_monitor.plant import PlantSimulator, Scenario
+
+    bag = tmp / "analyze.mcap"
+    write_simulation_bag(bag, PlantSimulator([Scenario(width_m=0.0075, seed=11)]), seconds)
+    parser = _argparse.ArgumentParser()
+    analyze.add_arguments(parser)
+    args = parser.parse_args([str(bag), "--out", str(tmp / "analyze_out")])
+    analyze.run(args)  # warm-up: imports, numba/pywt caches
+    runs = []
+    for _ in range(2):
+        t0 = time.perf_counter()
+        with contextlib.redirect_stdout(io.StringIO()):
+            analyze.run(args)
+        runs.append(time.perf_counter() - t0)
+    t_analyze = min(runs)
+    topics = [f"/plant/{n}" for n in ("a1", "a2", "angle_difference")]
+    n_rb, t_rb = min((time_rosbags_read(bag, topics) for _ in range(2)), key=lambda x: x[1])
+    return {"analyze_samples_per_s": n_rb / t_analyze,
+            "analyze_vs_rosbags_read": t_rb / t_analyze,
+            "analyze_bag_seconds": seconds, "analyze_samples": n_rb,
+            "analyze_wall_s": t_analyze, "rosbags_read_same_topics_wall_s": t_rb}
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--seconds", type=float, default=3.0, help="DDS streaming time [s]")
@@ -232,6 +264,7 @@ def main(argv=None) -> int:
         n_read, t_read = min((time_project_read(tmp / "w.mcap") for _ in range(2)), key=lambda x: x[1])
         n_rb, t_rb = time_rosbags_read(tmp / "w.mcap")
         assert n_read == n_rb == samples, (n_read, n_rb, samples)
+        analysis = time_analyze(tmp)
         try:
             dds = dds_record(tmp / "dds.mcap", a.seconds, a.factor, env)
         except Exception as exc:  # noqa: BLE001 - report, do not hide the I/O numbers
@@ -250,6 +283,7 @@ def main(argv=None) -> int:
         "rosbags_read_samples_per_s": n_rb / t_rb,
         "realtime_samples_per_s": FS * len(SIGNALS),
         "io_bench_samples": samples,
+        **analysis,
     }
     if "error" in dds:
         result["dds_error"] = dds["error"]
