@@ -36,11 +36,16 @@ def main() -> int:
     t0 = time.time()
     plant_hash = config_hash(load_plant_config())
     out = {"trigger": HEADLINE_TRIGGER, "seeds": list(SEEDS), "by_trigger": {}}
+    libs = {t: load_library(None, trigger=t) for t in TRIGGERS}
+    # one simulation per seed serves both triggers (cached in .cache/ for the next run)
+    tests = collect_windows(SEEDS, list(TRIGGERS))
+    unseens = collect_windows((0,), list(TRIGGERS), widths_m=UNSEEN_WIDTHS_M)
+    train_seeds = sorted({s for lib in libs.values() for s in lib.training["seeds"]})
+    trains = collect_windows(train_seeds, list(TRIGGERS))
     for trig in TRIGGERS:
-        lib = load_library(None, trigger=trig)
-        test = collect_windows(SEEDS, trig)
-        train = collect_windows(lib.training["seeds"], trig)
-        unseen = collect_windows((0,), trig, widths_m=UNSEEN_WIDTHS_M)
+        lib = libs[trig]
+        test, unseen = tests[trig], unseens[trig]
+        train = trains[trig].subset(np.isin(trains[trig].col("seed"), lib.training["seeds"]))
         acc, fused, margin, per_width, cont, expl, drives_wrong = {}, {}, {}, {}, {}, {}, {}
         for mode in MODES:
             for sig in EVAL_SIGNALS[mode]:
