@@ -7,10 +7,13 @@ received, so the offline estimates equal the live ones exactly.
 - :class:`ChunkJoiner` joins the per-signal chunks of one sample range (a drive's signals arrive on
   separate topics) and gives up on ranges that stay incomplete.
 - :class:`WindowingStage` feeds joined ranges to the entry detector and the window capture.
+- :class:`BlockFeeder` (offline) feeds contiguous ranges to a WindowingStage in blocks, with
+  the same windows as one by one.
 - :func:`denoise_pair` denoises a window's a1 and a2 together (one call, as the node does).
 """
 from __future__ import annotations
 
+import bisect
 from dataclasses import dataclass
 
 import numpy as np
@@ -83,6 +86,98 @@ class WindowingStage:
                                      joined.sample_period_s)
         return self.capture.feed(joined.first_sample_index, joined.arrays, entries=entries,
                                  sample_period_s=joined.sample_period_s)
+
+
+class BlockFeeder:
+    """Offline (``analyze``): feeds a :class:`WindowingStage` contiguous joined ranges merged into
+    blocks of up to ``block_samples`` samples, giving the same windows, in the same order, as
+    feeding the ranges one by one (the live node's way) -- with far fewer Python calls.
+
+    Exact because the detector and the capture are chunk-invariant for measured angles (every
+    decision is a search over the stream, the contact tracker's state carries over exactly;
+    test_analyze_chunk_invariance.py checks it on plant data). Integrated angles (a running sum,
+    whose rounding depends on the chunking) and irregular ranges (a gap, an out-of-order or
+    repeated range, another sample period, unequal lengths) are fed one by one, after the block
+    before them.
+
+    ``add(joined)`` / ``flush()`` -> (list of (window, range), discarded): ``range`` is the
+    joined range whose feed completes the window when fed one by one (its stamp/frame_id).
+    """
+
+    def __init__(self, stage: WindowingStage, block_samples: int = 65536):
+        self.stage = stage
+        self.block_samples = (int(block_samples) if stage.detector.angle_source == "measured"
+                              else 0)
+        self._pending: list[JoinedRange] = []
+        self._n = 0
+
+    @staticmethod
+    def _length(joined: JoinedRange) -> int:
+        """Common length of the range's 1-D arrays; -1 when they differ (or are not 1-D)."""
+        n = -1
+        for a in joined.arrays.values():
+            if a.ndim != 1 or (n >= 0 and a.size != n):
+                return -1
+            n = a.size
+        return n
+
+    def add(self, joined: JoinedRange):
+        windows, discarded = [], []
+        n = self._length(joined)
+        period = joined.sample_period_s
+        regular = (self.block_samples > 0 and n > 0 and isinstance(period, float)
+                   and 0.0 < period < float("inf"))
+        if self._pending:
+            last = self._pending[-1]
+            if not (regular and joined.first_sample_index == last.first_sample_index + self._last_n
+                    and period == last.sample_period_s
+                    and joined.arrays.keys() == last.arrays.keys()):
+                windows, discarded = self.flush()
+        if regular and not self._pending and not self._accepts(joined):
+            regular = False     # ignored one by one (out of order): followers must not merge
+        if not regular:
+            w, d = self._feed([joined])
+            return windows + w, discarded + d
+        self._pending.append(joined)
+        self._last_n = n
+        self._n += n
+        if self._n >= self.block_samples:
+            w, d = self.flush()
+            windows += w
+            discarded += d
+        return windows, discarded
+
+    def _accepts(self, joined: JoinedRange) -> bool:
+        """The stage takes the range in (not ignored as out of order): it may head a block."""
+        first = joined.first_sample_index
+        return all(nxt is None or first >= nxt
+                   for nxt in (self.stage.detector._next_index, self.stage.capture._next))
+
+    def flush(self):
+        ranges, self._pending, self._n = self._pending, [], 0
+        return self._feed(ranges) if ranges else ([], [])
+
+    def _feed(self, ranges: list[JoinedRange]):
+        if len(ranges) == 1:
+            block = ranges[0]
+        else:
+            first = ranges[0]
+            block = JoinedRange(first.first_sample_index, first.sample_period_s,
+                                {k: np.concatenate([r.arrays[k] for r in ranges])
+                                 for k in first.arrays}, first.stamp, first.frame_id)
+        windows, discarded = self.stage.feed(block)
+        if len(ranges) == 1:
+            return [(w, block) for w in windows], discarded
+        # one by one, a window comes out of the feed of the range holding both its confirmation
+        # (when the detector reports the entry) and its last sample; stable: same order then
+        starts = [r.first_sample_index for r in ranges]
+        length = self.stage.capture.window_length
+        done = [max(w.entry_sample_index + length - 1, w.confirm_sample_index
+                    if w.confirm_sample_index is not None else w.entry_sample_index)
+                for w in windows]
+        at = [max(0, bisect.bisect_right(starts, d) - 1) for d in done]
+        order = sorted(range(len(windows)), key=lambda i: at[i])
+        return [(windows[i], ranges[at[i]]) for i in order], discarded
 
 
 def denoise_pair(a1, a2, **options):

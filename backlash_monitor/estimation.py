@@ -20,7 +20,8 @@ import numpy as np
 from backlash_monitor.classifier.cpn import CPN_VARIANTS, b_margin
 from backlash_monitor.classifier.fusion import WidthFusion
 from backlash_monitor.classifier.patterns import PatternLibrary
-from backlash_monitor.classifier.shape import SHAPE, SHAPE_SIGNALS, ShapeModel
+from backlash_monitor.classifier.shape import (SHAPE, SHAPE_SIGNALS, ShapeModel, _expand,
+                                              a1_features, a2_features)
 
 MODES = tuple(CPN_VARIANTS) + (SHAPE,)
 DEFAULT_MODE = SHAPE
@@ -77,28 +78,79 @@ class DriveEstimator:
         for fusion in self.fusion.values():
             fusion.reset()
 
-    def _b(self, signal: str, a1: np.ndarray, a2: np.ndarray) -> tuple[np.ndarray, float]:
-        model = self.models[signal]
-        if self.mode == SHAPE:
-            b, w = model.b(a1=a1[None, :], a2=a2[None, :])
-            return b[0], float(w[0])
-        return model.b({"a1": a1, "a2": a2}[signal]), math.nan
+    def classifies(self, entry_kind: str) -> bool:
+        """Whether a window of this kind gives estimates (only onsets; see the module docstring)."""
+        return entry_kind == "onset"
 
     def estimate(self, a1, a2, entry_kind: str = "onset") -> list[WidthEstimate]:
-        """Estimates of one denoised window (a1, a2: equal-length float arrays); [] for non-onsets."""
-        if entry_kind != "onset":
-            return []
-        a1 = np.asarray(a1, dtype=float)
-        a2 = np.asarray(a2, dtype=float)
-        out = []
-        for signal in self.signals:
-            b, continuous = self._b(signal, a1, a2)
-            index = int(np.argmin(b))
-            fused = self.fusion[signal].add(b, kind="onset")
-            out.append(WidthEstimate(
-                signal_name=signal, mode=self.mode, candidate_widths_m=self.widths_m,
-                b_vector=np.asarray(b, dtype=float), width_index=index,
-                width_m=float(self.widths_m[index]), b_margin=float(b_margin(b)),
-                continuous_width_m=continuous, fused_width_m=fused.width_m,
-                fused_events=fused.events))
+        """Estimates of one denoised window (a1, a2: equal-length float arrays); [] for non-onsets.
+
+        The batch of one of :meth:`estimate_many`: the live node's window-by-window estimates and
+        ``analyze``'s batched ones run the same code."""
+        return self.estimate_many([(a1, a2, entry_kind)])[0]
+
+    def estimate_many(self, windows) -> list[list[WidthEstimate]]:
+        """``estimate`` for a sequence of (a1, a2, entry_kind), in order (the fusion sees them in
+        that order); one list per window. Shape mode: the features of all onset windows of one
+        length are extracted in one batch -- row for row bit-identical to a batch of one (every
+        step is elementwise or a per-row reduction; the regression's dot product is taken row
+        by row on a fresh (1, n) copy, as for a single window; test_analyze_estimation.py)."""
+        out: list[list[WidthEstimate]] = [[] for _ in windows]
+        onsets = [i for i, w in enumerate(windows) if self.classifies(w[2])]
+        if not onsets:
+            return out
+        a1s = [np.asarray(windows[i][0], dtype=float) for i in onsets]
+        a2s = [np.asarray(windows[i][1], dtype=float) for i in onsets]
+        if self.mode == SHAPE:
+            shapes = {a.shape for a in a1s} | {a.shape for a in a2s}
+            batches = ([list(range(len(onsets)))] if len(shapes) == 1 and len(next(iter(shapes))) == 1
+                       else [[r] for r in range(len(onsets))])
+            shape_b = [None] * len(onsets)      # per onset: {signal: (b, continuous)}
+            for rows in batches:
+                A1 = np.stack([a1s[r] for r in rows])
+                A2 = np.stack([a2s[r] for r in rows])
+                features = {}   # a1's and a2's features, extracted once for the 3 signals
+                per_signal = {s: _shape_b(self.models[s], A1, A2, features) for s in self.signals}
+                for k, r in enumerate(rows):
+                    shape_b[r] = {s: (b[k], float(w[k])) for s, (b, w) in per_signal.items()}
+        for r, i in enumerate(onsets):
+            for signal in self.signals:
+                if self.mode == SHAPE:
+                    b, continuous = shape_b[r][signal]
+                else:
+                    b, continuous = self.models[signal].b({"a1": a1s[r], "a2": a2s[r]}[signal]), math.nan
+                index = int(np.argmin(b))
+                fused = self.fusion[signal].add(b, kind="onset")
+                out[i].append(WidthEstimate(
+                    signal_name=signal, mode=self.mode, candidate_widths_m=self.widths_m,
+                    b_vector=np.asarray(b, dtype=float), width_index=index,
+                    width_m=float(self.widths_m[index]), b_margin=float(b_margin(b)),
+                    continuous_width_m=continuous, fused_width_m=fused.width_m,
+                    fused_events=fused.events))
         return out
+
+
+def _shape_b(model: ShapeModel, A1: np.ndarray, A2: np.ndarray, cache: dict):
+    """``model.b(a1=A1, a2=A2)`` for windows (n, L), row for row as n calls with one window each:
+    the per-part features (``a1_features``, ``a2_features``) come from / go to ``cache`` (the a1+a2
+    model reuses the a1 and a2 models' features), the regression's dot product is one (1, m) @
+    (m,) per row as ShapeModel.continuous_width does it for one window. Same operations as
+    ShapeModel.window_features / continuous_width / b otherwise (test_analyze_estimation.py
+    checks the result against ShapeModel.b, window by window, bit for bit)."""
+    dt = model.sample_period_s
+    parts = []
+    if model.signal in ("a1", "a1+a2"):
+        key = ("a1", dt)
+        if key not in cache:
+            cache[key] = a1_features(A1, dt)
+        parts.append(cache[key])
+    if model.signal in ("a2", "a1+a2"):
+        key = ("a2", dt)
+        if key not in cache:
+            cache[key] = a2_features(A2, dt)
+        parts.append(cache[key])
+    f = np.column_stack(parts)
+    z = _expand((f - model.mu) / model.sd)
+    w = np.concatenate([z[r:r + 1].copy() @ model.coef for r in range(z.shape[0])]) + model.intercept
+    w = np.clip(w, 0.0, 2.0 * float(model.widths_m.max()))
+    return ((w[:, None] - model.widths_m[None, :]) / model.sigma_m) ** 2, w

@@ -135,6 +135,12 @@ class Codec:
                 if f.type == "wstring":
                     raise UnknownSchemaError(
                         f"{spec.name}.{f.name}: wstring fields are not supported")
+        self._fast = None
+        if _is_signal_chunk(self.specs, self.type_name):
+            c = self.classes
+            self._fast_classes = (c["std_msgs/msg/Header"], c["builtin_interfaces/msg/Time"],
+                                  c[self.type_name])
+            self._fast = self._dec_signal_chunk_le
 
     @classmethod
     def for_type(cls, type_name: str) -> "Codec":
@@ -183,10 +189,54 @@ class Codec:
             raise CdrError(f"{self.type_name}: unsupported CDR encapsulation "
                            f"{bytes(mv[:2]).hex()} (only plain CDR, little or big endian)")
         little = kind == 1
+        if little and self._fast is not None:
+            try:
+                return self._fast(mv)
+            except Exception:  # noqa: BLE001 - malformed: the generic decoder names the problem
+                pass
         try:
             msg, _ = self._dec(self.specs[self.type_name], mv, 4, little)
         except (struct.error, ValueError, IndexError) as exc:
             raise CdrError(f"{self.type_name}: payload does not match the definition: {exc}") from None
+        return msg
+
+    def _dec_signal_chunk_le(self, mv):
+        """Straight-line little-endian decoder of SignalChunk-shaped specs (header, 2 strings, float64,
+        uint64, float64[]): the same message as ``_dec`` (test_analyze_fast_decode.py checks it
+        field by field), about 6x faster. Raises on anything unusual; ``decode`` then falls back."""
+        size = len(mv)
+        sec, nanosec = _TIME_LE.unpack_from(mv, 4)
+        frame_id, pos = _dec_string(mv, 12, "<")
+        signal_name, pos = _dec_string(mv, pos, "<")
+        unit, pos = _dec_string(mv, pos, "<")
+        pos += (-(pos - 4)) & 7
+        period, first = _F64_U64_LE.unpack_from(mv, pos)
+        pos += 16
+        (n,) = _U32_LE.unpack_from(mv, pos)   # pos - 4 is a multiple of 8 here: aligned
+        pos += 4
+        if n:
+            pos += 4                            # float64 alignment
+            end = pos + 8 * n
+            if end > size:
+                raise CdrError("samples run past the end")
+            samples = np.frombuffer(mv[pos:end], dtype=_F64_LE).copy()
+        else:
+            samples = np.zeros(0, dtype=_F64_LE)
+        # the generated classes have no __init__ logic beyond setting every slot: set them directly
+        header_cls, time_cls, msg_cls = self._fast_classes
+        stamp = time_cls.__new__(time_cls)
+        stamp.sec = sec
+        stamp.nanosec = nanosec
+        header = header_cls.__new__(header_cls)
+        header.stamp = stamp
+        header.frame_id = frame_id
+        msg = msg_cls.__new__(msg_cls)
+        msg.header = header
+        msg.signal_name = signal_name
+        msg.unit = unit
+        msg.sample_period_s = period
+        msg.first_sample_index = first
+        msg.samples = samples
         return msg
 
     def _dec(self, spec: MsgSpec, mv, pos: int, little: bool):
@@ -302,6 +352,34 @@ class Codec:
                 _enc_string(out, self.pad_byte, v)
             else:
                 self._enc(self.specs[f.type], v, out)
+
+
+_TIME_LE = struct.Struct("<iI")
+_F64_U64_LE = struct.Struct("<dQ")
+_U32_LE = struct.Struct("<I")
+_F64_LE = np.dtype("<f8")
+
+_SIGNAL_CHUNK_SHAPE = {
+    "": (("header", "std_msgs/msg/Header", False), ("signal_name", "string", False),
+         ("unit", "string", False), ("sample_period_s", "float64", False),
+         ("first_sample_index", "uint64", False), ("samples", "float64", True)),
+    "std_msgs/msg/Header": (("stamp", "builtin_interfaces/msg/Time", False),
+                            ("frame_id", "string", False)),
+    "builtin_interfaces/msg/Time": (("sec", "int32", False), ("nanosec", "uint32", False)),
+}
+
+
+def _is_signal_chunk(specs: Mapping[str, MsgSpec], type_name: str) -> bool:
+    """True when `type_name` has exactly SignalChunk's layout (any package/name): the fast path."""
+    for name, shape in _SIGNAL_CHUNK_SHAPE.items():
+        spec = specs.get(name or type_name)
+        if spec is None or len(spec.fields) != len(shape):
+            return False
+        for f, (fname, ftype, is_array) in zip(spec.fields, shape):
+            if (f.name, f.type, f.is_array) != (fname, ftype, is_array) or f.array_size is not None \
+                    or f.upper_bound is not None or f.string_bound is not None:
+                return False
+    return True
 
 
 def _pad(out: bytearray, pad_byte: int, align: int) -> None:

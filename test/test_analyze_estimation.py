@@ -1,0 +1,80 @@
+"""`analyze` estimates its onset windows in batches (DriveEstimator.estimate_many); the live classifier
+node one window at a time (estimate = a batch of one). Both must equal ShapeModel.b on single
+windows bit for bit, and the batched features must equal the single-window ones row for row."""
+import numpy as np
+import pytest
+
+plant = pytest.importorskip("backlash_monitor.plant")
+
+from backlash_monitor.chain import JoinedRange, WindowingStage, denoise_pair  # noqa: E402
+from backlash_monitor.classifier.patterns import default_library_path, load_library  # noqa: E402
+from backlash_monitor.classifier.shape import a1_features, a2_features  # noqa: E402
+from backlash_monitor.estimation import DriveEstimator  # noqa: E402
+
+WIDTHS = (0.0025, 0.0075, 0.0125)
+
+
+@pytest.fixture(scope="module")
+def windows():
+    scen = [plant.Scenario(width_m=w, eta_k=0.025, n1=0.89, seed=7) for w in WIDTHS]
+    sim = plant.PlantSimulator(scen, config=plant.load_plant_config(), noise=True)
+    stages = [WindowingStage() for _ in WIDTHS]
+    out = []
+    for _ in range(round(4.0 / 2e-5) // 5000):
+        c = sim.run(5000)
+        for i, stage in enumerate(stages):
+            joined = JoinedRange(c.first_sample_index, c.sample_period_s,
+                                 {s: getattr(c, s)[i] for s in ("a1", "a2", "angle_difference")})
+            for w in stage.feed(joined)[0]:
+                a1, a2 = denoise_pair(w.signals["a1"], w.signals["a2"])
+                out.append((a1, a2, w.kind))
+    assert sum(k == "onset" for *_, k in out) >= 30
+    return out
+
+
+@pytest.fixture(scope="module")
+def library():
+    return load_library(default_library_path("contact_loss"), trigger="contact_loss")
+
+
+def test_batched_features_equal_single_window_features_row_for_row(windows):
+    A1 = np.stack([w[0] for w in windows])
+    A2 = np.stack([w[1] for w in windows])
+    for f, A in ((a1_features, A1), (a2_features, A2)):
+        for rows in (slice(None), slice(3, 4), slice(1, None, 3)):
+            batch = f(np.ascontiguousarray(A[rows]), 2e-5)
+            single = np.concatenate([f(a[None, :], 2e-5) for a in A[rows]])
+            assert np.array_equal(batch, single)
+            assert batch.tobytes() == single.tobytes()
+
+
+def flat(estimates):
+    return [(e.signal_name, e.b_vector.tobytes(), e.width_index, e.width_m, e.b_margin,
+             e.continuous_width_m, e.fused_width_m, e.fused_events)
+            for per_window in estimates for e in per_window]
+
+
+def test_estimate_many_equals_window_by_window_and_shape_model(windows, library):
+    single = DriveEstimator(library)
+    one_by_one = [single.estimate(a1, a2, kind) for a1, a2, kind in windows]
+    for batch in (1, 7, 64, len(windows)):
+        est = DriveEstimator(library)
+        got = []
+        for lo in range(0, len(windows), batch):
+            got += est.estimate_many(windows[lo:lo + batch])
+        assert flat(got) == flat(one_by_one), batch
+    # against the classifier's own ShapeModel.b, one window at a time
+    for (a1, a2, kind), estimates in zip(windows, one_by_one):
+        assert bool(estimates) == (kind == "onset")
+        for e in estimates:
+            b, w = single.models[e.signal_name].b(a1=a1[None, :], a2=a2[None, :])
+            assert b[0].tobytes() == e.b_vector.tobytes()
+            assert float(w[0]) == e.continuous_width_m
+
+
+def test_windows_of_different_lengths_are_estimated_one_by_one(windows, library):
+    onsets = [w for w in windows if w[2] == "onset"][:4]
+    mixed = [onsets[0], (onsets[1][0][:1800], onsets[1][1][:1800], "onset"), onsets[2]]
+    ref = DriveEstimator(library)
+    expected = [ref.estimate(*w) for w in mixed]
+    assert flat(DriveEstimator(library).estimate_many(mixed)) == flat(expected)
