@@ -26,7 +26,7 @@ from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueErro
 from backlash_monitor.nodes.windowing import WINDOW_QOS
 from backlash_monitor_msgs.msg import BacklashEstimate, BacklashWindow
 
-ESTIMATE_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE,
+ESTIMATE_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE,
                           history=HistoryPolicy.KEEP_LAST)
 
 PARAMETERS = (

@@ -24,11 +24,14 @@ class DriveDiagnostics:
         self.values: dict[str, str] = {}
         self.timer = node.create_timer(period_s, self.publish)
 
-    def set(self, level: str, message: str, **values) -> None:
+    def set(self, level: str, message: str, publish_now: bool = False, **values) -> None:
+        """Update the status; ``publish_now`` also publishes it at once (e.g. on a fault)."""
         if level not in LEVELS:
             raise ValueError(f"diagnostic level {level!r}: allowed: {', '.join(LEVELS)}")
         self.level, self.message = level, message
         self.values.update({key: str(value) for key, value in values.items()})
+        if publish_now:
+            self.publish()
 
     def status(self) -> DiagnosticStatus:
         return DiagnosticStatus(

@@ -112,6 +112,8 @@ def run_node(node_factory, args=None, spin=None) -> int:
     A :class:`ParameterValueError` while building the node is logged as one clear line and gives
     exit code 2 (the node does not start).
     """
+    from backlash_monitor.nodes.fast_dds import configure_fast_dds
+    configure_fast_dds()
     rclpy.init(args=args)
     node = None
     try:

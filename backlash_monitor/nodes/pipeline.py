@@ -102,6 +102,7 @@ class LiveView:
         self.onset_entries: set[int] = set()
         self.pending: dict[int, dict] = {}
         self.diagnostic = ""
+        self.windowing = ""
         self.mode = ""
 
     def on_estimate(self, msg) -> None:
@@ -139,10 +140,15 @@ class LiveView:
 
     def on_diagnostics(self, msg) -> None:
         for status in msg.status:
+            level = status.level if isinstance(status.level, int) else ord(status.level)
+            text = f"{['OK', 'WARN', 'ERROR', 'STALE'][min(level, 3)]}: {status.message}"
+            values = {kv.key: kv.value for kv in status.values}
             if "classifier" in status.name:
-                level = status.level if isinstance(status.level, int) else ord(status.level)
-                self.diagnostic = f"{['OK', 'WARN', 'ERROR', 'STALE'][min(level, 3)]}: " \
-                                  f"{status.message}"
+                self.diagnostic = text
+            elif "windowing" in status.name:
+                self.windowing = (f"{text} (incomplete chunk ranges "
+                                  f"{values.get('incomplete_chunks', '0')}, last discard: "
+                                  f"{values.get('last_discard') or 'none'})")
 
     def summary(self) -> str:
         rows = [("signal", "estimates", "correct", "accuracy", "median margin", "fused width",
@@ -159,8 +165,9 @@ class LiveView:
         lines.insert(1, "  ".join("-" * w for w in widths))
         head = (f"summary: true width {self.true_width_m * 1e3:.2f} mm, mode {self.mode or '-'}, "
                 f"{len(self.onset_entries)} onset windows classified")
-        tail = f"diagnostics: {self.diagnostic}" if self.diagnostic else ""
-        return "\n".join([head] + lines + ([tail] if tail else []))
+        tail = [f"diagnostics: classifier {self.diagnostic}"] if self.diagnostic else []
+        tail += [f"diagnostics: windowing {self.windowing}"] if self.windowing else []
+        return "\n".join([head] + lines + tail)
 
 
 def _executable(name: str) -> str:
@@ -187,6 +194,8 @@ def run(args) -> int:
     from backlash_monitor.nodes.parameters import ParameterValueError
 
     from backlash_monitor.estimation import DEFAULT_MODE, default_signals
+    from backlash_monitor.nodes.fast_dds import configure_fast_dds
+    configure_fast_dds()  # before rclpy.init; the child processes inherit it
     params = node_parameters(args)
     view = LiveView(args.width_m, default_signals(args.mode or DEFAULT_MODE))
     children: list[subprocess.Popen] = []

@@ -50,9 +50,14 @@ LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                      durability=DurabilityPolicy.TRANSIENT_LOCAL, history=HistoryPolicy.KEEP_LAST)
 
 
+RELIABLE_CHUNK_DEPTH = 1000  # chunks (20 s of stream at 1000 samples each): a late subscriber
+                             # catches up instead of losing data when the stream runs faster than
+                             # real time
+
+
 def chunk_qos(name: str) -> QoSProfile:
     if name == "reliable":
-        return QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE,
+        return QoSProfile(depth=RELIABLE_CHUNK_DEPTH, reliability=ReliabilityPolicy.RELIABLE,
                           history=HistoryPolicy.KEEP_LAST)
     return qos_profile_sensor_data
 

@@ -28,6 +28,7 @@ from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPo
 
 from backlash_monitor.bag import BagReader
 from backlash_monitor.bag.errors import BagError, TruncatedBagError
+from backlash_monitor.nodes.fast_dds import configure_fast_dds
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate, run_node)
 from backlash_monitor.nodes.record import message_class
@@ -51,38 +52,6 @@ PARAMETERS = (
 )
 
 _STAMP = struct.Struct("<iI")
-
-# Fast DDS sends a reliable writer's heartbeat every 3 s by default, and subscribers acknowledge
-# only in answer to one: `wait_for_all_acked` would then take ~3 s per window. The replay process
-# asks for a heartbeat every 10 ms instead (its own writers only; nothing else changes).
-FAST_DDS_PROFILE = """<?xml version="1.0" encoding="UTF-8" ?>
-<profiles xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
-  <data_writer profile_name="backlash_monitor_replay_writer" is_default_profile="true">
-    <times>
-      <heartbeatPeriod><sec>0</sec><nanosec>10000000</nanosec></heartbeatPeriod>
-    </times>
-  </data_writer>
-</profiles>
-"""
-
-
-def configure_fast_dds() -> None:
-    """Point Fast DDS at the replay's writer profile (unless the user set a profile file)."""
-    import os
-    import tempfile
-
-    if os.environ.get("FASTRTPS_DEFAULT_PROFILES_FILE") or os.environ.get(
-            "FASTDDS_DEFAULT_PROFILES_FILE"):
-        return
-    path = os.path.join(tempfile.gettempdir(), f"backlash_monitor_replay_{os.getuid()}.xml")
-    try:
-        with open(path + ".tmp", "w", encoding="utf-8") as f:
-            f.write(FAST_DDS_PROFILE)
-        os.replace(path + ".tmp", path)
-    except OSError:
-        return
-    os.environ["FASTRTPS_DEFAULT_PROFILES_FILE"] = path
-
 
 def _publisher_qos(offered_yaml: str, mode: str, flow_control: bool) -> QoSProfile:
     if flow_control or mode == "reliable":

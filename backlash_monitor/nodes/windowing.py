@@ -26,7 +26,10 @@ from backlash_monitor.nodes.plant_simulator import LATCHED, chunk_qos
 from backlash_monitor.chain import ChunkJoiner, WindowingStage
 from backlash_monitor_msgs.msg import BacklashWindow, SignalChunk
 
-WINDOW_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE,
+# Windows come in bursts when the stream runs faster than real time (a replay, a simulation):
+# 1000 windows (125 s of a drive's stream, 32 MB at most) may wait for a slow reader before the
+# oldest is dropped.
+WINDOW_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE,
                         history=HistoryPolicy.KEEP_LAST)
 
 PARAMETERS = (
@@ -101,8 +104,8 @@ class WindowingNode(Node):
         level = "WARN" if self.counts["discarded"] or incomplete else "OK"
         self.diagnostics.set(level, f"{self.counts['windows']} windows, "
                                     f"{self.counts['discarded']} discarded",
-                             last_discard=self.last_discard, incomplete_chunks=incomplete,
-                             **self.counts)
+                             publish_now=bool(discarded), last_discard=self.last_discard,
+                             incomplete_chunks=incomplete, **self.counts)
 
     def publish_window(self, window, frame_id: str):
         msg = BacklashWindow()
