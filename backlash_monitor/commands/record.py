@@ -1,0 +1,20 @@
+"""`python -m backlash_monitor record`: record the graph's topics into one MCAP bag.
+
+The `record` node (`ros2 run backlash_monitor record`) with its parameters as options; Ctrl-C or
+SIGTERM closes the file properly. docs/bags.md describes the file.
+"""
+from backlash_monitor.commands._node_options import add_parameter_options, ros_arguments
+
+NAME = "record"
+HELP = "record the graph's topics into one rosbag2 MCAP file (Ctrl-C to stop)"
+DESCRIPTION = __doc__
+
+
+def add_arguments(parser) -> None:
+    from backlash_monitor.nodes.record import PARAMETERS
+    add_parameter_options(parser, PARAMETERS)
+
+
+def run(args) -> int:
+    from backlash_monitor.nodes.record import PARAMETERS, main
+    return main(args=["record", *ros_arguments(args, PARAMETERS)])

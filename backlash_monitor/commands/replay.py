@@ -1,0 +1,24 @@
+"""`python -m backlash_monitor replay BAG`: publish a recorded bag into the graph.
+
+The `replay` node (`ros2 run backlash_monitor replay`) with its parameters as options: at the
+recorded rate, at a factor (--rate 2), or as fast as the subscribers take it without drops
+(--rate 0); original or fresh header stamps.
+"""
+from backlash_monitor.commands._node_options import add_parameter_options, ros_arguments
+
+NAME = "replay"
+HELP = "publish an MCAP bag into the graph (recorded rate, a factor, or as fast as possible)"
+DESCRIPTION = __doc__
+
+
+def add_arguments(parser) -> None:
+    from backlash_monitor.nodes.replay import PARAMETERS
+    add_parameter_options(parser, PARAMETERS, positional="bag")
+
+
+def run(args) -> int:
+    from backlash_monitor.commands import UsageError
+    from backlash_monitor.nodes.replay import PARAMETERS, main
+    if not args.bag:
+        raise UsageError("give the bag to play: python -m backlash_monitor replay FILE.mcap")
+    return main(args=["replay", *ros_arguments(args, PARAMETERS)])
