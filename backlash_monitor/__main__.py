@@ -9,14 +9,14 @@ import sys
 from backlash_monitor.commands import UsageError, discover_commands
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="python -m backlash_monitor",
         description="Backlash-width monitor of an electric drive: simulate, record, analyse, "
                     "train, evaluate and run the ROS 2 pipeline.",
     )
     sub = parser.add_subparsers(dest="command", metavar="<command>")
-    for module in discover_commands():
+    for module in discover_commands(only):
         command_parser = sub.add_parser(
             module.NAME, help=module.HELP, description=getattr(module, "DESCRIPTION", module.HELP),
             formatter_class=argparse.ArgumentDefaultsHelpFormatter)
@@ -26,7 +26,9 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    # Import only the command asked for (each command's imports cost start-up time).
+    parser = build_parser(argv[0] if argv else None)
     args = parser.parse_args(argv)
     if not getattr(args, "_run", None):
         parser.print_help()

@@ -12,13 +12,20 @@ class UsageError(Exception):
     """Bad input from the user: the message names the problem and the allowed values."""
 
 
-def discover_commands():
-    """Return the command modules of this package, sorted by command name."""
+def command_module_names() -> dict[str, str]:
+    """{command word: module name}; a module ``bag_info`` is the command ``bag-info``."""
+    return {info.name.replace("_", "-"): info.name for info in pkgutil.iter_modules(__path__)
+            if not info.name.startswith("_")}
+
+
+def discover_commands(only: str | None = None):
+    """Return the command modules of this package, sorted by command name (``only``: just that
+    command's module, so that running one command does not import every other's dependencies)."""
     modules = []
-    for info in pkgutil.iter_modules(__path__):
-        if info.name.startswith("_"):
-            continue
-        module = importlib.import_module(f"{__name__}.{info.name}")
+    names = command_module_names()
+    wanted = [names[only]] if only in names else sorted(names.values())
+    for name in wanted:
+        module = importlib.import_module(f"{__name__}.{name}")
         if all(hasattr(module, attr) for attr in ("NAME", "HELP", "add_arguments", "run")):
             modules.append(module)
     return sorted(modules, key=lambda m: m.NAME)
