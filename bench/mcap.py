@@ -216,12 +216,13 @@ def time_analyze(tmp: Path, seconds: float = 10.0) -> dict:
     import contextlib
     import io
 
-    from backlash_monitor.bag.simulated import write_simulation_bag
+    from backlash_monitor.bag.simulated import SIGNAL_UNITS, write_simulation_bag
     from backlash_monitor.commands import analyze
     from backlash_monitor.plant import PlantSimulator, Scenario
 
     bag = tmp / "analyze.mcap"
-    write_simulation_bag(bag, PlantSimulator([Scenario(width_m=0.0075, seed=11)]), seconds)
+    write_simulation_bag(bag, PlantSimulator([Scenario(width_m=0.0075, seed=11)],
+                                             outputs=tuple(SIGNAL_UNITS)), seconds)
     parser = _argparse.ArgumentParser()
     analyze.add_arguments(parser)
     args = parser.parse_args([str(bag), "--out", str(tmp / "analyze_out")])

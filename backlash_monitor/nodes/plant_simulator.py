@@ -73,7 +73,8 @@ class PlantSimulatorNode(Node):
         except ValueError as error:
             from backlash_monitor.nodes.parameters import ParameterValueError
             raise ParameterValueError(str(error)) from None
-        self.simulator = PlantSimulator([scenario], config=config, noise=p["noise"])
+        self.simulator = PlantSimulator([scenario], config=config, noise=p["noise"],
+                                        outputs=tuple(SIGNAL_UNITS))
         self.sample_period_s = self.simulator.sample_period_s
         qos = chunk_qos(p["qos"])
         self.publishers_by_signal = {name: self.create_publisher(SignalChunk, f"plant/{name}", qos)
