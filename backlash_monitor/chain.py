@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from backlash_monitor.denoise import DEFAULT_MODE, denoise_sym5
-from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture
+from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture, default_window_offset
 
 MAX_PENDING_RANGES = 16
 DENOISE_DEFAULTS = dict(level=6, details_removed=(1, 2, 3, 4, 5, 6), mode=DEFAULT_MODE)
@@ -73,10 +73,16 @@ class WindowingStage:
 
     def __init__(self, trigger: str = "contact_loss", width_m: float | None = None,
                  angle_source: str = "measured", window_length: int = 2048,
-                 signals=("a1", "a2")):
+                 signals=("a1", "a2"), window_offset_samples: int | None = None):
+        """``window_offset_samples``: window start after the entry; None = the trigger's configured
+        value (config/windowing.yaml capture.window_offset_samples)."""
+        if window_offset_samples is None:
+            window_offset_samples = default_window_offset(trigger)
         self.detector = BacklashEntryDetector(trigger=trigger, width_m=width_m,
                                               angle_source=angle_source)
-        self.capture = WindowCapture(window_length=window_length, signals=tuple(signals))
+        self.capture = WindowCapture(window_length=window_length, signals=tuple(signals),
+                                     window_offset_samples=window_offset_samples)
+        self.window_offset_samples = self.capture.window_offset_samples
         angle = ("angle_difference",) if angle_source == "measured" else ("omega1", "omega2")
         self.input_signals = tuple(signals) + angle
 
@@ -172,7 +178,7 @@ class BlockFeeder:
         # (when the detector reports the entry) and its last sample; stable: same order then
         starts = [r.first_sample_index for r in ranges]
         length = self.stage.capture.window_length
-        done = [max(w.entry_sample_index + length - 1, w.confirm_sample_index
+        done = [max(w.start_sample_index + length - 1, w.confirm_sample_index
                     if w.confirm_sample_index is not None else w.entry_sample_index)
                 for w in windows]
         at = [max(0, bisect.bisect_right(starts, d) - 1) for d in done]

@@ -26,6 +26,7 @@ from backlash_monitor.classifier.evaluation import (EVAL_SIGNALS, MODES, UNSEEN_
                                                     continuous_error, evaluate_mode, paper_miss_explanation)
 from backlash_monitor.classifier.patterns import config_hash, load_library  # noqa: E402
 from backlash_monitor.plant import load_plant_config  # noqa: E402
+from backlash_monitor.windowing import default_window_offset  # noqa: E402
 
 SEEDS = (0, 1, 2, 3, 4)
 HEADLINE_TRIGGER = "paper"
@@ -36,7 +37,8 @@ def main() -> int:
     t0 = time.time()
     plant_hash = config_hash(load_plant_config())
     out = {"trigger": HEADLINE_TRIGGER, "seeds": list(SEEDS), "by_trigger": {}}
-    libs = {t: load_library(None, trigger=t) for t in TRIGGERS}
+    # the configured window offset of each trigger (config/windowing.yaml); the library must match
+    libs = {t: load_library(None, trigger=t, window_offset_samples=default_window_offset(t)) for t in TRIGGERS}
     # one simulation per seed serves both triggers (cached in .cache/ for the next run)
     tests = collect_windows(SEEDS, list(TRIGGERS))
     unseens = collect_windows((0,), list(TRIGGERS), widths_m=UNSEEN_WIDTHS_M)
@@ -67,6 +69,7 @@ def main() -> int:
             "n_windows": len(test), "n_drives": int(len(np.unique(test.col("seed") * 1000 + test.col("scenario")))),
             "n_unseen_windows": len(unseen), "library": lib.path,
             "library_training_seeds": lib.training.get("seeds"),
+            "window_offset_samples": lib.settings.get("window_offset_samples"),
             "library_plant_config_matches": lib.settings.get("plant_config_hash") == plant_hash,
         }
     head = out["by_trigger"][HEADLINE_TRIGGER]

@@ -9,7 +9,7 @@ from backlash_monitor.classifier.patterns import (FORMAT_VERSION, PatternLibrary
 from backlash_monitor.classifier.shape import ShapeModel
 
 SETTINGS = {"trigger": "paper", "epochs": 30, "l1": 0.1, "l2": 0.09, "denoising": "sym5 level 6",
-            "window_length": 64, "sample_period_s": 2e-5, "plant_config_hash": "abc"}
+            "window_length": 64, "window_offset_samples": 400, "sample_period_s": 2e-5, "plant_config_hash": "abc"}
 
 
 def _library(tmp_path):
@@ -92,3 +92,17 @@ def test_shape_model_stored_and_restored(tmp_path):
     m2 = ShapeModel.from_arrays({f"shape/{k}": v for k, v in back.shape_arrays().items()}, "a1", widths)
     np.testing.assert_array_equal(m2.coef, model.coef)
     assert m2.sigma_m == model.sigma_m
+
+
+def test_refuses_another_window_offset(tmp_path):
+    _, path = _library(tmp_path)
+    load_library(path, trigger="paper", window_offset_samples=400)
+    with pytest.raises(PatternLibraryMismatch, match="window_offset_samples: library has 400, requested 0"):
+        load_library(path, trigger="paper", window_offset_samples=0)
+
+
+def test_packaged_libraries_carry_the_configured_offset():
+    from backlash_monitor.windowing import default_window_offset
+    for trig in ("contact_loss", "paper"):
+        lib = load_library(None, trigger=trig, window_offset_samples=default_window_offset(trig))
+        assert lib.settings["window_offset_samples"] == default_window_offset(trig)

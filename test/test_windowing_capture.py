@@ -125,3 +125,21 @@ def test_batch_equals_rows():
 def test_missing_signal_is_an_error():
     with pytest.raises(ValueError, match="signals"):
         WindowCapture().feed(0, {"a1": np.zeros(10)})
+
+
+def test_window_offset_starts_the_window_after_the_entry_across_chunks():
+    sig, dep, _ = _signals()
+    for chunk in (333, 5000, sig["a1"].size):
+        wins = extract_windows(sig, trigger="contact_loss", chunk_samples=chunk, window_offset_samples=400)
+        assert [(w.entry_sample_index, w.kind) for w in wins] == dep
+        for w in wins:
+            assert w.window_offset_samples == 400 and w.start_sample_index == w.entry_sample_index + 400
+            np.testing.assert_array_equal(w.signals["a1"], np.arange(w.start_sample_index, w.start_sample_index + N))
+
+
+def test_window_offset_validated_and_configured():
+    from backlash_monitor.windowing import default_window_offset
+    for bad in (-1, 1.5, True, 70000):
+        with pytest.raises(ValueError, match="window_offset_samples"):
+            WindowCapture(window_offset_samples=bad)
+    assert default_window_offset("contact_loss") == 400 and default_window_offset("paper") == 0

@@ -21,7 +21,7 @@ import numpy as np
 from ..denoise import DEFAULT_DETAILS_REMOVED, DEFAULT_LEVEL, DEFAULT_MODE, DEFAULT_WAVELET, denoise_sym5
 from ..plant import (ETA_K_VALUES, K2_WIDTHS_M, N1_VALUES, grid_scenarios, load_plant_config,
                      simulate_batch)
-from ..windowing import TRIGGERS, extract_windows_batch
+from ..windowing import TRIGGERS, default_window_offset, extract_windows_batch
 from .patterns import config_hash
 
 DATASET_VERSION = 1
@@ -95,11 +95,12 @@ def _key(parts: dict) -> str:
     return hashlib.sha256(json.dumps(parts, sort_keys=True, default=repr).encode()).hexdigest()[:20]
 
 
-def _windows_from_batch(res, scenarios, trigger: str, seed: int, window_length: int) -> WindowSet:
+def _windows_from_batch(res, scenarios, trigger: str, seed: int, window_length: int,
+                        window_offset: int = 0) -> WindowSet:
     sig = {"a1": res.a1, "a2": res.a2, "angle_difference": res.angle_difference}
     widths = np.array([s.width_m for s in scenarios]) if trigger == "paper" else None
     per_row = extract_windows_batch(sig, width_m=widths, trigger=trigger, window_length=window_length,
-                                    sample_period_s=res.sample_period_s)
+                                    sample_period_s=res.sample_period_s, window_offset_samples=window_offset)
     raw1, raw2, meta = [], [], []
     for i, (s, wins) in enumerate(zip(scenarios, per_row)):
         ev = 0
@@ -119,14 +120,18 @@ def _windows_from_batch(res, scenarios, trigger: str, seed: int, window_length: 
 def collect_windows(seeds: Iterable[int], trigger: str | Sequence[str] = "paper", *,
                     widths_m=K2_WIDTHS_M, eta_k_values=ETA_K_VALUES, n1_values=N1_VALUES,
                     duration_s: float = DEFAULT_DURATION_S, config=None, window_length: int = 2048,
-                    cache: bool = True, progress=None):
+                    cache: bool = True, progress=None, window_offset: int | dict | None = None):
     """Denoised onset windows of the grid for each seed. ``trigger`` one name -> WindowSet; a list of
     names -> dict trigger -> WindowSet (one simulation per seed serves every trigger).
-    ``progress``: optional callable(n) called once per seed done (e.g. a tqdm's update)."""
+    ``progress``: optional callable(n) called once per seed done (e.g. a tqdm's update).
+    ``window_offset``: samples from the entry to the window start, one int or a dict trigger -> int;
+    None = each trigger's configured value (windowing.default_window_offset)."""
     triggers = [trigger] if isinstance(trigger, str) else list(trigger)
     for t in triggers:
         if t not in TRIGGERS:
             raise ValueError(f"unknown trigger {t!r}; allowed: {', '.join(TRIGGERS)}")
+    offsets = {t: int(default_window_offset(t) if window_offset is None else
+                      window_offset[t] if isinstance(window_offset, dict) else window_offset) for t in triggers}
     config = config if config is not None else load_plant_config()
     chash = config_hash(config)
     code = source_hash()
@@ -138,14 +143,14 @@ def collect_windows(seeds: Iterable[int], trigger: str | Sequence[str] = "paper"
         for t in triggers:
             key = _key({"v": DATASET_VERSION, "seed": int(seed), "trigger": t, "widths": list(map(float, widths_m)),
                         "eta": list(map(float, eta_k_values)), "n1": list(map(float, n1_values)),
-                        "duration": float(duration_s), "L": int(window_length), "plant": chash, "code": code,
+                        "duration": float(duration_s), "L": int(window_length), "offset": offsets[t], "plant": chash, "code": code,
                         "denoise": DENOISING})
             files[t] = CACHE_DIR / "windows" / f"{t}_seed{int(seed)}_{key}.npz"
         missing = [t for t in triggers if not (cache and files[t].is_file())]
         if missing:
             res = simulate_batch(scen, duration_s=duration_s, config=config, noise=True)
             for t in missing:
-                ws = _windows_from_batch(res, scen, t, int(seed), window_length)
+                ws = _windows_from_batch(res, scen, t, int(seed), window_length, offsets[t])
                 if cache:
                     files[t].parent.mkdir(parents=True, exist_ok=True)
                     tmp = files[t].with_name(files[t].name + ".tmp.npz")
@@ -168,6 +173,6 @@ def collect_windows(seeds: Iterable[int], trigger: str | Sequence[str] = "paper"
         ws.info = {"seeds": [int(s) for s in seeds], "trigger": t, "widths_m": list(map(float, widths_m)),
                    "eta_k_values": list(map(float, eta_k_values)), "n1_values": list(map(float, n1_values)),
                    "duration_s": float(duration_s), "plant_config_hash": chash, "code_hash": code, "denoising": DENOISING,
-                   "window_length": int(window_length)}
+                   "window_length": int(window_length), "window_offset_samples": offsets[t]}
         sets[t] = ws
     return sets[triggers[0]] if isinstance(trigger, str) else sets

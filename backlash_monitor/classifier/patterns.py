@@ -44,8 +44,8 @@ def default_library_path(trigger: str | None = None) -> Path:
     return TRIGGER_LIBRARY_PATHS[trigger]
 
 # Settings a library is made with; load_library compares the ones the caller passes.
-SETTING_KEYS = ("trigger", "epochs", "l1", "l2", "denoising", "window_length", "sample_period_s",
-                "plant_config_hash")
+SETTING_KEYS = ("trigger", "epochs", "l1", "l2", "denoising", "window_length", "window_offset_samples",
+                "sample_period_s", "plant_config_hash")
 
 
 class PatternLibraryError(ValueError):

@@ -38,6 +38,8 @@ SEARCH_FROM = 100
 EDGE = 40                   # a2's kink is not searched in the last 40 samples (denoising edge)
 A1_OFFSETS = (25, 50, 100, 150, 200)           # a1 - level at T + offset (impact strength)
 A2_OFFSETS = (-50, 0, 50, 100, 150, 200, 300, 400)   # a2 - line at T + offset (depth of the drop)
+A2_SCALE_OFFSET = 200       # the drop depth at T + 4 ms normalises a2's profile (scale-free form)
+A2_LOG_FLOOR = 1e-3         # m/s^2 (or /s^3): floor under the logarithms of a2's levels
 
 
 def _first_crossing(x: np.ndarray, thr: float, start: int) -> np.ndarray:
@@ -83,7 +85,8 @@ def a1_features(a1: np.ndarray, dt: float) -> np.ndarray:
 
 
 def a2_features(a2: np.ndarray, dt: float) -> np.ndarray:
-    """(n, L) denoised a2 -> (n, 14): T [s], integrals, drop profile, pre-impact line (level, slope).
+    """(n, L) denoised a2 -> (n, 26): T [s], integrals, drop profile, pre-impact line (level, slope),
+    kink sharpness, log(drop depth, |level|, sharpness, |slope|), drop profile / drop depth.
 
     The impact is a2's sharpest downward kink: the most negative second difference after SEARCH_FROM
     and before the last EDGE samples (the zone entry's kink is far weaker; with the contact-loss
@@ -109,7 +112,14 @@ def a2_features(a2: np.ndarray, dt: float) -> np.ndarray:
     t = np.where(t < kink - 100, kink, t)
     s2, i2 = _integrals(a2, t, dt)
     prof = _at(x, t[:, None] + np.array(A2_OFFSETS)[None, :])
-    return np.column_stack([t * dt, s2, i2, prof, level, slope / dt, strength])
+    # Scale-free part: the absorber (c = eta_k S1 / h^n1, ~12x over the grid) scales a2's level, slope
+    # and drop depth; the drop's *form* (profile / its depth at T + 4 ms) and the logarithms of the
+    # levels (a multiplicative c becomes an additive term the regression can cancel) carry v_impact
+    # with far less eta_k/n1 bias at 9-10 mm (docs/classifier.md).
+    depth = np.abs(prof[:, A2_OFFSETS.index(A2_SCALE_OFFSET)]) + A2_LOG_FLOOR
+    logs = np.log(np.column_stack([depth, np.abs(level) + A2_LOG_FLOOR, strength + 1e-6,
+                                   np.abs(slope / dt) + A2_LOG_FLOOR]))
+    return np.column_stack([t * dt, s2, i2, prof, level, slope / dt, strength, logs, prof / depth[:, None]])
 
 
 def window_features(signal: str, a1=None, a2=None, dt: float = 2e-5) -> np.ndarray:

@@ -54,10 +54,10 @@ def paper_networks(ws: WindowSet, variant: str, signal: str, *, epochs: int = DE
 def build_library(trigger: str = "contact_loss", seeds=DEFAULT_TRAIN_SEEDS, *, epochs: int = DEFAULT_EPOCHS,
                   l1: float = DEFAULT_L1, l2: float = DEFAULT_L2, ridge: float = DEFAULT_RIDGE,
                   duration_s: float = DEFAULT_DURATION_S, windows: WindowSet | None = None,
-                  progress=None) -> PatternLibrary:
+                  progress=None, window_offset: int | None = None) -> PatternLibrary:
     """Simulate (or take ``windows``), then fit every mode. ``progress(n)`` is called per seed simulated."""
     ws = windows if windows is not None else collect_windows(seeds, trigger, duration_s=duration_s,
-                                                             progress=progress)
+                                                             progress=progress, window_offset=window_offset)
     widths = np.asarray(K2_WIDTHS_M, dtype=float)
     arrays = {}
     for variant in CPN_VARIANTS:
@@ -73,6 +73,7 @@ def build_library(trigger: str = "contact_loss", seeds=DEFAULT_TRAIN_SEEDS, *, e
     info = ws.info
     settings = {"trigger": trigger, "epochs": int(epochs), "l1": float(l1), "l2": float(l2),
                 "denoising": info.get("denoising"), "window_length": int(ws.a1.shape[1]),
+                "window_offset_samples": info.get("window_offset_samples"),
                 "sample_period_s": float(ws.sample_period_s), "plant_config_hash": info.get("plant_config_hash")}
     training = {
         "seeds": info.get("seeds"), "duration_s": info.get("duration_s"), "widths_m": info.get("widths_m"),

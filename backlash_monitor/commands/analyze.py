@@ -37,6 +37,10 @@ def add_arguments(parser) -> None:
                         help="entry trigger (the library must be trained with it)")
     parser.add_argument("--width-m", type=float, default=0.0,
                         help="backlash width for the 'paper' trigger [m] (eq. 1)")
+    parser.add_argument("--window-offset", type=int, default=None, metavar="SAMPLES",
+                        help="samples from the detected entry to the window start (default: the "
+                             "trigger's configured value, config/windowing.yaml; the library must "
+                             "have been trained with it)")
     parser.add_argument("--angle-source", choices=("measured", "integrated"), default="measured",
                         help="angle difference from the encoders' topic or integrated speeds")
     parser.add_argument("--mode", default="",
@@ -79,14 +83,18 @@ def run(args) -> int:
     if args.fusion_events < 1:
         raise UsageError(f"--fusion-events = {args.fusion_events}; allowed: 1 or more")
     mode = args.mode or DEFAULT_MODE
+    from backlash_monitor.windowing import default_window_offset
+    offset = default_window_offset(args.trigger) if args.window_offset is None else args.window_offset
+    if not 0 <= offset <= 65536:
+        raise UsageError(f"--window-offset = {offset}; allowed: 0 <= SAMPLES <= 65536")
     try:
         library = load_library(args.library or default_library_path(args.trigger),
-                               trigger=args.trigger)
+                               trigger=args.trigger, window_offset_samples=offset)
         estimator = DriveEstimator(library, mode=mode, n1=args.n1,
                                    fusion_events=args.fusion_events)
         stage = WindowingStage(trigger=args.trigger,
                                width_m=args.width_m if args.trigger == "paper" else None,
-                               angle_source=args.angle_source)
+                               angle_source=args.angle_source, window_offset_samples=offset)
     except (PatternLibraryError, ValueError) as error:
         raise UsageError(str(error)) from None
 

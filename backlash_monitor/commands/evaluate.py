@@ -96,6 +96,9 @@ def run(args) -> int:
     for trig, path in _libraries(args).items():
         try:
             libs[trig] = load_library(path, trigger=trig)
+            if libs[trig].settings.get("window_offset_samples") is None:
+                raise PatternLibraryError(f"pattern library {path} has no window_offset_samples setting "
+                                          "(made by an older version); retrain it")
         except (PatternLibraryError, ValueError) as error:
             raise UsageError(str(error)) from None
         train_seeds = set(libs[trig].training.get("seeds") or [])
@@ -113,10 +116,12 @@ def run(args) -> int:
         for trig in triggers:
             lib = libs[trig]
             bar.set_postfix_str(f"{trig}: simulate")
-            test = collect_windows(args.seeds, trig, progress=bar.update)
-            train = collect_windows(lib.training["seeds"], trig)
+            off = int(lib.settings["window_offset_samples"])   # windows as the library's were cut
+            test = collect_windows(args.seeds, trig, progress=bar.update, window_offset=off)
+            train = collect_windows(lib.training["seeds"], trig, window_offset=off)
             bar.update(1)
-            unseen = collect_windows(args.unseen_seeds, trig, widths_m=UNSEEN_WIDTHS_M, progress=bar.update)
+            unseen = collect_windows(args.unseen_seeds, trig, widths_m=UNSEEN_WIDTHS_M, progress=bar.update,
+                                     window_offset=off)
             res, tab = {}, {}
             for mode in MODES:
                 for sig in EVAL_SIGNALS[mode]:

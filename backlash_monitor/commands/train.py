@@ -58,6 +58,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="ridge penalty of the shape mode's regression (per window, standardised features), > 0")
     parser.add_argument("--duration", type=float, default=2.0, metavar="S",
                         help="simulated seconds per scenario (4 onset windows per second), 0.5 <= S <= 60")
+    parser.add_argument("--window-offset", type=int, default=None, metavar="SAMPLES",
+                        help="samples from the detected entry to the window start (default: the trigger's "
+                             "configured value, config/windowing.yaml capture.window_offset_samples); the "
+                             "library records it and the classifier refuses windows captured with another")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -72,6 +76,8 @@ def _check(args) -> None:
         raise UsageError(f"--ridge {args.ridge}: must be a number > 0 (default 1e-5)")
     if not (math.isfinite(args.duration) and 0.5 <= args.duration <= 60):
         raise UsageError(f"--duration {args.duration}: must be between 0.5 and 60 s")
+    if args.window_offset is not None and not 0 <= args.window_offset <= 65536:
+        raise UsageError(f"--window-offset {args.window_offset}: must be 0 <= SAMPLES <= 65536")
     if args.out is not None and not str(args.out).endswith(".npz"):
         raise UsageError(f"--out {args.out}: the library is an .npz file; give a name ending in .npz")
 
@@ -87,12 +93,14 @@ def run(args) -> int:
     with tqdm(total=len(args.seeds), desc=f"simulate+window ({args.trigger})", unit="seed",
               disable=args.no_progress, file=sys.stderr) as bar:
         lib = build_library(args.trigger, args.seeds, epochs=args.epochs, l1=args.l1, l2=args.l2,
-                            ridge=args.ridge, duration_s=args.duration, progress=bar.update)
+                            ridge=args.ridge, duration_s=args.duration, progress=bar.update,
+                            window_offset=args.window_offset)
     path = lib.save(out)
     fit = lib.training["shape"]["fit"]
     print(f"pattern library written: {path}")
     print(f"  trigger {args.trigger}, seeds {','.join(map(str, args.seeds))}, "
-          f"{lib.training['n_onset_windows']} onset windows, epochs {args.epochs}, l1 {args.l1}, l2 {args.l2}")
+          f"{lib.training['n_onset_windows']} onset windows, window offset "
+          f"{lib.settings['window_offset_samples']} samples, epochs {args.epochs}, l1 {args.l1}, l2 {args.l2}")
     print("  shape mode training residual: " + ", ".join(
         f"{s} {v['training_residual_std_m'] * 1e3:.3f} mm" for s, v in fit.items()))
     print(f"  modes: {', '.join(lib.modes)}; plant config {lib.settings['plant_config_hash']}; "

@@ -24,6 +24,7 @@ from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate, run_node)
 from backlash_monitor.nodes.windowing import WINDOW_QOS
+from backlash_monitor.windowing import default_window_offset
 from backlash_monitor_msgs.msg import BacklashEstimate, BacklashWindow
 
 ESTIMATE_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE,
@@ -39,6 +40,9 @@ PARAMETERS = (
                   "use", 0.5, 1.5),
     ParameterSpec("trigger", "contact_loss", "trigger the windows were captured with; the "
                   "library must have been trained with it", choices=("contact_loss", "paper")),
+    ParameterSpec("window_offset_samples", -1, "window start offset the windows were captured "
+                  "with (the windowing node's parameter); the library must have been trained with it; "
+                  "samples from the detected entry to the window start; -1 = the trigger's configured value (config/windowing.yaml capture.window_offset_samples: contact_loss 400, paper 0)", -1, 65536),
     ParameterSpec("library", "", "pattern library file (empty: the packaged default)"),
     ParameterSpec("fusion_events", DEFAULT_FUSION_EVENTS, "onset events fused into one estimate",
                   1, 1000),
@@ -60,8 +64,10 @@ class ClassifierNode(Node):
         self.params = p
         signals = tuple(s for s in p["signals"] if s) or None
         try:
+            offset = (default_window_offset(p["trigger"]) if p["window_offset_samples"] < 0
+                      else p["window_offset_samples"])
             library = load_library(p["library"] or default_library_path(p["trigger"]),
-                                   trigger=p["trigger"])
+                                   trigger=p["trigger"], window_offset_samples=offset)
             self.estimator = DriveEstimator(library, mode=p["mode"], n1=p["n1"], signals=signals,
                                             fusion_events=p["fusion_events"])
         except (PatternLibraryError, ValueError) as error:

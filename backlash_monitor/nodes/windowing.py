@@ -5,7 +5,7 @@
 Subscribes to ``plant/a1``, ``plant/a2`` and ``plant/angle_difference`` (or ``plant/omega1`` and
 ``plant/omega2`` with ``angle_source:=integrated``), joins the chunks of one sample range, feeds the
 windowing core (backlash_monitor.windowing) and publishes each captured window (a1 and a2, 2048
-samples from the entry, tagged onset/return) on ``windows/raw``. A window that spans a dropped or
+samples from the entry + ``window_offset_samples``, tagged onset/return) on ``windows/raw``. A window that spans a dropped or
 out-of-order chunk is discarded with its reason (logged, counted on ``/diagnostics``), never used.
 """
 from __future__ import annotations
@@ -43,6 +43,7 @@ PARAMETERS = (
                   "'integrated': integrate plant/omega1 - plant/omega2 (eq. 2-3)",
                   choices=("measured", "integrated")),
     ParameterSpec("window_length", 2048, "samples captured after each entry", 64, 65536),
+    ParameterSpec("window_offset_samples", -1, "samples from the detected entry to the window start; -1 = the trigger's configured value (config/windowing.yaml capture.window_offset_samples: contact_loss 400, paper 0)", -1, 65536),
     ParameterSpec("qos", "sensor_data", "QoS of the chunk subscriptions",
                   choices=("sensor_data", "reliable")),
 )
@@ -59,7 +60,9 @@ class WindowingNode(Node):
         try:
             self.stage = WindowingStage(
                 trigger=p["trigger"], width_m=p["width_m"] if p["trigger"] == "paper" else None,
-                angle_source=p["angle_source"], window_length=p["window_length"])
+                angle_source=p["angle_source"], window_length=p["window_length"],
+                window_offset_samples=(None if p["window_offset_samples"] < 0
+                                       else p["window_offset_samples"]))
         except ValueError as error:
             raise ParameterValueError(str(error)) from None
         self.signals = self.stage.input_signals
@@ -76,7 +79,8 @@ class WindowingNode(Node):
         self.publisher = self.create_publisher(BacklashWindow, "windows/raw", WINDOW_QOS)
         self.diagnostics = DriveDiagnostics(self, "windowing", p["drive_name"])
         self.get_logger().info(f"trigger {p['trigger']}, angles {p['angle_source']}, "
-                               f"{p['window_length']} samples per window")
+                               f"{p['window_length']} samples per window, starting "
+                               f"{self.stage.window_offset_samples} samples after the entry")
 
     def on_true_width(self, msg: Float64):
         self.true_width_m = msg.data

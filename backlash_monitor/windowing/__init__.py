@@ -22,7 +22,9 @@ BacklashEntryDetector(trigger="contact_loss"|"paper", width_m=None|float [m], ra
     rereference_interval_s=0.05);  .feed(first_sample_index, signals, sample_period_s=None) -> [BacklashEntry]
     BacklashEntryDetector.from_config(load_windowing_config()["detector"], **overrides)
 BacklashEntry(sample_index, kind "onset"|"return", trigger, confirm_sample_index)
-WindowCapture(window_length=2048, signals=("a1","a2"), history_samples=4096, sample_period_s=2e-5)
+WindowCapture(window_length=2048, signals=("a1","a2"), history_samples=4096, sample_period_s=2e-5,
+    window_offset_samples=0)   # window = window_length samples from entry + offset
+    default_window_offset(trigger) -> the configured offset (capture.window_offset_samples)
     .feed(first_sample_index, signals, entries=(), sample_period_s=None) -> (windows, discarded); .flush()
 BacklashWindow(entry_sample_index, kind, trigger, sample_period_s, signals: dict[str, ndarray], confirm_sample_index)
 DiscardedWindow(entry_sample_index, reason in DISCARD_REASONS, kind)
@@ -38,12 +40,13 @@ Triggers (docs/windowing.md has the physics and the measured offsets):
 - Both: no new entry before entry + holdoff_samples, and only after the contact has settled again
   (range of Delta over settle_samples <= settle_range_rad), so a bouncing contact cannot re-trigger.
 """
-from .config import DEFAULTS, DEFAULT_CONFIG_PATH, KIND_ONSET, KIND_RETURN, TRIGGERS, load_windowing_config
+from .config import (DEFAULTS, DEFAULT_CONFIG_PATH, KIND_ONSET, KIND_RETURN, TRIGGERS, default_window_offset,
+                     load_windowing_config)
 from .detector import BacklashEntry, BacklashEntryDetector, fit_departure, integrate_relative_speed
 from .capture import (DISCARD_REASONS, BacklashWindow, BacklashWindower, DiscardedWindow, WindowCapture,
                       extract_windows, extract_windows_batch)
 
-__all__ = ["DEFAULTS", "DEFAULT_CONFIG_PATH", "KIND_ONSET", "KIND_RETURN", "TRIGGERS", "load_windowing_config",
+__all__ = ["DEFAULTS", "DEFAULT_CONFIG_PATH", "KIND_ONSET", "KIND_RETURN", "TRIGGERS", "load_windowing_config", "default_window_offset",
            "BacklashEntry", "BacklashEntryDetector", "fit_departure", "integrate_relative_speed",
            "DISCARD_REASONS", "BacklashWindow", "BacklashWindower", "DiscardedWindow", "WindowCapture",
            "extract_windows", "extract_windows_batch"]

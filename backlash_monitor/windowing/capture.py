@@ -31,6 +31,11 @@ class BacklashWindow:
     sample_period_s: float
     signals: dict = field(default_factory=dict)
     confirm_sample_index: int | None = None
+    window_offset_samples: int = 0      # the signals start at entry_sample_index + this
+
+    @property
+    def start_sample_index(self) -> int:
+        return self.entry_sample_index + self.window_offset_samples
 
     @property
     def window_length(self) -> int:
@@ -58,8 +63,14 @@ class WindowCapture:
     def __init__(self, window_length: int = DEFAULTS["capture"]["window_length"],
                  signals: Sequence[str] = tuple(DEFAULTS["capture"]["signals"]),
                  history_samples: int = DEFAULTS["capture"]["history_samples"],
-                 sample_period_s: float = DEFAULTS["detector"]["sample_period_s"]):
+                 sample_period_s: float = DEFAULTS["detector"]["sample_period_s"],
+                 window_offset_samples: int = 0):
         self.window_length = _check_positive("window_length", window_length, integer=True)
+        if (isinstance(window_offset_samples, bool) or not float(window_offset_samples).is_integer()
+                or not 0 <= int(window_offset_samples) <= 65536):
+            raise ValueError(f"window_offset_samples={window_offset_samples!r}: must be an integer, "
+                             "0 <= offset <= 65536 (samples from the entry to the window start)")
+        self.window_offset_samples = int(window_offset_samples)
         if isinstance(signals, str) or not len(signals):
             raise ValueError(f"signals={signals!r}: must be a non-empty sequence of signal names")
         self.signals = tuple(signals)
@@ -116,13 +127,14 @@ class WindowCapture:
         windows: list[BacklashWindow] = []
         still = []
         for e in self._pending:
-            if e.sample_index + self.window_length <= end:
-                lo = e.sample_index - self._base
+            if e.sample_index + self.window_offset_samples + self.window_length <= end:
+                lo = e.sample_index + self.window_offset_samples - self._base
                 windows.append(BacklashWindow(
                     entry_sample_index=e.sample_index, kind=e.kind, trigger=e.trigger,
                     sample_period_s=self.sample_period_s,
                     signals={s: self._buf[s][lo:lo + self.window_length].copy() for s in self.signals},
-                    confirm_sample_index=e.confirm_sample_index))
+                    confirm_sample_index=e.confirm_sample_index,
+                    window_offset_samples=self.window_offset_samples))
             else:
                 still.append(e)
         self._pending = still
@@ -172,11 +184,13 @@ def extract_windows(signals: Mapping[str, np.ndarray], trigger: str = DEFAULTS["
                     sample_period_s: float = DEFAULTS["detector"]["sample_period_s"],
                     window_length: int = DEFAULTS["capture"]["window_length"],
                     window_signals: Sequence[str] = tuple(DEFAULTS["capture"]["signals"]),
-                    chunk_samples: int | None = None, return_discarded: bool = False, **detector_kwargs):
+                    chunk_samples: int | None = None, return_discarded: bool = False,
+                    window_offset_samples: int = 0, **detector_kwargs):
     """Offline convenience for one drive: 1-D arrays of a whole record -> list[BacklashWindow].
 
     ``chunk_samples`` feeds the record in chunks of that size (the streaming path; default: one
-    chunk).  Windows still open at the end of the record are dropped (or returned as
+    chunk).  ``window_offset_samples``: the window starts that many samples after the entry.
+    Windows still open at the end of the record are dropped (or returned as
     ``end_of_stream`` discards with ``return_discarded=True``, which returns (windows, discarded)).
     """
     arrs = {k: np.asarray(v) for k, v in signals.items()}
@@ -188,7 +202,7 @@ def extract_windows(signals: Mapping[str, np.ndarray], trigger: str = DEFAULTS["
     det = BacklashEntryDetector(trigger=trigger, width_m=width_m, sample_period_s=sample_period_s, **detector_kwargs)
     cap = WindowCapture(window_length=window_length, signals=window_signals,
                         history_samples=max(DEFAULTS["capture"]["history_samples"], det.latency_samples + 1),
-                        sample_period_s=sample_period_s)
+                        sample_period_s=sample_period_s, window_offset_samples=window_offset_samples)
     w = BacklashWindower(det, cap)
     step = n if chunk_samples is None else _check_positive("chunk_samples", chunk_samples, integer=True)
     windows, discarded = [], []

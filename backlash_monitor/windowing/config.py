@@ -6,7 +6,7 @@ from pathlib import Path
 from typing import Any, Mapping
 
 __all__ = ["DEFAULTS", "DEFAULT_CONFIG_PATH", "load_windowing_config", "TRIGGERS", "ANGLE_SOURCES",
-           "INTEGRATION_RULES", "KIND_ONSET", "KIND_RETURN"]
+           "INTEGRATION_RULES", "KIND_ONSET", "KIND_RETURN", "default_window_offset"]
 
 TRIGGERS = ("contact_loss", "paper")
 ANGLE_SOURCES = ("auto", "measured", "integrated")
@@ -37,6 +37,8 @@ DEFAULTS: dict[str, Any] = {
         "window_length": 2048,
         "signals": ["a1", "a2"],
         "history_samples": 4096,
+        # samples from the detected entry to the window's first sample, per trigger
+        "window_offset_samples": {"contact_loss": 400, "paper": 0},
     },
 }
 
@@ -78,3 +80,11 @@ def load_windowing_config(path: str | os.PathLike | None = None) -> dict[str, An
                 val = val["value"]
             cfg[sec][key] = val
     return cfg
+
+
+def default_window_offset(trigger: str, config: Mapping[str, Any] | None = None) -> int:
+    """The configured window start offset of a trigger (capture.window_offset_samples[trigger])."""
+    if trigger not in TRIGGERS:
+        raise ValueError(f"unknown trigger {trigger!r}; allowed: {', '.join(TRIGGERS)}")
+    cfg = DEFAULTS if config is None else config
+    return int(cfg["capture"]["window_offset_samples"][trigger])
