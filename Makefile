@@ -15,7 +15,7 @@ export ROS_AUTOMATIC_DISCOVERY_RANGE := LOCALHOST
 export ROS_DOMAIN_ID ?= $(shell shuf -i 1-101 -n 1)
 ACTIVATE := source ./env.sh
 
-.PHONY: help setup run test bench patterns clean
+.PHONY: help setup run test bench patterns evaluate clean
 help:  ## list the targets
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  make %-10s %s\n", $$1, $$2}'
 
@@ -50,6 +50,12 @@ test: setup  ## run the whole test suite
 
 bench: setup  ## run every bench/*.py into bench/results.json
 	$(ACTIVATE) && python tools/run_benchmarks.py bench/results.json
+
+patterns: setup  ## retrain the packaged pattern libraries (both triggers; ~3 min) after a plant change
+	$(ACTIVATE) && python -m backlash_monitor train --trigger contact_loss && python -m backlash_monitor train --trigger paper
+
+evaluate: setup  ## identification over the full grid, confusion matrices and plots into out/evaluate
+	$(ACTIVATE) && python -m backlash_monitor evaluate --out-dir out/evaluate
 
 clean:  ## remove the build (keeps .venv)
 	rm -rf build install log
