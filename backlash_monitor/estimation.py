@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from backlash_monitor.classifier.cpn import CPN_VARIANTS, b_margin
-from backlash_monitor.classifier.fusion import WidthFusion
+from backlash_monitor.classifier.fusion import WidthFusion, default_fusion_rule
 from backlash_monitor.classifier.patterns import PatternLibrary
 from backlash_monitor.classifier.shape import (SHAPE, SHAPE_SIGNALS, ShapeModel, _expand,
                                               a1_features, a2_features)
@@ -70,7 +70,8 @@ class DriveEstimator:
             self.models = {s: ShapeModel.from_arrays(arrays, s, self.widths_m) for s in self.signals}
         else:
             self.models = {s: library.cpn(mode, s, n1) for s in self.signals}
-        self.fusion = {s: WidthFusion(self.widths_m, window_events=fusion_events)
+        self.fusion = {s: WidthFusion(self.widths_m, window_events=fusion_events,
+                                      rule=default_fusion_rule(mode))
                        for s in self.signals}
 
     def reset(self) -> None:

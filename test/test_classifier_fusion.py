@@ -61,3 +61,23 @@ def test_fused_indices_offline_equals_streaming():
     f = WidthFusion(WIDTHS, window_events=8)
     stream = [f.add(b).index for b in bs][7:]
     np.testing.assert_array_equal(fused_indices(bs, 8), stream)
+
+
+def test_trimmed_rule_ignores_one_outlier_event():
+    # 7 events favour candidate 1 slightly, one outlier event strongly favours candidate 0
+    good = np.array([1.0, 0.8, 1.2])
+    outlier = np.array([0.0, 3.0, 3.0])
+    bs = np.vstack([good] * 7 + [outlier])
+    assert fuse_b_vectors(bs)[0] == 0                          # the plain sum follows the outlier
+    idx, score = fuse_b_vectors(bs, "trimmed_normalised_b")
+    assert idx == 1
+    nb = normalise_b(bs)
+    np.testing.assert_allclose(score, np.sort(nb, axis=0)[1:-1].sum(axis=0))
+    # fewer than 3 events: the plain sum
+    np.testing.assert_allclose(fuse_b_vectors(bs[:2], "trimmed_normalised_b")[1], nb[:2].sum(axis=0))
+
+
+def test_default_rule_per_mode():
+    from backlash_monitor.classifier.fusion import default_fusion_rule
+    assert default_fusion_rule("shape") == "trimmed_normalised_b"
+    assert default_fusion_rule("paper") == default_fusion_rule("paper_corrected") == "sum_normalised_b"

@@ -3,7 +3,8 @@
 Protocol: the library's patterns/models (trained on its own seeds) classify the onset windows of the
 evaluation seeds (default 0-4, never training seeds) over the full grid. Paper modes use the patterns of
 the window's n1 (the paper's protocol: n1 known, eta_k unknown); the shape mode ignores n1.
-Fusion: per drive (one seed x scenario), the onset events in order, the rule of fusion.py over the last
+Fusion: per drive (one seed x scenario), the onset events in order, the mode's rule of fusion.py
+(``default_fusion_rule``: trimmed normalised sum for shape, normalised sum for the paper modes) over the last
 ``window_events`` events; a fused estimate is counted once the buffer is full.
 """
 from __future__ import annotations
@@ -13,7 +14,7 @@ import numpy as np
 from ..plant import K2_WIDTHS_M
 from .cpn import CPN_VARIANTS, CounterPropagationNetwork, b_margin, continuous_width_from_b
 from .dataset import WindowSet
-from .fusion import DEFAULT_WINDOW_EVENTS, fused_indices
+from .fusion import DEFAULT_WINDOW_EVENTS, default_fusion_rule, fused_indices
 from .patterns import PatternLibrary
 from .shape import SHAPE, SHAPE_SIGNALS, ShapeModel
 from .training import pattern_means, pattern_windows, M3_N1
@@ -90,7 +91,7 @@ def evaluate_mode(lib: PatternLibrary, ws: WindowSet, mode: str, signal: str,
     pred = np.argmin(b, axis=1)
     marg = b_margin(b)
     fin = np.isfinite(marg)
-    ok, n, bad = fused_correct(ws, b, truth, window_events)
+    ok, n, bad = fused_correct(ws, b, truth, window_events, default_fusion_rule(mode))
     return {
         "mode": mode, "signal": signal, "n_windows": int(len(ws)),
         "accuracy": float((pred == truth).mean()),
