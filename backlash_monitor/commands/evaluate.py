@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from backlash_monitor.commands import UsageError
+from backlash_monitor.commands._args import seed_list
 
 NAME = "evaluate"
 HELP = "identification accuracy, confusion, B margin, fusion, continuous width and the paper's tables, per mode"
@@ -29,22 +30,12 @@ DESCRIPTION = (
 TRIGGERS = ("paper", "contact_loss")
 
 
-def _seed_list(text: str) -> list[int]:
-    try:
-        values = [int(x) for x in text.replace(" ", "").split(",") if x != ""]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a comma-separated list of integers, e.g. 0,1,2,3,4") from None
-    if not values or any(v < 0 for v in values):
-        raise argparse.ArgumentTypeError(f"{text!r}: give one or more integers >= 0, e.g. 0,1,2,3,4")
-    return values
-
-
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out-dir", default="out/evaluate", metavar="DIR",
                         help="directory for evaluation.json and the PNGs (created)")
     parser.add_argument("--trigger", action="append", choices=TRIGGERS, default=None,
                         help="trigger(s) to evaluate; repeat for several (default: both, paper and contact_loss)")
-    parser.add_argument("--seeds", type=_seed_list, default=[0, 1, 2, 3, 4], metavar="S[,S...]",
+    parser.add_argument("--seeds", type=seed_list, default=[0, 1, 2, 3, 4], metavar="S[,S...]",
                         help="evaluation noise seeds; each is the full 120-scenario grid with 8 onset windows per "
                              "scenario; must not overlap the library's training seeds")
     parser.add_argument("--library", action="append", default=None, metavar="TRIGGER=FILE.npz",
@@ -53,7 +44,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--fusion-events", type=int, default=8, metavar="N",
                         help="onset events fused into one estimate (the drive's last N), 1 <= N <= 8 "
                              "(the 2 s drives have 8 onset events)")
-    parser.add_argument("--unseen-seeds", type=_seed_list, default=[0], metavar="S[,S...]",
+    parser.add_argument("--unseen-seeds", type=seed_list, default=[0], metavar="S[,S...]",
                         help="seeds for the continuous-width check on widths the patterns never saw "
                              "(0.003, 0.0045, 0.006, 0.0085 m over all eta_k and n1)")
     parser.add_argument("--no-plots", action="store_true", help="skip the PNGs")

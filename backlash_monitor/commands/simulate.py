@@ -6,12 +6,13 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
+
+from backlash_monitor.commands._args import float_list, seed_list
 
 NAME = "simulate"
 HELP = "simulate the drive (plant model, SPEC section 3) for a grid of scenarios and write the signals to NPZ"
@@ -28,37 +29,17 @@ ENTRY_KINDS = ("onset", "return")
 SIGNALS = ("a1", "a2", "omega1", "omega2", "angle_difference")
 
 
-def _float_list(text: str) -> list[float]:
-    try:
-        values = [float(x) for x in text.replace(" ", "").split(",") if x != ""]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a comma-separated list of numbers") from None
-    if not values or not all(math.isfinite(v) for v in values):
-        raise argparse.ArgumentTypeError(f"{text!r}: give one or more finite numbers, e.g. 0.0025,0.005")
-    return values
-
-
-def _int_list(text: str) -> list[int]:
-    try:
-        values = [int(x) for x in text.replace(" ", "").split(",") if x != ""]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a comma-separated list of integers") from None
-    if not values or any(v < 0 for v in values):
-        raise argparse.ArgumentTypeError(f"{text!r}: give one or more integers >= 0, e.g. 0,1,2")
-    return values
-
-
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     from backlash_monitor.plant import ETA_K_VALUES, K2_WIDTHS_M, N1_VALUES
     join = lambda xs: ",".join(f"{x:g}" for x in xs)  # noqa: E731
-    parser.add_argument("--widths", type=_float_list, default=list(K2_WIDTHS_M), metavar="M[,M...]",
+    parser.add_argument("--widths", type=float_list, default=list(K2_WIDTHS_M), metavar="M[,M...]",
                         help=f"backlash widths b [m], 0 < b <= 1 (paper K2: {join(K2_WIDTHS_M)})")
-    parser.add_argument("--eta-k", type=_float_list, default=list(ETA_K_VALUES), metavar="PAS[,...]",
+    parser.add_argument("--eta-k", type=float_list, default=list(ETA_K_VALUES), metavar="PAS[,...]",
                         help=f"absorber fluid consistency eta_k [Pa*s^n], 0 < eta_k <= 100 "
                              f"(paper: {join(ETA_K_VALUES)})")
-    parser.add_argument("--n1", type=_float_list, default=list(N1_VALUES), metavar="N[,N...]",
+    parser.add_argument("--n1", type=float_list, default=list(N1_VALUES), metavar="N[,N...]",
                         help=f"absorber fluid flow index n1 [-], 0 < n1 <= 3 (paper: {join(N1_VALUES)})")
-    parser.add_argument("--seeds", type=_int_list, default=[0], metavar="S[,S...]",
+    parser.add_argument("--seeds", type=seed_list, default=[0], metavar="S[,S...]",
                         help="noise seeds, integers >= 0; each scenario's two generators are seeded from its "
                              "seed and its parameters")
     parser.add_argument("--duration", type=float, default=1.0, metavar="SECONDS",

@@ -12,6 +12,7 @@ import sys
 import time
 
 from backlash_monitor.commands import UsageError
+from backlash_monitor.commands._args import seed_list
 
 NAME = "train"
 HELP = "simulate noisy training drives and write the versioned pattern library (all classifier modes)"
@@ -25,16 +26,6 @@ DESCRIPTION = (
 TRIGGERS = ("contact_loss", "paper")
 
 
-def _seed_list(text: str) -> list[int]:
-    try:
-        values = [int(x) for x in text.replace(" ", "").split(",") if x != ""]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a comma-separated list of integers, e.g. 1000,1001") from None
-    if not values or any(v < 0 for v in values):
-        raise argparse.ArgumentTypeError(f"{text!r}: give one or more integers >= 0, e.g. 1000,1001")
-    return values
-
-
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     from backlash_monitor.classifier.cpn import DEFAULT_EPOCHS, DEFAULT_L1, DEFAULT_L2
     from backlash_monitor.classifier.shape import DEFAULT_RIDGE
@@ -45,7 +36,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--trigger", default="contact_loss", choices=TRIGGERS,
                         help="backlash-entry trigger of the training windows: 'contact_loss' (angle difference "
                              "alone, the pipeline's default) or 'paper' (eq. 1 with the true width)")
-    parser.add_argument("--seeds", type=_seed_list, default=list(DEFAULT_TRAIN_SEEDS), metavar="S[,S...]",
+    parser.add_argument("--seeds", type=seed_list, default=list(DEFAULT_TRAIN_SEEDS), metavar="S[,S...]",
                         help="training noise seeds (each one is the full 120-scenario grid, 8 onset windows per "
                              "scenario); keep them apart from the evaluation seeds 0-4")
     parser.add_argument("--epochs", type=int, default=DEFAULT_EPOCHS,
