@@ -5,15 +5,17 @@ import pytest
 
 from backlash_monitor.windowing import (BacklashEntry, BacklashWindower, WindowCapture, extract_windows,
                                         extract_windows_batch)
-from backlash_monitor.windowing.synthetic import synthetic_period, tile_record
+from backlash_monitor.windowing.synthetic import synthetic_period, tile_events, tile_record
 
 N = 2048
 
 
 def _signals(n_periods=3, width=0.005):
-    d, w, dep, ent = tile_record(synthetic_period(width_m=width), n_periods)
+    """(signals, contact_loss entries = the exact torque-zero crossings, zone entries)."""
+    p = synthetic_period(width_m=width)
+    d, w, dep, ent = tile_record(p, n_periods)
     k = np.arange(d.size, dtype=float)
-    return {"a1": k, "a2": -k, "angle_difference": d}, dep, ent
+    return {"a1": k, "a2": -k, "angle_difference": d}, tile_events(p, p.crossings, n_periods), ent
 
 
 def _e(i, kind="onset"):
@@ -142,4 +144,4 @@ def test_window_offset_validated_and_configured():
     for bad in (-1, 1.5, True, 70000):
         with pytest.raises(ValueError, match="window_offset_samples"):
             WindowCapture(window_offset_samples=bad)
-    assert default_window_offset("contact_loss") == 400 and default_window_offset("paper") == 0
+    assert default_window_offset("contact_loss") == 200 and default_window_offset("paper") == 0

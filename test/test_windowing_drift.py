@@ -36,7 +36,8 @@ def _run(det, seconds, source, bias, offset0=0.0):
         got += det.feed(k0, sig)
     ref_dep = [(k + i * per, kind) for i in range(int(seconds) * reps) for k, kind in p.departures]
     ref_ent = [(k + i * per, kind) for i in range(int(seconds) * reps) for k, kind in p.entries]
-    return got, ref_dep, ref_ent
+    ref_cross = [(k + i * per, kind) for i in range(int(seconds) * reps) for k, kind in p.crossings]
+    return got, ref_dep, ref_ent, ref_cross
 
 
 def _compare(got, ref, tol):
@@ -52,9 +53,9 @@ def test_paper_trigger_integrated_speeds_2h_with_bias():
     drift-free run puts it (the trapezoid rule alone gives -2..0 samples against the exact crossing);
     in the first 10 s the uncompensated drift between re-references moves entries by <= 9 samples."""
     det = BacklashEntryDetector("paper", width_m=WIDTH)
-    got, _, ent = _run(det, 7200, "integrated", BIAS)
+    got, _, ent, _ = _run(det, 7200, "integrated", BIAS)
     off = _compare(got, ent, tol=10)
-    free, _, _ = _run(BacklashEntryDetector("paper", width_m=WIDTH), 20, "integrated", 0.0)
+    free, _, _, _ = _run(BacklashEntryDetector("paper", width_m=WIDTH), 20, "integrated", 0.0)
     free_off = np.array([e.sample_index - s for e, (s, _) in zip(free, ent)])
     n10 = 10 * 8
     period = free_off[n10:n10 + 8]               # drift-free offsets repeat every period
@@ -80,5 +81,5 @@ def test_contact_loss_long_run_with_bias(source):
     long = os.environ.get("BACKLASH_LONG_TESTS") == "1"
     seconds = 7200 if long else 600
     offset0 = 0.0 if long else BIAS * 7200
-    got, dep, _ = _run(BacklashEntryDetector("contact_loss"), seconds, source, BIAS, offset0)
-    _compare(got, dep, tol=2)
+    got, _, _, cross = _run(BacklashEntryDetector("contact_loss"), seconds, source, BIAS, offset0)
+    _compare(got, cross, tol=2)       # the torque-zero crossing (departure + 250 samples here)

@@ -1,9 +1,9 @@
-"""Entry detection on synthetic records with exactly known departures and zone entries."""
+"""Entry detection on synthetic records with exactly known departures, torque-zero crossings and zone entries."""
 import numpy as np
 import pytest
 
 from backlash_monitor.windowing import BacklashEntryDetector
-from backlash_monitor.windowing.synthetic import synthetic_period, tile_record
+from backlash_monitor.windowing.synthetic import synthetic_period, tile_events, tile_record
 
 WIDTHS = (0.0025, 0.005, 0.01)
 
@@ -17,13 +17,18 @@ def _feed(det, sig, chunk):
 
 
 @pytest.mark.parametrize("width", WIDTHS)
-def test_contact_loss_backdates_to_departure(width):
-    d, w, dep, ent = tile_record(synthetic_period(width_m=width), 4)
+def test_contact_loss_entry_is_the_torque_zero_crossing(width):
+    """Back-dated from the confirmation to the point where Delta has left its contact level by
+    contact_deflection_rad (1.5e-3 rad; exactly 250 samples after the departure of this record's
+    120 rad/s^2 parabola), not to the departure itself."""
+    p = synthetic_period(width_m=width)
+    d, w, dep, ent = tile_record(p, 4)
+    cross = tile_events(p, p.crossings, 4)
     got = BacklashEntryDetector("contact_loss").feed(0, {"angle_difference": d})
     assert [e.kind for e in got] == [k for _, k in dep]
-    off = np.array([e.sample_index - s for e, (s, _) in zip(got, dep)])
-    assert np.all(np.abs(off) <= 5), off
-    assert all(e.confirm_sample_index >= e.sample_index for e in got)
+    off = np.array([e.sample_index - s for e, (s, _) in zip(got, cross)])
+    assert np.all(np.abs(off) <= 1), off
+    assert all(e.confirm_sample_index >= e.sample_index > s + 200 for e, (s, _) in zip(got, dep))
 
 
 @pytest.mark.parametrize("width", WIDTHS)
@@ -70,13 +75,17 @@ def test_contact_loss_with_encoder_quantisation_and_noise(bits):
     """Encoders of 2**bits counts/rev on both shafts plus white angle noise of 1/2 count."""
     q = 2 * np.pi / 2 ** bits
     rng = np.random.default_rng(1)
-    d, w, dep, ent = tile_record(synthetic_period(width_m=0.0025), 4)
+    p = synthetic_period(width_m=0.0025)
+    d, w, dep, ent = tile_record(p, 4)
+    cross = tile_events(p, p.crossings, 4)
     a2 = np.cumsum(np.full(d.size, 150.0 * 2e-5))
     a1 = a2 + d
     a1q = np.round((a1 + 0.5 * q * rng.standard_normal(d.size)) / q) * q
     a2q = np.round((a2 + 0.5 * q * rng.standard_normal(d.size)) / q) * q
     got = BacklashEntryDetector("contact_loss").feed(0, {"alpha1": a1q, "alpha2": a2q})
     assert [e.kind for e in got] == [k for _, k in dep]
-    off = np.array([e.sample_index - s for e, (s, _) in zip(got, dep)])
-    # measured: 16 bit max |off| ~ 10 samples, 14 bit ~ 30 (see docs/windowing.md)
-    assert np.all(np.abs(off) <= (20 if bits == 16 else 60)), off
+    off = np.array([e.sample_index - s for e, (s, _) in zip(got, cross)])
+    # the entry is the first crossing of a level by the quantised, noisy Delta: noise makes it early.
+    # Measured (rng seeds 0-4, 8 entries each): 16 bit -14..0 samples, 14 bit -89..-18
+    lo = -20 if bits == 16 else -110
+    assert np.all((off >= lo) & (off <= 5)), off

@@ -34,8 +34,10 @@ Triggers (docs/windowing.md has the physics and the measured offsets):
   (eq. 2-3, trapezoid rule by default).  Integrated angles are re-referenced at each settled contact
   to +-(K2/r + contact_deflection_rad), so a speed bias cannot move or lose entries.
 - ``contact_loss``: no width.  A causal EMA (reference_tau_s) tracks the contact value of Delta; a
-  departure beyond confirm_rad confirms a traverse, and the entry is back-dated to the departure
-  sample found by a change-point fit (ramp, then an added parabola) over the last fit_samples samples.
+  departure beyond confirm_rad confirms a traverse; a change-point fit (ramp, then an added parabola)
+  over the last fit_samples samples finds the departure, and the entry is back-dated to the first
+  point after it where Delta is contact_deflection_rad (r*F0/k_c: torque zero) off the contact level
+  (mean of the 200 samples before the departure), interpolated to the nearest sample.
   Direction down = onset, up = return.  Drift-immune because it uses only the local departure.
 - Both: no new entry before entry + holdoff_samples, and only after the contact has settled again
   (range of Delta over settle_samples <= settle_range_rad), so a bouncing contact cannot re-trigger.

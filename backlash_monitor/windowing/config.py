@@ -38,7 +38,7 @@ DEFAULTS: dict[str, Any] = {
         "signals": ["a1", "a2"],
         "history_samples": 4096,
         # samples from the detected entry to the window's first sample, per trigger
-        "window_offset_samples": {"contact_loss": 400, "paper": 0},
+        "window_offset_samples": {"contact_loss": 200, "paper": 0},
     },
 }
 
