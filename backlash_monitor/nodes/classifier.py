@@ -42,7 +42,9 @@ PARAMETERS = (
                   "library must have been trained with it", choices=("contact_loss", "paper")),
     ParameterSpec("window_offset_samples", -1, "window start offset the windows were captured "
                   "with (the windowing node's parameter); the library must have been trained with it; "
-                  "samples from the detected entry to the window start; -1 = the trigger's configured value (config/windowing.yaml capture.window_offset_samples: contact_loss 400, paper 0)", -1, 65536),
+                  "samples from the detected entry to the window start; -1 = the trigger's "
+                  "configured value (config/windowing.yaml capture.window_offset_samples: "
+                  "contact_loss 200, paper 0)", -1, 65536),
     ParameterSpec("library", "", "pattern library file (empty: the packaged default)"),
     ParameterSpec("fusion_events", DEFAULT_FUSION_EVENTS, "onset events fused into one estimate",
                   1, 1000),

@@ -43,7 +43,9 @@ PARAMETERS = (
                   "'integrated': integrate plant/omega1 - plant/omega2 (eq. 2-3)",
                   choices=("measured", "integrated")),
     ParameterSpec("window_length", 2048, "samples captured after each entry", 64, 65536),
-    ParameterSpec("window_offset_samples", -1, "samples from the detected entry to the window start; -1 = the trigger's configured value (config/windowing.yaml capture.window_offset_samples: contact_loss 400, paper 0)", -1, 65536),
+    ParameterSpec("window_offset_samples", -1, "samples from the detected entry to the window start; -1 = the trigger's "
+                  "configured value (config/windowing.yaml capture.window_offset_samples: "
+                  "contact_loss 200, paper 0)", -1, 65536),
     ParameterSpec("qos", "sensor_data", "QoS of the chunk subscriptions",
                   choices=("sensor_data", "reliable")),
 )
