@@ -33,10 +33,13 @@ from rclpy.parameter import Parameter  # noqa: E402
 
 from backlash_monitor.nodes.classifier import ESTIMATE_QOS  # noqa: E402
 from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode  # noqa: E402
+from backlash_monitor.windowing import default_window_offset  # noqa: E402
 from backlash_monitor_msgs.msg import BacklashEstimate  # noqa: E402
 
 CHUNK = 1000
 WINDOW = 2048
+TRIGGER = "contact_loss"
+WINDOW_OFFSET = default_window_offset(TRIGGER)
 
 
 def start_chain(trigger="contact_loss"):
@@ -118,7 +121,8 @@ def run_graph(duration_s, rate_factor, chunk=None):
         wall = (max(received.values()) if received else time.time()) - started
         latencies = []
         for entry, t_recv in received.items():
-            last_chunk = (entry + WINDOW - 1) // chunk * chunk
+            last_sample = entry + WINDOW_OFFSET + WINDOW - 1   # the window starts after the entry
+            last_chunk = last_sample // chunk * chunk
             if last_chunk in published:
                 latencies.append(t_recv - published[last_chunk])
         for node in (plant, monitor, probe):
