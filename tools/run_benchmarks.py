@@ -19,7 +19,8 @@ def main(argv):
     out_path = pathlib.Path(argv[0])
     wanted = set(argv[1:])
     bench_dir = pathlib.Path(__file__).resolve().parent.parent / "bench"
-    results = {}
+    # Running a subset updates those entries and keeps the others of an earlier full run.
+    results = json.loads(out_path.read_text()) if wanted and out_path.is_file() else {}
     failed = []
     for script in sorted(bench_dir.glob("*.py")):
         name = script.stem

@@ -201,8 +201,8 @@ def _plots(out_dir: Path, trig: str, lib, test, unseen, res: dict) -> None:
     for ax, title in zip(axes.flat, ("a1 raw", "a2 raw", "a1 denoised (sym5, d1-d6 removed)", "a2 denoised")):
         ax.set_title(title, fontsize=10)
         ax.grid(alpha=0.3)
-    axes[1, 0].set_xlabel("time after the entry [ms]")
-    axes[1, 1].set_xlabel("time after the entry [ms]")
+    axes[1, 0].set_xlabel("time after the window start (entry + the trigger's offset) [ms]")
+    axes[1, 1].set_xlabel("time after the window start (entry + the trigger's offset) [ms]")
     axes[0, 0].set_ylabel("a1 [m/s^2]")
     axes[0, 1].set_ylabel("a2 [m/s^2]")
     axes[0, 0].legend(fontsize=7)
