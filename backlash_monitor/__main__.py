@@ -4,6 +4,7 @@ Every command calls the same numpy cores as the ROS 2 nodes. ``--help`` after an
 its options.
 """
 import argparse
+import os
 import sys
 
 from backlash_monitor.commands import UsageError, discover_commands
@@ -41,6 +42,9 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         print(f"{parser.prog} {args.command}: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # output piped into e.g. `head`, which stopped reading
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
 
 
 if __name__ == "__main__":

@@ -165,8 +165,10 @@ class LiveView:
         lines.insert(1, "  ".join("-" * w for w in widths))
         head = (f"summary: true width {self.true_width_m * 1e3:.2f} mm, mode {self.mode or '-'}, "
                 f"{len(self.onset_entries)} onset windows classified")
-        tail = [f"diagnostics: classifier {self.diagnostic}"] if self.diagnostic else []
-        tail += [f"diagnostics: windowing {self.windowing}"] if self.windowing else []
+        tail = [f"last diagnostics (sent once a second): classifier {self.diagnostic}"] \
+            if self.diagnostic else []
+        tail += [f"last diagnostics (sent once a second): windowing {self.windowing}"] \
+            if self.windowing else []
         return "\n".join([head] + lines + tail)
 
 
