@@ -96,21 +96,28 @@ class MotorLoadInput:
         self.telegraph = telegraph_generator(tele_seq, cfg)
 
     def samples(self, k0: int, n: int, noise: bool, pulse: np.ndarray | None = None) -> np.ndarray:
-        e = self.cfg.effects
         out = np.zeros(n)
+        if self.cfg.effects.pulse_load and pulse is None:
+            pulse = pulse_load_pu(k0, n, self.cfg)
+        self.add_to(out, k0, n, noise, pulse)
+        return out
+
+    def add_to(self, row: np.ndarray, k0: int, n: int, noise: bool, pulse: np.ndarray | None) -> None:
+        """Add the switched-on terms for samples k0..k0+n-1 to ``row`` (``pulse``: the pulse load
+        of those samples when it is on)."""
+        e = self.cfg.effects
         if e.pulse_load:
-            out += pulse if pulse is not None else pulse_load_pu(k0, n, self.cfg)
+            row += pulse
         if e.constant_motor_load:
-            out += self.cfg.constant_motor_load_pu
+            row += self.cfg.constant_motor_load_pu
         if noise:
             # always advance both generators so that switching one off does not change the other
             g = self.gaussian.samples(k0, n)
             t = self.telegraph.samples(k0, n)
             if e.gaussian_disturbance:
-                out += g
+                row += g
             if e.pulse_disturbance:
-                out += t
-        return out
+                row += t
 
 
 def motor_load_batch(inputs, k0: int, n: int, noise: bool, pulse: np.ndarray | None = None) -> np.ndarray:
@@ -124,15 +131,5 @@ def motor_load_batch(inputs, k0: int, n: int, noise: bool, pulse: np.ndarray | N
     if e.pulse_load and pulse is None:
         pulse = pulse_load_pu(k0, n, cfg)
     for inp, row in zip(inputs, out):
-        if e.pulse_load:
-            row += pulse
-        if e.constant_motor_load:
-            row += cfg.constant_motor_load_pu
-        if noise:
-            g = inp.gaussian.samples(k0, n)
-            t = inp.telegraph.samples(k0, n)
-            if e.gaussian_disturbance:
-                row += g
-            if e.pulse_disturbance:
-                row += t
+        inp.add_to(row, k0, n, noise, pulse)
     return out
