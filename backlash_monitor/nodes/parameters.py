@@ -9,6 +9,7 @@ start. Values set later at run time are checked by the same rule and refused wit
 """
 from __future__ import annotations
 
+import gc
 import math
 import sys
 from dataclasses import dataclass
@@ -118,6 +119,11 @@ def run_node(node_factory, args=None, spin=None) -> int:
     node = None
     try:
         node = node_factory()
+        # Everything built so far lives as long as the node: keep it out of the collector's scans
+        # so that a collection inside a callback stays short. Measured with bench/latency.py, four
+        # runs each side by side: p99 8.4/8.9/8.7/16.8 ms frozen vs 11.7/12.3/8.7/17.5 ms not.
+        gc.collect()
+        gc.freeze()
         if spin is None:
             rclpy.spin(node)
         else:
