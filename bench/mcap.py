@@ -35,9 +35,8 @@ REPO = Path(__file__).resolve().parents[1]
 if str(REPO) not in sys.path:
     sys.path.insert(0, str(REPO))
 
-SIGNALS = ("a1", "a2", "omega1", "omega2", "angle_difference")
-UNITS = {"a1": "m/s^2", "a2": "m/s^2", "omega1": "rad/s", "omega2": "rad/s",
-         "angle_difference": "rad"}
+from backlash_monitor.signals import SIGNAL_UNITS as UNITS  # noqa: E402
+from backlash_monitor.signals import STREAM_SIGNALS as SIGNALS  # noqa: E402
 CHUNK = 1000
 FS = 50_000.0
 SIGNAL_CHUNK = "backlash_monitor_msgs/msg/SignalChunk"
@@ -216,13 +215,13 @@ def time_analyze(tmp: Path, seconds: float = 10.0) -> dict:
     import contextlib
     import io
 
-    from backlash_monitor.bag.simulated import SIGNAL_UNITS, write_simulation_bag
+    from backlash_monitor.bag.simulated import write_simulation_bag
     from backlash_monitor.commands import analyze
     from backlash_monitor.plant import PlantSimulator, Scenario
 
     bag = tmp / "analyze.mcap"
     write_simulation_bag(bag, PlantSimulator([Scenario(width_m=0.0075, seed=11)],
-                                             outputs=tuple(SIGNAL_UNITS)), seconds)
+                                             outputs=SIGNALS), seconds)
     parser = _argparse.ArgumentParser()
     analyze.add_arguments(parser)
     args = parser.parse_args([str(bag), "--out", str(tmp / "analyze_out")])

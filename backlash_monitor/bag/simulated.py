@@ -13,9 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from backlash_monitor.bag.writer import BagWriter, qos_profile
-
-SIGNAL_UNITS = {"a1": "m/s^2", "a2": "m/s^2", "omega1": "rad/s", "omega2": "rad/s",
-                "angle_difference": "rad"}
+from backlash_monitor.signals import SIGNAL_UNITS
 SIGNAL_CHUNK = "backlash_monitor_msgs/msg/SignalChunk"
 SENSOR_DATA_QOS = [qos_profile(depth=5, reliability="best_effort")]
 LATCHED_QOS = [qos_profile(depth=1, durability="transient_local")]

@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from backlash_monitor.commands._args import float_list, seed_list
+from backlash_monitor.signals import STREAM_SIGNALS
 
 NAME = "simulate"
 HELP = "simulate the drive (plant model, SPEC section 3) for a grid of scenarios and write the signals to NPZ"
@@ -26,7 +27,7 @@ DESCRIPTION = (
 
 FORMAT_VERSION = 1
 ENTRY_KINDS = ("onset", "return")
-SIGNALS = ("a1", "a2", "omega1", "omega2", "angle_difference")
+SIGNALS = STREAM_SIGNALS
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

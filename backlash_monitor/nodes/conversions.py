@@ -12,14 +12,7 @@ import numpy as np
 
 from builtin_interfaces.msg import Time
 
-# Signals a drive streams, with their SI units (the topic is plant/<name>).
-SIGNAL_UNITS = {
-    "a1": "m/s^2",
-    "a2": "m/s^2",
-    "omega1": "rad/s",
-    "omega2": "rad/s",
-    "angle_difference": "rad",
-}
+from backlash_monitor.signals import SIGNAL_UNITS  # noqa: F401  (re-exported for the nodes)
 
 
 def to_float64_array(values) -> array.array:
