@@ -70,8 +70,7 @@ def run(args) -> int:
     from backlash_monitor.commands import UsageError
     from backlash_monitor.bag import BagError, BagReader, BagWriter
     from backlash_monitor.chain import BlockFeeder, ChunkJoiner, WindowingStage, denoise_pair
-    from backlash_monitor.classifier.patterns import (PatternLibraryError, default_library_path,
-                                               load_library)
+    from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
     from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator
 
     bag_path = pathlib.Path(args.bag)
@@ -88,8 +87,7 @@ def run(args) -> int:
     if not 0 <= offset <= 65536:
         raise UsageError(f"--window-offset = {offset}; allowed: 0 <= SAMPLES <= 65536")
     try:
-        library = load_library(args.library or default_library_path(args.trigger),
-                               trigger=args.trigger, window_offset_samples=offset)
+        library = load_library(args.library or None, trigger=args.trigger, window_offset_samples=offset)
         estimator = DriveEstimator(library, mode=mode, n1=args.n1,
                                    fusion_events=args.fusion_events)
         stage = WindowingStage(trigger=args.trigger,

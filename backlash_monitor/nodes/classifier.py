@@ -16,8 +16,7 @@ import sys
 from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 
-from backlash_monitor.classifier.patterns import (PatternLibraryError, default_library_path,
-                                               load_library)
+from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator
 from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
@@ -68,8 +67,7 @@ class ClassifierNode(Node):
         try:
             offset = (default_window_offset(p["trigger"]) if p["window_offset_samples"] < 0
                       else p["window_offset_samples"])
-            library = load_library(p["library"] or default_library_path(p["trigger"]),
-                                   trigger=p["trigger"], window_offset_samples=offset)
+            library = load_library(p["library"] or None, trigger=p["trigger"], window_offset_samples=offset)
             self.estimator = DriveEstimator(library, mode=p["mode"], n1=p["n1"], signals=signals,
                                             fusion_events=p["fusion_events"])
         except (PatternLibraryError, ValueError) as error:
