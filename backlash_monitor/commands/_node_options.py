@@ -31,16 +31,19 @@ def add_parameter_options(parser, specs, positional: str | None = None) -> None:
                                 choices=spec.choices, help=help_text)
 
 
-def ros_arguments(args, specs) -> list[str]:
-    """``--ros-args -p name:=value ...`` for every parameter the user changed."""
+def ros_parameter_args(values: dict) -> list[str]:
+    """``--ros-args -p name:=value ...`` for a node's parameter values (YAML-quoted where needed)."""
     out = ["--ros-args"]
-    for spec in specs:
-        value = getattr(args, spec.name)
-        if value == spec.default:
-            continue
+    for name, value in values.items():
         if isinstance(value, bool):
             value = str(value).lower()
         elif isinstance(value, str):
             value = f"'{value}'" if value == "" or ":" in value or "," in value else value
-        out += ["-p", f"{spec.name}:={value}"]
+        out += ["-p", f"{name}:={value}"]
     return out
+
+
+def ros_arguments(args, specs) -> list[str]:
+    """``--ros-args -p name:=value ...`` for every parameter the user changed."""
+    return ros_parameter_args({spec.name: getattr(args, spec.name) for spec in specs
+                               if getattr(args, spec.name) != spec.default})

@@ -177,15 +177,6 @@ def _executable(name: str) -> str:
     return os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor", name)
 
 
-def _ros_args(params: dict) -> list[str]:
-    out = ["--ros-args"]
-    for key, value in params.items():
-        if isinstance(value, bool):
-            value = str(value).lower()
-        out += ["-p", f"{key}:={value}"]
-    return out
-
-
 def run(args) -> int:
     validate(args)
     import rclpy
@@ -198,6 +189,7 @@ def run(args) -> int:
     from backlash_monitor.estimation import DEFAULT_MODE, default_signals
     from backlash_monitor.nodes.fast_dds import configure_fast_dds
     configure_fast_dds()  # before rclpy.init; the child processes inherit it
+    from backlash_monitor.commands._node_options import ros_parameter_args
     params = node_parameters(args)
     view = LiveView(args.width_m, default_signals(args.mode or DEFAULT_MODE))
     children: list[subprocess.Popen] = []
@@ -213,7 +205,8 @@ def run(args) -> int:
             nodes.append(RecordNode(parameter_overrides=[Parameter("output", value=args.record)]))
         if args.processes:
             for name in ("classifier", "denoise", "windowing", "plant_simulator"):
-                children.append(subprocess.Popen([_executable(name)] + _ros_args(params[name])))
+                children.append(subprocess.Popen([_executable(name)]
+                                                 + ros_parameter_args(params[name])))
         else:
             from backlash_monitor.nodes.classifier import ClassifierNode
             from backlash_monitor.nodes.denoise import DenoiseNode
