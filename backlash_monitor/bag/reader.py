@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import mmap
 import os
+import threading
+from collections import deque
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -131,7 +133,6 @@ class BagReader:
         self._data_start = 0
         self._data_end = self.file_size
         self._have_stats = False
-        self._zstd = None
         self._corrupt: set[int] = set()
         try:
             self._open()
@@ -389,11 +390,7 @@ class BagReader:
             if comp == "":
                 out = data
             elif comp == "zstd":
-                if self._zstd is None:
-                    import zstandard
-
-                    self._zstd = zstandard.ZstdDecompressor()
-                out = self._zstd.decompress(data, max_output_size=usize)
+                out = _zstd_decompressor().decompress(data, max_output_size=usize)
             elif comp == "lz4":
                 import lz4.frame
 
@@ -489,10 +486,10 @@ class BagReader:
             for cid in wanted:
                 codecs[cid] = self.codec(self.channels[cid][0])
         names = {cid: self.channels[cid][0] for cid in self.channels}
-        corrupt = self._corrupt
+        records = []   # (op, body) of the wanted records, in file order
         for op, pos, body in self._iter_records(self._data_start, self._data_end):
             if op == OP_CHUNK:
-                if pos in corrupt:
+                if pos in self._corrupt:
                     continue
                 info = self._chunks.get(pos)
                 if info is not None:
@@ -503,21 +500,31 @@ class BagReader:
                         continue
                 elif self.recover and not self.recovery.complete:
                     continue  # not validated by the scan
-                try:
-                    records = self._decompress(body)
-                except CorruptBagError:
-                    if self.recover:
-                        continue
-                    raise
-                for rop, _rpos, rbody in _iter_plain(records):
-                    if rop == OP_MESSAGE:
-                        m = self._message(rbody, wanted, names, codecs, start_ns, end_ns)
-                        if m is not None:
-                            yield m
+                records.append((op, body))
             elif op == OP_MESSAGE:
-                m = self._message(body, wanted, names, codecs, start_ns, end_ns)
-                if m is not None:
-                    yield m
+                records.append((op, body))
+        chunks = [body for op, body in records if op == OP_CHUNK]
+        decompressed = _prefetch(self._decompress, chunks, CHUNKS_AHEAD)
+        try:
+            for op, body in records:
+                if op == OP_CHUNK:
+                    try:
+                        chunk_records = next(decompressed)()
+                    except CorruptBagError:
+                        if self.recover:
+                            continue
+                        raise
+                    for rop, _rpos, rbody in _iter_plain(chunk_records):
+                        if rop == OP_MESSAGE:
+                            m = self._message(rbody, wanted, names, codecs, start_ns, end_ns)
+                            if m is not None:
+                                yield m
+                else:
+                    m = self._message(body, wanted, names, codecs, start_ns, end_ns)
+                    if m is not None:
+                        yield m
+        finally:
+            decompressed.close()   # waits for a chunk still being decompressed (the map stays valid)
 
     @staticmethod
     def _message(body, wanted, names, codecs, start_ns, end_ns) -> BagMessage | None:
@@ -575,6 +582,62 @@ def _series(topic: str, msgs: list) -> SignalSeries:
     return SignalSeries(topic, first.signal_name, first.unit, first.sample_period_s, samples, idx,
                         starts, np.array([t for _, t in msgs], dtype=np.int64),
                         first.header.frame_id, gaps)
+
+
+CHUNKS_AHEAD = 2   # chunks decompressed ahead of the one being read (messages())
+
+_DECOMPRESS_POOL = None
+_POOL_LOCK = threading.Lock()
+_THREAD_STATE = threading.local()
+
+
+def _zstd_decompressor():
+    """This thread's zstd decompressor (a ZstdDecompressor must not be shared between threads)."""
+    d = getattr(_THREAD_STATE, "zstd", None)
+    if d is None:
+        import zstandard
+
+        d = _THREAD_STATE.zstd = zstandard.ZstdDecompressor()
+    return d
+
+
+def _decompress_pool():
+    """The one worker thread shared by all readers (started on first use)."""
+    global _DECOMPRESS_POOL
+    with _POOL_LOCK:
+        if _DECOMPRESS_POOL is None:
+            from concurrent.futures import ThreadPoolExecutor
+
+            _DECOMPRESS_POOL = ThreadPoolExecutor(max_workers=1,
+                                                  thread_name_prefix="bag-decompress")
+    return _DECOMPRESS_POOL
+
+
+def _prefetch(fn, items, ahead: int):
+    """Yields, for each item in order, a callable returning ``fn(item)`` (or raising its error).
+
+    ``fn`` runs in a worker thread up to ``ahead`` items before the one being consumed: zstd/lz4
+    decompression and zlib.crc32 release the GIL, so on a second core a chunk is decompressed
+    and checked while the caller decodes and processes the messages of the previous one. Same
+    results and errors as calling ``fn`` item by item. ``close()`` (or exhausting it) waits for
+    the work still running: the items (views of the reader's map) are not used after that."""
+    pending = deque()
+    try:
+        for item in items:
+            pending.append(_decompress_pool().submit(fn, item))
+            if len(pending) > ahead:
+                yield pending.popleft().result
+        while pending:
+            yield pending.popleft().result
+    finally:
+        for future in pending:
+            future.cancel()
+        for future in pending:
+            if not future.cancelled():
+                try:
+                    future.result()
+                except Exception:  # noqa: BLE001 - its chunk is not read any more
+                    pass
 
 
 def _iter_plain(buf):

@@ -1,0 +1,82 @@
+"""BagReader.messages decompresses chunks ahead in a worker thread: the same messages, in the same
+order, as decompressing chunk by chunk; a corrupt chunk raises (or is skipped with recover) where
+it did; stopping early and closing the reader leaves nothing running on the file's map."""
+import threading
+
+import pytest
+
+from backlash_monitor.bag import BagReader
+from backlash_monitor.bag import reader as reader_module
+from backlash_monitor.bag.errors import CorruptBagError
+
+from bag_helpers import write_sample_bag
+
+
+@pytest.fixture(scope="module")
+def small_chunk_bag(tmp_path_factory):
+    path = tmp_path_factory.mktemp("prefetch") / "b.mcap"
+    written = write_sample_bag(path, n_chunks=40, chunk_size=64 * 1024)  # many chunks
+    return path, written
+
+
+def keys(messages):
+    return [(m.topic, m.log_time_ns, m.sequence, m.data) for m in messages]
+
+
+@pytest.mark.parametrize("ahead", [0, 1, 2, 5])
+def test_same_messages_as_chunk_by_chunk(small_chunk_bag, monkeypatch, ahead):
+    path, written = small_chunk_bag
+    with BagReader(path) as bag:
+        assert len(bag._chunks) > 5
+        monkeypatch.setattr(reader_module, "CHUNKS_AHEAD", ahead)
+        got = keys(bag.messages())
+        by_topic = keys(bag.messages(["/plant/a2", "/estimate"]))
+    with BagReader(path) as bag:   # reference: every chunk decompressed in this thread, in order
+        ref = []
+        for op, _pos, body in bag._iter_records(bag._data_start, bag._data_end):
+            if op == reader_module.OP_CHUNK:
+                for rop, _p, rbody in reader_module._iter_plain(bag._decompress(body)):
+                    if rop == reader_module.OP_MESSAGE:
+                        ref.append(bag._message(rbody, set(bag.channels),
+                                                {c: v[0] for c, v in bag.channels.items()},
+                                                {}, None, None))
+    assert got == keys(ref)
+    assert by_topic == [k for k in keys(ref) if k[0] in ("/plant/a2", "/estimate")]
+    assert sum(len(v) for v in written.values()) == len(got)
+
+
+def test_stop_early_then_close(small_chunk_bag):
+    path, _ = small_chunk_bag
+    bag = BagReader(path)
+    it = bag.messages()
+    for _ in range(3):
+        next(it)
+    it.close()                 # the worker's chunks are finished or cancelled here
+    bag.close()
+    assert bag._mm == b""      # the map was closed (no view left in use)
+    names = [t.name for t in threading.enumerate()]
+    assert sum(n.startswith("bag-decompress") for n in names) <= 1
+
+
+def test_corrupt_chunk_raises_at_its_place(small_chunk_bag, monkeypatch):
+    path, _ = small_chunk_bag
+    with BagReader(path) as bag:
+        all_messages = keys(bag.messages())
+        bad = bag._chunks[sorted(bag._chunks)[3]]
+        in_bad = [k for k in all_messages if bad.start <= k[1] <= bad.end]
+        before = all_messages[:all_messages.index(in_bad[0])]
+        real = BagReader._decompress
+
+        def failing(self, body):
+            if reader_module.CHUNK_HEAD.unpack_from(body, 0)[0] == bad.start:
+                raise CorruptBagError("chunk CRC mismatch")
+            return real(self, body)
+
+        monkeypatch.setattr(BagReader, "_decompress", failing)
+        seen = []
+        with pytest.raises(CorruptBagError):
+            for m in bag.messages():
+                seen.append(m)
+        assert keys(seen) == before
+        bag.recover = True        # recovery mode skips the corrupt chunk and reads on
+        assert keys(bag.messages()) == [k for k in all_messages if k not in in_bad]
