@@ -77,39 +77,76 @@ def fit_departure(y: np.ndarray, direction: int, min_pre: int = 16, min_post: in
     if n < min_pre + min_post + 3:
         return 0
     y = y - y[0]
-    k = np.arange(n, dtype=np.float64)
+    g = _departure_terms(n)
+    k, t = g.k, g.k
+    yk = y * k
     rc = lambda v: np.cumsum(v[::-1])[::-1]  # noqa: E731  sum over k >= t
-    a0, a1, a2 = rc(y), rc(y * k), rc(y * k * k)
-    t = k
-    m = n - t - 1.0                          # j = k - t runs 0..m
-    s2 = m * (m + 1) * (2 * m + 1) / 6.0
-    s3 = (m * (m + 1) / 2.0) ** 2
-    s4 = m * (m + 1) * (2 * m + 1) * (3 * m * m + 3 * m - 1) / 30.0
+    a0, a1, a2 = rc(y), rc(yk), rc(yk * k)
     # regressors 1, k (fixed) and q = (k - t)^2 for k >= t.  Project 1, k out (Frisch-Waugh):
     # r_qq = q'q - (X'q)' G^-1 X'q, r_yq = y'q - (X'q)' G^-1 X'y, a = r_yq / r_qq, SSE = SSE_lin - r_yq^2/r_qq
-    sk, skk = k.sum(), (k * k).sum()
-    ginv = np.linalg.inv(np.array([[n, sk], [sk, skk]]))
-    xq0, xq1 = s2, s3 + t * s2                 # X'q = (sum q, sum k q)
     xy = np.array([y.sum(), np.dot(k, y)])
-    gy = ginv @ xy
-    r_qq = s4 - (ginv[0, 0] * xq0 * xq0 + 2 * ginv[0, 1] * xq0 * xq1 + ginv[1, 1] * xq1 * xq1)
-    r_yq = (a2 - 2.0 * t * a1 + t * t * a0) - (xq0 * gy[0] + xq1 * gy[1])
+    gy = g.ginv @ xy
+    r_yq = (a2 - g.two_t * a1 + g.t_sq * a0) - (g.xq0 * gy[0] + g.xq1 * gy[1])
     lo, hi = min_pre, n - min_post
     with np.errstate(all="ignore"):
-        acc = r_yq / r_qq
+        acc = r_yq / g.r_qq
         gain = r_yq * acc                       # SSE reduction over the straight-line fit
     valid = np.zeros(n, dtype=bool)
     valid[lo:hi] = True
-    valid &= np.isfinite(gain) & (acc * direction > 0) & (r_qq > 0)
+    valid &= np.isfinite(gain) & (acc * direction > 0) & g.r_qq_positive
     if not valid.any():
         return 0
     return int(np.argmax(np.where(valid, gain, -np.inf)))
 
 
+@dataclass(frozen=True)
+class _DepartureTerms:
+    """The parts of fit_departure's least squares that depend only on the length n (not on y)."""
+    k: np.ndarray             # 0..n-1 (sample index, also the candidate departure t)
+    two_t: np.ndarray         # 2 t
+    t_sq: np.ndarray          # t^2
+    xq0: np.ndarray           # sum over k >= t of q = (k - t)^2
+    xq1: np.ndarray           # sum over k >= t of k q
+    ginv: np.ndarray          # inverse Gram matrix of the regressors 1, k
+    r_qq: np.ndarray          # q'q with 1, k projected out
+    r_qq_positive: np.ndarray
+
+
+_DEPARTURE_TERMS: dict[int, _DepartureTerms] = {}
+
+
+def _departure_terms(n: int) -> _DepartureTerms:
+    """fit_departure's y-independent terms for length n, computed once per n (the detector always
+    fits fit_samples samples, a few other lengths near a segment start) -- by the same operations
+    as inline, so the fit is bit for bit the same."""
+    terms = _DEPARTURE_TERMS.get(n)
+    if terms is not None:
+        return terms
+    k = np.arange(n, dtype=np.float64)
+    t = k
+    m = n - t - 1.0                          # j = k - t runs 0..m
+    s2 = m * (m + 1) * (2 * m + 1) / 6.0
+    s3 = (m * (m + 1) / 2.0) ** 2
+    s4 = m * (m + 1) * (2 * m + 1) * (3 * m * m + 3 * m - 1) / 30.0
+    sk, skk = k.sum(), (k * k).sum()
+    ginv = np.linalg.inv(np.array([[n, sk], [sk, skk]]))
+    xq0, xq1 = s2, s3 + t * s2                 # X'q = (sum q, sum k q)
+    r_qq = s4 - (ginv[0, 0] * xq0 * xq0 + 2 * ginv[0, 1] * xq0 * xq1 + ginv[1, 1] * xq1 * xq1)
+    for a in (k, xq0, xq1, ginv, r_qq):
+        a.flags.writeable = False
+    terms = _DepartureTerms(k, 2.0 * t, t * t, xq0, xq1, ginv, r_qq, r_qq > 0)
+    if len(_DEPARTURE_TERMS) >= 64:           # lengths other than fit_samples are rare: bound it
+        _DEPARTURE_TERMS.clear()
+    _DEPARTURE_TERMS[n] = terms
+    return terms
+
 
 def _first_true(mask: np.ndarray) -> int:
-    idx = np.flatnonzero(mask)
-    return int(idx[0]) if idx.size else -1
+    """Index of the first True of a 1-D boolean array, -1 if none (argmax stops at the first True)."""
+    if mask.size == 0:
+        return -1
+    i = int(np.argmax(mask))
+    return i if mask[i] else -1
 
 
 def _check_positive(name: str, value, integer: bool = False):
@@ -419,11 +456,13 @@ class BacklashEntryDetector:
         """First index >= start where delta stops moving in ``direction`` (the far-side impact or the
         turning point of a traverse): (delta[n] - delta[n - _APEX_LAG]) * direction <= 0."""
         start = max(start, self._seg_start + _APEX_LAG, base + _APEX_LAG)
-        if start >= end:
-            return -1
-        d = buf[start - base:end - base] - buf[start - _APEX_LAG - base:end - _APEX_LAG - base]
-        k = _first_true(d * direction <= 0)
-        return -1 if k < 0 else start + k
+        for i in range(start, end, _BLOCK):     # block by block: the apex is usually in the first
+            j = min(end, i + _BLOCK)
+            d = buf[i - base:j - base] - buf[i - _APEX_LAG - base:j - _APEX_LAG - base]
+            k = _first_true(d * direction <= 0)
+            if k >= 0:
+                return i + k
+        return -1
 
     def _process(self, buf: np.ndarray, base: int, first: int) -> list[BacklashEntry]:
         out: list[BacklashEntry] = []
