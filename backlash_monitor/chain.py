@@ -9,7 +9,8 @@ received, so the offline estimates equal the live ones exactly.
 - :class:`WindowingStage` feeds joined ranges to the entry detector and the window capture.
 - :class:`BlockFeeder` (offline) feeds contiguous ranges to a WindowingStage in blocks, with
   the same windows as one by one.
-- :func:`denoise_pair` denoises a window's a1 and a2 together (one call, as the node does).
+- :func:`denoise_pair` denoises a window's a1 and a2 together (one call, as the node does);
+  :func:`denoise_pairs` (offline) many windows in one batch, with the same results.
 """
 from __future__ import annotations
 
@@ -192,6 +193,22 @@ def denoise_pair(a1, a2, **options):
                                    np.asarray(a2, dtype=np.float64)]),
                          **{**DENOISE_DEFAULTS, **options})
     return clean[0], clean[1]
+
+
+def denoise_pairs(pairs, **options) -> list[tuple[np.ndarray, np.ndarray]]:
+    """:func:`denoise_pair` of many windows' (a1, a2) in one batched transform (offline).
+
+    pywt transforms every row of a 2-D batch with the same 1-D routine, so each result is bit for
+    bit the window's own ``denoise_pair`` (test_chain_denoise_pairs.py); windows of unequal
+    lengths are denoised pair by pair."""
+    pairs = [(np.asarray(a1, dtype=np.float64), np.asarray(a2, dtype=np.float64))
+             for a1, a2 in pairs]
+    shapes = {a.shape for pair in pairs for a in pair}
+    if len(pairs) < 2 or len(shapes) != 1 or len(next(iter(shapes))) != 1:
+        return [denoise_pair(a1, a2, **options) for a1, a2 in pairs]
+    rows = np.stack([a for pair in pairs for a in pair])          # a1, a2, a1, a2, ...
+    clean = denoise_sym5(rows, **{**DENOISE_DEFAULTS, **options})
+    return [(clean[2 * i], clean[2 * i + 1]) for i in range(len(pairs))]
 
 
 def denoising_label(level: int, details_removed, mode: str) -> str:

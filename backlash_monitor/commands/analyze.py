@@ -19,7 +19,7 @@ NAME = "analyze"
 HELP = "run the chain offline on an MCAP bag: estimates to CSV, JSON and MCAP"
 DESCRIPTION = __doc__
 
-ESTIMATE_BATCH = 64   # onset windows per DriveEstimator.estimate_many call
+ESTIMATE_BATCH = 64   # onset windows per batched denoise + DriveEstimator.estimate_many call
 
 CSV_COLUMNS = ("entry_sample_index", "entry_time_s", "signal", "mode", "width_m", "width_index",
                "b_margin", "continuous_width_m", "fused_width_m", "fused_events", "true_width_m",
@@ -69,7 +69,7 @@ def _find_topic(available, namespace, name):
 def run(args) -> int:
     from backlash_monitor.commands import UsageError
     from backlash_monitor.bag import BagError, BagReader, BagWriter
-    from backlash_monitor.chain import BlockFeeder, ChunkJoiner, WindowingStage, denoise_pair
+    from backlash_monitor.chain import BlockFeeder, ChunkJoiner, WindowingStage, denoise_pairs
     from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
     from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator
 
@@ -120,7 +120,7 @@ def run(args) -> int:
             joiner = ChunkJoiner(stage.input_signals)
             # contiguous ranges go to the stage in blocks: the same windows as range by range
             feeder = BlockFeeder(stage)
-            batch = []   # denoised onset windows, estimated together (same numbers as one by one)
+            batch = []   # onset windows, denoised and estimated together (same numbers as one by one)
             for m in _then_none(reader.messages(list(topics))):
                 if m is None:
                     joined = None
@@ -137,11 +137,12 @@ def run(args) -> int:
                 for window, source in windows:   # source: the range completing it, range by range
                     if not estimator.classifies(window.kind):
                         continue  # no estimate from it: skip denoising it (live: denoised, unused)
-                    a1, a2 = denoise_pair(window.signals["a1"], window.signals["a2"])
-                    batch.append((source, window, a1, a2))
+                    batch.append((source, window))
                 if len(batch) >= ESTIMATE_BATCH or (m is None and batch):
-                    results = estimator.estimate_many([(a1, a2, w.kind) for _, w, a1, a2 in batch])
-                    for (source, window, _, _), estimates in zip(batch, results):
+                    denoised = denoise_pairs([(w.signals["a1"], w.signals["a2"]) for _, w in batch])
+                    results = estimator.estimate_many([(a1, a2, w.kind) for (_, w), (a1, a2)
+                                                       in zip(batch, denoised)])
+                    for (source, window), estimates in zip(batch, results):
                         for est in estimates:
                             rows.append(_row(window, est, true_width))
                             estimates_msgs.append((source, window, est))
