@@ -14,7 +14,7 @@ import math
 import sys
 
 from rclpy.node import Node
-from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator
@@ -26,7 +26,10 @@ from backlash_monitor.nodes.windowing import WINDOW_QOS
 from backlash_monitor.windowing import default_window_offset
 from backlash_monitor_msgs.msg import BacklashEstimate, BacklashWindow
 
+# Transient local like the windows: a monitor that matches late still gets the last 1000
+# estimates (250 s of onsets and returns of one drive).
 ESTIMATE_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE,
+                          durability=DurabilityPolicy.TRANSIENT_LOCAL,
                           history=HistoryPolicy.KEEP_LAST)
 
 PARAMETERS = (

@@ -101,11 +101,17 @@ class LiveView:
         self.tally: dict[str, SignalTally] = {}
         self.onset_entries: set[int] = set()
         self.pending: dict[int, dict] = {}
+        self.completed_events = 0         # onset events with an estimate on every signal
+        self.first_arrival_s: float | None = None   # time.monotonic() of the first estimate
+        self.last_arrival_s: float | None = None
         self.diagnostic = ""
         self.windowing = ""
         self.mode = ""
 
     def on_estimate(self, msg) -> None:
+        self.last_arrival_s = time.monotonic()
+        if self.first_arrival_s is None:
+            self.first_arrival_s = self.last_arrival_s
         t = self.tally.setdefault(msg.signal_name, SignalTally())
         self.mode = msg.mode
         if not math.isnan(msg.true_width_m):
@@ -121,6 +127,12 @@ class LiveView:
         event[msg.signal_name] = msg
         if len(event) >= len(self.signals):
             self.print_event(self.pending.pop(msg.entry_sample_index))
+            self.completed_events += 1
+
+    def flush(self) -> None:
+        """Print the events still missing an estimate on some signal (at the end of a run)."""
+        for entry in sorted(self.pending):
+            self.print_event(self.pending.pop(entry))
 
     def print_event(self, event: dict) -> None:
         first = next(iter(event.values()))
@@ -184,6 +196,7 @@ def run(args) -> int:
     from rclpy.parameter import Parameter
     from diagnostic_msgs.msg import DiagnosticArray
     from backlash_monitor_msgs.msg import BacklashEstimate
+    from backlash_monitor.nodes.classifier import ESTIMATE_QOS
     from backlash_monitor.nodes.parameters import ParameterValueError
 
     from backlash_monitor.estimation import DEFAULT_MODE, default_signals
@@ -198,7 +211,7 @@ def run(args) -> int:
     try:
         monitor = rclpy.create_node("pipeline_monitor")
         nodes.append(monitor)
-        monitor.create_subscription(BacklashEstimate, "estimate", view.on_estimate, 100)
+        monitor.create_subscription(BacklashEstimate, "estimate", view.on_estimate, ESTIMATE_QOS)
         monitor.create_subscription(DiagnosticArray, "/diagnostics", view.on_diagnostics, 10)
         if args.record:
             from backlash_monitor.nodes.record import RecordNode
@@ -223,18 +236,20 @@ def run(args) -> int:
               f"{args.eta_k:g}, n1 {args.n1:g}, trigger {args.trigger}, "
               f"{'one process per node' if args.processes else 'one process'}; "
               f"{args.duration:g} simulated s at x{args.rate_factor:g}", flush=True)
-        wall_limit = args.duration / args.rate_factor + 30.0
+        stream_wall_s = args.duration / args.rate_factor
+        wall_limit = stream_wall_s + 30.0
         started = time.monotonic()
-        # 4 onsets per second; the last one's window ends 41 ms after it, plus the hops.
-        expected_onsets = int(args.duration * 4 - 1e-9)
         while rclpy.ok() and time.monotonic() - started < wall_limit:
             executor.spin_once(timeout_sec=0.05)
-            done = len(view.onset_entries)
-            if args.events and done >= args.events:
+            if args.events and view.completed_events >= args.events:
                 break
-            sim_time = (time.monotonic() - started) * args.rate_factor
-            if sim_time > args.duration + 1.0 and done >= expected_onsets - 1:
-                break
+            if view.first_arrival_s is not None:
+                # The stream started before the first estimate arrived, so it has ended by
+                # first arrival + its wall duration; then wait until the estimates stop coming.
+                now = time.monotonic()
+                if now > view.first_arrival_s + stream_wall_s + 1.0 \
+                        and now - view.last_arrival_s > 1.0:
+                    break
             for child in children:
                 if child.poll() not in (None, 0):
                     print(f"pipeline: a node exited with code {child.returncode}", file=sys.stderr)
@@ -256,6 +271,7 @@ def run(args) -> int:
         for node in nodes:
             node.destroy_node()
         rclpy.try_shutdown()
+    view.flush()
     print(view.summary(), flush=True)
     return 0 if view.tally else 1
 

@@ -14,7 +14,7 @@ import math
 import sys
 
 from rclpy.node import Node
-from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64
 
 from backlash_monitor.nodes.conversions import (from_float64_field, stamp_of_sample,
@@ -28,8 +28,11 @@ from backlash_monitor_msgs.msg import BacklashWindow, SignalChunk
 
 # Windows come in bursts when the stream runs faster than real time (a replay, a simulation):
 # 1000 windows (125 s of a drive's stream, 32 MB at most) may wait for a slow reader before the
-# oldest is dropped.
+# oldest is dropped. Transient local: a reader that matches late (a node started after the stream,
+# a slow discovery while several processes start) still gets the last 1000 windows instead of
+# losing the ones published before it matched.
 WINDOW_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE,
+                        durability=DurabilityPolicy.TRANSIENT_LOCAL,
                         history=HistoryPolicy.KEEP_LAST)
 
 PARAMETERS = (
