@@ -200,10 +200,18 @@ class Codec:
             raise CdrError(f"{self.type_name}: payload does not match the definition: {exc}") from None
         return msg
 
-    def _dec_signal_chunk_le(self, mv):
-        """Straight-line little-endian decoder of SignalChunk-shaped specs (header, 2 strings, float64,
-        uint64, float64[]): the same message as ``_dec`` (test_analyze_fast_decode.py checks it
-        field by field), about 6x faster. Raises on anything unusual; ``decode`` then falls back."""
+    @property
+    def is_signal_chunk(self) -> bool:
+        """True when the type has SignalChunk's layout: :meth:`signal_chunk_fields` applies."""
+        return self._fast is not None
+
+    def signal_chunk_fields(self, mv) -> tuple | None:
+        """(sec, nanosec, frame_id, signal_name, unit, sample_period_s, first_sample_index,
+        samples) of a SignalChunk-shaped little-endian payload, without message objects (the
+        fields ``decode`` puts into the message); None when the payload is not plain
+        little-endian CDR. Raises on a malformed payload (``decode`` then names the problem)."""
+        if len(mv) < 4 or mv[0] != 0 or mv[1] != 1:
+            return None
         size = len(mv)
         sec, nanosec = _TIME_LE.unpack_from(mv, 4)
         frame_id, pos = _dec_string(mv, 12, "<")
@@ -222,6 +230,14 @@ class Codec:
             samples = np.frombuffer(mv[pos:end], dtype=_F64_LE).copy()
         else:
             samples = np.zeros(0, dtype=_F64_LE)
+        return sec, nanosec, frame_id, signal_name, unit, period, first, samples
+
+    def _dec_signal_chunk_le(self, mv):
+        """Straight-line little-endian decoder of SignalChunk-shaped specs (header, 2 strings, float64,
+        uint64, float64[]): the same message as ``_dec`` (test_analyze_fast_decode.py checks it
+        field by field), about 6x faster. Raises on anything unusual; ``decode`` then falls back."""
+        sec, nanosec, frame_id, signal_name, unit, period, first, samples = \
+            self.signal_chunk_fields(mv)
         # the generated classes have no __init__ logic beyond setting every slot: set them directly
         header_cls, time_cls, msg_cls = self._fast_classes
         stamp = time_cls.__new__(time_cls)

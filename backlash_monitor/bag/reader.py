@@ -20,6 +20,7 @@ from collections import deque
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -55,6 +56,25 @@ class BagMessage:
     sequence: int
     data: bytes                      # the CDR payload
     message: RosMessage | None = None  # decoded (None with decode=False)
+
+
+class Stamp(NamedTuple):
+    """A header stamp (builtin_interfaces/Time's fields)."""
+    sec: int
+    nanosec: int
+
+
+class SignalChunkRecord(NamedTuple):
+    """One SignalChunk message as ``BagReader.signal_chunks`` yields it (no message objects)."""
+    topic: str
+    log_time_ns: int
+    first_sample_index: int
+    sample_period_s: float
+    samples: np.ndarray              # float64, the message's own copy
+    stamp: Stamp                     # header.stamp
+    frame_id: str                    # header.frame_id
+    signal_name: str
+    unit: str
 
 
 @dataclass
@@ -467,26 +487,72 @@ class BagReader:
         return codec
 
     # ------------------------------------------------------------------ messages
-    def messages(self, topics: Iterable[str] | str | None = None, *, decode: bool = True,
-                 start_ns: int | None = None, end_ns: int | None = None) -> Iterator[BagMessage]:
-        """Messages in file order (= receive order for our recorder), optionally filtered."""
+    def _channel_ids(self, topics: Iterable[str] | str | None) -> set[int]:
         if isinstance(topics, str):
             topics = [topics]
         by_topic = {t.name: t.channel_id for t in self.topics.values()}
         if topics is None:
-            wanted = set(self.channels)
-        else:
-            wanted = set()
-            for t in topics:
-                if t not in by_topic:
-                    raise MissingTopicError(t, by_topic)
-                wanted.add(by_topic[t])
+            return set(self.channels)
+        wanted = set()
+        for t in topics:
+            if t not in by_topic:
+                raise MissingTopicError(t, by_topic)
+            wanted.add(by_topic[t])
+        return wanted
+
+    def messages(self, topics: Iterable[str] | str | None = None, *, decode: bool = True,
+                 start_ns: int | None = None, end_ns: int | None = None) -> Iterator[BagMessage]:
+        """Messages in file order (= receive order for our recorder), optionally filtered."""
+        wanted = self._channel_ids(topics)
         codecs = {}
         if decode:
             for cid in wanted:
                 codecs[cid] = self.codec(self.channels[cid][0])
         names = {cid: self.channels[cid][0] for cid in self.channels}
-        records = []   # (op, body) of the wanted records, in file order
+        for cid, seq, log_time, pub, body in self._wanted_messages(wanted, start_ns, end_ns):
+            data = bytes(body[MESSAGE_HEAD.size:])
+            codec = codecs.get(cid)
+            yield BagMessage(names[cid], log_time, pub, seq, data,
+                             codec.decode(data) if codec is not None else None)
+
+    def signal_chunks(self, topics: Iterable[str] | str) -> Iterator[SignalChunkRecord]:
+        """The SignalChunk messages of ``topics`` in file order, as flat :class:`SignalChunkRecord`
+        tuples: the fields ``messages`` decodes (the same values, samples a fresh float64 array),
+        without building message objects -- the offline analysis reads its millions of samples
+        this way. A payload the SignalChunk fast path does not take (big endian) goes through
+        the generic decoder; a malformed one raises its CdrError."""
+        wanted = self._channel_ids(topics)
+        infos = {t.channel_id: t for t in self.topics.values()}
+        codecs = {}
+        for cid in wanted:
+            if not infos[cid].type.endswith("/SignalChunk"):
+                raise BagError(f"topic {infos[cid].name!r} has type {infos[cid].type}, "
+                               "not SignalChunk")
+            codecs[cid] = self.codec(infos[cid].name)
+        names = {cid: self.channels[cid][0] for cid in self.channels}
+        head = MESSAGE_HEAD.size
+        for cid, _seq, log_time, _pub, body in self._wanted_messages(wanted, None, None):
+            codec = codecs[cid]
+            fields = None
+            if codec.is_signal_chunk:
+                try:
+                    fields = codec.signal_chunk_fields(body[head:])
+                except Exception:  # noqa: BLE001 - malformed: the generic decoder names it
+                    fields = None
+            if fields is None:
+                msg = codec.decode(bytes(body[head:]))
+                stamp = msg.header.stamp
+                fields = (stamp.sec, stamp.nanosec, msg.header.frame_id, msg.signal_name,
+                          msg.unit, msg.sample_period_s, msg.first_sample_index, msg.samples)
+            sec, nanosec, frame_id, signal_name, unit, period, first, samples = fields
+            yield SignalChunkRecord(names[cid], log_time, first, period, samples,
+                                    Stamp(sec, nanosec), frame_id, signal_name, unit)
+
+    def _wanted_messages(self, wanted: set[int], start_ns: int | None, end_ns: int | None):
+        """(channel_id, sequence, log_time_ns, publish_time_ns, record body) of the messages on
+        the ``wanted`` channels (log time within the range), in file order. Chunks are
+        decompressed ahead in a worker thread (``_prefetch``)."""
+        records = []   # (op, body) of the records to read, in file order
         for op, pos, body in self._iter_records(self._data_start, self._data_end):
             if op == OP_CHUNK:
                 if pos in self._corrupt:
@@ -505,6 +571,7 @@ class BagReader:
                 records.append((op, body))
         chunks = [body for op, body in records if op == OP_CHUNK]
         decompressed = _prefetch(self._decompress, chunks, CHUNKS_AHEAD)
+        unpack = MESSAGE_HEAD.unpack_from
         try:
             for op, body in records:
                 if op == OP_CHUNK:
@@ -514,29 +581,20 @@ class BagReader:
                         if self.recover:
                             continue
                         raise
-                    for rop, _rpos, rbody in _iter_plain(chunk_records):
-                        if rop == OP_MESSAGE:
-                            m = self._message(rbody, wanted, names, codecs, start_ns, end_ns)
-                            if m is not None:
-                                yield m
+                    bodies = (rbody for rop, _rpos, rbody in _iter_plain(chunk_records)
+                              if rop == OP_MESSAGE)
                 else:
-                    m = self._message(body, wanted, names, codecs, start_ns, end_ns)
-                    if m is not None:
-                        yield m
+                    bodies = (body,)
+                for rbody in bodies:
+                    cid, seq, log_time, pub = unpack(rbody, 0)
+                    if cid not in wanted:
+                        continue
+                    if (start_ns is not None and log_time < start_ns) or (
+                            end_ns is not None and log_time > end_ns):
+                        continue
+                    yield cid, seq, log_time, pub, rbody
         finally:
             decompressed.close()   # waits for a chunk still being decompressed (the map stays valid)
-
-    @staticmethod
-    def _message(body, wanted, names, codecs, start_ns, end_ns) -> BagMessage | None:
-        cid, seq, log_time, pub = MESSAGE_HEAD.unpack_from(body, 0)
-        if cid not in wanted:
-            return None
-        if (start_ns is not None and log_time < start_ns) or (end_ns is not None and log_time > end_ns):
-            return None
-        data = bytes(body[MESSAGE_HEAD.size:])
-        codec = codecs.get(cid)
-        return BagMessage(names[cid], log_time, pub, seq, data,
-                          codec.decode(data) if codec is not None else None)
 
     def read_signal(self, topic: str) -> SignalSeries:
         """Concatenate a SignalChunk topic. Chunks are ordered by first_sample_index; a missing

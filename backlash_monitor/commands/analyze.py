@@ -121,14 +121,12 @@ def run(args) -> int:
             # contiguous ranges go to the stage in blocks: the same windows as range by range
             feeder = BlockFeeder(stage)
             batch = []   # onset windows, denoised and estimated together (same numbers as one by one)
-            for m in _then_none(reader.messages(list(topics))):
+            for m in _then_none(reader.signal_chunks(list(topics))):
                 if m is None:
                     joined = None
                 else:
-                    chunk = m.message
-                    joined = joiner.add(topics[m.topic], int(chunk.first_sample_index),
-                                        float(chunk.sample_period_s), chunk.samples,
-                                        chunk.header.stamp, chunk.header.frame_id)
+                    joined = joiner.add(topics[m.topic], int(m.first_sample_index),
+                                        float(m.sample_period_s), m.samples, m.stamp, m.frame_id)
                     if joined is None:
                         continue
                     n_samples += len(joined.arrays["a1"])

@@ -1,0 +1,73 @@
+"""BagReader.signal_chunks (what analyze reads) yields, message for message, the fields that
+BagReader.messages decodes into SignalChunk messages: the same values, samples a fresh
+float64 array; big-endian payloads go through the generic decoder, malformed ones raise."""
+import struct
+
+import numpy as np
+import pytest
+
+from backlash_monitor.bag import SIGNAL_CHUNK, BagError, BagReader, BagWriter, CdrError, Codec
+
+from bag_helpers import write_sample_bag
+
+SIGNALS = ("/plant/a1", "/plant/a2", "/plant/angle_difference")
+
+
+def fields_of(m):
+    c = m.message
+    return (m.topic, m.log_time_ns, c.first_sample_index, c.sample_period_s, c.samples.tobytes(),
+            (c.header.stamp.sec, c.header.stamp.nanosec), c.header.frame_id, c.signal_name, c.unit)
+
+
+def fields_of_record(r):
+    return (r.topic, r.log_time_ns, r.first_sample_index, r.sample_period_s, r.samples.tobytes(),
+            (r.stamp.sec, r.stamp.nanosec), r.frame_id, r.signal_name, r.unit)
+
+
+@pytest.mark.parametrize("compression", ["zstd", "lz4", ""])
+def test_same_fields_as_decoded_messages(tmp_path, compression):
+    path = tmp_path / "b.mcap"
+    write_sample_bag(path, n_chunks=30, compression=compression)
+    with BagReader(path) as bag:
+        records = list(bag.signal_chunks(SIGNALS))
+        assert [fields_of_record(r) for r in records] == [fields_of(m) for m in bag.messages(SIGNALS)]
+        assert len(records) == 90
+        for r in records:
+            assert r.samples.dtype == np.float64 and r.samples.flags.writeable
+            assert r.samples.flags.owndata
+            assert type(r.first_sample_index) is int and type(r.sample_period_s) is float
+        with pytest.raises(BagError):
+            next(bag.signal_chunks(["/estimate"]))
+        with pytest.raises(BagError):
+            next(bag.signal_chunks(["/no/such/topic"]))
+
+
+def big_endian_chunk(first: int) -> bytes:
+    be = bytearray(b"\x00\x00\x00\x00")
+    be += struct.pack(">iI", 1, 2) + struct.pack(">I", 1) + b"\x00"
+    be += b"\x00" * 3 + struct.pack(">I", 3) + b"a1\x00"
+    be += b"\x00" + struct.pack(">I", 2) + b"u\x00"
+    be += b"\x00" * ((-(len(be) - 4)) & 7) + struct.pack(">dQ", 2e-5, first)
+    be += struct.pack(">I", 4) + b"\x00" * 4 + np.arange(4.0).astype(">f8").tobytes()
+    return bytes(be)
+
+
+def test_big_endian_and_malformed_payloads(tmp_path):
+    path = tmp_path / "be.mcap"
+    codec = Codec.for_type(SIGNAL_CHUNK)
+    good = codec.encode(codec.new(signal_name="a1", unit="u", sample_period_s=2e-5,
+                                  first_sample_index=0, samples=np.arange(3.0)))
+    with BagWriter(path) as w:
+        w.add_topic("/plant/a1", SIGNAL_CHUNK)
+        w.write_raw("/plant/a1", good, log_time_ns=1)
+        w.write_raw("/plant/a1", big_endian_chunk(3), log_time_ns=2)
+        w.write_raw("/plant/a1", good[:30], log_time_ns=3)
+    with BagReader(path) as bag:
+        it = bag.signal_chunks("/plant/a1")
+        first, second = next(it), next(it)
+        assert first.samples.tolist() == [0.0, 1.0, 2.0]
+        assert second.first_sample_index == 3 and second.samples.tolist() == [0.0, 1.0, 2.0, 3.0]
+        assert second.stamp == (1, 2) and second.signal_name == "a1" and second.unit == "u"
+        assert second.samples.dtype == np.dtype("<f8")
+        with pytest.raises(CdrError):
+            next(it)
