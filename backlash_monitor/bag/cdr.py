@@ -205,11 +205,13 @@ class Codec:
         """True when the type has SignalChunk's layout: :meth:`signal_chunk_fields` applies."""
         return self._fast is not None
 
-    def signal_chunk_fields(self, mv) -> tuple | None:
+    def signal_chunk_fields(self, mv, copy: bool = True) -> tuple | None:
         """(sec, nanosec, frame_id, signal_name, unit, sample_period_s, first_sample_index,
         samples) of a SignalChunk-shaped little-endian payload, without message objects (the
         fields ``decode`` puts into the message); None when the payload is not plain
-        little-endian CDR. Raises on a malformed payload (``decode`` then names the problem)."""
+        little-endian CDR. Raises on a malformed payload (``decode`` then names the problem).
+        ``copy=False``: samples is a view of ``mv``'s buffer (no allocation; it keeps the
+        buffer alive and is read-only when the buffer is)."""
         if len(mv) < 4 or mv[0] != 0 or mv[1] != 1:
             return None
         size = len(mv)
@@ -227,7 +229,9 @@ class Codec:
             end = pos + 8 * n
             if end > size:
                 raise CdrError("samples run past the end")
-            samples = np.frombuffer(mv[pos:end], dtype=_F64_LE).copy()
+            samples = np.frombuffer(mv[pos:end], dtype=_F64_LE)
+            if copy:
+                samples = samples.copy()
         else:
             samples = np.zeros(0, dtype=_F64_LE)
         return sec, nanosec, frame_id, signal_name, unit, period, first, samples

@@ -70,7 +70,7 @@ class SignalChunkRecord(NamedTuple):
     log_time_ns: int
     first_sample_index: int
     sample_period_s: float
-    samples: np.ndarray              # float64, the message's own copy
+    samples: np.ndarray              # float64 (read-only view of a decompressed chunk, or a copy)
     stamp: Stamp                     # header.stamp
     frame_id: str                    # header.frame_id
     signal_name: str
@@ -517,10 +517,13 @@ class BagReader:
 
     def signal_chunks(self, topics: Iterable[str] | str) -> Iterator[SignalChunkRecord]:
         """The SignalChunk messages of ``topics`` in file order, as flat :class:`SignalChunkRecord`
-        tuples: the fields ``messages`` decodes (the same values, samples a fresh float64 array),
-        without building message objects -- the offline analysis reads its millions of samples
-        this way. A payload the SignalChunk fast path does not take (big endian) goes through
-        the generic decoder; a malformed one raises its CdrError."""
+        tuples: the fields ``messages`` decodes (the same values), without building message
+        objects -- the offline analysis reads its millions of samples this way. ``samples`` of a
+        message in a compressed chunk is a read-only view of the decompressed chunk (no
+        allocation per message: fresh memory costs a page fault per 4 KiB); elsewhere (an
+        uncompressed chunk, a message outside chunks: views of the file's map) it is a copy.
+        A payload the SignalChunk fast path does not take (big endian) goes through the generic
+        decoder; a malformed one raises its CdrError."""
         wanted = self._channel_ids(topics)
         infos = {t.channel_id: t for t in self.topics.values()}
         codecs = {}
@@ -536,7 +539,8 @@ class BagReader:
             fields = None
             if codec.is_signal_chunk:
                 try:
-                    fields = codec.signal_chunk_fields(body[head:])
+                    fields = codec.signal_chunk_fields(body[head:],
+                                                       copy=not isinstance(body.obj, bytes))
                 except Exception:  # noqa: BLE001 - malformed: the generic decoder names it
                     fields = None
             if fields is None:
