@@ -75,3 +75,23 @@ def test_big_endian_and_malformed_payloads(tmp_path):
         assert second.samples.dtype == np.dtype("<f8")
         with pytest.raises(CdrError):
             next(it)
+
+
+def test_strings_changing_within_a_topic(tmp_path):
+    """The per-topic string cache is only a shortcut: changed strings are parsed again."""
+    path = tmp_path / "s.mcap"
+    codec = Codec.for_type(SIGNAL_CHUNK)
+    names = [("drive", "a1", "m/s^2"), ("drive", "a1", "m/s^2"), ("drivf", "a1", "m/s^2"),
+             ("drive7", "a1", "m/s^2"), ("drive", "a1", "m/s"), ("", "", ""), ("drive", "a1", "m/s^2")]
+    with BagWriter(path) as w:
+        w.add_topic("/plant/a1", SIGNAL_CHUNK)
+        for i, (frame_id, name, unit) in enumerate(names):
+            msg = codec.new(signal_name=name, unit=unit, sample_period_s=2e-5,
+                            first_sample_index=i * 3, samples=np.arange(3.0) + i)
+            msg.header.frame_id = frame_id
+            msg.header.stamp.sec = i
+            w.write("/plant/a1", msg, log_time_ns=i + 1)
+    with BagReader(path) as bag:
+        got = [fields_of_record(r) for r in bag.signal_chunks(["/plant/a1"])]
+        assert got == [fields_of(m) for m in bag.messages(["/plant/a1"])]
+    assert [(g[6], g[7], g[8]) for g in got] == names

@@ -208,20 +208,29 @@ class Codec:
         """True when the type has SignalChunk's layout: :meth:`signal_chunk_fields` applies."""
         return self._fast is not None
 
-    def signal_chunk_fields(self, mv, copy: bool = True) -> tuple | None:
+    def signal_chunk_fields(self, mv, copy: bool = True, strings: list | None = None) -> tuple | None:
         """(sec, nanosec, frame_id, signal_name, unit, sample_period_s, first_sample_index,
         samples) of a SignalChunk-shaped little-endian payload, without message objects (the
         fields ``decode`` puts into the message); None when the payload is not plain
         little-endian CDR. Raises on a malformed payload (``decode`` then names the problem).
         ``copy=False``: samples is a view of ``mv``'s buffer (no allocation; it keeps the
-        buffer alive and is read-only when the buffer is)."""
+        buffer alive and is read-only when the buffer is).
+        ``strings``: a one-item list kept by the caller per topic; it remembers the last
+        payload's string section (frame_id, signal_name, unit: the same in every message of a
+        topic) and a payload whose section has the same bytes reuses its strings unparsed."""
         if len(mv) < 4 or mv[0] != 0 or mv[1] != 1:
             return None
         size = len(mv)
         sec, nanosec = _TIME_LE.unpack_from(mv, 4)
-        frame_id, pos = _dec_string(mv, 12, "<")
-        signal_name, pos = _dec_string(mv, pos, "<")
-        unit, pos = _dec_string(mv, pos, "<")
+        known = strings[0] if strings is not None else None
+        if known is not None and mv[12:known[4]] == known[0]:
+            _raw, frame_id, signal_name, unit, pos = known
+        else:
+            frame_id, pos = _dec_string(mv, 12, "<")
+            signal_name, pos = _dec_string(mv, pos, "<")
+            unit, pos = _dec_string(mv, pos, "<")
+            if strings is not None:
+                strings[0] = (bytes(mv[12:pos]), frame_id, signal_name, unit, pos)
         pos += (-(pos - 4)) & 7
         period, first = _F64_U64_LE.unpack_from(mv, pos)
         pos += 16

@@ -533,6 +533,7 @@ class BagReader:
                                "not SignalChunk")
             codecs[cid] = self.codec(infos[cid].name)
         names = {cid: self.channels[cid][0] for cid in self.channels}
+        strings = {cid: [None] for cid in wanted}   # each topic's last string section
         head = MESSAGE_HEAD.size
         for cid, _seq, log_time, _pub, body in self._wanted_messages(wanted, None, None):
             codec = codecs[cid]
@@ -540,7 +541,8 @@ class BagReader:
             if codec.is_signal_chunk:
                 try:
                     fields = codec.signal_chunk_fields(body[head:],
-                                                       copy=not isinstance(body.obj, bytes))
+                                                       copy=not isinstance(body.obj, bytes),
+                                                       strings=strings[cid])
                 except Exception:  # noqa: BLE001 - malformed: the generic decoder names it
                     fields = None
             if fields is None:
