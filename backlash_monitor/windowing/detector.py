@@ -18,6 +18,7 @@ from .config import (ANGLE_SOURCES, DEFAULTS, INTEGRATION_RULES, KIND_ONSET, KIN
 __all__ = ["BacklashEntry", "BacklashEntryDetector", "fit_departure", "integrate_relative_speed"]
 
 _BLOCK = 4096          # samples searched per step of the state machine
+_FIRST_SETTLE_BLOCK = 256   # first block of the settle search (then x4 up to _BLOCK): same result
 _UNARMED, _ARMED, _TRAVERSE = 0, 1, 2
 _DRIFT_BASELINE_S = 10.0   # s between the offsets that give the drift rate of integrated angles
 _APEX_LAG = 50          # samples (1 ms): lag of the speed sign test that finds the end of a traverse
@@ -77,32 +78,31 @@ def fit_departure(y: np.ndarray, direction: int, min_pre: int = 16, min_post: in
     if n < min_pre + min_post + 3:
         return 0
     y = y - y[0]
-    g = _departure_terms(n)
-    k, t = g.k, g.k
+    lo, hi = min_pre, n - min_post             # candidate departures t in [lo, hi)
+    g = _departure_terms(n, lo, hi)
+    k = g.k
     yk = y * k
-    rc = lambda v: np.cumsum(v[::-1])[::-1]  # noqa: E731  sum over k >= t
+    rc = lambda v: np.cumsum(v[::-1])[::-1][lo:hi]  # noqa: E731  sum over k >= t, for the candidates
     a0, a1, a2 = rc(y), rc(yk), rc(yk * k)
     # regressors 1, k (fixed) and q = (k - t)^2 for k >= t.  Project 1, k out (Frisch-Waugh):
     # r_qq = q'q - (X'q)' G^-1 X'q, r_yq = y'q - (X'q)' G^-1 X'y, a = r_yq / r_qq, SSE = SSE_lin - r_yq^2/r_qq
     xy = np.array([y.sum(), np.dot(k, y)])
     gy = g.ginv @ xy
     r_yq = (a2 - g.two_t * a1 + g.t_sq * a0) - (g.xq0 * gy[0] + g.xq1 * gy[1])
-    lo, hi = min_pre, n - min_post
     with np.errstate(all="ignore"):
         acc = r_yq / g.r_qq
         gain = r_yq * acc                       # SSE reduction over the straight-line fit
-    valid = np.zeros(n, dtype=bool)
-    valid[lo:hi] = True
-    valid &= np.isfinite(gain) & (acc * direction > 0) & g.r_qq_positive
+    valid = np.isfinite(gain) & ((acc > 0) if direction > 0 else (acc < 0)) & g.r_qq_positive
     if not valid.any():
         return 0
-    return int(np.argmax(np.where(valid, gain, -np.inf)))
+    return lo + int(np.argmax(np.where(valid, gain, -np.inf)))
 
 
 @dataclass(frozen=True)
 class _DepartureTerms:
-    """The parts of fit_departure's least squares that depend only on the length n (not on y)."""
-    k: np.ndarray             # 0..n-1 (sample index, also the candidate departure t)
+    """The parts of fit_departure's least squares that depend only on the length n (not on y);
+    all but k and ginv for the candidate departures t in [lo, hi) only."""
+    k: np.ndarray             # 0..n-1 (sample index)
     two_t: np.ndarray         # 2 t
     t_sq: np.ndarray          # t^2
     xq0: np.ndarray           # sum over k >= t of q = (k - t)^2
@@ -112,14 +112,16 @@ class _DepartureTerms:
     r_qq_positive: np.ndarray
 
 
-_DEPARTURE_TERMS: dict[int, _DepartureTerms] = {}
+_DEPARTURE_TERMS: dict[tuple[int, int, int], _DepartureTerms] = {}
 
 
-def _departure_terms(n: int) -> _DepartureTerms:
+def _departure_terms(n: int, lo: int, hi: int) -> _DepartureTerms:
     """fit_departure's y-independent terms for length n, computed once per n (the detector always
     fits fit_samples samples, a few other lengths near a segment start) -- by the same operations
-    as inline, so the fit is bit for bit the same."""
-    terms = _DEPARTURE_TERMS.get(n)
+    as inline, so the fit is bit for bit the same (elementwise: the candidates' values do not
+    depend on the others)."""
+    key = (n, lo, hi)
+    terms = _DEPARTURE_TERMS.get(key)
     if terms is not None:
         return terms
     k = np.arange(n, dtype=np.float64)
@@ -132,12 +134,15 @@ def _departure_terms(n: int) -> _DepartureTerms:
     ginv = np.linalg.inv(np.array([[n, sk], [sk, skk]]))
     xq0, xq1 = s2, s3 + t * s2                 # X'q = (sum q, sum k q)
     r_qq = s4 - (ginv[0, 0] * xq0 * xq0 + 2 * ginv[0, 1] * xq0 * xq1 + ginv[1, 1] * xq1 * xq1)
-    for a in (k, xq0, xq1, ginv, r_qq):
+    c = slice(lo, hi)
+    arrays = [k, (2.0 * t)[c], (t * t)[c], xq0[c].copy(), xq1[c].copy(), ginv, r_qq[c].copy(),
+              (r_qq > 0)[c]]
+    for a in arrays:
         a.flags.writeable = False
-    terms = _DepartureTerms(k, 2.0 * t, t * t, xq0, xq1, ginv, r_qq, r_qq > 0)
+    terms = _DepartureTerms(*arrays)
     if len(_DEPARTURE_TERMS) >= 64:           # lengths other than fit_samples are rare: bound it
         _DEPARTURE_TERMS.clear()
-    _DEPARTURE_TERMS[n] = terms
+    _DEPARTURE_TERMS[key] = terms
     return terms
 
 
@@ -369,8 +374,10 @@ class BacklashEntryDetector:
             w = 4 * w
         start = max(start, self._seg_start + w - 1)
         i = start
+        block = _FIRST_SETTLE_BLOCK      # the contact usually settles soon: small blocks first
         while i < end:
-            j = min(end, i + _BLOCK)
+            j = min(end, i + block)
+            block = min(4 * block, _BLOCK)
             lo = i - w + 1 - base
             seg = buf[lo:j - base]
             org = (w - 1) // 2
