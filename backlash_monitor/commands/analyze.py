@@ -68,11 +68,13 @@ def _find_topic(available, namespace, name):
 
 def run(args) -> int:
     from backlash_monitor.commands import UsageError
+    from backlash_monitor.commands._memory import reuse_freed_memory
     from backlash_monitor.bag import BagError, BagReader, BagWriter
     from backlash_monitor.chain import BlockFeeder, ChunkJoiner, WindowingStage, denoise_pairs
     from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
     from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator
 
+    reuse_freed_memory()   # no page fault per freed-and-reallocated array (commands/_memory.py)
     bag_path = pathlib.Path(args.bag)
     if not bag_path.is_file():
         raise UsageError(f"bag {bag_path} does not exist; give the path of an .mcap file")
