@@ -28,10 +28,10 @@ configure_fast_dds()  # as every node of the project does, before rclpy.init
 import rclpy  # noqa: E402
 from ament_index_python.packages import get_package_prefix  # noqa: E402
 from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
-from rclpy.executors import SingleThreadedExecutor  # noqa: E402
 from rclpy.parameter import Parameter  # noqa: E402
 
 from backlash_monitor.nodes.classifier import ESTIMATE_QOS  # noqa: E402
+from backlash_monitor.nodes.lean_executor import make_executor  # noqa: E402
 from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode  # noqa: E402
 from backlash_monitor.windowing import default_window_offset  # noqa: E402
 from backlash_monitor_msgs.msg import BacklashEstimate  # noqa: E402
@@ -105,7 +105,7 @@ def run_graph(duration_s, rate_factor, chunk=None):
             published[first] = time.time()
 
         plant.publish_chunk = publish_chunk
-        executor = SingleThreadedExecutor()
+        executor = make_executor()   # as the project's nodes and the pipeline spin
         executor.add_node(plant)
         executor.add_node(monitor)
         started = time.time()
@@ -125,6 +125,7 @@ def run_graph(duration_s, rate_factor, chunk=None):
             last_chunk = last_sample // chunk * chunk
             if last_chunk in published:
                 latencies.append(t_recv - published[last_chunk])
+        executor.shutdown()
         for node in (plant, monitor, probe):
             node.destroy_node()
         return latencies, wall, len(received), discarded[0], expected

@@ -192,7 +192,7 @@ def _executable(name: str) -> str:
 def run(args) -> int:
     validate(args)
     import rclpy
-    from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+    from rclpy.executors import ExternalShutdownException
     from rclpy.parameter import Parameter
     from diagnostic_msgs.msg import DiagnosticArray
     from backlash_monitor_msgs.msg import BacklashEstimate
@@ -201,6 +201,7 @@ def run(args) -> int:
 
     from backlash_monitor.estimation import DEFAULT_MODE, default_signals
     from backlash_monitor.nodes.fast_dds import configure_fast_dds
+    from backlash_monitor.nodes.lean_executor import make_executor
     configure_fast_dds()  # before rclpy.init; the child processes inherit it
     from backlash_monitor.commands._node_options import ros_parameter_args
     params = node_parameters(args)
@@ -208,6 +209,7 @@ def run(args) -> int:
     children: list[subprocess.Popen] = []
     rclpy.init()
     nodes = []
+    executor = None
     try:
         monitor = rclpy.create_node("pipeline_monitor")
         nodes.append(monitor)
@@ -229,7 +231,7 @@ def run(args) -> int:
                               (WindowingNode, "windowing"), (PlantSimulatorNode, "plant_simulator")):
                 nodes.append(cls(parameter_overrides=[Parameter(k, value=v)
                                                       for k, v in params[name].items()]))
-        executor = SingleThreadedExecutor()
+        executor = make_executor()
         for node in nodes:
             executor.add_node(node)
         print(f"pipeline: {args.drive_name}, true width {args.width_m * 1e3:g} mm, eta_k "
@@ -268,6 +270,8 @@ def run(args) -> int:
                 child.wait(timeout=10)
             except subprocess.TimeoutExpired:
                 child.kill()
+        if executor is not None:
+            executor.shutdown()
         for node in nodes:
             node.destroy_node()
         rclpy.try_shutdown()

@@ -208,11 +208,9 @@ class RecordNode(Node):
             return super().destroy_node()
 
 
-def _spin(node: RecordNode) -> None:
-    import rclpy
-
+def _spin(node: RecordNode, executor) -> None:
     try:
-        rclpy.spin(node)
+        executor.spin()
     except SystemExit:
         pass
     finally:

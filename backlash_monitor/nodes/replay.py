@@ -198,8 +198,8 @@ class ReplayNode(Node):
             return super().destroy_node()
 
 
-def _spin(node: ReplayNode) -> None:
-    node.play()
+def _spin(node: ReplayNode, executor) -> None:
+    node.play()   # publishes on the bag's clock; it has no subscriptions or timers to spin
 
 
 def main(args=None) -> int:
