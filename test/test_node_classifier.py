@@ -93,3 +93,40 @@ def test_bad_parameters_stop_the_node_with_a_clear_line(ros_env, override, named
     assert proc.returncode == 2
     assert named in proc.stderr or "pattern library" in proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+def test_windows_sent_again_are_not_fused_twice(ros_env):
+    """A restarted upstream node re-sends the transient-local history: the classifier skips the
+    windows it has already classified, so the fused estimate counts each event once."""
+    os.environ["ROS_DOMAIN_ID"] = ros_env["ROS_DOMAIN_ID"]
+    windows = _onset_windows(0.005, seconds=1.5)
+    assert len(windows) >= 4
+    rclpy.init()
+    try:
+        node = ClassifierNode()
+        probe = rclpy.create_node("probe")
+        estimates = []
+        probe.create_subscription(BacklashEstimate, "estimate", estimates.append, ESTIMATE_QOS)
+        pub = probe.create_publisher(BacklashWindow, "windows/denoised", WINDOW_QOS)
+        executor = rclpy.executors.SingleThreadedExecutor()
+        executor.add_node(node)
+        executor.add_node(probe)
+        for _ in range(100):
+            executor.spin_once(timeout_sec=0.05)
+            if pub.get_subscription_count():
+                break
+        messages = [_message(window, 0.005) for window in windows]
+        for msg in messages + messages:          # the history arrives a second time
+            pub.publish(msg)
+        expected = len(windows) * len(node.estimator.signals)
+        for _ in range(100):
+            executor.spin_once(timeout_sec=0.05)
+            if node.repeated.repeats == len(windows) and len(estimates) >= expected:
+                break
+        for _ in range(10):                      # anything more would arrive now
+            executor.spin_once(timeout_sec=0.05)
+    finally:
+        rclpy.try_shutdown()
+    assert len(estimates) == expected
+    assert node.repeated.repeats == len(windows)
+    assert estimates[-1].fused_events == len(windows)

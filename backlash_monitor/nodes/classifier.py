@@ -23,6 +23,7 @@ from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate, run_node)
 from backlash_monitor.nodes.windowing import WINDOW_QOS
+from backlash_monitor.window_repeats import RepeatedWindows
 from backlash_monitor.windowing import default_window_offset
 from backlash_monitor_msgs.msg import BacklashEstimate, BacklashWindow
 
@@ -79,6 +80,7 @@ class ClassifierNode(Node):
         self.create_subscription(BacklashWindow, "windows/denoised", self.on_window, WINDOW_QOS)
         self.diagnostics = DriveDiagnostics(self, "backlash width", p["drive_name"])
         self.classified = 0
+        self.repeated = RepeatedWindows()
         self.get_logger().info(f"mode {p['mode']}, signals {', '.join(self.estimator.signals)}, "
                                f"library {library.path}")
 
@@ -87,6 +89,14 @@ class ClassifierNode(Node):
             self.get_logger().warning(f"window at sample {msg.entry_sample_index} is not denoised; "
                                       "classifying raw windows against denoised patterns is wrong: "
                                       "skipped", throttle_duration_sec=10.0)
+            return
+        stamp_ns = msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
+        if self.repeated.is_repeat(stamp_ns, msg.entry_sample_index, msg.entry_kind,
+                                   msg.header.frame_id):
+            # Re-sent history (an upstream node restarted): fusing it again would count the
+            # event twice.
+            self.get_logger().info(f"window at sample {msg.entry_sample_index} arrived again: "
+                                   "skipped", throttle_duration_sec=10.0)
             return
         try:
             estimates = self.estimator.estimate(from_float64_field(msg.a1),
@@ -132,6 +142,7 @@ class ClassifierNode(Node):
             continuous_width_m="" if math.isnan(estimate.continuous_width_m)
             else f"{estimate.continuous_width_m:.5f}",
             signal=estimate.signal_name, mode=estimate.mode, windows_classified=self.classified,
+            repeated_windows_skipped=self.repeated.repeats,
             warn_width_m=p["warn_width_m"], error_width_m=p["error_width_m"])
 
 
