@@ -224,7 +224,9 @@ def _print_summary(summary, rows, discarded, n_samples, elapsed, out_prefix):
 
 def _write_estimate_bag(path, estimates_msgs, true_width):
     from backlash_monitor.bag import BACKLASH_ESTIMATE, BagWriter
-    with BagWriter(path) as writer:
+    # written in one go at the end: chunks by size only (the 0.5 s chunk span of a live recording
+    # bounds what a killed recorder loses; here it would only make one chunk per 0.5 s)
+    with BagWriter(path, chunk_duration_s=None) as writer:
         writer.add_topic("/estimate", BACKLASH_ESTIMATE)
         for joined, window, est in estimates_msgs:
             stamp_ns = int(round(window.entry_sample_index * window.sample_period_s * 1e9))

@@ -360,8 +360,10 @@ class BacklashEntryDetector:
         lam = self._alpha()
         e0 = self._trk[0]
         ema = lfilter([lam], [1.0, lam - 1.0], seg, zi=[(1.0 - lam) * e0])[0]
-        prev = np.concatenate(([e0], ema[:-1]))
-        return seg - prev, (float(ema[-1]), 0.0)
+        dev = np.empty_like(seg)
+        dev[:1] = seg[:1] - e0
+        np.subtract(seg[1:], ema[:-1], out=dev[1:])
+        return dev, (float(ema[-1]), 0.0)
 
     def _find_settled(self, buf: np.ndarray, base: int, start: int, end: int) -> int:
         """First absolute index i in [start, end) whose last settle_samples samples (all inside the
