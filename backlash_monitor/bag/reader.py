@@ -533,19 +533,20 @@ class BagReader:
                                "not SignalChunk")
             codecs[cid] = self.codec(infos[cid].name)
         names = {cid: self.channels[cid][0] for cid in self.channels}
-        strings = {cid: [None] for cid in wanted}   # each topic's last string section
+        # per topic: (fast field parser or None, its last string section)
+        fast = {cid: (codecs[cid].signal_chunk_fields if codecs[cid].is_signal_chunk else None,
+                      [None]) for cid in wanted}
         head = MESSAGE_HEAD.size
         for cid, _seq, log_time, _pub, body in self._wanted_messages(wanted, None, None):
-            codec = codecs[cid]
+            parse, strings = fast[cid]
             fields = None
-            if codec.is_signal_chunk:
+            if parse is not None:
                 try:
-                    fields = codec.signal_chunk_fields(body[head:],
-                                                       copy=not isinstance(body.obj, bytes),
-                                                       strings=strings[cid])
+                    fields = parse(body[head:], copy=type(body.obj) is not bytes, strings=strings)
                 except Exception:  # noqa: BLE001 - malformed: the generic decoder names it
                     fields = None
             if fields is None:
+                codec = codecs[cid]
                 msg = codec.decode(bytes(body[head:]))
                 stamp = msg.header.stamp
                 fields = (stamp.sec, stamp.nanosec, msg.header.frame_id, msg.signal_name,
@@ -587,8 +588,7 @@ class BagReader:
                         if self.recover:
                             continue
                         raise
-                    bodies = (rbody for rop, _rpos, rbody in _iter_plain(chunk_records)
-                              if rop == OP_MESSAGE)
+                    bodies = _message_bodies(chunk_records)
                 else:
                     bodies = (body,)
                 for rbody in bodies:
@@ -702,6 +702,24 @@ def _prefetch(fn, items, ahead: int):
                     future.result()
                 except Exception:  # noqa: BLE001 - its chunk is not read any more
                     pass
+
+
+def _message_bodies(buf) -> list:
+    """Bodies of the Message records inside a decompressed chunk, in order (_iter_plain's
+    checks, in one list: the chunk's messages are all read)."""
+    out = []
+    pos = 0
+    n = len(buf)
+    unpack = RECORD_HEADER.unpack_from
+    while pos + 9 <= n:
+        op, length = unpack(buf, pos)
+        end = pos + 9 + length
+        if end > n:
+            raise CorruptBagError(f"record inside a chunk runs past the chunk (at {pos})")
+        if op == OP_MESSAGE:
+            out.append(buf[pos + 9:end])
+        pos = end
+    return out
 
 
 def _iter_plain(buf):
