@@ -648,7 +648,7 @@ def _series(topic: str, msgs: list) -> SignalSeries:
                         first.header.frame_id, gaps)
 
 
-CHUNKS_AHEAD = 2   # chunks decompressed ahead of the one being read (messages())
+CHUNKS_AHEAD = 6   # chunks decompressed ahead of the one being read (~6 MiB at the default chunk size)
 
 _DECOMPRESS_POOL = None
 _POOL_LOCK = threading.Lock()
