@@ -6,6 +6,11 @@ from __future__ import annotations
 
 import struct
 
+try:  # ISA-L's CRC-32 (SIMD): the same checksum as zlib.crc32, ~10x faster (21 vs 284 us per MiB)
+    from isal.isal_zlib import crc32
+except ImportError:  # pragma: no cover - isal is in requirements.txt; zlib gives the same values
+    from zlib import crc32
+
 MAGIC = b"\x89MCAP0\r\n"
 
 OP_HEADER = 0x01

@@ -30,7 +30,7 @@ from .errors import (BagError, CorruptBagError, MissingTopicError, NotABagError,
 from .mcap_format import (CHUNK_HEAD, FOOTER_BODY, FOOTER_RECORD_LEN, MAGIC, MESSAGE_HEAD,
                           OP_CHANNEL, OP_CHUNK, OP_CHUNK_INDEX, OP_DATA_END, OP_FOOTER, OP_HEADER,
                           OP_MESSAGE, OP_METADATA, OP_METADATA_INDEX, OP_SCHEMA, OP_STATISTICS,
-                          OP_SUMMARY_OFFSET, RECORD_HEADER, Cursor)
+                          OP_SUMMARY_OFFSET, RECORD_HEADER, Cursor, crc32)
 
 _MAX_OPCODE = 0x0F
 
@@ -424,9 +424,7 @@ class BagReader:
         if len(out) != usize:
             raise CorruptBagError(f"chunk decompresses to {len(out)} bytes, header says {usize}")
         if ucrc:
-            import zlib
-
-            if zlib.crc32(out) != ucrc:
+            if crc32(out) != ucrc:
                 raise CorruptBagError("chunk CRC mismatch")
         return memoryview(out)
 
@@ -681,7 +679,7 @@ def _prefetch(fn, items, ahead: int):
     """Yields, for each item in order, a callable returning ``fn(item)`` (or raising its error).
 
     ``fn`` runs in a worker thread up to ``ahead`` items before the one being consumed: zstd/lz4
-    decompression and zlib.crc32 release the GIL, so on a second core a chunk is decompressed
+    decompression and the CRC release the GIL (or are short), so on a second core a chunk is decompressed
     and checked while the caller decodes and processes the messages of the previous one. Same
     results and errors as calling ``fn`` item by item. ``close()`` (or exhausting it) waits for
     the work still running: the items (views of the reader's map) are not used after that."""

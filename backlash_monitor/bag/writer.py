@@ -24,7 +24,6 @@ from __future__ import annotations
 import os
 import threading
 import time
-import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -36,7 +35,7 @@ from .mcap_format import (CHUNK_HEAD, FOOTER_BODY, MAGIC, MESSAGE_HEAD, OP_CHANN
                           OP_CHUNK_INDEX, OP_DATA_END, OP_FOOTER, OP_HEADER, OP_MESSAGE,
                           OP_MESSAGE_INDEX, OP_METADATA, OP_METADATA_INDEX, OP_SCHEMA,
                           OP_STATISTICS, OP_SUMMARY_OFFSET, RECORD_HEADER, U16, U32, U64, pmap_str,
-                          pstr, record)
+                          crc32, pstr, record)
 
 LIBRARY = "backlash_monitor.bag (rosbag2_storage_mcap compatible)"
 ROSBAG2_METADATA_VERSION = 9
@@ -366,9 +365,9 @@ class BagWriter:
     def _write(self, b: bytes) -> None:
         self._f.write(b)
         self._pos += len(b)
-        self._crc = zlib.crc32(b, self._crc)
+        self._crc = crc32(b, self._crc)
         if self._summary_crc is not None:
-            self._summary_crc = zlib.crc32(b, self._summary_crc)
+            self._summary_crc = crc32(b, self._summary_crc)
 
     def _reset_chunk(self) -> None:
         self._chunk = bytearray()
@@ -380,7 +379,7 @@ class BagWriter:
         if not self._chunk_msgs:
             return
         data = bytes(self._chunk)
-        crc = zlib.crc32(data)
+        crc = crc32(data)
         comp = self._compress(data) if self._compress else data
         body_head = CHUNK_HEAD.pack(self._chunk_start, self._chunk_end, len(data), crc)
         head = (RECORD_HEADER.pack(OP_CHUNK, len(body_head) + 4 + len(self.compression) + 8
@@ -483,7 +482,7 @@ class BagWriter:
                 footer_head = RECORD_HEADER.pack(OP_FOOTER, FOOTER_BODY.size) + U64.pack(
                     summary_start) + U64.pack(summary_offset_start)
                 # summary CRC: from summary_start through the footer up to the crc field
-                summary_crc = zlib.crc32(footer_head, self._summary_crc)
+                summary_crc = crc32(footer_head, self._summary_crc)
                 self._write(footer_head + U32.pack(summary_crc))
                 self._write(MAGIC)
                 self._f.flush()
