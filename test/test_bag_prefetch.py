@@ -80,3 +80,24 @@ def test_corrupt_chunk_raises_at_its_place(small_chunk_bag, monkeypatch):
         assert keys(seen) == before
         bag.recover = True        # recovery mode skips the corrupt chunk and reads on
         assert keys(bag.messages()) == [k for k in all_messages if k not in in_bad]
+
+
+def test_a_second_pass_starts_with_the_last_chunk_unchanged(small_chunk_bag, monkeypatch):
+    """As analyze reads the latched true width (first chunk only), then the signals."""
+    path, _ = small_chunk_bag
+    calls = []
+    real = BagReader._decompress
+
+    def counting(self, body):
+        calls.append(reader_module.CHUNK_HEAD.unpack_from(body, 0)[0])
+        return real(self, body)
+
+    monkeypatch.setattr(BagReader, "_decompress", counting)
+    with BagReader(path) as bag:
+        first_chunk = min(bag._chunks.values(), key=lambda c: c.start)
+        head = keys(bag.messages(end_ns=first_chunk.end))
+        assert calls == [first_chunk.start]
+        everything = keys(bag.messages())
+        assert everything[:len(head)] == head and len(everything) == bag.message_count
+        assert calls.count(first_chunk.start) == 1 and len(calls) == len(bag._chunks)
+    assert bag._last_chunk is None                    # close() drops it

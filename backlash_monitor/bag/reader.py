@@ -154,6 +154,7 @@ class BagReader:
         self._data_end = self.file_size
         self._have_stats = False
         self._corrupt: set[int] = set()
+        self._last_chunk = None          # (offset, records) of the last chunk decompressed
         try:
             self._open()
         except BaseException:
@@ -168,6 +169,7 @@ class BagReader:
         self.close()
 
     def close(self) -> None:
+        self._last_chunk = None
         buf, self._buf = self._buf, memoryview(b"")
         try:
             buf.release()
@@ -398,6 +400,18 @@ class BagReader:
             self._end = log_time
         return cid
 
+    def _chunk_records(self, chunk) -> memoryview:
+        """The records of the chunk (offset, body): decompressed, or the last chunk again (a
+        second pass over another topic, e.g. analyze's latched true width then the signals,
+        starts where the first ended)."""
+        pos, body = chunk
+        last = self._last_chunk
+        if last is not None and last[0] == pos:
+            return last[1]
+        records = self._decompress(body)
+        self._last_chunk = (pos, records)
+        return records
+
     def _decompress(self, body) -> memoryview:
         start, end_t, usize, ucrc = CHUNK_HEAD.unpack_from(body, 0)
         c = Cursor(body, CHUNK_HEAD.size)
@@ -557,7 +571,7 @@ class BagReader:
         """(channel_id, sequence, log_time_ns, publish_time_ns, record body) of the messages on
         the ``wanted`` channels (log time within the range), in file order. Chunks are
         decompressed ahead in a worker thread (``_prefetch``)."""
-        records = []   # (op, body) of the records to read, in file order
+        records = []   # (op, offset, body) of the records to read, in file order
         for op, pos, body in self._iter_records(self._data_start, self._data_end):
             if op == OP_CHUNK:
                 if pos in self._corrupt:
@@ -571,14 +585,14 @@ class BagReader:
                         continue
                 elif self.recover and not self.recovery.complete:
                     continue  # not validated by the scan
-                records.append((op, body))
+                records.append((op, pos, body))
             elif op == OP_MESSAGE:
-                records.append((op, body))
-        chunks = [body for op, body in records if op == OP_CHUNK]
-        decompressed = _prefetch(self._decompress, chunks, CHUNKS_AHEAD)
+                records.append((op, pos, body))
+        chunks = [(pos, body) for op, pos, body in records if op == OP_CHUNK]
+        decompressed = _prefetch(self._chunk_records, chunks, CHUNKS_AHEAD)
         unpack = MESSAGE_HEAD.unpack_from
         try:
-            for op, body in records:
+            for op, _pos, body in records:
                 if op == OP_CHUNK:
                     try:
                         chunk_records = next(decompressed)()
