@@ -112,20 +112,24 @@ class DriveEstimator:
                 A2 = np.stack([a2s[r] for r in rows])
                 features = {}   # a1's and a2's features, extracted once for the 3 signals
                 per_signal = {s: _shape_b(self.models[s], A1, A2, features) for s in self.signals}
+                # winner and margin of every row at once (per-row operations: the same values)
+                per_signal = {s: (b, w, np.argmin(b, axis=-1), b_margin(b))
+                              for s, (b, w) in per_signal.items()}
                 for k, r in enumerate(rows):
-                    shape_b[r] = {s: (b[k], float(w[k])) for s, (b, w) in per_signal.items()}
+                    shape_b[r] = {s: (b[k], float(w[k]), int(index[k]), float(margin[k]))
+                                  for s, (b, w, index, margin) in per_signal.items()}
         for r, i in enumerate(onsets):
             for signal in self.signals:
                 if self.mode == SHAPE:
-                    b, continuous = shape_b[r][signal]
+                    b, continuous, index, margin = shape_b[r][signal]
                 else:
                     b, continuous = self.models[signal].b({"a1": a1s[r], "a2": a2s[r]}[signal]), math.nan
-                index = int(np.argmin(b))
+                    index, margin = int(np.argmin(b)), float(b_margin(b))
                 fused = self.fusion[signal].add(b, kind="onset")
                 out[i].append(WidthEstimate(
                     signal_name=signal, mode=self.mode, candidate_widths_m=self.widths_m,
                     b_vector=np.asarray(b, dtype=float), width_index=index,
-                    width_m=float(self.widths_m[index]), b_margin=float(b_margin(b)),
+                    width_m=float(self.widths_m[index]), b_margin=margin,
                     continuous_width_m=continuous, fused_width_m=fused.width_m,
                     fused_events=fused.events))
         return out

@@ -7,6 +7,7 @@ import pytest
 plant = pytest.importorskip("backlash_monitor.plant")
 
 from backlash_monitor.chain import JoinedRange, WindowingStage, denoise_pair  # noqa: E402
+from backlash_monitor.classifier.cpn import b_margin  # noqa: E402
 from backlash_monitor.classifier.patterns import default_library_path, load_library  # noqa: E402
 from backlash_monitor.classifier.shape import a1_features, a2_features  # noqa: E402
 from backlash_monitor.estimation import DriveEstimator  # noqa: E402
@@ -70,6 +71,9 @@ def test_estimate_many_equals_window_by_window_and_shape_model(windows, library)
             b, w = single.models[e.signal_name].b(a1=a1[None, :], a2=a2[None, :])
             assert b[0].tobytes() == e.b_vector.tobytes()
             assert float(w[0]) == e.continuous_width_m
+            # winner and margin (taken for all rows at once) as of the window's own B vector
+            assert e.width_index == int(np.argmin(b[0]))
+            assert e.b_margin == float(b_margin(b[0]))
 
 
 def test_windows_of_different_lengths_are_estimated_one_by_one(windows, library):
