@@ -11,6 +11,7 @@ EXECUTABLES = {
     "windowing": "backlash_monitor.nodes.windowing:main",
     "denoise": "backlash_monitor.nodes.denoise:main",
     "classifier": "backlash_monitor.nodes.classifier:main",
+    "chain": "backlash_monitor.nodes.chain_container:main",
     "pipeline": "backlash_monitor.nodes.pipeline:main",
     "record": "backlash_monitor.nodes.record:main",
     "replay": "backlash_monitor.nodes.replay:main",

@@ -115,25 +115,34 @@ def run_node(node_factory, args=None, spin=None) -> int:
     :class:`ParameterValueError` while building the node is logged as one clear line and gives
     exit code 2 (the node does not start).
     """
+    return run_nodes([node_factory], args=args,
+                     spin=None if spin is None else (lambda nodes, ex: spin(nodes[0], ex)))
+
+
+def run_nodes(node_factories, args=None, spin=None) -> int:
+    """:func:`run_node` for several nodes in one process on one executor (built in order)."""
     from backlash_monitor.nodes.fast_dds import configure_fast_dds
     from backlash_monitor.nodes.lean_executor import make_executor
     configure_fast_dds()
     rclpy.init(args=args)
-    node = None
+    nodes = []
     executor = None
     try:
-        node = node_factory()
+        for factory in node_factories:
+            nodes.append(factory())
         executor = make_executor()
-        executor.add_node(node)
-        # Everything built so far lives as long as the node: keep it out of the collector's scans
-        # so that a collection inside a callback stays short. Measured with bench/latency.py, four
-        # runs each side by side: p99 8.4/8.9/8.7/16.8 ms frozen vs 11.7/12.3/8.7/17.5 ms not.
+        for node in nodes:
+            executor.add_node(node)
+        # Everything built so far lives as long as the nodes: keep it out of the collector's
+        # scans so that a collection inside a callback stays short. Measured with
+        # bench/latency.py, four runs each side by side: p99 8.4/8.9/8.7/16.8 ms frozen vs
+        # 11.7/12.3/8.7/17.5 ms not.
         gc.collect()
         gc.freeze()
         if spin is None:
             executor.spin()
         else:
-            spin(node, executor)
+            spin(nodes, executor)
         return 0
     except ParameterValueError as error:
         print(f"[ERROR] {error}", file=sys.stderr, flush=True)
@@ -143,6 +152,6 @@ def run_node(node_factory, args=None, spin=None) -> int:
     finally:
         if executor is not None:
             executor.shutdown()
-        if node is not None:
+        for node in nodes:
             node.destroy_node()
         rclpy.try_shutdown()
