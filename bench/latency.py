@@ -1,9 +1,13 @@
 """Latency and throughput of the node graph over DDS (prints one JSON object).
 
 latency: the windowing, denoise and classifier nodes run each in its own process (as `ros2 run`
-starts them); this process runs the plant simulator in real time and a monitor. For every estimate,
+starts them); this process runs the plant simulator in real time and a monitor.
+latency_ms_chain_in_one_process: the same with the three nodes in one process (the `chain`
+executable), the plant and the monitor still in this one. For every estimate,
 latency = the wall time it is received - the wall time the chunk holding its window's last sample
-was published. Reported: median and p99 [ms].
+was published. Reported: median and p99 [ms]. latency_stages_ms: from a second real-time run whose
+monitor also subscribes to windows/raw and windows/denoised, the same times to each stage and the
+hops between them (where the latency goes).
 
 realtime_factor: the same graph with the simulator unthrottled-by-factor (rate_factor R) and
 reliable QoS; simulated seconds per wall second until the last expected estimate arrives, for a
@@ -42,11 +46,15 @@ TRIGGER = "contact_loss"
 WINDOW_OFFSET = default_window_offset(TRIGGER)
 
 
-def start_chain(trigger="contact_loss"):
+def start_chain(trigger="contact_loss", one_process=False):
+    """The windowing, denoise and classifier nodes: three processes, or the `chain` executable."""
     prefix = os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor")
-    specs = [("classifier", ["-p", f"trigger:={trigger}"]),
-             ("denoise", []),
-             ("windowing", ["-p", "qos:=reliable", "-p", f"trigger:={trigger}"])]
+    if one_process:
+        specs = [("chain", ["-p", f"trigger:={trigger}", "-p", "qos:=reliable"])]
+    else:
+        specs = [("classifier", ["-p", f"trigger:={trigger}"]),
+                 ("denoise", []),
+                 ("windowing", ["-p", "qos:=reliable", "-p", f"trigger:={trigger}"])]
     return [subprocess.Popen([os.path.join(prefix, name), "--ros-args", *params],
                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             for name, params in specs]
@@ -62,15 +70,29 @@ def stop(children):
             child.kill()
 
 
-def run_graph(duration_s, rate_factor, chunk=None):
-    """Returns (latencies_s, wall_s, n_onset_estimates, discarded_windows, expected)."""
+def run_graph(duration_s, rate_factor, chunk=None, stages=None, one_process=False):
+    """Returns (latencies_s, wall_s, n_onset_estimates, discarded_windows, expected).
+
+    stages: a dict to fill with {"window": [...], "denoised": [...], "estimate": [...]}, the
+    times [s] from the chunk holding a window's last sample published to that window received
+    raw, denoised and classified (the monitor then also subscribes to both window topics).
+    one_process: the chain runs as the `chain` executable (its three nodes in one process)."""
     chunk = chunk or CHUNK
-    children = start_chain()
+    children = start_chain(one_process=one_process)
     rclpy.init()
     try:
         monitor = rclpy.create_node("bench_monitor")
         received = {}
         discarded = [0]
+        arrivals = {"window": {}, "denoised": {}}
+        if stages is not None:
+            from backlash_monitor.nodes.windowing import WINDOW_QOS
+            from backlash_monitor_msgs.msg import BacklashWindow
+            for key, topic in (("window", "windows/raw"), ("denoised", "windows/denoised")):
+                monitor.create_subscription(
+                    BacklashWindow, topic,
+                    lambda msg, k=key: arrivals[k].setdefault(msg.entry_sample_index, time.time()),
+                    WINDOW_QOS)
 
         def on_estimate(msg):
             received.setdefault(msg.entry_sample_index, time.time())
@@ -125,6 +147,10 @@ def run_graph(duration_s, rate_factor, chunk=None):
             last_chunk = last_sample // chunk * chunk
             if last_chunk in published:
                 latencies.append(t_recv - published[last_chunk])
+                if stages is not None and all(entry in arrivals[k] for k in arrivals):
+                    for key in arrivals:
+                        stages.setdefault(key, []).append(arrivals[key][entry] - published[last_chunk])
+                    stages.setdefault("estimate", []).append(t_recv - published[last_chunk])
         executor.shutdown()
         for node in (plant, monitor, probe):
             node.destroy_node()
@@ -134,9 +160,33 @@ def run_graph(duration_s, rate_factor, chunk=None):
         stop(children)
 
 
+def _stage_summary(stages) -> dict:
+    """Median and p99 [ms] of each stage's time since the chunk was published, and of each hop."""
+    out = {}
+    previous = None
+    for key in ("window", "denoised", "estimate"):
+        t = np.array(stages.get(key, [])) * 1e3
+        if not t.size:
+            continue
+        out[f"to_{key}"] = {"median": float(np.median(t)), "p99": float(np.percentile(t, 99))}
+        if previous is not None:
+            hop = t - previous
+            out[f"hop_to_{key}"] = {"median": float(np.median(hop)),
+                                    "p99": float(np.percentile(hop, 99))}
+        previous = t
+    return out
+
+
 def main():
     latencies, _, n_rt, discarded_rt, expected_rt = run_graph(duration_s=15.0, rate_factor=1.0)
     lat_ms = np.array(latencies) * 1e3
+    # Where the time goes: a second real-time run whose monitor also takes both window topics.
+    stages = {}
+    run_graph(duration_s=15.0, rate_factor=1.0, stages=stages)
+    # The same chain as the `chain` executable: its three nodes in one process.
+    latencies_one, _, n_one, discarded_one, _ = run_graph(duration_s=15.0, rate_factor=1.0,
+                                                          one_process=True)
+    one_ms = np.array(latencies_one) * 1e3
     throughput = []
     for factor in (10.0, 20.0, 40.0):
         _, wall, n, discarded, expected = run_graph(duration_s=20.0, rate_factor=factor)
@@ -153,6 +203,12 @@ def main():
                        "n": int(lat_ms.size)},
         "latency_run": {"onset_windows_classified": n_rt, "expected": expected_rt,
                         "discarded_windows": discarded_rt},
+        "latency_stages_ms": _stage_summary(stages),
+        "latency_ms_chain_in_one_process": {
+            "median": float(np.median(one_ms)) if one_ms.size else None,
+            "p99": float(np.percentile(one_ms, 99)) if one_ms.size else None,
+            "max": float(one_ms.max()) if one_ms.size else None, "n": int(one_ms.size),
+            "onset_windows_classified": n_one, "discarded_windows": discarded_one},
         "realtime_factor": best["realtime_factor"] if best else None,
         "discarded_windows": best["discarded_windows"] if best else None,
         "throughput_runs": throughput,
