@@ -11,6 +11,7 @@ eta_k = 0.025 Pa*s^n, n1 = 0.89, real time, for 10 simulated seconds.
 from __future__ import annotations
 
 import argparse
+import gc
 import math
 import os
 import signal
@@ -234,6 +235,8 @@ def run(args) -> int:
         executor = make_executor()
         for node in nodes:
             executor.add_node(node)
+        gc.collect()   # the start-up objects leave the collector's scans, as in run_nodes
+        gc.freeze()
         print(f"pipeline: {args.drive_name}, true width {args.width_m * 1e3:g} mm, eta_k "
               f"{args.eta_k:g}, n1 {args.n1:g}, trigger {args.trigger}, "
               f"{'one process per node' if args.processes else 'one process'}; "
