@@ -11,17 +11,20 @@ import textwrap
 
 import pytest
 
-# A writer process that publishes before any reader exists, then waits for one to match.
-_LATE_READER_WRITER = textwrap.dedent("""
+# The topic under test (argv[1]: window or estimate), as the graph's nodes offer it.
+_TOPIC = textwrap.dedent("""
     import sys, time
     import rclpy
     from backlash_monitor.nodes.classifier import ESTIMATE_QOS
     from backlash_monitor.nodes.windowing import WINDOW_QOS
     from backlash_monitor_msgs.msg import BacklashEstimate, BacklashWindow
-    kind = sys.argv[1]
-    msg_type, topic, qos = ((BacklashWindow, "windows/raw", WINDOW_QOS) if kind == "window"
+    msg_type, topic, qos = ((BacklashWindow, "windows/raw", WINDOW_QOS) if sys.argv[1] == "window"
                             else (BacklashEstimate, "estimate", ESTIMATE_QOS))
     rclpy.init()
+""")
+
+# A writer that publishes before any reader exists, then waits for one to match.
+_EARLY_WRITER = _TOPIC + textwrap.dedent("""
     node = rclpy.create_node("early_writer")
     pub = node.create_publisher(msg_type, topic, qos)
     for i in range(5):
@@ -37,34 +40,27 @@ _LATE_READER_WRITER = textwrap.dedent("""
     rclpy.try_shutdown()
 """)
 
+# A reader started after that: prints the entry indices it got.
+_LATE_READER = _TOPIC + textwrap.dedent("""
+    node = rclpy.create_node("late_reader")
+    got = []
+    node.create_subscription(msg_type, topic, lambda m: got.append(m.entry_sample_index), qos)
+    deadline = time.monotonic() + 30
+    while len(got) < 5 and time.monotonic() < deadline:
+        rclpy.spin_once(node, timeout_sec=0.1)
+    print(" ".join(map(str, got)))
+    node.destroy_node()
+    rclpy.try_shutdown()
+""")
+
 
 @pytest.mark.parametrize("kind", ["window", "estimate"])
 def test_a_reader_that_matches_late_still_gets_what_was_published_before(kind, ros_env):
-    writer = subprocess.Popen([sys.executable, "-c", _LATE_READER_WRITER, kind], env=ros_env,
+    writer = subprocess.Popen([sys.executable, "-c", _EARLY_WRITER, kind], env=ros_env,
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     try:
         assert writer.stdout.readline().strip() == "published"
-        reader = textwrap.dedent("""
-            import sys, time
-            import rclpy
-            from backlash_monitor.nodes.classifier import ESTIMATE_QOS
-            from backlash_monitor.nodes.windowing import WINDOW_QOS
-            from backlash_monitor_msgs.msg import BacklashEstimate, BacklashWindow
-            kind = sys.argv[1]
-            msg_type, topic, qos = ((BacklashWindow, "windows/raw", WINDOW_QOS) if kind == "window"
-                                    else (BacklashEstimate, "estimate", ESTIMATE_QOS))
-            rclpy.init()
-            node = rclpy.create_node("late_reader")
-            got = []
-            node.create_subscription(msg_type, topic, lambda m: got.append(m.entry_sample_index), qos)
-            deadline = time.monotonic() + 30
-            while len(got) < 5 and time.monotonic() < deadline:
-                rclpy.spin_once(node, timeout_sec=0.1)
-            print(" ".join(map(str, got)))
-            node.destroy_node()
-            rclpy.try_shutdown()
-        """)
-        out = subprocess.run([sys.executable, "-c", reader, kind], env=ros_env,
+        out = subprocess.run([sys.executable, "-c", _LATE_READER, kind], env=ros_env,
                              capture_output=True, text=True, timeout=90)
         assert out.returncode == 0, out.stderr
         assert out.stdout.split() == ["0", "1000", "2000", "3000", "4000"], out.stdout
