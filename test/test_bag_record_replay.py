@@ -186,3 +186,35 @@ def test_nodes_reject_bad_parameters_clearly(ros_env, tmp_path, node, params, na
     assert proc.returncode == 2, proc.stdout + proc.stderr
     assert f"parameter '{named}'" in proc.stderr and "allowed" in proc.stderr
     assert "Traceback" not in proc.stderr + proc.stdout
+
+
+_ASK_RATE = """
+import rclpy
+from rclpy.parameter_client import AsyncParameterClient
+rclpy.init()
+node = rclpy.create_node("asker")
+client = AsyncParameterClient(node, "replay")
+assert client.wait_for_services(timeout_sec=30.0)
+future = client.get_parameters(["rate"])
+rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
+print(future.result().values[0].double_value if future.done() else "no answer")
+"""
+
+
+def test_replay_answers_its_parameter_services_while_it_plays(ros_env, tmp_path):
+    src = tmp_path / "src.mcap"
+    write_sample_bag(src, n_chunks=250)  # 5 s of stream, played at the recorded rate
+    play = subprocess.Popen(
+        [sys.executable, "-m", "backlash_monitor.nodes.replay", "--ros-args", "-p", f"bag:={src}",
+         "-p", "rate:=1.0", "-p", "topics:=plant/a1"],
+        env=ros_env, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        ask = subprocess.run([sys.executable, "-c", _ASK_RATE], env=ros_env, capture_output=True,
+                             text=True, timeout=60)
+        still_playing = play.poll() is None
+    finally:
+        code, out = _stop(play)
+    assert ask.returncode == 0, ask.stderr
+    assert ask.stdout.strip() == "1.0"
+    assert still_playing             # the answer came during the 5 s of playing
+    assert "Traceback" not in out

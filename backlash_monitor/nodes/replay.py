@@ -72,6 +72,9 @@ def _publisher_qos(offered_yaml: str, mode: str, flow_control: bool) -> QoSProfi
                       durability=DurabilityPolicy.TRANSIENT_LOCAL if latched else DurabilityPolicy.VOLATILE)
 
 
+SERVE_EVERY_MESSAGES = 64   # as fast as possible (rate 0): serve the services between messages
+
+
 class ReplayNode(Node):
     def __init__(self, **overrides):
         super().__init__("replay", **overrides)
@@ -116,6 +119,9 @@ class ReplayNode(Node):
             except BagError:
                 self.header_first[topic] = False
         self.published = 0
+        # Called while playing, so that the node's parameter services and QoS events are served
+        # (set by main() to spin its executor; the waits below block at most this long).
+        self.serve = lambda timeout_s: time.sleep(timeout_s)
 
     # ------------------------------------------------------------------ playing
     def wait_for_subscribers(self) -> bool:
@@ -127,9 +133,9 @@ class ReplayNode(Node):
         deadline = time.monotonic() + self.params["wait_timeout_s"]
         while rclpy.ok() and time.monotonic() < deadline:
             if all(pub.get_subscription_count() >= need for pub in self.publishers_by_topic.values()):
-                time.sleep(0.2)  # let reliable readers finish matching both ways
+                self._serve_for(0.2)  # let reliable readers finish matching both ways
                 return True
-            time.sleep(0.02)
+            self._serve_for(0.02)
         missing = [t for t, pub in self.publishers_by_topic.items()
                    if pub.get_subscription_count() < need]
         self.get_logger().warning(f"no subscriber after {self.params['wait_timeout_s']} s on: "
@@ -169,9 +175,9 @@ class ReplayNode(Node):
                 if start_log is None:
                     start_log = m.log_time_ns
                 target = start_wall + (m.log_time_ns - start_log) / 1e9 / rate
-                delay = target - time.monotonic()
-                if delay > 0:
-                    time.sleep(delay)
+                self._serve_until(target)
+            elif self.published % SERVE_EVERY_MESSAGES == 0:
+                self.serve(0.0)
             data = m.data
             if offset_ns and self.header_first.get(m.topic) and len(data) >= 12:
                 sec, nsec = _STAMP.unpack_from(data, 4)
@@ -187,6 +193,14 @@ class ReplayNode(Node):
         if rate == 0.0 or self.params["qos"] == "reliable":
             self.wait_acked()
 
+    def _serve_until(self, deadline: float) -> None:
+        """Serve the node's services until time.monotonic() reaches ``deadline``."""
+        while (left := deadline - time.monotonic()) > 0:
+            self.serve(left)
+
+    def _serve_for(self, seconds: float) -> None:
+        self._serve_until(time.monotonic() + seconds)
+
     def wait_acked(self) -> None:
         for pub in self.publishers_by_topic.values():
             pub.wait_for_all_acked(Duration(seconds=self.params["wait_timeout_s"] or 1e-3))
@@ -199,7 +213,8 @@ class ReplayNode(Node):
 
 
 def _spin(node: ReplayNode, executor) -> None:
-    node.play()   # publishes on the bag's clock; it has no subscriptions or timers to spin
+    node.serve = lambda timeout_s: executor.spin_once(timeout_sec=timeout_s)
+    node.play()
 
 
 def main(args=None) -> int:
