@@ -429,23 +429,20 @@ _F64_U64_LE = struct.Struct("<dQ")
 _U32_LE = struct.Struct("<I")
 _F64_LE = np.dtype("<f8")
 
-_SIGNAL_CHUNK_SHAPE = {
-    "": (("header", "std_msgs/msg/Header", False), ("signal_name", "string", False),
-         ("unit", "string", False), ("sample_period_s", "float64", False),
-         ("first_sample_index", "uint64", False), ("samples", "float64", True)),
-    "std_msgs/msg/Header": (("stamp", "builtin_interfaces/msg/Time", False),
-                            ("frame_id", "string", False)),
-    "builtin_interfaces/msg/Time": (("sec", "int32", False), ("nanosec", "uint32", False)),
-}
-_U64_LE = struct.Struct("<Q")
-_F64X4_LE = struct.Struct("<dddd")
-
-
 _HEADER_SHAPE = {
     "std_msgs/msg/Header": (("stamp", "builtin_interfaces/msg/Time", False),
                             ("frame_id", "string", False)),
     "builtin_interfaces/msg/Time": (("sec", "int32", False), ("nanosec", "uint32", False)),
 }
+
+_SIGNAL_CHUNK_SHAPE = {
+    "": (("header", "std_msgs/msg/Header", False), ("signal_name", "string", False),
+         ("unit", "string", False), ("sample_period_s", "float64", False),
+         ("first_sample_index", "uint64", False), ("samples", "float64", True)),
+    **_HEADER_SHAPE,
+}
+_U64_LE = struct.Struct("<Q")
+_F64X4_LE = struct.Struct("<dddd")
 
 _BACKLASH_ESTIMATE_SHAPE = {
     "": (("header", "std_msgs/msg/Header", False), ("signal_name", "string", False),
