@@ -14,7 +14,6 @@ reliable QoS; simulated seconds per wall second until the last expected estimate
 rising R; the result is the highest R whose run lost nothing (discarded_windows == 0 and every
 onset window classified).
 """
-import gc
 import json
 import os
 import subprocess
@@ -37,6 +36,7 @@ from rclpy.parameter import Parameter  # noqa: E402
 
 from backlash_monitor.nodes.classifier import ESTIMATE_QOS  # noqa: E402
 from backlash_monitor.nodes.lean_executor import make_executor  # noqa: E402
+from backlash_monitor.nodes.parameters import freeze_startup_objects  # noqa: E402
 from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode  # noqa: E402
 from backlash_monitor.windowing import default_window_offset  # noqa: E402
 from backlash_monitor_msgs.msg import BacklashEstimate  # noqa: E402
@@ -131,8 +131,7 @@ def run_graph(duration_s, rate_factor, chunk=None, stages=None, one_process=Fals
         executor = make_executor()   # as the project's nodes and the pipeline spin
         executor.add_node(plant)
         executor.add_node(monitor)
-        gc.collect()                 # and, as they do, the start-up objects leave the
-        gc.freeze()                  # collector's scans (nodes/parameters.run_nodes)
+        freeze_startup_objects()     # as the nodes do once built (nodes/parameters.run_nodes)
         started = time.time()
         expected = int(duration_s * 4) - 1          # onsets whose window ends inside the run
         limit = started + duration_s / rate_factor + 30

@@ -107,6 +107,15 @@ def declare_and_validate(node, specs) -> dict:
     return values
 
 
+def freeze_startup_objects() -> None:
+    """Call once the nodes are built: everything built so far lives as long as they do, so keep it
+    out of the garbage collector's scans and a collection inside a callback stays short. Measured
+    with bench/latency.py, four runs each side by side: p99 8.4/8.9/8.7/16.8 ms frozen vs
+    11.7/12.3/8.7/17.5 ms not."""
+    gc.collect()
+    gc.freeze()
+
+
 def run_node(node_factory, args=None, spin=None) -> int:
     """``main()`` body shared by the nodes: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
 
@@ -133,12 +142,7 @@ def run_nodes(node_factories, args=None, spin=None) -> int:
         executor = make_executor()
         for node in nodes:
             executor.add_node(node)
-        # Everything built so far lives as long as the nodes: keep it out of the collector's
-        # scans so that a collection inside a callback stays short. Measured with
-        # bench/latency.py, four runs each side by side: p99 8.4/8.9/8.7/16.8 ms frozen vs
-        # 11.7/12.3/8.7/17.5 ms not.
-        gc.collect()
-        gc.freeze()
+        freeze_startup_objects()
         if spin is None:
             executor.spin()
         else:

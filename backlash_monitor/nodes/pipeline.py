@@ -11,7 +11,6 @@ eta_k = 0.025 Pa*s^n, n1 = 0.89, real time, for 10 simulated seconds.
 from __future__ import annotations
 
 import argparse
-import gc
 import math
 import os
 import signal
@@ -198,7 +197,7 @@ def run(args) -> int:
     from diagnostic_msgs.msg import DiagnosticArray
     from backlash_monitor_msgs.msg import BacklashEstimate
     from backlash_monitor.nodes.classifier import ESTIMATE_QOS
-    from backlash_monitor.nodes.parameters import ParameterValueError
+    from backlash_monitor.nodes.parameters import ParameterValueError, freeze_startup_objects
 
     from backlash_monitor.estimation import DEFAULT_MODE, default_signals
     from backlash_monitor.nodes.fast_dds import configure_fast_dds
@@ -235,8 +234,7 @@ def run(args) -> int:
         executor = make_executor()
         for node in nodes:
             executor.add_node(node)
-        gc.collect()   # the start-up objects leave the collector's scans, as in run_nodes
-        gc.freeze()
+        freeze_startup_objects()
         print(f"pipeline: {args.drive_name}, true width {args.width_m * 1e3:g} mm, eta_k "
               f"{args.eta_k:g}, n1 {args.n1:g}, trigger {args.trigger}, "
               f"{'one process per node' if args.processes else 'one process'}; "
