@@ -717,21 +717,8 @@ def _prefetch(fn, items, ahead: int):
 
 
 def _message_bodies(buf) -> list:
-    """Bodies of the Message records inside a decompressed chunk, in order (_iter_plain's
-    checks, in one list: the chunk's messages are all read)."""
-    out = []
-    pos = 0
-    n = len(buf)
-    unpack = RECORD_HEADER.unpack_from
-    while pos + 9 <= n:
-        op, length = unpack(buf, pos)
-        end = pos + 9 + length
-        if end > n:
-            raise CorruptBagError(f"record inside a chunk runs past the chunk (at {pos})")
-        if op == OP_MESSAGE:
-            out.append(buf[pos + 9:end])
-        pos = end
-    return out
+    """Bodies of the Message records inside a decompressed chunk, in order."""
+    return [body for op, _pos, body in _iter_plain(buf) if op == OP_MESSAGE]
 
 
 def _iter_plain(buf):
