@@ -38,6 +38,23 @@ def _message(window, true_width_m):
     return msg
 
 
+def _probe_graph(node, namespace=None):
+    """A probe node beside ``node`` on one executor: (executor, window publisher, estimates list),
+    returned once the classifier has matched the publisher."""
+    probe = rclpy.create_node("probe", **({"namespace": namespace} if namespace else {}))
+    estimates = []
+    probe.create_subscription(BacklashEstimate, "estimate", estimates.append, ESTIMATE_QOS)
+    pub = probe.create_publisher(BacklashWindow, "windows/denoised", WINDOW_QOS)
+    executor = rclpy.executors.SingleThreadedExecutor()
+    executor.add_node(node)
+    executor.add_node(probe)
+    for _ in range(100):
+        executor.spin_once(timeout_sec=0.05)
+        if pub.get_subscription_count():
+            break
+    return executor, pub, estimates, probe
+
+
 def test_estimates_and_namespaced_diagnostics(ros_env):
     os.environ["ROS_DOMAIN_ID"] = ros_env["ROS_DOMAIN_ID"]
     windows = _onset_windows(0.009)
@@ -46,18 +63,9 @@ def test_estimates_and_namespaced_diagnostics(ros_env):
     try:
         node = ClassifierNode(namespace="/line1/drive7", parameter_overrides=[
             Parameter("drive_name", value="drive7")])
-        probe = rclpy.create_node("probe", namespace="/line1/drive7")
-        estimates, diagnostics = [], []
-        probe.create_subscription(BacklashEstimate, "estimate", estimates.append, ESTIMATE_QOS)
+        executor, pub, estimates, probe = _probe_graph(node, namespace="/line1/drive7")
+        diagnostics = []
         probe.create_subscription(DiagnosticArray, "/diagnostics", diagnostics.append, 10)
-        pub = probe.create_publisher(BacklashWindow, "windows/denoised", WINDOW_QOS)
-        executor = rclpy.executors.SingleThreadedExecutor()
-        executor.add_node(node)
-        executor.add_node(probe)
-        for _ in range(100):
-            executor.spin_once(timeout_sec=0.05)
-            if pub.get_subscription_count():
-                break
         for window in windows:
             pub.publish(_message(window, 0.009))
         for _ in range(200):
@@ -104,17 +112,7 @@ def test_windows_sent_again_are_not_fused_twice(ros_env):
     rclpy.init()
     try:
         node = ClassifierNode()
-        probe = rclpy.create_node("probe")
-        estimates = []
-        probe.create_subscription(BacklashEstimate, "estimate", estimates.append, ESTIMATE_QOS)
-        pub = probe.create_publisher(BacklashWindow, "windows/denoised", WINDOW_QOS)
-        executor = rclpy.executors.SingleThreadedExecutor()
-        executor.add_node(node)
-        executor.add_node(probe)
-        for _ in range(100):
-            executor.spin_once(timeout_sec=0.05)
-            if pub.get_subscription_count():
-                break
+        executor, pub, estimates, _ = _probe_graph(node)
         messages = [_message(window, 0.005) for window in windows]
         for msg in messages + messages:          # the history arrives a second time
             pub.publish(msg)
