@@ -175,12 +175,14 @@ class BagWriter:
     ...     w.write_raw("/plant/a1", cdr_bytes, log_time_ns=t)  # already serialized (recorder)
 
     compression: "zstd" (default), "lz4" or "" (none). `fsync=True` also fsyncs each chunk.
+    `exclusive=True` refuses (FileExistsError) to open a path that exists already.
     """
 
     def __init__(self, path, *, compression: str = "zstd", compression_level: int = 1,
                  chunk_size: int = DEFAULT_CHUNK_SIZE,
                  chunk_duration_s: float | None = DEFAULT_CHUNK_DURATION_S,
-                 ros_distro: str = "jazzy", fsync: bool = False, custom_data: dict | None = None):
+                 ros_distro: str = "jazzy", fsync: bool = False, custom_data: dict | None = None,
+                 exclusive: bool = False):
         if compression not in ("zstd", "lz4", ""):
             raise ValueError(f"compression must be 'zstd', 'lz4' or '' (none), not {compression!r}")
         if chunk_size <= 0:
@@ -215,7 +217,8 @@ class BagWriter:
         self._message_count = 0
         self._reset_chunk()
         self.path.parent.mkdir(parents=True, exist_ok=True)
-        self._f = open(self.path, "wb")
+        # exclusive: fail with FileExistsError instead of replacing an existing file (no race)
+        self._f = open(self.path, "xb" if exclusive else "wb")
         self._pos = 0
         self._crc = 0
         self._summary_crc = None

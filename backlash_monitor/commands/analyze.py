@@ -52,6 +52,16 @@ def add_arguments(parser) -> None:
                         help="onset events fused into one estimate")
     parser.add_argument("--recover", action="store_true",
                         help="read what is intact of a bag whose recorder was killed")
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace existing output files (never the analysed bag itself); "
+                             "without it an existing output is an error")
+
+
+def output_paths(out_prefix) -> dict[str, pathlib.Path]:
+    """PREFIX.csv, PREFIX.json, PREFIX.mcap: the suffix is appended (a prefix such as
+    ``run.estimates`` keeps its dots; ``with_suffix`` would turn it into ``run.mcap``)."""
+    prefix = str(out_prefix)
+    return {ext: pathlib.Path(f"{prefix}.{ext}") for ext in ("csv", "json", "mcap")}
 
 
 def _topic(namespace: str, name: str) -> str:
@@ -73,6 +83,7 @@ def run(args) -> int:
     from backlash_monitor.chain import BlockFeeder, ChunkJoiner, WindowingStage, denoise_pairs
     from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
     from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator
+    from backlash_monitor.output_files import OutputError, check_outputs, staged_outputs
 
     reuse_freed_memory()   # no page fault per freed-and-reallocated array (commands/_memory.py)
     bag_path = pathlib.Path(args.bag)
@@ -100,6 +111,11 @@ def run(args) -> int:
 
     out_prefix = pathlib.Path(args.out) if args.out else bag_path.with_suffix("").with_name(
         bag_path.with_suffix("").name + ".estimates")
+    outputs = output_paths(out_prefix)
+    try:
+        check_outputs(outputs.values(), inputs=[bag_path], overwrite=args.overwrite, option="--out")
+    except OutputError as error:
+        raise UsageError(str(error)) from None
     started = time.perf_counter()
     rows, estimates_msgs, discarded = [], [], []
     n_samples = 0
@@ -151,23 +167,24 @@ def run(args) -> int:
         raise UsageError(str(error)) from None
     elapsed = time.perf_counter() - started
 
-    out_prefix.parent.mkdir(parents=True, exist_ok=True)
-    with open(out_prefix.with_suffix(".csv"), "w", newline="") as f:
-        writer = csv.writer(f)
-        writer.writerow(CSV_COLUMNS)
-        for r in rows:
-            writer.writerow([r[c] if c != "b_vector" else " ".join(f"{b:.9g}" for b in r[c])
-                             for c in CSV_COLUMNS])
     summary = _summary(rows, true_width)
-    with open(out_prefix.with_suffix(".json"), "w") as f:
-        # json.dumps (one shot) uses the C encoder; json.dump to a file does not
-        f.write(json.dumps({"bag": str(bag_path), "mode": mode, "trigger": args.trigger,
-                   "samples_analysed": n_samples, "seconds": elapsed,
-                   "discarded_windows": [{"entry_sample_index": d.entry_sample_index,
-                                          "reason": d.reason} for d in discarded],
-                   "summary": summary, "estimates": rows}, allow_nan=True))
-    _write_estimate_bag(out_prefix.with_suffix(".mcap"), estimates_msgs, true_width)
-    _print_summary(summary, rows, discarded, n_samples, elapsed, out_prefix)
+    # written under temporary names, renamed together once all three are complete
+    with staged_outputs([outputs["csv"], outputs["json"], outputs["mcap"]]) as (csv_tmp, json_tmp, mcap_tmp):
+        with open(csv_tmp, "w", newline="") as f:
+            writer = csv.writer(f)
+            writer.writerow(CSV_COLUMNS)
+            for r in rows:
+                writer.writerow([r[c] if c != "b_vector" else " ".join(f"{b:.9g}" for b in r[c])
+                                 for c in CSV_COLUMNS])
+        with open(json_tmp, "w") as f:
+            # json.dumps (one shot) uses the C encoder; json.dump to a file does not
+            f.write(json.dumps({"bag": str(bag_path), "mode": mode, "trigger": args.trigger,
+                       "samples_analysed": n_samples, "seconds": elapsed,
+                       "discarded_windows": [{"entry_sample_index": d.entry_sample_index,
+                                              "reason": d.reason} for d in discarded],
+                       "summary": summary, "estimates": rows}, allow_nan=True))
+        _write_estimate_bag(mcap_tmp, estimates_msgs, true_width)
+    _print_summary(summary, rows, discarded, n_samples, elapsed, outputs)
     return 0
 
 
@@ -202,7 +219,7 @@ def _summary(rows, true_width):
     return {"true_width_m": true_width, "per_signal": per}
 
 
-def _print_summary(summary, rows, discarded, n_samples, elapsed, out_prefix):
+def _print_summary(summary, rows, discarded, n_samples, elapsed, outputs):
     true_width = summary["true_width_m"]
     print(f"analyzed {n_samples} samples in {elapsed:.2f} s; {len({r['entry_sample_index'] for r in rows})} "
           f"onset windows, {len(discarded)} discarded")
@@ -219,7 +236,7 @@ def _print_summary(summary, rows, discarded, n_samples, elapsed, out_prefix):
             print("  ".join("-" * w for w in widths))
     if not math.isnan(true_width):
         print(f"true width: {true_width * 1e3:.2f} mm")
-    print(f"wrote {out_prefix.with_suffix('.csv')}, .json, .mcap")
+    print(f"wrote {outputs['csv']}, {outputs['json'].name}, {outputs['mcap'].name}")
 
 
 def _write_estimate_bag(path, estimates_msgs, true_width):

@@ -46,7 +46,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--processes", action="store_true",
                         help="run each node in its own process (as `ros2 run` would) instead of one")
     parser.add_argument("--record", metavar="FILE.mcap", default="",
-                        help="also record every topic of the run into this MCAP file")
+                        help="also record every topic of the run into this MCAP file (an existing "
+                             "file is an error unless --overwrite)")
+    parser.add_argument("--overwrite", action="store_true",
+                        help="with --record: replace an existing file (the new recording replaces it "
+                             "only once it is complete)")
 
 
 def validate(args) -> None:
@@ -61,6 +65,12 @@ def validate(args) -> None:
         raise UsageError(f"--events = {args.events}; allowed: 0 (no limit) or more")
     if args.seed < 0:
         raise UsageError(f"--seed = {args.seed}; allowed: 0 or more")
+    if args.record:
+        from backlash_monitor.output_files import OutputError, check_outputs
+        try:
+            check_outputs([args.record], overwrite=args.overwrite, option="--record")
+        except OutputError as error:
+            raise UsageError(str(error)) from None
 
 
 def node_parameters(args) -> dict[str, dict]:
@@ -217,7 +227,8 @@ def run(args) -> int:
         monitor.create_subscription(DiagnosticArray, "/diagnostics", view.on_diagnostics, 10)
         if args.record:
             from backlash_monitor.nodes.record import RecordNode
-            nodes.append(RecordNode(parameter_overrides=[Parameter("output", value=args.record)]))
+            nodes.append(RecordNode(parameter_overrides=[Parameter("output", value=args.record),
+                                                         Parameter("overwrite", value=args.overwrite)]))
         if args.processes:
             for name in ("classifier", "denoise", "windowing", "plant_simulator"):
                 children.append(subprocess.Popen([_executable(name)]

@@ -20,6 +20,7 @@ from __future__ import annotations
 import datetime as _dt
 import fnmatch
 import importlib
+import os
 import re
 import sys
 import time
@@ -32,13 +33,17 @@ from rclpy.qos import (DurabilityPolicy, HistoryPolicy, LivelinessPolicy, QoSPro
 from backlash_monitor.bag import BagWriter
 from backlash_monitor.bag.errors import BagError
 from backlash_monitor.bag.writer import INFINITE
+from backlash_monitor.output_files import partial_path
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate, run_node)
 
 DEFAULT_EXCLUDE = r"^/(rosout|parameter_events)$"
 
 PARAMETERS = (
-    ParameterSpec("output", "", "the .mcap file to write (empty: backlash_<UTC time>.mcap here)"),
+    ParameterSpec("output", "", "the .mcap file to write (empty: backlash_<UTC time>.mcap here); an "
+                  "existing file is an error unless overwrite is true"),
+    ParameterSpec("overwrite", False, "replace an existing output file: the new recording goes to "
+                  "OUTPUT.partial and replaces OUTPUT only when it is closed"),
     ParameterSpec("topics", "", "comma-separated topic names or glob patterns to record, e.g. "
                   "'plant/*,estimate' (relative names are taken from /); empty: every topic"),
     ParameterSpec("exclude_regex", DEFAULT_EXCLUDE, "topics matching this regex are not recorded"),
@@ -116,10 +121,18 @@ class RecordNode(Node):
         self.patterns = [t.strip() if t.strip().startswith("/") else "/" + t.strip()
                          for t in p["topics"].split(",") if t.strip()]
         self.output = p["output"] or default_output()
+        # Never replace an existing recording silently: without `overwrite` the file is created
+        # exclusively; with it the new recording is written beside it and renamed over it at close
+        # (a killed recorder then leaves the old recording intact and OUTPUT.partial readable).
+        self.writing_to = str(partial_path(self.output)) if p["overwrite"] else self.output
         try:
-            self.writer = BagWriter(self.output, compression="" if p["compression"] == "none"
+            self.writer = BagWriter(self.writing_to, compression="" if p["compression"] == "none"
                                     else p["compression"], chunk_size=p["chunk_size_bytes"],
-                                    chunk_duration_s=p["chunk_duration_s"])
+                                    chunk_duration_s=p["chunk_duration_s"], exclusive=True)
+        except FileExistsError:
+            which = self.output if self.writing_to == self.output else f"{self.writing_to} (left by a killed recorder?)"
+            raise ParameterValueError(f"parameter 'output' = {self.output!r}: {which} exists already; "
+                                      "allowed: a new path, or overwrite:=true to replace it") from None
         except OSError as error:
             raise ParameterValueError(f"parameter 'output' = {self.output!r}: cannot create the file "
                                       f"({error.strerror}); allowed: a writable path") from None
@@ -194,6 +207,8 @@ class RecordNode(Node):
     def close(self) -> None:
         if not self.writer.closed:
             self.writer.close()
+            if self.writing_to != self.output:
+                os.replace(self.writing_to, self.output)
             total = sum(self.counts.values())
             text = f"closed {self.output}: {total} messages on {len(self.counts)} topics"
             if self.context.ok():
