@@ -34,9 +34,9 @@ from ament_index_python.packages import get_package_prefix  # noqa: E402
 from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
 from rclpy.parameter import Parameter  # noqa: E402
 
-from backlash_monitor.nodes.classifier import ESTIMATE_QOS  # noqa: E402
+from backlash_monitor.nodes.qos import ESTIMATE_QOS  # noqa: E402
 from backlash_monitor.nodes.lean_executor import make_executor  # noqa: E402
-from backlash_monitor.nodes.parameters import freeze_startup_objects  # noqa: E402
+from backlash_monitor.nodes.runtime import freeze_startup_objects  # noqa: E402
 from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode  # noqa: E402
 from backlash_monitor.windowing import default_window_offset  # noqa: E402
 from backlash_monitor_msgs.msg import BacklashEstimate  # noqa: E402
@@ -87,7 +87,7 @@ def run_graph(duration_s, rate_factor, chunk=None, stages=None, one_process=Fals
         discarded = [0]
         arrivals = {"window": {}, "denoised": {}}
         if stages is not None:
-            from backlash_monitor.nodes.windowing import WINDOW_QOS
+            from backlash_monitor.nodes.qos import WINDOW_QOS
             from backlash_monitor_msgs.msg import BacklashWindow
             for key, topic in (("window", "windows/raw"), ("denoised", "windows/denoised")):
                 monitor.create_subscription(
@@ -131,7 +131,7 @@ def run_graph(duration_s, rate_factor, chunk=None, stages=None, one_process=Fals
         executor = make_executor()   # as the project's nodes and the pipeline spin
         executor.add_node(plant)
         executor.add_node(monitor)
-        freeze_startup_objects()     # as the nodes do once built (nodes/parameters.run_nodes)
+        freeze_startup_objects()     # as the nodes do once built (nodes/runtime.run_nodes)
         started = time.time()
         expected = int(duration_s * 4) - 1          # onsets whose window ends inside the run
         limit = started + duration_s / rate_factor + 30

@@ -7,9 +7,7 @@ printing its own message): the CLI prints the message and exits 2, never a trace
 import importlib
 import pkgutil
 
-
-class UsageError(Exception):
-    """Bad input from the user: the message names the problem and the allowed values."""
+from backlash_monitor.errors import UsageError  # noqa: F401  (the commands raise it from here)
 
 
 def command_module_names() -> dict[str, str]:

@@ -6,6 +6,8 @@ with its description and allowed values, and the node validates the values itsel
 """
 from __future__ import annotations
 
+from backlash_monitor.nodes.parameters import ros_parameter_args  # noqa: F401  (re-exported)
+
 
 def add_parameter_options(parser, specs, positional: str | None = None) -> None:
     for spec in specs:
@@ -29,18 +31,6 @@ def add_parameter_options(parser, specs, positional: str | None = None) -> None:
         else:
             parser.add_argument(flag, dest=spec.name, default=spec.default,
                                 choices=spec.choices, help=help_text)
-
-
-def ros_parameter_args(values: dict) -> list[str]:
-    """``--ros-args -p name:=value ...`` for a node's parameter values (YAML-quoted where needed)."""
-    out = ["--ros-args"]
-    for name, value in values.items():
-        if isinstance(value, bool):
-            value = str(value).lower()
-        elif isinstance(value, str):
-            value = f"'{value}'" if value == "" or ":" in value or "," in value else value
-        out += ["-p", f"{name}:={value}"]
-    return out
 
 
 def ros_arguments(args, specs) -> list[str]:

@@ -14,24 +14,18 @@ import math
 import sys
 
 from rclpy.node import Node
-from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator
 from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
-                                               declare_and_validate, run_node)
-from backlash_monitor.nodes.windowing import WINDOW_QOS
+                                               declare_and_validate)
+from backlash_monitor.nodes.qos import ESTIMATE_QOS, WINDOW_QOS
+from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor.window_repeats import RepeatedWindows
 from backlash_monitor.windowing import default_window_offset
 from backlash_monitor_msgs.msg import BacklashEstimate, BacklashWindow
-
-# Transient local like the windows: a monitor that matches late still gets the last 1000
-# estimates (250 s of onsets and returns of one drive).
-ESTIMATE_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE,
-                          durability=DurabilityPolicy.TRANSIENT_LOCAL,
-                          history=HistoryPolicy.KEEP_LAST)
 
 PARAMETERS = (
     ParameterSpec("drive_name", "drive", "the drive's name: diagnostics hardware_id"),

@@ -15,8 +15,9 @@ from backlash_monitor.chain import denoise_pair, denoising_label
 from backlash_monitor.denoise import DEFAULT_MODE
 from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
-                                               declare_and_validate, run_node)
-from backlash_monitor.nodes.windowing import WINDOW_QOS
+                                               declare_and_validate)
+from backlash_monitor.nodes.qos import WINDOW_QOS
+from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor_msgs.msg import BacklashWindow
 
 PARAMETERS = (

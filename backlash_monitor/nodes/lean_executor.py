@@ -28,6 +28,8 @@ from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 from rclpy.subscription import Subscription
 from rclpy.waitable import NumberOfEntities
 
+from backlash_monitor.nodes.parameters import ParameterValueError
+
 
 class _Plan:
     """The entities of the executor's nodes, entered, with the rcl wait set sized for them."""
@@ -209,6 +211,5 @@ def make_executor(context=None):
     import os
     choice = os.environ.get(EXECUTOR_ENV, "lean") or "lean"
     if choice not in EXECUTORS:
-        from backlash_monitor.nodes.parameters import ParameterValueError
         raise ParameterValueError(f"{EXECUTOR_ENV}={choice!r}; allowed: " + ", ".join(EXECUTORS))
     return LeanExecutor(context=context) if choice == "lean" else SingleThreadedExecutor(context=context)

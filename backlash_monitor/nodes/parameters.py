@@ -4,18 +4,14 @@ Each node lists its parameters as :class:`ParameterSpec` (name, default, descrip
 range or choices). :func:`declare_and_validate` declares them with a ``ParameterDescriptor`` (so
 ``ros2 param describe`` shows the description and range) and checks the values the node was
 started with. A bad value raises :class:`ParameterValueError` naming the parameter and what is
-allowed; :func:`run_node` turns that into one clear log line and exit code 2 — the node does not
-start. Values set later at run time are checked by the same rule and refused with the same reason.
+allowed; :func:`backlash_monitor.nodes.runtime.run_node` turns that into one clear log line and
+exit code 2 — the node does not start. Values set later at run time are checked by the same rule and refused with the same reason.
 """
 from __future__ import annotations
 
-import gc
 import math
-import sys
 from dataclasses import dataclass
 
-import rclpy
-import rclpy.executors
 from rcl_interfaces.msg import (FloatingPointRange, IntegerRange, ParameterDescriptor,
                                 SetParametersResult)
 
@@ -107,55 +103,13 @@ def declare_and_validate(node, specs) -> dict:
     return values
 
 
-def freeze_startup_objects() -> None:
-    """Call once the nodes are built: everything built so far lives as long as they do, so keep it
-    out of the garbage collector's scans and a collection inside a callback stays short. Measured
-    with bench/latency.py, four runs each side by side: p99 8.4/8.9/8.7/16.8 ms frozen vs
-    11.7/12.3/8.7/17.5 ms not."""
-    gc.collect()
-    gc.freeze()
-
-
-def run_node(node_factory, args=None, spin=None) -> int:
-    """``main()`` body shared by the nodes: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
-
-    The node spins on a :func:`~backlash_monitor.nodes.lean_executor.make_executor` executor;
-    ``spin(node, executor)`` replaces the plain ``executor.spin()``. A
-    :class:`ParameterValueError` while building the node is logged as one clear line and gives
-    exit code 2 (the node does not start).
-    """
-    return run_nodes([node_factory], args=args,
-                     spin=None if spin is None else (lambda nodes, ex: spin(nodes[0], ex)))
-
-
-def run_nodes(node_factories, args=None, spin=None) -> int:
-    """:func:`run_node` for several nodes in one process on one executor (built in order)."""
-    from backlash_monitor.nodes.fast_dds import configure_fast_dds
-    from backlash_monitor.nodes.lean_executor import make_executor
-    configure_fast_dds()
-    rclpy.init(args=args)
-    nodes = []
-    executor = None
-    try:
-        for factory in node_factories:
-            nodes.append(factory())
-        executor = make_executor()
-        for node in nodes:
-            executor.add_node(node)
-        freeze_startup_objects()
-        if spin is None:
-            executor.spin()
-        else:
-            spin(nodes, executor)
-        return 0
-    except ParameterValueError as error:
-        print(f"[ERROR] {error}", file=sys.stderr, flush=True)
-        return 2
-    except (KeyboardInterrupt, rclpy.executors.ExternalShutdownException):
-        return 0
-    finally:
-        if executor is not None:
-            executor.shutdown()
-        for node in nodes:
-            node.destroy_node()
-        rclpy.try_shutdown()
+def ros_parameter_args(values: dict) -> list[str]:
+    """``--ros-args -p name:=value ...`` for a node's parameter values (YAML-quoted where needed)."""
+    out = ["--ros-args"]
+    for name, value in values.items():
+        if isinstance(value, bool):
+            value = str(value).lower()
+        elif isinstance(value, str):
+            value = f"'{value}'" if value == "" or ":" in value or "," in value else value
+        out += ["-p", f"{name}:={value}"]
+    return out

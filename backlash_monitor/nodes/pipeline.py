@@ -54,7 +54,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def validate(args) -> None:
-    from backlash_monitor.commands import UsageError
+    from backlash_monitor.errors import UsageError
     checks = [("--width-m", args.width_m, 1e-4, 0.05), ("--eta-k", args.eta_k, 1e-4, 1.0),
               ("--n1", args.n1, 0.5, 1.5), ("--duration", args.duration, 0.1, 1e6),
               ("--rate-factor", args.rate_factor, 0.01, 1000.0)]
@@ -206,14 +206,15 @@ def run(args) -> int:
     from rclpy.parameter import Parameter
     from diagnostic_msgs.msg import DiagnosticArray
     from backlash_monitor_msgs.msg import BacklashEstimate
-    from backlash_monitor.nodes.classifier import ESTIMATE_QOS
-    from backlash_monitor.nodes.parameters import ParameterValueError, freeze_startup_objects
+    from backlash_monitor.nodes.qos import ESTIMATE_QOS
+    from backlash_monitor.nodes.parameters import ParameterValueError
+    from backlash_monitor.nodes.runtime import freeze_startup_objects
 
     from backlash_monitor.estimation import DEFAULT_MODE, default_signals
     from backlash_monitor.nodes.fast_dds import configure_fast_dds
     from backlash_monitor.nodes.lean_executor import make_executor
     configure_fast_dds()  # before rclpy.init; the child processes inherit it
-    from backlash_monitor.commands._node_options import ros_parameter_args
+    from backlash_monitor.nodes.parameters import ros_parameter_args
     params = node_parameters(args)
     view = LiveView(args.width_m, default_signals(args.mode or DEFAULT_MODE))
     children: list[subprocess.Popen] = []
@@ -295,7 +296,7 @@ def run(args) -> int:
 def main(argv=None) -> int:
     """`ros2 run backlash_monitor pipeline [options]` (ROS arguments are passed through)."""
     from rclpy.utilities import remove_ros_args
-    from backlash_monitor.commands import UsageError
+    from backlash_monitor.errors import UsageError
     parser = argparse.ArgumentParser(prog="pipeline", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     add_arguments(parser)

@@ -14,12 +14,12 @@ import sys
 import time
 
 from rclpy.node import Node
-from rclpy.qos import (DurabilityPolicy, QoSProfile, ReliabilityPolicy, HistoryPolicy,
-                       qos_profile_sensor_data)
 from std_msgs.msg import Float64
 
 from backlash_monitor.nodes.conversions import SIGNAL_UNITS, stamp_of_sample, to_float64_array
-from backlash_monitor.nodes.parameters import ParameterSpec, declare_and_validate, run_node
+from backlash_monitor.nodes.parameters import ParameterSpec, declare_and_validate
+from backlash_monitor.nodes.qos import LATCHED, chunk_qos
+from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor.plant import Scenario, PlantSimulator, load_plant_config
 from backlash_monitor.plant.integrator import BACKENDS
 from backlash_monitor_msgs.msg import SignalChunk
@@ -51,22 +51,6 @@ PARAMETERS = (
                   "this many matched subscriptions in total (so the chain or a recorder misses "
                   "nothing; the windowing node has 3, a recorder 5)", 0, 1000),
 )
-
-LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
-                     durability=DurabilityPolicy.TRANSIENT_LOCAL, history=HistoryPolicy.KEEP_LAST)
-
-
-RELIABLE_CHUNK_DEPTH = 1000  # chunks (20 s of stream at 1000 samples each): a late subscriber
-                             # catches up instead of losing data when the stream runs faster than
-                             # real time
-
-
-def chunk_qos(name: str) -> QoSProfile:
-    if name == "reliable":
-        return QoSProfile(depth=RELIABLE_CHUNK_DEPTH, reliability=ReliabilityPolicy.RELIABLE,
-                          history=HistoryPolicy.KEEP_LAST)
-    return qos_profile_sensor_data
-
 
 class PlantSimulatorNode(Node):
     def __init__(self, **overrides):

@@ -35,7 +35,8 @@ from backlash_monitor.bag.errors import BagError
 from backlash_monitor.bag.writer import INFINITE
 from backlash_monitor.output_files import partial_path
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
-                                               declare_and_validate, run_node)
+                                               declare_and_validate)
+from backlash_monitor.nodes.runtime import run_node
 
 DEFAULT_EXCLUDE = r"^/(rosout|parameter_events)$"
 

@@ -30,7 +30,8 @@ from backlash_monitor.bag import BagReader
 from backlash_monitor.bag.errors import BagError, TruncatedBagError
 from backlash_monitor.nodes.fast_dds import configure_fast_dds
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
-                                               declare_and_validate, run_node)
+                                               declare_and_validate)
+from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor.nodes.record import message_class
 
 PARAMETERS = (

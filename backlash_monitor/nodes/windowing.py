@@ -14,26 +14,17 @@ import math
 import sys
 
 from rclpy.node import Node
-from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64
 
 from backlash_monitor.nodes.conversions import (from_float64_field, stamp_of_sample,
                                                  seconds_from_time, to_float64_array)
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
-                                               declare_and_validate, run_node)
-from backlash_monitor.nodes.plant_simulator import LATCHED, chunk_qos
+                                               declare_and_validate)
+from backlash_monitor.nodes.qos import LATCHED, WINDOW_QOS, chunk_qos
+from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor.chain import ChunkJoiner, WindowingStage
 from backlash_monitor_msgs.msg import BacklashWindow, SignalChunk
-
-# Windows come in bursts when the stream runs faster than real time (a replay, a simulation):
-# 1000 windows (125 s of a drive's stream, 32 MB at most) may wait for a slow reader before the
-# oldest is dropped. Transient local: a reader that matches late (a node started after the stream,
-# a slow discovery while several processes start) still gets the last 1000 windows instead of
-# losing the ones published before it matched.
-WINDOW_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE,
-                        durability=DurabilityPolicy.TRANSIENT_LOCAL,
-                        history=HistoryPolicy.KEEP_LAST)
 
 PARAMETERS = (
     ParameterSpec("drive_name", "drive", "the drive's name: frame_id and diagnostics hardware_id"),

@@ -10,8 +10,6 @@ from dataclasses import dataclass
 from typing import Mapping
 
 import numpy as np
-from scipy.ndimage import maximum_filter1d, minimum_filter1d
-from scipy.signal import lfilter
 
 from .config import (ANGLE_SOURCES, DEFAULTS, INTEGRATION_RULES, KIND_ONSET, KIND_RETURN, TRIGGERS)
 
@@ -168,6 +166,20 @@ def _check_positive(name: str, value, integer: bool = False):
     return v
 
 
+lfilter = maximum_filter1d = minimum_filter1d = None   # scipy's, bound by _load_filters()
+
+
+def _load_filters() -> None:
+    """Import scipy's filters when the first detector is built, not with the package: the
+    classifier node imports this package for its configuration alone (default_window_offset) and
+    so does not load scipy.signal (about 1 s and 40 MB; docs/fleet.md)."""
+    global lfilter, maximum_filter1d, minimum_filter1d
+    if lfilter is None:
+        from scipy.ndimage import maximum_filter1d as _max, minimum_filter1d as _min
+        from scipy.signal import lfilter as _lfilter
+        lfilter, maximum_filter1d, minimum_filter1d = _lfilter, _max, _min
+
+
 class BacklashEntryDetector:
     """Streaming entry detector for ONE drive (one scenario).  Feed consecutive chunks.
 
@@ -196,6 +208,7 @@ class BacklashEntryDetector:
                  contact_deflection_rad: float = DEFAULTS["detector"]["contact_deflection_rad"],
                  initial_contact_side: int = DEFAULTS["detector"]["initial_contact_side"],
                  rereference_interval_s: float = DEFAULTS["detector"]["rereference_interval_s"]):
+        _load_filters()
         if trigger not in TRIGGERS:
             raise ValueError(f"trigger={trigger!r}: allowed values are {TRIGGERS}")
         if angle_source not in ANGLE_SOURCES:

@@ -1,0 +1,68 @@
+"""The process shell shared by the nodes' executables: init, build, spin, clean shutdown.
+
+Separate from :mod:`backlash_monitor.nodes.parameters` (declaration and validation of parameters,
+imported by every node module) so that neither that module nor the executor imports the other.
+"""
+from __future__ import annotations
+
+import gc
+import sys
+
+import rclpy
+import rclpy.executors
+
+from backlash_monitor.nodes.fast_dds import configure_fast_dds
+from backlash_monitor.nodes.lean_executor import make_executor
+from backlash_monitor.nodes.parameters import ParameterValueError
+
+
+def freeze_startup_objects() -> None:
+    """Call once the nodes are built: everything built so far lives as long as they do, so keep it
+    out of the garbage collector's scans and a collection inside a callback stays short. Measured
+    with bench/latency.py, four runs each side by side: p99 8.4/8.9/8.7/16.8 ms frozen vs
+    11.7/12.3/8.7/17.5 ms not."""
+    gc.collect()
+    gc.freeze()
+
+
+def run_node(node_factory, args=None, spin=None) -> int:
+    """``main()`` body shared by the nodes: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
+
+    The node spins on a :func:`~backlash_monitor.nodes.lean_executor.make_executor` executor;
+    ``spin(node, executor)`` replaces the plain ``executor.spin()``. A
+    :class:`ParameterValueError` while building the node is logged as one clear line and gives
+    exit code 2 (the node does not start).
+    """
+    return run_nodes([node_factory], args=args,
+                     spin=None if spin is None else (lambda nodes, ex: spin(nodes[0], ex)))
+
+
+def run_nodes(node_factories, args=None, spin=None) -> int:
+    """:func:`run_node` for several nodes in one process on one executor (built in order)."""
+    configure_fast_dds()
+    rclpy.init(args=args)
+    nodes = []
+    executor = None
+    try:
+        for factory in node_factories:
+            nodes.append(factory())
+        executor = make_executor()
+        for node in nodes:
+            executor.add_node(node)
+        freeze_startup_objects()
+        if spin is None:
+            executor.spin()
+        else:
+            spin(nodes, executor)
+        return 0
+    except ParameterValueError as error:
+        print(f"[ERROR] {error}", file=sys.stderr, flush=True)
+        return 2
+    except (KeyboardInterrupt, rclpy.executors.ExternalShutdownException):
+        return 0
+    finally:
+        if executor is not None:
+            executor.shutdown()
+        for node in nodes:
+            node.destroy_node()
+        rclpy.try_shutdown()
