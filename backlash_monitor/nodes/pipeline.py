@@ -5,7 +5,13 @@
 
 Runs the whole graph (one process by default, each node in its own process with --processes),
 prints every estimate and the fused estimate against the simulator's true width as it arrives, and
-ends with a summary table. With no arguments it runs its embedded default: a 5 mm clutch at
+ends with a summary table.
+
+With --processes, a node process that ends before the run is over is named with its exit code or
+signal; by default (--restart no) that ends the run: the summary is printed and the exit code is 1.
+With --restart on-failure the node is started again (at most --max-restarts times each) and the
+run goes on; the summary lists every fault. The node processes end with the pipeline, also when it
+is killed with SIGKILL. With no arguments it runs its embedded default: a 5 mm clutch at
 eta_k = 0.025 Pa*s^n, n1 = 0.89, real time, for 10 simulated seconds.
 """
 from __future__ import annotations
@@ -13,11 +19,11 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import signal
-import subprocess
 import sys
 import time
 from dataclasses import dataclass, field
+
+from backlash_monitor.supervisor import RESTART_POLICIES, Supervisor
 
 DEFAULTS = dict(width_m=0.005, eta_k=0.025, n1=0.89, seed=0, duration=10.0, rate_factor=1.0)
 
@@ -45,6 +51,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--drive-name", default="drive", help="the drive's name (hardware_id)")
     parser.add_argument("--processes", action="store_true",
                         help="run each node in its own process (as `ros2 run` would) instead of one")
+    parser.add_argument("--restart", choices=RESTART_POLICIES, default="no",
+                        help="with --processes, what to do when a node process ends before the run "
+                             "is over: 'no' = end the run (summary, exit code 1); 'on-failure' = "
+                             "start it again and go on (a node that refused its parameters, exit "
+                             "code 2, is not restarted)")
+    parser.add_argument("--max-restarts", type=int, default=3,
+                        help="with --restart on-failure: restarts per node before its next failure "
+                             "ends the run")
     parser.add_argument("--record", metavar="FILE.mcap", default="",
                         help="also record every topic of the run into this MCAP file (an existing "
                              "file is an error unless --overwrite)")
@@ -65,6 +79,11 @@ def validate(args) -> None:
         raise UsageError(f"--events = {args.events}; allowed: 0 (no limit) or more")
     if args.seed < 0:
         raise UsageError(f"--seed = {args.seed}; allowed: 0 or more")
+    if args.max_restarts < 0:
+        raise UsageError(f"--max-restarts = {args.max_restarts}; allowed: 0 or more")
+    if args.restart != "no" and not args.processes:
+        raise UsageError(f"--restart {args.restart} needs --processes (one process has no node "
+                         "process to restart); allowed: --restart no, or add --processes")
     if args.record:
         from backlash_monitor.output_files import OutputError, check_outputs
         try:
@@ -73,14 +92,21 @@ def validate(args) -> None:
             raise UsageError(str(error)) from None
 
 
+WINDOWING_READS = "windowing:a1,a2,angle_difference"   # the windowing node, measured angles
+RECORD_NODE = "record"                                 # --record: records every plant signal
+NODE_ORDER = ("classifier", "denoise", "windowing", "plant_simulator")   # readers first
+
+
 def node_parameters(args) -> dict[str, dict]:
     """The parameters each node of the graph is started with."""
     return {
         "plant_simulator": dict(drive_name=args.drive_name, width_m=args.width_m, eta_k=args.eta_k,
                                 n1=args.n1, seed=args.seed, rate_factor=args.rate_factor,
                                 duration_s=args.duration, qos="reliable",
-                                # windowing: a1, a2, angle_difference; a recorder: all five
-                                wait_for_subscriptions=8 if args.record else 3),
+                                # the readers the stream is for (not a count: another subscriber
+                                # in the domain must not start it early)
+                                wait_for_subscribers=[WINDOWING_READS]
+                                + ([RECORD_NODE] if args.record else [])),
         "windowing": dict(drive_name=args.drive_name, trigger=args.trigger, qos="reliable",
                           width_m=args.width_m if args.trigger == "paper" else 0.0),
         "denoise": {},
@@ -109,16 +135,36 @@ class LiveView:
         self.signals = signals
         self.out = out
         self.tally: dict[str, SignalTally] = {}
-        self.onset_entries: set[int] = set()
-        self.pending: dict[int, dict] = {}
+        # events by (window stamp, entry index): a restarted plant starts its indices at 0 again
+        self.onset_entries: set[tuple] = set()
+        self.pending: dict[tuple, dict] = {}
+        self.last_event_s = math.nan      # stream time of the latest event seen
         self.completed_events = 0         # onset events with an estimate on every signal
         self.first_arrival_s: float | None = None   # time.monotonic() of the first estimate
         self.last_arrival_s: float | None = None
         self.diagnostic = ""
         self.windowing = ""
         self.mode = ""
+        self.seen: set[tuple] = set()
+        self.repeated = 0                 # estimates received again (a restarted classifier)
+        self.faults: list[str] = []       # node processes that ended before the run was over
+
+    def on_fault(self, description: str) -> None:
+        """A node process ended: say so in line with the estimates; the summary lists it."""
+        last = ("" if math.isnan(self.last_event_s)
+                else f"; last estimate before it: event at t={self.last_event_s:.3f} s")
+        self.faults.append(description + last)
+        print(f"pipeline: {description}{last}", file=self.out, flush=True)
 
     def on_estimate(self, msg) -> None:
+        # A restarted classifier (transient local windows) classifies the windows it had seen
+        # again and re-sends their estimates: count each estimate once.
+        key = (msg.signal_name, msg.entry_sample_index, msg.entry_kind, msg.header.stamp.sec,
+               msg.header.stamp.nanosec)
+        if key in self.seen:
+            self.repeated += 1
+            return
+        self.seen.add(key)
         self.last_arrival_s = time.monotonic()
         if self.first_arrival_s is None:
             self.first_arrival_s = self.last_arrival_s
@@ -132,11 +178,13 @@ class LiveView:
         t.margins.append(msg.b_margin)
         if not math.isnan(msg.continuous_width_m):
             t.continuous.append(msg.continuous_width_m)
-        self.onset_entries.add(msg.entry_sample_index)
-        event = self.pending.setdefault(msg.entry_sample_index, {})
+        event_key = key[3:] + (msg.entry_sample_index,)
+        self.onset_entries.add(event_key)
+        self.last_event_s = msg.entry_sample_index * self.sample_period_s
+        event = self.pending.setdefault(event_key, {})
         event[msg.signal_name] = msg
         if len(event) >= len(self.signals):
-            self.print_event(self.pending.pop(msg.entry_sample_index))
+            self.print_event(self.pending.pop(event_key))
             self.completed_events += 1
 
     def flush(self) -> None:
@@ -191,6 +239,9 @@ class LiveView:
             if self.diagnostic else []
         tail += [f"last diagnostics (sent once a second): windowing {self.windowing}"] \
             if self.windowing else []
+        tail += [f"repeated estimates ignored: {self.repeated} (re-sent by a restarted node)"] \
+            if self.repeated else []
+        tail += [f"node fault: {fault}" for fault in self.faults]
         return "\n".join([head] + lines + tail)
 
 
@@ -217,7 +268,8 @@ def run(args) -> int:
     from backlash_monitor.nodes.parameters import ros_parameter_args
     params = node_parameters(args)
     view = LiveView(args.width_m, default_signals(args.mode or DEFAULT_MODE))
-    children: list[subprocess.Popen] = []
+    supervisor = None
+    exit_code = 0
     rclpy.init()
     nodes = []
     executor = None
@@ -230,10 +282,13 @@ def run(args) -> int:
             from backlash_monitor.nodes.record import RecordNode
             nodes.append(RecordNode(parameter_overrides=[Parameter("output", value=args.record),
                                                          Parameter("overwrite", value=args.overwrite)]))
+        plant = None
         if args.processes:
-            for name in ("classifier", "denoise", "windowing", "plant_simulator"):
-                children.append(subprocess.Popen([_executable(name)]
-                                                 + ros_parameter_args(params[name])))
+            supervisor = Supervisor({name: [_executable(name)] + ros_parameter_args(params[name])
+                                     for name in NODE_ORDER},
+                                    restart=args.restart, max_restarts=args.max_restarts,
+                                    finishing=("plant_simulator",))
+            supervisor.start()
         else:
             from backlash_monitor.nodes.classifier import ClassifierNode
             from backlash_monitor.nodes.denoise import DenoiseNode
@@ -243,6 +298,7 @@ def run(args) -> int:
                               (WindowingNode, "windowing"), (PlantSimulatorNode, "plant_simulator")):
                 nodes.append(cls(parameter_overrides=[Parameter(k, value=v)
                                                       for k, v in params[name].items()]))
+            plant = nodes[-1]
         executor = make_executor()
         for node in nodes:
             executor.add_node(node)
@@ -251,38 +307,43 @@ def run(args) -> int:
               f"{args.eta_k:g}, n1 {args.n1:g}, trigger {args.trigger}, "
               f"{'one process per node' if args.processes else 'one process'}; "
               f"{args.duration:g} simulated s at x{args.rate_factor:g}", flush=True)
+        if supervisor is not None:
+            print("pipeline: node processes: " + ", ".join(
+                f"{name} pid {pid}" for name, pid in supervisor.pids().items())
+                + f"; restart policy {args.restart}", flush=True)
         stream_wall_s = args.duration / args.rate_factor
-        wall_limit = stream_wall_s + 30.0
-        started = time.monotonic()
-        while rclpy.ok() and time.monotonic() - started < wall_limit:
+        deadline = time.monotonic() + stream_wall_s + 30.0   # start-up included
+        stream_ended_s = None
+        while rclpy.ok() and time.monotonic() < deadline:
             executor.spin_once(timeout_sec=0.05)
             if args.events and view.completed_events >= args.events:
                 break
-            if view.first_arrival_s is not None:
-                # The stream started before the first estimate arrived, so it has ended by
-                # first arrival + its wall duration; then wait until the estimates stop coming.
-                now = time.monotonic()
-                if now > view.first_arrival_s + stream_wall_s + 1.0 \
-                        and now - view.last_arrival_s > 1.0:
+            now = time.monotonic()
+            if supervisor is not None:
+                for fault in supervisor.poll():
+                    view.on_fault(fault.describe())
+                    if fault.node == "plant_simulator" and fault.restarted_pid is not None:
+                        stream_ended_s = None           # a new stream, as long as the first
+                        deadline = now + stream_wall_s + 30.0
+                if supervisor.failed is not None:
+                    exit_code = 1
                     break
-            for child in children:
-                if child.poll() not in (None, 0):
-                    print(f"pipeline: a node exited with code {child.returncode}", file=sys.stderr)
-                    return 1
+            if stream_ended_s is None and (supervisor.finished("plant_simulator")
+                                           if supervisor is not None else plant.finished):
+                stream_ended_s = now
+                deadline = min(deadline, now + 30.0)
+            # The stream has ended: wait until the estimates in flight stop coming.
+            if stream_ended_s is not None \
+                    and now - max(stream_ended_s, view.last_arrival_s or 0.0) > 1.0:
+                break
     except ParameterValueError as error:
         print(f"pipeline: error: {error}", file=sys.stderr)
         return 2
     except (KeyboardInterrupt, ExternalShutdownException):
         print("pipeline: interrupted", file=sys.stderr)
     finally:
-        for child in children:
-            if child.poll() is None:
-                child.send_signal(signal.SIGINT)
-        for child in children:
-            try:
-                child.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                child.kill()
+        if supervisor is not None:
+            supervisor.stop()
         if executor is not None:
             executor.shutdown()
         for node in nodes:
@@ -290,7 +351,7 @@ def run(args) -> int:
         rclpy.try_shutdown()
     view.flush()
     print(view.summary(), flush=True)
-    return 0 if view.tally else 1
+    return exit_code or (0 if view.tally else 1)
 
 
 def main(argv=None) -> int:

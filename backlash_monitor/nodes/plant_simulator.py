@@ -14,6 +14,7 @@ import sys
 import time
 
 from rclpy.node import Node
+from rclpy.qos import QoSCompatibility, qos_check_compatible
 from std_msgs.msg import Float64
 
 from backlash_monitor.nodes.conversions import SIGNAL_UNITS, stamp_of_sample, to_float64_array
@@ -22,6 +23,7 @@ from backlash_monitor.nodes.qos import LATCHED, chunk_qos
 from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor.plant import Scenario, PlantSimulator, load_plant_config
 from backlash_monitor.plant.integrator import BACKENDS
+from backlash_monitor.subscriber_wait import TopicState, fully_qualified, missing, parse_wanted
 from backlash_monitor_msgs.msg import SignalChunk
 
 TICK_PERIOD_S = 0.01      # the publishing timer; each tick publishes every chunk that is due
@@ -48,8 +50,14 @@ PARAMETERS = (
                   "~1e-13 relative, not bit for bit), 'numba', 'numpy' or 'auto' (config)",
                   choices=BACKENDS),
     ParameterSpec("wait_for_subscriptions", 0, "start the stream only once the chunk topics have "
-                  "this many matched subscriptions in total (so the chain or a recorder misses "
-                  "nothing; the windowing node has 3, a recorder 5)", 0, 1000),
+                  "this many matched subscriptions in total (any subscriber counts; prefer "
+                  "wait_for_subscribers, which names the ones the stream is for)", 0, 1000),
+    ParameterSpec("wait_for_subscribers", [""], "start the stream only once these nodes subscribe: "
+                  "'NODE:SIGNAL,SIGNAL' (e.g. 'windowing:a1,a2,angle_difference') or 'NODE' (all "
+                  "five signals); NODE relative to this node's namespace or absolute; [''] = none"),
+    ParameterSpec("wait_timeout_s", 60.0, "how long to wait for wait_for_subscribers before "
+                  "streaming anyway (logged as a warning naming who is missing); 0 = no limit [s]",
+                  0.0, 86400.0),
 )
 
 class PlantSimulatorNode(Node):
@@ -77,6 +85,19 @@ class PlantSimulatorNode(Node):
         self.chunks_published = 0
         self.started = False
         self.finished = False
+        try:
+            self.wanted = parse_wanted(p["wait_for_subscribers"], self.get_namespace(),
+                                       SIGNAL_UNITS)
+        except ValueError as error:
+            from backlash_monitor.nodes.parameters import ParameterValueError
+            raise ParameterValueError(f"parameter {error}") from None
+        self.chunk_qos = qos
+        self.wait_started = time.monotonic()
+        if self.wanted:
+            limit = f"up to {p['wait_timeout_s']:g} s" if p["wait_timeout_s"] > 0 else "no limit"
+            self.get_logger().info(
+                "waiting for subscribers before streaming (" + limit + "): "
+                + "; ".join(f"{w.node} on {', '.join(w.signals)}" for w in self.wanted))
         self.timer = self.create_timer(TICK_PERIOD_S, self.on_tick)
         self.get_logger().info(
             f"simulating {p['drive_name']}: width {p['width_m'] * 1e3:g} mm, eta_k {p['eta_k']:g}, "
@@ -94,11 +115,38 @@ class PlantSimulatorNode(Node):
             due = min(due, self.total_chunks - self.chunks_published)
         return max(0, min(due, MAX_CHUNKS_PER_TICK))
 
-    def start_stream(self) -> bool:
-        """Start the clock of the stream once the required subscribers are there."""
+    def missing_subscribers(self) -> list[str]:
+        """What the stream still waits for ([] = nothing): the named subscribers
+        (subscriber_wait.py), then the legacy total count."""
+        topics = {}
+        for signal in {s for w in self.wanted for s in w.signals}:
+            pub = self.publishers_by_signal[signal]
+            infos = self.get_subscriptions_info_by_topic(pub.topic_name)
+            topics[signal] = TopicState(
+                frozenset(fully_qualified(i.node_name, i.node_namespace) for i in infos),
+                sum(1 for i in infos if qos_check_compatible(self.chunk_qos, i.qos_profile)[0]
+                    != QoSCompatibility.ERROR),
+                pub.get_subscription_count())
+        out = missing(self.wanted, topics)
         matched = sum(pub.get_subscription_count() for pub in self.publishers_by_signal.values())
         if matched < self.params["wait_for_subscriptions"]:
-            return False
+            out.append(f"{matched} of {self.params['wait_for_subscriptions']} subscriptions")
+        return out
+
+    def start_stream(self) -> bool:
+        """Start the clock of the stream once the required subscribers are there (or the wait
+        timed out: then say who is missing)."""
+        absent = self.missing_subscribers()
+        if absent:
+            timeout = self.params["wait_timeout_s"]
+            if timeout <= 0 or time.monotonic() - self.wait_started < timeout:
+                return False
+            self.get_logger().warning(f"streaming without them after waiting {timeout:g} s for "
+                                      f"subscribers: missing {'; '.join(absent)} (they lose the "
+                                      "stream's start)")
+        elif self.wanted:
+            self.get_logger().info(f"subscribers there after {time.monotonic() - self.wait_started:.1f} s: "
+                                   "streaming")
         self.stream_start_s = self.get_clock().now().nanoseconds * 1e-9
         self.wall_start = time.monotonic()
         self.started = True

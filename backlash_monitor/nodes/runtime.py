@@ -14,6 +14,7 @@ import rclpy.executors
 from backlash_monitor.nodes.fast_dds import configure_fast_dds
 from backlash_monitor.nodes.lean_executor import make_executor
 from backlash_monitor.nodes.parameters import ParameterValueError
+from backlash_monitor.parent_watch import start_watchdog
 
 
 def freeze_startup_objects() -> None:
@@ -39,6 +40,7 @@ def run_node(node_factory, args=None, spin=None) -> int:
 
 def run_nodes(node_factories, args=None, spin=None) -> int:
     """:func:`run_node` for several nodes in one process on one executor (built in order)."""
+    start_watchdog()    # started by a supervisor (pipeline --processes): end with it
     configure_fast_dds()
     rclpy.init(args=args)
     nodes = []
