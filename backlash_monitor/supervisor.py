@@ -106,9 +106,10 @@ class Supervisor:
         child = self.children.get(name)
         return child is not None and child.finished
 
-    def poll(self) -> list[Fault]:
+    def poll(self, restart: bool = True) -> list[Fault]:
         """Check every child; return the faults noticed now (restarted or not). After a fault
-        that was not restarted, :attr:`failed` is set and the run should end."""
+        that was not restarted, :attr:`failed` is set and the run should end. ``restart=False``:
+        restart nothing (the run is ending)."""
         new = []
         for child in self.children.values():
             if child.finished:
@@ -120,7 +121,7 @@ class Supervisor:
                 child.finished = True
                 continue
             fault = Fault(child.name, child.process.pid, code, time.monotonic())
-            if self.restart == "on-failure" and child.restarts < self.max_restarts \
+            if restart and self.restart == "on-failure" and child.restarts < self.max_restarts \
                     and code not in NOT_RESTARTED:
                 child.history.append(child.process)
                 child.process = self._spawn(child.argv)

@@ -270,6 +270,7 @@ def run(args) -> int:
     view = LiveView(args.width_m, default_signals(args.mode or DEFAULT_MODE))
     supervisor = None
     exit_code = 0
+    interrupted = False
     rclpy.init()
     nodes = []
     executor = None
@@ -316,8 +317,6 @@ def run(args) -> int:
         stream_ended_s = None
         while rclpy.ok() and time.monotonic() < deadline:
             executor.spin_once(timeout_sec=0.05)
-            if args.events and view.completed_events >= args.events:
-                break
             now = time.monotonic()
             if supervisor is not None:
                 for fault in supervisor.poll():
@@ -328,6 +327,8 @@ def run(args) -> int:
                 if supervisor.failed is not None:
                     exit_code = 1
                     break
+            if args.events and view.completed_events >= args.events:
+                break
             if stream_ended_s is None and (supervisor.finished("plant_simulator")
                                            if supervisor is not None else plant.finished):
                 stream_ended_s = now
@@ -341,8 +342,12 @@ def run(args) -> int:
         return 2
     except (KeyboardInterrupt, ExternalShutdownException):
         print("pipeline: interrupted", file=sys.stderr)
+        interrupted = True     # Ctrl-C reaches the node processes too: not their fault
     finally:
         if supervisor is not None:
+            for fault in ([] if interrupted else supervisor.poll(restart=False)):
+                view.on_fault(fault.describe())     # one that ended as the run did
+                exit_code = 1
             supervisor.stop()
         if executor is not None:
             executor.shutdown()

@@ -1,0 +1,107 @@
+"""Run `pipeline --processes`, read its live output, kill its processes (tests and the bench)."""
+from __future__ import annotations
+
+import os
+import queue
+import re
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+ONSET = re.compile(r"^t=\s*([0-9.]+) s\s+onset")
+PIDS = re.compile(r"^pipeline: node processes: (.*); restart policy")
+
+
+def gone(pid: int) -> bool:
+    """The process has ended (absent, or a zombie nobody reaped yet)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
+    except FileNotFoundError:
+        return True
+
+
+def wait_until(predicate, timeout_s: float) -> bool:
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        if predicate():
+            return True
+        time.sleep(0.1)
+    return predicate()
+
+
+class PipelineRun:
+    """`python -m backlash_monitor pipeline --processes ...` in its own process group."""
+
+    def __init__(self, args, env):
+        self.process = subprocess.Popen(
+            [sys.executable, "-m", "backlash_monitor", "pipeline", "--processes", *args],
+            env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+            start_new_session=True)
+        self.lines: list[str] = []
+        self.stderr = ""
+        self._queue: queue.Queue = queue.Queue()
+        threading.Thread(target=self._read, daemon=True).start()
+        threading.Thread(target=self._read_err, daemon=True).start()
+        self.pids: dict[str, int] = {}
+
+    def _read(self):
+        for line in self.process.stdout:
+            self._queue.put(line.rstrip("\n"))
+        self._queue.put(None)
+
+    def _read_err(self):
+        self.stderr = self.process.stderr.read()
+
+    def next_line(self, timeout_s: float) -> str | None:
+        """The next stdout line (None at the end of the output or after timeout_s)."""
+        try:
+            line = self._queue.get(timeout=timeout_s)
+        except queue.Empty:
+            return None
+        if line is not None:
+            self.lines.append(line)
+            match = PIDS.match(line)
+            if match:
+                self.pids = {name: int(pid) for name, pid in
+                             (item.split(" pid ") for item in match.group(1).split(", "))}
+        return line
+
+    def wait_for(self, predicate, timeout_s: float) -> str | None:
+        """Read until a line satisfies predicate; that line, or None."""
+        deadline = time.monotonic() + timeout_s
+        while time.monotonic() < deadline:
+            line = self.next_line(max(0.01, deadline - time.monotonic()))
+            if line is None:
+                return None
+            if predicate(line):
+                return line
+        return None
+
+    def finish(self, timeout_s: float) -> int:
+        """Read the rest of the output; the exit code."""
+        while self.next_line(timeout_s) is not None:
+            pass
+        return self.process.wait(timeout=timeout_s)
+
+    @property
+    def output(self) -> str:
+        return "\n".join(self.lines) + "\n--- stderr:\n" + self.stderr[-3000:]
+
+    def onsets(self) -> list[tuple[int, float]]:
+        """(line number, event time [s]) of every onset line."""
+        return [(i, float(m.group(1))) for i, line in enumerate(self.lines)
+                if (m := ONSET.match(line))]
+
+    def kill_group(self) -> None:
+        """Teardown: end the pipeline's process group (its node processes with it)."""
+        try:
+            os.killpg(self.process.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        try:
+            self.process.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            pass
