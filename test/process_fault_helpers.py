@@ -44,7 +44,8 @@ class PipelineRun:
         self.stderr = ""
         self._queue: queue.Queue = queue.Queue()
         threading.Thread(target=self._read, daemon=True).start()
-        threading.Thread(target=self._read_err, daemon=True).start()
+        self._err_thread = threading.Thread(target=self._read_err, daemon=True)
+        self._err_thread.start()
         self.pids: dict[str, int] = {}
 
     def _read(self):
@@ -84,7 +85,9 @@ class PipelineRun:
         """Read the rest of the output; the exit code."""
         while self.next_line(timeout_s) is not None:
             pass
-        return self.process.wait(timeout=timeout_s)
+        code = self.process.wait(timeout=timeout_s)
+        self._err_thread.join(timeout=15)     # the node processes hold stderr until they end
+        return code
 
     @property
     def output(self) -> str:

@@ -55,8 +55,9 @@ def stream_time_at(run, wall_s: float) -> float:
 @pytest.mark.parametrize("node", ["windowing", "denoise", "classifier", pytest.param(
     "plant_simulator", marks=pytest.mark.xfail(
         strict=True, reason="the windowing node does not re-synchronise yet on a stream whose "
-        "sample index restarts at 0 (issue 9, branch inputs): it stamps the new stream's windows "
-        "with the old stream's start, and the classifier skips them as repeats"))])
+        "sample index restarts at 0 (issue 9, branch inputs): it drops the new stream's chunks as "
+        "out of order until their index passes the old stream's, then stamps its windows with "
+        "the old stream's start"))])
 def test_a_killed_node_is_restarted_and_estimates_resume(node, pipeline):
     run = pipeline("--duration", "30", "--rate-factor", str(RATE), "--events", "40",
                    "--restart", "on-failure")

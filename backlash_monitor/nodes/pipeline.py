@@ -148,6 +148,26 @@ class LiveView:
         self.seen: set[tuple] = set()
         self.repeated = 0                 # estimates received again (a restarted classifier)
         self.faults: list[str] = []       # node processes that ended before the run was over
+        self.windowing_joined_at = 0      # first sample the (latest) windowing process saw
+
+    def onset_gaps(self) -> list[tuple[float, float, int]]:
+        """Gaps in the onset estimates of each stream: (t before, t after [s], onsets missing at
+        the median spacing), where two estimates are more than 1.5 median spacings apart (a
+        drive's onsets recur at its cycle; a gap is a range nothing was estimated from)."""
+        streams: dict[float, list[float]] = {}
+        for sec, nanosec, entry in self.onset_entries:
+            t = entry * self.sample_period_s
+            streams.setdefault(round(sec + nanosec * 1e-9 - t, 3), []).append(t)
+        gaps = []
+        for times in streams.values():
+            times.sort()
+            spacings = sorted(b - a for a, b in zip(times, times[1:]))
+            if len(spacings) < 2:
+                continue
+            median = spacings[len(spacings) // 2]
+            gaps += [(a, b, round((b - a) / median) - 1) for a, b in zip(times, times[1:])
+                     if b - a > 1.5 * median]
+        return gaps
 
     def on_fault(self, description: str) -> None:
         """A node process ended: say so in line with the estimates; the summary lists it."""
@@ -216,6 +236,7 @@ class LiveView:
             if "classifier" in status.name:
                 self.diagnostic = text
             elif "windowing" in status.name:
+                self.windowing_joined_at = int(values.get("joined_at_sample") or 0)
                 self.windowing = (f"{text} (incomplete chunk ranges "
                                   f"{values.get('incomplete_chunks', '0')}, last discard: "
                                   f"{values.get('last_discard') or 'none'})")
@@ -242,6 +263,12 @@ class LiveView:
         tail += [f"repeated estimates ignored: {self.repeated} (re-sent by a restarted node)"] \
             if self.repeated else []
         tail += [f"node fault: {fault}" for fault in self.faults]
+        tail += [f"onset estimates missing: t={a:.3f}..{b:.3f} s ({n} onsets at the median "
+                 "spacing)" for a, b, n in self.onset_gaps()]
+        tail += [f"windowing: its process joined the stream at t="
+                 f"{self.windowing_joined_at * self.sample_period_s:.3f} s (sample "
+                 f"{self.windowing_joined_at}); it did not see the samples before"] \
+            if self.windowing_joined_at else []
         return "\n".join([head] + lines + tail)
 
 

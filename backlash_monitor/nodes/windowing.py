@@ -92,6 +92,9 @@ class WindowingNode(Node):
         if self.stream_start_s is None:
             self.stream_start_s = (seconds_from_time(joined.stamp)
                                    - joined.first_sample_index * joined.sample_period_s)
+            # > 0: this process joined a running stream (started late or restarted); the samples
+            # before it were not windowed here (docs/graph.md, process faults)
+            self.counts["joined_at_sample"] = joined.first_sample_index
         windows, discarded = self.stage.feed(joined)
         self.counts["chunks"] += 1
         for window in windows:

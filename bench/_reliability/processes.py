@@ -1,0 +1,131 @@
+"""Process faults injected into `pipeline --processes` (issue 9): node kills and restarts, parent kill.
+
+    python bench/_reliability/processes.py        # one JSON object on stdout, progress on stderr
+
+``run()`` returns {"faults_injected", "faults_survived", "data_lost_bytes", "cases": [...]}
+(bench/reliability.py sums it with the other fault benches). Cases, each in a DDS domain of its
+own on loopback:
+
+- ``kill_<node>``: SIGKILL one node process (windowing, denoise, classifier, plant_simulator) at
+  the first estimate of a run with ``--restart on-failure``. Survived: the pipeline named the
+  node and its signal, restarted it, no other node faulted, the run ended with exit code 0, and
+  onset estimates came from after the kill (for the windowing/denoise/classifier nodes: an
+  event whose entry lies more than 1 s of stream after the kill, which the killed process cannot
+  have windowed; for the plant: the onsets of its new stream, from sample 0 again).
+  ``onsets_missing``: onset events with no estimate, from the gaps the pipeline's summary
+  reports (measured). ``data_lost_bytes``: the stream that reached no window, derived from them:
+  onsets_missing x 0.25 s (the simulated drive's onset period) x 50 kHz x 3 signals the windowing
+  node reads x 8 bytes.
+- ``kill_parent``: SIGKILL the pipeline itself. Survived: all four node processes have ended
+  within 15 s.
+
+The recorder's SIGKILL is the bags bench's case (bench/_reliability/, branch bags).
+"""
+from __future__ import annotations
+
+import json
+import os
+import pathlib
+import re
+import signal
+import sys
+import time
+
+REPO = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO / "test"))
+
+from process_fault_helpers import ONSET, PipelineRun, gone, wait_until  # noqa: E402
+
+RATE = 2.0
+ONSET_PERIOD_S = 0.25
+SAMPLE_RATE_HZ = 50_000
+SIGNALS_WINDOWED = 3
+NODES = ("windowing", "denoise", "classifier", "plant_simulator")
+STREAMING = re.compile(r"^\[INFO\] \[([0-9.]+)\] \[plant_simulator\]: .*streaming")
+MISSING = re.compile(r"^onset estimates missing: t=[0-9.]+\.\.[0-9.]+ s \((\d+) onsets")
+
+
+def _env(offset: int) -> dict:
+    env = dict(os.environ)
+    env["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+    env["ROS_DOMAIN_ID"] = str((int(os.environ.get("ROS_DOMAIN_ID", "50")) + offset) % 101 + 1)
+    env["PYTHONUNBUFFERED"] = "1"
+    return env
+
+
+def kill_node(node: str, offset: int) -> dict:
+    run = PipelineRun(["--duration", "30", "--rate-factor", str(RATE), "--events", "40",
+                       "--restart", "on-failure"], _env(offset))
+    case = {"case": f"kill_{node}", "survived": False}
+    try:
+        if not run.wait_for(lambda line: ONSET.match(line), timeout_s=120):
+            case["reason"] = "no estimate before the kill"
+            return case
+        victim = run.pids[node]
+        killed_wall_s = time.time()
+        os.kill(victim, signal.SIGKILL)
+        code = run.finish(timeout_s=120)
+    finally:
+        run.kill_group()
+    faults = [line for line in run.lines if re.match(r"pipeline: node \w+ \(pid", line)]
+    named = (len(faults) == 1 and f"node {node} (pid {victim}) was killed by signal SIGKILL"
+             in faults[0] and "restarted as pid" in faults[0])
+    at = run.lines.index(faults[0]) if faults else len(run.lines)
+    before = [t for i, t in run.onsets() if i < at]
+    after = [t for i, t in run.onsets() if i > at]
+    starts = [float(m.group(1)) for line in run.stderr.splitlines()
+              if (m := STREAMING.match(line))]
+    killed_at_s = (killed_wall_s - starts[0]) * RATE if starts else float("nan")
+    if node == "plant_simulator":
+        resumed = bool(after) and ((bool(before) and after[0] < before[-1])
+                                   or any(b < a for a, b in zip(after, after[1:])))
+    else:
+        resumed = bool(after) and after[-1] > killed_at_s + 1.0
+    missing = sum(int(m.group(1)) for line in run.lines if (m := MISSING.match(line)))
+    case.update(survived=bool(code == 0 and named and resumed), exit_code=code,
+                named=named, estimates_resumed=resumed, killed_at_stream_s=round(killed_at_s, 3),
+                onsets_before=len(before), onsets_after=len(after), onsets_missing=missing,
+                data_lost_bytes=int(missing * ONSET_PERIOD_S * SAMPLE_RATE_HZ * SIGNALS_WINDOWED
+                                    * 8))
+    if not case["survived"]:
+        case["output_tail"] = run.lines[-12:]
+    return case
+
+
+def kill_parent(offset: int) -> dict:
+    run = PipelineRun(["--duration", "60", "--rate-factor", "1"], _env(offset))
+    case = {"case": "kill_parent", "survived": False}
+    try:
+        if not run.wait_for(lambda line: ONSET.match(line), timeout_s=120):
+            case["reason"] = "no estimate before the kill"
+            return case
+        pids = dict(run.pids)
+        os.kill(run.process.pid, signal.SIGKILL)
+        run.process.wait(timeout=10)
+        ended = wait_until(lambda: all(gone(p) for p in pids.values()), timeout_s=15.0)
+        case.update(survived=ended and len(pids) == 4,
+                    still_running=[name for name, p in pids.items() if not gone(p)],
+                    data_lost_bytes=0)
+    finally:
+        run.kill_group()
+    return case
+
+
+def run() -> dict:
+    cases = []
+    for offset, node in enumerate(NODES):
+        print(f"processes: kill and restart {node}", file=sys.stderr, flush=True)
+        cases.append(kill_node(node, offset))
+    print("processes: kill the pipeline (parent)", file=sys.stderr, flush=True)
+    cases.append(kill_parent(len(NODES)))
+    return {"faults_injected": len(cases),
+            "faults_survived": sum(1 for c in cases if c["survived"]),
+            "data_lost_bytes": sum(c.get("data_lost_bytes", 0) for c in cases),
+            "cases": cases}
+
+
+if __name__ == "__main__":
+    started = time.monotonic()
+    result = run()
+    print(f"processes: {time.monotonic() - started:.0f} s", file=sys.stderr)
+    print(json.dumps(result))
