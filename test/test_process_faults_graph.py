@@ -8,6 +8,7 @@ what they had already seen), a restarted windowing node loses the chunks publish
 down, a restarted plant starts a new stream. Without a restart policy the run ends, naming the
 node, with the summary and exit code 1. A killed pipeline takes its node processes with it.
 """
+import importlib.util
 import os
 import re
 import signal
@@ -52,9 +53,14 @@ def stream_time_at(run, wall_s: float) -> float:
     return (wall_s - starts[0]) * RATE
 
 
+# The windowing node re-synchronises on a stream whose index restarts at 0 with the input checks
+# of issue 9 (backlash_monitor/input_faults.py, branch inputs; with it merged this case passed).
+_RESYNC = importlib.util.find_spec("backlash_monitor.input_faults") is not None
+
+
 @pytest.mark.parametrize("node", ["windowing", "denoise", "classifier", pytest.param(
     "plant_simulator", marks=pytest.mark.xfail(
-        strict=True, reason="the windowing node does not re-synchronise yet on a stream whose "
+        not _RESYNC, strict=True, reason="the windowing node does not re-synchronise yet on a stream whose "
         "sample index restarts at 0 (issue 9, branch inputs): it drops the new stream's chunks as "
         "out of order until their index passes the old stream's, then stamps its windows with "
         "the old stream's start"))])
@@ -82,8 +88,9 @@ def test_a_killed_node_is_restarted_and_estimates_resume(node, pipeline):
     # every event printed complete (the last, cut by --events, may miss a signal) is right
     assert all(run.lines[i].count(" ok") == 4 for i, _ in onsets if "a1+a2" in run.lines[i]), out
     if node == "plant_simulator":
-        # a new stream from sample 0 (a restarted plant): its onsets are classified too
-        assert any(b < a for a, b in zip(after, after[1:])) or after[0] < before[-1], out
+        # a new stream from sample 0 (a restarted plant): its onsets are classified too (the old
+        # stream's, printed in order, come after the last one before the fault)
+        assert min(after) <= before[-1], out
     else:
         # windows the killed process cannot have made: their entry came after the kill
         killed_at_s = stream_time_at(run, killed_wall_s)

@@ -77,8 +77,8 @@ def kill_node(node: str, offset: int) -> dict:
               if (m := STREAMING.match(line))]
     killed_at_s = (killed_wall_s - starts[0]) * RATE if starts else float("nan")
     if node == "plant_simulator":
-        resumed = bool(after) and ((bool(before) and after[0] < before[-1])
-                                   or any(b < a for a, b in zip(after, after[1:])))
+        # the new stream's onsets (from sample 0 again; the old stream's come in order)
+        resumed = bool(after) and bool(before) and min(after) <= before[-1]
     else:
         resumed = bool(after) and after[-1] > killed_at_s + 1.0
     missing = sum(int(m.group(1)) for line in run.lines if (m := MISSING.match(line)))
