@@ -18,8 +18,13 @@ own on loopback:
   node reads x 8 bytes.
 - ``kill_parent``: SIGKILL the pipeline itself. Survived: all four node processes have ended
   within 15 s.
-
-The recorder's SIGKILL is the bags bench's case (bench/_reliability/, branch bags).
+- ``kill_recorder``: a `record` node records plant/* (the plant waits for it), SIGKILL after about
+  3 s of stream. The bag is then read with recovery (bag.BagReader(recover=True)). Survived: it
+  reads, its plant/a1 chunks run without a gap from sample 0, and the stream lost at the end
+  (stream time at the kill, from the plant's log stamp, minus the end of the last recovered
+  chunk) is within the open chunk's bound: chunk_duration_s + the recorder's flush period
+  (chunk_duration_s, at most 1 s) + 0.1 s for delivery. ``data_lost_bytes``: the sample bytes
+  of the five signals lost beyond that bound (0 when within).
 """
 from __future__ import annotations
 
@@ -111,6 +116,80 @@ def kill_parent(offset: int) -> dict:
     return case
 
 
+CHUNK_DURATION_S = 0.5       # the recorder's chunk_duration_s in the recorder case
+
+
+def _executable(name: str) -> str:
+    from ament_index_python.packages import get_package_prefix
+    return os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor", name)
+
+
+def kill_recorder(offset: int) -> dict:
+    import subprocess
+    import tempfile
+    from backlash_monitor.bag import BagReader
+    case = {"case": "kill_recorder", "survived": False}
+    env = _env(offset)
+    with tempfile.TemporaryDirectory() as tmp:
+        bag = os.path.join(tmp, "killed.mcap")
+        recorder = subprocess.Popen(
+            [_executable("record"), "--ros-args", "-p", f"output:={bag}", "-p", "topics:=/plant/*",
+             "-p", f"chunk_duration_s:={CHUNK_DURATION_S}", "-p", "discovery_period_s:=0.05"],
+            env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+        plant = subprocess.Popen(
+            [_executable("plant_simulator"), "--ros-args", "-p", "qos:=reliable",
+             "-p", "duration_s:=60.0", "-p", "rate_factor:=1.0",
+             "-p", "wait_for_subscribers:=['record']"],
+            env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+            start_new_session=True)
+        try:
+            start = None
+            deadline = time.monotonic() + 120
+            while start is None and time.monotonic() < deadline:
+                line = plant.stderr.readline()
+                if not line:
+                    break
+                m = re.match(r"^\[INFO\] \[([0-9.]+)\] \[plant_simulator\]: .*streaming", line)
+                if m:
+                    start = float(m.group(1))
+            if start is None:
+                case["reason"] = "the plant did not start streaming"
+                return case
+            time.sleep(3.0)
+            killed_wall_s = time.time()
+            os.kill(recorder.pid, signal.SIGKILL)
+            recorder.wait(timeout=10)
+        finally:
+            for proc in (plant, recorder):
+                try:
+                    os.killpg(proc.pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+                proc.wait(timeout=10)
+        try:
+            with BagReader(bag, recover=True) as reader:
+                chunks = sorted((c.first_sample_index, c.samples.size, c.sample_period_s)
+                                for c in reader.signal_chunks("/plant/a1"))
+                integrity = reader.recovery.describe()
+        except Exception as error:          # any failure to read is the fault not survived
+            case["reason"] = f"recovery failed: {type(error).__name__}: {error}"
+            return case
+    if not chunks:
+        case["reason"] = "no chunk recovered"
+        return case
+    period = chunks[0][2]
+    contiguous = chunks[0][0] == 0 and all(a[0] + a[1] == b[0] for a, b in zip(chunks, chunks[1:]))
+    recovered_end_s = (chunks[-1][0] + chunks[-1][1]) * period
+    lost_s = (killed_wall_s - start) - recovered_end_s
+    bound_s = CHUNK_DURATION_S + min(CHUNK_DURATION_S, 1.0) + 0.1
+    beyond = max(0.0, lost_s - bound_s)
+    case.update(survived=bool(contiguous and lost_s <= bound_s), contiguous_from_0=contiguous,
+                recovered_s=round(recovered_end_s, 3), lost_at_end_s=round(lost_s, 3),
+                open_chunk_bound_s=bound_s, integrity=integrity,
+                data_lost_bytes=int(beyond / period) * 5 * 8)
+    return case
+
+
 def run() -> dict:
     cases = []
     for offset, node in enumerate(NODES):
@@ -118,6 +197,8 @@ def run() -> dict:
         cases.append(kill_node(node, offset))
     print("processes: kill the pipeline (parent)", file=sys.stderr, flush=True)
     cases.append(kill_parent(len(NODES)))
+    print("processes: kill the recorder", file=sys.stderr, flush=True)
+    cases.append(kill_recorder(len(NODES) + 1))
     return {"faults_injected": len(cases),
             "faults_survived": sum(1 for c in cases if c["survived"]),
             "data_lost_bytes": sum(c.get("data_lost_bytes", 0) for c in cases),
