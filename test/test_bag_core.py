@@ -92,7 +92,7 @@ def test_file_structure_as_the_mcap_library_sees_it(sample_bag):
         stats = summary.statistics
         assert stats.message_count == sum(len(m) for m in written.values())
         assert stats.chunk_count == len(summary.chunk_indexes) > 1
-        assert stats.metadata_count == 1
+        assert stats.metadata_count == 2   # rosbag2's, and the writer's chunk limits
         for schema in summary.schemas.values():
             assert schema.encoding == "ros2msg"
             assert schema.data.decode() == full_definition(schema.name)
@@ -113,8 +113,9 @@ def test_file_structure_as_the_mcap_library_sees_it(sample_bag):
             assert ci.compression == "zstd" and ci.compressed_size < ci.uncompressed_size
             assert ci.message_index_offsets  # per-channel message indexes are written
         metas = list(reader.iter_metadata())
-        assert [m.name for m in metas] == ["rosbag2"]
-        bag_meta = yaml.safe_load(metas[0].metadata["serialized_metadata"])
+        assert [m.name for m in metas] == ["backlash_monitor.writer", "rosbag2"]
+        assert metas[0].metadata["chunk_duration_s"] == "0.5"
+        bag_meta = yaml.safe_load(metas[1].metadata["serialized_metadata"])
         assert bag_meta["ros_distro"] == "jazzy" and bag_meta["message_count"] == stats.message_count
         counts = {t["topic_metadata"]["name"]: t["message_count"]
                   for t in bag_meta["topics_with_message_count"]}

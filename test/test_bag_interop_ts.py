@@ -56,7 +56,7 @@ def test_foxglove_typescript_libraries_decode_every_message(node_modules, tmp_pa
     out = json.loads(proc.stdout)
     assert out["header"]["profile"] == "ros2"
     assert out["chunkCompression"] == ["zstd"]
-    assert [m["name"] for m in out["metadata"]] == ["rosbag2"]
+    assert [m["name"] for m in out["metadata"]] == ["backlash_monitor.writer", "rosbag2"]
     assert {s["encoding"] for s in out["schemas"]} == {"ros2msg"}
     for ch in out["channels"]:
         assert ch["messageEncoding"] == "cdr"

@@ -31,15 +31,12 @@ def test_same_messages_as_chunk_by_chunk(small_chunk_bag, monkeypatch, ahead):
         monkeypatch.setattr(reader_module, "CHUNKS_AHEAD", ahead)
         got = keys(bag.messages())
         by_topic = keys(bag.messages(["/plant/a2", "/estimate"]))
-    with BagReader(path) as bag:   # reference: every chunk decompressed in this thread, in order
-        ref = []
-        for op, _pos, body in bag._iter_records(bag._data_start, bag._data_end):
-            if op == reader_module.OP_CHUNK:
-                for rop, _p, rbody in reader_module._iter_plain(bag._decompress(body)):
-                    if rop == reader_module.OP_MESSAGE:
-                        cid, seq, log_time, _pub = reader_module.MESSAGE_HEAD.unpack_from(rbody, 0)
-                        ref.append((bag.channels[cid][0], log_time, seq,
-                                    bytes(rbody[reader_module.MESSAGE_HEAD.size:])))
+    # reference: the mcap library's reader, in file order (no thread, no shared parsing code)
+    from mcap.reader import make_reader
+
+    with open(path, "rb") as f:
+        ref = [(ch.topic, m.log_time, m.sequence, bytes(m.data))
+               for _s, ch, m in make_reader(f).iter_messages(log_time_order=False)]
     assert got == ref
     assert by_topic == [k for k in ref if k[0] in ("/plant/a2", "/estimate")]
     assert sum(len(v) for v in written.values()) == len(got)

@@ -6,9 +6,10 @@
 - errors.py: `BagError` and its subclasses.
 """
 from .cdr import Codec, RosMessage
-from .errors import (BagError, CdrError, CorruptBagError, MissingTopicError, NotABagError,
+from .errors import (BagError, CdrError, CorruptBagError, DamagedBagError, MissingTopicError,
+                     NotABagError,
                      TruncatedBagError, UnknownSchemaError)
-from .reader import BagMessage, BagReader, RecoveryReport, SignalSeries, TopicInfo
+from .reader import BagMessage, BagReader, DamagedChunk, RecoveryReport, SignalSeries, TopicInfo
 from .schema import full_definition, parse_schema, type_hash
 from .writer import BagWriter, qos_profile
 
@@ -20,6 +21,7 @@ DIAGNOSTIC_ARRAY = "diagnostic_msgs/msg/DiagnosticArray"
 
 __all__ = [
     "BagError", "BagMessage", "BagReader", "BagWriter", "CdrError", "Codec", "CorruptBagError",
+    "DamagedBagError", "DamagedChunk",
     "MissingTopicError", "NotABagError", "RecoveryReport", "RosMessage", "SignalSeries",
     "TopicInfo", "TruncatedBagError", "UnknownSchemaError", "full_definition", "parse_schema",
     "qos_profile", "type_hash", "SIGNAL_CHUNK", "BACKLASH_WINDOW", "BACKLASH_ESTIMATE",

@@ -31,6 +31,17 @@ class CorruptBagError(BagError):
     """A record is malformed (bad length, CRC mismatch, unknown compression) before the file's end."""
 
 
+class DamagedBagError(CorruptBagError):
+    """Chunks (or the summary) of a bag are damaged: a length field, a CRC, data that does not
+    decompress. ``report`` (a RecoveryReport) lists every damaged chunk with its byte offset, log-time
+    range and message count. Open the file with ``BagReader(path, recover=True)`` (``--recover``) to
+    read every intact chunk and skip the damaged ones."""
+
+    def __init__(self, message: str, report=None):
+        super().__init__(message)
+        self.report = report
+
+
 class UnknownSchemaError(BagError):
     """A message type's definition cannot be found (writing) or parsed/decoded (reading)."""
 

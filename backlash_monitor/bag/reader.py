@@ -6,31 +6,48 @@
 ...         m.topic, m.log_time_ns, m.message.samples      # numpy float64 array
 ...     series = bag.read_signal("/plant/a1")               # all samples concatenated, gaps listed
 
-A file without a valid footer/summary (the recorder was killed, the disk filled) raises
-TruncatedBagError unless opened with `recover=True`: then the data section is scanned from the start
-and every complete, CRC-valid chunk is read; `bag.recovery` reports what was intact and what was
-lost (the bytes after the last complete record: at most the chunk that was being written).
+Integrity is checked when the file is opened: the summary's CRC, every indexed chunk's record
+header against the chunk index (opcode, length, time range), and the data section's CRC (DataEnd);
+when that CRC does not match (or a header is damaged) every chunk is decompressed and CRC-checked to
+find which ones are damaged. A chunk CRC failure found later while reading (a file written without
+a data-section CRC) is damage too.
+
+- A file without a valid footer/summary (the recorder was killed, the disk filled, the summary's CRC
+  fails) raises TruncatedBagError unless opened with `recover=True`: then the data section is
+  scanned from the start and every complete, CRC-valid chunk is read.
+- A file with damaged chunks raises DamagedBagError (naming the chunks, their log-time range and
+  message count) unless opened with `recover=True`: then every intact chunk is read and the damaged
+  ones are skipped -- past a damaged length field by the chunk index, or, without an index, by
+  resynchronising on the next record that is a self-consistent chunk. A chunk whose length field
+  alone is damaged is read when its contents pass the CRC.
+
+`bag.recovery` (RecoveryReport) says what was intact, what was damaged and skipped (DamagedChunk:
+offset, bytes, log-time range, messages, reason), and what was lost at the end (at most the chunk the
+writer had open; its time bound comes from the writer's `backlash_monitor.writer` metadata record).
 """
 from __future__ import annotations
 
+import bisect
 import mmap
 import os
 import threading
 from collections import deque
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
 
 from .cdr import Codec, RosMessage
-from .errors import (BagError, CorruptBagError, MissingTopicError, NotABagError,
+from .errors import (BagError, CorruptBagError, DamagedBagError, MissingTopicError, NotABagError,
                      TruncatedBagError, UnknownSchemaError)
 from .mcap_format import (CHUNK_HEAD, FOOTER_BODY, FOOTER_RECORD_LEN, MAGIC, MESSAGE_HEAD,
                           OP_CHANNEL, OP_CHUNK, OP_CHUNK_INDEX, OP_DATA_END, OP_FOOTER, OP_HEADER,
-                          OP_MESSAGE, OP_METADATA, OP_METADATA_INDEX, OP_SCHEMA, OP_STATISTICS,
-                          OP_SUMMARY_OFFSET, RECORD_HEADER, Cursor, crc32)
+                          OP_MESSAGE, OP_MESSAGE_INDEX, OP_METADATA, OP_METADATA_INDEX, OP_SCHEMA,
+                          OP_STATISTICS, OP_SUMMARY_OFFSET, RECORD_HEADER, U32, U64, Cursor, crc32)
+
+WRITER_METADATA = "backlash_monitor.writer"   # metadata record: the writer's chunk limits
 
 _MAX_OPCODE = 0x0F
 
@@ -78,26 +95,139 @@ class SignalChunkRecord(NamedTuple):
 
 
 @dataclass
+class DamagedChunk:
+    """A damaged part of the data section: a chunk whose length field, CRC or compressed data is
+    bad, or bytes between records that are no readable record."""
+    offset: int                      # byte offset in the file
+    length_bytes: int                # bytes it spans
+    reason: str
+    start_ns: int | None = None      # log-time range of its messages (chunk index / chunk header)
+    end_ns: int | None = None
+    messages: int | None = None      # messages in it (its message index records); None: unknown
+    recovered: bool = False          # only a header field was damaged: contents CRC-verified, read
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def _t(ns, origin) -> str:
+    return "?" if ns is None or origin is None else f"{(ns - origin) / 1e9:.3f}"
+
+
+@dataclass
 class RecoveryReport:
     complete: bool                   # footer and summary present and valid
     file_size: int
     intact_bytes: int                # bytes up to the end of the last complete record
     complete_chunks: int
-    corrupt_chunks: int = 0          # complete by length but failing CRC / decompression
     messages: int = 0
     reason: str = ""
+    damaged: list[DamagedChunk] = field(default_factory=list)
+    problems: list[str] = field(default_factory=list)   # damage outside the chunks (CRCs)
+    verified: bool = False           # every chunk's contents checked (data CRC, or each chunk's CRC)
+    origin_ns: int | None = None     # first log time of the bag (times are given relative to it)
+    last_message_ns: int | None = None
+    tail_start_ns: int | None = None  # the chunk cut off at the end (its header was readable)
+    tail_end_ns: int | None = None
+    chunk_duration_s: float | None = None  # the writer's chunk time limit: bounds the open chunk
 
     @property
     def lost_bytes(self) -> int:
+        """Bytes after the last complete record (a writer killed while writing)."""
         return self.file_size - self.intact_bytes
+
+    @property
+    def skipped(self) -> list[DamagedChunk]:
+        """Damaged chunks that were not read."""
+        return [d for d in self.damaged if not d.recovered]
+
+    @property
+    def corrupt_chunks(self) -> int:
+        return len(self.skipped)
+
+    @property
+    def skipped_messages(self) -> int | None:
+        """Messages in skipped damaged chunks (None when a count is unknown)."""
+        counts = [d.messages for d in self.skipped]
+        return None if any(c is None for c in counts) else sum(counts)
+
+    @property
+    def skipped_bytes(self) -> int:
+        return sum(d.length_bytes for d in self.skipped)
+
+    @property
+    def damaged_any(self) -> bool:
+        return bool(self.damaged or self.problems)
+
+    @property
+    def intact(self) -> bool:
+        return self.complete and not self.damaged_any
+
+    def open_chunk_text(self) -> str:
+        """What a writer killed at the end lost (the chunk it had open), when it can be said."""
+        if self.complete:
+            return ""
+        if self.tail_start_ns is not None:
+            return (f"the chunk being written when the file ends held log time "
+                    f"{_t(self.tail_start_ns, self.origin_ns)}-{_t(self.tail_end_ns, self.origin_ns)} s "
+                    f"({(self.tail_end_ns - self.tail_start_ns) / 1e9:.3f} s) and is lost")
+        if self.chunk_duration_s and self.last_message_ns is not None:
+            return (f"the writer's open chunk is lost: at most {self.chunk_duration_s:g} s "
+                    f"(its chunk_duration_s) after the last recovered message at "
+                    f"{_t(self.last_message_ns, self.origin_ns)} s")
+        return ""
+
+    def damage_text(self, limit: int = 4) -> str:
+        """One line: the damaged chunks (offset, log time, messages, reason)."""
+        parts = []
+        for d in self.damaged[:limit]:
+            what = (f"byte {d.offset} ({d.length_bytes} bytes, log time {_t(d.start_ns, self.origin_ns)}-"
+                    f"{_t(d.end_ns, self.origin_ns)} s, "
+                    f"{'?' if d.messages is None else d.messages} messages): {d.reason}")
+            parts.append(what + ("; contents intact (CRC verified), read" if d.recovered else ""))
+        if len(self.damaged) > limit:
+            parts.append(f"... {len(self.damaged) - limit} more")
+        text = ""
+        if self.damaged:
+            n = len(self.skipped)
+            msgs = self.skipped_messages
+            text = (f"{len(self.damaged)} damaged chunk(s), {n} unreadable ({self.skipped_bytes} bytes, "
+                    f"{'an unknown number of' if msgs is None else msgs} message(s)): " + "; ".join(parts))
+        if self.problems:
+            text += ("; " if text else "") + "; ".join(self.problems)
+        return text
 
     def describe(self) -> str:
         if self.complete:
-            return "complete (footer, summary and statistics present)"
-        return (f"INCOMPLETE: {self.reason}; {self.complete_chunks} complete chunk(s) with "
-                f"{self.messages} message(s) recovered from the first {self.intact_bytes} of "
-                f"{self.file_size} bytes; {self.lost_bytes} trailing byte(s) lost"
-                + (f"; {self.corrupt_chunks} corrupt chunk(s) skipped" if self.corrupt_chunks else ""))
+            text = "complete (footer, summary and statistics present"
+            text += "; every chunk's CRC verified)" if self.verified else ")"
+        else:
+            text = (f"INCOMPLETE: {self.reason}; {self.complete_chunks} complete chunk(s) with "
+                    f"{self.messages} message(s) recovered from the first {self.intact_bytes} of "
+                    f"{self.file_size} bytes; {self.lost_bytes} trailing byte(s) lost")
+            tail = self.open_chunk_text()
+            if tail:
+                text += "; " + tail
+        if self.damaged_any:
+            text = f"DAMAGED: {self.damage_text()}. " + text
+        return text
+
+    def _relative(self, d: DamagedChunk) -> dict:
+        """The chunk's log-time range in seconds from the bag's first message."""
+        if d.start_ns is None or self.origin_ns is None:
+            return {"start_s": None, "end_s": None}
+        return {"start_s": (d.start_ns - self.origin_ns) / 1e9, "end_s": (d.end_ns - self.origin_ns) / 1e9}
+
+    def to_dict(self) -> dict:
+        return {"complete": self.complete, "intact": self.intact, "verified": self.verified,
+                "reason": self.reason, "file_size": self.file_size,
+                "intact_bytes": self.intact_bytes, "lost_trailing_bytes": self.lost_bytes,
+                "complete_chunks": self.complete_chunks, "messages_read": self.messages,
+                "damaged_chunks": [{**d.to_dict(), **self._relative(d)} for d in self.damaged],
+                "skipped_chunks": len(self.skipped), "skipped_bytes": self.skipped_bytes,
+                "skipped_messages": self.skipped_messages, "problems": list(self.problems),
+                "origin_ns": self.origin_ns, "last_message_ns": self.last_message_ns,
+                "open_chunk": self.open_chunk_text(), "describe": self.describe()}
 
 
 @dataclass
@@ -121,6 +251,8 @@ class _Chunk:
     start: int
     end: int
     channels: frozenset | None       # from the chunk index (None: unknown)
+    length: int = 0                  # record length from the chunk index (0: unknown)
+    index_offsets: dict | None = None  # channel id -> offset of its MessageIndex record
 
 
 class BagReader:
@@ -154,6 +286,7 @@ class BagReader:
         self._data_end = self.file_size
         self._have_stats = False
         self._corrupt: set[int] = set()
+        self._layout: list = []          # (opcode, offset, body) of the readable chunks and messages
         self._last_chunk = None          # (offset, records) of the last chunk decompressed
         try:
             self._open()
@@ -201,29 +334,48 @@ class BagReader:
         if pos + 9 + length > self.file_size:
             return self._cut_header("inside the MCAP header")
         c = Cursor(b[pos + 9:pos + 9 + length])
-        self.profile = c.string()
-        self.library = c.string()
+        try:
+            self.profile = c.string()
+            self.library = c.string()
+        except (ValueError, UnicodeDecodeError, IndexError):
+            raise NotABagError(f"{self.path}: MCAP header record is unreadable") from None
         if self.profile != "ros2":
             raise NotABagError(f"{self.path} is an MCAP file with profile {self.profile!r}, "
                                "not a ROS 2 bag (profile 'ros2')")
         self._data_start = pos + 9 + length
         reason = self._read_summary()
-        if reason is None:
-            self.recovery = RecoveryReport(True, self.file_size, self.file_size,
-                                           len(self._chunks), 0, self._message_count)
-            return
-        # no usable summary: scan the data section
-        report = self._scan(reason)
+        if reason is None and self._have_stats:
+            report = self._check_data()
+        elif reason is None:
+            # a valid file whose writer left out the statistics: count by scanning the data
+            report = self._scan("", self._data_end)
+            report.complete = True
+        else:   # no usable summary: scan the data section
+            report = self._scan(reason)
+        report.origin_ns = self._start
+        report.last_message_ns = self._end
+        report.messages = self._message_count
+        duration = self.metadata.get(WRITER_METADATA, {}).get("chunk_duration_s", "")
+        try:
+            report.chunk_duration_s = float(duration) if duration else None
+        except ValueError:
+            report.chunk_duration_s = None
         self.recovery = report
-        if not self.recover:
+        if self.recover:
+            return
+        if not report.complete:
             raise TruncatedBagError(
-                f"{self.path} is incomplete ({reason}): the recorder did not close it. "
-                f"{report.complete_chunks} complete chunk(s) with {report.messages} message(s) "
-                f"are intact in the first {report.intact_bytes} of {report.file_size} bytes; "
-                "read them with recovery (BagReader(path, recover=True), "
-                "`bag-info --recover`)",
+                f"{self.path} is incomplete ({report.reason})"
+                + (": the recorder did not close it" if "footer" in report.reason else "")
+                + f". {report.complete_chunks} complete chunk(s) with {report.messages} message(s) "
+                f"are intact in the first {report.intact_bytes} of {report.file_size} bytes"
+                + (f"; {report.damage_text()}" if report.damaged_any else "")
+                + "; read them with recovery (BagReader(path, recover=True), `--recover`)",
                 path=str(self.path), file_size=self.file_size, intact_bytes=report.intact_bytes,
                 complete_chunks=report.complete_chunks)
+        if report.damaged_any:
+            raise DamagedBagError(f"{self.path} is damaged: {report.damage_text()}; read the intact "
+                                  "chunks with recovery (--recover)", report)
 
     def _cut_header(self, where: str) -> None:
         self.recovery = RecoveryReport(False, self.file_size, 0, 0,
@@ -244,11 +396,16 @@ class BagReader:
         op, length = RECORD_HEADER.unpack_from(b, fpos)
         if op != OP_FOOTER or length != FOOTER_BODY.size:
             return "invalid footer record"
-        summary_start, summary_offset_start, _crc = FOOTER_BODY.unpack_from(b, fpos + 9)
+        summary_start, summary_offset_start, summary_crc = FOOTER_BODY.unpack_from(b, fpos + 9)
         if summary_start == 0:
             return "footer without summary section"
         if not self._data_start <= summary_start <= fpos:
             return "footer points outside the file"
+        if summary_offset_start and not summary_start <= summary_offset_start <= fpos:
+            return "footer's summary offset points outside the summary"
+        # summary CRC: from the summary's start through the footer's two offsets
+        if summary_crc and crc32(b[summary_start:fpos + 9 + 16]) != summary_crc:
+            return "summary section CRC mismatch (the summary is damaged)"
         self._data_end = summary_start
         end = summary_offset_start or fpos
         pos = summary_start
@@ -260,14 +417,17 @@ class BagReader:
                     return "summary record runs past the summary section"
                 self._summary_record(op, body)
                 pos += 9 + length
-        except (ValueError, UnicodeDecodeError) as exc:
+        except (ValueError, UnicodeDecodeError, IndexError) as exc:
+            self._reset_summary()
             return f"unreadable summary section ({exc})"
-        if not self._have_stats:
-            # a valid file whose writer left out the statistics: count by scanning the data
-            report = self._scan("", self._data_end)
-            if report.reason:
-                return f"data section damaged ({report.reason})"
         return None
+
+    def _reset_summary(self) -> None:
+        self._chunks.clear()
+        self._counts.clear()
+        self._message_count = 0
+        self._start = self._end = None
+        self._have_stats = False
 
     def _summary_record(self, op: int, body) -> None:
         c = Cursor(body)
@@ -286,13 +446,14 @@ class BagReader:
                 cid = c.u16()
                 self._counts[cid] = c.u64()
         elif op == OP_CHUNK_INDEX:
-            start, end_t, offset, _length = c.u64(), c.u64(), c.u64(), c.u64()
+            start, end_t, offset, length = c.u64(), c.u64(), c.u64(), c.u64()
             mend = c.pos + c.u32()
-            chans = set()
+            chans = {}
             while c.pos < mend:
-                chans.add(c.u16())
-                c.u64()
-            self._chunks[offset] = _Chunk(offset, start, end_t, frozenset(chans) if chans else None)
+                cid = c.u16()
+                chans[cid] = c.u64()
+            self._chunks[offset] = _Chunk(offset, start, end_t, frozenset(chans) if chans else None,
+                                          length, chans)
         elif op == OP_METADATA_INDEX:
             offset, length = c.u64(), c.u64()
             name = c.string()
@@ -318,32 +479,254 @@ class BagReader:
         meta = c.map_str()
         self.channels[cid] = (topic, sid, enc, meta)
 
-    # ------------------------------------------------------------------ scanning
-    def _iter_records(self, start: int, end: int, report: RecoveryReport | None = None):
-        """Yield (op, offset, body_view) of the records in [start, end); stop at a cut record."""
+    # ------------------------------------------------------------------ integrity
+    def _chunk_fields(self, pos: int, end: int):
+        """(start_ns, end_ns, body_length) of a self-consistent chunk record at ``pos`` whose body
+        (computed from its own fields: header, compression name, records size) fits before ``end``;
+        None if there is none. The record's length field is not used (it may be damaged)."""
         b = self._buf
-        pos = start
-        while pos < end:
-            if pos + 9 > end:
-                if report is not None:
-                    report.reason = report.reason or f"record header cut off at byte {pos}"
-                return
-            op, length = RECORD_HEADER.unpack_from(b, pos)
-            if op == 0 or op > 0x7F or pos + 9 + length > end:
-                if report is not None:
-                    report.reason = report.reason or (
-                        f"record at byte {pos} (opcode 0x{op:02x}, {length} bytes) is cut off "
-                        "by the end of the file" if op and op <= 0x7F else
-                        f"garbage record at byte {pos}")
-                return
-            yield op, pos, b[pos + 9:pos + 9 + length]
-            pos += 9 + length
-            if report is not None:
-                report.intact_bytes = pos
-            if op in (OP_DATA_END, OP_FOOTER):
-                return
+        head = pos + 9
+        if head + CHUNK_HEAD.size + 4 > end or b[pos] != OP_CHUNK:
+            return None
+        start, end_t, usize, _crc = CHUNK_HEAD.unpack_from(b, head)
+        if start > end_t or usize > 1 << 36:
+            return None
+        (clen,) = U32.unpack_from(b, head + CHUNK_HEAD.size)
+        if clen > 4:
+            return None
+        p = head + CHUNK_HEAD.size + 4
+        if bytes(b[p:p + clen]) not in (b"", b"zstd", b"lz4") or p + clen + 8 > end:
+            return None
+        (records_size,) = U64.unpack_from(b, p + clen)
+        body_length = CHUNK_HEAD.size + 4 + clen + 8 + records_size
+        if head + body_length > end:
+            return None
+        return start, end_t, body_length
 
+    def _record_fits(self, pos: int, end: int) -> bool:
+        """A plausible record starts at ``pos`` (or the data ends there)."""
+        if pos == end:
+            return True
+        if pos + 9 > end:
+            return False
+        op, length = RECORD_HEADER.unpack_from(self._buf, pos)
+        return 0 < op <= _MAX_OPCODE and pos + 9 + length <= end
+
+    def _next_chunk(self, pos: int, end: int) -> int | None:
+        """Resynchronise: the offset of the next intact-looking chunk record in [pos, end) (its
+        length field agrees with its own fields), or None."""
+        mm = self._mm
+        b = self._buf
+        while True:
+            pos = mm.find(bytes((OP_CHUNK,)), pos, end)
+            if pos < 0:
+                return None
+            fields = self._chunk_fields(pos, end)
+            if fields is not None and pos + 9 <= end and \
+                    RECORD_HEADER.unpack_from(b, pos)[1] == fields[2]:
+                return pos
+            pos += 1
+
+    def _index_messages(self, index_offsets: dict | None) -> dict | None:
+        """{channel id: messages} of a chunk from its MessageIndex records (None: unreadable)."""
+        if not index_offsets:
+            return None
+        out = {}
+        for cid, off in index_offsets.items():
+            if off + 9 + 6 > self.file_size:
+                return None
+            op, length = RECORD_HEADER.unpack_from(self._buf, off)
+            if op != OP_MESSAGE_INDEX or length < 6:
+                return None
+            (n,) = U32.unpack_from(self._buf, off + 9 + 2)
+            out[cid] = n // 16
+        return out
+
+    def _index_run_before(self, lo: int, stop: int) -> dict | None:
+        """{channel id: messages} of the MessageIndex records that end exactly at ``stop`` (found
+        by trying every 0x07 byte in the 64 KiB before it), None if there are none."""
+        mm = self._mm
+        b = self._buf
+        p = max(lo, stop - 65536)
+        while True:
+            p = mm.find(bytes((OP_MESSAGE_INDEX,)), p, stop)
+            if p < 0:
+                return None
+            q, out = p, {}
+            while q + 9 + 6 <= stop:
+                op, length = RECORD_HEADER.unpack_from(b, q)
+                if op != OP_MESSAGE_INDEX or q + 9 + length > stop or length < 6:
+                    break
+                cid = int.from_bytes(b[q + 9:q + 11], "little")
+                (n,) = U32.unpack_from(b, q + 11)
+                if 6 + n != length:
+                    break
+                out[cid] = out.get(cid, 0) + n // 16
+                q += 9 + length
+            if q == stop and out:
+                return out
+            p += 1
+
+    def _lose_messages(self, per_channel: dict | None) -> int | None:
+        """Take the messages of a skipped chunk out of the counts (summary statistics)."""
+        if per_channel is None:
+            return None
+        for cid, n in per_channel.items():
+            if cid in self._counts:
+                self._counts[cid] = max(0, self._counts[cid] - n)
+        total = sum(per_channel.values())
+        self._message_count = max(0, self._message_count - total)
+        return total
+
+    def _check_data(self) -> RecoveryReport:
+        """With a valid summary: walk the data section by the chunk index (every indexed chunk's
+        record checked against its index entry; unreadable bytes skipped to the next indexed chunk),
+        check the data section's CRC and, when it fails, every chunk's CRC."""
+        report = RecoveryReport(True, self.file_size, self.file_size, len(self._chunks))
+        b = self._buf
+        index = self._chunks
+        offsets = sorted(o for o in index if self._data_start <= o < self._data_end)
+        end = self._data_end
+        layout = []
+        suspect: dict[int, str] = {}
+        data_crc = None
+        data_end_pos = None
+        pos = self._data_start
+        while pos < end:
+            k = bisect.bisect_left(offsets, pos)
+            nxt = offsets[k] if k < len(offsets) else end
+            ci = index.get(pos)
+            if ci is not None:
+                problem = self._chunk_header_problem(pos, ci)
+                length = ci.length
+                if problem:
+                    suspect[pos] = problem
+                    if not length or pos + length > end:   # the index's length is no help either
+                        k2 = bisect.bisect_right(offsets, pos)
+                        length = (offsets[k2] if k2 < len(offsets) else end) - pos
+                layout.append((OP_CHUNK, pos, b[pos + 9:pos + length]))
+                pos += length
+                continue
+            op, length = RECORD_HEADER.unpack_from(b, pos) if pos + 9 <= end else (0, 0)
+            rec_end = pos + 9 + length
+            if op == 0 or rec_end > nxt or (op == OP_CHUNK and offsets):
+                # no readable record here (or one that runs over the next indexed chunk):
+                # skip to the next indexed chunk
+                # every chunk starts at an indexed offset: no chunk is in these bytes
+                report.problems.append(f"unreadable bytes {pos}-{nxt} between chunks (a damaged "
+                                       "message index or metadata record; no chunk in them)")
+                pos = nxt
+                continue
+            if op == OP_MESSAGE or op == OP_CHUNK:
+                layout.append((op, pos, b[pos + 9:rec_end]))
+            elif op == OP_DATA_END and length >= 4:
+                data_end_pos = pos
+                (data_crc,) = U32.unpack_from(b, pos + 9)
+            pos = rec_end
+            if op == OP_DATA_END:
+                break
+        check_all = False
+        if data_crc:   # 0: the writer did not compute it
+            if crc32(b[:data_end_pos]) == data_crc:
+                report.verified = not suspect and not report.damaged
+            else:
+                check_all = True
+        bad: dict[int, str] = {}
+        for op, cpos, body in layout:
+            if op != OP_CHUNK or not (check_all or cpos in suspect):
+                continue
+            try:
+                self._decompress(body)
+            except CorruptBagError as error:
+                bad[cpos] = str(error)
+        if check_all:
+            report.verified = True
+            if not bad and not suspect and not report.damaged:
+                report.problems.append("data section CRC mismatch outside the chunks (every "
+                                       "chunk's own CRC is correct: a message index or metadata "
+                                       "record is damaged)")
+        for cpos in sorted(set(suspect) | set(bad)):
+            ci = index[cpos]
+            reason = "; ".join(r for r in (suspect.get(cpos), bad.get(cpos)) if r)
+            recovered = cpos not in bad
+            per_channel = self._index_messages(ci.index_offsets)
+            messages = (sum(per_channel.values()) if per_channel is not None else None)
+            if not recovered:
+                self._lose_messages(per_channel)
+                self._corrupt.add(cpos)
+            report.damaged.append(DamagedChunk(cpos, ci.length, reason, ci.start, ci.end,
+                                               messages, recovered))
+        report.damaged.sort(key=lambda d: d.offset)
+        report.complete_chunks = sum(1 for op, cpos, _ in layout
+                                     if op == OP_CHUNK and cpos not in self._corrupt)
+        self._layout = [r for r in layout if r[1] not in self._corrupt]
+        return report
+
+    def _chunk_header_problem(self, pos: int, ci: _Chunk) -> str | None:
+        b = self._buf
+        if not ci.length or pos + ci.length > self._data_end:
+            return (f"the chunk index gives this chunk {ci.length} bytes, past the data section")
+        op, length = RECORD_HEADER.unpack_from(b, pos)
+        if op != OP_CHUNK:
+            return f"record at the indexed chunk offset has opcode 0x{op:02x}, not a chunk (0x06)"
+        if 9 + length != ci.length:
+            return (f"chunk length field damaged (the record says {9 + length} bytes, the chunk "
+                    f"index {ci.length})")
+        if ci.length < 9 + CHUNK_HEAD.size:
+            return f"chunk of {ci.length} bytes is too short"
+        start, end_t = CHUNK_HEAD.unpack_from(b, pos + 9)[:2]
+        if (start, end_t) != (ci.start, ci.end):
+            return "chunk header's log-time range differs from the chunk index"
+        return None
+
+    def verify(self) -> RecoveryReport:
+        """Decompress and CRC-check every chunk not verified yet (a file without a data-section
+        CRC); damaged ones are added to ``recovery`` and skipped from then on. Raises
+        DamagedBagError for a new damaged chunk unless the reader recovers."""
+        report = self.recovery
+        if report.verified:
+            return report
+        for op, pos, body in list(getattr(self, "_layout", [])):
+            if op != OP_CHUNK or pos in self._corrupt:
+                continue
+            try:
+                self._decompress(body)
+            except CorruptBagError as error:
+                self._chunk_failed(pos, body, str(error))
+        report.verified = True
+        return report
+
+    def _chunk_failed(self, pos: int, body, reason: str) -> DamagedChunk:
+        """Record a chunk whose contents fail (CRC, decompression) found while reading; raise
+        DamagedBagError unless recovering."""
+        report = self.recovery
+        self._corrupt.add(pos)
+        ci = self._chunks.get(pos)
+        if ci is not None:
+            start, end_t, length = ci.start, ci.end, ci.length or 9 + len(body)
+            per_channel = self._index_messages(ci.index_offsets)
+        else:
+            start, end_t = CHUNK_HEAD.unpack_from(body, 0)[:2]
+            length, per_channel = 9 + len(body), None
+        damaged = DamagedChunk(pos, length, reason, start, end_t,
+                               None if per_channel is None else sum(per_channel.values()))
+        if report.complete:   # the scan already left it out of the counts
+            self._lose_messages(per_channel)
+        report.damaged.append(damaged)
+        report.damaged.sort(key=lambda d: d.offset)
+        report.complete_chunks = max(0, report.complete_chunks - 1)
+        report.messages = self._message_count
+        if not self.recover:
+            raise DamagedBagError(f"{self.path} is damaged: {report.damage_text()}; read the intact "
+                                  "chunks with recovery (--recover)", report)
+        return damaged
+
+    # ------------------------------------------------------------------ scanning
     def _scan(self, reason: str, data_end: int | None = None) -> RecoveryReport:
+        """Read the data section from the start without the summary: every complete chunk is
+        decompressed and CRC-checked; damaged bytes in the middle are skipped by
+        resynchronising on the next self-consistent chunk record; the end of the readable data
+        is where no further chunk can be found."""
         report = RecoveryReport(False, self.file_size, self._data_start, 0, reason=reason)
         chunk_index = dict(self._chunks)
         self._chunks.clear()
@@ -351,8 +734,52 @@ class BagReader:
         self._message_count = 0
         self._start = self._end = None
         self._corrupt.clear()
-        data_end = self.file_size if data_end is None else data_end
-        for op, pos, body in self._iter_records(self._data_start, data_end, report):
+        end = self.file_size if data_end is None else data_end
+        b = self._buf
+        layout = []
+        last = None          # the last damaged chunk: the MessageIndex records after it count for it
+        pos = self._data_start
+        while pos < end:
+            op, length = RECORD_HEADER.unpack_from(b, pos) if pos + 9 <= end else (-1, 0)
+            rec_end = pos + 9 + length
+            fields = self._chunk_fields(pos, end) if op == OP_CHUNK else None
+            inner_ok = fields is not None and fields[2] == length
+            if (op == OP_CHUNK and not inner_ok and rec_end <= end and self._record_fits(rec_end, end)
+                    and (fields is None or not self._record_fits(pos + 9 + fields[2], end))):
+                fields = None   # the length field is right, the chunk's inside is damaged
+            elif op in (-1, 0) or op > 0x7F or rec_end > end or (op == OP_CHUNK and not inner_ok):
+                if fields is not None:   # a chunk whose length field alone is damaged
+                    body = b[pos + 9:pos + 9 + fields[2]]
+                    last = self._scan_chunk(report, layout, chunk_index, pos, body,
+                                            f"chunk length field damaged (says {9 + length} "
+                                            f"bytes, its contents {9 + fields[2]})")
+                    pos = pos + 9 + fields[2]
+                    report.intact_bytes = pos
+                    continue
+                nxt = self._next_chunk(pos + 1, end)
+                if nxt is None:   # nothing readable after this: the end of the recording
+                    if op == OP_CHUNK and pos + 9 + CHUNK_HEAD.size <= end:
+                        report.tail_start_ns, report.tail_end_ns = CHUNK_HEAD.unpack_from(b, pos + 9)[:2]
+                    if op in (-1,):
+                        report.reason = report.reason or f"record header cut off at byte {pos}"
+                    else:
+                        report.reason = report.reason or (
+                            f"record at byte {pos} (opcode 0x{op:02x}, {length} bytes) is cut off "
+                            "by the end of the file" if 0 < op <= 0x7F else
+                            f"garbage record at byte {pos}")
+                    break
+                start_end = (CHUNK_HEAD.unpack_from(b, pos + 9)[:2]
+                             if op == OP_CHUNK and pos + 9 + CHUNK_HEAD.size <= nxt else (None, None))
+                if start_end[0] is not None and start_end[0] > start_end[1]:
+                    start_end = (None, None)
+                per_channel = self._index_run_before(pos, nxt)
+                report.damaged.append(DamagedChunk(
+                    pos, nxt - pos, "unreadable record (damaged header); skipped to the next chunk",
+                    *start_end, None if per_channel is None else sum(per_channel.values())))
+                last = None
+                pos = nxt
+                continue
+            body = b[pos + 9:rec_end]
             c = Cursor(body)
             try:
                 if op == OP_SCHEMA:
@@ -364,31 +791,69 @@ class BagReader:
                     self.metadata[name] = c.map_str()
                 elif op == OP_MESSAGE:
                     self._count_message(body)
+                    layout.append((op, pos, body))
                 elif op == OP_CHUNK:
-                    try:
-                        records = self._decompress(body)
-                    except CorruptBagError:
-                        report.corrupt_chunks += 1
-                        self._corrupt.add(pos)
-                        continue
-                    start, end_t = CHUNK_HEAD.unpack_from(body, 0)[:2]
-                    chans = set()
-                    for rop, _rpos, rbody in _iter_plain(records):
-                        if rop == OP_MESSAGE:
-                            chans.add(self._count_message(rbody))
-                        elif rop == OP_SCHEMA:
-                            self._schema(Cursor(rbody))
-                        elif rop == OP_CHANNEL:
-                            self._channel(Cursor(rbody))
-                    self._chunks[pos] = chunk_index.get(pos) or _Chunk(pos, start, end_t,
-                                                                       frozenset(chans))
-                    report.complete_chunks += 1
-            except (ValueError, UnicodeDecodeError):
+                    last = self._scan_chunk(report, layout, chunk_index, pos, body, "")
+                    pos = rec_end
+                    report.intact_bytes = pos
+                    continue
+                elif op == OP_MESSAGE_INDEX and last is not None and len(body) >= 6:
+                    (n,) = U32.unpack_from(body, 2)
+                    last.messages = (last.messages or 0) + n // 16
+                    pos = rec_end
+                    report.intact_bytes = pos
+                    continue
+            except (ValueError, UnicodeDecodeError, IndexError):
                 report.reason += f"; malformed record at byte {pos}"
+                break
+            if op != OP_MESSAGE_INDEX:
+                last = None
+            pos = rec_end
+            report.intact_bytes = pos
+            if op in (OP_DATA_END, OP_FOOTER):
                 break
         self._data_end = report.intact_bytes
         report.messages = self._message_count
+        self._layout = layout
         return report
+
+    def _scan_chunk(self, report, layout, chunk_index, pos, body, header_problem: str):
+        """Decompress, CRC-check and count one chunk found by the scan; returns its DamagedChunk
+        (None when intact)."""
+        start, end_t = CHUNK_HEAD.unpack_from(body, 0)[:2]
+        try:
+            records = self._decompress(body)
+        except CorruptBagError as error:
+            reason = "; ".join(r for r in (header_problem, str(error)) if r)
+            damaged = DamagedChunk(pos, 9 + len(body), reason, start, end_t)  # messages: its index
+            report.damaged.append(damaged)
+            self._corrupt.add(pos)
+            return damaged
+        try:
+            plain = list(_iter_plain(records))
+        except CorruptBagError as error:
+            damaged = DamagedChunk(pos, 9 + len(body), str(error), start, end_t)
+            report.damaged.append(damaged)
+            self._corrupt.add(pos)
+            return damaged
+        chans = set()
+        n = 0
+        for rop, _rpos, rbody in plain:
+            if rop == OP_MESSAGE:
+                chans.add(self._count_message(rbody))
+                n += 1
+            elif rop == OP_SCHEMA:
+                self._schema(Cursor(rbody))
+            elif rop == OP_CHANNEL:
+                self._channel(Cursor(rbody))
+        self._chunks[pos] = chunk_index.get(pos) or _Chunk(pos, start, end_t, frozenset(chans),
+                                                           9 + len(body))
+        layout.append((OP_CHUNK, pos, body))
+        report.complete_chunks += 1
+        if header_problem:
+            report.damaged.append(DamagedChunk(pos, 9 + len(body), header_problem, start, end_t, n,
+                                               True))
+        return None
 
     def _count_message(self, body) -> int:
         cid, _seq, log_time, _pub = MESSAGE_HEAD.unpack_from(body, 0)
@@ -417,8 +882,9 @@ class BagReader:
         c = Cursor(body, CHUNK_HEAD.size)
         comp = c.string()
         n = c.u64()
-        if c.pos + n > len(body):
-            raise CorruptBagError("chunk records run past the chunk")
+        if c.pos + n != len(body):
+            raise CorruptBagError(f"chunk records ({n} bytes) do not end where the chunk record "
+                                  f"does ({len(body) - c.pos} bytes): a damaged length field")
         data = body[c.pos:c.pos + n]
         try:
             if comp == "":
@@ -572,7 +1038,7 @@ class BagReader:
         the ``wanted`` channels (log time within the range), in file order. Chunks are
         decompressed ahead in a worker thread (``_prefetch``)."""
         records = []   # (op, offset, body) of the records to read, in file order
-        for op, pos, body in self._iter_records(self._data_start, self._data_end):
+        for op, pos, body in self._layout:
             if op == OP_CHUNK:
                 if pos in self._corrupt:
                     continue
@@ -583,24 +1049,20 @@ class BagReader:
                     if (start_ns is not None and info.end < start_ns) or (
                             end_ns is not None and info.start > end_ns):
                         continue
-                elif self.recover and not self.recovery.complete:
-                    continue  # not validated by the scan
-                records.append((op, pos, body))
-            elif op == OP_MESSAGE:
-                records.append((op, pos, body))
+            records.append((op, pos, body))
         chunks = [(pos, body) for op, pos, body in records if op == OP_CHUNK]
         decompressed = _prefetch(self._chunk_records, chunks, CHUNKS_AHEAD)
         unpack = MESSAGE_HEAD.unpack_from
         try:
-            for op, _pos, body in records:
+            for op, pos, body in records:
                 if op == OP_CHUNK:
                     try:
                         chunk_records = next(decompressed)()
-                    except CorruptBagError:
-                        if self.recover:
-                            continue
-                        raise
-                    bodies = _message_bodies(chunk_records)
+                        bodies = _message_bodies(chunk_records)
+                    except CorruptBagError as error:
+                        if pos not in self._corrupt:
+                            self._chunk_failed(pos, body, str(error))   # raises unless recovering
+                        continue
                 else:
                     bodies = (body,)
                 for rbody in bodies:

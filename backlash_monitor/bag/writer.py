@@ -3,6 +3,7 @@
 File layout (see docs/bags.md):
 
     magic, Header(profile "ros2")
+    Metadata "backlash_monitor.writer" {chunk_duration_s, chunk_size_bytes, compression}
     Schema / Channel records, unchunked, as topics are added (before any message that uses them)
     Chunk (zstd) + its MessageIndex records, Chunk + MessageIndex, ...   <- flushed to the OS per chunk
     Metadata "rosbag2" {serialized_metadata: <BagMetadata YAML, version 9>}     (at close)
@@ -38,6 +39,7 @@ from .mcap_format import (CHUNK_HEAD, FOOTER_BODY, MAGIC, MESSAGE_HEAD, OP_CHANN
                           crc32, pstr, record)
 
 LIBRARY = "backlash_monitor.bag (rosbag2_storage_mcap compatible)"
+WRITER_METADATA = "backlash_monitor.writer"   # metadata record with the chunk limits (reader.py)
 ROSBAG2_METADATA_VERSION = 9
 DEFAULT_CHUNK_SIZE = 1 << 20
 DEFAULT_CHUNK_DURATION_S = 0.5
@@ -225,6 +227,12 @@ class BagWriter:
         self._closed = False
         self._write(MAGIC)
         self._write(record(OP_HEADER, pstr("ros2") + pstr(LIBRARY)))
+        # the chunk limits, first in the file: a reader of a killed writer's file can say how much
+        # the lost open chunk held at most (the summary, written at close, is missing then)
+        self._writer_meta = (self._pos, record(OP_METADATA, pstr(WRITER_METADATA) + pmap_str({
+            "chunk_duration_s": "" if self.chunk_duration_ns is None else repr(chunk_duration_s),
+            "chunk_size_bytes": str(self.chunk_size), "compression": compression})))
+        self._write(self._writer_meta[1])
         self._f.flush()
 
     # ------------------------------------------------------------------ context manager
@@ -467,7 +475,7 @@ class BagWriter:
                 group(OP_SCHEMA, self._schema_records)
                 group(OP_CHANNEL, self._channel_records)
                 stats = (U64.pack(self._message_count) + U16.pack(len(self._schemas))
-                         + U32.pack(len(self._topics)) + U32.pack(0) + U32.pack(1)
+                         + U32.pack(len(self._topics)) + U32.pack(0) + U32.pack(2)
                          + U32.pack(len(self._chunk_indexes))
                          + U64.pack(self._start or 0) + U64.pack(self._end or 0))
                 counts = b"".join(U16.pack(c) + U64.pack(n)
@@ -476,8 +484,12 @@ class BagWriter:
                 group(OP_STATISTICS, [record(OP_STATISTICS, stats)])
                 group(OP_CHUNK_INDEX, [record(OP_CHUNK_INDEX, _chunk_index_body(ci))
                                        for ci in self._chunk_indexes])
-                group(OP_METADATA_INDEX, [record(OP_METADATA_INDEX, U64.pack(meta_offset)
-                                                 + U64.pack(meta_length) + pstr("rosbag2"))])
+                writer_offset, writer_rec = self._writer_meta
+                group(OP_METADATA_INDEX, [
+                    record(OP_METADATA_INDEX, U64.pack(writer_offset) + U64.pack(len(writer_rec))
+                           + pstr(WRITER_METADATA)),
+                    record(OP_METADATA_INDEX, U64.pack(meta_offset) + U64.pack(meta_length)
+                           + pstr("rosbag2"))])
                 summary_offset_start = self._pos
                 for op, start, length in groups:
                     self._write(record(OP_SUMMARY_OFFSET, bytes((op,)) + U64.pack(start)

@@ -30,6 +30,9 @@ from .cpn import CPN_VARIANTS, CounterPropagationNetwork
 
 FORMAT_VERSION = 1
 SIGNALS = ("a1", "a2")
+# Libraries made before the sample period was recorded in their settings were all trained on the
+# plant's 50 kHz stream (config/plant.yaml); load_library takes that value for them.
+LEGACY_SAMPLE_PERIOD_S = 2e-5
 DATA_DIR = Path(__file__).resolve().parents[1] / "data"
 DEFAULT_TRIGGER = "contact_loss"      # the windowing node's default trigger
 DEFAULT_LIBRARY_PATH = DATA_DIR / "patterns.npz"          # made with trigger contact_loss
@@ -88,6 +91,12 @@ class PatternLibrary:
     shape_meta: dict = field(default_factory=dict)
     created_utc: str = ""
     path: str = ""
+    signals: tuple = SIGNALS                     # the signals it has patterns for
+
+    @property
+    def sample_period_s(self) -> float:
+        """The sample period the library was trained at [s]."""
+        return float(self.settings.get("sample_period_s") or LEGACY_SAMPLE_PERIOD_S)
 
     # ---------------------------------------------------------------- queries
     @property
@@ -128,7 +137,7 @@ class PatternLibrary:
             "settings": self.settings,
             "widths_m": [float(w) for w in self.widths_m],
             "n1_values": [float(v) for v in self.n1_values],
-            "signals": list(SIGNALS),
+            "signals": list(self.signals),
             "modes": self.modes,
             "training": self.training,
             "shape_meta": self.shape_meta,
@@ -166,10 +175,13 @@ def load_library(path=None, **expected) -> PatternLibrary:
     if version != FORMAT_VERSION:
         raise PatternLibraryMismatch(path, {"format_version": (version, FORMAT_VERSION)})
     settings = meta.get("settings", {})
+    if not settings.get("sample_period_s"):   # made before the setting was stored: 50 kHz
+        settings = {**settings, "sample_period_s": LEGACY_SAMPLE_PERIOD_S}
     mism = {k: (settings.get(k), v) for k, v in expected.items() if v is not None and not _same(settings.get(k), v)}
     if mism:
         raise PatternLibraryMismatch(path, mism)
     return PatternLibrary(settings=settings, widths_m=np.asarray(meta["widths_m"]),
                           n1_values=np.asarray(meta["n1_values"]), arrays=arrays,
                           training=meta.get("training", {}), shape_meta=meta.get("shape_meta", {}),
-                          created_utc=meta.get("created_utc", ""), path=str(path))
+                          created_utc=meta.get("created_utc", ""), path=str(path),
+                          signals=tuple(meta.get("signals") or SIGNALS))

@@ -5,6 +5,13 @@ plant/omega1/omega2 with --angle-source integrated) in the order they were recor
 stages as the live graph (backlash_monitor.chain: join, detect entries, capture, denoise, classify,
 fuse) and writes the estimates to OUT.csv, OUT.json and OUT.mcap (topic `estimate`, the live
 pipeline's message type). Given the same recorded chunks, the estimates equal the live pipeline's.
+
+A damaged bag (a chunk whose length field or CRC is bad, a missing summary) is an error naming the
+damage; with --recover every intact chunk is analysed and OUT.json's "bag_integrity" lists what was
+skipped (chunks, log-time ranges, messages). A bag sampled at another rate than the pattern library
+was trained at, or whose topics carry other signals than their names say, is refused. Chunks with
+a sample period that is not a positive number, and ranges whose signals' chunks differ in length,
+are discarded and counted ("discarded_chunks").
 """
 from __future__ import annotations
 
@@ -51,7 +58,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--fusion-events", type=int, default=8,
                         help="onset events fused into one estimate")
     parser.add_argument("--recover", action="store_true",
-                        help="read what is intact of a bag whose recorder was killed")
+                        help="analyse what is intact of a damaged bag (recorder killed, damaged "
+                             "chunks skipped); OUT.json lists what was skipped")
     parser.add_argument("--overwrite", action="store_true",
                         help="replace existing output files (never the analysed bag itself); "
                              "without it an existing output is an error")
@@ -108,6 +116,11 @@ def run(args) -> int:
                                angle_source=args.angle_source, window_offset_samples=offset)
     except (PatternLibraryError, ValueError) as error:
         raise UsageError(str(error)) from None
+    missing = [name for name in stage.input_signals[:2] if name not in library.signals]
+    if missing:
+        raise UsageError(f"pattern library {library.path} has no patterns for {', '.join(missing)} "
+                         f"(it has {', '.join(library.signals)}); allowed: a library trained on "
+                         f"{', '.join(stage.input_signals[:2])}")
 
     out_prefix = pathlib.Path(args.out) if args.out else bag_path.with_suffix("").with_name(
         bag_path.with_suffix("").name + ".estimates")
@@ -119,6 +132,8 @@ def run(args) -> int:
     started = time.perf_counter()
     rows, estimates_msgs, discarded = [], [], []
     n_samples = 0
+    check = ChunkCheck(bag_path, library)
+    integrity = None
     try:
         with BagReader(bag_path, recover=args.recover) as reader:
             available = set(reader.topics)
@@ -143,9 +158,11 @@ def run(args) -> int:
                 if m is None:
                     joined = None
                 else:
+                    if not check.chunk(m, topics[m.topic]):
+                        continue
                     joined = joiner.add(topics[m.topic], int(m.first_sample_index),
                                         float(m.sample_period_s), m.samples, m.stamp, m.frame_id)
-                    if joined is None:
+                    if joined is None or not check.joined(joined):
                         continue
                     n_samples += len(joined.arrays["a1"])
                 windows, dropped = feeder.flush() if joined is None else feeder.add(joined)
@@ -163,9 +180,16 @@ def run(args) -> int:
                             rows.append(_row(window, est, true_width))
                             estimates_msgs.append((source, window, est))
                     batch = []
+            integrity = reader.recovery.to_dict()
     except BagError as error:
         raise UsageError(str(error)) from None
+    except ValueError as error:   # a core's check of its input: one line, never a traceback
+        raise UsageError(f"bag {bag_path}: {error}") from None
     elapsed = time.perf_counter() - started
+    if n_samples == 0:   # nothing analysed is no result: never an empty "success"
+        why = ("; ".join(f"{n} x {r}" for r, n in check.discards.items()) if check.discards
+               else "no complete range of " + ", ".join(stage.input_signals) + " in it")
+        raise UsageError(f"bag {bag_path}: no samples could be analysed ({why})")
 
     summary = _summary(rows, true_width)
     # written under temporary names, renamed together once all three are complete
@@ -182,10 +206,84 @@ def run(args) -> int:
                        "samples_analysed": n_samples, "seconds": elapsed,
                        "discarded_windows": [{"entry_sample_index": d.entry_sample_index,
                                               "reason": d.reason} for d in discarded],
+                       "discarded_chunks": check.summary(), "bag_integrity": integrity,
                        "summary": summary, "estimates": rows}, allow_nan=True))
         _write_estimate_bag(mcap_tmp, estimates_msgs, true_width)
     _print_summary(summary, rows, discarded, n_samples, elapsed, outputs)
+    _print_input_problems(check, integrity)
     return 0
+
+
+class ChunkCheck:
+    """The recorded chunks checked before they enter the chain: the sample rate against the pattern
+    library's (a bag at another rate is refused), each topic's signal name and unit (a topic
+    carrying another signal is refused), and -- counted and discarded -- a sample period that is
+    not a positive number and ranges whose signals' chunks differ in length."""
+
+    def __init__(self, bag_path, library):
+        from backlash_monitor.signals import SIGNAL_UNITS
+        self.bag_path = bag_path
+        self.library = library
+        self.period_s = library.sample_period_s
+        self.units = SIGNAL_UNITS
+        self.accepted = 0
+        self.discards: dict[str, int] = {}
+        self.examples: list[dict] = []
+
+    def _discard(self, reason: str, topic: str, first: int) -> bool:
+        self.discards[reason] = self.discards.get(reason, 0) + 1
+        if len(self.examples) < 20:
+            self.examples.append({"topic": topic, "first_sample_index": first, "reason": reason})
+        return False
+
+    def chunk(self, m, name: str) -> bool:
+        from backlash_monitor.commands import UsageError
+        period = float(m.sample_period_s)
+        first = int(m.first_sample_index)
+        if not (math.isfinite(period) and period > 0):
+            return self._discard(f"sample_period_s = {period!r} is not a positive number",
+                                 m.topic, first)
+        if m.samples.ndim != 1 or m.samples.size == 0:
+            return self._discard("no samples", m.topic, first)
+        wrong = None
+        if not math.isclose(period, self.period_s, rel_tol=1e-6):
+            wrong = (f"bag {self.bag_path} is sampled at {1 / period:g} Hz (sample_period_s "
+                     f"{period:g} s on {m.topic}); the pattern library {self.library.path} was "
+                     f"trained at {1 / self.period_s:g} Hz ({self.period_s:g} s), its patterns do not "
+                     f"fit; allowed: a bag sampled at {1 / self.period_s:g} Hz, or --library trained "
+                     "at the bag's rate")
+        elif m.signal_name and m.signal_name != name:
+            wrong = (f"topic {m.topic} carries signal {m.signal_name!r} ({m.unit}), not {name!r}; "
+                     f"allowed: {name} in {self.units.get(name, '?')} on this topic")
+        elif m.unit and self.units.get(name) and m.unit != self.units[name]:
+            wrong = (f"topic {m.topic} carries {name} in {m.unit!r}; the pattern library expects "
+                     f"{self.units[name]!r}")
+        if wrong:
+            if not self.accepted:
+                raise UsageError(wrong)
+            return self._discard(wrong.split(";")[0], m.topic, first)
+        self.accepted += 1
+        return True
+
+    def joined(self, joined) -> bool:
+        lengths = {name: len(a) for name, a in joined.arrays.items()}
+        if len(set(lengths.values())) > 1:
+            return self._discard("signals' chunks differ in length ("
+                                 + ", ".join(f"{k} {v}" for k, v in lengths.items()) + ")",
+                                 "", int(joined.first_sample_index))
+        return True
+
+    def summary(self) -> dict:
+        return {"count": sum(self.discards.values()), "by_reason": dict(self.discards),
+                "examples": list(self.examples)}
+
+
+def _print_input_problems(check, integrity) -> None:
+    if check.discards:
+        print(f"discarded {sum(check.discards.values())} chunk(s)/range(s): "
+              + "; ".join(f"{n} x {r}" for r, n in check.discards.items()))
+    if integrity and (integrity["damaged_chunks"] or integrity["problems"] or not integrity["complete"]):
+        print(f"bag integrity: {integrity['describe']}")
 
 
 def _row(window, est, true_width) -> dict:

@@ -27,7 +27,7 @@ from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 from backlash_monitor.bag import BagReader
-from backlash_monitor.bag.errors import BagError, TruncatedBagError
+from backlash_monitor.bag.errors import BagError, DamagedBagError, TruncatedBagError
 from backlash_monitor.nodes.fast_dds import configure_fast_dds
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
@@ -88,9 +88,9 @@ class ReplayNode(Node):
         except FileNotFoundError as error:
             raise ParameterValueError(f"parameter 'bag' = {p['bag']!r}: {error}; allowed: the path "
                                       "of an existing .mcap file") from None
-        except TruncatedBagError as error:
-            raise ParameterValueError(f"parameter 'bag': {error}; set recover:=true to play the "
-                                      "intact part") from None
+        except (TruncatedBagError, DamagedBagError) as error:
+            raise ParameterValueError("parameter 'bag': " + str(error).replace(
+                "(--recover)", "(recover:=true, `replay --recover`)")) from None
         except BagError as error:
             raise ParameterValueError(f"parameter 'bag' = {p['bag']!r}: {error}") from None
         topics = self.reader.topics
@@ -120,6 +120,8 @@ class ReplayNode(Node):
             except BagError:
                 self.header_first[topic] = False
         self.published = 0
+        if not self.reader.recovery.intact:
+            self.get_logger().warning(f"{p['bag']}: {self.reader.recovery.describe()}")
         # Called while playing, so that the node's parameter services and QoS events are served
         # (set by main() to spin its executor; the waits below block at most this long).
         self.serve = lambda timeout_s: time.sleep(timeout_s)
@@ -157,6 +159,9 @@ class ReplayNode(Node):
             if not self.params["loop"] or not rclpy.ok():
                 break
         self.get_logger().info(f"played {self.published} messages from {self.params['bag']}")
+        report = self.reader.recovery
+        if report.damaged_any:   # also damage found while playing (a chunk's CRC)
+            self.get_logger().warning(f"skipped: {report.damage_text()}")
 
     def play_once(self) -> None:
         rate = self.params["rate"]
@@ -215,7 +220,12 @@ class ReplayNode(Node):
 
 def _spin(node: ReplayNode, executor) -> None:
     node.serve = lambda timeout_s: executor.spin_once(timeout_sec=timeout_s)
-    node.play()
+    try:
+        node.play()
+    except BagError as error:   # a chunk found damaged while playing (its CRC), recover false
+        raise ParameterValueError("parameter 'bag': " + str(error).replace(
+            "(--recover)", "(recover:=true, `replay --recover`)")
+            + f"; {node.published} messages were played before it") from None
 
 
 def main(args=None) -> int:
