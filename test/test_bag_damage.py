@@ -1,0 +1,262 @@
+"""Damaged bags: every chunk is checked against the chunk index and its CRC; damage is an error
+naming the chunk (offset, log time, messages) unless recovering; recovery reads every intact chunk
+(past a damaged length field by the index, or by resynchronising without one) and reports the gap.
+
+The expected messages come from the intact file (the messages of the chunks that are not damaged),
+so a reader that stops at the damage, reads past it into garbage, or says nothing fails here."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from backlash_monitor.bag import BagReader, DamagedBagError, TruncatedBagError, faults
+from bag_helpers import write_sample_bag
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="module")
+def intact(tmp_path_factory):
+    """A bag of 12 chunks (0.1 s each) and, per chunk, the keys of the messages in it."""
+    path = tmp_path_factory.mktemp("damage") / "intact.mcap"
+    write_sample_bag(path, n_chunks=60, chunk_duration_s=0.1)
+    layout = faults.chunk_layout(path)
+    with BagReader(path) as bag:
+        keys = [(m.topic, m.log_time_ns, m.sequence) for m in bag.messages(decode=False)]
+    per_chunk = [[k for k in keys if start <= k[1] <= end] for _off, _len, start, end in layout]
+    assert len(layout) >= 10 and sum(map(len, per_chunk)) == len(keys)
+    return path, path.read_bytes(), layout, keys, per_chunk
+
+
+def _keys(bag):
+    return [(m.topic, m.log_time_ns, m.sequence) for m in bag.messages(decode=False)]
+
+
+DAMAGE = {
+    "length_too_long": lambda d, off, ln: faults.chunk_length_field(d, off, 3 * ln),
+    "length_too_short": lambda d, off, ln: faults.chunk_length_field(d, off, 100),
+    "length_huge": lambda d, off, ln: faults.chunk_length_field(d, off, 1 << 40),
+    "crc_field": lambda d, off, ln: faults.chunk_crc_field(d, off),
+    "payload_byte": lambda d, off, ln: faults.chunk_payload_byte(d, off, ln),
+}
+# only a header field: the contents pass the CRC and are read
+CONTENTS_INTACT = {"length_too_long", "length_too_short", "length_huge"}
+
+
+@pytest.mark.parametrize("summary", [True, False], ids=["with_summary", "without_summary"])
+@pytest.mark.parametrize("kind", sorted(DAMAGE))
+def test_a_damaged_chunk_is_named_and_recovery_reads_every_other_chunk(intact, tmp_path, kind,
+                                                                       summary):
+    path, data, layout, keys, per_chunk = intact
+    k = 4
+    off, length, start, end = layout[k]
+    damaged = DAMAGE[kind](data, off, length)
+    if not summary:
+        damaged = faults.without_summary(damaged)
+    bad = tmp_path / "bad.mcap"
+    bad.write_bytes(damaged)
+    with pytest.raises((DamagedBagError, TruncatedBagError)) as error:
+        BagReader(bad)
+    text = str(error.value)
+    assert f"byte {off}" in text and "recover" in text
+    if summary:
+        assert isinstance(error.value, DamagedBagError)
+    with BagReader(bad, recover=True) as bag:
+        got = _keys(bag)
+        report = bag.recovery
+        ranges = [(d.offset, d.start_ns, d.end_ns) for d in report.damaged]
+    assert ranges == [(off, start, end)], report.describe()
+    d = report.damaged[0]
+    assert d.messages == len(per_chunk[k])
+    if kind in CONTENTS_INTACT:
+        assert d.recovered and got == keys and report.skipped_messages == 0
+    else:
+        assert not d.recovered and d.length_bytes == length
+        assert got == [key for key in keys if key not in per_chunk[k]]
+        assert report.skipped_messages == len(per_chunk[k]) and report.skipped_bytes == length
+    if summary:   # the counts no longer include what could not be read
+        assert bag.message_count == len(got)
+
+
+def test_damaged_record_header_without_summary_resynchronises_on_the_next_chunk(intact, tmp_path):
+    path, data, layout, keys, per_chunk = intact
+    off = layout[3][0]
+    broken = bytearray(faults.without_summary(data))
+    broken[off:off + 40] = b"\xee" * 40   # opcode, length and time range of chunk 3 destroyed
+    bad = tmp_path / "garbage.mcap"
+    bad.write_bytes(bytes(broken))
+    with BagReader(bad, recover=True) as bag:
+        got = _keys(bag)
+        report = bag.recovery
+    assert got == [key for key in keys if key not in per_chunk[3]]
+    assert [d.offset for d in report.damaged] == [off]
+    assert report.damaged[0].length_bytes == layout[4][0] - off   # up to the next chunk
+    assert report.damaged[0].messages == len(per_chunk[3])       # from its message index records
+
+
+def test_summary_crc_mismatch_is_an_error_and_recovery_reads_everything(intact, tmp_path):
+    path, data, _layout, keys, _ = intact
+    bad = tmp_path / "summary.mcap"
+    bad.write_bytes(faults.summary_byte(data))
+    with pytest.raises(TruncatedBagError, match="summary section CRC mismatch"):
+        BagReader(bad)
+    with BagReader(bad, recover=True) as bag:
+        assert _keys(bag) == keys
+
+
+def test_data_crc_mismatch_outside_the_chunks_is_reported(intact, tmp_path):
+    path, data, layout, keys, _ = intact
+    off, length = layout[2][:2]
+    broken = bytearray(data)
+    broken[off + length + 9 + 3] ^= 0x01    # inside the message index record after chunk 2
+    bad = tmp_path / "index.mcap"
+    bad.write_bytes(bytes(broken))
+    with pytest.raises(DamagedBagError, match="data section CRC mismatch outside the chunks"):
+        BagReader(bad)
+    with BagReader(bad, recover=True) as bag:
+        assert _keys(bag) == keys and bag.recovery.damaged == []
+
+
+def test_intact_bag_is_verified_by_its_data_crc(intact):
+    path, *_ = intact
+    with BagReader(path) as bag:
+        assert bag.recovery.intact and bag.recovery.verified
+
+
+def _cli(*args):
+    return subprocess.run([sys.executable, "-m", "backlash_monitor", *map(str, args)],
+                          capture_output=True, text=True, cwd=REPO, timeout=300)
+
+
+def test_bag_info_reports_a_crc_error_and_recover_names_the_chunk(intact, tmp_path):
+    path, data, layout, _keys_, per_chunk = intact
+    off, length = layout[5][:2]
+    bad = tmp_path / "crc.mcap"
+    bad.write_bytes(faults.chunk_crc_field(data, off))
+    strict = _cli("bag-info", bad)
+    assert strict.returncode == 1
+    assert "CRC mismatch" in strict.stderr and "--recover" in strict.stderr
+    assert len(strict.stderr.strip().splitlines()) == 1 and "Traceback" not in strict.stderr
+    assert "complete" not in strict.stdout
+    rec = _cli("bag-info", bad, "--recover", "--json")
+    assert rec.returncode == 0, rec.stderr
+    info = json.loads(rec.stdout)
+    assert not info["intact"]
+    [chunk] = info["recovery"]["damaged_chunks"]
+    assert chunk["offset"] == off and chunk["messages"] == len(per_chunk[5]) and not chunk["recovered"]
+    assert info["recovery"]["skipped_messages"] == len(per_chunk[5])
+
+
+# ------------------------------------------------------------------ analyze on damaged / wrong bags
+
+@pytest.fixture(scope="module")
+def drive_bag(tmp_path_factory):
+    """A 2 s simulated drive (4 chunks of 0.5 s) and its analysis."""
+    directory = tmp_path_factory.mktemp("drive")
+    proc = _cli("simulate", "--widths", "0.005", "--eta-k", "0.025", "--n1", "0.89", "--duration", "2",
+                "--no-npz", "--mcap", directory / "sim", "--quiet")
+    assert proc.returncode == 0, proc.stderr
+    [bag] = sorted((directory / "sim").glob("*.mcap"))
+    out = _cli("analyze", bag, "--out", directory / "ref")
+    assert out.returncode == 0, out.stderr
+    return bag, json.loads((directory / "ref.json").read_text())
+
+
+def _analyze(bag, tmp_path, *extra):
+    proc = _cli("analyze", bag, "--out", tmp_path / "out", "--overwrite", *extra)
+    result = json.loads((tmp_path / "out.json").read_text()) if proc.returncode == 0 else None
+    return proc, result
+
+
+def test_analyze_refuses_a_damaged_length_and_recovers_all_of_it(drive_bag, tmp_path):
+    bag, reference = drive_bag
+    off, length = faults.chunk_layout(bag)[1][:2]
+    bad = tmp_path / "len.mcap"
+    bad.write_bytes(faults.chunk_length_field(bag.read_bytes(), off, 2 * length))
+    proc, _ = _analyze(bad, tmp_path)
+    assert proc.returncode == 2 and "chunk length field damaged" in proc.stderr
+    assert "--recover" in proc.stderr and "Traceback" not in proc.stderr
+    proc, result = _analyze(bad, tmp_path, "--recover")
+    assert proc.returncode == 0, proc.stderr
+    assert result["samples_analysed"] == reference["samples_analysed"]   # nothing lost
+    [chunk] = result["bag_integrity"]["damaged_chunks"]
+    assert chunk["offset"] == off and chunk["recovered"]
+
+
+def test_analyze_recover_records_the_skipped_chunk(drive_bag, tmp_path):
+    bag, reference = drive_bag
+    layout = faults.chunk_layout(bag)
+    off, length, start, end = layout[2]
+    bad = tmp_path / "crc.mcap"
+    bad.write_bytes(faults.chunk_payload_byte(bag.read_bytes(), off, length))
+    proc, _ = _analyze(bad, tmp_path)
+    assert proc.returncode == 2 and f"byte {off}" in proc.stderr
+    proc, result = _analyze(bad, tmp_path, "--recover")
+    assert proc.returncode == 0, proc.stderr
+    integrity = result["bag_integrity"]
+    [chunk] = integrity["damaged_chunks"]
+    assert (chunk["offset"], chunk["start_ns"], chunk["end_ns"]) == (off, start, end)
+    assert chunk["end_s"] - chunk["start_s"] == pytest.approx((end - start) / 1e9)
+    assert chunk["messages"] == integrity["skipped_messages"] > 0
+    # the ranges (1000 samples) of which an analysed signal was in the chunk are lost, no more
+    with BagReader(bag) as intact:
+        hit = {m.first_sample_index for m in intact.signal_chunks(
+            ["/plant/a1", "/plant/a2", "/plant/angle_difference"]) if start <= m.log_time_ns <= end}
+    lost_samples = reference["samples_analysed"] - result["samples_analysed"]
+    assert lost_samples == len(hit) * 1000 >= 25_000
+    assert "skipped" not in proc.stderr and "DAMAGED" in proc.stdout
+
+
+def _rewritten(bag, tmp_path, change, name):
+    out = tmp_path / f"{name}.mcap"
+    faults.rewrite_signals(bag, out, change)
+    return out
+
+
+def test_analyze_refuses_another_sample_rate_and_another_signal(drive_bag, tmp_path):
+    bag, _ = drive_bag
+
+    def slower(topic, f):
+        f["sample_period_s"] = 4e-5
+        return f
+
+    def swapped(topic, f):
+        if topic.endswith("/a1"):
+            f["signal_name"], f["unit"] = "omega1", "rad/s"
+        return f
+
+    proc, _ = _analyze(_rewritten(bag, tmp_path, slower, "rate"), tmp_path)
+    assert proc.returncode == 2 and "25000 Hz" in proc.stderr and "50000 Hz" in proc.stderr
+    assert "Traceback" not in proc.stderr
+    proc, _ = _analyze(_rewritten(bag, tmp_path, swapped, "swapped"), tmp_path)
+    assert proc.returncode == 2 and "carries signal 'omega1'" in proc.stderr
+
+
+def test_analyze_counts_bad_periods_and_unequal_lengths(drive_bag, tmp_path):
+    bag, reference = drive_bag
+
+    def broken(topic, f):
+        if f["first_sample_index"] == 10_000:
+            f["sample_period_s"] = float("nan")
+        if f["first_sample_index"] == 20_000 and topic.endswith("/a2"):
+            f["samples"] = f["samples"][:500]
+        return f
+
+    proc, result = _analyze(_rewritten(bag, tmp_path, broken, "broken"), tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    by_reason = result["discarded_chunks"]["by_reason"]
+    assert by_reason == {"sample_period_s = nan is not a positive number": 3,   # a1, a2, angle
+                         "signals' chunks differ in length (a1 1000, a2 500, angle_difference 1000)": 1}
+    assert result["samples_analysed"] == reference["samples_analysed"] - 2000
+
+    def all_bad(topic, f):
+        f["sample_period_s"] = 0.0
+        return f
+
+    proc, _ = _analyze(_rewritten(bag, tmp_path, all_bad, "zero"), tmp_path)
+    assert proc.returncode == 2 and "no samples could be analysed" in proc.stderr
+    assert "Traceback" not in proc.stderr
