@@ -117,6 +117,10 @@ def test_sigkill_loses_at_most_the_open_chunk(ros_env, tmp_path, capsys):
     assert cli_main(["bag-info", str(out), "--recover"]) == 0
     printed = capsys.readouterr().out
     assert "INCOMPLETE" in printed and "recovered" in printed
+    # it says how much time the lost open chunk held: the writer's bound, or the cut chunk's range
+    assert (f"at most {chunk_s:g} s (its chunk_duration_s)" in printed
+            or "the chunk being written when the file ends held log time" in printed), printed
+    assert rep.chunk_duration_s == chunk_s and rep.damaged == []
 
 
 def test_replay_flow_controlled_reproduces_the_bag_and_fresh_stamps_shift(ros_env, tmp_path):
