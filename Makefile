@@ -55,7 +55,7 @@ patterns: setup  ## retrain the packaged pattern libraries (both triggers; ~3 mi
 	$(ACTIVATE) && python -m backlash_monitor train --trigger contact_loss && python -m backlash_monitor train --trigger paper
 
 evaluate: setup  ## identification over the full grid, confusion matrices and plots into out/evaluate
-	$(ACTIVATE) && python -m backlash_monitor evaluate --out-dir out/evaluate
+	$(ACTIVATE) && python -m backlash_monitor evaluate --out-dir out/evaluate --overwrite
 
 clean:  ## remove the build (keeps .venv)
 	rm -rf build install log

@@ -143,8 +143,13 @@ class PatternLibrary:
             "shape_meta": self.shape_meta,
             "created_utc": self.created_utc or _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
         }
+        # written beside it, renamed onto it when complete: never a half-written library
         tmp = path.with_name(path.name + ".tmp.npz")
-        np.savez_compressed(tmp, meta=np.array(json.dumps(meta, sort_keys=True)), **self.arrays)
+        try:
+            np.savez_compressed(tmp, meta=np.array(json.dumps(meta, sort_keys=True)), **self.arrays)
+        except BaseException:
+            tmp.unlink(missing_ok=True)
+            raise
         os.replace(tmp, path)
         return path
 

@@ -32,7 +32,11 @@ TRIGGERS = ("paper", "contact_loss")
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out-dir", default="out/evaluate", metavar="DIR",
-                        help="directory for evaluation.json and the PNGs (created)")
+                        help="directory for evaluation.json and the PNGs (created); existing files "
+                             "there are an error unless --overwrite")
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace evaluation.json and the PNGs in --out-dir (each is replaced "
+                             "only once the whole evaluation has completed)")
     parser.add_argument("--trigger", action="append", choices=TRIGGERS, default=None,
                         help="trigger(s) to evaluate; repeat for several (default: both, paper and contact_loss)")
     parser.add_argument("--seeds", type=seed_list, default=[0, 1, 2, 3, 4], metavar="S[,S...]",
@@ -76,11 +80,6 @@ def _public(r: dict) -> dict:
 
 def run(args) -> int:
     _check(args)
-    from tqdm import tqdm
-
-    from backlash_monitor.classifier.dataset import collect_windows
-    from backlash_monitor.classifier.evaluation import (EVAL_SIGNALS, MODES, UNSEEN_WIDTHS_M, continuous_error,
-                                                        evaluate_mode, paper_miss_explanation, paper_table_rows)
     from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
 
     libs = {}
@@ -97,8 +96,29 @@ def run(args) -> int:
         if clash:
             raise UsageError(f"--seeds {','.join(map(str, args.seeds))}: seed(s) {','.join(map(str, clash))} trained "
                              f"the {trig} library {path}; evaluate on other seeds")
+    from backlash_monitor.output_files import OutputError, check_outputs, staged_outputs
     out_dir = Path(args.out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    outputs = [out_dir / "evaluation.json"] + ([] if args.no_plots else [
+        out_dir / f"{kind}_{trig}.png" for trig in libs
+        for kind in ("confusion", "windows", "continuous")])
+    try:
+        check_outputs(outputs, overwrite=args.overwrite, option="--out-dir")
+    except OutputError as error:
+        raise UsageError(str(error)) from None
+    with staged_outputs(outputs) as temps:   # renamed onto their names only when all are written
+        staged = dict(zip(outputs, temps))
+        report = _evaluate(args, libs, out_dir, staged)
+    _summary(report)
+    print(f"\nfigures: {out_dir / 'evaluation.json'}" + ("" if args.no_plots else f", PNGs in {out_dir}"))
+    return 0
+
+
+def _evaluate(args, libs, out_dir, staged) -> dict:
+    from tqdm import tqdm
+
+    from backlash_monitor.classifier.dataset import collect_windows
+    from backlash_monitor.classifier.evaluation import (EVAL_SIGNALS, MODES, UNSEEN_WIDTHS_M, continuous_error,
+                                                        evaluate_mode, paper_miss_explanation, paper_table_rows)
     t0 = time.time()
     triggers = list(libs)
     n_steps = len(triggers) * (len(args.seeds) + 1 + len(args.unseen_seeds)) + len(triggers) * 7
@@ -128,12 +148,10 @@ def run(args) -> int:
                 "library": lib.path, "library_settings": lib.settings, "n_windows": len(test),
                 "results": {f"{m}/{s}": _public(r) for (m, s), r in res.items()}, "paper_tables": tab}
             if not args.no_plots:
-                _plots(out_dir, trig, lib, test, unseen, res)
+                _plots(out_dir, trig, lib, test, unseen, res, staged)
     report["elapsed_s"] = round(time.time() - t0, 1)
-    (out_dir / "evaluation.json").write_text(json.dumps(report, indent=1, default=float))
-    _summary(report)
-    print(f"\nfigures: {out_dir / 'evaluation.json'}" + ("" if args.no_plots else f", PNGs in {out_dir}"))
-    return 0
+    staged[out_dir / "evaluation.json"].write_text(json.dumps(report, indent=1, default=float))
+    return report
 
 
 def _summary(report: dict) -> None:
@@ -156,7 +174,7 @@ def _summary(report: dict) -> None:
                   f"{' '.join(f'{v:.4g}' for v in row['ours_b_mean'])}")
 
 
-def _plots(out_dir: Path, trig: str, lib, test, unseen, res: dict) -> None:
+def _plots(out_dir: Path, trig: str, lib, test, unseen, res: dict, staged: dict) -> None:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -184,7 +202,7 @@ def _plots(out_dir: Path, trig: str, lib, test, unseen, res: dict) -> None:
         ax.axis("off")
     fig.suptitle(f"Confusion matrices, trigger {trig}, {len(test)} onset windows")
     fig.tight_layout()
-    fig.savefig(out_dir / f"confusion_{trig}.png", dpi=90)
+    fig.savefig(staged[out_dir / f"confusion_{trig}.png"], dpi=90, format="png")
     plt.close(fig)
 
     fig, axes = plt.subplots(2, 2, figsize=(13, 8), sharex=True)
@@ -208,7 +226,7 @@ def _plots(out_dir: Path, trig: str, lib, test, unseen, res: dict) -> None:
     axes[0, 0].legend(fontsize=7)
     fig.suptitle(f"One onset window per width (eta_k 0.025, n1 0.89), trigger {trig}")
     fig.tight_layout()
-    fig.savefig(out_dir / f"windows_{trig}.png", dpi=90)
+    fig.savefig(staged[out_dir / f"windows_{trig}.png"], dpi=90, format="png")
     plt.close(fig)
 
     from backlash_monitor.classifier.evaluation import classify_windows
@@ -227,5 +245,5 @@ def _plots(out_dir: Path, trig: str, lib, test, unseen, res: dict) -> None:
         a.grid(alpha=0.3)
     ax[0].legend(fontsize=7, markerscale=5)
     fig.tight_layout()
-    fig.savefig(out_dir / f"continuous_{trig}.png", dpi=90)
+    fig.savefig(staged[out_dir / f"continuous_{trig}.png"], dpi=90, format="png")
     plt.close(fig)

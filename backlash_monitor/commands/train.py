@@ -53,6 +53,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="samples from the detected entry to the window start (default: the trigger's "
                              "configured value, config/windowing.yaml capture.window_offset_samples); the "
                              "library records it and the classifier refuses windows captured with another")
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace an existing --out file (without --out, the packaged library "
+                             "is replaced: that is what `make patterns` asks for)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -71,6 +74,12 @@ def _check(args) -> None:
         raise UsageError(f"--window-offset {args.window_offset}: must be 0 <= SAMPLES <= 65536")
     if args.out is not None and not str(args.out).endswith(".npz"):
         raise UsageError(f"--out {args.out}: the library is an .npz file; give a name ending in .npz")
+    if args.out is not None:   # before the minutes of training, not after
+        from backlash_monitor.output_files import OutputError, check_outputs
+        try:
+            check_outputs([args.out], overwrite=args.overwrite, option="--out")
+        except OutputError as error:
+            raise UsageError(str(error)) from None
 
 
 def run(args) -> int:
