@@ -5,6 +5,7 @@ Seeds 77 (never a training seed). Small: 6 drives of 2 s per trigger (48 onset w
 import numpy as np
 import pytest
 
+from backlash_monitor.classifier.cpn import b_vector, paper_w4_from_mean
 from backlash_monitor.classifier.dataset import collect_windows
 from backlash_monitor.classifier.evaluation import classify_windows, fused_correct
 from backlash_monitor.classifier.patterns import load_library
@@ -39,6 +40,15 @@ def test_paper_mode_runs_literally_and_is_far_from_perfect(windows):
     truth = np.searchsorted(WIDTHS, ws.width_m)
     for signal in ("a1", "a2"):
         b, _ = classify_windows(lib, ws, "paper", signal)
-        assert b.shape == (len(ws), 6) and np.all(b >= 0)
-        # the decision depends on the window mean only; on this model it is far from 100 %
-        assert np.mean(np.argmin(b, axis=1) == truth) < 0.9
+        assert b.shape == (len(ws), 6)
+        # literally the paper: B (eq. 31) of every window is the one computed from the window's
+        # mean alone (the mean-only W4, SPEC section 4) with this n1's patterns of this signal
+        net = lib.cpn("paper", signal, 0.93)
+        x = ws.signal(signal)
+        expected = np.array([b_vector(paper_w4_from_mean(xi.mean(), net.m3, xi.size, epochs=net.epochs,
+                                                         l1=net.l1, l2=net.l2), net.w5) for xi in x])
+        np.testing.assert_allclose(b, expected, rtol=1e-9, atol=0)
+        # far from 100 % on this model, but far above chance (1/6): measured 0.52 (a1), 0.44 (a2)
+        # of 48; 15 of 48 by chance alone has p < 0.01
+        accuracy = np.mean(np.argmin(b, axis=1) == truth)
+        assert 15 / 48 <= accuracy < 0.9, (signal, accuracy)

@@ -1,6 +1,7 @@
 """DDS stays on loopback, and two nodes in two processes exchange the project's messages."""
 import os
 import subprocess
+import time
 
 from ament_index_python.packages import get_package_prefix
 
@@ -10,10 +11,27 @@ def _executable(name):
     return os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor", name)
 
 
-def test_tests_run_with_localhost_discovery_and_their_own_domain(ros_env):
-    assert os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] == "LOCALHOST"
-    assert ros_env["ROS_AUTOMATIC_DISCOVERY_RANGE"] == "LOCALHOST"
-    assert 1 <= int(ros_env["ROS_DOMAIN_ID"]) <= 101
+def test_each_test_gets_a_domain_that_its_processes_do_not_leave(ros_env):
+    """Two ros_env domains are really apart: a talker waiting for a listener in another domain
+    never finds it (in one domain they do: test_two_processes_exchange_signal_chunks)."""
+    from conftest import fresh_domain_id
+
+    other = dict(ros_env, ROS_DOMAIN_ID=str(fresh_domain_id()))
+    assert ros_env["ROS_AUTOMATIC_DISCOVERY_RANGE"] == other["ROS_AUTOMATIC_DISCOVERY_RANGE"] == "LOCALHOST"
+    listener = subprocess.Popen([_executable("chunk_listener"), "--ros-args", "-p", "count:=1"],
+                                env=ros_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    talker = subprocess.Popen([_executable("chunk_talker"), "--ros-args", "-p", "count:=1"],
+                              env=other, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        time.sleep(4.0)      # discovery on loopback takes well under a second in one domain
+        still_waiting = listener.poll() is None and talker.poll() is None
+    finally:
+        for proc in (listener, talker):
+            proc.kill()
+        listener_out, _ = listener.communicate(timeout=30)
+        talker.communicate(timeout=30)
+    assert still_waiting, listener_out
+    assert "chunk " not in listener_out
 
 
 def test_every_make_target_and_env_sh_keep_dds_on_loopback(repo_root):

@@ -79,7 +79,9 @@ def test_estimates_and_namespaced_diagnostics(ros_env):
     est = estimates[-1]
     assert list(est.candidate_widths_m) == [0.0025, 0.00375, 0.005, 0.0075, 0.009, 0.01]
     assert len(est.b_vector) == 6 and est.width_m == est.candidate_widths_m[est.width_index]
-    assert est.width_index == int(np.argmin(est.b_vector)) and est.b_margin >= 1.0
+    assert est.width_index == int(np.argmin(est.b_vector))
+    smallest, second = np.sort(np.asarray(est.b_vector))[:2]     # the margin of this B vector
+    assert est.b_margin == pytest.approx(second / smallest, rel=1e-12)
     assert est.fused_events == min(8, len(windows))
     assert est.true_width_m == 0.009
     status = [d.status[0] for d in diagnostics if d.status[0].level != DiagnosticStatus.STALE][-1]

@@ -37,7 +37,8 @@ def test_energy_balance_over_a_pulse():
                 + 0.5 * m.rotor_inertia_kgm2 * O1 ** 2 + 0.5 * ld.wheel_inertia_kgm2 * O2 ** 2
                 + 0.5 * ld.mass_kg * xd ** 2 + 0.5 * ld.spring_stiffness_N_per_m * z ** 2
                 + 0.5 * cl.contact_stiffness_Nm_per_rad * gap ** 2)
-    assert np.all(p_absorber >= 0) and np.all(p_contact >= -1e-9)     # both only dissipate
+    # the contact only dissipates (p_absorber = c|v|^(n1+1) is >= 0 by its formula: not a check)
+    assert np.all(p_contact >= -1e-9)
     net = p_in - p_cu - p_absorber - p_contact - p_load
     h = 1.0 / fs
     residual = np.sum(0.5 * (net[1:] + net[:-1])) * h - (e_stored[-1] - e_stored[0])
