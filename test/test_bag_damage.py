@@ -11,6 +11,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from backlash_monitor.bag import BagReader, DamagedBagError, TruncatedBagError, faults
@@ -244,14 +245,20 @@ def test_analyze_counts_bad_periods_and_unequal_lengths(drive_bag, tmp_path):
             f["sample_period_s"] = float("nan")
         if f["first_sample_index"] == 20_000 and topic.endswith("/a2"):
             f["samples"] = f["samples"][:500]
+        if f["first_sample_index"] == 30_000 and topic.endswith("/a1"):
+            f["samples"] = f["samples"].copy()
+            f["samples"][17] = float("nan")
         return f
 
     proc, result = _analyze(_rewritten(bag, tmp_path, broken, "broken"), tmp_path)
     assert proc.returncode == 0, proc.stderr
     by_reason = result["discarded_chunks"]["by_reason"]
     assert by_reason == {"sample_period_s = nan is not a positive number": 3,   # a1, a2, angle
-                         "signals' chunks differ in length (a1 1000, a2 500, angle_difference 1000)": 1}
-    assert result["samples_analysed"] == reference["samples_analysed"] - 2000
+                         "signals' chunks differ in length (a1 1000, a2 500, angle_difference 1000)": 1,
+                         "non-finite samples": 1}
+    assert result["samples_analysed"] == reference["samples_analysed"] - 3000
+    assert all(np.isfinite(r["width_m"]) and np.all(np.isfinite(r["b_vector"]))
+               for r in result["estimates"]) and result["estimates"]
 
     def all_bad(topic, f):
         f["sample_period_s"] = 0.0

@@ -218,10 +218,13 @@ class ChunkCheck:
     """The recorded chunks checked before they enter the chain: the sample rate against the pattern
     library's (a bag at another rate is refused), each topic's signal name and unit (a topic
     carrying another signal is refused), and -- counted and discarded -- a sample period that is
-    not a positive number and ranges whose signals' chunks differ in length."""
+    not a positive number, non-finite samples and ranges whose signals' chunks differ in length."""
 
     def __init__(self, bag_path, library):
+        import numpy as np
+
         from backlash_monitor.signals import SIGNAL_UNITS
+        self.np = np
         self.bag_path = bag_path
         self.library = library
         self.period_s = library.sample_period_s
@@ -245,6 +248,8 @@ class ChunkCheck:
                                  m.topic, first)
         if m.samples.ndim != 1 or m.samples.size == 0:
             return self._discard("no samples", m.topic, first)
+        if not self.np.isfinite(m.samples).all():   # NaN/inf never reach the chain (its windows: gaps)
+            return self._discard("non-finite samples", m.topic, first)
         wrong = None
         if not math.isclose(period, self.period_s, rel_tol=1e-6):
             wrong = (f"bag {self.bag_path} is sampled at {1 / period:g} Hz (sample_period_s "
