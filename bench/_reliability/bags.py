@@ -378,12 +378,20 @@ def _killed_recorder(run, work: Path) -> tuple[str, str, int]:
 
     from backlash_monitor.bag import BagReader
 
+    import zlib
+
+    import zstandard
+
     complete = []
     with open(out, "rb") as f:
-        pos = 0
         try:
-            for record in StreamReader(f, validate_crcs=True, skip_magic=False).records:
-                if type(record).__name__ == "Chunk":
+            for record in StreamReader(f, emit_chunks=True).records:
+                if type(record).__name__ != "Chunk":
+                    continue
+                data = (zstandard.ZstdDecompressor().decompress(
+                    record.data, max_output_size=record.uncompressed_size)
+                        if record.compression == "zstd" else record.data)
+                if not record.uncompressed_crc or zlib.crc32(data) == record.uncompressed_crc:
                     complete.append(record)
         except Exception:  # noqa: BLE001 - the cut end of the file
             pass
