@@ -30,3 +30,26 @@ def test_evaluate_refuses_existing_outputs(tmp_path, name):
     kept.write_bytes(b"earlier figures")
     _refused(_run("evaluate", "--trigger", "paper", "--out-dir", tmp_path, "--no-progress"), kept,
              b"earlier figures")
+
+
+def test_simulate_refuses_an_existing_npz_and_bag_and_replaces_them_when_told(tmp_path):
+    npz, bags = tmp_path / "sim.npz", tmp_path / "bags"
+    args = ["simulate", "--widths", "0.005", "--eta-k", "0.025", "--n1", "0.89", "--duration", "0.1",
+            "-o", npz, "--mcap", bags, "--quiet"]
+    npz.write_bytes(b"earlier run")
+    _refused(_run(*args), npz, b"earlier run")
+    npz.unlink()
+    bags.mkdir()
+    bag = bags / "w5mm_eta0.025_n0.89_s0.mcap"
+    bag.write_bytes(b"a recording")
+    _refused(_run(*args), bag, b"a recording")
+    assert not npz.exists()                      # refused before anything was written
+    proc = _run(*args, "--overwrite")
+    assert proc.returncode == 0, proc.stderr
+    from backlash_monitor.bag import BagReader
+    with BagReader(bag) as reader:               # replaced by a complete bag that names itself
+        assert reader.topics["/plant/a1"].count == 5
+        assert reader.rosbag2_metadata["relative_file_paths"] == [bag.name]
+    assert sorted(p.name for p in tmp_path.rglob("*.partial")) == []
+    import numpy as np
+    assert np.load(npz)["a1"].shape == (1, 5000)

@@ -418,7 +418,8 @@ class BagWriter:
     def _bag_metadata(self) -> dict:
         start = self._start or 0
         duration = (self._end - self._start) if self._start is not None else 0
-        rel = self.path.name
+        # the name it will have: outputs are written as NAME.partial and renamed when complete
+        rel = self.path.name.removesuffix(".partial")
         topics = []
         for t in self._topics.values():
             topics.append({

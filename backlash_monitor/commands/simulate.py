@@ -64,6 +64,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "the plant_simulator node publishes; for `analyze`, `replay` and Foxglove")
     parser.add_argument("--no-npz", action="store_true", help="write no NPZ (use with --mcap)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar and no summary table")
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace an existing NPZ or bag (without it an existing one is an error, "
+                             "reported before simulating); outputs are renamed into place when complete")
 
 
 def _parse_override(text: str):
@@ -101,6 +104,14 @@ def run(args) -> int:
         return _error(f"--output {args.output!r}: directory {str(out_path.parent)!r} does not exist")
     if out_path.is_dir():
         return _error(f"--output {args.output!r} is a directory; allowed: a file path ending in .npz")
+    from backlash_monitor.output_files import OutputError, check_outputs   # never over existing data
+    try:
+        check_outputs([] if args.no_npz else [_npz_path(out_path)], overwrite=args.overwrite,
+                      option="--output")
+        check_outputs([Path(args.mcap) / bag_name(s) for s in scenarios] if args.mcap else [],
+                      overwrite=args.overwrite, option="--mcap")
+    except OutputError as exc:
+        return _error(str(exc))
     fs = cfg.simulation.sample_rate_hz
     n_total = int(round(args.duration * fs))
     if n_total < 1:
@@ -155,7 +166,7 @@ def run(args) -> int:
         return 0
     entry_rows = np.array([(i, k_, ENTRY_KINDS.index(kind)) for i in range(n_scen) for k_, kind in entries[i]],
                           dtype=np.int64).reshape(-1, 3)
-    np.savez(out_path if out_path.suffix == ".npz" else str(out_path),
+    _staged_savez(_npz_path(out_path),
              format_version=np.int64(FORMAT_VERSION),
              **data,
              scenario_width_m=np.array([s.width_m for s in scenarios]),
@@ -174,6 +185,18 @@ def run(args) -> int:
     return 0
 
 
+def _npz_path(out_path: Path) -> Path:
+    """The file np.savez writes for --output (it appends .npz to a name without it)."""
+    return out_path if out_path.suffix == ".npz" else Path(f"{out_path}.npz")
+
+
+def _staged_savez(path: Path, **arrays) -> None:
+    """np.savez into PATH.partial, renamed onto PATH when complete (never a half-written NPZ)."""
+    from backlash_monitor.output_files import staged_outputs
+    with staged_outputs([path]) as (tmp,), open(tmp, "wb") as f:
+        np.savez(f, **arrays)
+
+
 def bag_name(scenario) -> str:
     """File name of a scenario's bag: width [mm], eta_k, n1 and seed."""
     return (f"w{scenario.width_m * 1e3:g}mm_eta{scenario.eta_k:g}_n{scenario.n1:g}_s{scenario.seed}.mcap")
@@ -184,9 +207,10 @@ def _write_bags(directory: Path, scenarios, data, sample_period_s: float, quiet:
     directory.mkdir(parents=True, exist_ok=True)
     paths = []
     n_total = data["a1"].shape[1]
+    from backlash_monitor.output_files import staged_outputs
     for i, scenario in enumerate(scenarios):
         path = directory / bag_name(scenario)
-        with SimulationBagWriter(path, true_width_m=scenario.width_m) as bag:
+        with staged_outputs([path]) as (tmp,), SimulationBagWriter(tmp, true_width_m=scenario.width_m) as bag:
             for k in range(0, n_total, DEFAULT_CHUNK_SAMPLES):
                 bag.write_chunk(k, sample_period_s,
                                 {s: data[s][i, k:k + DEFAULT_CHUNK_SAMPLES] for s in SIGNALS})
