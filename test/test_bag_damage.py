@@ -267,3 +267,23 @@ def test_analyze_counts_bad_periods_and_unequal_lengths(drive_bag, tmp_path):
     proc, _ = _analyze(_rewritten(bag, tmp_path, all_bad, "zero"), tmp_path)
     assert proc.returncode == 2 and "no samples could be analysed" in proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+def test_replay_names_the_damage_and_recover_plays_every_intact_chunk(intact, tmp_path, ros_env):
+    path, data, layout, keys, per_chunk = intact
+    off, length = layout[6][:2]
+    bad = tmp_path / "replay.mcap"
+    bad.write_bytes(faults.chunk_payload_byte(data, off, length))
+
+    def replay(*params):
+        return subprocess.run([sys.executable, "-m", "backlash_monitor.nodes.replay", "--ros-args",
+                               "-p", f"bag:={bad}", "-p", "rate:=1000.0", *params], env=ros_env,
+                              cwd=REPO, capture_output=True, text=True, timeout=120)
+
+    strict = replay()
+    assert strict.returncode == 2 and f"byte {off}" in strict.stderr
+    assert "recover:=true" in strict.stderr and "Traceback" not in strict.stderr
+    played = replay("-p", "recover:=true")
+    assert played.returncode == 0, played.stderr
+    assert f"played {len(keys) - len(per_chunk[6])} messages" in played.stderr
+    assert "skipped: 1 damaged chunk(s)" in played.stderr
