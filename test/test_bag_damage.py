@@ -287,3 +287,72 @@ def test_replay_names_the_damage_and_recover_plays_every_intact_chunk(intact, tm
     assert played.returncode == 0, played.stderr
     assert f"played {len(keys) - len(per_chunk[6])} messages" in played.stderr
     assert "skipped: 1 damaged chunk(s)" in played.stderr
+
+
+def _mcap_library_bag(path, index_types):
+    """A ROS 2 bag written by the `mcap` library (no data-section CRC, like other writers), with
+    small chunks; returns the keys of its messages."""
+    from mcap.writer import CompressionType, Writer
+
+    from backlash_monitor.bag import SIGNAL_CHUNK, Codec, full_definition
+
+    codec = Codec.for_type(SIGNAL_CHUNK)
+    rng = np.random.default_rng(3)
+    keys = []
+    with open(path, "wb") as f:
+        w = Writer(f, chunk_size=20_000, compression=CompressionType.ZSTD, index_types=index_types)
+        w.start(profile="ros2", library="test")
+        sid = w.register_schema(SIGNAL_CHUNK, "ros2msg", full_definition(SIGNAL_CHUNK).encode())
+        cid = w.register_channel("/plant/a1", "cdr", sid)
+        for i in range(40):
+            data = codec.encode(codec.new(signal_name="a1", unit="m/s^2", sample_period_s=2e-5,
+                                          first_sample_index=i * 1000,
+                                          samples=rng.standard_normal(1000)))
+            w.add_message(cid, log_time=i * 20_000_000, publish_time=i * 20_000_000, data=data,
+                          sequence=i)
+            keys.append(("/plant/a1", i * 20_000_000, i))
+        w.finish()
+    return keys
+
+
+def test_a_bag_without_data_crc_has_its_chunk_crcs_checked_when_read(tmp_path):
+    from mcap.writer import IndexType
+
+    good = tmp_path / "other_writer.mcap"
+    keys = _mcap_library_bag(good, IndexType.ALL)
+    with BagReader(good) as bag:
+        assert _keys(bag) == keys and not bag.recovery.verified   # nothing vouched for by a CRC
+        assert bag.verify().intact
+    layout = faults.chunk_layout(good)
+    off, _length, start, end = layout[3]
+    in_chunk = [k for k in keys if start <= k[1] <= end]     # log times are unique here
+    bad = tmp_path / "crc.mcap"
+    bad.write_bytes(faults.chunk_crc_field(good.read_bytes(), off))
+    with BagReader(bad) as bag:                      # only reading can tell
+        with pytest.raises(DamagedBagError, match=f"byte {off}"):
+            _keys(bag)
+    with BagReader(bad, recover=True) as bag:
+        got = _keys(bag)
+        assert [d.offset for d in bag.recovery.damaged] == [off]
+        lost = bag.recovery.damaged[0].messages
+    assert lost == len(in_chunk) > 0 and got == [k for k in keys if k not in in_chunk]
+    proc = _cli("bag-info", bad)                      # bag-info checks every chunk
+    assert proc.returncode == 1 and "CRC mismatch" in proc.stderr
+
+
+def test_a_bag_without_chunk_index_is_scanned_and_a_damaged_length_recovered(tmp_path):
+    from mcap.writer import IndexType
+
+    good = tmp_path / "no_index.mcap"
+    keys = _mcap_library_bag(good, IndexType.NONE)
+    with BagReader(good) as bag:
+        assert _keys(bag) == keys and bag.recovery.intact
+    layout = faults.chunk_layout(good)
+    off, length = layout[2][:2]
+    bad = tmp_path / "no_index_len.mcap"
+    bad.write_bytes(faults.chunk_length_field(good.read_bytes(), off, 5 * length))
+    with pytest.raises(DamagedBagError, match="chunk length field damaged"):
+        BagReader(bad)
+    with BagReader(bad, recover=True) as bag:
+        assert _keys(bag) == keys
+        assert [(d.offset, d.recovered) for d in bag.recovery.damaged] == [(off, True)]

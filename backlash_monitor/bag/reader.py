@@ -582,10 +582,18 @@ class BagReader:
         """With a valid summary: walk the data section by the chunk index (every indexed chunk's
         record checked against its index entry; unreadable bytes skipped to the next indexed chunk),
         check the data section's CRC and, when it fails, every chunk's CRC."""
-        report = RecoveryReport(True, self.file_size, self.file_size, len(self._chunks))
         b = self._buf
         index = self._chunks
         offsets = sorted(o for o in index if self._data_start <= o < self._data_end)
+        if not offsets:
+            # no chunk index to walk by (some writers leave it out): scan, every chunk checked
+            report = self._scan("", self._data_end)
+            report.complete = True
+            return report
+        report = RecoveryReport(True, self.file_size, self.file_size, len(self._chunks))
+        for o in sorted(set(index) - set(offsets)):
+            report.problems.append(f"the chunk index points at byte {o}, outside the data section "
+                                   f"({self._data_start}-{self._data_end}); that chunk is not read")
         end = self._data_end
         layout = []
         suspect: dict[int, str] = {}
@@ -609,15 +617,16 @@ class BagReader:
                 continue
             op, length = RECORD_HEADER.unpack_from(b, pos) if pos + 9 <= end else (0, 0)
             rec_end = pos + 9 + length
-            if op == 0 or rec_end > nxt or (op == OP_CHUNK and offsets):
+            if op == 0 or rec_end > nxt or op == OP_CHUNK:   # (a chunk not in the index too)
                 # no readable record here (or one that runs over the next indexed chunk):
                 # skip to the next indexed chunk
                 # every chunk starts at an indexed offset: no chunk is in these bytes
-                report.problems.append(f"unreadable bytes {pos}-{nxt} between chunks (a damaged "
-                                       "message index or metadata record; no chunk in them)")
+                report.problems.append(f"unreadable bytes {pos}-{nxt} between the indexed chunks (a "
+                                       "damaged message index or metadata record, or a chunk the "
+                                       "index does not list)")
                 pos = nxt
                 continue
-            if op == OP_MESSAGE or op == OP_CHUNK:
+            if op == OP_MESSAGE:
                 layout.append((op, pos, b[pos + 9:rec_end]))
             elif op == OP_DATA_END and length >= 4:
                 data_end_pos = pos
@@ -814,6 +823,7 @@ class BagReader:
                 break
         self._data_end = report.intact_bytes
         report.messages = self._message_count
+        report.verified = True          # every chunk was decompressed and its CRC checked
         self._layout = layout
         return report
 
