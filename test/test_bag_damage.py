@@ -356,3 +356,32 @@ def test_a_bag_without_chunk_index_is_scanned_and_a_damaged_length_recovered(tmp
     with BagReader(bad, recover=True) as bag:
         assert _keys(bag) == keys
         assert [(d.offset, d.recovered) for d in bag.recovery.damaged] == [(off, True)]
+
+
+def test_analyze_refuses_a_library_without_the_signals_it_classifies(drive_bag, tmp_path):
+    from backlash_monitor.classifier.patterns import load_library
+
+    bag, _ = drive_bag
+    lib = load_library(None, trigger="contact_loss")
+    lib.signals = ("a1",)                       # a library trained on a1 alone
+    path = lib.save(tmp_path / "a1_only.npz")
+    proc, _ = _analyze(bag, tmp_path, "--library", path)
+    assert proc.returncode == 2 and "has no patterns for a2" in proc.stderr
+    assert "Traceback" not in proc.stderr
+
+
+def test_a_library_without_a_stored_sample_period_is_a_50_khz_one(tmp_path):
+    import json as json_
+
+    from backlash_monitor.classifier.patterns import load_library
+
+    lib = load_library(None, trigger="contact_loss")
+    assert lib.sample_period_s == 2e-5
+    del lib.settings["sample_period_s"]         # as libraries made before it was stored
+    path = lib.save(tmp_path / "old.npz")
+    with np.load(path) as z:
+        assert "sample_period_s" not in json_.loads(str(z["meta"]))["settings"]
+    old = load_library(path, sample_period_s=2e-5)
+    assert old.sample_period_s == 2e-5
+    with pytest.raises(ValueError, match="sample_period_s"):
+        load_library(path, sample_period_s=4e-5)
