@@ -222,3 +222,48 @@ def test_replay_answers_its_parameter_services_while_it_plays(ros_env, tmp_path)
     assert ask.stdout.strip() == "1.0"
     assert still_playing             # the answer came during the 5 s of playing
     assert "Traceback" not in out
+
+
+def test_sigkill_loses_only_what_a_second_recorder_got_in_the_last_open_chunk(ros_env, tmp_path):
+    """Two recorders take the same stream; one is killed. Every message the other one received
+    before the kill is in the killed one's recovered bag, except those of the last chunk_duration_s
+    (its open chunk) plus delivery slack: the loss measured against a reference, not a clock."""
+    chunk_s = 0.25
+    killed_bag, reference_bag = tmp_path / "killed.mcap", tmp_path / "reference.mcap"
+    victim = _start_recorder(ros_env, killed_bag, "topics:=plant/*", f"chunk_duration_s:={chunk_s}")
+    reference = _start_recorder(ros_env, reference_bag, "topics:=plant/*",
+                                f"chunk_duration_s:={chunk_s}")
+    time.sleep(1.0)
+    pub = _publish(ros_env, 4.0, 1.0, wait=False)
+    try:
+        deadline = time.monotonic() + 60    # the stream flows: the reference closed chunks
+        while time.monotonic() < deadline and (not reference_bag.exists()
+                                               or reference_bag.stat().st_size < 150_000):
+            time.sleep(0.05)
+        time.sleep(1.0)
+        killed_ns = time.time_ns()
+        victim.kill()
+        victim.wait(timeout=10)
+        time.sleep(0.5)                     # the reference takes what was on its way
+    finally:
+        for proc in (victim, pub):          # (a publisher would wait for a dead reader's acks)
+            if proc.poll() is None:
+                proc.kill()
+            proc.communicate(timeout=30)
+        rc, log = _stop(reference)
+    assert rc == 0, log
+
+    def keys(bag):
+        return {(m.topic, m.message.first_sample_index): m.log_time_ns for m in bag.messages()}
+
+    with BagReader(reference_bag) as bag:
+        ref = keys(bag)
+    with BagReader(killed_bag, recover=True) as bag:
+        got = keys(bag)
+    before = {k: t for k, t in ref.items() if t < killed_ns}
+    missing = [t for k, t in before.items() if k not in got]
+    assert len(before) > 100 and set(got) <= set(ref)
+    assert len(missing) < len(before) // 2
+    # only the open chunk: received within chunk_duration_s (+ 0.1 s delivery) before the kill
+    assert all(killed_ns - t <= (chunk_s + 0.1) * 1e9 for t in missing), \
+        sorted((killed_ns - t) / 1e9 for t in missing)[-5:]
