@@ -42,24 +42,23 @@ def test_numba_and_numpy_backends_agree():
 
 
 def test_simd_power_law_matches_numpy_power():
-    """The SIMD kernel's polynomial |v|^n1 (one RK4 stage on crafted states) against numpy's power."""
-    from backlash_monitor.plant.drivetrain import S_OMEGA2, S_XDOT, global_parameters
-    from backlash_monitor.plant.integrator import _stage_simd_jit
+    """The generated SIMD stage's polynomial |v|^n1 (one RK4 stage on crafted states) against numpy's power."""
+    from backlash_monitor.plant.codegen import N_STATES, global_vector, kernel_for
+    from backlash_monitor.plant.drivetrain import S_XDOT
+    from backlash_monitor.plant.effects import AbsorberPowerLaw
     cfg = load_plant_config()
     v = np.concatenate([-np.geomspace(1e-12, 50, 400), [0.0], np.geomspace(1e-12, 50, 400)])
     S = v.size
     n1 = np.resize(np.array([0.89, 0.91, 0.93, 0.95, 0.97, 1.0, 0.5]), S)
     c = np.full(S, 17.0)
-    Y = np.zeros((11, S))
+    kernel = kernel_for((AbsorberPowerLaw,))            # the absorber alone: m*x'' = F_a
+    rows = {"beta": np.full(S, 0.01), "wheel_inertia_kgm2": np.full(S, 0.2), "mass_kg": np.full(S, cfg.load.mass_kg),
+            "absorber_power_law.coefficient": c, "absorber_power_law.flow_index": n1}
+    P = np.array([rows[r] for r in kernel.param_rows])
+    Y = np.zeros((N_STATES, S))
     Y[S_XDOT] = -v                      # omega2 = 0 -> v = r*omega2 - xdot = v
-    p = global_parameters(cfg)
-    p[[i for i, n in enumerate(__import__("backlash_monitor.plant.drivetrain", fromlist=["PARAM_NAMES"]).PARAM_NAMES)
-       if n in ("on_spring", "on_resistance", "on_clutch")]] = 0.0
     K = np.empty_like(Y)
-    scratch = [np.empty(S) for _ in range(2)]
-    AV = np.empty(S); MI = np.empty(S, np.int64); KI = np.empty(S, np.int64)
-    _stage_simd_jit(Y, K, 1.0, 0.0, np.zeros(S), np.full(S, 0.01), c, n1, p, scratch[0], AV, AV.view(np.int64),
-                    MI, MI.view(np.float64), np.empty(S), scratch[1], KI, KI.view(np.float64))
+    kernel.module.stage(Y, K, np.empty(S), 1.0, 0.0, np.zeros(S), P, global_vector(cfg), 0)
     force = K[10] * cfg.load.mass_kg     # m*x'' = F
     expected = c * np.abs(v) ** n1 * np.sign(v)
     assert np.allclose(force, expected, rtol=1e-13, atol=0.0)

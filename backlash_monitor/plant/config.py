@@ -7,6 +7,7 @@ or a dict of overrides), checks every key against its allowed range and returns 
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import json
 import math
 import os
@@ -100,17 +101,46 @@ class SimulationConfig:
         return 1.0 / self.sample_rate_hz
 
 
-@dataclass(frozen=True)
-class EffectsConfig:
-    """On/off switch of every named physical term (see :mod:`backlash_monitor.plant.effects`)."""
-    backlash_clutch: bool = True
-    spring: bool = True
-    absorber_power_law: bool = True
-    working_resistance: bool = True
-    pulse_load: bool = True
-    gaussian_disturbance: bool = True
-    pulse_disturbance: bool = True
-    constant_motor_load: bool = False
+class EffectSwitches(Mapping):
+    """On/off switch of every registered effect (:func:`backlash_monitor.plant.effects.catalogue`): a
+    read-only mapping name -> bool that also reads as attributes (``cfg.effects.spring``). Effects not
+    named in the YAML take their default: the nominal model's on (constant_motor_load off), others off."""
+
+    def __init__(self, switches: Mapping[str, bool] | None = None):
+        from .effects import catalogue
+        data = {n: bool(c.nominal) for n, c in catalogue().items()}
+        data.update(switches or {})
+        object.__setattr__(self, "_data", data)
+
+    def __getitem__(self, key):
+        return self._data[key]
+
+    def __iter__(self):
+        return iter(self._data)
+
+    def __len__(self):
+        return len(self._data)
+
+    def __getattr__(self, key):
+        try:
+            return self.__dict__["_data"][key]
+        except KeyError:
+            raise AttributeError(key) from None
+
+    def __setattr__(self, key, value):
+        raise AttributeError("EffectSwitches is read-only; use PlantConfig.with_overrides")
+
+    def __eq__(self, other):
+        return isinstance(other, Mapping) and dict(self) == dict(other)
+
+    def __hash__(self):
+        return hash(tuple(sorted(self._data.items())))
+
+    def __repr__(self):
+        return f"EffectSwitches({self._data!r})"
+
+
+EffectsConfig = EffectSwitches   # the former dataclass's name
 
 
 @dataclass(frozen=True)
@@ -121,11 +151,39 @@ class PlantConfig:
     pulse_load: PulseLoadConfig = field(default_factory=PulseLoadConfig)
     disturbances: DisturbanceConfig = field(default_factory=DisturbanceConfig)
     simulation: SimulationConfig = field(default_factory=SimulationConfig)
-    effects: EffectsConfig = field(default_factory=EffectsConfig)
+    effects: EffectSwitches = field(default_factory=EffectSwitches)
     constant_motor_load_pu: float = 0.0
+    # parameters of the registered effects that have no key in the sections above:
+    # {effect name: {parameter name: value}} (defaults from the effect class when absent)
+    effect_parameters: Mapping = field(default_factory=dict)
 
     def to_dict(self) -> dict:
-        return dataclasses.asdict(self)
+        out = {}
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if f.name == "effects":
+                out[f.name] = dict(value)
+            elif f.name == "effect_parameters":
+                continue
+            elif dataclasses.is_dataclass(value):
+                out[f.name] = dataclasses.asdict(value)
+            else:
+                out[f.name] = value
+        for name, params in self.effect_parameters.items():
+            out[name] = dict(params)
+        return out
+
+    def effect_parameter(self, effect: str, name: str) -> float:
+        """The configured value of one effect parameter (its config key, its section, or the default)."""
+        from .effects import get
+        cls = get(effect)
+        p = cls.parameter(name)
+        if p.config_key is not None:
+            node = self
+            for part in p.config_key.split("."):
+                node = getattr(node, part)
+            return float(node)
+        return float(self.effect_parameters.get(effect, {}).get(name, p.default))
 
     def to_json(self) -> str:
         return json.dumps(self.to_dict(), sort_keys=True)
@@ -144,7 +202,6 @@ _SECTIONS = {
     "pulse_load": PulseLoadConfig,
     "disturbances": DisturbanceConfig,
     "simulation": SimulationConfig,
-    "effects": EffectsConfig,
 }
 
 # (low, high, low_inclusive, high_inclusive) for numbers; a tuple of strings for choices.
@@ -240,7 +297,8 @@ def _build_section(name: str, cls, data: Any):
     known = {f.name: f for f in fields(cls)}
     unknown = sorted(set(data) - set(known))
     if unknown:
-        raise ValueError(f"plant config: unknown key {name}.{unknown[0]}; allowed keys in {name!r}: "
+        raise ValueError(f"plant config: unknown key {name}.{unknown[0]}"
+                         f"{_nearest(f'{name}.{unknown[0]}', [f'{name}.{k}' for k in known])}; allowed keys in {name!r}: "
                          + ", ".join(sorted(known)))
     kwargs = {}
     for key, value in data.items():
@@ -249,17 +307,82 @@ def _build_section(name: str, cls, data: Any):
     return cls(**kwargs)
 
 
+def _nearest(key: str, candidates) -> str:
+    near = difflib.get_close_matches(key, list(candidates), n=1, cutoff=0.0)
+    return f" (nearest valid key: {near[0]})" if near else ""
+
+
+def _valid_keys() -> list:
+    """Every valid dotted key (for the nearest-key hint)."""
+    from .effects import catalogue
+    keys = [f"{name}.{f.name}" for name, cls in _SECTIONS.items() for f in fields(cls)]
+    keys += ["constant_motor_load_pu"]
+    for n, c in catalogue().items():
+        keys.append(f"effects.{n}")
+        keys += [f"{n}.{p.name}" for p in c.parameters if p.config_key is None and p.source == "config"]
+    return keys
+
+
+def _build_switches(data: Any) -> EffectSwitches:
+    from .effects import catalogue
+    if data is None:
+        data = {}
+    if not isinstance(data, Mapping):
+        raise ValueError("plant config: section 'effects' must be a mapping of effect names to true/false")
+    reg = catalogue()
+    for key, value in data.items():
+        if key not in reg:
+            raise ValueError(f"plant config: unknown key effects.{key}{_nearest('effects.' + str(key), ['effects.' + n for n in reg])}; "
+                             "allowed: the registered effects (backlash_monitor.plant.effects.catalogue(); "
+                             "plug-ins with --effects FILE)")
+        if not isinstance(value, bool):
+            raise ValueError(f"plant config: effects.{key} = {value!r} is not allowed; allowed: true or false")
+    return EffectSwitches(dict(data))
+
+
+def _build_effect_parameters(name: str, cls, data: Any) -> dict:
+    if not isinstance(data, Mapping):
+        raise ValueError(f"plant config: section {name!r} must be a mapping of parameter names to values")
+    own = {p.name: p for p in cls.parameters if p.config_key is None and p.source == "config"}
+    out = {}
+    for key, value in data.items():
+        if key not in own:
+            raise ValueError(f"plant config: unknown key {name}.{key}{_nearest(f'{name}.{key}', [f'{name}.{k}' for k in own] or _valid_keys())}; "
+                             f"allowed keys in {name!r}: " + (", ".join(own) or "none"))
+        if isinstance(value, str):
+            try:
+                value = float(value)
+            except ValueError:
+                pass
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ValueError(f"plant config: {name}.{key} = {value!r} is not a number; allowed: "
+                             f"{own[key].bounds[0]} <= value <= {own[key].bounds[1]} [{own[key].unit}]")
+        try:
+            own[key].check(name, float(value))
+        except ValueError as exc:
+            raise ValueError(f"plant config: {exc}") from None
+        out[key] = float(value)
+    return out
+
+
 def config_from_dict(data: Mapping[str, Any] | None) -> PlantConfig:
     """Validated :class:`PlantConfig` from a (possibly partial) nested dict; missing keys take defaults."""
+    from .effects import catalogue
     data = dict(data or {})
-    allowed_top = set(_SECTIONS) | {"constant_motor_load_pu"}
+    reg = catalogue()
+    param_sections = {n: c for n, c in reg.items()
+                      if any(p.config_key is None and p.source == "config" for p in c.parameters)}
+    allowed_top = set(_SECTIONS) | {"constant_motor_load_pu", "effects"} | set(param_sections)
     unknown = sorted(set(data) - allowed_top)
     if unknown:
-        raise ValueError(f"plant config: unknown key {unknown[0]!r}; allowed top-level keys: "
-                         + ", ".join(sorted(allowed_top)))
+        raise ValueError(f"plant config: unknown key {unknown[0]!r}{_nearest(unknown[0], sorted(allowed_top))}; "
+                         "allowed top-level keys: " + ", ".join(sorted(allowed_top)))
     kwargs = {name: _build_section(name, cls, data.get(name)) for name, cls in _SECTIONS.items()}
+    kwargs["effects"] = _build_switches(data.get("effects"))
     if "constant_motor_load_pu" in data:
         kwargs["constant_motor_load_pu"] = _check_value("constant_motor_load_pu", data["constant_motor_load_pu"], float)
+    kwargs["effect_parameters"] = {n: _build_effect_parameters(n, c, data[n])
+                                   for n, c in param_sections.items() if data.get(n)}
     cfg = PlantConfig(**kwargs)
     _check_cross_rules(cfg)
     return cfg

@@ -91,6 +91,7 @@ class MotorLoadInput:
 
     def __init__(self, seed: int, cfg):
         self.cfg = cfg
+        self.constant_pu = cfg.constant_motor_load_pu      # per scenario (PlantSimulator parameters)
         gauss_seq, tele_seq = np.random.SeedSequence(seed).spawn(2)
         self.gaussian = gaussian_generator(gauss_seq, cfg)
         self.telegraph = telegraph_generator(tele_seq, cfg)
@@ -109,7 +110,7 @@ class MotorLoadInput:
         if e.pulse_load:
             row += pulse
         if e.constant_motor_load:
-            row += self.cfg.constant_motor_load_pu
+            row += self.constant_pu
         if noise:
             # always advance both generators so that switching one off does not change the other
             g = self.gaussian.samples(k0, n)
@@ -130,6 +131,10 @@ def motor_load_batch(inputs, k0: int, n: int, noise: bool, pulse: np.ndarray | N
     e = cfg.effects
     if e.pulse_load and pulse is None:
         pulse = pulse_load_pu(k0, n, cfg)
+    if pulse is not None and np.ndim(pulse) == 2:       # per-scenario pulse amplitudes
+        for inp, row, pr in zip(inputs, out, pulse):
+            inp.add_to(row, k0, n, noise, pr)
+        return out
     for inp, row in zip(inputs, out):
         inp.add_to(row, k0, n, noise, pulse)
     return out

@@ -1,6 +1,6 @@
 """Adaptive-step reference solution with scipy's solve_ivp, for accuracy checks and the benchmark.
 
-Same model (:func:`drivetrain.plant_derivatives`), same settled start and same held inputs as a
+Same model (the generated numpy right-hand side of the simulator's effects, ``sim.kernel.rhs_numpy``), same settled start and same held inputs as a
 :class:`PlantSimulator`; the supply voltage is evaluated continuously. The integration restarts at
 every change of the held load, so no step straddles an input discontinuity.
 """
@@ -11,17 +11,24 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .drivetrain import N_STATES, P_OMEGA_MB, P_R, S_DELTA, S_OMEGA2, S_W1, plant_derivatives
+from .drivetrain import N_STATES, S_DELTA, S_OMEGA2, S_W1
 
 
 def reference_run(sim, index: int, load_pu: np.ndarray, method: str = "DOP853", rtol: float = 1e-9,
-                  atol: float = 1e-12, state0: np.ndarray | None = None, first_sample_index: int = 0) -> dict:
+                  atol: float = 1e-12, state0: np.ndarray | None = None, first_sample_index: int = 0,
+                  rhs=None, extra=None) -> dict:
     """Integrate scenario ``index`` of ``sim`` over len(load_pu) samples from ``state0`` (default: its
     current state) with solve_ivp; return the samples a1, a2, omega1, omega2, angle_difference and the
-    solver statistics (nfev, wall)."""
+    solver statistics (nfev, wall).
+
+    ``rhs``: another numpy right-hand side of the same signature as ``sim.kernel.rhs_numpy`` (e.g. the
+    nominal model's, for a test that adds an effect's equation written independently); ``extra(t, y,
+    der)``: returns corrections added to the 11 derivatives (that independent form)."""
     cfg = sim.config
-    p = sim.params
-    beta, c, n1 = sim.beta[index], sim.c[index], sim.n1[index]
+    rhs_np = rhs if rhs is not None else sim.kernel.rhs_numpy
+    P = sim.P[:, index]
+    G = sim.G
+    r, omega_mb = G[10], G[8]
     h = sim.sample_period_s
     omega_b = cfg.motor.base_angular_frequency_rad_s
     u_amp = cfg.motor.supply_voltage_pu
@@ -31,9 +38,11 @@ def reference_run(sim, index: int, load_pu: np.ndarray, method: str = "DOP853", 
 
     def rhs(t, y, ld):
         ph = omega_b * t
-        der, _ = plant_derivatives(y[0], y[1], y[2], y[3], y[4], y[5], y[8], y[9], y[10], u_amp * math.cos(ph),
-                                   u_amp * math.sin(ph), ld, beta, c, n1, p)
-        return np.array(der, dtype=np.float64)
+        der, _ = rhs_np(list(y), u_amp * math.cos(ph), u_amp * math.sin(ph), ld, P, G)
+        der = np.array(der, dtype=np.float64)
+        if extra is not None:
+            der = der + extra(t, y, der)
+        return der
 
     states = np.empty((n, N_STATES))
     changes = np.flatnonzero(np.diff(load_pu)) + 1
@@ -52,8 +61,12 @@ def reference_run(sim, index: int, load_pu: np.ndarray, method: str = "DOP853", 
     # exact derivatives at the samples, as the simulator records them
     k = first_sample_index + np.arange(n)
     ph = omega_b * k * h
-    der, aux = plant_derivatives(*(states[:, i] for i in (0, 1, 2, 3, 4, 5, 8, 9, 10)), u_amp * np.cos(ph),
-                                 u_amp * np.sin(ph), load_pu, beta, c, n1, p)
-    return {"a1": p[P_R] * p[P_OMEGA_MB] * der[4], "a2": der[10], "omega1": states[:, S_W1] * p[P_OMEGA_MB],
+    Pn = np.repeat(P[:, None], n, axis=1)
+    der, aux = rhs_np([states[:, i] for i in range(N_STATES)], u_amp * np.cos(ph), u_amp * np.sin(ph), load_pu, Pn, G)
+    der = [np.broadcast_to(d, (n,)) for d in der]
+    if extra is not None:
+        corr = np.array([extra(float(t0 + k_ * h), states[k_], None) for k_ in range(n)])
+        der = [der[i] + corr[:, i] for i in range(N_STATES)]
+    return {"a1": r * omega_mb * der[4], "a2": der[10], "omega1": states[:, S_W1] * omega_mb,
             "omega2": states[:, S_OMEGA2], "angle_difference": states[:, S_DELTA], "transmitted_torque_Nm": aux[1],
             "states": states, "final_state": x, "nfev": nfev}

@@ -1,14 +1,17 @@
 """Batch plant simulator: many scenarios advanced together, chunk by chunk, at the sample rate."""
 from __future__ import annotations
 
+import difflib
 from dataclasses import dataclass, field
-from typing import Sequence
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 
 from .config import PlantConfig, load_plant_config
 from .disturbances import MotorLoadInput, motor_load_batch, pulse_load_pu
-from .drivetrain import STATE_NAMES, absorber_coefficient, global_parameters, half_gap_rad
+from .drivetrain import absorber_coefficient
+from . import effects as _effects
+from .codegen import STATE_NAMES, global_vector, kernel_for
 from .integrator import OUTPUT_NAMES, rk4_advance, resolve_backend
 from .motor import supply_phase, supply_voltage
 from .scenarios import Scenario
@@ -81,10 +84,15 @@ class PlantSimulator:
     outputs: names (OUTPUT_NAMES) of the signals to record, None = all eight; angle_difference is always
     recorded (entries need it), the chunk's fields of the others are None (the numba kernel then
     writes less: e.g. the five the pipeline uses, a1 a2 omega1 omega2 angle_difference).
+    parameters: {"effect.param": scalar or (n_scenarios,) array} of enabled effects (docs/effects.md):
+    per-scenario values, run-time (never recompiles).
+    noise_seed: None = each scenario's noise from (seed, width, eta_k, n1) as always; an int = every
+    scenario on the same noise realisation (common random numbers).
     """
 
     def __init__(self, scenarios: Sequence[Scenario], config: PlantConfig | None = None, noise: bool = True,
-                 record_states: bool = False, backend: str | None = None, outputs: Sequence[str] | None = None):
+                 record_states: bool = False, backend: str | None = None, outputs: Sequence[str] | None = None,
+                 parameters: Mapping[str, Any] | None = None, noise_seed: int | None = None):
         if len(scenarios) == 0:
             raise ValueError("PlantSimulator: no scenarios given; allowed: one or more Scenario")
         self.config = config if config is not None else load_plant_config()
@@ -102,19 +110,117 @@ class PlantSimulator:
             wanted = set(outputs) | {"angle_difference"}
             self.outputs = tuple(o for o in OUTPUT_NAMES if o in wanted)
         self._output_index = None if self.outputs == OUTPUT_NAMES else [OUTPUT_NAMES.index(o) for o in self.outputs]
+        if noise_seed is not None and (isinstance(noise_seed, bool) or not isinstance(noise_seed, (int, np.integer))
+                                       or noise_seed < 0):
+            raise ValueError(f"PlantSimulator: noise_seed = {noise_seed!r}; allowed: None or an integer >= 0")
+        self.noise_seed = None if noise_seed is None else int(noise_seed)
         cfg = self.config
         self.sample_period_s = cfg.simulation.sample_period_s
-        self.beta = np.array([half_gap_rad(s.width_m, cfg) for s in self.scenarios])
-        self.n1 = np.array([float(s.n1) for s in self.scenarios])
-        self.c = np.array([absorber_coefficient(s.eta_k, s.n1, cfg) for s in self.scenarios])
-        self.params = global_parameters(cfg)
-        self.inputs = [MotorLoadInput(_noise_seed(s), cfg) for s in self.scenarios]
-        self.state, self.motor_steady_state = settled_state(self.beta, cfg)
+        self.effects = _effects.enabled_effects(cfg)
+        self.kernel = kernel_for(tuple(c for c in self.effects if c.kind == "term"))
+        self._values = self._parameter_table(parameters or {})
+        v = self._values
+        self.beta = v["width_m"] / cfg.load.wheel_radius_m
+        self.n1 = v["absorber_power_law.flow_index"]
+        self.c = v["absorber_power_law.coefficient"]
+        self.P = np.array([v[row] for row in self.kernel.param_rows], dtype=np.float64).reshape(
+            len(self.kernel.param_rows), len(self.scenarios))
+        self.G = global_vector(cfg)
+        self.inputs = [MotorLoadInput(self._seed(s), cfg) for s in self.scenarios]
+        for inp, load in zip(self.inputs, v["constant_motor_load.load_pu"]):
+            inp.constant_pu = float(load)
+        amp = v["pulse_load.amplitude_pu"]
+        self._pulse_scale = None if np.all(amp == cfg.pulse_load.amplitude_pu) else amp
+        self._sensor_state: dict = {}
+        self.state, self.motor_steady_state = settled_state(self.beta, cfg, values=v)
         self.sample_index = 0
         self._last_delta = None
         run_in = int(round(cfg.simulation.run_in_s * cfg.simulation.sample_rate_hz))
         if run_in > 0:
             self._run_in(run_in)
+
+    # ------------------------------------------------------------------ parameters
+    def _parameter_table(self, overrides: Mapping[str, Any]) -> dict:
+        """Per-scenario values (n_scenarios,) of every model value and every parameter of the enabled
+        effects: defaults (config, effect class, Scenario), then ``overrides``, then the drifts."""
+        cfg, n = self.config, len(self.scenarios)
+        full = lambda x: np.full(n, float(x))  # noqa: E731
+        v = {"width_m": np.array([s.width_m for s in self.scenarios], dtype=np.float64),
+             "eta_k": np.array([s.eta_k for s in self.scenarios], dtype=np.float64),
+             "n1": np.array([float(s.n1) for s in self.scenarios], dtype=np.float64),
+             "mass_kg": full(cfg.load.mass_kg), "wheel_inertia_kgm2": full(cfg.load.wheel_inertia_kgm2)}
+        reg = _effects.catalogue()
+        known = {}
+        for cls in list(reg.values()):
+            for p in cls.parameters:
+                known[f"{cls.name}.{p.name}"] = (cls, p)
+        enabled = {c.name for c in self.effects}
+        for key in overrides:
+            if key not in known:
+                near = difflib.get_close_matches(str(key), list(known), n=1)
+                raise ValueError(f"PlantSimulator: unknown parameter {key!r}" + (f" (nearest: {near[0]!r})" if near else "")
+                                 + "; allowed: 'effect.param' of a registered effect")
+            if known[key][0].name not in enabled and known[key][0].name != "absorber_power_law":
+                raise ValueError(f"PlantSimulator: parameter {key!r} belongs to effect {known[key][0].name!r}, which "
+                                 f"is switched off; allowed: switch it on (effects.{known[key][0].name}: true)")
+        for cls in self.effects + ([reg["absorber_power_law"]] if "absorber_power_law" not in enabled else []):
+            for p in cls.parameters:
+                key = f"{cls.name}.{p.name}"
+                if p.source == "scenario":
+                    continue
+                v[key] = full(cfg.effect_parameter(cls.name, p.name))
+        v.setdefault("pulse_load.amplitude_pu", full(cfg.pulse_load.amplitude_pu))
+        v.setdefault("constant_motor_load.load_pu", full(cfg.constant_motor_load_pu))
+        for key, value in overrides.items():
+            cls, p = known[key]
+            arr = np.asarray(value, dtype=np.float64)
+            if arr.ndim == 0:
+                arr = np.full(n, float(arr))
+            if arr.shape != (n,):
+                raise ValueError(f"PlantSimulator: parameter {key!r} has shape {arr.shape}; allowed: a scalar or "
+                                 f"({n},), one value per scenario")
+            p.check(cls.name, arr)
+            v[key] = arr.copy()
+        for cls in self.effects:
+            if cls.kind != "drift":
+                continue
+            change = v[f"{cls.name}.{cls.parameters[0].name}"]
+            if cls.target not in v:
+                continue              # the drifting term is switched off
+            v[cls.target] = v[cls.target] * (1.0 + change) if cls.relative else v[cls.target] + change
+        if np.any(v["width_m"] <= 0.0):
+            raise ValueError("PlantSimulator: backlash width after backlash_width_drift is <= 0; allowed: width "
+                             "+ change > 0")
+        if np.any(v["n1"] <= 0.0):
+            raise ValueError("PlantSimulator: flow index after absorber_flow_index_drift is <= 0; allowed: > 0")
+        if "absorber_power_law.flow_index" not in overrides:
+            v["absorber_power_law.flow_index"] = v["n1"]
+        if "absorber_power_law.coefficient" not in overrides:
+            nominal = ("absorber_consistency_drift" not in enabled and "absorber_flow_index_drift" not in enabled)
+            v["absorber_power_law.coefficient"] = (
+                np.array([absorber_coefficient(s.eta_k, s.n1, cfg) for s in self.scenarios]) if nominal
+                else v["eta_k"] * cfg.load.absorber_area_m2 / cfg.load.absorber_gap_m ** v["absorber_power_law.flow_index"])
+        v["beta"] = v["width_m"] / cfg.load.wheel_radius_m
+        return v
+
+    @property
+    def parameter_names(self) -> tuple:
+        """Every per-scenario parameter "effect.param" of the enabled effects (usable in ``parameters=``)."""
+        return tuple(f"{c.name}.{p.name}" for c in self.effects for p in c.parameters)
+
+    def parameter_values(self, name: str) -> np.ndarray:
+        """(n_scenarios,) values in use for a parameter or model value (after drifts)."""
+        if name not in self._values:
+            raise ValueError(f"PlantSimulator: no parameter {name!r}; allowed: " + ", ".join(sorted(self._values)))
+        return self._values[name].copy()
+
+    @property
+    def params(self) -> np.ndarray:
+        """The per-scenario kernel parameter array (rows ``kernel.param_rows``)."""
+        return self.P
+
+    def _seed(self, s: Scenario) -> int:
+        return _noise_seed(s) if self.noise_seed is None else _crn_seed(self.noise_seed)
 
     def _run_in(self, n: int) -> None:
         """Advance samples -n..-1 before sample 0: the pulse train extended periodically backwards and,
@@ -126,15 +232,24 @@ class PlantSimulator:
         for ia, ib in ((0, 1), (2, 3)):
             z = (self.state[:, ia] + 1j * self.state[:, ib]) * rot
             self.state[:, ia], self.state[:, ib] = z.real, z.imag
-        run_in_inputs = [MotorLoadInput(_noise_seed(s) ^ 0x5EED, cfg) for s in self.scenarios]
+        run_in_inputs = [MotorLoadInput(self._seed(s) ^ 0x5EED, cfg) for s in self.scenarios]
+        for a, b in zip(run_in_inputs, self.inputs):
+            a.constant_pu = b.constant_pu
         step = 12_500  # in chunks: bounded memory
         for k0 in range(-n, 0, step):
             m = min(step, -k0)
             ua, ub, phase = self._supply(k0, m)
-            pulse = pulse_load_pu(k0, m, cfg)
+            pulse = self._pulse(k0, m)
             load = motor_load_batch(run_in_inputs, k0 + n, m, self.noise, pulse=pulse)
-            rk4_advance(self.backend, self.state, load, ua, ub, phase, cfg.motor.supply_voltage_pu, self.beta,
-                        self.c, self.n1, self.params, self.sample_period_s, record_outputs=False)
+            rk4_advance(self.backend, self.kernel, self.state, load, ua, ub, phase, cfg.motor.supply_voltage_pu,
+                        self.P, self.G, self.sample_period_s, record_outputs=False)
+
+    def _pulse(self, k0: int, n: int):
+        pulse = pulse_load_pu(k0, n, self.config)
+        if self._pulse_scale is None:
+            return pulse
+        on = pulse != 0.0
+        return np.where(on[None, :], self._pulse_scale[:, None], 0.0)
 
     def _supply(self, k0: int, n: int):
         m = self.config.motor
@@ -149,8 +264,7 @@ class PlantSimulator:
 
     def motor_load_pu(self, k0: int, n: int) -> np.ndarray:
         """The held motor load moment [p.u.] of every scenario for samples k0..k0+n-1 (advances the generators)."""
-        pulse = pulse_load_pu(k0, n, self.config)
-        return motor_load_batch(self.inputs, k0, n, self.noise, pulse=pulse)
+        return motor_load_batch(self.inputs, k0, n, self.noise, pulse=self._pulse(k0, n))
 
     def run(self, n_samples: int) -> SimulationChunk:
         """Advance every scenario by ``n_samples`` samples and return them."""
@@ -160,11 +274,12 @@ class PlantSimulator:
         k0 = self.sample_index
         load = self.motor_load_pu(k0, n)
         ua, ub, phase = self._supply(k0, n)
-        out, states = rk4_advance(self.backend, self.state, load, ua, ub, phase, self.config.motor.supply_voltage_pu,
-                                  self.beta, self.c, self.n1, self.params, self.sample_period_s, self.record_states,
-                                  outputs=self._output_index)
+        out, states = rk4_advance(self.backend, self.kernel, self.state, load, ua, ub, phase,
+                                  self.config.motor.supply_voltage_pu, self.P, self.G, self.sample_period_s,
+                                  self.record_states, outputs=self._output_index)
         sig = dict.fromkeys(OUTPUT_NAMES)
         sig.update(zip(self.outputs, out))
+        self._apply_sensors(sig)
         delta = sig["angle_difference"]
         entries = find_entries(delta, self.beta, self._last_delta, k0)
         if n > 0:
@@ -176,6 +291,41 @@ class PlantSimulator:
                                scenarios=self.scenarios)
 
 
+    def _apply_sensors(self, sig: dict) -> None:
+        """The enabled sensor effects on the recorded a1/a2, in place: low-pass, then gain, then bias."""
+        sensors = sorted((c for c in self.effects if c.kind == "sensor"), key=lambda c: c.order)
+        if not sensors:
+            return
+        from scipy.signal import lfilter
+        h = self.sample_period_s
+        for name in ("a1", "a2"):
+            a = sig.get(name)
+            if a is None or a.shape[1] == 0:
+                continue
+            a = a.copy()
+            for cls in sensors:
+                if cls.name == "accelerometer_lowpass":
+                    tau = self._values[f"accelerometer_lowpass.{name}_time_constant_s"]
+                    prev = self._sensor_state.setdefault(name, a[:, 0].copy())   # starts settled on sample 0
+                    for i in np.flatnonzero(tau > 0.0):
+                        alpha = -np.expm1(-h / tau[i])
+                        a[i], zf = lfilter([alpha], [1.0, alpha - 1.0], a[i], zi=[(1.0 - alpha) * prev[i]])
+                    prev[:] = a[:, -1]
+                elif cls.name == "accelerometer_gain":
+                    a *= 1.0 + self._values[f"accelerometer_gain.{name}_relative_change"][:, None]
+                elif cls.name == "accelerometer_bias":
+                    a += self._values[f"accelerometer_bias.{name}_m_s2"][:, None]
+                else:     # a plug-in sensor stage: apply(a, values of its parameters for this signal, state)
+                    a = cls.apply(name, a, {p.name: self._values[f"{cls.name}.{p.name}"] for p in cls.parameters},
+                                  self._sensor_state.setdefault(cls.name + "." + name, {}), h)
+            sig[name] = a
+
+
+def _crn_seed(noise_seed: int) -> int:
+    """Noise entropy shared by every scenario of a batch (common random numbers)."""
+    return int(np.random.SeedSequence([int(noise_seed), 0xC0FFEE]).generate_state(1, np.uint32)[0])
+
+
 def _noise_seed(s: Scenario) -> int:
     """Noise entropy of a scenario: its seed and its parameters, so every scenario's generators are
     independent of every other's, and the same scenario always gets the same noise."""
@@ -185,10 +335,11 @@ def _noise_seed(s: Scenario) -> int:
 
 def simulate_batch(scenarios: Sequence[Scenario], duration_s: float = 1.0, config: PlantConfig | None = None,
                    noise: bool = True, record_states: bool = False, backend: str | None = None,
-                   outputs: Sequence[str] | None = None) -> SimulationChunk:
+                   outputs: Sequence[str] | None = None, parameters: Mapping[str, Any] | None = None,
+                   noise_seed: int | None = None) -> SimulationChunk:
     """One ``run()`` of the whole duration from the settled start."""
     sim = PlantSimulator(scenarios, config=config, noise=noise, record_states=record_states, backend=backend,
-                         outputs=outputs)
+                         outputs=outputs, parameters=parameters, noise_seed=noise_seed)
     n = int(round(duration_s / sim.sample_period_s))
     if n <= 0:
         raise ValueError(f"simulate_batch: duration_s = {duration_s} gives no samples; allowed: >= "

@@ -14,26 +14,44 @@ from .drivetrain import (N_STATES, S_ALPHA1, S_ALPHA2, S_DELTA, S_OMEGA2, S_PRA,
 from .motor import MotorSteadyState, steady_state_at_torque
 
 
-def settled_state(beta: np.ndarray, cfg) -> tuple[np.ndarray, MotorSteadyState]:
-    """(n_scenarios, 11) start state for half-gaps ``beta`` [rad], and the motor's steady state."""
+def settled_state(beta: np.ndarray, cfg, values: dict | None = None) -> tuple[np.ndarray, MotorSteadyState]:
+    """(n_scenarios, 11) start state for half-gaps ``beta`` [rad], and the motor's steady state (of the
+    first scenario). ``values``: the per-scenario parameter table of a PlantSimulator (drifted spring
+    stiffness, working resistance, contact stiffness, constant load); None: the config's values."""
     e, ld = cfg.effects, cfg.load
-    force_N = ld.working_resistance_N if e.working_resistance else 0.0
+    beta = np.asarray(beta, dtype=np.float64)
+    n = beta.size
+    v = values or {}
+
+    def col(key, default):
+        return np.asarray(v.get(key, np.full(n, float(default))), dtype=np.float64)
+
+    force_N = col("working_resistance.force_N", ld.working_resistance_N) if e.working_resistance else np.zeros(n)
+    k_spring = col("spring.stiffness_N_per_m", ld.spring_stiffness_N_per_m)
+    k_c = col("backlash_clutch.contact_stiffness_Nm_per_rad", cfg.clutch.contact_stiffness_Nm_per_rad)
+    const = col("constant_motor_load.load_pu", cfg.constant_motor_load_pu)
     # the motor carries the working resistance only through an engaged clutch
-    clutch_torque_Nm = ld.wheel_radius_m * force_N if e.backlash_clutch else 0.0
+    clutch_torque_Nm = ld.wheel_radius_m * force_N if e.backlash_clutch else np.zeros(n)
     load_pu = clutch_torque_Nm / cfg.motor.base_torque_Nm
     if e.constant_motor_load:
-        load_pu += cfg.constant_motor_load_pu
-    ms = steady_state_at_torque(load_pu, cfg.motor)
-    beta = np.asarray(beta, dtype=np.float64)
-    x = np.zeros((beta.size, N_STATES))
-    x[:, S_PSA], x[:, S_PSB] = ms.psi_s.real, ms.psi_s.imag
-    x[:, S_PRA], x[:, S_PRB] = ms.psi_r.real, ms.psi_r.imag
-    x[:, S_W1] = ms.w1_pu
-    omega = ms.w1_pu * cfg.motor.base_mechanical_speed_rad_s
-    x[:, S_OMEGA2] = omega
-    x[:, S_XDOT] = ld.wheel_radius_m * omega
-    x[:, S_Z] = force_N / ld.spring_stiffness_N_per_m if (e.spring and ld.spring_stiffness_N_per_m > 0) else 0.0
-    x[:, S_DELTA] = beta + clutch_torque_Nm / cfg.clutch.contact_stiffness_Nm_per_rad
+        load_pu = load_pu + const
+    x = np.zeros((n, N_STATES))
+    cache: dict = {}
+    first = None
+    for i in range(n):
+        key = float(load_pu[i])
+        ms = cache.get(key)
+        if ms is None:
+            ms = cache[key] = steady_state_at_torque(key, cfg.motor)
+        first = first or ms
+        x[i, S_PSA], x[i, S_PSB] = ms.psi_s.real, ms.psi_s.imag
+        x[i, S_PRA], x[i, S_PRB] = ms.psi_r.real, ms.psi_r.imag
+        x[i, S_W1] = ms.w1_pu
+        omega = ms.w1_pu * cfg.motor.base_mechanical_speed_rad_s
+        x[i, S_OMEGA2] = omega
+        x[i, S_XDOT] = ld.wheel_radius_m * omega
+    x[:, S_Z] = np.where((k_spring > 0) & bool(e.spring), force_N / np.where(k_spring > 0, k_spring, 1.0), 0.0)
+    x[:, S_DELTA] = beta + clutch_torque_Nm / k_c
     x[:, S_ALPHA1] = x[:, S_DELTA]  # alpha2 = 0 at the start
     x[:, S_ALPHA2] = 0.0
-    return x, ms
+    return x, first

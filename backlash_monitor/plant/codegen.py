@@ -1,0 +1,475 @@
+"""Backends generated from the enabled effects' terms (docs/effects.md, "Backends").
+
+For one set of enabled term effects, one Python source is generated: the right-hand side as one
+block of straight-line code (the motor, then each balance as the sum of its terms, each term a small
+function inlined by numba), placed
+
+- inside the SIMD stage: a loop over the scenarios around the block (LLVM vectorises it; the terms
+  use :mod:`mathlib`, which has no libm calls and no branches),
+- inside the scalar right-hand side ``f_scalar`` (the ``numba-scalar`` backend and the zone-crossing
+  step),
+
+plus the RK4 loops around them. The source is written to a real file in a cache directory, named by
+the hash of (the source, which holds the term sources; mathlib's source; numba's and Python's
+versions), so numba's on-disk cache works (numba caches no ``exec``'d code). The same block runs
+on numpy arrays (numpy backend, solve_ivp reference) by ``exec`` in mathlib's numpy namespace.
+
+Parameters are run-time values: one row per parameter of a per-scenario array ``P`` (rows
+``param_rows``), so a fit over parameters never recompiles. Global motor constants are in ``G``.
+"""
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import os
+import sys
+import textwrap
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from . import effects as _effects
+from ._numba import HAVE_NUMBA, numba
+
+STATE_NAMES = ("psi_sa", "psi_sb", "psi_ra", "psi_rb", "w1", "delta", "alpha1", "alpha2", "omega2", "z", "xdot")
+N_STATES = len(STATE_NAMES)
+GLOBAL_NAMES = ("g_rs", "g_rr", "g_xs", "g_xr", "g_xm", "g_w", "g_omega_b", "g_T_m", "g_omega_mb", "g_T_b", "g_r")
+BASE_ROWS = ("beta", "wheel_inertia_kgm2", "mass_kg")     # per-scenario model values every kernel reads
+GENERATOR_VERSION = "1"
+
+
+def global_vector(cfg) -> np.ndarray:
+    m = cfg.motor
+    return np.array([m.r_s_pu, m.r_r_pu, m.x_s_pu, m.x_r_pu, m.x_m_pu, m.w_pu, m.base_angular_frequency_rad_s,
+                     m.mechanical_time_constant_s, m.base_mechanical_speed_rad_s, m.base_torque_Nm,
+                     cfg.load.wheel_radius_m], dtype=np.float64)
+
+
+def _pname(effect: str, param: str) -> str:
+    return f"p_{effect}__{param}"
+
+
+def param_rows(effect_classes) -> tuple:
+    """Names of the rows of P: the base model values, then "effect.param" of every enabled term effect."""
+    rows = list(BASE_ROWS)
+    for cls in effect_classes:
+        rows += [f"{cls.name}.{p.name}" for p in cls.parameters]
+    return tuple(rows)
+
+
+def _body(effect_classes, indent: str) -> str:
+    """The right-hand side as straight-line code; reads the state names, ua, ub, load_pu, mode, the g_*
+    globals and the P rows bound to their local names; defines d0..d10, te, tc, f."""
+    by_balance = {b: [c for c in effect_classes if c.balance == b] for b in _effects.BALANCES}
+    names = {c.name for c in effect_classes}
+    clutch = "backlash_clutch" in names
+
+    def call(cls):
+        args = []
+        own = cls.parameter_names()
+        for a in _effects.term_arguments(cls):
+            args.append(_pname(cls.name, a) if a in own else a)
+        return f"_t_{cls.name}({', '.join(args)})"
+
+    def total(balance):
+        cs = by_balance[balance]
+        return " + ".join(call(c) for c in cs) if cs else None
+
+    lines = [
+        "iw = 1.0 / g_w",
+        "isa = (g_xr * psi_sa - g_xm * psi_ra) * iw",
+        "isb = (g_xr * psi_sb - g_xm * psi_rb) * iw",
+        "ira = (g_xs * psi_ra - g_xm * psi_sa) * iw",
+        "irb = (g_xs * psi_rb - g_xm * psi_sb) * iw",
+        "d0 = g_omega_b * (ua - g_rs * isa)",
+        "d1 = g_omega_b * (ub - g_rs * isb)",
+        "d2 = g_omega_b * (-g_rr * ira - w1 * psi_rb)",
+        "d3 = g_omega_b * (-g_rr * irb + w1 * psi_ra)",
+        "te = psi_sa * isb - psi_sb * isa",
+        "omega1 = w1 * g_omega_mb",
+        "rel_speed = omega1 - omega2",
+        "v = g_r * omega2 - xdot",
+        "wheel_radius_m = g_r",
+        "base_torque_Nm = g_T_b",
+        "base_mechanical_speed_rad_s = g_omega_mb",
+        "ad = fabs(delta)",
+        "contact_sign = where(delta > 0.0, 1.0, -1.0)",
+        "penetration = ad - beta",
+        "approach_speed = contact_sign * rel_speed",
+    ]
+    if clutch:
+        lines += ["contact_stiffness_Nm_per_rad = " + _pname("backlash_clutch", "contact_stiffness_Nm_per_rad"),
+                  "contact_damping_Nms_per_rad = " + _pname("backlash_clutch", "contact_damping_Nms_per_rad"),
+                  # balance clutch_torque_Nm: the contact law (sum of terms), gated: 0 in the zone, never pulls
+                  "raw = " + total("clutch_torque_Nm"),
+                  "engaged = where(mode == 0, ad >= beta, mode == 1)",
+                  "tc = where(engaged, contact_sign * fmax(raw, 0.0), 0.0)"]
+    else:
+        lines += ["contact_stiffness_Nm_per_rad = 0.0", "contact_damping_Nms_per_rad = 0.0", "tc = 0.0 * delta"]
+    rim = total("rim_mass_force_N")
+    lines.append("f = " + (rim if rim else "0.0 * z"))
+    lm, tw, fm = total("motor_load_moment_pu"), total("wheel_torque_Nm"), total("mass_force_N")
+    lines.append("d4 = (te - tc / g_T_b - load_pu" + (f" - ({lm})" if lm else "") + ") / g_T_m")
+    lines.append("d8 = (tc - g_r * f" + (f" + ({tw})" if tw else "") + ") / wheel_inertia_kgm2")
+    lines.append("d10 = (f" + (f" + ({fm})" if fm else "") + ") / mass_kg")
+    lines += ["d5 = rel_speed", "d6 = omega1", "d7 = omega2", "d9 = v"]
+    return textwrap.indent("\n".join(lines), indent)
+
+
+def _binds(effect_classes, src_state: str, src_param: str, indent: str) -> str:
+    """Assignments of the local names from the state / parameter containers (format strings with {i})."""
+    lines = [f"{n} = {src_state.format(i=i)}" for i, n in enumerate(STATE_NAMES)]
+    rows = param_rows(effect_classes)
+    for j, row in enumerate(rows):
+        local = row if "." not in row else _pname(*row.split("."))
+        lines.append(f"{local} = {src_param.format(i=j)}")
+    return textwrap.indent("\n".join(lines), indent)
+
+
+def _globals(indent: str) -> str:
+    return textwrap.indent("\n".join(f"{n} = G[{i}]" for i, n in enumerate(GLOBAL_NAMES)), indent)
+
+
+_KERNEL_TEMPLATE = '''
+@numba.njit(**_JIT)
+def stage(Y, K, TC, ua, ub, load, P, G, mode):
+    """One RK4 stage for all scenarios: K = f(Y) (N_STATES, S), TC = T_c; vectorised over s."""
+    S = Y.shape[1]
+{globals}
+    for s in range(S):
+        load_pu = load[s]
+{binds_simd}
+{body_simd}
+        K[0, s] = d0; K[1, s] = d1; K[2, s] = d2; K[3, s] = d3; K[4, s] = d4; K[5, s] = d5
+        K[6, s] = d6; K[7, s] = d7; K[8, s] = d8; K[9, s] = d9; K[10, s] = d10
+        TC[s] = tc
+
+
+@numba.njit(**_JIT)
+def f_scalar(y, ua, ub, load_pu, ps, G, mode, out):
+    """The right-hand side of one scenario (ps: its column of P); writes out, returns T_c.
+    mode: 0 = the zone test decides, 1 = in contact, 2 = in the zone (forced, at a located crossing)."""
+{globals_1}
+{binds_scalar}
+{body_scalar}
+    out[0] = d0; out[1] = d1; out[2] = d2; out[3] = d3; out[4] = d4; out[5] = d5
+    out[6] = d6; out[7] = d7; out[8] = d8; out[9] = d9; out[10] = d10
+    return tc
+'''
+
+_LOOPS = '''
+@numba.njit(**_JIT)
+def _derivs_at(y, tau, phase, u_amp, ld, ps, G, mode, out):
+    ph = phase + G[6] * tau
+    return f_scalar(y, u_amp * math.cos(ph), u_amp * math.sin(ph), ld, ps, G, mode, out)
+
+
+@numba.njit(**_JIT)
+def _rk4_substep(y, hs, tau0, phase, u_amp, ld, ps, G, mode):
+    k1 = np.empty(N_STATES); k2 = np.empty(N_STATES); k3 = np.empty(N_STATES); k4 = np.empty(N_STATES)
+    tmp = np.empty(N_STATES)
+    _derivs_at(y, tau0, phase, u_amp, ld, ps, G, mode, k1)
+    for i in range(N_STATES):
+        tmp[i] = y[i] + 0.5 * hs * k1[i]
+    _derivs_at(tmp, tau0 + 0.5 * hs, phase, u_amp, ld, ps, G, mode, k2)
+    for i in range(N_STATES):
+        tmp[i] = y[i] + 0.5 * hs * k2[i]
+    _derivs_at(tmp, tau0 + 0.5 * hs, phase, u_amp, ld, ps, G, mode, k3)
+    for i in range(N_STATES):
+        tmp[i] = y[i] + hs * k3[i]
+    _derivs_at(tmp, tau0 + hs, phase, u_amp, ld, ps, G, mode, k4)
+    for i in range(N_STATES):
+        y[i] += hs / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+
+
+@numba.njit(**_JIT)
+def crossing_step(y0, y1, h, phase, u_amp, ld, ps, G):
+    """Redo a step in which Delta crossed |Delta| = beta: locate the crossing on the cubic Hermite
+    interpolant of Delta, RK4 to it with the start side's law and on with the other side's (docs/model.md).
+    Returns the crossing's fraction of the step."""
+    bs = ps[0]
+    omb = G[8]
+    d0, d1 = y0[5], y1[5]
+    r0 = (y0[4] * omb - y0[8]) * h
+    r1 = (y1[4] * omb - y1[8]) * h
+    inside0 = abs(d0) < bs
+    sgn = (1.0 if d1 > 0.0 else -1.0) if inside0 else (1.0 if d0 > 0.0 else -1.0)
+    target = sgn * bs
+    lo, hi = 0.0, 1.0
+    f_lo = d0 - target
+    for _ in range(60):
+        th = 0.5 * (lo + hi)
+        t2 = th * th
+        t3 = t2 * th
+        val = ((2 * t3 - 3 * t2 + 1) * d0 + (t3 - 2 * t2 + th) * r0 + (-2 * t3 + 3 * t2) * d1
+               + (t3 - t2) * r1) - target
+        if (val > 0.0) == (f_lo > 0.0):
+            lo = th
+            f_lo = val
+        else:
+            hi = th
+    th = 0.5 * (lo + hi)
+    mode0 = 2 if inside0 else 1
+    mode1 = 1 if inside0 else 2
+    for i in range(N_STATES):
+        y1[i] = y0[i]
+    if th > 0.0:
+        _rk4_substep(y1, th * h, 0.0, phase, u_amp, ld, ps, G, mode0)
+    if th < 1.0:
+        _rk4_substep(y1, (1.0 - th) * h, th * h, phase, u_amp, ld, ps, G, mode1)
+    return th
+
+
+@numba.njit(**_JIT)
+def rk4_scalar(x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states):
+    """Scenarios outer, samples inner (the numba-scalar backend)."""
+    n_scen = x.shape[0]
+    n = load.shape[1]
+    r = G[10]
+    omb = G[8]
+    y = np.empty(N_STATES); t = np.empty(N_STATES)
+    f1 = np.empty(N_STATES); f2 = np.empty(N_STATES); f3 = np.empty(N_STATES); f4 = np.empty(N_STATES)
+    y0 = np.empty(N_STATES); y1 = np.empty(N_STATES)
+    ps = np.empty(P.shape[0])
+    hh = 0.5 * h
+    h6 = h / 6.0
+    for s in range(n_scen):
+        for i in range(N_STATES):
+            y[i] = x[s, i]
+        for j in range(P.shape[0]):
+            ps[j] = P[j, s]
+        bs = ps[0]
+        for k in range(n):
+            ld = load[s, k]
+            if record_states:
+                for i in range(N_STATES):
+                    states[i, s, k] = y[i]
+            tc = f_scalar(y, ua[k, 0], ub[k, 0], ld, ps, G, 0, f1)
+            out[0, s, k] = r * omb * f1[4]
+            out[1, s, k] = f1[10]
+            out[2, s, k] = y[4] * omb
+            out[3, s, k] = y[8]
+            out[4, s, k] = y[5]
+            out[5, s, k] = y[6]
+            out[6, s, k] = y[7]
+            out[7, s, k] = tc
+            for i in range(N_STATES):
+                t[i] = y[i] + hh * f1[i]
+            f_scalar(t, ua[k, 1], ub[k, 1], ld, ps, G, 0, f2)
+            for i in range(N_STATES):
+                t[i] = y[i] + hh * f2[i]
+            f_scalar(t, ua[k, 1], ub[k, 1], ld, ps, G, 0, f3)
+            for i in range(N_STATES):
+                t[i] = y[i] + h * f3[i]
+            f_scalar(t, ua[k, 2], ub[k, 2], ld, ps, G, 0, f4)
+            for i in range(N_STATES):
+                t[i] = y[i] + h6 * (f1[i] + 2.0 * f2[i] + 2.0 * f3[i] + f4[i])
+            if CLUTCH and ((abs(y[5]) < bs) != (abs(t[5]) < bs)):
+                for i in range(N_STATES):
+                    y0[i] = y[i]
+                    y1[i] = t[i]
+                crossing_step(y0, y1, h, phase[k], u_amp, ld, ps, G)
+                for i in range(N_STATES):
+                    t[i] = y1[i]
+            for i in range(N_STATES):
+                y[i] = t[i]
+        for i in range(N_STATES):
+            x[s, i] = y[i]
+
+
+@numba.njit(**_JIT)
+def rk4_simd(x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states, record_outputs, sel):
+    """Samples outer, scenarios inner (vectorised); the scenario axis padded to whole SIMD vectors with
+    copies of the last scenario (never written out, never take the crossing step)."""
+    S = x.shape[0]
+    n = load.shape[1]
+    NP = P.shape[0]
+    Sp = ((S + LANES - 1) // LANES) * LANES
+    Y = np.empty((N_STATES, Sp))
+    for i in range(N_STATES):
+        for s in range(Sp):
+            Y[i, s] = x[min(s, S - 1), i]
+    Pp = np.empty((NP, Sp))
+    for j in range(NP):
+        for s in range(Sp):
+            Pp[j, s] = P[j, min(s, S - 1)]
+    T = np.empty_like(Y)
+    K1 = np.empty_like(Y); K2 = np.empty_like(Y); K3 = np.empty_like(Y); K4 = np.empty_like(Y)
+    TC = np.empty(Sp)
+    LT = np.empty((n, Sp))
+    for k in range(n):
+        for s in range(Sp):
+            LT[k, s] = load[min(s, S - 1), k]
+    r = G[10]; omb = G[8]; hh = 0.5 * h; h6 = h / 6.0
+    y0 = np.empty(N_STATES); y1 = np.empty(N_STATES); ps = np.empty(NP)
+    nsel = sel.shape[0]
+    buf = np.empty((nsel, OUT_BLOCK, Sp))
+    for k in range(n):
+        ld = LT[k]
+        stage(Y, K1, TC, ua[k, 0], ub[k, 0], ld, Pp, G, 0)
+        if record_states:
+            for i in range(N_STATES):
+                for s in range(S):
+                    states[i, s, k] = Y[i, s]
+        if record_outputs:
+            b = k % OUT_BLOCK
+            for j in range(nsel):
+                o = sel[j]
+                if o == 0:
+                    for s in range(Sp): buf[j, b, s] = r * omb * K1[4, s]
+                elif o == 1:
+                    for s in range(Sp): buf[j, b, s] = K1[10, s]
+                elif o == 2:
+                    for s in range(Sp): buf[j, b, s] = Y[4, s] * omb
+                elif o == 3:
+                    for s in range(Sp): buf[j, b, s] = Y[8, s]
+                elif o == 4:
+                    for s in range(Sp): buf[j, b, s] = Y[5, s]
+                elif o == 5:
+                    for s in range(Sp): buf[j, b, s] = Y[6, s]
+                elif o == 6:
+                    for s in range(Sp): buf[j, b, s] = Y[7, s]
+                else:
+                    for s in range(Sp): buf[j, b, s] = TC[s]
+            if b == OUT_BLOCK - 1 or k == n - 1:
+                k_start = k - b
+                for j in range(nsel):
+                    for s in range(S):
+                        for bb in range(b + 1):
+                            out[j, s, k_start + bb] = buf[j, bb, s]
+        for i in range(N_STATES):
+            for s in range(Sp): T[i, s] = Y[i, s] + hh * K1[i, s]
+        stage(T, K2, TC, ua[k, 1], ub[k, 1], ld, Pp, G, 0)
+        for i in range(N_STATES):
+            for s in range(Sp): T[i, s] = Y[i, s] + hh * K2[i, s]
+        stage(T, K3, TC, ua[k, 1], ub[k, 1], ld, Pp, G, 0)
+        for i in range(N_STATES):
+            for s in range(Sp): T[i, s] = Y[i, s] + h * K3[i, s]
+        stage(T, K4, TC, ua[k, 2], ub[k, 2], ld, Pp, G, 0)
+        for i in range(N_STATES):
+            for s in range(Sp): T[i, s] = Y[i, s] + h6 * (K1[i, s] + 2.0 * K2[i, s] + 2.0 * K3[i, s] + K4[i, s])
+        if CLUTCH:
+            for s in range(S):
+                if (abs(Y[5, s]) < Pp[0, s]) != (abs(T[5, s]) < Pp[0, s]):
+                    for i in range(N_STATES):
+                        y0[i] = Y[i, s]; y1[i] = T[i, s]
+                    for j in range(NP):
+                        ps[j] = Pp[j, s]
+                    crossing_step(y0, y1, h, phase[k], u_amp, ld[s], ps, G)
+                    for i in range(N_STATES): T[i, s] = y1[i]
+        Y, T = T, Y
+    for s in range(S):
+        for i in range(N_STATES):
+            x[s, i] = Y[i, s]
+'''
+
+_HEADER = '''# Generated by backlash_monitor.plant.codegen (generator {version}) -- do not edit.
+# Effects: {effects}
+import math
+import numpy as np
+import numba
+from backlash_monitor.plant.mathlib import (where, fabs, fmax, fmin, sign, smooth_sign, sqrt, exp, log,
+                                            power, sin, cos)
+
+_JIT = dict(cache=True, nogil=True, fastmath=True, error_model="numpy")
+_TJIT = dict(inline="always", fastmath=True, error_model="numpy")
+N_STATES = {n_states}
+LANES = 8
+OUT_BLOCK = 32
+CLUTCH = {clutch}
+EFFECTS = {effect_names!r}
+PARAM_ROWS = {rows!r}
+'''
+
+
+def generate_source(effect_classes) -> str:
+    """The kernel module's source for these (term) effects, in this order."""
+    terms = "\n\n".join("@numba.njit(**_TJIT)\n" + _effects.term_source(c) for c in effect_classes)
+    names = tuple(c.name for c in effect_classes)
+    head = _HEADER.format(version=GENERATOR_VERSION, effects=", ".join(names) or "(none)", n_states=N_STATES,
+                          clutch="backlash_clutch" in names, effect_names=names, rows=param_rows(effect_classes))
+    kern = _KERNEL_TEMPLATE.format(
+        globals=_globals("    "), globals_1=_globals("    "),
+        binds_simd=_binds(effect_classes, "Y[{i}, s]", "P[{i}, s]", "        "),
+        body_simd=_body(effect_classes, "        "),
+        binds_scalar=_binds(effect_classes, "y[{i}]", "ps[{i}]", "    "),
+        body_scalar=_body(effect_classes, "    "))
+    return head + "\n\n" + terms + "\n\n" + kern + _LOOPS
+
+
+def generate_numpy(effect_classes):
+    """The right-hand side on arrays (numpy backend, solve_ivp reference): f(y_list, ua, ub, load_pu, P, G,
+    mode) -> (11 derivatives, (te, tc, f)); the same block, run in mathlib's numpy namespace."""
+    from .mathlib import NUMPY_NAMESPACE
+    terms = "\n\n".join(_effects.term_source(c) for c in effect_classes)
+    src = (terms + "\n\n\ndef rhs(y, ua, ub, load_pu, P, G, mode=0):\n" + _globals("    ") + "\n"
+           + _binds(effect_classes, "y[{i}]", "P[{i}]", "    ") + "\n" + _body(effect_classes, "    ") + "\n"
+           + "    return (d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10), (te, tc, f)\n")
+    ns = dict(NUMPY_NAMESPACE)
+    exec(compile(src, f"<numpy rhs: {', '.join(c.name for c in effect_classes)}>", "exec"), ns)  # noqa: S102
+    return ns["rhs"]
+
+
+def cache_dir() -> Path:
+    env = os.environ.get("BACKLASH_MONITOR_KERNEL_CACHE")
+    if env:
+        return Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "backlash_monitor" / "kernels"
+
+
+def _cache_key(source: str) -> str:
+    from . import mathlib
+    h = hashlib.sha256()
+    h.update(source.encode())
+    h.update(Path(mathlib.__file__).read_bytes())
+    h.update(f"numba {numba.__version__ if HAVE_NUMBA else '-'} python {sys.version}".encode())
+    return h.hexdigest()[:20]
+
+
+@dataclass
+class Kernel:
+    """The backends of one effect set."""
+    effects: tuple            # effect classes (term kind), in registry order
+    param_rows: tuple         # rows of P
+    rhs_numpy: object         # numpy right-hand side
+    module: object = None     # the generated numba module (None without numba)
+    path: Path | None = None  # its file
+
+    @property
+    def names(self) -> tuple:
+        return tuple(c.name for c in self.effects)
+
+
+_KERNELS: dict = {}
+
+
+def kernel_for(effect_classes) -> Kernel:
+    """The (memoised) backends for a tuple of term effect classes: generated, written, imported."""
+    key = tuple(effect_classes)
+    k = _KERNELS.get(key)
+    if k is not None:
+        return k
+    rhs_np = generate_numpy(effect_classes)
+    module = path = None
+    if HAVE_NUMBA:
+        source = generate_source(effect_classes)
+        digest = _cache_key(source)
+        d = cache_dir()
+        d.mkdir(parents=True, exist_ok=True)
+        path = d / f"kernel_{digest}.py"
+        if not path.is_file() or path.read_text() != source:
+            tmp = d / f".kernel_{digest}.{os.getpid()}.tmp"
+            tmp.write_text(source)
+            os.replace(tmp, path)             # atomic: parallel processes never see half a file
+        mod_name = f"backlash_monitor_kernel_{digest}"
+        module = sys.modules.get(mod_name)
+        if module is None:
+            spec = importlib.util.spec_from_file_location(mod_name, path)
+            module = importlib.util.module_from_spec(spec)
+            sys.modules[mod_name] = module
+            spec.loader.exec_module(module)
+    k = Kernel(effects=key, param_rows=param_rows(effect_classes), rhs_numpy=rhs_np, module=module, path=path)
+    _KERNELS[key] = k
+    return k
