@@ -53,7 +53,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="plant config file (default: config/plant.yaml of the package)")
     parser.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
                         help="override one config value, e.g. --set load.mass_kg=12 or --set effects.spring=false; "
-                             "repeatable")
+                             "switch on and parameterise a catalogue effect: --set effects.wheel_coulomb_friction=true "
+                             "--set wheel_coulomb_friction.torque_Nm=1.5 (docs/effects.md lists them); repeatable")
+    parser.add_argument("--effects", action="append", default=[], metavar="FILE.py",
+                        help="a Python file defining your own Effect classes (docs/effects.md); they are registered "
+                             "and can then be switched on with --set effects.NAME=true; repeatable")
+    parser.add_argument("--noise-seed", type=int, default=None, metavar="INT",
+                        help="common random numbers: every scenario on the same noise realisation drawn from this "
+                             "seed (default: each scenario's own noise from its seed, width, eta_k and n1)")
     parser.add_argument("--backend", choices=("auto", "numba", "numba-scalar", "numpy"), default=None,
                         help="integration backend (default: simulation.backend of the config)")
     parser.add_argument("--chunk", type=float, default=0.05, metavar="SECONDS",
@@ -70,11 +77,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _parse_override(text: str):
-    import yaml
-    if "=" not in text:
-        raise ValueError(f"--set {text!r}: expected SECTION.KEY=VALUE, e.g. load.mass_kg=12")
-    key, value = text.split("=", 1)
-    return key.strip(), yaml.safe_load(value)
+    from backlash_monitor.plant.config import parse_override
+    return parse_override(text)
 
 
 def _error(message: str) -> int:
@@ -83,10 +87,14 @@ def _error(message: str) -> int:
 
 
 def run(args) -> int:
-    from backlash_monitor.plant import PlantSimulator, Scenario, load_plant_config
+    from backlash_monitor.plant import PlantSimulator, Scenario, load_effects_file, load_plant_config
     from backlash_monitor.plant.analysis import impact_times_ms
 
     try:
+        for path in args.effects:
+            load_effects_file(path)
+        if args.noise_seed is not None and args.noise_seed < 0:
+            raise ValueError(f"--noise-seed {args.noise_seed}: allowed: an integer >= 0")
         overrides = dict(_parse_override(t) for t in args.set)
         cfg = load_plant_config(args.config, overrides=overrides or None)
         scenarios = [Scenario(width_m=w, eta_k=e, n1=n, seed=s)
@@ -126,7 +134,8 @@ def run(args) -> int:
         print(f"settling {n_scen} scenarios (computed steady state + {cfg.simulation.run_in_s:g} s run-in) ...",
               file=sys.stderr)
     try:
-        sim = PlantSimulator(scenarios, config=cfg, noise=not args.no_noise, backend=args.backend)
+        sim = PlantSimulator(scenarios, config=cfg, noise=not args.no_noise, backend=args.backend,
+                             noise_seed=args.noise_seed)
     except ValueError as exc:
         return _error(str(exc))
     data = {s: np.empty((n_scen, n_total)) for s in SIGNALS}

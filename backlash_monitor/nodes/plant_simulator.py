@@ -37,6 +37,10 @@ PARAMETERS = (
     ParameterSpec("seed", 0, "seed of the disturbance generators", 0, 2**31 - 1),
     ParameterSpec("noise", True, "Gaussian and pulse disturbances on the load moment"),
     ParameterSpec("plant_config", "", "plant YAML (empty: the packaged config/plant.yaml)"),
+    ParameterSpec("plant_set", "", "plant config overrides 'SECTION.KEY=VALUE' separated by ';', as simulate's "
+                  "--set (e.g. 'effects.wheel_coulomb_friction=true;wheel_coulomb_friction.torque_Nm=1.5')"),
+    ParameterSpec("effects_files", "", "Python files with your own Effect classes, separated by ';' "
+                  "(docs/effects.md; as simulate's --effects)"),
     ParameterSpec("chunk_samples", 1000, "samples per chunk (1000 = 20 ms at 50 kHz)", 64, 50000),
     ParameterSpec("rate_factor", 1.0, "simulated seconds per wall second (1 = real time; "
                   "0 = as fast as the simulation runs)", 0.0, 1000.0),
@@ -65,8 +69,13 @@ class PlantSimulatorNode(Node):
         super().__init__("plant_simulator", **overrides)
         p = declare_and_validate(self, PARAMETERS)
         self.params = p
-        config = load_plant_config(p["plant_config"] or None) if p["plant_config"] else load_plant_config()
         try:
+            from backlash_monitor.plant import load_effects_file
+            from backlash_monitor.plant.config import parse_override
+            for path in filter(None, (x.strip() for x in p["effects_files"].split(";"))):
+                load_effects_file(path)
+            overrides = dict(parse_override(t) for t in p["plant_set"].split(";") if t.strip())
+            config = load_plant_config(p["plant_config"] or None, overrides=overrides or None)
             scenario = Scenario(width_m=p["width_m"], eta_k=p["eta_k"], n1=p["n1"], seed=p["seed"])
             self.simulator = PlantSimulator([scenario], config=config, noise=p["noise"],
                                             outputs=tuple(SIGNAL_UNITS),

@@ -453,3 +453,17 @@ def load_plant_config(path: str | os.PathLike | None = None,
     if overrides:
         _merge(data, _unflatten(overrides))
     return config_from_dict(data)
+
+
+def parse_override(text: str) -> tuple:
+    """``"SECTION.KEY=VALUE"`` -> (key, YAML-parsed value) (the ``--set`` syntax of the commands and the
+    plant_simulator node's ``plant_set``)."""
+    if "=" not in text:
+        raise ValueError(f"plant config override {text!r}: expected SECTION.KEY=VALUE, e.g. load.mass_kg=12 or "
+                         "effects.wheel_coulomb_friction=true")
+    key, value = text.split("=", 1)
+    try:
+        parsed = yaml.safe_load(value)
+    except yaml.YAMLError:
+        parsed = value
+    return key.strip(), parsed
