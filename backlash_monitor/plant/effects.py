@@ -319,7 +319,7 @@ class TorqueRipple(Effect):
     balance = "motor_load_moment_pu"
     description = "a load-moment ripple locked to the motor angle, A*sin(order*alpha1 + phase) (cogging, gear mesh)"
     parameters = (Parameter("amplitude_pu", "p.u.", 0.0, (0.0, 2.0), "amplitude A"),
-                  Parameter("order", "per revolution", 1.0, (0.0, 200.0), "harmonic order"),
+                  Parameter("order", "per revolution", 1.0, (0.0, 50.0), "harmonic order"),
                   Parameter("phase_rad", "rad", 0.0, (-math.pi, math.pi), "phase"))
 
     @staticmethod

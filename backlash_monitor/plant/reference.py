@@ -21,12 +21,16 @@ def reference_run(sim, index: int, load_pu: np.ndarray, method: str = "DOP853", 
     current state) with solve_ivp; return the samples a1, a2, omega1, omega2, angle_difference and the
     solver statistics (nfev, wall).
 
-    ``rhs``: another numpy right-hand side of the same signature as ``sim.kernel.rhs_numpy`` (e.g. the
-    nominal model's, for a test that adds an effect's equation written independently); ``extra(t, y,
+    ``rhs``: another :class:`codegen.Kernel` (e.g. the nominal model's, for a test that adds an effect's
+    equation written independently; its parameters are taken from the simulator's values); ``extra(t, y,
     der)``: returns corrections added to the 11 derivatives (that independent form)."""
     cfg = sim.config
-    rhs_np = rhs if rhs is not None else sim.kernel.rhs_numpy
-    P = sim.P[:, index]
+    if rhs is None:
+        rhs_np, P = sim.kernel.rhs_numpy, sim.P[:, index]
+    elif hasattr(rhs, "param_rows"):         # a codegen.Kernel: its rows from the simulator's values
+        rhs_np, P = rhs.rhs_numpy, np.array([sim.parameter_values(r)[index] for r in rhs.param_rows])
+    else:
+        rhs_np, P = rhs, sim.P[:, index]
     G = sim.G
     r, omega_mb = G[10], G[8]
     h = sim.sample_period_s

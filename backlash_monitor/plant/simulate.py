@@ -279,7 +279,7 @@ class PlantSimulator:
                                   self.record_states, outputs=self._output_index)
         sig = dict.fromkeys(OUTPUT_NAMES)
         sig.update(zip(self.outputs, out))
-        self._apply_sensors(sig)
+        self.sensor_stage(sig)
         delta = sig["angle_difference"]
         entries = find_entries(delta, self.beta, self._last_delta, k0)
         if n > 0:
@@ -291,8 +291,10 @@ class PlantSimulator:
                                scenarios=self.scenarios)
 
 
-    def _apply_sensors(self, sig: dict) -> None:
-        """The enabled sensor effects on the recorded a1/a2, in place: low-pass, then gain, then bias."""
+    def sensor_stage(self, sig: dict) -> None:
+        """The enabled sensor effects on the recorded a1/a2 of ``sig`` ({"a1": (n_scen, n), ...}), in place:
+        low-pass, then gain, then bias. Stateful (the low-pass continues across calls, starting settled
+        on the first sample it sees); run() applies it to every chunk."""
         sensors = sorted((c for c in self.effects if c.kind == "sensor"), key=lambda c: c.order)
         if not sensors:
             return
