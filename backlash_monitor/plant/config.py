@@ -375,6 +375,11 @@ def config_from_dict(data: Mapping[str, Any] | None) -> PlantConfig:
     allowed_top = set(_SECTIONS) | {"constant_motor_load_pu", "effects"} | set(param_sections)
     unknown = sorted(set(data) - allowed_top)
     if unknown:
+        sub = data[unknown[0]]
+        if isinstance(sub, Mapping) and sub:           # name the whole key and the nearest valid whole key
+            key = f"{unknown[0]}.{next(iter(sub))}"
+            raise ValueError(f"plant config: unknown key {key}{_nearest(key, _valid_keys())}; allowed: "
+                             "SECTION.KEY of config/plant.yaml or EFFECT.PARAMETER of a registered effect")
         raise ValueError(f"plant config: unknown key {unknown[0]!r}{_nearest(unknown[0], sorted(allowed_top))}; "
                          "allowed top-level keys: " + ", ".join(sorted(allowed_top)))
     kwargs = {name: _build_section(name, cls, data.get(name)) for name, cls in _SECTIONS.items()}
