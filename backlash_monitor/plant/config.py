@@ -101,43 +101,56 @@ class SimulationConfig:
         return 1.0 / self.sample_rate_hz
 
 
-class EffectSwitches(Mapping):
+class EffectSwitches(dict):
     """On/off switch of every registered effect (:func:`backlash_monitor.plant.effects.catalogue`): a
-    read-only mapping name -> bool that also reads as attributes (``cfg.effects.spring``). Effects not
-    named in the YAML take their default: the nominal model's on (constant_motor_load off), others off."""
+    read-only dict name -> bool that also reads as attributes (``cfg.effects.spring``). It holds the
+    nominal model's eight switches (as the former dataclass did, so a nominal config's
+    ``dataclasses.asdict`` and hash are unchanged) and every other effect that is switched on; any other
+    registered effect reads as False."""
 
-    def __init__(self, switches: Mapping[str, bool] | None = None):
+    def __init__(self, switches=None):
+        from .effects import NOMINAL
+        data = {c.name: bool(c.nominal) for c in NOMINAL}
+        for key, value in dict(switches or {}).items():
+            if key in data or value:
+                data[key] = bool(value)
+        dict.update(self, data)
+
+    def __missing__(self, key):
         from .effects import catalogue
-        data = {n: bool(c.nominal) for n, c in catalogue().items()}
-        data.update(switches or {})
-        object.__setattr__(self, "_data", data)
+        if key in catalogue():
+            return False
+        raise KeyError(key)
 
-    def __getitem__(self, key):
-        return self._data[key]
-
-    def __iter__(self):
-        return iter(self._data)
-
-    def __len__(self):
-        return len(self._data)
+    def get(self, key, default=None):
+        if key in self:
+            return dict.__getitem__(self, key)
+        return False if _is_registered(key) else default
 
     def __getattr__(self, key):
+        if key.startswith("__"):
+            raise AttributeError(key)
         try:
-            return self.__dict__["_data"][key]
+            return self[key]
         except KeyError:
             raise AttributeError(key) from None
 
-    def __setattr__(self, key, value):
-        raise AttributeError("EffectSwitches is read-only; use PlantConfig.with_overrides")
+    def _readonly(self, *args, **kwargs):
+        raise TypeError("EffectSwitches is read-only; use PlantConfig.with_overrides")
 
-    def __eq__(self, other):
-        return isinstance(other, Mapping) and dict(self) == dict(other)
+    __setitem__ = __delitem__ = update = pop = popitem = clear = setdefault = _readonly
+    __setattr__ = _readonly
 
     def __hash__(self):
-        return hash(tuple(sorted(self._data.items())))
+        return hash(tuple(sorted(self.items())))
 
-    def __repr__(self):
-        return f"EffectSwitches({self._data!r})"
+    def __reduce__(self):                 # copy, deepcopy and pickle rebuild through __init__
+        return (EffectSwitches, (dict(self),))
+
+
+def _is_registered(name) -> bool:
+    from .effects import catalogue
+    return name in catalogue()
 
 
 EffectsConfig = EffectSwitches   # the former dataclass's name
@@ -153,9 +166,19 @@ class PlantConfig:
     simulation: SimulationConfig = field(default_factory=SimulationConfig)
     effects: EffectSwitches = field(default_factory=EffectSwitches)
     constant_motor_load_pu: float = 0.0
-    # parameters of the registered effects that have no key in the sections above:
-    # {effect name: {parameter name: value}} (defaults from the effect class when absent)
-    effect_parameters: Mapping = field(default_factory=dict)
+
+    def __eq__(self, other):
+        if not isinstance(other, PlantConfig):
+            return NotImplemented
+        return self.to_dict() == other.to_dict()      # effect parameters included
+
+
+    @property
+    def effect_parameters(self) -> dict:
+        """Parameters of the registered effects that have no key in the sections above:
+        {effect name: {parameter name: value}} (defaults from the effect class when absent). Not a dataclass
+        field, so ``dataclasses.asdict`` (and the classifier's config hash) of a nominal config is unchanged."""
+        return self.__dict__.get("_effect_parameters", {})
 
     def to_dict(self) -> dict:
         out = {}
@@ -163,8 +186,6 @@ class PlantConfig:
             value = getattr(self, f.name)
             if f.name == "effects":
                 out[f.name] = dict(value)
-            elif f.name == "effect_parameters":
-                continue
             elif dataclasses.is_dataclass(value):
                 out[f.name] = dataclasses.asdict(value)
             else:
@@ -386,9 +407,9 @@ def config_from_dict(data: Mapping[str, Any] | None) -> PlantConfig:
     kwargs["effects"] = _build_switches(data.get("effects"))
     if "constant_motor_load_pu" in data:
         kwargs["constant_motor_load_pu"] = _check_value("constant_motor_load_pu", data["constant_motor_load_pu"], float)
-    kwargs["effect_parameters"] = {n: _build_effect_parameters(n, c, data[n])
-                                   for n, c in param_sections.items() if data.get(n)}
+    effect_parameters = {n: _build_effect_parameters(n, c, data[n]) for n, c in param_sections.items() if data.get(n)}
     cfg = PlantConfig(**kwargs)
+    object.__setattr__(cfg, "_effect_parameters", effect_parameters)
     _check_cross_rules(cfg)
     return cfg
 
