@@ -81,6 +81,11 @@ def test_common_random_numbers_share_the_noise():
     assert not np.array_equal(load_d[0], load_d[1])
     other = PlantSimulator(scen, config=CFG, noise=True, noise_seed=43).motor_load_pu(0, 20000)
     assert not np.array_equal(other[0], load[0])
+    # one seed per scenario: equal seeds share a realisation, the 43 one equals the batch-wide 43
+    per = PlantSimulator(scen, config=CFG, noise=True, noise_seed=[42, 43, 42]).motor_load_pu(0, 20000)
+    assert np.array_equal(per[0], load[0]) and np.array_equal(per[1], other[1]) and np.array_equal(per[2], load[0])
+    with pytest.raises(ValueError, match="one per scenario"):
+        PlantSimulator(scen, config=CFG, noise_seed=[1, 2])
 
 
 def test_simulate_set_switches_a_catalogue_effect(tmp_path):

@@ -103,14 +103,17 @@ class MotorLoadInput:
         self.add_to(out, k0, n, noise, pulse)
         return out
 
-    def add_to(self, row: np.ndarray, k0: int, n: int, noise: bool, pulse: np.ndarray | None) -> None:
+    def add_to(self, row: np.ndarray, k0: int, n: int, noise: bool, pulse: np.ndarray | None,
+               constant: float | None = None) -> None:
         """Add the switched-on terms for samples k0..k0+n-1 to ``row`` (``pulse``: the pulse load
-        of those samples when it is on)."""
+        of those samples when it is on; ``constant``: the constant load, default ``self.constant_pu``).
+        Asking again for the same samples returns the same values (scenarios with the same noise
+        entropy share one input)."""
         e = self.cfg.effects
         if e.pulse_load:
             row += pulse
         if e.constant_motor_load:
-            row += self.constant_pu
+            row += self.constant_pu if constant is None else constant
         if noise:
             # always advance both generators so that switching one off does not change the other
             g = self.gaussian.samples(k0, n)
@@ -121,9 +124,11 @@ class MotorLoadInput:
                 row += t
 
 
-def motor_load_batch(inputs, k0: int, n: int, noise: bool, pulse: np.ndarray | None = None) -> np.ndarray:
+def motor_load_batch(inputs, k0: int, n: int, noise: bool, pulse: np.ndarray | None = None,
+                     constants=None) -> np.ndarray:
     """``np.stack([inp.samples(k0, n, noise, pulse) for inp in inputs])``, bit-identical (the same additions
-    in the same order), written row by row into one array (each row stays in cache)."""
+    in the same order), written row by row into one array (each row stays in cache). ``constants``: the
+    constant load per row (default: each input's own)."""
     out = np.zeros((len(inputs), n))
     if len(inputs) == 0 or n == 0:
         return out
@@ -131,10 +136,11 @@ def motor_load_batch(inputs, k0: int, n: int, noise: bool, pulse: np.ndarray | N
     e = cfg.effects
     if e.pulse_load and pulse is None:
         pulse = pulse_load_pu(k0, n, cfg)
+    consts = [None] * len(inputs) if constants is None else constants
     if pulse is not None and np.ndim(pulse) == 2:       # per-scenario pulse amplitudes
-        for inp, row, pr in zip(inputs, out, pulse):
-            inp.add_to(row, k0, n, noise, pr)
+        for inp, row, pr, c in zip(inputs, out, pulse, consts):
+            inp.add_to(row, k0, n, noise, pr, c)
         return out
-    for inp, row in zip(inputs, out):
-        inp.add_to(row, k0, n, noise, pulse)
+    for inp, row, c in zip(inputs, out, consts):
+        inp.add_to(row, k0, n, noise, pulse, c)
     return out

@@ -87,12 +87,14 @@ class PlantSimulator:
     parameters: {"effect.param": scalar or (n_scenarios,) array} of enabled effects (docs/effects.md):
     per-scenario values, run-time (never recompiles).
     noise_seed: None = each scenario's noise from (seed, width, eta_k, n1) as always; an int = every
-    scenario on the same noise realisation (common random numbers).
+    scenario on the same noise realisation (common random numbers); a sequence of ints, one per
+    scenario = scenarios with the same value share a realisation. Scenarios with the same noise
+    entropy share one generator (drawn once).
     """
 
     def __init__(self, scenarios: Sequence[Scenario], config: PlantConfig | None = None, noise: bool = True,
                  record_states: bool = False, backend: str | None = None, outputs: Sequence[str] | None = None,
-                 parameters: Mapping[str, Any] | None = None, noise_seed: int | None = None):
+                 parameters: Mapping[str, Any] | None = None, noise_seed=None):
         if len(scenarios) == 0:
             raise ValueError("PlantSimulator: no scenarios given; allowed: one or more Scenario")
         self.config = config if config is not None else load_plant_config()
@@ -110,10 +112,7 @@ class PlantSimulator:
             wanted = set(outputs) | {"angle_difference"}
             self.outputs = tuple(o for o in OUTPUT_NAMES if o in wanted)
         self._output_index = None if self.outputs == OUTPUT_NAMES else [OUTPUT_NAMES.index(o) for o in self.outputs]
-        if noise_seed is not None and (isinstance(noise_seed, bool) or not isinstance(noise_seed, (int, np.integer))
-                                       or noise_seed < 0):
-            raise ValueError(f"PlantSimulator: noise_seed = {noise_seed!r}; allowed: None or an integer >= 0")
-        self.noise_seed = None if noise_seed is None else int(noise_seed)
+        self.noise_seed = _check_noise_seed(noise_seed, len(self.scenarios))
         cfg = self.config
         self.sample_period_s = cfg.simulation.sample_period_s
         self.effects = _effects.enabled_effects(cfg)
@@ -126,9 +125,9 @@ class PlantSimulator:
         self.P = np.array([v[row] for row in self.kernel.param_rows], dtype=np.float64).reshape(
             len(self.kernel.param_rows), len(self.scenarios))
         self.G = global_vector(cfg)
-        self.inputs = [MotorLoadInput(self._seed(s), cfg) for s in self.scenarios]
-        for inp, load in zip(self.inputs, v["constant_motor_load.load_pu"]):
-            inp.constant_pu = float(load)
+        self._seeds = [self._seed(i) for i in range(len(self.scenarios))]
+        self.inputs = _shared_inputs(self._seeds, cfg)
+        self._constants = [float(c) for c in v["constant_motor_load.load_pu"]]
         amp = v["pulse_load.amplitude_pu"]
         self._pulse_scale = None if np.all(amp == cfg.pulse_load.amplitude_pu) else amp
         self._sensor_state: dict = {}
@@ -219,8 +218,12 @@ class PlantSimulator:
         """The per-scenario kernel parameter array (rows ``kernel.param_rows``)."""
         return self.P
 
-    def _seed(self, s: Scenario) -> int:
-        return _noise_seed(s) if self.noise_seed is None else _crn_seed(self.noise_seed)
+    def _seed(self, i: int) -> int:
+        if self.noise_seed is None:
+            return _noise_seed(self.scenarios[i])
+        if isinstance(self.noise_seed, int):
+            return _crn_seed(self.noise_seed)
+        return _crn_seed(self.noise_seed[i])
 
     def _run_in(self, n: int) -> None:
         """Advance samples -n..-1 before sample 0: the pulse train extended periodically backwards and,
@@ -232,15 +235,13 @@ class PlantSimulator:
         for ia, ib in ((0, 1), (2, 3)):
             z = (self.state[:, ia] + 1j * self.state[:, ib]) * rot
             self.state[:, ia], self.state[:, ib] = z.real, z.imag
-        run_in_inputs = [MotorLoadInput(self._seed(s) ^ 0x5EED, cfg) for s in self.scenarios]
-        for a, b in zip(run_in_inputs, self.inputs):
-            a.constant_pu = b.constant_pu
+        run_in_inputs = _shared_inputs([s ^ 0x5EED for s in self._seeds], cfg)
         step = 12_500  # in chunks: bounded memory
         for k0 in range(-n, 0, step):
             m = min(step, -k0)
             ua, ub, phase = self._supply(k0, m)
             pulse = self._pulse(k0, m)
-            load = motor_load_batch(run_in_inputs, k0 + n, m, self.noise, pulse=pulse)
+            load = motor_load_batch(run_in_inputs, k0 + n, m, self.noise, pulse=pulse, constants=self._constants)
             rk4_advance(self.backend, self.kernel, self.state, load, ua, ub, phase, cfg.motor.supply_voltage_pu,
                         self.P, self.G, self.sample_period_s, record_outputs=False)
 
@@ -264,7 +265,7 @@ class PlantSimulator:
 
     def motor_load_pu(self, k0: int, n: int) -> np.ndarray:
         """The held motor load moment [p.u.] of every scenario for samples k0..k0+n-1 (advances the generators)."""
-        return motor_load_batch(self.inputs, k0, n, self.noise, pulse=self._pulse(k0, n))
+        return motor_load_batch(self.inputs, k0, n, self.noise, pulse=self._pulse(k0, n), constants=self._constants)
 
     def run(self, n_samples: int) -> SimulationChunk:
         """Advance every scenario by ``n_samples`` samples and return them."""
@@ -323,6 +324,26 @@ class PlantSimulator:
             sig[name] = a
 
 
+def _check_noise_seed(noise_seed, n: int):
+    def ok(x):
+        return isinstance(x, (int, np.integer)) and not isinstance(x, bool) and x >= 0
+    if noise_seed is None:
+        return None
+    if ok(noise_seed):
+        return int(noise_seed)
+    if isinstance(noise_seed, (list, tuple, np.ndarray)) and len(noise_seed) == n and all(ok(x) for x in noise_seed):
+        return [int(x) for x in noise_seed]
+    raise ValueError(f"PlantSimulator: noise_seed = {noise_seed!r}; allowed: None, an integer >= 0, or {n} such "
+                     "integers (one per scenario)")
+
+
+def _shared_inputs(seeds, cfg) -> list:
+    """One MotorLoadInput per distinct seed, shared by the scenarios that have it (drawn once; the same
+    values as separate inputs, since a repeated request returns the same samples)."""
+    by_seed: dict = {}
+    return [by_seed.setdefault(s, MotorLoadInput(s, cfg)) if s not in by_seed else by_seed[s] for s in seeds]
+
+
 def _crn_seed(noise_seed: int) -> int:
     """Noise entropy shared by every scenario of a batch (common random numbers)."""
     return int(np.random.SeedSequence([int(noise_seed), 0xC0FFEE]).generate_state(1, np.uint32)[0])
@@ -338,7 +359,7 @@ def _noise_seed(s: Scenario) -> int:
 def simulate_batch(scenarios: Sequence[Scenario], duration_s: float = 1.0, config: PlantConfig | None = None,
                    noise: bool = True, record_states: bool = False, backend: str | None = None,
                    outputs: Sequence[str] | None = None, parameters: Mapping[str, Any] | None = None,
-                   noise_seed: int | None = None) -> SimulationChunk:
+                   noise_seed=None) -> SimulationChunk:
     """One ``run()`` of the whole duration from the settled start."""
     sim = PlantSimulator(scenarios, config=config, noise=noise, record_states=record_states, backend=backend,
                          outputs=outputs, parameters=parameters, noise_seed=noise_seed)
