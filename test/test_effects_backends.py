@@ -112,3 +112,68 @@ def test_whole_catalogue_at_neutral_defaults_is_the_nominal_model():
         assert np.max(np.abs(x - y)) <= 1e-9 * np.max(np.abs(x)), sig
     assert a.entries == b.entries
     assert set(catalogue()) >= {c.name for c in CATALOGUE}
+
+
+DIRECT = {   # drift -> how the same change is made without it: (config key or scenario field, nominal value)
+    "backlash_width_drift": ("width_m", 0.005), "absorber_consistency_drift": ("eta_k", 0.025),
+    "absorber_flow_index_drift": ("n1", 0.89), "spring_stiffness_drift": ("load.spring_stiffness_N_per_m", 100.0),
+    "load_mass_drift": ("load.mass_kg", 10.0), "wheel_inertia_drift": ("load.wheel_inertia_kgm2", 0.2),
+    "working_resistance_drift": ("load.working_resistance_N", 30.0),
+    "pulse_amplitude_drift": ("pulse_load.amplitude_pu", 1.6),
+}
+
+
+@pytest.mark.parametrize("drift", [c for c in CATALOGUE if c.kind == "drift"], ids=lambda c: c.name)
+def test_drift_with_a_random_change_equals_the_changed_model_on_every_backend(drift):
+    """Random change inside the bounds (kept where the drive still runs: width > 0, n1 > 0)."""
+    rng = np.random.default_rng(zlib.crc32(drift.name.encode()))
+    p = drift.parameters[0]
+    lo, hi = p.bounds
+    if drift.name == "backlash_width_drift":
+        lo = -0.004
+    change = float(rng.uniform(lo, min(hi, 2.0)))
+    key, nominal = DIRECT[drift.name]
+    value = nominal * (1 + change) if drift.relative else nominal + change
+    scen = dict(width_m=0.005, eta_k=0.025, n1=0.89)
+    if key in scen:
+        scen[key] = value
+        direct_cfg = CFG
+    else:
+        direct_cfg = CFG.with_overrides({key: value})
+    for backend in ("numba", "numba-scalar", "numpy"):
+        n = 4000 if backend != "numpy" else 600
+        drifted = PlantSimulator([Scenario(0.005, 0.025, 0.89)], config=CFG, noise=False, backend=backend,
+                                 parameters={f"{drift.name}.{p.name}": change}).run(n)
+        direct = PlantSimulator([Scenario(**scen)], config=direct_cfg, noise=False, backend=backend).run(n)
+        for sig, floor in FLOORS:
+            a, b = getattr(drifted, sig), getattr(direct, sig)
+            assert np.max(np.abs(a - b)) <= 1e-9 * max(np.max(np.abs(b)), floor), (backend, sig, change)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_sensor_stages_with_random_parameters_follow_their_equations(seed):
+    """Random bias, gain and low-pass time constant per signal: the published a1/a2 equal the equation applied
+    here to the nominal run's signals (the low-pass as the exact solution of tau*y' = a - y for a held over
+    each step, y_k = e^(-h/tau)*y_(k-1) + (1 - e^(-h/tau))*a_k, by a plain loop here), on every backend."""
+    rng = np.random.default_rng(seed)
+    names = ("accelerometer_bias", "accelerometer_gain", "accelerometer_lowpass")
+    params = {}
+    for n in names:
+        for p in catalogue()[n].parameters:
+            hi = min(p.bounds[1], 1e-3 if "time_constant" in p.name else p.bounds[1])
+            params[f"{n}.{p.name}"] = float(rng.uniform(p.bounds[0], hi))
+    for backend in ("numba", "numba-scalar"):
+        ch = PlantSimulator([Scenario(0.005)], config=CFG, noise=True, backend=backend, parameters=params).run(3000)
+        base = PlantSimulator([Scenario(0.005)], config=CFG, noise=True, backend=backend).run(3000)
+        for sig in ("a1", "a2"):
+            a = base.__dict__[sig][0]
+            tau = params[f"accelerometer_lowpass.{sig}_time_constant_s"]
+            decay = np.exp(-2e-5 / tau)
+            y = np.empty_like(a)
+            prev = a[0]
+            for k, ak in enumerate(a):
+                prev = decay * prev + (1.0 - decay) * ak
+                y[k] = prev
+            expected = y * (1.0 + params[f"accelerometer_gain.{sig}_relative_change"]) \
+                + params[f"accelerometer_bias.{sig}_m_s2"]
+            assert np.allclose(ch.__dict__[sig][0], expected, rtol=1e-12, atol=1e-9), (backend, sig)
