@@ -201,3 +201,20 @@ def test_live_node_publishes_the_same_effects_as_a_batch_run(ros_env):
         ref = getattr(batch, name)[0]
         assert live.shape == ref.shape
         assert np.allclose(live, ref, rtol=1e-9, atol=1e-9 * np.max(np.abs(ref))), name
+
+
+def test_a_term_that_does_not_compile_is_one_line_error(tmp_path):
+    f = tmp_path / "bad_term.py"
+    f.write_text("from backlash_monitor.plant.effects import Effect, Parameter\n"
+                 "class BadTerm(Effect):\n"
+                 "    name = 'bad_term_effect'\n"
+                 "    balance = 'wheel_torque_Nm'\n"
+                 "    description = 'adds a dict to a number (not allowed in a term)'\n"
+                 "    parameters = (Parameter('k', '-', 0.0, (0.0, 1.0)),)\n"
+                 "    @staticmethod\n"
+                 "    def term(omega2, k):\n"
+                 "        return k * omega2 + {}\n")
+    load_effects_file(f)
+    cfg = load_plant_config(overrides={"simulation.run_in_s": 0.0, "effects.bad_term_effect": True})
+    with pytest.raises(ValueError, match="does not compile.*allowed in a term"):
+        PlantSimulator([Scenario(0.005)], config=cfg, backend="numba-scalar").run(2)

@@ -18,6 +18,8 @@ because the clutch's damper engages with a jump in torque there.
 """
 from __future__ import annotations
 
+import contextlib
+
 import numpy as np
 
 from ._numba import HAVE_NUMBA
@@ -70,6 +72,22 @@ def _rk4_numpy(kernel, x, load, ua, ub, phase, u_amp, P, G, h, out, states, reco
         x[:, i] = y[i]
 
 
+@contextlib.contextmanager
+def _compile_errors(kernel):
+    """A term that numba cannot compile (against the rules of docs/effects.md) -> one-line ValueError."""
+    try:
+        yield
+    except Exception as exc:  # noqa: BLE001 - numba's typing/lowering errors have no common public base
+        if HAVE_NUMBA and type(exc).__module__.startswith("numba"):
+            lines = [ln.strip() for ln in str(exc).splitlines() if ln.strip() and not ln.startswith("Failed in")
+                     and not ln.strip().startswith(("During:", "File ", "^", "\x1b"))]
+            first = (lines[0] if lines else type(exc).__name__)[:200]
+            raise ValueError(f"the generated kernel of the effects {', '.join(kernel.names)} does not compile "
+                             f"({first}); allowed in a term: arithmetic, where(), the mathlib helpers "
+                             f"(docs/effects.md); source: {kernel.path}") from None
+        raise
+
+
 BACKENDS = ("auto", "numba", "numba-scalar", "numpy")
 
 
@@ -105,14 +123,16 @@ def rk4_advance(backend, kernel, x, load, ua, ub, phase, u_amp, P, G, h, record_
     if backend == "numba":
         out = np.empty((sel.size, n_scen, n)) if record_outputs else np.empty((sel.size, 0, 0))
         states = np.empty((N_STATES, n_scen, n)) if record_states else np.empty((N_STATES, 0, 0))
-        kernel.module.rk4_simd(x, *common, out, states, bool(record_states), bool(record_outputs), sel)
+        with _compile_errors(kernel):
+            kernel.module.rk4_simd(x, *common, out, states, bool(record_states), bool(record_outputs), sel)
         return (out if record_outputs else None), (states if record_states else None)
     out = np.empty((N_OUTPUTS, n_scen, n))
     states = np.empty((N_STATES, n_scen, n)) if record_states else np.empty((N_STATES, 0, 0))
-    if backend == "numba-scalar":
-        kernel.module.rk4_scalar(x, *common, out, states, bool(record_states))
-    else:
-        _rk4_numpy(kernel, x, *common, out, states, bool(record_states))
+    with _compile_errors(kernel):
+        if backend == "numba-scalar":
+            kernel.module.rk4_scalar(x, *common, out, states, bool(record_states))
+        else:
+            _rk4_numpy(kernel, x, *common, out, states, bool(record_states))
     if outputs is not None:
         out = out[sel]
     return out, (states if record_states else None)
