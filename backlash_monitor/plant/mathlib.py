@@ -135,6 +135,27 @@ if HAVE_NUMBA:
         """x**n for x >= 0 (0 for x = 0 when n > 0), as exp(n*log x) with the polynomial forms."""
         return exp(n * log(x)) if x > 0.0 else 0.0
 
+    # libm forms for the scalar right-hand side (codegen renames exp -> s_exp ... there)
+    @_jit
+    def s_exp(y):
+        return math.exp(y)
+
+    @_jit
+    def s_log(x):
+        return math.log(x)
+
+    @_jit
+    def s_power(x, n):
+        return math.exp(n * math.log(x)) if x > 0.0 else 0.0
+
+    @_jit
+    def s_sin(x):
+        return math.sin(x)
+
+    @_jit
+    def s_cos(x):
+        return math.cos(x)
+
     @_jit
     def _sincos_kernel(x):
         k = math.floor(x * _TWO_OVER_PI + 0.5)
@@ -173,6 +194,7 @@ else:  # pragma: no cover - without numba the helpers are the numpy ones
 
     def power(x, n):
         return np.power(x, n)
+    s_exp, s_log, s_power, s_sin, s_cos = exp, log, power, sin, cos
 
 
 def _np_power(x, n):
