@@ -4,7 +4,8 @@ Three backends, same scheme, all generated from the enabled effects' terms (:mod
 
 - ``numba`` (default): compiled, samples outer and scenarios inner, each RK4 stage one loop over the
   scenarios around the right-hand side, which LLVM vectorises (SIMD; mathlib's polynomial exp/log/sin);
-- ``numba-scalar``: compiled, scenarios outer, samples inner (the generated ``f_scalar``);
+- ``numba-scalar``: compiled, scenarios outer, samples inner, the state in named locals (the generated
+  ``rk4_scalar``/``f_tuple``, terms with libm exp/log/sin; ``f_scalar`` for the zone-crossing step);
 - ``numpy``: the step vectorised over the scenarios with numpy calls (the same block on arrays).
 
 Per step k (state x_k at t_k = k*h, held load L_k, supply u evaluated at t_k, t_k+h/2, t_k+h):
