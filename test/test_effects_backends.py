@@ -177,3 +177,35 @@ def test_sensor_stages_with_random_parameters_follow_their_equations(seed):
             expected = y * (1.0 + params[f"accelerometer_gain.{sig}_relative_change"]) \
                 + params[f"accelerometer_bias.{sig}_m_s2"]
             assert np.allclose(ch.__dict__[sig][0], expected, rtol=1e-12, atol=1e-9), (backend, sig)
+
+
+def test_generated_simd_stage_vectorises_with_every_catalogue_term(tmp_path):
+    """The stage of the whole catalogue (sin, exp, power, smooth_sign, where ...) compiled afresh (new cache dir,
+    new process: numba's inspection needs a compilation, not a cache load) holds vector double operations and
+    no libm call: a helper that calls libm or branches would turn the loop back into scalar code."""
+    import json
+    import os
+    import subprocess
+    import sys
+    code = (
+        "import json, re, warnings, numpy as np\n"
+        "from backlash_monitor.plant import load_plant_config\n"
+        "from backlash_monitor.plant.codegen import kernel_for, global_vector, N_STATES\n"
+        "from backlash_monitor.plant.effects import enabled_effects\n"
+        "from backlash_monitor.plant.effects import CATALOGUE\n"
+        "cfg = load_plant_config(overrides={f'effects.{c.name}': True for c in CATALOGUE})\n"
+        "k = kernel_for(tuple(enabled_effects(cfg, 'term')))\n"
+        "S = 16; P = np.ones((len(k.param_rows), S))\n"
+        "k.module.stage(np.ones((N_STATES, S)), np.zeros((N_STATES, S)), np.zeros(S), 1.0, 0.0, np.zeros(S), P,"
+        " global_vector(cfg), 0)\n"
+        "ir = k.module.stage.inspect_llvm(k.module.stage.signatures[0])\n"
+        "calls = sorted(set(re.findall(r'call [^@]*@(llvm\\.[\\w.]+|[a-z]\\w*)\\(', ir)))\n"
+        "print(json.dumps({'vec': len(re.findall(r'<[248] x double>', ir)), 'calls': calls}))\n")
+    env = dict(os.environ, BACKLASH_MONITOR_KERNEL_CACHE=str(tmp_path))
+    r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-2000:]
+    found = json.loads(r.stdout.strip().splitlines()[-1])
+    assert found["vec"] > 100, found
+    libm = [c for c in found["calls"] if c.split(".")[-1] in ("exp", "log", "pow", "sin", "cos") or
+            c in ("exp", "log", "pow", "sin", "cos")]
+    assert not libm, found["calls"]

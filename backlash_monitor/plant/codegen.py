@@ -489,7 +489,15 @@ def kernel_for(effect_classes) -> Kernel:
         source = generate_source(effect_classes)
         digest = _cache_key(source)
         d = cache_dir()
-        d.mkdir(parents=True, exist_ok=True)
+        try:
+            d.mkdir(parents=True, exist_ok=True)
+            probe = d / f".probe.{os.getpid()}"
+            probe.write_text("")
+            probe.unlink()
+        except OSError:                      # read-only home: a per-user directory under the temp dir
+            import tempfile
+            d = Path(tempfile.gettempdir()) / f"backlash_monitor_kernels_{os.getuid() if hasattr(os, 'getuid') else 0}"
+            d.mkdir(parents=True, exist_ok=True)
         path = d / f"kernel_{digest}.py"
         if not path.is_file() or path.read_text() != source:
             tmp = d / f".kernel_{digest}.{os.getpid()}.tmp"
