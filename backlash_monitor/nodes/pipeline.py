@@ -65,6 +65,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--overwrite", action="store_true",
                         help="with --record: replace an existing file (the new recording replaces it "
                              "only once it is complete)")
+    parser.add_argument("--set", dest="plant_set", action="append", default=[], metavar="SECTION.KEY=VALUE",
+                        help="plant config override as in `simulate --set`, e.g. --set effects.wheel_coulomb_friction=true "
+                             "--set wheel_coulomb_friction.torque_Nm=1.5 (docs/effects.md); repeatable")
+    parser.add_argument("--effects", dest="effects_files", action="append", default=[], metavar="FILE.py",
+                        help="a Python file with your own Effect classes for the plant (docs/effects.md); repeatable")
 
 
 def validate(args) -> None:
@@ -103,6 +108,8 @@ def node_parameters(args) -> dict[str, dict]:
         "plant_simulator": dict(drive_name=args.drive_name, width_m=args.width_m, eta_k=args.eta_k,
                                 n1=args.n1, seed=args.seed, rate_factor=args.rate_factor,
                                 duration_s=args.duration, qos="reliable",
+                                plant_set=";".join(getattr(args, "plant_set", None) or []),
+                                effects_files=";".join(getattr(args, "effects_files", None) or []),
                                 # the readers the stream is for (not a count: another subscriber
                                 # in the domain must not start it early)
                                 wait_for_subscribers=[WINDOWING_READS]
