@@ -91,7 +91,7 @@ def test_common_random_numbers_share_the_noise():
 def test_simulate_set_switches_a_catalogue_effect(tmp_path):
     out = tmp_path / "s.npz"
     args = ["simulate", "--widths", "0.005", "--eta-k", "0.025", "--n1", "0.89", "--duration", "0.02",
-            "--no-noise", "--quiet", "--set", "simulation.run_in_s=0", "-o", str(out)]
+            "--no-noise", "--quiet", "--overwrite", "--set", "simulation.run_in_s=0", "-o", str(out)]
     assert main(args + ["--set", "effects.mass_force_offset=true", "--set", "mass_force_offset.force_N=5"]) == 0
     with_effect = np.load(out)["a2"]
     assert main(args) == 0
