@@ -218,3 +218,31 @@ def test_a_term_that_does_not_compile_is_one_line_error(tmp_path):
     cfg = load_plant_config(overrides={"simulation.run_in_s": 0.0, "effects.bad_term_effect": True})
     with pytest.raises(ValueError, match="does not compile.*allowed in a term"):
         PlantSimulator([Scenario(0.005)], config=cfg, backend="numba-scalar").run(2)
+
+
+def test_sensor_plugin_stage_acts_on_the_published_signal():
+    """A user's sensor stage (kind 'sensor', apply(signal, a, values, state, h)): an accelerometer range limit."""
+    from backlash_monitor.plant import effects as E
+
+    class AccelerometerRange(Effect):
+        name = "test_accelerometer_range"
+        balance = E.SENSOR_BALANCE
+        kind = "sensor"
+        order = 3                    # after the built-in low-pass (0), gain (1), bias (2)
+        description = "the accelerometer saturates at +-limit"
+        parameters = (Parameter("a1_limit_m_s2", "m/s^2", 1000.0, (0.0, 1e4)),
+                      Parameter("a2_limit_m_s2", "m/s^2", 1000.0, (0.0, 1e4)))
+
+        @staticmethod
+        def apply(signal, a, values, state, h):
+            lim = values[f"{signal}_limit_m_s2"][:, None]
+            return np.clip(a, -lim, lim)
+
+    E.register(AccelerometerRange)
+    cfg = load_plant_config(overrides={"simulation.run_in_s": 0.0, "effects.test_accelerometer_range": True,
+                                       "test_accelerometer_range.a1_limit_m_s2": 5.0})
+    base = PlantSimulator([Scenario(0.005)], config=load_plant_config(overrides={"simulation.run_in_s": 0.0}),
+                          noise=True).run(4000)
+    ch = PlantSimulator([Scenario(0.005)], config=cfg, noise=True).run(4000)
+    assert np.array_equal(ch.a1, np.clip(base.a1, -5.0, 5.0)) and np.max(np.abs(base.a1)) > 5.0
+    assert np.array_equal(ch.a2, base.a2) and np.array_equal(ch.omega1, base.omega1)
