@@ -13,6 +13,7 @@ EXECUTABLES = {
     "classifier": "backlash_monitor.nodes.classifier:main",
     "chain": "backlash_monitor.nodes.chain_container:main",
     "pipeline": "backlash_monitor.nodes.pipeline:main",
+    "fleet": "backlash_monitor.nodes.fleet:main",
     "record": "backlash_monitor.nodes.record:main",
     "replay": "backlash_monitor.nodes.replay:main",
     "chunk_talker": "backlash_monitor.nodes.chunk_talker:main",

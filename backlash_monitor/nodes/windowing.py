@@ -65,7 +65,7 @@ class WindowingNode(Node):
         self.joiner = ChunkJoiner(self.signals)
         self.true_width_m = math.nan
         self.stream_start_s = None
-        self.counts = {"windows": 0, "discarded": 0, "chunks": 0}
+        self.counts = {"windows": 0, "onsets": 0, "discarded": 0, "chunks": 0}
         self.last_discard = ""
         qos = chunk_qos(p["qos"])
         for name in self.signals:
@@ -125,6 +125,7 @@ class WindowingNode(Node):
         msg.true_width_m = self.true_width_m
         self.publisher.publish(msg)
         self.counts["windows"] += 1
+        self.counts["onsets"] += window.kind == "onset"
 
 
 def main(args=None):

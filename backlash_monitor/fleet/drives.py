@@ -1,0 +1,139 @@
+"""The drives of a fleet: names, namespaces, hardware ids and each node's parameters.
+
+A fleet is given either as a count (``fleet --drives 8``: drive01..drive08 on line1, the same
+plant with seeds 1..8) or as a YAML file (config/fleet.yaml)::
+
+    defaults: {width_m: 0.005, n1: 0.89}     # optional, for every drive
+    lines:
+      line1:
+        drive01: {width_m: 0.004, seed: 1}
+        drive02: {}
+
+Drive ``drive07`` of ``line1`` runs in the namespace ``/line1/drive07`` (its topics are
+``/line1/drive07/plant/a1``, ``.../estimate``); its diagnostics carry hardware_id
+``line1/drive07``, unique in the fleet, and status names ``line1/drive07/<node>: <task>``.
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from backlash_monitor.errors import UsageError
+
+# Per-drive keys and the nodes they go to. The values are checked by the nodes themselves (their
+# declared ranges, nodes/parameters.py); a bad one stops that drive with one clear line.
+PLANT_KEYS = ("width_m", "eta_k", "n1", "seed", "noise")
+CLASSIFIER_KEYS = ("mode", "n1", "trigger", "fusion_events", "warn_width_m", "error_width_m")
+WINDOWING_KEYS = ("trigger",)
+DRIVE_KEYS = tuple(sorted(set(PLANT_KEYS + CLASSIFIER_KEYS + WINDOWING_KEYS)))
+
+NAME_PATTERN = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")   # a ROS name token: namespaces, node names
+DEFAULT_LINE = "line1"
+DEFAULT_WIDTH_M = 0.005
+
+
+@dataclass(frozen=True)
+class Drive:
+    line: str
+    name: str
+    parameters: dict = field(default_factory=dict)
+
+    @property
+    def namespace(self) -> str:
+        return f"/{self.line}/{self.name}"
+
+    @property
+    def hardware_id(self) -> str:
+        return f"{self.line}/{self.name}"
+
+    def node_parameters(self, duration_s: float = 0.0, rate_factor: float = 1.0,
+                        wait_for_subscriptions: int = 3) -> dict[str, dict]:
+        """{node name: {parameter: value}} for this drive's plant and chain."""
+        p = self.parameters
+        trigger = p.get("trigger", "contact_loss")
+        plant = {k: p[k] for k in PLANT_KEYS if k in p}
+        plant.setdefault("width_m", DEFAULT_WIDTH_M)
+        plant.update(drive_name=self.hardware_id, rate_factor=float(rate_factor),
+                     duration_s=float(duration_s), qos="reliable",
+                     wait_for_subscriptions=int(wait_for_subscriptions))
+        windowing = dict(drive_name=self.hardware_id, qos="reliable", trigger=trigger,
+                         width_m=float(plant["width_m"]) if trigger == "paper" else 0.0)
+        classifier = {k: p[k] for k in CLASSIFIER_KEYS if k in p}
+        classifier["drive_name"] = self.hardware_id
+        return {"plant_simulator": plant, "windowing": windowing, "denoise": {},
+                "classifier": classifier}
+
+    def to_dict(self) -> dict:
+        return {"line": self.line, "name": self.name, "parameters": dict(self.parameters)}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "Drive":
+        return cls(d["line"], d["name"], dict(d.get("parameters", {})))
+
+
+def _check_name(kind: str, name) -> str:
+    if not isinstance(name, str) or not NAME_PATTERN.match(name):
+        raise UsageError(f"{kind} name {name!r} is not allowed; allowed: a letter, then letters, "
+                         "digits or '_' (it becomes a ROS namespace)")
+    return name
+
+
+def _check_keys(where: str, params) -> dict:
+    if params is None:
+        return {}
+    if not isinstance(params, dict):
+        raise UsageError(f"{where}: {params!r} is not a mapping; allowed: {{key: value}} with keys "
+                         + ", ".join(DRIVE_KEYS))
+    unknown = sorted(set(params) - set(DRIVE_KEYS))
+    if unknown:
+        raise UsageError(f"{where}: unknown key(s) {', '.join(map(str, unknown))}; allowed: "
+                         + ", ".join(DRIVE_KEYS))
+    return dict(params)
+
+
+def drives_from_count(count: int, line: str = DEFAULT_LINE, width_m: float = DEFAULT_WIDTH_M) \
+        -> list[Drive]:
+    """drive01..driveNN on ``line``: the same plant, disturbance seeds 1..N."""
+    if not isinstance(count, int) or count < 1 or count > 999:
+        raise UsageError(f"--drives = {count!r}; allowed: 1 .. 999")
+    _check_name("line", line)
+    digits = max(2, len(str(count)))
+    return [Drive(line, f"drive{i:0{digits}d}", {"width_m": width_m, "seed": i})
+            for i in range(1, count + 1)]
+
+
+def drives_from_config(config: dict, source: str = "fleet file") -> list[Drive]:
+    """The drives of a parsed fleet YAML (see the module doc)."""
+    if not isinstance(config, dict) or not isinstance(config.get("lines"), dict) \
+            or not config["lines"]:
+        raise UsageError(f"{source}: needs 'lines: {{line1: {{drive01: {{...}}, ...}}}}' with at "
+                         "least one line and drive")
+    unknown = sorted(set(config) - {"defaults", "lines"})
+    if unknown:
+        raise UsageError(f"{source}: unknown key(s) {', '.join(map(str, unknown))}; allowed: "
+                         "defaults, lines")
+    defaults = _check_keys(f"{source}: defaults", config.get("defaults"))
+    drives = []
+    for line, members in config["lines"].items():
+        _check_name("line", line)
+        if not isinstance(members, dict) or not members:
+            raise UsageError(f"{source}: line {line} lists no drives; allowed: "
+                             "{drive01: {...}, ...}")
+        for name, params in members.items():
+            _check_name("drive", name)
+            drives.append(Drive(line, name, {**defaults, **_check_keys(
+                f"{source}: {line}/{name}", params)}))
+    return drives
+
+
+def load_drives(path: str) -> list[Drive]:
+    import yaml
+    try:
+        with open(path, encoding="utf-8") as f:
+            config = yaml.safe_load(f)
+    except OSError as error:
+        raise UsageError(f"fleet file {path}: {error.strerror}; give a readable YAML file") from None
+    except yaml.YAMLError as error:
+        raise UsageError(f"fleet file {path} is not valid YAML: "
+                         f"{str(error).splitlines()[0]}") from None
+    return drives_from_config(config, source=f"fleet file {path}")

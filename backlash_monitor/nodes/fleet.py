@@ -1,0 +1,373 @@
+"""fleet: N simulated drives on one machine, each in its namespace, with one diagnostics view.
+
+    python -m backlash_monitor fleet --drives 8 --duration 30        # from this repo
+    python -m backlash_monitor fleet --config config/fleet.yaml      # drives and their parameters
+    ros2 run backlash_monitor fleet --drives 8                       # in a ROS 2 install
+
+Drive ``drive07`` of ``line1`` runs its plant simulator, windowing, denoise and classifier nodes in
+the namespace ``/line1/drive07``; every node publishes its status on the one absolute
+``/diagnostics`` with hardware_id ``line1/drive07``. Layout ``process`` (the default, see
+docs/fleet.md for the measurement) runs each drive in a process of its own; ``single`` runs every
+drive's nodes in this one process, on one executor. This process shows the aggregator view of
+config/fleet_aggregator.yaml's analyzers (a table per drive, once a second; STALE for a drive not
+heard for 3 s) and ends with a summary per drive: chunks, discarded windows, onset windows and
+estimates, the estimate's lag behind the stream, CPU, and whether the drive was monitored in real
+time (every chunk taken, no window discarded, every onset window classified, lag under 1 s).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+
+LAYOUTS = ("process", "single")
+DEFAULT_LAYOUT = "process"     # holds more drives in real time (docs/fleet.md)
+CHUNK_S = 1000 * 2e-5          # the plant's default chunk: 1000 samples at 50 kHz
+WINDOW_END_S = (200 + 2048) * 2e-5   # entry -> last sample of a contact_loss window
+REALTIME_LAG_S = 1.0           # a chain that keeps up answers within tens of ms; one that falls
+                               # behind lags more with every second of stream
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--drives", type=int, default=0, metavar="N",
+                        help="simulate N drives drive01..driveNN on --line (default: 4 unless "
+                             "--config is given)")
+    parser.add_argument("--config", default="", metavar="FLEET.yaml",
+                        help="the drives and their parameters per line (config/fleet.yaml shows "
+                             "the format)")
+    parser.add_argument("--line", default="line1", help="the line of the --drives drives")
+    parser.add_argument("--width-m", type=float, default=0.005,
+                        help="backlash width of the --drives drives' simulated clutches [m]")
+    parser.add_argument("--duration", type=float, default=10.0,
+                        help="simulated seconds per drive")
+    parser.add_argument("--rate-factor", type=float, default=1.0,
+                        help="simulated seconds per wall second (1 = real time)")
+    parser.add_argument("--layout", choices=LAYOUTS, default=DEFAULT_LAYOUT,
+                        help="'process': one process per drive; 'single': every drive in this "
+                             "process on one executor")
+    parser.add_argument("--view-period", type=float, default=1.0, metavar="S",
+                        help="print the aggregator table every S seconds (0: only the summary)")
+    parser.add_argument("--analyzers", default="", metavar="FILE",
+                        help="diagnostic_aggregator analyzer file the view applies (default: the "
+                             "one --aggregator-yaml would write for these drives; "
+                             "config/fleet_aggregator.yaml is config/fleet.yaml's)")
+    parser.add_argument("--aggregator-yaml", default="", metavar="FILE",
+                        help="write diagnostic_aggregator's analyzer file for these drives to FILE "
+                             "and exit")
+    parser.add_argument("--summary-json", default="", metavar="FILE",
+                        help="also write the per-drive summary as JSON")
+    parser.add_argument("--drive-json", default="", help=argparse.SUPPRESS)   # a drive's process
+
+
+def validate(args):
+    from backlash_monitor.errors import UsageError
+    from backlash_monitor.fleet.drives import drives_from_count, load_drives
+    for name, value, lo, hi in (("--duration", args.duration, 0.1, 1e6),
+                                ("--rate-factor", args.rate_factor, 0.01, 1000.0),
+                                ("--width-m", args.width_m, 1e-4, 0.05),
+                                ("--view-period", args.view_period, 0.0, 3600.0)):
+        if not (lo <= value <= hi):
+            raise UsageError(f"{name} = {value:g} is out of range; allowed: {lo:g} .. {hi:g}")
+    if args.config and args.drives:
+        raise UsageError("give --drives or --config, not both")
+    if args.config:
+        return load_drives(args.config)
+    return drives_from_count(args.drives or 4, line=args.line, width_m=args.width_m)
+
+
+def load_analyzers(path: str) -> dict:
+    import yaml
+    from backlash_monitor.errors import UsageError
+    from backlash_monitor.fleet.aggregator import AggregatorView
+    try:
+        with open(path, encoding="utf-8") as f:
+            config = yaml.safe_load(f)
+        AggregatorView(config)
+    except OSError as error:
+        raise UsageError(f"analyzer file {path}: {error.strerror}") from None
+    except (yaml.YAMLError, ValueError, KeyError, TypeError, AttributeError) as error:
+        raise UsageError(f"analyzer file {path} is not a diagnostic_aggregator parameters file "
+                         f"({str(error).splitlines()[0]}); config/fleet_aggregator.yaml shows "
+                         "one") from None
+    return config
+
+
+def drive_node_factories(drive, duration_s: float, rate_factor: float) -> list:
+    """Builders of one drive's nodes in its namespace, downstream first (each reader exists before
+    its writer publishes)."""
+    from rclpy.parameter import Parameter
+    from backlash_monitor.nodes.classifier import ClassifierNode
+    from backlash_monitor.nodes.denoise import DenoiseNode
+    from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode
+    from backlash_monitor.nodes.windowing import WindowingNode
+    params = drive.node_parameters(duration_s, rate_factor)
+    out = []
+    for cls, name in ((ClassifierNode, "classifier"), (DenoiseNode, "denoise"),
+                      (WindowingNode, "windowing"), (PlantSimulatorNode, "plant_simulator")):
+        overrides = [Parameter(k, value=v) for k, v in params[name].items()]
+        out.append(lambda cls=cls, overrides=overrides: cls(namespace=drive.namespace,
+                                                            parameter_overrides=overrides))
+    return out
+
+
+@dataclass
+class DriveTally:
+    onsets_estimated: set = field(default_factory=set)
+    lags_s: list = field(default_factory=list)
+    fused_width_m: float = math.nan
+    true_width_m: float = math.nan
+    windowing: dict = field(default_factory=dict)
+    classifier: dict = field(default_factory=dict)
+    level: str = "STALE"
+    status_times: list = field(default_factory=list)   # wall times of the classifier's statuses
+    cpu_s: float = math.nan          # CPU share over the stream [%]
+    stream_mark: tuple | None = None   # (monotonic, CPU seconds) when its first chunk was reported
+
+
+class FleetMonitor:
+    """Takes /diagnostics and every drive's estimates; keeps the aggregator view and the tallies."""
+
+    def __init__(self, node, drives, aggregator_config: dict, rate_factor: float):
+        from diagnostic_msgs.msg import DiagnosticArray
+        from backlash_monitor.fleet.aggregator import AggregatorView
+        from backlash_monitor.nodes.qos import DIAGNOSTICS_DEPTH, ESTIMATE_QOS
+        from backlash_monitor_msgs.msg import BacklashEstimate
+        self.rate_factor = rate_factor
+        self.view = AggregatorView(aggregator_config, now_s=time.monotonic())
+        self.tally = {d.hardware_id: DriveTally() for d in drives}
+        node.create_subscription(DiagnosticArray, "/diagnostics", self.on_diagnostics,
+                                 DIAGNOSTICS_DEPTH * max(1, len(drives)))
+        for d in drives:
+            node.create_subscription(BacklashEstimate, f"{d.namespace}/estimate",
+                                     lambda msg, h=d.hardware_id: self.on_estimate(h, msg),
+                                     ESTIMATE_QOS)
+
+    def on_estimate(self, hardware_id: str, msg) -> None:
+        t = self.tally[hardware_id]
+        if msg.entry_sample_index not in t.onsets_estimated and self.rate_factor == 1.0:
+            stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+            t.lags_s.append(time.time() - (stamp + WINDOW_END_S))
+        t.onsets_estimated.add(msg.entry_sample_index)
+        t.fused_width_m = msg.fused_width_m
+        t.true_width_m = msg.true_width_m
+
+    def on_diagnostics(self, msg) -> None:
+        from backlash_monitor.fleet.aggregator import LEVEL_NAMES
+        now = time.monotonic()
+        for status in msg.status:
+            level = status.level if isinstance(status.level, int) else ord(status.level)
+            values = {kv.key: kv.value for kv in status.values}
+            self.view.update(status.name, level, status.message, status.hardware_id, values, now)
+            t = self.tally.get(status.hardware_id)
+            if t is None:
+                continue
+            if status.name.endswith("classifier: backlash width"):
+                t.classifier = values
+                t.level = LEVEL_NAMES[min(level, 3)]
+                t.status_times.append(time.time())
+            elif status.name.endswith("windowing: windowing"):
+                t.windowing = values
+
+    def drive_done(self, hardware_id: str, expected_chunks: int) -> bool:
+        t = self.tally[hardware_id]
+        w = t.windowing
+        return (int(w.get("chunks", 0)) >= expected_chunks
+                and len(t.onsets_estimated) >= int(w.get("onsets", 0)))
+
+    def summary(self, drives, expected_chunks: int) -> list[dict]:
+        rows = []
+        for d in drives:
+            t = self.tally[d.hardware_id]
+            w = t.windowing
+            lags = sorted(t.lags_s)
+            onsets = int(w.get("onsets", 0))
+            row = {"drive": d.hardware_id, "true_width_m": t.true_width_m,
+                   "fused_width_m": t.fused_width_m, "level": t.level,
+                   "chunks": int(w.get("chunks", 0)), "expected_chunks": expected_chunks,
+                   "discarded": int(w.get("discarded", 0)),
+                   "incomplete_chunks": int(w.get("incomplete_chunks", 0)),
+                   "onset_windows": onsets, "onsets_estimated": len(t.onsets_estimated),
+                   "lag_ms_median": lags[len(lags) // 2] * 1e3 if lags else math.nan,
+                   "lag_ms_max": lags[-1] * 1e3 if lags else math.nan,
+                   "cpu_percent": t.cpu_s, "status_times": t.status_times}
+            row["realtime"] = bool(
+                row["chunks"] >= expected_chunks and row["discarded"] == 0
+                and row["incomplete_chunks"] == 0 and onsets > 0
+                and row["onsets_estimated"] >= onsets
+                and (not lags or lags[-1] <= REALTIME_LAG_S))
+            rows.append(row)
+        return rows
+
+
+def format_summary(rows: list[dict]) -> str:
+    head = ("drive", "true", "fused", "level", "chunks", "discarded", "onsets", "estimated",
+            "lag p50/max", "CPU", "real time")
+    table = [head]
+    for r in rows:
+        def mm(x):
+            return "-" if x != x else f"{x * 1e3:.2f} mm"
+        table.append((r["drive"], mm(r["true_width_m"]), mm(r["fused_width_m"]), r["level"],
+                      f"{r['chunks']}/{r['expected_chunks']}", str(r["discarded"]),
+                      str(r["onset_windows"]), str(r["onsets_estimated"]),
+                      "-" if r["lag_ms_median"] != r["lag_ms_median"]
+                      else f"{r['lag_ms_median']:.0f}/{r['lag_ms_max']:.0f} ms",
+                      "-" if r["cpu_percent"] != r["cpu_percent"] else f"{r['cpu_percent']:.0f} %",
+                      "yes" if r["realtime"] else "NO"))
+    widths = [max(len(row[i]) for row in table) for i in range(len(head))]
+    lines = ["  ".join(c.rjust(w) for c, w in zip(row, widths)) for row in table]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    n_rt = sum(r["realtime"] for r in rows)
+    return "\n".join(lines + [f"{n_rt} of {len(rows)} drives monitored in real time"])
+
+
+def _cpu_seconds(pid: int) -> float:
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, IndexError, ValueError):
+        return math.nan
+
+
+def run_one_drive(args) -> int:
+    """A drive's own process (layout 'process'): its four nodes on one executor."""
+    from backlash_monitor.fleet.drives import Drive
+    from backlash_monitor.nodes.runtime import run_nodes
+    drive = Drive.from_dict(json.loads(args.drive_json))
+    return run_nodes(drive_node_factories(drive, args.duration, args.rate_factor))
+
+
+def run(args) -> int:
+    if args.drive_json:
+        return run_one_drive(args)
+    drives = validate(args)
+    from backlash_monitor.fleet.aggregator import analyzer_config, format_table
+    config = analyzer_config(drives)
+    if args.analyzers:
+        config = load_analyzers(args.analyzers)
+    if args.aggregator_yaml:
+        import yaml
+        with open(args.aggregator_yaml, "w", encoding="utf-8") as f:
+            f.write("# diagnostic_aggregator analyzers for the fleet (written by `fleet "
+                    "--aggregator-yaml`)\n")
+            yaml.safe_dump(config, f, sort_keys=False, default_flow_style=None, width=1000)
+        print(f"fleet: wrote the analyzers of {len(drives)} drives to {args.aggregator_yaml}")
+        return 0
+    import rclpy
+    from rclpy.executors import ExternalShutdownException
+    from backlash_monitor.nodes.fast_dds import configure_fast_dds
+    from backlash_monitor.nodes.lean_executor import make_executor
+    from backlash_monitor.nodes.parameters import ParameterValueError
+    from backlash_monitor.nodes.runtime import freeze_startup_objects
+    configure_fast_dds()   # before rclpy.init; the drives' processes inherit it
+    expected_chunks = int(round(args.duration / CHUNK_S))
+    children: dict[str, subprocess.Popen] = {}
+    nodes, executor = [], None
+    rclpy.init()
+    started = time.monotonic()
+    try:
+        monitor_node = rclpy.create_node("fleet_monitor")
+        nodes.append(monitor_node)
+        monitor = FleetMonitor(monitor_node, drives, config, args.rate_factor)
+        if args.layout == "process":
+            for d in drives:
+                children[d.hardware_id] = subprocess.Popen(
+                    [sys.executable, "-m", "backlash_monitor.nodes.fleet",
+                     "--drive-json", json.dumps(d.to_dict()), "--duration", str(args.duration),
+                     "--rate-factor", str(args.rate_factor)])
+        else:
+            for d in drives:
+                for factory in drive_node_factories(d, args.duration, args.rate_factor):
+                    nodes.append(factory())
+        executor = make_executor()
+        for node in nodes:
+            executor.add_node(node)
+        freeze_startup_objects()
+
+        def cpu_of(hardware_id: str) -> float:
+            """CPU seconds of the drive's process, or this process's share per drive."""
+            if hardware_id in children:
+                return _cpu_seconds(children[hardware_id].pid)
+            return time.process_time() / len(drives)
+        print(f"fleet: {len(drives)} drives ({', '.join(sorted({d.line for d in drives}))}), "
+              f"layout {args.layout}, {args.duration:g} simulated s at x{args.rate_factor:g}",
+              flush=True)
+        wall_limit = args.duration / args.rate_factor + 60.0 + 2.0 * len(drives)
+        next_view = time.monotonic() + args.view_period
+        done_since = None
+        while rclpy.ok() and time.monotonic() - started < wall_limit:
+            executor.spin_once(timeout_sec=0.05)
+            now = time.monotonic()
+            if args.view_period and now >= next_view:
+                next_view = now + args.view_period
+                print(("\x1b[H\x1b[2J" if sys.stdout.isatty() else "")
+                      + format_table(monitor.view, now), flush=True)
+            for h, t in monitor.tally.items():   # CPU is counted from the stream's start
+                if t.stream_mark is None and int(t.windowing.get("chunks", 0)) > 0:
+                    t.stream_mark = (now, cpu_of(h))
+            if all(monitor.drive_done(d.hardware_id, expected_chunks) for d in drives):
+                done_since = done_since or now
+                if now - done_since > 1.5:    # one more status from every drive
+                    break
+            for hardware_id, child in children.items():
+                if child.poll() not in (None, 0):
+                    print(f"fleet: drive {hardware_id}'s process exited with code "
+                          f"{child.returncode}", file=sys.stderr)
+                    return 1
+        wall = time.monotonic() - started
+        end = (time.monotonic(), {h: cpu_of(h) for h in monitor.tally})
+        for h, t in monitor.tally.items():
+            if t.stream_mark is not None and end[0] > t.stream_mark[0]:
+                t.cpu_s = 100.0 * (end[1][h] - t.stream_mark[1]) / (end[0] - t.stream_mark[0])
+    except ParameterValueError as error:
+        print(f"fleet: error: {error}", file=sys.stderr)
+        return 2
+    except (KeyboardInterrupt, ExternalShutdownException):
+        print("fleet: interrupted", file=sys.stderr)
+    finally:
+        for child in children.values():
+            if child.poll() is None:
+                child.send_signal(signal.SIGINT)
+        for child in children.values():
+            try:
+                child.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                child.kill()
+        if executor is not None:
+            executor.shutdown()
+        for node in nodes:
+            node.destroy_node()
+        rclpy.try_shutdown()
+    rows = monitor.summary(drives, expected_chunks)
+    print(format_table(monitor.view, time.monotonic()))
+    print(format_summary(rows), flush=True)
+    if args.summary_json:
+        with open(args.summary_json, "w", encoding="utf-8") as f:
+            json.dump({"layout": args.layout, "duration_s": args.duration,
+                       "rate_factor": args.rate_factor, "wall_s": wall, "drives": rows}, f)
+    return 0 if rows and all(r["onsets_estimated"] for r in rows) else 1
+
+
+def main(argv=None) -> int:
+    """`ros2 run backlash_monitor fleet [options]` (ROS arguments are passed through)."""
+    from rclpy.utilities import remove_ros_args
+    from backlash_monitor.errors import UsageError
+    parser = argparse.ArgumentParser(prog="fleet", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_arguments(parser)
+    args = parser.parse_args(remove_ros_args(sys.argv if argv is None else argv)[1:])
+    try:
+        return run(args)
+    except UsageError as error:
+        print(f"fleet: error: {error}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

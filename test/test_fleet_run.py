@@ -1,0 +1,27 @@
+"""`fleet`: several simulated drives on this machine, each in its namespace, in both layouts."""
+import json
+import subprocess
+import sys
+
+import pytest
+
+
+@pytest.mark.parametrize("layout", ["process", "single"])
+def test_two_drives_each_report_their_own_estimates_and_diagnostics(ros_env, tmp_path, layout):
+    summary = tmp_path / "summary.json"
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "fleet", "--drives", "2",
+                           "--width-m", "0.0075", "--duration", "2.5", "--layout", layout,
+                           "--view-period", "0", "--summary-json", str(summary)],
+                          env=ros_env, capture_output=True, text=True, timeout=150)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    rows = {r["drive"]: r for r in json.loads(summary.read_text())["drives"]}
+    assert set(rows) == {"line1/drive01", "line1/drive02"}
+    for row in rows.values():
+        # 2.5 s of stream: 125 chunks, 10 onsets (one every 0.25 s, README).
+        assert row["chunks"] == row["expected_chunks"] == 125, row
+        assert row["discarded"] == 0
+        assert row["onset_windows"] == 10 and row["onsets_estimated"] == 10, row
+        assert row["true_width_m"] == 0.0075
+        assert row["level"] == "WARN"      # fused 7.5 mm >= warn_width_m (config/diagnostics.yaml)
+        assert row["status_times"], row    # its classifier's status reached /diagnostics
+    assert "line1/drive02" in proc.stdout and "Traceback" not in proc.stderr
