@@ -34,7 +34,9 @@ CSV_COLUMNS = ("entry_sample_index", "entry_time_s", "signal", "mode", "width_m"
 
 
 def add_arguments(parser) -> None:
-    parser.add_argument("bag", help="MCAP file recorded from a drive (or by `simulate --mcap`)")
+    parser.add_argument("bag", help="MCAP file recorded from a drive (or by `simulate --mcap`); "
+                                    "a folder or a quoted glob of them: every bag in parallel, "
+                                    "into one fleet table (backlash_monitor/fleet/analyze.py)")
     parser.add_argument("--out", default="",
                         help="output prefix (default: the bag's path without .mcap, plus "
                              "'.estimates'): writes PREFIX.csv, PREFIX.json, PREFIX.mcap")
@@ -63,6 +65,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--overwrite", action="store_true",
                         help="replace existing output files (never the analysed bag itself); "
                              "without it an existing output is an error")
+    from backlash_monitor.fleet.analyze import add_arguments as add_many_arguments
+    add_many_arguments(parser)
 
 
 def output_paths(out_prefix) -> dict[str, pathlib.Path]:
@@ -86,6 +90,9 @@ def _find_topic(available, namespace, name):
 
 def run(args) -> int:
     from backlash_monitor.commands import UsageError
+    from backlash_monitor.fleet.analyze import is_many, run_many
+    if is_many(args.bag):
+        return run_many(args)
     from backlash_monitor.commands._memory import reuse_freed_memory
     from backlash_monitor.bag import BagError, BagReader, BagWriter
     from backlash_monitor.chain import BlockFeeder, ChunkJoiner, WindowingStage, denoise_pairs

@@ -1,0 +1,262 @@
+"""`analyze FOLDER` / `analyze 'GLOB'`: many recordings in parallel, into one fleet table.
+
+Each bag goes through the single-bag `analyze` unchanged (its CSV, JSON and MCAP of estimates, in
+``--out DIR``); the bags run in parallel on this machine's cores (a process pool, ``--jobs``), or
+on a Dask cluster (``--engine dask``: ``--scheduler tcp://host:8786`` for an existing cluster of
+many machines, a local cluster otherwise; dask and distributed are an optional extra). Every worker
+must see the bags under the same path (shared storage) and have backlash_monitor installed.
+
+The fleet table (DIR/fleet.csv and .json, printed at the end) has one row per recording: drive
+(the chunks' frame_id), time (the first sample's stamp, UTC), the median per-window width (a1+a2
+continuous where the mode gives it), the last fused width, and the drive's trend over all its
+recordings (backlash_monitor/fleet/trend.py, config/trend.yaml: WARN for a drive that grows faster
+than the configured rate, before it reaches the limit), with a plot per drive and a fleet plot.
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import csv
+import glob
+import io
+import json
+import math
+import os
+import statistics
+import time
+from datetime import datetime, timezone
+from pathlib import Path
+
+from backlash_monitor.errors import UsageError
+
+ENGINES = ("local", "dask")
+ESTIMATES_SUFFIX = ".estimates.mcap"   # what analyze writes: never an input
+
+
+def add_arguments(parser) -> None:
+    """The options of the many-bag path (added to `analyze`'s)."""
+    group = parser.add_argument_group("many recordings (BAG is a folder or a quoted glob)")
+    group.add_argument("--jobs", type=int, default=0,
+                       help="bags analysed at once (default: this machine's cores; 1: one after "
+                            "the other in this process)")
+    group.add_argument("--engine", choices=ENGINES, default="local",
+                       help="'local': a process pool on this machine; 'dask': a Dask cluster "
+                            "(optional extra: pip install dask distributed)")
+    group.add_argument("--scheduler", default="",
+                       help="address of an existing Dask scheduler (tcp://host:8786); default: a "
+                            "local cluster with --jobs workers")
+    group.add_argument("--trend-config", default="",
+                       help="trend rule file (default: the packaged config/trend.yaml)")
+    group.add_argument("--no-plots", action="store_true", help="write no trend plots")
+
+
+def is_many(bag: str) -> bool:
+    return os.path.isdir(bag) or any(c in bag for c in "*?[")
+
+
+def expand_bags(spec: str) -> list[Path]:
+    if os.path.isdir(spec):
+        found = Path(spec).glob("*.mcap")
+    else:
+        found = (Path(p) for p in glob.glob(spec))
+    bags = sorted(p for p in found if p.is_file() and not p.name.endswith(ESTIMATES_SUFFIX))
+    if not bags:
+        raise UsageError(f"no .mcap bags in {spec!r}; give a folder of bags or a quoted glob "
+                         "such as 'recordings/*.mcap'")
+    return bags
+
+
+def _bag_identity(path: Path, namespace: str) -> tuple[str, float]:
+    """(drive, time of the first sample [s since the epoch]) from the bag's first a1 chunk."""
+    from backlash_monitor.bag import BagReader
+    from backlash_monitor.commands.analyze import _find_topic
+    with BagReader(path) as reader:
+        topic = _find_topic(set(reader.topics), namespace, "a1")
+        for m in reader.signal_chunks([topic]):
+            stamp = m.stamp.sec + m.stamp.nanosec * 1e-9 - m.first_sample_index * m.sample_period_s
+            return (m.frame_id or path.stem), stamp
+    return path.stem, math.nan
+
+
+def analyze_one(job: dict) -> dict:
+    """One bag through the single-bag `analyze` (a worker's task); returns its fleet-table row."""
+    from backlash_monitor.commands import analyze
+    args = argparse.Namespace(**job["options"])
+    args.bag, args.out = job["bag"], job["out"]
+    started = time.perf_counter()
+    row = {"bag": job["bag"], "drive": "", "time_s": math.nan, "width_m": math.nan,
+           "fused_width_m": math.nan, "true_width_m": math.nan, "onsets": 0, "discarded": 0,
+           "error": ""}
+    try:
+        with contextlib.redirect_stdout(io.StringIO()):
+            analyze.run(args)
+        row["drive"], row["time_s"] = _bag_identity(Path(job["bag"]), args.namespace)
+    except UsageError as error:
+        row["error"] = str(error)
+        return row
+    with open(Path(job["out"]).with_suffix(".json"), encoding="utf-8") as f:
+        result = json.load(f)
+    rows = result["estimates"]
+    signals = {r["signal"] for r in rows}
+    primary = "a1+a2" if "a1+a2" in signals else (sorted(signals)[0] if signals else "")
+    mine = [r for r in rows if r["signal"] == primary]
+    widths = [r["continuous_width_m"] if r["continuous_width_m"] == r["continuous_width_m"]
+              else r["width_m"] for r in mine]
+    row.update(width_m=statistics.median(widths) if widths else math.nan,
+               fused_width_m=mine[-1]["fused_width_m"] if mine else math.nan,
+               true_width_m=result["summary"]["true_width_m"],
+               onsets=len({r["entry_sample_index"] for r in mine}),
+               discarded=len(result["discarded_windows"]),
+               seconds=time.perf_counter() - started, signal=primary)
+    return row
+
+
+def _jobs(args, bags: list[Path], out_dir: Path) -> list[dict]:
+    from backlash_monitor.commands.analyze import add_arguments as single_arguments
+    probe = argparse.ArgumentParser()
+    single_arguments(probe)
+    names = [a.dest for a in probe._actions if a.dest not in ("help", "bag", "out")]
+    options = {n: getattr(args, n) for n in names if hasattr(args, n)}
+    jobs, used = [], set()
+    for b in bags:
+        # analyze writes PREFIX.csv/.json/.mcap by Path.with_suffix: no dot in the prefix's name,
+        # or two bags "x_eta0.025_s0" and "x_eta0.025_s1" would write the same "x_eta0.csv"
+        name = b.stem.replace(".", "_") + "_estimates"
+        while name in used:
+            name += "_"
+        used.add(name)
+        jobs.append({"bag": str(b), "out": str(out_dir / name), "options": options})
+    return jobs
+
+
+def run_local(jobs: list[dict], n_jobs: int, progress=True) -> list[dict]:
+    from tqdm import tqdm
+    bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
+    rows = []
+    if n_jobs == 1:
+        for job in jobs:
+            rows.append(analyze_one(job))
+            bar.update()
+    else:
+        from concurrent.futures import ProcessPoolExecutor, as_completed
+        import multiprocessing
+        # forkserver: workers start from a clean interpreter, not a copy of this one's state
+        with ProcessPoolExecutor(max_workers=n_jobs,
+                                 mp_context=multiprocessing.get_context("forkserver")) as pool:
+            for future in as_completed([pool.submit(analyze_one, job) for job in jobs]):
+                rows.append(future.result())
+                bar.update()
+    bar.close()
+    return rows
+
+
+def run_dask(jobs: list[dict], n_jobs: int, scheduler: str, progress=True) -> list[dict]:
+    try:
+        from dask.distributed import Client, LocalCluster, as_completed
+    except ImportError:
+        raise UsageError("--engine dask needs the optional extra: pip install dask distributed "
+                         "(or use --engine local)") from None
+    from tqdm import tqdm
+    cluster = None
+    if scheduler:
+        client = Client(scheduler)
+    else:
+        cluster = LocalCluster(n_workers=n_jobs, threads_per_worker=1, processes=True,
+                               dashboard_address=None)
+        client = Client(cluster)
+    rows = []
+    try:
+        futures = client.map(analyze_one, jobs, pure=False)
+        for future in tqdm(as_completed(futures), total=len(jobs), unit="bag",
+                           disable=not progress, desc="analyze (dask)"):
+            rows.append(future.result())
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return rows
+
+
+def add_trends(rows: list[dict], rule) -> dict:
+    from backlash_monitor.fleet.trend import drive_trend
+    points: dict[str, list] = {}
+    for r in rows:
+        if not r["error"]:
+            points.setdefault(r["drive"], []).append((r["time_s"], r["fused_width_m"]))
+    trends = {drive: drive_trend(pts, rule) for drive, pts in points.items()}
+    for r in rows:
+        t = trends.get(r["drive"])
+        r["trend_m_per_day"] = math.nan if t is None else t.rate_m_per_day
+        r["level"] = "ERROR" if r["error"] else t.level
+        r["reason"] = r["error"] or t.reason
+    return points, trends
+
+
+TABLE = ("drive", "time", "width", "fused width", "trend", "level", "bag")
+
+
+def format_rows(rows: list[dict]) -> list[tuple]:
+    def mm(x):
+        return "-" if x != x else f"{x * 1e3:.2f} mm"
+    out = []
+    for r in rows:
+        when = ("-" if r["time_s"] != r["time_s"] else
+                datetime.fromtimestamp(r["time_s"], timezone.utc).strftime("%Y-%m-%d %H:%M:%S"))
+        trend = ("-" if r["trend_m_per_day"] != r["trend_m_per_day"]
+                 else f"{r['trend_m_per_day'] * 1e3:+.3f} mm/day")
+        out.append((r["drive"] or "?", when, mm(r["width_m"]), mm(r["fused_width_m"]), trend,
+                    r["level"], Path(r["bag"]).name))
+    return out
+
+
+def run_many(args) -> int:
+    from backlash_monitor.fleet.trend import load_rule, plot_trends
+    bags = expand_bags(args.bag)
+    n_jobs = args.jobs or os.cpu_count() or 1
+    if n_jobs < 1 or n_jobs > 1024:
+        raise UsageError(f"--jobs = {args.jobs}; allowed: 1 .. 1024 (0: this machine's cores)")
+    out_dir = Path(args.out) if args.out else bags[0].parent / "fleet_analysis"
+    out_dir.mkdir(parents=True, exist_ok=True)
+    try:
+        rule = load_rule(args.trend_config or None)
+    except (OSError, KeyError, TypeError, ValueError) as error:
+        raise UsageError(f"trend config {args.trend_config or 'config/trend.yaml'}: {error}; it "
+                         "needs warn_growth_m_per_day, warn_width_m, error_width_m") from None
+    jobs = _jobs(args, bags, out_dir)
+    started = time.perf_counter()
+    if args.engine == "dask":
+        rows = run_dask(jobs, n_jobs, args.scheduler)
+    else:
+        rows = run_local(jobs, n_jobs)
+    wall = time.perf_counter() - started
+    rows.sort(key=lambda r: (r["drive"], r["time_s"] if r["time_s"] == r["time_s"] else 0.0,
+                             r["bag"]))
+    points, trends = add_trends(rows, rule)
+    columns = ("drive", "time_s", "width_m", "fused_width_m", "trend_m_per_day", "level",
+               "reason", "true_width_m", "onsets", "discarded", "bag")
+    with open(out_dir / "fleet.csv", "w", newline="", encoding="utf-8") as f:
+        writer = csv.writer(f)
+        writer.writerow(columns)
+        for r in rows:
+            writer.writerow([r.get(c, "") for c in columns])
+    with open(out_dir / "fleet.json", "w", encoding="utf-8") as f:
+        f.write(json.dumps({"bags": len(bags), "engine": args.engine, "jobs": n_jobs,
+                            "seconds": wall, "rows": rows,
+                            "trends": {d: t.__dict__ for d, t in trends.items()}}))
+    plots = [] if args.no_plots or not points else plot_trends(points, trends, rule, out_dir)
+    table = [TABLE] + format_rows(rows)
+    widths = [max(len(row[i]) for row in table) for i in range(len(TABLE))]
+    for i, row in enumerate(table):
+        print("  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip())
+        if i == 0:
+            print("  ".join("-" * w for w in widths))
+    failed = [r for r in rows if r["error"]]
+    for r in failed:
+        print(f"{Path(r['bag']).name}: {r['error']}")
+    warned = sorted(d for d, t in trends.items() if t.level != "OK")
+    for d in warned:
+        print(f"{d}: {trends[d].level}: {trends[d].reason}")
+    print(f"analysed {len(bags)} bags of {len(points)} drives in {wall:.1f} s on {n_jobs} "
+          f"{'worker' if n_jobs == 1 else 'workers'} ({args.engine}); wrote {out_dir / 'fleet.csv'}"
+          f", .json{', ' + str(len(plots)) + ' plots' if plots else ''}")
+    return 1 if failed else 0
