@@ -12,6 +12,8 @@ EXECUTABLES = {
     "denoise": "backlash_monitor.nodes.denoise:main",
     "classifier": "backlash_monitor.nodes.classifier:main",
     "chain": "backlash_monitor.nodes.chain_container:main",
+    "managed_chain": "backlash_monitor.nodes.lifecycle:main_chain",
+    "managed_plant": "backlash_monitor.nodes.lifecycle:main_plant",
     "pipeline": "backlash_monitor.nodes.pipeline:main",
     "fleet": "backlash_monitor.nodes.fleet:main",
     "record": "backlash_monitor.nodes.record:main",

@@ -1,0 +1,140 @@
+"""Managed (lifecycle) versions of a drive's chain and plant, for a fleet supervisor.
+
+    ros2 run backlash_monitor managed_chain --ros-args -r __ns:=/line1/drive07 -p drive_name:=line1/drive07
+    ros2 lifecycle set /line1/drive07/chain configure     # checks the parameters, loads nothing yet
+    ros2 lifecycle set /line1/drive07/chain activate      # the windowing, denoise, classifier nodes run
+    ros2 lifecycle set /line1/drive07/chain deactivate    # they are gone: no subscription, no work
+    ros2 lifecycle set /line1/drive07/chain cleanup
+
+A lifecycle node (rclpy.lifecycle, the standard ``<node>/change_state`` and ``get_state``
+services) owns the drive's ordinary nodes: ``configure`` builds them once to check their
+parameters (the same checks and one-line errors as the plain executables; a bad value makes the
+transition fail and the node stays unconfigured) and releases them; ``activate`` builds them and
+adds them to the process's executor; ``deactivate`` removes and destroys them, so an inactive
+drive holds no subscription that would queue stale chunks; ``cleanup`` returns to unconfigured.
+Other drives, in their own processes or namespaces, are not touched. ``-p`` and ``-r`` arguments
+reach the owned nodes as they reach the nodes of ``chain``. ``--activate`` configures and
+activates at start (what the fleet's drives do).
+
+The plain executables (``chain``, ``plant_simulator``, ...) are unchanged.
+"""
+from __future__ import annotations
+
+import sys
+
+from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
+
+from backlash_monitor.nodes.parameters import ParameterValueError
+
+
+class ManagedNodes(LifecycleNode):
+    """A lifecycle node whose active state is a set of ordinary nodes on the same executor."""
+
+    def __init__(self, name: str, factories, executor=None, **kwargs):
+        super().__init__(name, **kwargs)
+        self.factories = list(factories)
+        self.executor_ref = executor
+        self.owned = []
+
+    def _build(self) -> list:
+        nodes = []
+        try:
+            for factory in self.factories:
+                nodes.append(factory())
+        except BaseException:
+            for node in nodes:
+                node.destroy_node()
+            raise
+        return nodes
+
+    def _release(self) -> None:
+        for node in self.owned:
+            if self.executor_ref is not None:
+                self.executor_ref.remove_node(node)
+            node.destroy_node()
+        self.owned = []
+
+    def on_configure(self, state) -> TransitionCallbackReturn:
+        try:
+            for node in self._build():     # the parameter checks, then nothing kept
+                node.destroy_node()
+        except ParameterValueError as error:
+            self.get_logger().error(f"configure failed: {error}")
+            return TransitionCallbackReturn.FAILURE
+        return TransitionCallbackReturn.SUCCESS
+
+    def on_activate(self, state) -> TransitionCallbackReturn:
+        try:
+            self.owned = self._build()
+        except ParameterValueError as error:
+            self.get_logger().error(f"activate failed: {error}")
+            return TransitionCallbackReturn.FAILURE
+        if self.executor_ref is not None:
+            for node in self.owned:
+                self.executor_ref.add_node(node)
+        return super().on_activate(state)
+
+    def on_deactivate(self, state) -> TransitionCallbackReturn:
+        self._release()
+        return super().on_deactivate(state)
+
+    def on_cleanup(self, state) -> TransitionCallbackReturn:
+        self._release()
+        return TransitionCallbackReturn.SUCCESS
+
+    def on_shutdown(self, state) -> TransitionCallbackReturn:
+        self._release()
+        return TransitionCallbackReturn.SUCCESS
+
+    def destroy_node(self):
+        self._release()
+        return super().destroy_node()
+
+
+def chain_factories():
+    from backlash_monitor.nodes.classifier import ClassifierNode
+    from backlash_monitor.nodes.denoise import DenoiseNode
+    from backlash_monitor.nodes.windowing import WindowingNode
+    return [ClassifierNode, DenoiseNode, WindowingNode]   # downstream first
+
+
+def plant_factories():
+    from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode
+    return [PlantSimulatorNode]
+
+
+def run_managed(name: str, factories, args=None) -> int:
+    """Spin one ManagedNodes until shut down; ``--activate`` (before --ros-args) configures and
+    activates it at start."""
+    import rclpy
+    from rclpy.utilities import remove_ros_args
+    from backlash_monitor.nodes.runtime import run_nodes
+    argv = sys.argv if args is None else args
+    activate = "--activate" in remove_ros_args(argv)[1:]
+    holder = {}
+
+    def build():
+        holder["node"] = ManagedNodes(name, factories)
+        return holder["node"]
+
+    def spin(nodes, executor):
+        node = nodes[0]
+        node.executor_ref = executor
+        if activate:
+            node.trigger_configure()
+            node.trigger_activate()
+        while rclpy.ok():
+            executor.spin_once(timeout_sec=0.1)
+    return run_nodes([build], args=[a for a in argv if a != "--activate"], spin=spin)
+
+
+def main_chain(args=None) -> int:
+    return run_managed("chain", chain_factories(), args)
+
+
+def main_plant(args=None) -> int:
+    return run_managed("plant", plant_factories(), args)
+
+
+if __name__ == "__main__":
+    sys.exit(main_chain())
