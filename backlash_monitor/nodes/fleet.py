@@ -244,12 +244,39 @@ def _cpu_seconds(pid: int) -> float:
         return math.nan
 
 
+def managed_drive(drive, duration_s: float, rate_factor: float) -> list:
+    """The drive's chain and plant as lifecycle nodes ``<namespace>/chain`` and
+    ``<namespace>/plant`` (nodes/lifecycle.py): a supervisor can take one drive down and up."""
+    from backlash_monitor.nodes.lifecycle import ManagedNodes
+    factories = drive_node_factories(drive, duration_s, rate_factor)
+    return [ManagedNodes("chain", factories[:3], namespace=drive.namespace),
+            ManagedNodes("plant", factories[3:], namespace=drive.namespace)]
+
+
+def activate(managed, executor) -> None:
+    for node in managed:
+        node.executor_ref = executor
+        node.trigger_configure()
+        node.trigger_activate()
+
+
 def run_one_drive(args) -> int:
-    """A drive's own process (layout 'process'): its four nodes on one executor."""
+    """A drive's own process (layout 'process'): its managed chain and plant on one executor."""
+    import rclpy
     from backlash_monitor.fleet.drives import Drive
     from backlash_monitor.nodes.runtime import run_nodes
     drive = Drive.from_dict(json.loads(args.drive_json))
-    return run_nodes(drive_node_factories(drive, args.duration, args.rate_factor))
+    managed = []
+
+    def build():          # after rclpy.init (run_nodes)
+        managed.extend(managed_drive(drive, args.duration, args.rate_factor))
+        return managed[0]
+
+    def spin(nodes, executor):
+        activate(managed, executor)
+        while rclpy.ok():
+            executor.spin_once(timeout_sec=0.1)
+    return run_nodes([build, lambda: managed[1]], spin=spin)
 
 
 def run(args) -> int:
@@ -292,11 +319,11 @@ def run(args) -> int:
                      "--rate-factor", str(args.rate_factor)])
         else:
             for d in drives:
-                for factory in drive_node_factories(d, args.duration, args.rate_factor):
-                    nodes.append(factory())
+                nodes.extend(managed_drive(d, args.duration, args.rate_factor))
         executor = make_executor()
         for node in nodes:
             executor.add_node(node)
+        activate(nodes[1:], executor)
         freeze_startup_objects()
 
         def cpu_of(hardware_id: str) -> float:
