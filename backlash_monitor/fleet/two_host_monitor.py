@@ -1,0 +1,50 @@
+"""The monitor on host A of the two-host run (fleet/netns.py): counts a drive's onset estimates
+coming back from host B and its windowing's onset windows (from /diagnostics); prints one JSON line.
+
+    python -m backlash_monitor.fleet.two_host_monitor /line1/drive01 SECONDS
+"""
+from __future__ import annotations
+
+import json
+import sys
+import time
+
+
+def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    namespace, wall_limit_s = argv[0], float(argv[1])
+    import rclpy
+    from diagnostic_msgs.msg import DiagnosticArray
+    from backlash_monitor.nodes.qos import ESTIMATE_QOS
+    from backlash_monitor_msgs.msg import BacklashEstimate
+    rclpy.init()
+    node = rclpy.create_node("two_host_monitor")
+    onsets, windowing = set(), {}
+    node.create_subscription(BacklashEstimate, f"{namespace}/estimate",
+                             lambda m: onsets.add(m.entry_sample_index), ESTIMATE_QOS)
+
+    def on_diag(msg):
+        for s in msg.status:
+            if s.name.endswith("windowing: windowing"):
+                windowing.update({kv.key: kv.value for kv in s.values})
+    node.create_subscription(DiagnosticArray, "/diagnostics", on_diag, 10)
+    started = time.monotonic()
+    last_change, last = started, (0, 0)
+    while time.monotonic() - started < wall_limit_s:
+        rclpy.spin_once(node, timeout_sec=0.1)
+        state = (len(onsets), int(windowing.get("onsets", 0)))
+        if state != last:
+            last, last_change = state, time.monotonic()
+        if state[1] and state[0] >= state[1] and time.monotonic() - last_change > 2.5:
+            break
+    print(json.dumps({"onsets_estimated": len(onsets),
+                      "onset_windows": int(windowing.get("onsets", 0)),
+                      "chunks": int(windowing.get("chunks", 0)),
+                      "discarded": int(windowing.get("discarded", 0))}), flush=True)
+    node.destroy_node()
+    rclpy.try_shutdown()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
