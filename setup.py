@@ -16,6 +16,7 @@ EXECUTABLES = {
     "managed_plant": "backlash_monitor.nodes.lifecycle:main_plant",
     "pipeline": "backlash_monitor.nodes.pipeline:main",
     "fleet": "backlash_monitor.nodes.fleet:main",
+    "live_view": "backlash_monitor.nodes.live_view:main",
     "record": "backlash_monitor.nodes.record:main",
     "replay": "backlash_monitor.nodes.replay:main",
     "chunk_talker": "backlash_monitor.nodes.chunk_talker:main",
@@ -29,7 +30,7 @@ setup(
     data_files=[
         ("share/ament_index/resource_index/packages", ["resource/" + PACKAGE_NAME]),
         ("share/" + PACKAGE_NAME, ["package.xml"]),
-        ("share/" + PACKAGE_NAME + "/config", glob("config/*.yaml")),
+        ("share/" + PACKAGE_NAME + "/config", glob("config/*.yaml") + glob("config/*.json")),
         ("share/" + PACKAGE_NAME + "/msg_defs/msg", glob("msg_defs/msg/*.msg")),
     ],
     package_data={PACKAGE_NAME: ["data/*"]},

@@ -61,6 +61,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--aggregator-yaml", default="", metavar="FILE",
                         help="write diagnostic_aggregator's analyzer file for these drives to FILE "
                              "and exit")
+    parser.add_argument("--foxglove-port", type=int, default=-1, metavar="PORT",
+                        help="also serve every drive's topics and width to Foxglove on this "
+                             "WebSocket port (8765 is Foxglove's default; 0: any free port; "
+                             "needs the optional foxglove-sdk; layout: "
+                             "config/foxglove_fleet_layout.json)")
     parser.add_argument("--summary-json", default="", metavar="FILE",
                         help="also write the per-drive summary as JSON")
     parser.add_argument("--drive-json", default="", help=argparse.SUPPRESS)   # a drive's process
@@ -311,6 +316,12 @@ def run(args) -> int:
         monitor_node = rclpy.create_node("fleet_monitor")
         nodes.append(monitor_node)
         monitor = FleetMonitor(monitor_node, drives, config, args.rate_factor)
+        if args.foxglove_port >= 0:
+            from rclpy.parameter import Parameter
+            from backlash_monitor.nodes.live_view import LiveViewNode
+            nodes.append(LiveViewNode(parameter_overrides=[
+                Parameter("namespaces", value=[d.namespace for d in drives]),
+                Parameter("port", value=args.foxglove_port)]))
         if args.layout == "process":
             for d in drives:
                 children[d.hardware_id] = subprocess.Popen(
@@ -323,7 +334,7 @@ def run(args) -> int:
         executor = make_executor()
         for node in nodes:
             executor.add_node(node)
-        activate(nodes[1:], executor)
+        activate([n for n in nodes if hasattr(n, "trigger_activate")], executor)
         freeze_startup_objects()
 
         def cpu_of(hardware_id: str) -> float:
