@@ -7,7 +7,7 @@ import sys
 import pytest
 
 from backlash_monitor.fleet.trend import SECONDS_PER_DAY, TrendRule, drive_trend, slope_per_day
-from fleet_bags import write_fleet_bags
+from backlash_monitor.fleet.recordings import write_fleet_bags
 
 RULE = TrendRule(warn_growth_m_per_day=5e-5, warn_width_m=0.0075, error_width_m=0.009)
 

@@ -1,4 +1,5 @@
-"""Simulated recordings of several drives at several times (no rclpy): the fleet tests' input."""
+"""Simulated recordings of several drives at several times (no rclpy): what `analyze FOLDER` takes,
+for the fleet tests and bench/fleet.py (each bag as a live recording of that drive would be)."""
 from __future__ import annotations
 
 from pathlib import Path

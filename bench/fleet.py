@@ -1,0 +1,153 @@
+"""A fleet of drives on this machine (prints one JSON object; progress on stderr).
+
+drives_realtime: the most 50 kHz simulated drives `fleet` runs in real time with every drive
+  monitored in real time (every chunk taken, no window discarded, every onset window classified,
+  each estimate within 1 s of its window's last sample after the start-up), for each layout (one
+  process per drive; every drive in one process), N = 2, 4, 6, ... until a run fails; with the CPU
+  per drive (plant simulator + chain, share of one core) at that N. The drives' plants run on the
+  same machine: a real line's drives would not cost this machine their simulation.
+diagnostics_complete: over a 60 s window of a run of that many drives, the share of
+  (drive, second) pairs for which the drive's classifier status arrived on /diagnostics.
+fleet_analyze_speedup: `analyze FOLDER` on 100 recorded bags (1 s each, simulated), on all cores
+  vs on one core (one after the other in one process), side by side.
+two_host_estimates_delivered: plant and monitor in one network namespace, the chain in another
+  (veth pair, DDS on exactly those two addresses): onset estimates received back / onset windows.
+
+The machine is shared with other jobs; load_average says how busy it was: real-time capacity
+measured on a busy machine is a lower bound.
+
+    python bench/fleet.py [--quick]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+os.environ.setdefault("ROS_DOMAIN_ID", str(os.getpid() % 90 + 5))
+
+
+def log(*args):
+    print(*args, file=sys.stderr, flush=True)
+
+
+def run_fleet(n, layout, duration_s, workdir):
+    summary = os.path.join(workdir, f"fleet_{layout}_{n}.json")
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "fleet", "--drives", str(n),
+                           "--duration", str(duration_s), "--layout", layout,
+                           "--view-period", "0", "--summary-json", summary],
+                          capture_output=True, text=True, timeout=duration_s * 4 + 300)
+    if not os.path.isfile(summary):
+        log(proc.stdout[-2000:], proc.stderr[-2000:])
+        return None
+    with open(summary) as f:
+        return json.load(f)
+
+
+def capacity(layout, counts, duration_s, workdir):
+    best, runs = 0, []
+    for n in counts:
+        result = run_fleet(n, layout, duration_s, workdir)
+        rows = result["drives"] if result else []
+        ok = bool(rows) and all(r["realtime"] for r in rows)
+        cpu = [r["cpu_percent"] for r in rows if r["cpu_percent"] == r["cpu_percent"]]
+        lag = [r["lag_ms_max"] for r in rows if r["lag_ms_max"] == r["lag_ms_max"]]
+        run = {"drives": n, "realtime_drives": sum(r["realtime"] for r in rows),
+               "discarded": sum(r["discarded"] for r in rows),
+               "onsets_missed": sum(r["onset_windows"] - r["onsets_estimated"] for r in rows),
+               "lag_ms_max": max(lag) if lag else None,
+               "cpu_percent_per_drive": sum(cpu) / len(cpu) if cpu else None,
+               "load_average_1min": os.getloadavg()[0]}
+        runs.append(run)
+        log(f"fleet {layout} {n} drives: {run}")
+        if not ok:
+            break
+        best = n
+    return best, runs
+
+
+def diagnostics_complete(n, layout, workdir, window_s=60):
+    result = run_fleet(n, layout, window_s + 10, workdir)
+    rows = result["drives"] if result else []
+    if not rows or not all(r["status_times"] for r in rows):
+        return 0.0
+    t0 = max(min(r["status_times"]) for r in rows)
+    pairs = 0
+    for r in rows:
+        seconds = {int(t - t0) for t in r["status_times"] if 0 <= t - t0 < window_s}
+        pairs += len(seconds)
+    return pairs / (len(rows) * window_s)
+
+
+def analyze_speedup(workdir, n_bags=100):
+    from backlash_monitor.__main__ import build_parser
+    from backlash_monitor.fleet.analyze import _jobs, expand_bags, run_local
+    from backlash_monitor.fleet.recordings import write_fleet_bags
+    bag_dir = os.path.join(workdir, "bags")
+    widths = (0.0025, 0.005, 0.0075, 0.009)
+    recordings = [(f"line{1 + i // 20}/drive{i % 20 + 1:02d}", i // 20, widths[i % 4], i + 1)
+                  for i in range(n_bags)]
+    started = time.perf_counter()
+    write_fleet_bags(bag_dir, recordings, duration_s=1.0)
+    log(f"wrote {n_bags} bags in {time.perf_counter() - started:.1f} s")
+    bags = expand_bags(bag_dir)
+    cores = os.cpu_count() or 1
+    times = {}
+    for label, n_jobs in (("one_core", 1), ("cores", cores)):
+        out = os.path.join(workdir, f"out_{label}")
+        args = build_parser("analyze").parse_args(["analyze", bag_dir, "--out", out])
+        jobs = _jobs(args, bags, __import__("pathlib").Path(out))
+        os.makedirs(out, exist_ok=True)
+        started = time.perf_counter()
+        rows = run_local(jobs, n_jobs, progress=False)
+        times[label] = time.perf_counter() - started
+        errors = [r for r in rows if r["error"]]
+        log(f"analyze {n_bags} bags on {n_jobs} worker(s): {times[label]:.1f} s, "
+            f"{len(errors)} errors")
+    return times["one_core"] / times["cores"], times, cores
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--quick", action="store_true", help="fewer drive counts, shorter runs")
+    args = parser.parse_args()
+    result = {"load_average_1min_start": os.getloadavg()[0], "cores": os.cpu_count()}
+    with tempfile.TemporaryDirectory() as workdir:
+        duration = 10 if args.quick else 20
+        counts = (2, 4, 8) if args.quick else (2, 4, 6, 8, 10, 12, 14, 16)
+        per_layout = {}
+        for layout in ("process", "single"):
+            best, runs = capacity(layout, counts, duration, workdir)
+            per_layout[layout] = {"drives_realtime": best, "runs": runs}
+        layout = max(per_layout, key=lambda k: per_layout[k]["drives_realtime"])
+        best = per_layout[layout]["drives_realtime"]
+        best_run = next((r for r in per_layout[layout]["runs"] if r["drives"] == best), None)
+        result.update(drives_realtime=best, drives_realtime_layout=layout,
+                      cpu_percent_per_drive=best_run["cpu_percent_per_drive"] if best_run else None,
+                      drives_realtime_by_layout=per_layout)
+        n_diag = max(best, 2)
+        result["diagnostics_complete"] = diagnostics_complete(
+            n_diag, layout, workdir, window_s=30 if args.quick else 60)
+        result["diagnostics_complete_drives"] = n_diag
+        speedup, times, cores = analyze_speedup(workdir, 20 if args.quick else 100)
+        result.update(fleet_analyze_speedup=speedup, fleet_analyze_seconds=times,
+                      fleet_analyze_bags=20 if args.quick else 100)
+        from backlash_monitor.fleet.netns import can_make_namespaces, run_two_hosts
+        reason = can_make_namespaces()
+        if reason:
+            result["two_host_estimates_delivered"] = None
+            result["two_host_skipped"] = reason
+        else:
+            two = run_two_hosts(workdir, dict(os.environ), int(os.environ["ROS_DOMAIN_ID"]),
+                                duration_s=10.0)
+            result["two_host_estimates_delivered"] = two["delivered"]
+            result["two_host_onsets"] = [two["onsets_estimated"], two["onset_windows"]]
+    result["load_average_1min_end"] = os.getloadavg()[0]
+    print(json.dumps(result))
+
+
+if __name__ == "__main__":
+    main()
