@@ -131,19 +131,40 @@ def _jobs(args, bags: list[Path], out_dir: Path) -> list[dict]:
 
 def run_local(jobs: list[dict], n_jobs: int, progress=True) -> list[dict]:
     from tqdm import tqdm
-    bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
     rows = []
     if n_jobs == 1:
+        bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
         for job in jobs:
             rows.append(analyze_one(job))
             bar.update()
     else:
         from concurrent.futures import ProcessPoolExecutor, as_completed
         import multiprocessing
-        # forkserver: workers start from a clean interpreter, not a copy of this one's state
-        with ProcessPoolExecutor(max_workers=n_jobs,
-                                 mp_context=multiprocessing.get_context("forkserver")) as pool:
-            for future in as_completed([pool.submit(analyze_one, job) for job in jobs]):
+        # Workers forked from this process with the chain's modules already imported start at
+        # once; a fresh interpreter per worker (spawn) spends ~1-3 s importing numpy, scipy,
+        # pywt and the bag reader before its first bag, most of the gain on 2 cores and 100
+        # short bags (bench/fleet.py). Forking is safe only while no other thread runs here:
+        # numpy's BLAS starts a thread pool on its first call, so BLAS stays single-threaded
+        # (set before numpy is imported; one BLAS thread per worker is right for a pool anyway).
+        # Where numpy was already used, a forkserver preloading the modules is used instead.
+        import sys
+        modules = ["backlash_monitor.bag", "backlash_monitor.chain",
+                   "backlash_monitor.commands.analyze", "backlash_monitor.estimation",
+                   "scipy.signal", "scipy.ndimage"]   # the detector's filters (detector.py)
+        if "numpy" not in sys.modules and "fork" in multiprocessing.get_all_start_methods():
+            for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+                os.environ.setdefault(var, "1")
+            import importlib
+            for name in modules:
+                importlib.import_module(name)
+            context = multiprocessing.get_context("fork")
+        else:
+            context = multiprocessing.get_context("forkserver")
+            context.set_forkserver_preload(modules)
+        with ProcessPoolExecutor(max_workers=n_jobs, mp_context=context) as pool:
+            futures = [pool.submit(analyze_one, job) for job in jobs]
+            bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
+            for future in as_completed(futures):
                 rows.append(future.result())
                 bar.update()
     bar.close()
