@@ -7,7 +7,8 @@ drives_realtime: the most 50 kHz simulated drives `fleet` runs in real time with
   per drive (plant simulator + chain, share of one core) at that N. The drives' plants run on the
   same machine: a real line's drives would not cost this machine their simulation.
 diagnostics_complete: over a 60 s window of a run of that many drives, the share of
-  (drive, second) pairs for which the drive's classifier status arrived on /diagnostics.
+  (drive, second) pairs for which the drive's classifier status arrived on /diagnostics (each
+  drive's 1 Hz status at its own phase, within +-0.5 s of its second: status_share).
 fleet_analyze_speedup: `analyze FOLDER` on 100 recorded bags (3 s each, simulated: 12 onsets
   per bag), `--jobs <cores>` vs `--jobs 1` (one after the other in one process), each the whole
   command with its start-up, alternated twice, best of each.
@@ -70,17 +71,24 @@ def capacity(layout, counts, duration_s, workdir):
     return best, runs
 
 
-def diagnostics_complete(n, layout, workdir, window_s=60):
-    result = run_fleet(n, layout, window_s + 10, workdir)
-    rows = result["drives"] if result else []
+def status_share(rows, window_s):
+    """Share of (drive, second) pairs with the drive's classifier status: from the moment every
+    drive publishes, each drive's 1 Hz status has ``window_s`` slots at its own phase (its first
+    status there + k seconds); a slot is filled by a status arriving within +-0.5 s of it."""
     if not rows or not all(r["status_times"] for r in rows):
         return 0.0
-    t0 = max(min(r["status_times"]) for r in rows)
-    pairs = 0
+    t_start = max(min(r["status_times"]) for r in rows)
+    filled = 0
     for r in rows:
-        seconds = {int(t - t0) for t in r["status_times"] if 0 <= t - t0 < window_s}
-        pairs += len(seconds)
-    return pairs / (len(rows) * window_s)
+        times = sorted(t for t in r["status_times"] if t >= t_start)
+        slots = {round(t - times[0]) for t in times if t - times[0] < window_s - 0.5}
+        filled += len(slots)
+    return filled / (len(rows) * window_s)
+
+
+def diagnostics_complete(n, layout, workdir, window_s=60):
+    result = run_fleet(n, layout, window_s + 10, workdir)
+    return status_share(result["drives"] if result else [], window_s)
 
 
 def analyze_speedup(workdir, n_bags=100, repeats=2, bag_s=3.0):
