@@ -103,20 +103,26 @@ def analyze_speedup(workdir, n_bags=100, repeats=2, bag_s=3.0):
     write_fleet_bags(bag_dir, recordings, duration_s=bag_s)
     log(f"wrote {n_bags} bags of {bag_s:g} s in {time.perf_counter() - started:.1f} s")
     cores = os.cpu_count() or 1
+    import resource
     times = {"one_core": [], "cores": []}
-    for _ in range(repeats):
+    cpu = {"one_core": [], "cores": []}   # CPU seconds of the command and its workers
+    for repeat in range(repeats):
         for label, n_jobs in (("one_core", 1), ("cores", cores)):
-            out = os.path.join(workdir, f"out_{label}")
+            out = os.path.join(workdir, f"out_{label}_{repeat}")   # fresh: no --overwrite
             started = time.perf_counter()
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
             proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", bag_dir,
                                    "--out", out, "--jobs", str(n_jobs), "--no-plots"],
                                   capture_output=True, text=True, timeout=1800)
             times[label].append(time.perf_counter() - started)
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cpu[label].append(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
+            log(f"  CPU {cpu[label][-1]:.1f} s: {cpu[label][-1] / times[label][-1]:.2f} cores busy")
             log(f"analyze {n_bags} bags on {n_jobs} worker(s): {times[label][-1]:.1f} s, "
                 f"exit {proc.returncode}, load {os.getloadavg()[0]:.1f}")
             if proc.returncode != 0:
                 log(proc.stdout[-2000:], proc.stderr[-2000:])
-    return min(times["one_core"]) / min(times["cores"]), times, cores
+    return min(times["one_core"]) / min(times["cores"]), {"wall_s": times, "cpu_s": cpu}, cores
 
 
 def main():
