@@ -94,7 +94,7 @@ def analyze_one(job: dict) -> dict:
     except UsageError as error:
         row["error"] = str(error)
         return row
-    with open(Path(job["out"]).with_suffix(".json"), encoding="utf-8") as f:
+    with open(analyze.output_paths(job["out"])["json"], encoding="utf-8") as f:
         result = json.load(f)
     rows = result["estimates"]
     signals = {r["signal"] for r in rows}
@@ -119,9 +119,7 @@ def _jobs(args, bags: list[Path], out_dir: Path) -> list[dict]:
     options = {n: getattr(args, n) for n in names if hasattr(args, n)}
     jobs, used = [], set()
     for b in bags:
-        # analyze writes PREFIX.csv/.json/.mcap by Path.with_suffix: no dot in the prefix's name,
-        # or two bags "x_eta0.025_s0" and "x_eta0.025_s1" would write the same "x_eta0.csv"
-        name = b.stem.replace(".", "_") + "_estimates"
+        name = b.stem + ".estimates"      # analyze's own default name, in DIR
         while name in used:
             name += "_"
         used.add(name)

@@ -46,16 +46,18 @@ class Drive:
     def hardware_id(self) -> str:
         return f"{self.line}/{self.name}"
 
-    def node_parameters(self, duration_s: float = 0.0, rate_factor: float = 1.0,
-                        wait_for_subscriptions: int = 3) -> dict[str, dict]:
+    def node_parameters(self, duration_s: float = 0.0, rate_factor: float = 1.0) \
+            -> dict[str, dict]:
         """{node name: {parameter: value}} for this drive's plant and chain."""
         p = self.parameters
         trigger = p.get("trigger", "contact_loss")
         plant = {k: p[k] for k in PLANT_KEYS if k in p}
         plant.setdefault("width_m", DEFAULT_WIDTH_M)
+        # the stream starts once this drive's windowing node takes its three signals (a live
+        # view or recorder subscribing first does not start it early)
         plant.update(drive_name=self.hardware_id, rate_factor=float(rate_factor),
                      duration_s=float(duration_s), qos="reliable",
-                     wait_for_subscriptions=int(wait_for_subscriptions))
+                     wait_for_subscribers=["windowing:a1,a2,angle_difference"])
         windowing = dict(drive_name=self.hardware_id, qos="reliable", trigger=trigger,
                          width_m=float(plant["width_m"]) if trigger == "paper" else 0.0)
         classifier = {k: p[k] for k in CLASSIFIER_KEYS if k in p}
