@@ -267,8 +267,8 @@ def activate(managed, executor) -> None:
 
 def run_one_drive(args) -> int:
     """A drive's own process (layout 'process'): its managed chain and plant on one executor."""
-    import rclpy
     from backlash_monitor.fleet.drives import Drive
+    from backlash_monitor.nodes.lifecycle import spin_until_shutdown
     from backlash_monitor.nodes.runtime import run_nodes
     drive = Drive.from_dict(json.loads(args.drive_json))
     managed = []
@@ -279,8 +279,7 @@ def run_one_drive(args) -> int:
 
     def spin(nodes, executor):
         activate(managed, executor)
-        while rclpy.ok():
-            executor.spin_once(timeout_sec=0.1)
+        spin_until_shutdown(executor)
     return run_nodes([build, lambda: managed[1]], spin=spin)
 
 
@@ -302,6 +301,7 @@ def run(args) -> int:
         return 0
     import rclpy
     from rclpy.executors import ExternalShutdownException
+    from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
     from backlash_monitor.nodes.fast_dds import configure_fast_dds
     from backlash_monitor.nodes.lean_executor import make_executor
     from backlash_monitor.nodes.parameters import ParameterValueError
@@ -376,6 +376,11 @@ def run(args) -> int:
         print(f"fleet: error: {error}", file=sys.stderr)
         return 2
     except (KeyboardInterrupt, ExternalShutdownException):
+        print("fleet: interrupted", file=sys.stderr)
+    except _rclpy.RCLError:
+        if rclpy.ok():
+            raise
+        # Ctrl-C/SIGTERM invalidated the context while a callback published (nodes/lifecycle.py)
         print("fleet: interrupted", file=sys.stderr)
     finally:
         for child in children.values():

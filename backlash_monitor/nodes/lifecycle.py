@@ -91,6 +91,21 @@ class ManagedNodes(LifecycleNode):
         return super().destroy_node()
 
 
+def spin_until_shutdown(executor) -> None:
+    """Spin until Ctrl-C/SIGTERM. The signal invalidates the context at once, possibly while a
+    callback is publishing (the plant publishes a burst of chunks per tick): that publish then
+    fails with RCLError, which here is the shutdown, not a fault."""
+    import rclpy
+    from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
+    while rclpy.ok():
+        try:
+            executor.spin_once(timeout_sec=0.1)
+        except _rclpy.RCLError:
+            if rclpy.ok():
+                raise
+            return
+
+
 def chain_factories():
     from backlash_monitor.nodes.classifier import ClassifierNode
     from backlash_monitor.nodes.denoise import DenoiseNode
@@ -123,8 +138,7 @@ def run_managed(name: str, factories, args=None) -> int:
         if activate:
             node.trigger_configure()
             node.trigger_activate()
-        while rclpy.ok():
-            executor.spin_once(timeout_sec=0.1)
+        spin_until_shutdown(executor)
     return run_nodes([build], args=[a for a in argv if a != "--activate"], spin=spin)
 
 
