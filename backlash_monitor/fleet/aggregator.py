@@ -186,8 +186,7 @@ def format_table(view: AggregatorView, now_s: float) -> str:
     rows = [("drive", "level", "backlash width", "windowing", "age")]
     groups = view.group_levels(now_s)
     report = {row["path"]: row for row in view.report(now_s)}
-    lines = []
-    for group_path, members in view.groups.items() or {"": view.analyzers}.items():
+    for members in (view.groups or {"": view.analyzers}).values():
         for analyzer in members:
             row = report[analyzer.path]
             msgs = {}
