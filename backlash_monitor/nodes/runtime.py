@@ -26,6 +26,11 @@ def freeze_startup_objects() -> None:
     gc.freeze()
 
 
+def _is_rcl_error(error: BaseException) -> bool:
+    from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
+    return isinstance(error, _rclpy.RCLError)
+
+
 def run_node(node_factory, args=None, spin=None) -> int:
     """``main()`` body shared by the nodes: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
 
@@ -62,6 +67,13 @@ def run_nodes(node_factories, args=None, spin=None) -> int:
         return 2
     except (KeyboardInterrupt, rclpy.executors.ExternalShutdownException):
         return 0
+    except Exception as error:
+        # Ctrl-C/SIGTERM invalidates the context at once, possibly while a callback publishes (the
+        # plant publishes a burst of chunks per tick): that publish then fails with RCLError, which
+        # is the shutdown, not a fault. Anything else while the context is valid is a fault.
+        if _is_rcl_error(error) and not rclpy.ok():
+            return 0
+        raise
     finally:
         if executor is not None:
             executor.shutdown()
