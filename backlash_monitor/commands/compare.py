@@ -1,0 +1,80 @@
+"""`python -m backlash_monitor compare MEASUREMENT --model M`: the model against a measurement.
+
+The model runs under the measurement's conditions (its pulse train's phase recovered from the onset
+entries) for K noise seeds; the onset segments (contact_loss trigger, on both) are aligned at the entry
+and averaged over the events. Per signal: fit % (1 - NRMSE) of the denoised event average against the
+ensemble mean, the same for the model's own runs (the noise band), the residual over the noise floor,
+the event-to-event spread measured vs modelled; whole-record raw spectra against the ensemble's.
+Writes PNGs and JSON into --out-dir; docs/workbench.md.
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+NAME = "compare"
+HELP = "compare a measurement with a model: event-averaged fit %%, spread and spectra against the model's noise band"
+DESCRIPTION = __doc__
+
+
+def add_arguments(parser) -> None:
+    from backlash_monitor.commands._workbench import add_model_arguments
+    add_model_arguments(parser)
+    parser.add_argument("--out-dir", default="compare_out", help="directory for compare.json and the PNGs")
+    parser.add_argument("--json", default=None, metavar="PATH", help="also write the JSON here")
+    parser.add_argument("--no-record", action="store_true",
+                        help="do not add this check to the model's history (workbench_history.jsonl)")
+
+
+def compare_result(meas, model, seeds):
+    import numpy as np
+    from backlash_monitor.workbench import analysis
+    from backlash_monitor.workbench.events import SEGMENT_SIGNALS
+    comp = analysis.build_comparison(meas, model, list(range(seeds)))
+    fp = analysis.fit_percent(comp.target, comp.model_mean)
+    band = analysis.noise_band_fit_percent(comp)
+    ratio = analysis.residual_ratio(comp)
+    spec = analysis.spectra(comp)
+    res = {"measurement": meas.source, "model": model.label(), "conditions": comp.conditions,
+           "events": comp.events.n_events, "seeds": comp.seeds,
+           "fit_percent": dict(zip(SEGMENT_SIGNALS, map(float, fp))),
+           "noise_band_fit_percent": {s: {"min": float(band[:, i].min()), "median": float(np.median(band[:, i])),
+                                          "max": float(band[:, i].max())} for i, s in enumerate(SEGMENT_SIGNALS)},
+           "residual_over_noise_floor": dict(zip(SEGMENT_SIGNALS, map(float, ratio))),
+           "spread": analysis.spread(comp), "spectral_peaks": analysis.spectral_peaks(spec)}
+    return res, comp, spec
+
+
+def run(args) -> int:
+    from tqdm import tqdm
+    from backlash_monitor.commands import UsageError
+    from backlash_monitor.commands._workbench import load, print_table
+    from backlash_monitor.workbench import report
+    from backlash_monitor.workbench.analysis import ConditionsError
+    from backlash_monitor.workbench.model import record_check
+    model, meas = load(args)
+    out = Path(args.out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    with tqdm(total=1, desc=f"model ensemble ({args.seeds} seeds)", disable=None) as bar:
+        try:
+            res, comp, spec = compare_result(meas, model, args.seeds)
+        except (ConditionsError, ValueError) as exc:
+            raise UsageError(str(exc)) from None
+        bar.update(1)
+    report.plot_event_average(comp, out / "event_average.png", title=f"{model.label()} vs measurement")
+    report.plot_spectra(comp, spec, out / "spectra.png")
+    text = json.dumps(res, indent=1, default=float)
+    (out / "compare.json").write_text(text)
+    if args.json:
+        Path(args.json).write_text(text)
+    if not args.no_record:
+        record_check(model, meas.source, "compare", res["fit_percent"], res["residual_over_noise_floor"])
+    rows = [(s, f"{res['fit_percent'][s]:.1f}", f"{res['noise_band_fit_percent'][s]['median']:.1f}",
+             f"{res['residual_over_noise_floor'][s]:.2f}", f"{res['spread'][s]['measured']:.4g}",
+             f"{res['spread'][s]['model_median']:.4g}", ",".join(f"{f:.0f}" for f in res["spectral_peaks"][s]["peaks_hz"])
+             or "-") for s in ("a1", "a2")]
+    print(f"{model.label()} vs {meas.source}: {res['events']} onset events, {len(res['seeds'])} model seeds")
+    print_table(rows, ("signal", "fit %", "band fit %", "resid/noise", "spread meas", "spread model",
+                       "peaks > band [Hz]"))
+    print(f"wrote {out}/compare.json, event_average.png, spectra.png")
+    return 0

@@ -1,0 +1,273 @@
+"""The comparison of one measurement with a model: conditions, the model's noise ensemble, fit %, spread,
+spectra, and where the residual sits (phase, wavelet level, spectral peaks, whiteness, inputs).
+
+All figures are against the model's own noise ensemble (``K`` seeds, the measurement's length and
+conditions): a measurement from a correct model lies inside that band.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pywt
+from scipy import signal as sps
+from scipy import stats
+
+from . import plant_adapter
+from .events import (IMPACT_SETTLE_S, PRE_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, denoise,
+                     ensemble_from_runs, event_set, onset_entries)
+
+DEFAULT_SEEDS = 6
+PHASES = ("before_entry", "gap_traversal", "impact", "settling")
+LEVELS = ("d1", "d2", "d3", "d4", "d5", "d6", "a6")
+INCONSISTENT_RATIO = 1.5     # residual / noise floor above which the model is called inconsistent
+
+
+class ConditionsError(ValueError):
+    pass
+
+
+def recover_conditions(meas, model) -> dict:
+    """The pulse train's timing of the recording: its phase from the onset entries (period checked
+    against the model's). -> config overrides {"pulse_load.first_s": ...}."""
+    cfg = model.plant_config()
+    fs = cfg.simulation.sample_rate_hz
+    period = int(round(cfg.pulse_load.period_s * fs))
+    entries = onset_entries(meas.signals, meas.sample_period_s)
+    if len(entries) < 3:
+        raise ConditionsError(f"measurement {meas.source}: only {len(entries)} onset entries found; "
+                              "allowed: >= 3 (a longer recording, or a drive that crosses its backlash)")
+    spacing = float(np.median(np.diff(entries)))
+    if abs(spacing - period) > 0.03 * period:
+        raise ConditionsError(f"measurement {meas.source}: onset entries every {spacing / fs * 1e3:.1f} ms, the "
+                              f"model's pulse period is {period / fs * 1e3:.1f} ms; allowed: within 3 % "
+                              f"(--set pulse_load.period_s={round(spacing) / fs:g})")
+    # the model's delay from pulse start to onset entry (noise-free, nominal timing)
+    runs = plant_adapter.simulate_sets(model, [({}, {})], [0], int(round(1.0 * fs)), noise=False)
+    sim_entries = onset_entries({k: v[0, 0] for k, v in runs.items()}, 1.0 / fs)
+    first = int(round(cfg.pulse_load.first_s * fs))
+    if len(sim_entries) == 0:
+        raise ConditionsError("the model (noise-free) gives no onset entry in 1 s; it cannot be compared")
+    delay = float(np.median((sim_entries - first) % period))
+    phase = np.angle(np.mean(np.exp(2j * np.pi * ((entries - delay) % period) / period)))
+    start = int(round((phase / (2 * np.pi)) * period)) % period
+    return {"pulse_load.first_s": start / fs}
+
+
+@dataclass
+class Comparison:
+    model: object
+    meas: object
+    conditions: dict
+    seeds: list
+    events: EventSet
+    ensemble: Ensemble
+    weights: np.ndarray          # per signal 1/noise floor rms (denoised)
+    floor_rms: np.ndarray        # per signal, rms of the leave-one-seed-out deviation
+
+    @property
+    def target(self):
+        return self.events.mean_denoised()
+
+    @property
+    def model_mean(self):
+        return self.ensemble.mean_denoised()
+
+
+def build_comparison(meas, model, seeds=None) -> Comparison:
+    seeds = list(range(DEFAULT_SEEDS)) if seeds is None else list(seeds)
+    if len(seeds) < 3:
+        raise ValueError("the ensemble needs >= 3 seeds")
+    conditions = recover_conditions(meas, model)
+    ev = event_set(meas.signals, meas.sample_period_s)
+    runs = plant_adapter.simulate_sets(model, [({}, {})], seeds, meas.n_samples, conditions=conditions,
+                                       signals=("a1", "a2", "omega1", "omega2", "angle_difference"))
+    ens = ensemble_from_runs(runs, meas.sample_period_s, keep_records=True)
+    loo = ens.loo_deviation()
+    floor = np.sqrt(np.mean(loo ** 2, axis=(0, 2)))
+    return Comparison(model, meas, conditions, seeds, ev, ens, 1.0 / floor, floor)
+
+
+def fit_percent(target, model_mean) -> np.ndarray:
+    """Per signal: 100 * (1 - ||y - m|| / ||y - mean(y)||)."""
+    num = np.linalg.norm(target - model_mean, axis=-1)
+    den = np.linalg.norm(target - target.mean(axis=-1, keepdims=True), axis=-1)
+    return 100.0 * (1.0 - num / den)
+
+
+def residual_ratio(c: Comparison, model_mean=None) -> np.ndarray:
+    """Per signal: rms(measured average - model mean) / noise floor (1 = as good as the model's own runs)."""
+    m = c.model_mean if model_mean is None else model_mean
+    return np.sqrt(np.mean((c.target - m) ** 2, axis=-1)) / c.floor_rms
+
+
+def noise_band_fit_percent(c: Comparison) -> np.ndarray:
+    """(n_seeds, 2): fit % of each seed's own average against the mean of the other seeds."""
+    x = c.ensemble.seed_denoised()
+    k = x.shape[0]
+    others = (x.sum(axis=0)[None] - x) / (k - 1)
+    return np.array([fit_percent(x[i], others[i]) for i in range(k)])
+
+
+def spread(c: Comparison) -> dict:
+    """Event-to-event spread (rms over the segment of the per-sample std across events), measured vs model."""
+    meas = denoise(c.events.raw).std(axis=0).mean(axis=-1) if c.events.n_events > 1 else np.full(2, np.nan)
+    mod = np.array([denoise(p).std(axis=0).mean(axis=-1) for p in c.ensemble.per_event if len(p) > 1])
+    return {s: {"measured": float(meas[i]), "model_median": float(np.median(mod[:, i])),
+                "model_min": float(mod[:, i].min()), "model_max": float(mod[:, i].max())}
+            for i, s in enumerate(SEGMENT_SIGNALS)}
+
+
+def spectra(c: Comparison, nperseg: int = 8192) -> dict:
+    """Whole-record raw spectra (Welch) of the measurement and every ensemble run."""
+    fs = 1.0 / c.meas.sample_period_s
+    out = {}
+    for s in SEGMENT_SIGNALS:
+        f, pm = sps.welch(c.meas.signals[s], fs=fs, nperseg=min(nperseg, c.meas.n_samples))
+        pe = np.array([sps.welch(r, fs=fs, nperseg=min(nperseg, len(r)))[1] for r in c.ensemble.raw_records[s]])
+        out[s] = {"f": f, "measured": pm, "ensemble": pe}
+    return out
+
+
+def spectral_peaks(spec: dict, n_peaks: int = 5, factor: float = 2.0) -> dict:
+    """Frequencies where the measured PSD exceeds the ensemble's maximum by ``factor`` (strongest first)."""
+    out = {}
+    for s, d in spec.items():
+        hi = d["ensemble"].max(axis=0)
+        mean = d["ensemble"].mean(axis=0)
+        ratio = d["measured"] / np.maximum(mean, 1e-300)
+        idx = np.flatnonzero((d["measured"] > factor * hi) & (d["f"] > 0))
+        idx = idx[np.argsort(-ratio[idx])][:n_peaks]
+        low = d["measured"] < d["ensemble"].min(axis=0) / factor
+        band_ratio = {}
+        for lo_f, hi_f in ((0, 50), (50, 200), (200, 1000), (1000, 5000), (5000, 25000)):
+            sel = (d["f"] >= lo_f) & (d["f"] < hi_f)
+            if sel.any():
+                band_ratio[f"{lo_f}-{hi_f} Hz"] = float(d["measured"][sel].sum() / max(mean[sel].sum(), 1e-300))
+        out[s] = {"peaks_hz": [float(d["f"][i]) for i in idx], "peak_ratio": [float(ratio[i]) for i in idx],
+                  "fraction_below_band": float(low[1:].mean()), "power_ratio_per_band": band_ratio}
+    return out
+
+
+def impact_sample(c: Comparison) -> int:
+    """Index in the segment of the far-side impact: the largest |a1| of the model's mean after the entry."""
+    a1 = c.ensemble.mean_raw()[0]
+    return PRE_SAMPLES + int(np.argmax(np.abs(a1[PRE_SAMPLES:])))
+
+
+def phase_slices(c: Comparison) -> dict:
+    L = c.target.shape[-1]
+    imp = impact_sample(c)
+    settle = imp + int(round(IMPACT_SETTLE_S / c.meas.sample_period_s))
+    return {"before_entry": slice(0, PRE_SAMPLES), "gap_traversal": slice(PRE_SAMPLES, imp),
+            "impact": slice(imp, min(settle, L)), "settling": slice(min(settle, L), L)}
+
+
+def where(c: Comparison, model_mean=None, raw_model_mean=None) -> dict:
+    """Share of the (weighted) residual per phase and per sym5 level, each with the noise's share and the
+    ratio residual energy / noise energy there (1 = inside the band)."""
+    m = c.model_mean if model_mean is None else model_mean
+    w = c.weights[:, None]
+    r = (c.target - m) * w
+    loo = c.ensemble.loo_deviation() * w[None]
+    total = float(np.sum(r ** 2))
+    noise_total = float(np.mean(np.sum(loo ** 2, axis=(1, 2))))
+    per_phase = {}
+    for name, sl in phase_slices(c).items():
+        e = float(np.sum(r[:, sl] ** 2))
+        n = float(np.mean(np.sum(loo[:, :, sl] ** 2, axis=(1, 2))))
+        per_phase[name] = {"share": e / max(total, 1e-300), "noise_share": n / max(noise_total, 1e-300),
+                           "over_noise": e / max(n, 1e-300),
+                           "per_signal_over_noise": {s: float(np.sum(r[i, sl] ** 2) /
+                                                              max(np.mean(np.sum(loo[:, i, sl] ** 2, axis=1)), 1e-300))
+                                                     for i, s in enumerate(SEGMENT_SIGNALS)}}
+    # wavelet levels on the raw (not denoised) averages: the denoising removes d1..d6
+    rm = c.ensemble.mean_raw() if raw_model_mean is None else raw_model_mean
+    rr = (c.events.mean_raw() - rm) * w
+    raw_loo = c.ensemble.loo_deviation(denoised=False) * w[None]
+    lv_e = np.zeros(len(LEVELS))
+    lv_n = np.zeros(len(LEVELS))
+    for i in range(len(SEGMENT_SIGNALS)):
+        coeffs = pywt.wavedec(rr[i], "sym5", level=6)      # [a6, d6, ..., d1]
+        for j, cf in enumerate(coeffs):
+            lv_e[_level_index(j)] += np.sum(cf ** 2)
+        for k in range(raw_loo.shape[0]):
+            for j, cf in enumerate(pywt.wavedec(raw_loo[k, i], "sym5", level=6)):
+                lv_n[_level_index(j)] += np.sum(cf ** 2) / raw_loo.shape[0]
+    per_level = {name: {"share": float(lv_e[i] / max(lv_e.sum(), 1e-300)),
+                        "noise_share": float(lv_n[i] / max(lv_n.sum(), 1e-300)),
+                        "over_noise": float(lv_e[i] / max(lv_n[i], 1e-300))} for i, name in enumerate(LEVELS)}
+    return {"per_phase": per_phase, "per_level": per_level,
+            "dominant_phase": max(per_phase, key=lambda k: per_phase[k]["over_noise"]),
+            "dominant_level": max(per_level, key=lambda k: per_level[k]["over_noise"] * per_level[k]["share"])}
+
+
+def _level_index(j: int) -> int:
+    # coeffs index j: 0 = a6, 1 = d6, ..., 6 = d1 -> LEVELS index: d1..d6 = 0..5, a6 = 6
+    return 6 if j == 0 else 6 - j
+
+
+def ljung_box(x: np.ndarray, lags: int = 10) -> tuple[float, float]:
+    x = np.asarray(x, dtype=float) - np.mean(x)
+    n = len(x)
+    lags = min(lags, n - 2)
+    if lags < 1:
+        return float("nan"), float("nan")
+    d = np.sum(x ** 2)
+    q = n * (n + 2) * sum((np.sum(x[k:] * x[:-k]) / d) ** 2 / (n - k) for k in range(1, lags + 1))
+    return float(q), float(stats.chi2.sf(q, lags))
+
+
+def decorrelation_lag(loo: np.ndarray) -> int:
+    """Samples after which the noise's autocorrelation falls below 1/e (mean over seeds and signals)."""
+    lags = []
+    for k in range(loo.shape[0]):
+        for i in range(loo.shape[1]):
+            x = loo[k, i] - loo[k, i].mean()
+            ac = np.correlate(x, x, "full")[len(x) - 1:]
+            ac = ac / max(ac[0], 1e-300)
+            below = np.flatnonzero(ac < 1 / np.e)
+            lags.append(int(below[0]) if below.size else len(x))
+    return max(1, int(np.median(lags)))
+
+
+def whiteness(c: Comparison, model_mean=None) -> dict:
+    """Ljung-Box on the residual of the event average, sampled every decorrelation length of the noise
+    (the honest unit: about one independent value per lag), against the same test on the ensemble's own
+    leave-one-out deviations."""
+    m = c.model_mean if model_mean is None else model_mean
+    loo = c.ensemble.loo_deviation()
+    lag = decorrelation_lag(loo)
+    out = {"decorrelation_samples": lag}
+    for i, s in enumerate(SEGMENT_SIGNALS):
+        q, p = ljung_box((c.target[i] - m[i])[::lag])
+        band = [ljung_box(loo[k, i, ::lag])[1] for k in range(loo.shape[0])]
+        out[s] = {"Q": q, "p_value": p, "n": int(len(c.target[i][::lag])),
+                  "ensemble_p_min": float(np.nanmin(band)), "ensemble_p_median": float(np.nanmedian(band))}
+    return out
+
+
+def input_correlation(c: Comparison, model_mean=None) -> dict:
+    """Per event: the mean weighted residual of a1 and a2 over the segment vs the motor speed (omega1,
+    mean over the segment) and the pulse phase at the entry; band |r| < 2/sqrt(E) (no correlation)."""
+    m = c.model_mean if model_mean is None else model_mean
+    ev = denoise(c.events.raw)
+    e = ev.shape[0]
+    out = {"events": e, "band_abs_r": float(2 / np.sqrt(max(e, 1)))}
+    if e < 4:
+        return out
+    fs = 1.0 / c.meas.sample_period_s
+    cfg = c.model.plant_config(c.conditions)
+    period = cfg.pulse_load.period_s * fs
+    phase = ((c.events.entries - cfg.pulse_load.first_s * fs) % period) / period
+    inputs = {"pulse_phase": phase}
+    if "omega1" in c.meas.signals:
+        om = c.meas.signals["omega1"]
+        inputs["motor_speed"] = np.array([om[k - PRE_SAMPLES:k + ev.shape[-1] - PRE_SAMPLES].mean()
+                                          for k in c.events.entries])
+    for i, s in enumerate(SEGMENT_SIGNALS):
+        resid = ((ev[:, i] - m[i]) * c.weights[i]).mean(axis=-1)
+        for name, x in inputs.items():
+            r = float(np.corrcoef(resid, x)[0, 1]) if np.std(x) > 0 and np.std(resid) > 0 else 0.0
+            out[f"{s}_vs_{name}"] = r
+    return out

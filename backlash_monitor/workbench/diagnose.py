@@ -1,0 +1,180 @@
+"""``diagnose``: where the model fails on a measurement, and which catalogue effect is missing.
+
+Decision rules (docs/workbench.md, "Decisions"):
+- the model is *inconsistent* with the measurement when the residual of the event average exceeds
+  INCONSISTENT_RATIO times the noise floor (the model's own leave-one-seed-out deviation);
+- a candidate is a *discovery* when the model is inconsistent, its delta_ic <= -DELTA_IC_STRONG (BIC on
+  the events), it explains >= MIN_EXPLAINED of the residual and its value is not pinned at a bound;
+- two candidates are *indistinguishable* when both qualify and their IC differ by < DELTA_IC_TIE;
+- after a discovery whose model is still inconsistent, every other candidate is fitted on top of it and
+  reported as a second effect by the same rules (delta_ic against the one-effect model).
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from . import analysis, fitting, plant_adapter
+from .events import SEGMENT_SIGNALS
+
+DELTA_IC_STRONG = 6.0
+DELTA_IC_TIE = 2.0
+MIN_EXPLAINED = 0.5
+MIN_EXPLAINED_SECOND = 0.3
+REFINE_TOP = 3
+
+
+def _separating_measurement(a, b) -> str:
+    """What recording would tell two candidates apart, from where they act."""
+    if a.balance != b.balance:
+        return (f"{a.effect} acts on the {a.balance.replace('_', ' ')}, {b.effect} on the "
+                f"{b.balance.replace('_', ' ')}: a recording at another operating point (another pulse amplitude "
+                "or working resistance) changes their signatures differently; a longer recording (more events) "
+                "narrows both fits")
+    return (f"both act on the {a.balance.replace('_', ' ')}: only a recording at another operating point "
+            "(another pulse amplitude, load or speed) or a direct measurement of that balance separates them")
+
+
+def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool = True) -> dict:
+    """Full diagnosis; returns a dict with the JSON fields and, under "_arrays", the data for the report."""
+    t0 = time.perf_counter()
+    comp = analysis.build_comparison(meas, model, seeds)
+    base_mean = comp.model_mean
+    problem = fitting.Problem(model, comp.events, comp.seeds, meas.n_samples, meas.sample_period_s,
+                              comp.conditions, comp.weights)
+    base_ic = problem.ic(base_mean, 0)
+    ratio_before = analysis.residual_ratio(comp)
+    overall_before = float(np.sqrt(np.mean(ratio_before ** 2)))
+    inconsistent = overall_before > analysis.INCONSISTENT_RATIO
+    catalogue = plant_adapter.catalogue(model)
+    if effects:
+        unknown = [e for e in effects if e not in {c.name for c in catalogue}]
+        if unknown:
+            raise ValueError(f"effect {unknown[0]!r} is not in the catalogue; allowed: "
+                             + ", ".join(c.name for c in catalogue))
+        catalogue = [c for c in catalogue if c.name in effects]
+    where_before = analysis.where(comp)
+    scr = fitting.screen(problem, catalogue, base_mean, progress=progress)
+    order = sorted(scr, key=lambda k: -scr[k]["explained_lin"])
+    by_name = {c.name: c for c in catalogue}
+    fits = [fitting.refine(problem, by_name[n], scr[n], base_mean, base_ic) for n in order[:REFINE_TOP]]
+    fits.sort(key=lambda f: f.delta_ic)
+
+    def qualifies(f, min_expl):
+        return f.delta_ic <= -DELTA_IC_STRONG and f.explained_fraction >= min_expl and not f.at_bound
+
+    qual = [f for f in fits if qualifies(f, MIN_EXPLAINED)] if inconsistent else []
+    discovery = qual[0] if qual else None
+    if discovery is not None:
+        for f in qual[1:]:
+            if f.delta_ic - discovery.delta_ic < DELTA_IC_TIE:
+                discovery.indistinguishable_from.append(f.effect)
+                f.indistinguishable_from.append(discovery.effect)
+    ranked = [f.to_json() for f in fits] + [
+        {"effect": n, "parameters": {p.name: float(v) for p, v in zip(by_name[n].parameters, scr[n]["x_lin"])},
+         "uncertainty": None, "delta_ic": None, "explained_fraction": float(scr[n]["explained_lin"]),
+         "indistinguishable_from": [], "screening_only": True, "balance": by_name[n].balance}
+        for n in order[REFINE_TOP:]]
+    for r in ranked:
+        if discovery is not None and r["effect"] in discovery.indistinguishable_from:
+            r["separating_measurement"] = _separating_measurement(discovery, next(f for f in fits
+                                                                                 if f.effect == r["effect"]))
+    after_mean = discovery.model_mean if discovery is not None else base_mean
+    second_fit = None
+    if discovery is not None and second:
+        second_fit = _second_effect(comp, problem, model, discovery, by_name, scr, order)
+        if second_fit is not None:
+            after_mean = second_fit.model_mean
+    ratio_after = analysis.residual_ratio(comp, after_mean)
+    best = fits[0] if fits else None
+    if discovery is None:
+        if not inconsistent:
+            message = (f"the model agrees with the measurement within its noise band (residual "
+                       f"{overall_before:.2f} x the noise floor): nothing to discover")
+        else:
+            wb = where_before
+            message = (f"nothing in the catalogue explains the residual (best: {best.effect}, explains "
+                       f"{best.explained_fraction:.0%}, delta_ic {best.delta_ic:.1f}"
+                       + (", at the bound of its range" if best.at_bound else "") + "); the residual sits in the "
+                       f"{wb['dominant_phase'].replace('_', ' ')} phase and wavelet level {wb['dominant_level']}")
+    else:
+        vals = ", ".join(f"{n} = {v:.4g} ± {u:.2g} {unit}" for n, v, u, unit in
+                         zip(discovery.parameter_names, discovery.values, discovery.uncertainty, discovery.units))
+        message = (f"missing effect: {discovery.effect} ({vals}), explains {discovery.explained_fraction:.0%} of "
+                   f"the residual, delta_ic {discovery.delta_ic:.1f}")
+        if discovery.indistinguishable_from:
+            message += ("; not distinguishable from this recording from " + ", ".join(discovery.indistinguishable_from))
+        if second_fit is not None:
+            message += f"; a second effect on top: {second_fit.effect} ({second_fit.values[0]:.4g})"
+    fit_before = analysis.fit_percent(comp.target, base_mean)
+    fit_after = analysis.fit_percent(comp.target, after_mean)
+    band = analysis.noise_band_fit_percent(comp)
+    result = {
+        "measurement": meas.source, "model": model.label(),
+        "model_file": str(model.path) if model.path else None,
+        "conditions": comp.conditions, "seeds": comp.seeds, "events": comp.events.n_events,
+        "discovery": None if discovery is None else discovery.effect,
+        "discovery_parameters": None if discovery is None else discovery.to_json(),
+        "indistinguishable": [] if discovery is None else [discovery.effect] + discovery.indistinguishable_from,
+        "second_effect": None if second_fit is None else second_fit.to_json(),
+        "message": message,
+        "model_inconsistent": bool(inconsistent),
+        "ranked": ranked,
+        "where": where_before,
+        "where_after": analysis.where(comp, after_mean) if discovery is not None else None,
+        "fit_percent": {"before": dict(zip(SEGMENT_SIGNALS, map(float, fit_before))),
+                        "after": dict(zip(SEGMENT_SIGNALS, map(float, fit_after))),
+                        "noise_band_median": dict(zip(SEGMENT_SIGNALS, map(float, np.median(band, axis=0))))},
+        "residual_over_noise_floor": {"before": dict(zip(SEGMENT_SIGNALS, map(float, ratio_before))),
+                                      "after": dict(zip(SEGMENT_SIGNALS, map(float, ratio_after))),
+                                      "overall_before": overall_before,
+                                      "overall_after": float(np.sqrt(np.mean(ratio_after ** 2)))},
+        "whiteness": analysis.whiteness(comp),
+        "input_correlation": analysis.input_correlation(comp),
+        "spectral_peaks": analysis.spectral_peaks(analysis.spectra(comp)),
+        "information_criterion": "BIC on the events: IC = E*ln(mean_e L_e) + k*ln(E), E onset events, L_e the "
+                                 "weighted mean squared difference of event e's denoised segment from the model "
+                                 "mean",
+        "simulated_parameter_sets": problem.n_sets_simulated + 1,
+        "seconds": time.perf_counter() - t0,
+    }
+    result["_arrays"] = {"comparison": comp, "after_mean": after_mean, "fits": fits}
+    return result
+
+
+def _second_effect(comp, problem, model, first, by_name, scr, order):
+    """Every other candidate fitted on top of the first effect (fixed at its fitted values)."""
+    r1 = problem.residual(first.model_mean)
+    if np.sqrt(np.mean(r1 ** 2)) <= analysis.INCONSISTENT_RATIO:
+        return None
+    eff1 = by_name[first.effect]
+    base_sets = plant_adapter.apply_values(eff1, first.values)
+    # linear screening on the first fit's residual with the Jacobians at the model (cheap), then refine the best
+    cands = []
+    for n in order:
+        if n == first.effect:
+            continue
+        J = scr[n]["J"]
+        d, *_ = np.linalg.lstsq(J, r1, rcond=None)
+        cands.append((1 - float(np.sum((r1 - J @ d) ** 2) / np.sum(r1 ** 2)), n))
+    cands.sort(reverse=True)
+    if not cands or cands[0][0] < MIN_EXPLAINED_SECOND:
+        return None
+    name = cands[0][1]
+    p2 = fitting.Problem(model, comp.events, comp.seeds, problem.n_samples, problem.dt, problem.conditions,
+                         comp.weights[:], base_sets=base_sets)
+    p2.w = problem.w
+    base_ic = first.ic + len(first.values) * 0.0
+    eff = by_name[name]
+    s2 = fitting.screen(p2, [eff], first.model_mean)
+    f2 = fitting.refine(p2, eff, s2[name], first.model_mean, base_ic)
+    problem.n_sets_simulated += p2.n_sets_simulated
+    f2.base = [first.effect]
+    if f2.delta_ic <= -DELTA_IC_STRONG and f2.explained_fraction >= MIN_EXPLAINED_SECOND and not f2.at_bound:
+        return f2
+    return None
+
+
+def public(result: dict) -> dict:
+    return {k: v for k, v in result.items() if not k.startswith("_")}

@@ -1,0 +1,125 @@
+"""Event-locked views of a drive: onset entries (the project's contact_loss trigger), entry-aligned
+segments, their event average (raw and sym5-denoised), and the model's noise ensemble of the same.
+
+A *segment* is ``PRE_SAMPLES`` before the onset entry to ``POST_SAMPLES`` after it, of a1 and a2.
+The same detector runs on the measurement and on every simulated run, so the alignment is the same.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from backlash_monitor.denoise import denoise_sym5
+from backlash_monitor.windowing import BacklashEntryDetector
+
+PRE_SAMPLES = 250          # 5 ms before the entry: the "before entry" phase
+POST_SAMPLES = 2048        # the paper's window after the entry
+SEGMENT_SIGNALS = ("a1", "a2")
+IMPACT_SETTLE_S = 0.004    # the "impact" phase: first 4 ms after the far-side impact; then "settling"
+
+
+def onset_entries(signals: dict, sample_period_s: float) -> np.ndarray:
+    """Sample indices of the onset entries (contact_loss trigger, measured or integrated angle)."""
+    if "angle_difference" in signals:
+        det = BacklashEntryDetector(trigger="contact_loss", sample_period_s=sample_period_s)
+        sig = {"angle_difference": signals["angle_difference"]}
+    else:
+        det = BacklashEntryDetector(trigger="contact_loss", sample_period_s=sample_period_s,
+                                    angle_source="integrated")
+        sig = {"omega1": signals["omega1"], "omega2": signals["omega2"]}
+    entries = det.feed(0, sig, sample_period_s)
+    return np.array([e.sample_index for e in entries if e.kind == "onset"], dtype=np.int64)
+
+
+def segments(signals: dict, entries: np.ndarray) -> np.ndarray:
+    """(n_events, 2, PRE+POST) raw segments of a1, a2 around each complete onset entry."""
+    n = len(signals["a1"])
+    keep = [int(k) for k in entries if k - PRE_SAMPLES >= 0 and k + POST_SAMPLES <= n]
+    out = np.empty((len(keep), len(SEGMENT_SIGNALS), PRE_SAMPLES + POST_SAMPLES))
+    for i, k in enumerate(keep):
+        for j, s in enumerate(SEGMENT_SIGNALS):
+            out[i, j] = signals[s][k - PRE_SAMPLES:k + POST_SAMPLES]
+    return out
+
+
+def denoise(x: np.ndarray) -> np.ndarray:
+    """The project's sym5 denoising (level 6, details 1-6 removed) along the last axis (linear)."""
+    return denoise_sym5(x)
+
+
+@dataclass
+class EventSet:
+    """The onset segments of one record: raw (n_events, 2, L); ``entries`` their entry indices."""
+    raw: np.ndarray
+    entries: np.ndarray
+
+    @property
+    def n_events(self) -> int:
+        return int(self.raw.shape[0])
+
+    def mean_raw(self) -> np.ndarray:
+        return self.raw.mean(axis=0)
+
+    def mean_denoised(self) -> np.ndarray:
+        return denoise(self.mean_raw())
+
+
+def event_set(signals: dict, sample_period_s: float) -> EventSet:
+    entries = onset_entries(signals, sample_period_s)
+    seg = segments(signals, entries)
+    n = len(signals["a1"])
+    kept = np.array([k for k in entries if k - PRE_SAMPLES >= 0 and k + POST_SAMPLES <= n], dtype=np.int64)
+    return EventSet(seg, kept)
+
+
+@dataclass
+class Ensemble:
+    """A model's ensemble: per run (set, seed) the event-averaged raw segment; (n_sets, n_seeds, 2, L).
+
+    ``per_event`` keeps every event's raw segment of set 0 (for the per-event statistics)."""
+    seed_means: np.ndarray
+    n_events: np.ndarray          # (n_sets, n_seeds)
+    per_event: list               # per seed of set 0: (n_events, 2, L)
+    raw_records: dict | None = None
+
+    def mean_raw(self, s: int = 0) -> np.ndarray:
+        w = self.n_events[s].astype(float)
+        return np.tensordot(w / w.sum(), self.seed_means[s], axes=(0, 0))
+
+    def mean_denoised(self, s: int = 0) -> np.ndarray:
+        return denoise(self.mean_raw(s))
+
+    def seed_denoised(self, s: int = 0) -> np.ndarray:
+        return denoise(self.seed_means[s])
+
+    def loo_deviation(self, s: int = 0, denoised: bool = True) -> np.ndarray:
+        """(n_seeds, 2, L): each seed's average minus the average of the others (the noise floor's
+        samples: what a correct model's own records look like against the model's mean)."""
+        x = self.seed_denoised(s) if denoised else self.seed_means[s]
+        k = x.shape[0]
+        total = x.sum(axis=0)
+        return x - (total - x) / (k - 1)
+
+
+def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = False) -> Ensemble:
+    """``runs``: {signal: (n_sets, n_seeds, n)} from plant_adapter.simulate_sets."""
+    n_sets, n_seeds, n = runs["a1"].shape
+    L = PRE_SAMPLES + POST_SAMPLES
+    means = np.zeros((n_sets, n_seeds, len(SEGMENT_SIGNALS), L))
+    counts = np.zeros((n_sets, n_seeds), dtype=np.int64)
+    per_event = []
+    for i in range(n_sets):
+        for j in range(n_seeds):
+            sig = {s: runs[s][i, j] for s in runs}
+            ev = event_set(sig, sample_period_s)
+            counts[i, j] = ev.n_events
+            if ev.n_events:
+                means[i, j] = ev.mean_raw()
+            if i == 0:
+                per_event.append(ev.raw)
+    if (counts == 0).any():
+        raise ValueError("a simulated run of the model gave no complete onset window; the model does not cross "
+                         "its backlash under these conditions")
+    records = {s: runs[s][0] for s in runs} if keep_records else None
+    return Ensemble(means, counts, per_event, records)

@@ -1,0 +1,177 @@
+"""A workbench *model*: a versioned YAML holding the plant config (as overrides of config/plant.yaml), the
+drive's nominal conditions (width, eta_k, n1) and the effects added so far; plus its history log.
+
+File layout (docs/workbench.md)::
+
+    workbench_model: 1          # format version
+    name: drive7
+    version: 2                  # model version, counts up with every add-effect
+    parent: drive7_v1.yaml      # the file this version was made from (null for the first)
+    nominal: {width_m: 0.0075, eta_k: 0.025, n1: 0.89}
+    plant: {load: {mass_kg: 12.9}, effects: {constant_motor_load: true}, constant_motor_load_pu: 0.1}
+    effects_added:              # what add-effect put in, with the fitted values and uncertainties
+      - {effect: load_mass, parameters: {mass_kg: 12.9}, uncertainty: {mass_kg: 0.2}, from: diagnosis.json}
+
+The history log is ``workbench_history.jsonl`` beside the model file: one JSON line per version made and
+per check (compare/diagnose of a version against a measurement, with its errors).
+"""
+from __future__ import annotations
+
+import copy
+import datetime as _dt
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Mapping, Sequence
+
+import yaml
+
+from backlash_monitor.plant import PATTERN_ETA_K, load_plant_config
+
+FORMAT_VERSION = 1
+HISTORY_FILE = "workbench_history.jsonl"
+DEFAULT_NOMINAL = {"width_m": 0.0075, "eta_k": PATTERN_ETA_K, "n1": 0.89}
+NOMINAL_RANGES = {"width_m": (0.0, 0.05), "eta_k": (0.0, 100.0), "n1": (0.0, 3.0)}
+
+
+class ModelError(ValueError):
+    """A model file or override that cannot be used (the message names the key and the allowed values)."""
+
+
+@dataclass
+class WorkbenchModel:
+    name: str = "default"
+    version: int = 1
+    parent: str | None = None
+    nominal: dict = field(default_factory=lambda: dict(DEFAULT_NOMINAL))
+    plant: dict = field(default_factory=dict)        # overrides of config/plant.yaml (nested)
+    effects_added: list = field(default_factory=list)
+    path: Path | None = None
+
+    def plant_config(self, extra: Mapping | None = None):
+        """The validated PlantConfig of this model (``extra``: flat overrides on top, e.g. conditions)."""
+        from backlash_monitor.plant.config import _merge, _unflatten
+        data = copy.deepcopy(self.plant)
+        if extra:
+            _merge(data, _unflatten(dict(extra)))
+        try:
+            return load_plant_config(overrides=data or None)
+        except ValueError as exc:
+            raise ModelError(str(exc)) from None
+
+    def to_dict(self) -> dict:
+        return {"workbench_model": FORMAT_VERSION, "name": self.name, "version": int(self.version),
+                "parent": self.parent, "nominal": dict(self.nominal), "plant": copy.deepcopy(self.plant),
+                "effects_added": copy.deepcopy(self.effects_added)}
+
+    def label(self) -> str:
+        return f"{self.name} v{self.version}"
+
+    def save(self, path) -> Path:
+        p = Path(path)
+        p.write_text("# backlash_monitor workbench model (docs/workbench.md)\n"
+                     + yaml.safe_dump(self.to_dict(), sort_keys=False))
+        self.path = p
+        return p
+
+
+def _set_nested(data: dict, key: str, value) -> None:
+    parts = key.split(".")
+    node = data
+    for part in parts[:-1]:
+        node = node.setdefault(part, {})
+        if not isinstance(node, dict):
+            raise ModelError(f"--set {key}: {part} is not a section")
+    node[parts[-1]] = value
+
+
+def parse_set(text: str) -> tuple[str, object]:
+    if "=" not in text:
+        raise ModelError(f"--set {text!r}: expected SECTION.KEY=VALUE, e.g. load.mass_kg=12")
+    key, value = text.split("=", 1)
+    return key.strip(), yaml.safe_load(value)
+
+
+def load_model(path=None, sets: Sequence[str] = (), width_m: float | None = None, eta_k: float | None = None,
+               n1: float | None = None) -> WorkbenchModel:
+    """The model of ``path`` (None: the default model = config/plant.yaml at the default nominal
+    conditions), with ``--set`` overrides and the nominal conditions' overrides; validated."""
+    if path is None:
+        model = WorkbenchModel()
+    else:
+        p = Path(path)
+        if not p.is_file():
+            raise ModelError(f"model file {str(p)!r} does not exist; give a workbench model YAML "
+                             "(docs/workbench.md) or no --model for the default model")
+        try:
+            data = yaml.safe_load(p.read_text()) or {}
+        except yaml.YAMLError as exc:
+            raise ModelError(f"model file {p} is not valid YAML: {exc}") from None
+        if not isinstance(data, dict) or data.get("workbench_model") != FORMAT_VERSION:
+            raise ModelError(f"model file {p}: not a workbench model (needs 'workbench_model: {FORMAT_VERSION}'; "
+                             "see docs/workbench.md)")
+        unknown = sorted(set(data) - {"workbench_model", "name", "version", "parent", "nominal", "plant",
+                                      "effects_added"})
+        if unknown:
+            raise ModelError(f"model file {p}: unknown key {unknown[0]!r}; allowed: name, version, parent, "
+                             "nominal, plant, effects_added")
+        nominal = dict(DEFAULT_NOMINAL)
+        nominal.update(data.get("nominal") or {})
+        model = WorkbenchModel(name=str(data.get("name", p.stem)), version=int(data.get("version", 1)),
+                               parent=data.get("parent"), nominal=nominal, plant=data.get("plant") or {},
+                               effects_added=list(data.get("effects_added") or []), path=p)
+    for text in sets:
+        key, value = parse_set(text)
+        _set_nested(model.plant, key, value)
+    for key, value in (("width_m", width_m), ("eta_k", eta_k), ("n1", n1)):
+        if value is not None:
+            model.nominal[key] = float(value)
+    for key, (lo, hi) in NOMINAL_RANGES.items():
+        v = model.nominal.get(key)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or not lo < v <= hi:
+            raise ModelError(f"model nominal {key} = {v!r} is out of range; allowed: {lo} < {key} <= {hi}")
+        model.nominal[key] = float(v)
+    unknown = sorted(set(model.nominal) - set(NOMINAL_RANGES))
+    if unknown:
+        raise ModelError(f"model nominal: unknown key {unknown[0]!r}; allowed: width_m, eta_k, n1")
+    model.plant_config()   # validates the plant overrides (raises ModelError naming the key)
+    return model
+
+
+# --- history ---------------------------------------------------------------------------------------
+
+def history_path(model_path) -> Path:
+    return Path(model_path).resolve().parent / HISTORY_FILE
+
+
+def append_history(model_path, entry: dict) -> None:
+    entry = dict(entry)
+    entry.setdefault("time_utc", _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"))
+    with open(history_path(model_path), "a") as f:
+        f.write(json.dumps(entry, default=float) + "\n")
+
+
+def read_history(directory) -> list[dict]:
+    p = Path(directory)
+    p = p / HISTORY_FILE if p.is_dir() else history_path(p)
+    if not p.is_file():
+        return []
+    out = []
+    for line in p.read_text().splitlines():
+        line = line.strip()
+        if line:
+            try:
+                out.append(json.loads(line))
+            except json.JSONDecodeError:
+                continue
+    return out
+
+
+def record_check(model: WorkbenchModel, measurement: str, kind: str, fit_percent: dict, ratio: dict) -> None:
+    """Append a check of a saved model version against a measurement to its history (no-op unsaved)."""
+    if model.path is None:
+        return
+    append_history(model.path, {"type": "check", "model": model.path.name, "name": model.name,
+                                "version": model.version, "measurement": str(measurement), "command": kind,
+                                "fit_percent": fit_percent, "residual_over_noise_floor": ratio})

@@ -1,0 +1,163 @@
+"""Figures (PNG) and the one-page HTML report of a comparison or a diagnosis."""
+from __future__ import annotations
+
+import html
+import json
+from pathlib import Path
+
+import numpy as np
+
+from . import analysis
+from .events import PRE_SAMPLES, SEGMENT_SIGNALS
+
+UNITS = {"a1": "m/s²", "a2": "m/s²"}
+
+
+def _plt():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def plot_event_average(comp, path, after_mean=None, title="") -> Path:
+    """Measured event average vs the model's ensemble mean with its band (min..max of the seeds)."""
+    plt = _plt()
+    t_ms = (np.arange(comp.target.shape[-1]) - PRE_SAMPLES) * comp.meas.sample_period_s * 1e3
+    seeds = comp.ensemble.seed_denoised()
+    fig, axes = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
+    for i, s in enumerate(SEGMENT_SIGNALS):
+        ax = axes[i]
+        ax.fill_between(t_ms, seeds[:, i].min(axis=0), seeds[:, i].max(axis=0), color="tab:blue", alpha=0.25,
+                        label="model ensemble (seed averages, min..max)")
+        ax.plot(t_ms, comp.model_mean[i], color="tab:blue", lw=1, label="model mean")
+        if after_mean is not None:
+            ax.plot(t_ms, after_mean[i], color="tab:green", lw=1, label="model with the effect")
+        ax.plot(t_ms, comp.target[i], color="k", lw=1, label="measurement (event average)")
+        ax.axvline(0, color="grey", lw=0.5)
+        ax.set_ylabel(f"{s} [{UNITS[s]}]")
+        if i == 0:
+            ax.legend(fontsize=7, loc="upper right")
+    axes[-1].set_xlabel("time from the onset entry [ms]")
+    fig.suptitle(title or "event-averaged, denoised onset segment")
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
+    return Path(path)
+
+
+def plot_spectra(comp, spec, path) -> Path:
+    plt = _plt()
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for ax, s in zip(axes, SEGMENT_SIGNALS):
+        d = spec[s]
+        f = d["f"][1:]
+        ax.fill_between(f, d["ensemble"][:, 1:].min(axis=0), d["ensemble"][:, 1:].max(axis=0), color="tab:blue",
+                        alpha=0.3, label="model ensemble")
+        ax.loglog(f, d["measured"][1:], color="k", lw=0.7, label="measurement (raw)")
+        ax.set_xlabel("frequency [Hz]")
+        ax.set_ylabel(f"PSD of {s}")
+        ax.legend(fontsize=7)
+    fig.suptitle("whole-record raw spectra (Welch)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
+    return Path(path)
+
+
+def plot_where(where_before, where_after, path) -> Path:
+    plt = _plt()
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
+    for ax, key, names in ((axes[0], "per_phase", analysis.PHASES), (axes[1], "per_level", analysis.LEVELS)):
+        x = np.arange(len(names))
+        ax.bar(x - 0.2, [where_before[key][n]["over_noise"] for n in names], 0.4, label="before")
+        if where_after is not None:
+            ax.bar(x + 0.2, [where_after[key][n]["over_noise"] for n in names], 0.4, label="after")
+        ax.axhline(1.0, color="k", lw=0.8, ls="--", label="noise band")
+        ax.set_xticks(x)
+        ax.set_xticklabels([n.replace("_", "\n") for n in names], fontsize=8)
+        ax.set_yscale("log")
+        ax.set_ylabel("residual energy / noise energy")
+        ax.legend(fontsize=7)
+    axes[0].set_title("per phase of the window")
+    axes[1].set_title("per sym5 wavelet level (raw)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
+    return Path(path)
+
+
+def plot_ranked(ranked, path) -> Path:
+    plt = _plt()
+    fitted = [r for r in ranked if r.get("delta_ic") is not None]
+    screened = [r for r in ranked if r.get("delta_ic") is None]
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
+    names = [r["effect"] for r in fitted]
+    axes[0].barh(names, [r["delta_ic"] for r in fitted], color="tab:purple")
+    axes[0].axvline(-6, color="k", ls="--", lw=0.8)
+    axes[0].set_xlabel("delta IC (BIC on events; < -6 strong)")
+    axes[0].invert_yaxis()
+    allr = fitted + screened
+    axes[1].barh([r["effect"] for r in allr], [r["explained_fraction"] for r in allr],
+                 color=["tab:purple"] * len(fitted) + ["tab:gray"] * len(screened))
+    axes[1].set_xlabel("share of the residual explained")
+    axes[1].set_xlim(min(0, min(r["explained_fraction"] for r in allr)), 1)
+    axes[1].invert_yaxis()
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
+    return Path(path)
+
+
+def _table(rows, header) -> str:
+    out = ["<table><tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in header) + "</tr>"]
+    for r in rows:
+        out.append("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in r) + "</tr>")
+    return "\n".join(out + ["</table>"])
+
+
+def write_report(result: dict, directory) -> Path:
+    """index.html + PNGs in ``directory`` (created). ``result``: diagnose() output (with _arrays)."""
+    d = Path(directory)
+    d.mkdir(parents=True, exist_ok=True)
+    comp = result["_arrays"]["comparison"]
+    after = result["_arrays"]["after_mean"] if result.get("discovery") else None
+    spec = analysis.spectra(comp)
+    imgs = [("Measurement vs model per signal (before/after)",
+             plot_event_average(comp, d / "event_average.png", after)),
+            ("Residual per phase and wavelet level", plot_where(result["where"], result.get("where_after"),
+                                                                d / "where.png")),
+            ("Ranked candidate effects", plot_ranked(result["ranked"], d / "ranked.png")),
+            ("Whole-record spectra", plot_spectra(comp, spec, d / "spectra.png"))]
+    fp = result["fit_percent"]
+    rr = result["residual_over_noise_floor"]
+    fit_rows = [(s, f"{fp['before'][s]:.1f}", f"{fp['after'][s]:.1f}", f"{fp['noise_band_median'][s]:.1f}",
+                 f"{rr['before'][s]:.2f}", f"{rr['after'][s]:.2f}") for s in SEGMENT_SIGNALS]
+    rank_rows = []
+    for r in result["ranked"]:
+        unc = r.get("uncertainty") or {}
+        vals = ", ".join(f"{k} = {v:.4g}" + (f" ± {unc[k]:.2g}" if k in unc else "")
+                         for k, v in r["parameters"].items())
+        rank_rows.append((r["effect"], vals, "-" if r["delta_ic"] is None else f"{r['delta_ic']:.1f}",
+                          f"{r['explained_fraction']:.0%}", ", ".join(r.get("indistinguishable_from", [])) or "-"))
+    body = [f"<h1>Diagnosis: {html.escape(result['model'])} against {html.escape(str(result['measurement']))}</h1>",
+            f"<p class='msg'>{html.escape(result['message'])}</p>",
+            f"<p>{result['events']} onset events; ensemble of {len(result['seeds'])} noise seeds; "
+            f"{result['simulated_parameter_sets']} simulated parameter sets in {result['seconds']:.1f} s.</p>",
+            "<h2>Fit</h2>", _table(fit_rows, ("signal", "fit % before", "fit % after", "fit % noise band",
+                                               "residual/noise before", "residual/noise after")),
+            "<h2>Candidates</h2>", _table(rank_rows, ("effect", "fitted values", "delta IC", "explained",
+                                                      "indistinguishable from"))]
+    for title, p in imgs:
+        body.append(f"<h2>{html.escape(title)}</h2><img src='{p.name}' alt='{html.escape(title)}'>")
+    body.append("<h2>JSON</h2><pre>" + html.escape(json.dumps(
+        {k: v for k, v in result.items() if k in ("where", "whiteness", "input_correlation", "spectral_peaks")},
+        indent=1, default=float)[:20000]) + "</pre>")
+    page = ("<!DOCTYPE html><html><head><meta charset='utf-8'><title>backlash_monitor diagnosis</title>"
+            "<style>body{font-family:sans-serif;margin:2em;max-width:1100px}table{border-collapse:collapse}"
+            "td,th{border:1px solid #999;padding:3px 8px}img{max-width:100%;border:1px solid #ccc}"
+            ".msg{font-size:1.2em;background:#eef;padding:8px}</style></head><body>"
+            + "\n".join(body) + "</body></html>")
+    out = d / "index.html"
+    out.write_text(page)
+    return out
