@@ -15,7 +15,7 @@ export ROS_AUTOMATIC_DISCOVERY_RANGE := LOCALHOST
 export ROS_DOMAIN_ID ?= $(shell shuf -i 1-101 -n 1)
 ACTIVATE := source ./env.sh
 
-.PHONY: help setup run test bench patterns evaluate clean
+.PHONY: help setup run test bench patterns evaluate clean chromium
 help:  ## list the targets
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  make %-10s %s\n", $$1, $$2}'
 
@@ -45,7 +45,12 @@ $(BUILD_STAMP): | log
 run: setup  ## run the main job (the pipeline) on its embedded default
 	$(ACTIVATE) && python -m backlash_monitor pipeline
 
-test: setup  ## run the whole test suite
+chromium:  ## install Debian's chromium (headless browser of the workbench report test) if missing
+	@command -v chromium >/dev/null 2>&1 || { echo "chromium: installing Debian's chromium (apt-get)"; \
+	  if [ "$$(id -u)" = 0 ]; then SUDO=; else SUDO=sudo; fi; \
+	  $$SUDO apt-get update && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y chromium; }
+
+test: setup chromium  ## run the whole test suite
 	$(ACTIVATE) && python -m pytest test -q
 
 bench: setup  ## run every bench/*.py into bench/results.json

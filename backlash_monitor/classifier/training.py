@@ -54,10 +54,13 @@ def paper_networks(ws: WindowSet, variant: str, signal: str, *, epochs: int = DE
 def build_library(trigger: str = "contact_loss", seeds=DEFAULT_TRAIN_SEEDS, *, epochs: int = DEFAULT_EPOCHS,
                   l1: float = DEFAULT_L1, l2: float = DEFAULT_L2, ridge: float = DEFAULT_RIDGE,
                   duration_s: float = DEFAULT_DURATION_S, windows: WindowSet | None = None,
-                  progress=None, window_offset: int | None = None) -> PatternLibrary:
-    """Simulate (or take ``windows``), then fit every mode. ``progress(n)`` is called per seed simulated."""
+                  progress=None, window_offset: int | None = None, config=None) -> PatternLibrary:
+    """Simulate (or take ``windows``), then fit every mode. ``progress(n)`` is called per seed simulated.
+    ``config``: the plant config of the training drives (default: config/plant.yaml; the workbench passes a
+    model version's config, ``train --model``)."""
     ws = windows if windows is not None else collect_windows(seeds, trigger, duration_s=duration_s,
-                                                             progress=progress, window_offset=window_offset)
+                                                             progress=progress, window_offset=window_offset,
+                                                             config=config)
     widths = np.asarray(K2_WIDTHS_M, dtype=float)
     arrays = {}
     for variant in CPN_VARIANTS:

@@ -56,6 +56,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--overwrite", action="store_true",
                         help="replace an existing --out file (without --out, the packaged library "
                              "is replaced: that is what `make patterns` asks for)")
+    parser.add_argument("--model", default=None, metavar="M.yaml",
+                        help="train on a workbench model version's plant config (docs/workbench.md; e.g. after "
+                             "add-effect) instead of config/plant.yaml; needs --out")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -72,6 +75,8 @@ def _check(args) -> None:
         raise UsageError(f"--duration {args.duration}: must be between 0.5 and 60 s")
     if args.window_offset is not None and not 0 <= args.window_offset <= 65536:
         raise UsageError(f"--window-offset {args.window_offset}: must be 0 <= SAMPLES <= 65536")
+    if getattr(args, "model", None) and args.out is None:
+        raise UsageError("--model needs --out LIB.npz (the packaged library stays the default model's)")
     if args.out is not None and not str(args.out).endswith(".npz"):
         raise UsageError(f"--out {args.out}: the library is an .npz file; give a name ending in .npz")
     if args.out is not None:   # before the minutes of training, not after
@@ -89,12 +94,19 @@ def run(args) -> int:
     from backlash_monitor.classifier.patterns import default_library_path
     from backlash_monitor.classifier.training import build_library
     out = args.out or default_library_path(args.trigger)
+    config = None
+    if args.model:
+        from backlash_monitor.workbench.model import ModelError, load_model
+        try:
+            config = load_model(args.model).plant_config()
+        except ModelError as exc:
+            raise UsageError(str(exc)) from None
     t0 = time.time()
     with tqdm(total=len(args.seeds), desc=f"simulate+window ({args.trigger})", unit="seed",
               disable=args.no_progress, file=sys.stderr) as bar:
         lib = build_library(args.trigger, args.seeds, epochs=args.epochs, l1=args.l1, l2=args.l2,
                             ridge=args.ridge, duration_s=args.duration, progress=bar.update,
-                            window_offset=args.window_offset)
+                            window_offset=args.window_offset, config=config)
     path = lib.save(out)
     fit = lib.training["shape"]["fit"]
     print(f"pattern library written: {path}")

@@ -18,7 +18,7 @@ import numpy as np
 from . import analysis, fitting, plant_adapter
 from .events import SEGMENT_SIGNALS
 
-DELTA_IC_STRONG = 6.0
+DELTA_IC_STRONG = 2.0     # "positive" evidence (Kass & Raftery) on E events; docs/workbench.md
 DELTA_IC_TIE = 2.0
 MIN_EXPLAINED = 0.5
 MIN_EXPLAINED_SECOND = 0.3
@@ -82,10 +82,23 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
                                                                                  if f.effect == r["effect"]))
     after_mean = discovery.model_mean if discovery is not None else base_mean
     second_fit = None
+    pair = None
     if discovery is not None and second:
-        second_fit = _second_effect(comp, problem, model, discovery, by_name, scr, order)
-        if second_fit is not None:
-            after_mean = second_fit.model_mean
+        pair = _second_effect(comp, problem, model, discovery, by_name, scr, order, base_mean, base_ic)
+        if pair is not None:
+            fit2, a, b = pair
+            after_mean = fit2.model_mean
+            # the pair replaces the single winner: split it into its two effects
+            na = len(by_name[a].parameters)
+            first = _part(fit2, by_name[a], slice(0, na), [])
+            second_fit = _part(fit2, by_name[b], slice(na, None), [a])
+            if discovery.effect not in (a, b):
+                first.indistinguishable_from = []
+            discovery = first
+        else:
+            second_fit = _greedy_second(comp, problem, model, discovery, by_name, scr, order)
+            if second_fit is not None:
+                after_mean = second_fit.model_mean
     ratio_after = analysis.residual_ratio(comp, after_mean)
     best = fits[0] if fits else None
     if discovery is None:
@@ -143,7 +156,48 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
     return result
 
 
-def _second_effect(comp, problem, model, first, by_name, scr, order):
+def _combined(a, b):
+    """One candidate holding the parameters of two (they act on different keys, so values apply together)."""
+    return plant_adapter.CandidateEffect(f"{a.name}+{b.name}", a.balance, f"{a.description}; {b.description}",
+                                         tuple(a.parameters) + tuple(b.parameters))
+
+
+def _second_effect(comp, problem, model, first, by_name, scr, order, base_mean, base_ic):
+    """Two effects at once: every pair of the best screened candidates is fitted linearly together (the
+    screening Jacobians); the best pair is refitted on the simulator. Returned when it beats the single
+    winner by DELTA_IC_STRONG and its second effect explains >= MIN_EXPLAINED_SECOND of what the first
+    left. -> (fit of the pair, name of the second effect) or None."""
+    r1 = problem.residual(first.model_mean)
+    if np.sqrt(np.mean(r1 ** 2)) <= analysis.INCONSISTENT_RATIO:
+        return None
+    r0 = problem.residual(base_mean)
+    top = order[:6]
+    best = None
+    for i, a in enumerate(top):
+        for b in top[i + 1:]:
+            J = np.hstack([scr[a]["J"], scr[b]["J"]])
+            ea, eb = by_name[a], by_name[b]
+            x0 = np.concatenate([ea.default_vector(), eb.default_vector()])
+            lo = np.concatenate([ea.bounds()[0], eb.bounds()[0]])
+            hi = np.concatenate([ea.bounds()[1], eb.bounds()[1]])
+            res = fitting.least_squares(lambda d: J @ d - r0, np.zeros(len(x0)), bounds=(lo - x0, hi - x0 + 1e-300))
+            expl = 1 - float(np.sum((r0 - J @ res.x) ** 2) / np.sum(r0 ** 2))
+            if best is None or expl > best[0]:
+                best = (expl, a, b, x0 + res.x, np.concatenate([scr[a]["h"], scr[b]["h"]]))
+    if best is None or best[0] <= first.explained_fraction:
+        return None
+    _, a, b, x_lin, h = best
+    pair = _combined(by_name[a], by_name[b])
+    fit = fitting.refine(problem, pair, {"x_lin": x_lin, "h": h, "explained_lin": best[0]}, base_mean, base_ic)
+    if fit.delta_ic > first.delta_ic - DELTA_IC_STRONG or fit.at_bound:
+        return None
+    left = 1 - float(np.sum(problem.residual(fit.model_mean) ** 2) / np.sum(r1 ** 2))
+    if left < MIN_EXPLAINED_SECOND:
+        return None
+    return fit, a, b
+
+
+def _greedy_second(comp, problem, model, first, by_name, scr, order):
     """Every other candidate fitted on top of the first effect (fixed at its fitted values)."""
     r1 = problem.residual(first.model_mean)
     if np.sqrt(np.mean(r1 ** 2)) <= analysis.INCONSISTENT_RATIO:
@@ -174,6 +228,15 @@ def _second_effect(comp, problem, model, first, by_name, scr, order):
     if f2.delta_ic <= -DELTA_IC_STRONG and f2.explained_fraction >= MIN_EXPLAINED_SECOND and not f2.at_bound:
         return f2
     return None
+
+
+
+def _part(fit, effect, sl, base):
+    f = fitting.FitResult(effect.name, fit.parameter_names[sl], fit.units[sl], fit.values[sl], fit.uncertainty[sl],
+                          fit.nominal[sl], (fit.bounds[0][sl], fit.bounds[1][sl]), fit.explained_fraction,
+                          fit.delta_ic, fit.ic, fit.model_mean, fit.screening_explained, fit.evaluations,
+                          effect.balance, effect.description, fit.at_bound, [], list(base))
+    return f
 
 
 def public(result: dict) -> dict:

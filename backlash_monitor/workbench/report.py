@@ -94,8 +94,8 @@ def plot_ranked(ranked, path) -> Path:
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
     names = [r["effect"] for r in fitted]
     axes[0].barh(names, [r["delta_ic"] for r in fitted], color="tab:purple")
-    axes[0].axvline(-6, color="k", ls="--", lw=0.8)
-    axes[0].set_xlabel("delta IC (BIC on events; < -6 strong)")
+    axes[0].axvline(-2, color="k", ls="--", lw=0.8)
+    axes[0].set_xlabel("delta IC (BIC on events; < -2 positive)")
     axes[0].invert_yaxis()
     allr = fitted + screened
     axes[1].barh([r["effect"] for r in allr], [r["explained_fraction"] for r in allr],

@@ -1,0 +1,93 @@
+"""The workbench on recordings with hidden effects made by the project's simulator (noise as in the paper).
+
+Hidden: a load mass of 13 kg (model: 10 kg) -> diagnose names load_mass first, within 10 %; after
+add-effect the new version's residual is inside the noise band. Negatives: clean recordings at two
+scenarios give no discovery; an effect outside the catalogue (a constant accelerometer bias on a2, not in
+today's catalogue: the rotor resistance) gives no discovery and a 'where' after the entry, low-frequency.
+(A constant a2 accelerometer bias is NOT a good outside-catalogue case: a spring-stiffness drift explains it
+on the event average, 98 % -- measured here; docs/workbench.md.) Recordings are 3 s (12 onset events) to keep the suite short.
+"""
+import json
+
+import numpy as np
+import pytest
+
+from backlash_monitor.__main__ import main
+from backlash_monitor.workbench.diagnose import diagnose, public
+from backlash_monitor.workbench.model import load_model
+from backlash_monitor.workbench.synthetic import hidden_effect_recording
+
+DURATION_S = 3.0
+MASS_TRUE_KG = 13.0
+PARAM_TOLERANCE = 0.10      # relative
+NOISE_BAND_RATIO = 1.5      # residual / noise floor of a model that agrees (analysis.INCONSISTENT_RATIO)
+
+
+def _save_npz(meas, path):
+    np.savez(path, sample_period_s=meas.sample_period_s, **meas.signals)
+    return path
+
+
+@pytest.fixture(scope="module")
+def hidden_mass(tmp_path_factory):
+    d = tmp_path_factory.mktemp("wb")
+    model = load_model(None)
+    model.name = "drive"
+    model.save(d / "v1.yaml")
+    meas = hidden_effect_recording(model, DURATION_S, seed=31, config_overrides={"load.mass_kg": MASS_TRUE_KG})
+    npz = _save_npz(meas, d / "drive.npz")
+    rc = main(["diagnose", str(npz), "--model", str(d / "v1.yaml"), "--json", str(d / "diag.json"),
+               "--report", str(d / "report")])
+    assert rc == 0
+    return d, json.loads((d / "diag.json").read_text())
+
+
+def test_hidden_mass_is_named_with_its_value(hidden_mass):
+    _, diag = hidden_mass
+    assert diag["discovery"] == "load_mass" or "load_mass" in diag["indistinguishable"], diag["message"]
+    fit = next(r for r in diag["ranked"] if r["effect"] == "load_mass")
+    assert abs(fit["parameters"]["mass_kg"] - MASS_TRUE_KG) / MASS_TRUE_KG < PARAM_TOLERANCE
+    assert fit["uncertainty"]["mass_kg"] > 0
+    for key in ("effect", "parameters", "uncertainty", "delta_ic", "explained_fraction", "indistinguishable_from"):
+        assert key in diag["ranked"][0]
+    assert set(diag["where"]["per_phase"]) == {"before_entry", "gap_traversal", "impact", "settling"}
+    assert diag["fit_percent"]["after"]["a2"] > diag["fit_percent"]["before"]["a2"]
+
+
+def test_add_effect_brings_the_fit_to_the_noise_band(hidden_mass):
+    d, diag = hidden_mass
+    assert main(["add-effect", str(d / "diag.json"), "--model", str(d / "v1.yaml"), "-o", str(d / "v2.yaml")]) == 0
+    v2 = load_model(d / "v2.yaml")
+    assert v2.version == 2 and abs(v2.plant_config().load.mass_kg - MASS_TRUE_KG) / MASS_TRUE_KG < PARAM_TOLERANCE
+    assert main(["compare", str(d / "drive.npz"), "--model", str(d / "v2.yaml"), "--out-dir", str(d / "cmp2"),
+                 "--json", str(d / "cmp2.json")]) == 0
+    after = json.loads((d / "cmp2.json").read_text())
+    before = diag["residual_over_noise_floor"]["before"]
+    assert max(after["residual_over_noise_floor"].values()) < NOISE_BAND_RATIO
+    assert max(before.values()) > 2 * NOISE_BAND_RATIO
+    assert main(["history", str(d)]) == 0
+    hist = [json.loads(line) for line in (d / "workbench_history.jsonl").read_text().splitlines()]
+    assert any(h["type"] == "version" and h["version"] == 2 for h in hist)
+    assert any(h["type"] == "check" and h["version"] == 2 for h in hist)
+
+
+@pytest.mark.parametrize("scenario,seed", [({"width_m": 0.005}, 41), ({"width_m": 0.0075, "eta_k": 0.0375}, 42)])
+def test_clean_recordings_give_no_discovery(scenario, seed):
+    model = load_model(None, width_m=scenario["width_m"], eta_k=scenario.get("eta_k"))
+    meas = hidden_effect_recording(model, DURATION_S, seed=seed)
+    res = public(diagnose(meas, model))
+    assert res["discovery"] is None, res["message"]
+
+
+def test_out_of_catalogue_effect_no_discovery_and_where():
+    """A rotor resistance of 0.07 p.u. (model: 0.048): a motor parameter no catalogue effect changes. The
+    motor's slip response is slow (tens of ms) and acts after the entry, when the motor drives the load
+    again: the residual must sit after the entry, in the lowest wavelet bands."""
+    model = load_model(None)
+    meas = hidden_effect_recording(model, DURATION_S, seed=43, config_overrides={"motor.r_r_pu": 0.07})
+    res = public(diagnose(meas, model))
+    assert res["model_inconsistent"], res["residual_over_noise_floor"]
+    assert res["discovery"] is None, res["message"]
+    assert res["where"]["dominant_phase"] != "before_entry"
+    assert res["where"]["dominant_level"] in ("a6", "d6")
+    assert "nothing in the catalogue" in res["message"]

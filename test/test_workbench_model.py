@@ -1,0 +1,83 @@
+"""Workbench model files, overrides, versions, history and measurement loading (fast, no simulation)."""
+import json
+
+import numpy as np
+import pytest
+
+from backlash_monitor.workbench.measurement import (Measurement, MeasurementError, check_against_model,
+                                                    load_measurement)
+from backlash_monitor.workbench.model import ModelError, load_model, read_history, append_history
+from backlash_monitor.workbench.versions import EffectValues, add_effects
+
+
+def test_default_model_and_overrides():
+    m = load_model(None, ["load.mass_kg=12.5"], width_m=0.005, n1=0.93)
+    cfg = m.plant_config()
+    assert cfg.load.mass_kg == 12.5
+    assert m.nominal["width_m"] == 0.005 and m.nominal["n1"] == 0.93
+
+
+def test_bad_override_and_nominal_are_refused():
+    with pytest.raises(ModelError, match="load.mass_kg"):
+        load_model(None, ["load.mass_kg=-1"])
+    with pytest.raises(ModelError, match="width_m"):
+        load_model(None, width_m=0.2)
+    with pytest.raises(ModelError, match="SECTION.KEY=VALUE"):
+        load_model(None, ["load.mass_kg"])
+
+
+def test_version_roundtrip_and_history(tmp_path):
+    m = load_model(None)
+    m.name = "drive"
+    m.save(tmp_path / "v1.yaml")
+    m1 = load_model(tmp_path / "v1.yaml")
+    m2 = add_effects(m1, [EffectValues("load_mass", {"mass_kg": 13.0}, {"mass_kg": 0.3}, "test")])
+    assert m2.version == 2 and m2.parent == "v1.yaml"
+    m2.save(tmp_path / "v2.yaml")
+    again = load_model(tmp_path / "v2.yaml")
+    assert again.plant_config().load.mass_kg == 13.0
+    assert again.effects_added[0]["effect"] == "load_mass"
+    with pytest.raises(ValueError, match="bounds"):
+        add_effects(m1, [EffectValues("load_mass", {"mass_kg": 1000.0})])
+    with pytest.raises(ValueError, match="not in the catalogue"):
+        add_effects(m1, [EffectValues("no_such_effect", {})])
+    append_history(tmp_path / "v2.yaml", {"type": "version", "model": "v2.yaml", "version": 2})
+    assert read_history(tmp_path)[0]["version"] == 2
+
+
+def _table(n=60000, dt=2e-5):
+    t = np.arange(n) * dt
+    return t, {"a1": np.sin(t), "a2": np.cos(t), "angle_difference": 0.01 * np.ones(n)}
+
+
+def test_csv_and_npz_measurements(tmp_path):
+    t, sig = _table()
+    p = tmp_path / "m.csv"
+    cols = ["time_s", "a1", "a2", "angle_difference"]
+    np.savetxt(p, np.column_stack([t] + [sig[c] for c in cols[1:]]), delimiter=",", header=",".join(cols),
+               comments="")
+    m = load_measurement(p)
+    assert abs(m.sample_period_s - 2e-5) < 1e-12 and np.allclose(m.signals["a2"], sig["a2"])
+    np.savez(tmp_path / "m.npz", sample_period_s=2e-5, **sig)
+    assert load_measurement(tmp_path / "m.npz").n_samples == len(t)
+    np.savez(tmp_path / "bad.npz", sample_period_s=2e-5, a1=sig["a1"])
+    with pytest.raises(MeasurementError, match="needs a1, a2 and angle_difference"):
+        load_measurement(tmp_path / "bad.npz")
+
+
+def test_sample_rate_and_length_mismatch_refused():
+    model = load_model(None)
+    n = 200000
+    m = Measurement("x", 1e-4, {"a1": np.zeros(n), "a2": np.zeros(n), "angle_difference": np.zeros(n)})
+    with pytest.raises(MeasurementError, match="sample rate 10000 Hz differs"):
+        check_against_model(m, model)
+    short = Measurement("x", 2e-5, {"a1": np.zeros(1000), "a2": np.zeros(1000), "angle_difference": np.zeros(1000)})
+    with pytest.raises(MeasurementError, match="too short"):
+        check_against_model(short, model)
+
+
+def test_cli_refuses_bad_input_without_traceback(tmp_path, capsys):
+    from backlash_monitor.__main__ import main
+    assert main(["diagnose", str(tmp_path / "missing.npz")]) == 2
+    err = capsys.readouterr().err
+    assert "does not exist" in err and "Traceback" not in err
