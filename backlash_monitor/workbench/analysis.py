@@ -43,7 +43,7 @@ def recover_conditions(meas, model) -> dict:
                               f"model's pulse period is {period / fs * 1e3:.1f} ms; allowed: within 3 % "
                               f"(--set pulse_load.period_s={round(spacing) / fs:g})")
     # the model's delay from pulse start to onset entry (noise-free, nominal timing)
-    runs = plant_adapter.simulate_sets(model, [({}, {})], [0], int(round(1.0 * fs)), noise=False)
+    runs = plant_adapter.simulate_sets(model, [{}], [0], int(round(1.0 * fs)), noise=False)
     sim_entries = onset_entries({k: v[0, 0] for k, v in runs.items()}, 1.0 / fs)
     first = int(round(cfg.pulse_load.first_s * fs))
     if len(sim_entries) == 0:
@@ -80,7 +80,7 @@ def build_comparison(meas, model, seeds=None) -> Comparison:
         raise ValueError("the ensemble needs >= 3 seeds")
     conditions = recover_conditions(meas, model)
     ev = event_set(meas.signals, meas.sample_period_s)
-    runs = plant_adapter.simulate_sets(model, [({}, {})], seeds, meas.n_samples, conditions=conditions,
+    runs = plant_adapter.simulate_sets(model, [{}], seeds, meas.n_samples, conditions=conditions,
                                        signals=("a1", "a2", "omega1", "omega2", "angle_difference"))
     ens = ensemble_from_runs(runs, meas.sample_period_s, keep_records=True)
     loo = ens.loo_deviation()

@@ -49,11 +49,11 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
     inconsistent = overall_before > analysis.INCONSISTENT_RATIO
     catalogue = plant_adapter.catalogue(model)
     if effects:
-        unknown = [e for e in effects if e not in {c.name for c in catalogue}]
+        unknown = [e for e in effects if e not in {c.name for c in catalogue} | {c.effect for c in catalogue}]
         if unknown:
             raise ValueError(f"effect {unknown[0]!r} is not in the catalogue; allowed: "
                              + ", ".join(c.name for c in catalogue))
-        catalogue = [c for c in catalogue if c.name in effects]
+        catalogue = [c for c in catalogue if c.name in effects or c.effect in effects]
     where_before = analysis.where(comp)
     scr = fitting.screen(problem, catalogue, base_mean, progress=progress)
     order = sorted(scr, key=lambda k: -scr[k]["explained_lin"])
@@ -158,7 +158,8 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
 
 def _combined(a, b):
     """One candidate holding the parameters of two (they act on different keys, so values apply together)."""
-    return plant_adapter.CandidateEffect(f"{a.name}+{b.name}", a.balance, f"{a.description}; {b.description}",
+    return plant_adapter.CandidateEffect(f"{a.name}+{b.name}", f"{a.effect}+{b.effect}", a.balance,
+                                         f"{a.description}; {b.description}",
                                          tuple(a.parameters) + tuple(b.parameters))
 
 
@@ -180,7 +181,7 @@ def _second_effect(comp, problem, model, first, by_name, scr, order, base_mean, 
             x0 = np.concatenate([ea.default_vector(), eb.default_vector()])
             lo = np.concatenate([ea.bounds()[0], eb.bounds()[0]])
             hi = np.concatenate([ea.bounds()[1], eb.bounds()[1]])
-            res = fitting.least_squares(lambda d: J @ d - r0, np.zeros(len(x0)), bounds=(lo - x0, hi - x0 + 1e-300))
+            res = fitting.lsq_linear(J, r0, bounds=(lo - x0, hi - x0 + 1e-300))
             expl = 1 - float(np.sum((r0 - J @ res.x) ** 2) / np.sum(r0 ** 2))
             if best is None or expl > best[0]:
                 best = (expl, a, b, x0 + res.x, np.concatenate([scr[a]["h"], scr[b]["h"]]))
@@ -210,7 +211,9 @@ def _greedy_second(comp, problem, model, first, by_name, scr, order):
         if n == first.effect:
             continue
         J = scr[n]["J"]
-        d, *_ = np.linalg.lstsq(J, r1, rcond=None)
+        eb = by_name[n]
+        d = fitting.lsq_linear(J, r1, bounds=(eb.bounds()[0] - eb.default_vector(),
+                                              eb.bounds()[1] - eb.default_vector() + 1e-300)).x
         cands.append((1 - float(np.sum((r1 - J @ d) ** 2) / np.sum(r1 ** 2)), n))
     cands.sort(reverse=True)
     if not cands or cands[0][0] < MIN_EXPLAINED_SECOND:

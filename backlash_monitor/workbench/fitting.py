@@ -22,7 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import least_squares
+from scipy.optimize import least_squares, lsq_linear
 
 from . import plant_adapter
 from .events import denoise, ensemble_from_runs
@@ -50,7 +50,7 @@ class FitResult:
     base: list = field(default_factory=list)   # effects this fit was made on top of
 
     def to_json(self) -> dict:
-        return {"effect": self.effect,
+        return {"effect": self.effect.split("[")[0], "candidate": self.effect,
                 "parameters": {n: float(v) for n, v in zip(self.parameter_names, self.values)},
                 "uncertainty": {n: float(u) for n, u in zip(self.parameter_names, self.uncertainty)},
                 "nominal": {n: float(v) for n, v in zip(self.parameter_names, self.nominal)},
@@ -59,7 +59,7 @@ class FitResult:
                 "screening_explained_fraction": float(self.screening_explained),
                 "indistinguishable_from": list(self.indistinguishable_from), "at_bound": bool(self.at_bound),
                 "simulated_parameter_sets": int(self.evaluations), "balance": self.balance,
-                "on_top_of": list(self.base)}
+                "on_top_of": list(self.base), "description": self.description}
 
 
 class Problem:
@@ -76,15 +76,15 @@ class Problem:
         self.dt = float(sample_period_s)
         self.conditions = dict(conditions)
         self.w = np.asarray(weights, dtype=float)[:, None]    # per signal 1 / noise-floor rms
-        self.base = base_sets or ({}, {})                     # (scenario, config) of effects already added
+        self.base = dict(base_sets or {})                     # parameter set of effects already added
         self.n_sets_simulated = 0
 
     def _merge(self, sets):
         out = []
-        for scen, conf in sets:
-            s = dict(self.base[0]); s.update(scen)
-            c = dict(self.base[1]); c.update(conf)
-            out.append((s, c))
+        for ps in sets:
+            merged = dict(self.base)
+            merged.update(ps)
+            out.append(merged)
         return out
 
     def evaluate(self, sets):
@@ -119,25 +119,27 @@ def _sets_for(effect, values_list):
 
 
 def screen(problem: Problem, effects, base_mean: np.ndarray, progress=None):
-    """One batch per effect (θ0 + h): Jacobian columns and the linear estimate. -> dict name -> info."""
+    """Every effect's parameters stepped by h from the model's values, all in ONE batch (per seed): the
+    Jacobian columns and the linear (bounded) estimate of each effect. -> dict name -> info."""
     r0 = problem.residual(base_mean)
     out = {}
+    sets, owners = [], []
     for eff in effects:
         x0 = eff.default_vector()
         h = _step(eff)
-        cols, means = [], []
-        sets = [plant_adapter.apply_values(eff, x0 + h[i] * np.eye(len(x0))[i]) for i in range(len(x0))]
-        ens = problem.evaluate(sets)
         for i in range(len(x0)):
-            m = ens.mean_denoised(i)
-            means.append(m)
-            cols.append(((m - base_mean) * problem.w).ravel() / h[i])
+            sets.append(plant_adapter.apply_values(eff, x0 + h[i] * np.eye(len(x0))[i]))
+            owners.append((eff.name, i))
+    ens = problem.evaluate(sets)
+    means = {o: ens.mean_denoised(j) for j, o in enumerate(owners)}
+    for eff in effects:
+        x0 = eff.default_vector()
+        h = _step(eff)
+        cols = [((means[(eff.name, i)] - base_mean) * problem.w).ravel() / h[i] for i in range(len(x0))]
         J = np.stack(cols, axis=1)
         lo, hi = eff.bounds()
         # linear bounded step: min ||r0 - J d||, x0 + d within bounds
-        res = least_squares(lambda d: J @ d - r0, np.zeros(len(x0)), bounds=(lo - x0, hi - x0 + 1e-300),
-                            method="trf")
-        d = res.x
+        d = lsq_linear(J, r0, bounds=(lo - x0, hi - x0 + 1e-300)).x
         explained = 1.0 - float(np.sum((r0 - J @ d) ** 2) / max(np.sum(r0 ** 2), 1e-300))
         out[eff.name] = {"J": J, "x_lin": x0 + d, "explained_lin": explained, "h": h}
         if progress is not None:
@@ -177,7 +179,8 @@ def refine(problem: Problem, effect, screening: dict, base_mean: np.ndarray, bas
         return np.stack([(problem.residual(m) - f0) / (s[i] - x[i]) for i, (m, s) in enumerate(zip(ms, steps))],
                         axis=1)
 
-    start = np.clip(screening["x_lin"], lo, hi)
+    margin = 1e-3 * (hi - lo)   # strictly inside: trf's first trust radius scales with the start's distance
+    start = np.clip(screening["x_lin"], lo + margin, hi - margin)
     res = least_squares(fun, start, jac=jac, bounds=(lo, hi + 1e-300), method="trf", max_nfev=max_nfev,
                         x_scale=np.abs(screening["h"]))
     x = res.x

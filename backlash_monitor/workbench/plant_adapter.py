@@ -1,56 +1,86 @@
 """The workbench's one door to the plant simulator: the candidate catalogue and batched, shared-noise runs.
 
-Everything the workbench needs from ``backlash_monitor.plant`` goes through this module, so that moving
-to the plug-in effects API (issue 10: ``plant.effects.catalogue()``, ``PlantSimulator(parameters=...,
-noise_seed=...)``) changes this file only.
+Built on the plug-in effects API (docs/effects.md): ``plant.effects.catalogue()`` gives every effect with
+its parameters (unit, default, bounds); ``PlantSimulator(parameters={name: per-scenario array},
+noise_seed=k)`` runs many candidate parameter sets as one batch on one noise realisation.
 
-Today's bridge (until that API is on this branch):
-
-- the catalogue holds the effects today's config can express: drifts of the model's parameters
-  (scenario fields width/eta_k/n1, config keys such as ``load.mass_kg``) and the built-in switchable
-  ``constant_motor_load`` term as ``motor_load_offset``;
-- a parameter set that changes a config key needs its own ``PlantSimulator`` (the config is global to a
-  simulator); sets that only change scenario fields share one batch;
-- common random numbers: today each scenario's noise seed is derived from its width, eta_k and n1, so
-  two candidate widths would get different noise. :func:`_shared_noise` replaces that derivation, for
-  the duration of one batch, by one that uses the scenario's seed only (the effects API's
-  ``noise_seed=`` does this properly; this is the only place that reaches into plant internals).
+- A *parameter set* is a dict ``{"effect.param": value}``; the effects it names are switched on.
+- Every catalogue effect is switched on in every workbench run (at its neutral default unless the model or
+  the set gives a value): one compiled kernel for the whole catalogue, candidates differ only in run-time
+  parameters (the effects API's advice; no compilation per candidate).
+- Common random numbers: every (set, seed) pair is one scenario of ONE batch; candidate values are
+  per-scenario parameters, so all scenarios of seed k have the same (seed, width, eta_k, n1) and the
+  simulator's per-scenario noise derivation gives them the same realisation bit for bit (checked in
+  test_workbench_model.py); the K seeds are K independent realisations. (``noise_seed=`` would put every
+  scenario of a batch on one realisation: K batches instead of one, ~10x slower for small sets.)
+- Fit ranges: an effect's bounds are the physically allowed values (wide); the fit searches a practical
+  range inside them (FIT_RANGES, reasons in docs/workbench.md). A user's plug-in effect without an entry is
+  searched over its own bounds.
+- Multi-signal sensor effects (accelerometer_bias/gain/lowpass) are fitted per signal: one candidate per
+  parameter (e.g. ``accelerometer_lowpass[a2]``), the other left at its value.
+- ``torque_ripple`` is not fitted from the event average (a ripple not locked to the events averages out);
+  the spectral-peak view shows it (NOT_EVENT_LOCKED).
 """
 from __future__ import annotations
 
-import contextlib
 from dataclasses import dataclass
 from typing import Mapping, Sequence
 
 import numpy as np
 
 from backlash_monitor.plant import PlantSimulator, Scenario
-from backlash_monitor.plant import simulate as _plant_simulate
+from backlash_monitor.plant import effects as plant_effects
 
 SIGNALS = ("a1", "a2", "omega1", "omega2", "angle_difference")
+NOT_EVENT_LOCKED = ("torque_ripple",)
+
+# practical search range of each parameter [unit of the parameter]; "width" = relative to the model's width
+FIT_RANGES = {
+    "wheel_coulomb_friction.torque_Nm": (0.0, 5.0),
+    "wheel_viscous_friction.damping_Nms_per_rad": (0.0, 0.2),
+    "wheel_stribeck_friction.excess_torque_Nm": (0.0, 5.0),
+    "wheel_stribeck_friction.stribeck_speed_rad_s": (0.5, 50.0),
+    "motor_coulomb_friction.torque_Nm": (0.0, 5.0),
+    "clutch_contact_stiffness.relative_change": (-0.6, 1.5),
+    "clutch_contact_damping.relative_change": (-0.8, 3.0),
+    "shaft_compliance.compliance_rad_per_Nm": (0.0, 2e-3),
+    "mass_force_offset.force_N": (-60.0, 60.0),
+    "motor_load_offset.load_pu": (-0.4, 0.4),
+    "accelerometer_bias.a1_m_s2": (-20.0, 20.0),
+    "accelerometer_bias.a2_m_s2": (-0.5, 0.5),
+    "accelerometer_gain.a1_relative_change": (-0.5, 0.5),
+    "accelerometer_gain.a2_relative_change": (-0.5, 0.5),
+    "accelerometer_lowpass.a1_time_constant_s": (0.0, 2e-3),
+    "accelerometer_lowpass.a2_time_constant_s": (0.0, 2e-3),
+    "backlash_width_drift.change": ("width", -0.4, 0.4),
+    "absorber_consistency_drift.relative_change": (-0.6, 1.5),
+    "absorber_flow_index_drift.change": (-0.1, 0.1),
+    "spring_stiffness_drift.relative_change": (-0.75, 3.0),
+    "load_mass_drift.relative_change": (-0.5, 1.0),
+    "wheel_inertia_drift.relative_change": (-0.5, 1.0),
+    "working_resistance_drift.relative_change": (-1.0, 2.0),
+    "pulse_amplitude_drift.relative_change": (-0.3, 0.3),
+}
 
 
 @dataclass(frozen=True)
 class EffectParameter:
-    name: str          # short name, e.g. "mass_kg"
+    name: str          # the effect's parameter name, e.g. "torque_Nm"
     unit: str
-    default: float     # the model's current value (the effect "off" = this value for a drift)
-    lower: float
+    default: float     # the model's current value (the effect's neutral default when the model lacks it)
+    lower: float       # search range of the fit
     upper: float
-    target: str        # "scenario.<field>" or "config.<section.key>" (where the value goes today)
+    key: str           # "effect.param"
 
 
 @dataclass(frozen=True)
 class CandidateEffect:
-    name: str
+    name: str                  # candidate id: the effect's name, or "effect[a2]" for one signal of a sensor
+    effect: str                # the catalogue effect's name
     balance: str
     description: str
-    parameters: tuple[EffectParameter, ...]
-    switch: str | None = None          # config key switched on with the effect (None: a drift)
-    identifiable_note: str = ""
-
-    def full_names(self) -> list[str]:
-        return [f"{self.name}.{p.name}" for p in self.parameters]
+    parameters: tuple          # the fitted EffectParameters
+    signal: str | None = None
 
     def default_vector(self) -> np.ndarray:
         return np.array([p.default for p in self.parameters])
@@ -59,50 +89,48 @@ class CandidateEffect:
         return np.array([p.lower for p in self.parameters]), np.array([p.upper for p in self.parameters])
 
 
-def _drift(name, balance, desc, pname, unit, target, value, lo_factor, hi_factor, lo_abs=None, hi_abs=None):
-    lo = value * lo_factor if lo_abs is None else lo_abs
-    hi = value * hi_factor if hi_abs is None else hi_abs
-    return CandidateEffect(name, balance, desc, (EffectParameter(pname, unit, float(value), float(lo), float(hi),
-                                                                 target),))
+def _current(cfg, effect: str, pname: str) -> float:
+    return float(cfg.effect_parameter(effect, pname))
+
+
+def _range(key, p, cfg, width_m, current):
+    spec = FIT_RANGES.get(key)
+    lo_b, hi_b = p.bounds
+    if spec is None:
+        lo, hi = lo_b, hi_b
+    elif spec[0] == "width":
+        lo, hi = spec[1] * width_m, spec[2] * width_m
+    else:
+        lo, hi = spec
+    lo, hi = max(lo, lo_b), min(hi, hi_b)
+    # the model's current value stays inside the range
+    return min(lo, current), max(hi, current)
 
 
 def catalogue(model) -> list[CandidateEffect]:
-    """The candidate effects the workbench can fit on ``model`` (a WorkbenchModel), defaults = its values."""
+    """The candidate effects the workbench fits on ``model`` (a WorkbenchModel), defaults = its values."""
     cfg = model.plant_config()
-    n = model.nominal
-    return [
-        _drift("backlash_width", "clutch_torque_Nm", "drift of the backlash width (the gap the clutch crosses)",
-               "width_m", "m", "scenario.width_m", n["width_m"], 0.6, 1.4),
-        _drift("absorber_consistency", "rim_mass_force_N", "drift of the absorber fluid's consistency eta_k",
-               "eta_k", "Pa*s^n", "scenario.eta_k", n["eta_k"], 0.4, 2.5),
-        _drift("absorber_flow_index", "rim_mass_force_N", "drift of the absorber fluid's flow index n1",
-               "n1", "-", "scenario.n1", n["n1"], 0.0, 0.0, lo_abs=max(0.8, n["n1"] - 0.1),
-               hi_abs=min(1.1, n["n1"] + 0.1)),
-        _drift("spring_stiffness", "rim_mass_force_N", "drift of the load spring's stiffness k",
-               "stiffness_N_per_m", "N/m", "config.load.spring_stiffness_N_per_m",
-               cfg.load.spring_stiffness_N_per_m, 0.25, 4.0),
-        _drift("load_mass", "mass_force_N", "drift of the load mass m", "mass_kg", "kg", "config.load.mass_kg",
-               cfg.load.mass_kg, 0.5, 2.0),
-        _drift("wheel_inertia", "wheel_torque_Nm", "drift of the load wheel's inertia J2", "inertia_kgm2", "kg*m^2",
-               "config.load.wheel_inertia_kgm2", cfg.load.wheel_inertia_kgm2, 0.5, 2.0),
-        _drift("working_resistance", "mass_force_N", "drift of the constant working resistance F0 on the mass",
-               "force_N", "N", "config.load.working_resistance_N", cfg.load.working_resistance_N, 0.0, 0.0,
-               lo_abs=0.0, hi_abs=max(3.0 * cfg.load.working_resistance_N, 30.0)),
-        _drift("pulse_amplitude", "motor_load_moment_pu", "drift of the system load's pulse amplitude",
-               "amplitude_pu", "p.u.", "config.pulse_load.amplitude_pu", cfg.pulse_load.amplitude_pu, 0.7, 1.3),
-        _drift("clutch_contact_stiffness", "clutch_torque_Nm", "drift of the clutch's contact stiffness k_c",
-               "stiffness_Nm_per_rad", "N*m/rad", "config.clutch.contact_stiffness_Nm_per_rad",
-               cfg.clutch.contact_stiffness_Nm_per_rad, 0.5, 2.0),
-        _drift("clutch_contact_damping", "clutch_torque_Nm", "drift of the clutch's contact damping d_c",
-               "damping_Nms_per_rad", "N*m*s/rad", "config.clutch.contact_damping_Nms_per_rad",
-               cfg.clutch.contact_damping_Nms_per_rad, 0.25, 4.0),
-        CandidateEffect("motor_load_offset", "motor_load_moment_pu",
-                        "a constant extra load moment on the motor (e.g. bearing drag)",
-                        (EffectParameter("load_pu", "p.u.", float(cfg.constant_motor_load_pu
-                                                                  if cfg.effects.constant_motor_load else 0.0),
-                                         -0.4, 0.4, "config.constant_motor_load_pu"),),
-                        switch="effects.constant_motor_load"),
-    ]
+    reg = plant_effects.catalogue()
+    names = [n for n in plant_effects.CATALOGUE_NAMES if n not in NOT_EVENT_LOCKED]
+    # user plug-ins registered in this process (not nominal, not built-in catalogue)
+    names += [n for n, c in reg.items() if n not in names and n not in NOT_EVENT_LOCKED and not c.nominal
+              and n not in plant_effects.CATALOGUE_NAMES and c.kind in ("term", "drift", "sensor")]
+    out = []
+    for name in names:
+        cls = reg[name]
+        params = []
+        for p in cls.parameters:
+            key = f"{name}.{p.name}"
+            cur = _current(cfg, name, p.name)
+            lo, hi = _range(key, p, cfg, model.nominal["width_m"], cur)
+            params.append(EffectParameter(p.name, p.unit, cur, lo, hi, key))
+        if cls.kind == "sensor" and all(p.name.startswith(("a1_", "a2_")) for p in params):
+            for sig in ("a1", "a2"):
+                sub = tuple(p for p in params if p.name.startswith(sig + "_"))
+                out.append(CandidateEffect(f"{name}[{sig}]", name, cls.balance, cls.description, sub, sig))
+        else:
+            out.append(CandidateEffect(name, name, cls.balance, cls.description, tuple(params)))
+    return out
 
 
 def effect_by_name(model, name: str) -> CandidateEffect:
@@ -112,60 +140,58 @@ def effect_by_name(model, name: str) -> CandidateEffect:
     return effects[name]
 
 
-def apply_values(effect: CandidateEffect, values) -> tuple[dict, dict]:
-    """(scenario field overrides, config overrides) that put ``values`` (one per parameter) into a model."""
-    scen, conf = {}, {}
-    for p, v in zip(effect.parameters, np.atleast_1d(values)):
-        kind, key = p.target.split(".", 1)
-        (scen if kind == "scenario" else conf)[key] = float(v)
-    if effect.switch:
-        conf[effect.switch] = True
-    return scen, conf
+def apply_values(effect: CandidateEffect, values) -> dict:
+    """The parameter set {"effect.param": value} that puts ``values`` (one per fitted parameter) in."""
+    return {p.key: float(v) for p, v in zip(effect.parameters, np.atleast_1d(values))}
 
 
-@contextlib.contextmanager
-def _shared_noise():
-    """Noise seed from the scenario's ``seed`` only (common random numbers across parameter values)."""
-    original = _plant_simulate._noise_seed
-
-    def seed_only(s):
-        return int(np.random.SeedSequence([s.seed, 0x3C0DE]).generate_state(1, np.uint32)[0])
-
-    _plant_simulate._noise_seed = seed_only
-    try:
-        yield
-    finally:
-        _plant_simulate._noise_seed = original
+def config_overrides(parameter_set: Mapping) -> dict:
+    """Config overrides (switch + value) that make a parameter set part of a model version."""
+    out = {}
+    for key, value in parameter_set.items():
+        effect, pname = key.split(".", 1)
+        out[f"effects.{effect}"] = True
+        out[f"{effect}.{pname}"] = float(value)
+    return out
 
 
-def simulate_sets(model, sets: Sequence[tuple[Mapping, Mapping]], seeds: Sequence[int], n_samples: int,
+def _catalogue_switches() -> dict:
+    reg = plant_effects.catalogue()
+    return {f"effects.{n}": True for n in plant_effects.CATALOGUE_NAMES
+            if n in reg and n not in NOT_EVENT_LOCKED}
+
+
+def simulate_sets(model, sets: Sequence[Mapping], seeds: Sequence[int], n_samples: int,
                   conditions: Mapping | None = None, noise: bool = True,
                   signals: Sequence[str] = ("a1", "a2", "omega1", "angle_difference")) -> dict[str, np.ndarray]:
-    """Run every parameter set x every seed on shared noise; -> {signal: (n_sets, n_seeds, n_samples)}.
+    """Run every parameter set x every seed; -> {signal: (n_sets, n_seeds, n_samples)}.
 
-    ``sets``: (scenario overrides, config overrides) per set, as :func:`apply_values` gives (merged on top
-    of the model). ``conditions``: config overrides of the measurement (e.g. the recovered pulse timing).
-    Sets with the same config overrides run as one batch.
+    One batch per seed (``noise_seed=seed``: all sets on the same noise), the sets as its scenarios with
+    per-scenario parameters. ``conditions``: config overrides of the measurement (e.g. pulse timing).
     """
     seeds = [int(s) for s in seeds]
-    groups: dict[str, list[int]] = {}
-    for i, (_, conf) in enumerate(sets):
-        groups.setdefault(repr(sorted(conf.items())), []).append(i)
-    out = {s: np.empty((len(sets), len(seeds), n_samples)) for s in signals}
-    with _shared_noise():
-        for idx in groups.values():
-            conf = dict(conditions or {})
-            conf.update(sets[idx[0]][1])
-            cfg = model.plant_config(conf)
-            scen = []
-            for i in idx:
-                fields = dict(model.nominal)
-                fields.update(sets[i][0])
-                scen += [Scenario(width_m=fields["width_m"], eta_k=fields["eta_k"], n1=fields["n1"], seed=s)
-                         for s in seeds]
-            sim = PlantSimulator(scen, config=cfg, noise=noise, outputs=tuple(signals))
-            ch = sim.run(n_samples)
-            for s in signals:
-                arr = getattr(ch, s).reshape(len(idx), len(seeds), n_samples)
-                out[s][idx] = arr
+    extra = dict(conditions or {})
+    # the model's own effect switches stay as they are; every other catalogue effect on at its neutral default
+    switches = _catalogue_switches()
+    enabled = {c.name for c in plant_effects.enabled_effects(model.plant_config())}
+    switches = {k: v for k, v in switches.items() if k.split(".", 1)[1] not in enabled}
+    extra.update(switches)
+    cfg = model.plant_config(extra)
+    keys = sorted({k for s in sets for k in s})
+    n_sets, n_seeds = len(sets), len(seeds)
+    params = {}
+    for k in keys:
+        effect, pname = k.split(".", 1)
+        cur = _current(cfg, effect, pname)
+        per_set = np.array([float(s.get(k, cur)) for s in sets])
+        params[k] = np.repeat(per_set, n_seeds)          # scenario order: set-major, then seed
+    nom = model.nominal
+    # one batch: every (set, seed) a scenario. The drifts are parameters, not scenario fields, so every
+    # scenario of seed k has the same (seed, width, eta_k, n1) and hence the same noise (common random
+    # numbers across the sets); different seeds are independent realisations.
+    scen = [Scenario(width_m=nom["width_m"], eta_k=nom["eta_k"], n1=nom["n1"], seed=int(seed))
+            for _ in sets for seed in seeds]
+    sim = PlantSimulator(scen, config=cfg, noise=noise, outputs=tuple(signals), parameters=params or None)
+    ch = sim.run(n_samples)
+    out = {s: getattr(ch, s).reshape(n_sets, n_seeds, n_samples) for s in signals}
     return out

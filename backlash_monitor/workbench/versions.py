@@ -22,26 +22,27 @@ def add_effects(model: WorkbenchModel, additions, name: str | None = None) -> Wo
                          parent=model.path.name if model.path else f"{model.name} v{model.version} (unsaved)",
                          nominal=dict(model.nominal), plant=copy.deepcopy(model.plant),
                          effects_added=copy.deepcopy(model.effects_added))
+    cands = plant_adapter.catalogue(model)
     for add in additions:
-        eff = plant_adapter.effect_by_name(model, add.effect)
-        known = {p.name for p in eff.parameters}
-        unknown = sorted(set(add.parameters) - known)
+        mine = [c for c in cands if c.effect == add.effect or c.name == add.effect]
+        if not mine:
+            raise ValueError(f"effect {add.effect!r} is not in the catalogue; allowed: "
+                             + ", ".join(sorted({c.effect for c in cands})))
+        params = {p.name: p for c in mine for p in c.parameters}
+        unknown = sorted(set(add.parameters) - set(params))
         if unknown:
-            raise ValueError(f"effect {add.effect}: unknown parameter {unknown[0]!r}; allowed: {', '.join(sorted(known))}")
-        values = []
-        for p in eff.parameters:
-            v = float(add.parameters.get(p.name, p.default))
+            raise ValueError(f"effect {add.effect}: unknown parameter {unknown[0]!r}; allowed: {', '.join(sorted(params))}")
+        values = {}
+        for pname, v in add.parameters.items():
+            p = params[pname]
+            v = float(v)
             if not p.lower <= v <= p.upper:
-                raise ValueError(f"effect {add.effect}: {p.name} = {v:g} {p.unit} is out of its bounds; allowed: "
+                raise ValueError(f"effect {add.effect}: {p.name} = {v:g} {p.unit} is out of its range; allowed: "
                                  f"{p.lower:g} <= {p.name} <= {p.upper:g}")
-            values.append(v)
-        scen, conf = plant_adapter.apply_values(eff, values)
-        for k, v in scen.items():
-            new.nominal[k] = v
-        for k, v in conf.items():
+            values[p.key] = v
+        for k, v in plant_adapter.config_overrides(values).items():
             _set_nested(new.plant, k, v)
-        new.effects_added.append({"effect": add.effect, "parameters": dict(zip([p.name for p in eff.parameters],
-                                                                              values)),
+        new.effects_added.append({"effect": mine[0].effect, "parameters": {k.split(".", 1)[1]: v for k, v in values.items()},
                                   "uncertainty": {k: float(v) for k, v in (add.uncertainty or {}).items()},
                                   "from": add.source})
     new.plant_config()
