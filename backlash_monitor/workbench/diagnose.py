@@ -127,9 +127,11 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
         "measurement": meas.source, "model": model.label(),
         "model_file": str(model.path) if model.path else None,
         "conditions": comp.conditions, "seeds": comp.seeds, "events": comp.events.n_events,
-        "discovery": None if discovery is None else discovery.effect,
+        "discovery": None if discovery is None else discovery.effect.split("[")[0],
+        "discovery_candidate": None if discovery is None else discovery.effect,
         "discovery_parameters": None if discovery is None else discovery.to_json(),
-        "indistinguishable": [] if discovery is None else [discovery.effect] + discovery.indistinguishable_from,
+        "indistinguishable": [] if discovery is None else [e.split("[")[0] for e in
+                                                           [discovery.effect] + discovery.indistinguishable_from],
         "second_effect": None if second_fit is None else second_fit.to_json(),
         "message": message,
         "model_inconsistent": bool(inconsistent),
