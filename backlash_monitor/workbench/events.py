@@ -82,6 +82,7 @@ class Ensemble:
     n_events: np.ndarray          # (n_sets, n_seeds)
     per_event: list               # per seed of set 0: (n_events, 2, L)
     raw_records: dict | None = None
+    per_event_entries: list | None = None   # per seed of set 0: the entry indices of per_event
 
     def mean_raw(self, s: int = 0) -> np.ndarray:
         w = self.n_events[s].astype(float)
@@ -108,7 +109,7 @@ def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = 
     L = PRE_SAMPLES + POST_SAMPLES
     means = np.zeros((n_sets, n_seeds, len(SEGMENT_SIGNALS), L))
     counts = np.zeros((n_sets, n_seeds), dtype=np.int64)
-    per_event = []
+    per_event, per_entries = [], []
     for i in range(n_sets):
         for j in range(n_seeds):
             sig = {s: runs[s][i, j] for s in runs}
@@ -118,8 +119,9 @@ def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = 
                 means[i, j] = ev.mean_raw()
             if i == 0:
                 per_event.append(ev.raw)
+                per_entries.append(ev.entries)
     if (counts == 0).any():
         raise ValueError("a simulated run of the model gave no complete onset window; the model does not cross "
                          "its backlash under these conditions")
     records = {s: runs[s][0] for s in runs} if keep_records else None
-    return Ensemble(means, counts, per_event, records)
+    return Ensemble(means, counts, per_event, records, per_entries)
