@@ -116,3 +116,20 @@ def test_train_model_needs_out_and_a_valid_model(tmp_path, capsys):
     assert "--model needs --out" in capsys.readouterr().err
     assert main(["train", "--model", str(tmp_path / "m.yaml"), "--out", str(tmp_path / "x.npz")]) == 2
     assert "does not exist" in capsys.readouterr().err
+
+
+def test_mcap_measurement_any_namespace(tmp_path):
+    """A bag with the project's topics under a namespace (and a true width, ignored) loads without
+    --namespace, and with the right one; a wrong namespace is refused naming what the bag has."""
+    from backlash_monitor.bag.simulated import SimulationBagWriter
+    n, dt = 3000, 2e-5
+    rng = np.random.default_rng(0)
+    sig = {k: rng.normal(size=n) for k in ("a1", "a2", "omega1", "omega2", "angle_difference")}
+    with SimulationBagWriter(tmp_path / "one.mcap", true_width_m=0.005, namespace="line1/drive7") as bag:
+        for k in range(0, n, 1000):
+            bag.write_chunk(k, dt, {s: v[k:k + 1000] for s, v in sig.items()})
+    m = load_measurement(tmp_path / "one.mcap")
+    assert m.sample_period_s == dt and np.array_equal(m.signals["a2"], sig["a2"])
+    assert load_measurement(tmp_path / "one.mcap", namespace="/line1/drive7").n_samples == n
+    with pytest.raises(MeasurementError, match="no plant/a1"):
+        load_measurement(tmp_path / "one.mcap", namespace="/other")

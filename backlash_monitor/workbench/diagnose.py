@@ -81,6 +81,7 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
             r["separating_measurement"] = _separating_measurement(discovery, next(f for f in fits
                                                                                  if f.effect == r["effect"]))
     after_mean = discovery.model_mean if discovery is not None else base_mean
+    after_raw = discovery.model_mean_raw if discovery is not None else None
     second_fit = None
     pair = None
     if discovery is not None and second:
@@ -88,6 +89,7 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
         if pair is not None:
             fit2, a, b = pair
             after_mean = fit2.model_mean
+            after_raw = fit2.model_mean_raw
             # the pair replaces the single winner: split it into its two effects
             na = len(by_name[a].parameters)
             first = _part(fit2, by_name[a], slice(0, na), [])
@@ -99,6 +101,7 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
             second_fit = _greedy_second(comp, problem, model, discovery, by_name, scr, order)
             if second_fit is not None:
                 after_mean = second_fit.model_mean
+                after_raw = second_fit.model_mean_raw
     ratio_after = analysis.residual_ratio(comp, after_mean)
     best = fits[0] if fits else None
     if discovery is None:
@@ -137,7 +140,8 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
         "model_inconsistent": bool(inconsistent),
         "ranked": ranked,
         "where": where_before,
-        "where_after": analysis.where(comp, after_mean) if discovery is not None else None,
+        "where_after": (analysis.where(comp, after_mean, after_raw) if discovery is not None and after_raw is not None
+                        else None),
         "fit_percent": {"before": dict(zip(SEGMENT_SIGNALS, map(float, fit_before))),
                         "after": dict(zip(SEGMENT_SIGNALS, map(float, fit_after))),
                         "noise_band_median": dict(zip(SEGMENT_SIGNALS, map(float, np.median(band, axis=0))))},
@@ -240,7 +244,7 @@ def _part(fit, effect, sl, base):
     f = fitting.FitResult(effect.name, fit.parameter_names[sl], fit.units[sl], fit.values[sl], fit.uncertainty[sl],
                           fit.nominal[sl], (fit.bounds[0][sl], fit.bounds[1][sl]), fit.explained_fraction,
                           fit.delta_ic, fit.ic, fit.model_mean, fit.screening_explained, fit.evaluations,
-                          effect.balance, effect.description, fit.at_bound, [], list(base))
+                          effect.balance, effect.description, fit.at_bound, [], list(base), fit.model_mean_raw)
     return f
 
 

@@ -48,6 +48,7 @@ class FitResult:
     at_bound: bool = False
     indistinguishable_from: list = field(default_factory=list)
     base: list = field(default_factory=list)   # effects this fit was made on top of
+    model_mean_raw: np.ndarray | None = None   # (2, L) raw (not denoised) mean at the fitted values
 
     def to_json(self) -> dict:
         return {"effect": self.effect.split("[")[0], "candidate": self.effect,
@@ -153,6 +154,7 @@ def refine(problem: Problem, effect, screening: dict, base_mean: np.ndarray, bas
     x0 = effect.default_vector()
     lo, hi = effect.bounds()
     cache: dict = {}
+    raw: dict = {}
 
     def means_at(xs):
         todo = [tuple(np.round(x, 12)) for x in xs if tuple(np.round(x, 12)) not in cache]
@@ -160,6 +162,7 @@ def refine(problem: Problem, effect, screening: dict, base_mean: np.ndarray, bas
             ens = problem.evaluate(_sets_for(effect, [np.array(t) for t in todo]))
             for i, t in enumerate(todo):
                 cache[t] = ens.mean_denoised(i)
+                raw[t] = ens.mean_raw(i)
         return [cache[tuple(np.round(x, 12))] for x in xs]
 
     cache[tuple(np.round(x0, 12))] = base_mean
@@ -185,6 +188,7 @@ def refine(problem: Problem, effect, screening: dict, base_mean: np.ndarray, bas
                         x_scale=np.abs(screening["h"]))
     x = res.x
     m = means_at([x])[0]
+    m_raw = raw.get(tuple(np.round(x, 12)))
     J = jac(x)
     unc = jackknife_uncertainty(problem, J, x, effect, m)
     r0 = problem.residual(base_mean)
@@ -195,7 +199,7 @@ def refine(problem: Problem, effect, screening: dict, base_mean: np.ndarray, bas
                            np.isclose(x, hi, rtol=0, atol=1e-6 * (hi - lo))))
     return FitResult(effect.name, [p.name for p in effect.parameters], [p.unit for p in effect.parameters], x, unc,
                      x0, (lo, hi), explained, ic - base_ic, ic, m, screening["explained_lin"], len(cache),
-                     effect.balance, effect.description, at_bound)
+                     effect.balance, effect.description, at_bound, model_mean_raw=m_raw)
 
 
 def jackknife_uncertainty(problem: Problem, J: np.ndarray, x, effect, m) -> np.ndarray:
