@@ -80,6 +80,15 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
         if discovery is not None and r["effect"] in discovery.indistinguishable_from:
             r["separating_measurement"] = _separating_measurement(discovery, next(f for f in fits
                                                                                  if f.effect == r["effect"]))
+    # identifiability: how far the whole fit range moves the event average, in noise floors (linearised)
+    identifiability = {}
+    for n in order:
+        eff = by_name[n]
+        lo, hi = eff.bounds()
+        span = scr[n]["J"] * (hi - lo)[None, :]
+        reach = float(np.max(np.sqrt(np.mean(span ** 2, axis=0))))
+        identifiability[n] = {"range_effect_over_noise_floor": reach,
+                              "identifiable": reach >= 1.0}
     after_mean = discovery.model_mean if discovery is not None else base_mean
     after_raw = discovery.model_mean_raw if discovery is not None else None
     second_fit = None
@@ -149,6 +158,8 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
                                       "after": dict(zip(SEGMENT_SIGNALS, map(float, ratio_after))),
                                       "overall_before": overall_before,
                                       "overall_after": float(np.sqrt(np.mean(ratio_after ** 2)))},
+        "identifiability": identifiability,
+        "not_identifiable": [n for n, v in identifiability.items() if not v["identifiable"]],
         "whiteness": analysis.whiteness(comp),
         "input_correlation": analysis.input_correlation(comp),
         "spectral_peaks": analysis.spectral_peaks(analysis.spectra(comp)),

@@ -148,6 +148,10 @@ def write_report(result: dict, directory) -> Path:
                                                "residual/noise before", "residual/noise after")),
             "<h2>Candidates</h2>", _table(rank_rows, ("effect", "fitted values", "delta IC", "explained",
                                                       "indistinguishable from"))]
+    if result.get("not_identifiable"):
+        body.append("<h2>Not identifiable from this recording</h2><p>Over their whole fit range these effects move "
+                    "the event average by less than the noise floor (linearised): "
+                    + html.escape(", ".join(result["not_identifiable"])) + ".</p>")
     for title, p in imgs:
         body.append(f"<h2>{html.escape(title)}</h2><img src='{p.name}' alt='{html.escape(title)}'>")
     body.append("<h2>JSON</h2><pre>" + html.escape(json.dumps(
