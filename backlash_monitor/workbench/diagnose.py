@@ -14,15 +14,65 @@ from __future__ import annotations
 import time
 
 import numpy as np
+from scipy import stats
 
 from . import analysis, fitting, plant_adapter
-from .events import SEGMENT_SIGNALS
+from .events import SEGMENT_SIGNALS, denoise
 
 DELTA_IC_STRONG = 2.0     # "positive" evidence (Kass & Raftery) on E events; docs/workbench.md
 DELTA_IC_TIE = 2.0
 MIN_EXPLAINED = 0.5
 MIN_EXPLAINED_SECOND = 0.3
 REFINE_TOP = 3
+SUBSPACE_ENERGY = 0.99       # share of the candidates' reach the subspace keeps
+SUBSPACE_MAX_DIM = 12
+
+
+def _inconsistent(comp, problem, r) -> bool:
+    """The weighted residual r beyond the noise band: overall, or in the candidates' subspace."""
+    if np.sqrt(np.mean(r ** 2)) > analysis.INCONSISTENT_RATIO:
+        return True
+    t2, limit = hotelling(comp, problem, r)
+    return bool(t2 > limit)
+
+
+def whiten(basis: np.ndarray, comp) -> np.ndarray:
+    """basis @ C^(-1/2), C the covariance of the model's own events in the subspace (all seeds' events,
+    minus the model mean): the projected event residuals then have unit variance per direction."""
+    m = comp.model_mean
+    z = []
+    for raw in comp.ensemble.per_event:
+        d = (denoise(raw) - m[None]) * comp.weights[None, :, None]
+        z.append(d.reshape(d.shape[0], -1) @ basis)
+    z = np.vstack(z)
+    cov = np.cov(z, rowvar=False).reshape(basis.shape[1], basis.shape[1])
+    vals, vecs = np.linalg.eigh(cov)
+    vals = np.maximum(vals, 1e-12 * vals.max())
+    return basis @ (vecs / np.sqrt(vals)[None, :]) @ vecs.T
+
+
+def hotelling(comp, problem, r) -> tuple[float, float]:
+    """T^2 of the measured event average's residual in the whitened subspace (E events, the model mean's own
+    noise from K seeds included) and its 1 % limit (chi-square, q dof)."""
+    e = comp.events.n_events
+    k = len(comp.seeds)
+    z = problem.basis.T @ r
+    t2 = float(np.sum(z ** 2) / (1.0 / e + 1.0 / (e * k)))
+    return t2, float(stats.chi2.ppf(0.99, problem.basis.shape[1]))
+
+
+def candidate_basis(scr: dict, by_name: dict) -> np.ndarray:
+    """Orthonormal basis of the directions the candidates move the weighted event average in: SVD of
+    their Jacobian columns scaled by their fit ranges, keeping SUBSPACE_ENERGY of the energy."""
+    cols = []
+    for n, info in scr.items():
+        lo, hi = by_name[n].bounds()
+        cols.append(info["J"] * (hi - lo)[None, :])
+    s_mat = np.hstack(cols)
+    u, sv, _ = np.linalg.svd(s_mat, full_matrices=False)
+    energy = np.cumsum(sv ** 2) / max(np.sum(sv ** 2), 1e-300)
+    q = int(min(SUBSPACE_MAX_DIM, np.searchsorted(energy, SUBSPACE_ENERGY) + 1))
+    return u[:, :q]
 
 
 def _separating_measurement(a, b) -> str:
@@ -43,7 +93,6 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
     base_mean = comp.model_mean
     problem = fitting.Problem(model, comp.events, comp.seeds, meas.n_samples, meas.sample_period_s,
                               comp.conditions, comp.weights)
-    base_ic = problem.ic(base_mean, 0)
     ratio_before = analysis.residual_ratio(comp)
     overall_before = float(np.sqrt(np.mean(ratio_before ** 2)))
     inconsistent = overall_before > analysis.INCONSISTENT_RATIO
@@ -56,8 +105,26 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
         catalogue = [c for c in catalogue if c.name in effects or c.effect in effects]
     where_before = analysis.where(comp)
     scr = fitting.screen(problem, catalogue, base_mean, progress=progress)
+    # the candidates' subspace: what the catalogue can change in the event average (from the model's
+    # Jacobians over the fit ranges, before any fit to the measurement); the IC and the consistency gate
+    # are taken in it, so the events' noise in directions no candidate moves does not drown the evidence
+    problem.basis = whiten(candidate_basis(scr, by_name := {c.name: c for c in catalogue}), comp)
+    base_ic = problem.ic(base_mean, 0)
+    r0 = problem.residual(base_mean)
+    t2, t2_limit = hotelling(comp, problem, r0)
+    sub_ratio = float(np.sqrt(t2 / problem.basis.shape[1]))
+    inconsistent = inconsistent or t2 > t2_limit
+    # the linear estimates again, in the whitened subspace (generalised least squares)
+    r0g = problem.project(r0)
+    for n, info in scr.items():
+        eff = by_name[n]
+        x0 = eff.default_vector()
+        lo, hi = eff.bounds()
+        jg = problem.project(info["J"])
+        d = fitting.lsq_linear(jg, r0g, bounds=(lo - x0, hi - x0 + 1e-300)).x
+        info["x_lin"] = x0 + d
+        info["explained_lin"] = 1.0 - float(np.sum((r0g - jg @ d) ** 2) / max(np.sum(r0g ** 2), 1e-300))
     order = sorted(scr, key=lambda k: -scr[k]["explained_lin"])
-    by_name = {c.name: c for c in catalogue}
     fits = [fitting.refine(problem, by_name[n], scr[n], base_mean, base_ic) for n in order[:REFINE_TOP]]
     fits.sort(key=lambda f: f.delta_ic)
 
@@ -113,7 +180,20 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
                 after_raw = second_fit.model_mean_raw
     ratio_after = analysis.residual_ratio(comp, after_mean)
     best = fits[0] if fits else None
-    if discovery is None:
+    partial = None
+    if discovery is not None and _inconsistent(comp, problem, problem.residual(after_mean)):
+        # the effect(s) leave the residual outside the noise band: a partial explanation, not a discovery
+        partial = (discovery, second_fit)
+        discovery, second_fit, after_mean, after_raw = None, None, base_mean, None
+        ratio_after = analysis.residual_ratio(comp, after_mean)
+    if discovery is None and partial is not None:
+        wb = where_before
+        p1, p2 = partial
+        message = (f"no confident discovery: {p1.effect}" + (f" + {p2.effect}" if p2 is not None else "")
+                   + f" explains {(p2 or p1).explained_fraction:.0%} of the residual but leaves it outside the "
+                   f"noise band (an effect outside the catalogue?); the residual sits in the "
+                   f"{wb['dominant_phase'].replace('_', ' ')} phase and wavelet level {wb['dominant_level']}")
+    elif discovery is None:
         if not inconsistent:
             message = (f"the model agrees with the measurement within its noise band (residual "
                        f"{overall_before:.2f} x the noise floor): nothing to discover")
@@ -145,8 +225,11 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
         "indistinguishable": [] if discovery is None else [e.split("[")[0] for e in
                                                            [discovery.effect] + discovery.indistinguishable_from],
         "second_effect": None if second_fit is None else second_fit.to_json(),
+        "partial_explanation": None if partial is None else [f.to_json() for f in partial if f is not None],
         "message": message,
         "model_inconsistent": bool(inconsistent),
+        "subspace": {"dimension": int(problem.basis.shape[1]), "T2": t2, "T2_limit_p01": t2_limit,
+                     "residual_over_noise": sub_ratio},
         "ranked": ranked,
         "where": where_before,
         "where_after": (analysis.where(comp, after_mean, after_raw) if discovery is not None and after_raw is not None
@@ -186,14 +269,14 @@ def _second_effect(comp, problem, model, first, by_name, scr, order, base_mean, 
     winner by DELTA_IC_STRONG and its second effect explains >= MIN_EXPLAINED_SECOND of what the first
     left. -> (fit of the pair, name of the second effect) or None."""
     r1 = problem.residual(first.model_mean)
-    if np.sqrt(np.mean(r1 ** 2)) <= analysis.INCONSISTENT_RATIO:
+    if not _inconsistent(comp, problem, r1):
         return None
-    r0 = problem.residual(base_mean)
+    r0 = problem.project(problem.residual(base_mean))
     top = order[:6]
     best = None
     for i, a in enumerate(top):
         for b in top[i + 1:]:
-            J = np.hstack([scr[a]["J"], scr[b]["J"]])
+            J = problem.project(np.hstack([scr[a]["J"], scr[b]["J"]]))
             ea, eb = by_name[a], by_name[b]
             x0 = np.concatenate([ea.default_vector(), eb.default_vector()])
             lo = np.concatenate([ea.bounds()[0], eb.bounds()[0]])
@@ -202,14 +285,15 @@ def _second_effect(comp, problem, model, first, by_name, scr, order, base_mean, 
             expl = 1 - float(np.sum((r0 - J @ res.x) ** 2) / np.sum(r0 ** 2))
             if best is None or expl > best[0]:
                 best = (expl, a, b, x0 + res.x, np.concatenate([scr[a]["h"], scr[b]["h"]]))
-    if best is None or best[0] <= first.explained_fraction:
+    r1g = problem.project(r1)
+    if best is None or best[0] <= 1 - float(np.sum(r1g ** 2) / max(np.sum(r0 ** 2), 1e-300)):
         return None
     _, a, b, x_lin, h = best
     pair = _combined(by_name[a], by_name[b])
     fit = fitting.refine(problem, pair, {"x_lin": x_lin, "h": h, "explained_lin": best[0]}, base_mean, base_ic)
     if fit.delta_ic > first.delta_ic - DELTA_IC_STRONG or fit.at_bound:
         return None
-    left = 1 - float(np.sum(problem.residual(fit.model_mean) ** 2) / np.sum(r1 ** 2))
+    left = 1 - float(np.sum(problem.fit_residual(fit.model_mean) ** 2) / max(np.sum(r1g ** 2), 1e-300))
     if left < MIN_EXPLAINED_SECOND:
         return None
     return fit, a, b
@@ -218,7 +302,7 @@ def _second_effect(comp, problem, model, first, by_name, scr, order, base_mean, 
 def _greedy_second(comp, problem, model, first, by_name, scr, order):
     """Every other candidate fitted on top of the first effect (fixed at its fitted values)."""
     r1 = problem.residual(first.model_mean)
-    if np.sqrt(np.mean(r1 ** 2)) <= analysis.INCONSISTENT_RATIO:
+    if not _inconsistent(comp, problem, r1):
         return None
     eff1 = by_name[first.effect]
     base_sets = plant_adapter.apply_values(eff1, first.values)
@@ -227,11 +311,12 @@ def _greedy_second(comp, problem, model, first, by_name, scr, order):
     for n in order:
         if n == first.effect:
             continue
-        J = scr[n]["J"]
+        J = problem.project(scr[n]["J"])
+        r1g = problem.project(r1)
         eb = by_name[n]
-        d = fitting.lsq_linear(J, r1, bounds=(eb.bounds()[0] - eb.default_vector(),
+        d = fitting.lsq_linear(J, r1g, bounds=(eb.bounds()[0] - eb.default_vector(),
                                               eb.bounds()[1] - eb.default_vector() + 1e-300)).x
-        cands.append((1 - float(np.sum((r1 - J @ d) ** 2) / np.sum(r1 ** 2)), n))
+        cands.append((1 - float(np.sum((r1g - J @ d) ** 2) / max(np.sum(r1g ** 2), 1e-300)), n))
     cands.sort(reverse=True)
     if not cands or cands[0][0] < MIN_EXPLAINED_SECOND:
         return None
@@ -239,6 +324,7 @@ def _greedy_second(comp, problem, model, first, by_name, scr, order):
     p2 = fitting.Problem(model, comp.events, comp.seeds, problem.n_samples, problem.dt, problem.conditions,
                          comp.weights[:], base_sets=base_sets)
     p2.w = problem.w
+    p2.basis = problem.basis
     base_ic = first.ic + len(first.values) * 0.0
     eff = by_name[name]
     s2 = fitting.screen(p2, [eff], first.model_mean)

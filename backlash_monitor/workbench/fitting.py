@@ -79,6 +79,7 @@ class Problem:
         self.w = np.asarray(weights, dtype=float)[:, None]    # per signal 1 / noise-floor rms
         self.base = dict(base_sets or {})                     # parameter set of effects already added
         self.n_sets_simulated = 0
+        self.basis = None      # (2L, q) orthonormal: the directions the candidates act in (set by diagnose)
 
     def _merge(self, sets):
         out = []
@@ -99,10 +100,22 @@ class Problem:
     def residual(self, mean_denoised) -> np.ndarray:
         return ((self.target - mean_denoised) * self.w).ravel()
 
+    def project(self, r: np.ndarray) -> np.ndarray:
+        """Coordinates of a weighted residual (or Jacobian) in the whitened candidates' subspace (identity
+        before the subspace is known): the generalised-least-squares metric of the fits."""
+        return r if self.basis is None else self.basis.T @ r
+
+    def fit_residual(self, mean_denoised) -> np.ndarray:
+        return self.project(self.residual(mean_denoised))
+
     def ic(self, mean_denoised, k: int) -> float:
         d = (self.event_denoised - mean_denoised[None]) * self.w[None]
+        e = d.shape[0]
+        if self.basis is not None:
+            # whitened candidate subspace: one Gaussian per direction, its variance estimated from the events
+            z = d.reshape(e, -1) @ self.basis
+            return float(e * np.sum(np.log(np.mean(z ** 2, axis=0))) + k * np.log(e))
         loss = np.mean(d ** 2, axis=(1, 2))
-        e = len(loss)
         return float(e * np.log(np.mean(loss)) + k * np.log(e))
 
 
@@ -169,7 +182,7 @@ def refine(problem: Problem, effect, screening: dict, base_mean: np.ndarray, bas
     h_abs = np.abs(screening["h"]) * 0.5
 
     def fun(x):
-        return problem.residual(means_at([x])[0])
+        return problem.fit_residual(means_at([x])[0])
 
     def jac(x):
         steps = []
@@ -179,7 +192,7 @@ def refine(problem: Problem, effect, screening: dict, base_mean: np.ndarray, bas
             steps.append(xi)
         f0 = fun(x)
         ms = means_at(steps)
-        return np.stack([(problem.residual(m) - f0) / (s[i] - x[i]) for i, (m, s) in enumerate(zip(ms, steps))],
+        return np.stack([(problem.fit_residual(m) - f0) / (s[i] - x[i]) for i, (m, s) in enumerate(zip(ms, steps))],
                         axis=1)
 
     margin = 1e-3 * (hi - lo)   # strictly inside: trf's first trust radius scales with the start's distance
@@ -191,8 +204,9 @@ def refine(problem: Problem, effect, screening: dict, base_mean: np.ndarray, bas
     m_raw = raw.get(tuple(np.round(x, 12)))
     J = jac(x)
     unc = jackknife_uncertainty(problem, J, x, effect, m)
-    r0 = problem.residual(base_mean)
-    r1 = problem.residual(m)
+    # share of the residual explained, in the metric of the fit (the whitened candidates' subspace)
+    r0 = problem.fit_residual(base_mean)
+    r1 = problem.fit_residual(m)
     explained = 1.0 - float(np.sum(r1 ** 2) / max(np.sum(r0 ** 2), 1e-300))
     ic = problem.ic(m, len(x))
     at_bound = bool(np.any(np.isclose(x, lo, rtol=0, atol=1e-6 * (hi - lo)) |
@@ -212,7 +226,7 @@ def jackknife_uncertainty(problem: Problem, J: np.ndarray, x, effect, m) -> np.n
     shifts = []
     for i in range(e):
         loo = (total - ev[i]) / (e - 1)
-        d = ((loo - problem.target) * problem.w).ravel()
+        d = problem.project(((loo - problem.target) * problem.w).ravel())
         # residual = w(target - m); moving the target by d moves the optimum by pinv(-J) applied to -d
         shifts.append(-(pinv @ d))
     shifts = np.array(shifts)
