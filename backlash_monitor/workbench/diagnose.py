@@ -36,6 +36,23 @@ def _inconsistent(comp, problem, r) -> bool:
     return bool(t2 > limit)
 
 
+CONFIDENT_EXPLAINED = 0.9
+
+
+def _confident(comp, problem, after_mean, base_mean) -> bool:
+    """The model with the discovered effect(s) agrees with the measurement: overall residual/noise within
+    INCONSISTENT_RATIO, and either T^2 in the subspace within its limit or >= CONFIDENT_EXPLAINED of the
+    (whitened) residual explained (a strong effect fitted to 98 % can leave a T^2 above the limit from the
+    fit's own finite accuracy)."""
+    r = problem.residual(after_mean)
+    if np.sqrt(np.mean(r ** 2)) > analysis.INCONSISTENT_RATIO:
+        return False
+    t2, limit = hotelling(comp, problem, r)
+    r0g = problem.fit_residual(base_mean)
+    explained = 1 - float(np.sum(problem.project(r) ** 2) / max(np.sum(r0g ** 2), 1e-300))
+    return bool(t2 <= limit or explained >= CONFIDENT_EXPLAINED)
+
+
 def whiten(basis: np.ndarray, comp) -> np.ndarray:
     """basis @ C^(-1/2), C the covariance of the model's own events in the subspace (all seeds' events,
     minus the model mean): the projected event residuals then have unit variance per direction."""
@@ -181,7 +198,7 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
     ratio_after = analysis.residual_ratio(comp, after_mean)
     best = fits[0] if fits else None
     partial = None
-    if discovery is not None and _inconsistent(comp, problem, problem.residual(after_mean)):
+    if discovery is not None and not _confident(comp, problem, after_mean, base_mean):
         # the effect(s) leave the residual outside the noise band: a partial explanation, not a discovery
         partial = (discovery, second_fit)
         discovery, second_fit, after_mean, after_raw = None, None, base_mean, None
