@@ -15,14 +15,21 @@ received, so the offline estimates equal the live ones exactly.
 from __future__ import annotations
 
 import bisect
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from backlash_monitor.denoise import DEFAULT_MODE, denoise_sym5
+from backlash_monitor.denoise import DEFAULT_MODE, denoise_sym5, max_level
+from backlash_monitor.input_faults import FaultLog, is_index, is_period
 from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture, default_window_offset
+from backlash_monitor.windowing.capture import DiscardedWindow
 
 MAX_PENDING_RANGES = 16
+# A range that starts this far (or more) behind the expected index is a restart of the stream (a
+# drive restarted, its index counts from 0 again), not a late chunk: 1 s at 50 kHz, far more than
+# any reordering of best-effort chunks (MAX_PENDING_RANGES ranges of 1000 samples at most).
+RESYNC_SAMPLES = 50_000
 DENOISE_DEFAULTS = dict(level=6, details_removed=(1, 2, 3, 4, 5, 6), mode=DEFAULT_MODE)
 
 
@@ -33,48 +40,90 @@ class JoinedRange:
     arrays: dict
     stamp: object = None     # the first signal's header stamp, when the caller has one
     frame_id: str = ""
+    period_mismatch: bool = False   # the signals came with different sample periods
 
 
 class ChunkJoiner:
     """Collects one chunk of each of ``signals`` per first_sample_index; returns complete ranges.
 
     A range still incomplete while more than ``max_pending`` ranges wait is dropped (counted in
-    ``dropped_ranges``); the window capture then sees the gap and discards the windows spanning it.
+    ``dropped_ranges`` and in ``faults`` as ``incomplete_range``); the window capture then sees the
+    gap and discards the windows spanning it. A chunk whose index is not an integer in
+    0..2**53 is dropped at once (``bad_index``): it cannot be placed in the stream. Everything
+    else about the samples (period, lengths, values) is checked by :class:`WindowingStage`,
+    which knows the range's place in the stream.
     """
 
-    def __init__(self, signals, max_pending: int = MAX_PENDING_RANGES):
+    def __init__(self, signals, max_pending: int = MAX_PENDING_RANGES, faults: FaultLog | None = None):
         self.signals = tuple(signals)
         self.max_pending = max_pending
         self.pending: dict[int, dict] = {}
         self.meta: dict[int, tuple] = {}
         self.dropped_ranges = 0
+        self.faults = faults if faults is not None else FaultLog()
 
     def add(self, name: str, first_sample_index: int, sample_period_s: float, samples,
             stamp=None, frame_id: str = "") -> JoinedRange | None:
         if name not in self.signals:
             return None
+        if not is_index(first_sample_index):
+            self.faults.add("bad_index", f"{name} chunk at index {first_sample_index!r}")
+            return None
+        first_sample_index = int(first_sample_index)
+        try:
+            array = np.asarray(samples, dtype=np.float64)
+        except (TypeError, ValueError):
+            array = np.full(1, np.nan)   # not numbers: the stage drops the range as non-finite
         group = self.pending.setdefault(first_sample_index, {})
-        group[name] = np.asarray(samples, dtype=np.float64)
+        group[name] = array
         if name == self.signals[0] or first_sample_index not in self.meta:
             self.meta[first_sample_index] = (sample_period_s, stamp, frame_id)
-        if len(group) < len(self.signals):
+        if name != self.signals[0]:
+            group.setdefault("__periods__", {})[name] = sample_period_s
+        if len(group) - ("__periods__" in group) < len(self.signals):
             if len(self.pending) > self.max_pending:
                 oldest = min(self.pending)
                 del self.pending[oldest]
                 self.meta.pop(oldest, None)
                 self.dropped_ranges += 1
+                self.faults.add("incomplete_range", f"range at sample {oldest}")
             return None
         del self.pending[first_sample_index]
+        periods = group.pop("__periods__", {})
         period, stamp, frame_id = self.meta.pop(first_sample_index)
-        return JoinedRange(first_sample_index, period, group, stamp, frame_id)
+        joined = JoinedRange(first_sample_index, period, group, stamp, frame_id)
+        if any(p != period and not (_isnan(p) and _isnan(period)) for p in periods.values()):
+            joined.sample_period_s = math.nan      # the stage drops it: sample_period_mismatch
+            joined.period_mismatch = True
+        return joined
+
+
+def _isnan(value) -> bool:
+    try:
+        return math.isnan(value)
+    except TypeError:
+        return False
 
 
 class WindowingStage:
-    """Entry detection + window capture of one drive (backlash_monitor.windowing)."""
+    """Entry detection + window capture of one drive (backlash_monitor.windowing).
+
+    ``feed(joined)`` checks the range first (docs/windowing.md, "Input faults") and never raises
+    for what is in it: a range with a bad sample period, signals of unequal lengths, missing
+    signals or non-finite samples is dropped and counted in ``faults``; the windows spanning it
+    are discarded and the detector starts again after it (it re-arms on the next settled
+    contact). Samples missing before a range are counted (``gap``, ``lost_samples``); a range
+    behind the stream is dropped (``out_of_order``; the open windows keep their samples) unless it
+    is a restart of the stream (at least ``resync_samples`` behind): then detector and capture
+    start afresh at it (``stream_restart``). A restart less than ``resync_samples`` into the
+    old stream is dropped as out of order until it passes the old index: at most
+    ``resync_samples`` samples lost, and counted.
+    """
 
     def __init__(self, trigger: str = "contact_loss", width_m: float | None = None,
                  angle_source: str = "measured", window_length: int = 2048,
-                 signals=("a1", "a2"), window_offset_samples: int | None = None):
+                 signals=("a1", "a2"), window_offset_samples: int | None = None,
+                 faults: FaultLog | None = None, resync_samples: int = RESYNC_SAMPLES):
         """``window_offset_samples``: window start after the entry; None = the trigger's configured
         value (config/windowing.yaml capture.window_offset_samples)."""
         if window_offset_samples is None:
@@ -86,13 +135,103 @@ class WindowingStage:
         self.window_offset_samples = self.capture.window_offset_samples
         angle = ("angle_difference",) if angle_source == "measured" else ("omega1", "omega2")
         self.input_signals = tuple(signals) + angle
+        self.faults = faults if faults is not None else FaultLog()
+        self.resync_samples = int(resync_samples)
+        self.lost_samples = 0          # samples never fed: gaps and dropped bad ranges
+        self._next: int | None = None  # the index the next range should start at
 
-    def feed(self, joined: JoinedRange):
-        """(windows, discarded) completed by this range."""
-        entries = self.detector.feed(joined.first_sample_index, joined.arrays,
-                                     joined.sample_period_s)
-        return self.capture.feed(joined.first_sample_index, joined.arrays, entries=entries,
-                                 sample_period_s=joined.sample_period_s)
+    def check(self, joined: JoinedRange) -> tuple[str | None, int]:
+        """(reason the range is bad or None, its length or -1)."""
+        if not is_index(joined.first_sample_index):
+            return "bad_index", -1
+        if getattr(joined, "period_mismatch", False):
+            n = _common_length(joined.arrays, self.input_signals)
+            return "sample_period_mismatch", n
+        missing = [s for s in self.input_signals if s not in joined.arrays]
+        if missing:
+            return "incomplete_range", -1
+        n = _common_length(joined.arrays, self.input_signals)
+        if n == -2:
+            return "bad_shape", -1
+        if n < 0:
+            return "length_mismatch", max(np.asarray(joined.arrays[s]).size for s in self.input_signals)
+        if not is_period(joined.sample_period_s):
+            return "bad_sample_period", n
+        for s in self.input_signals:
+            if not np.isfinite(joined.arrays[s]).all():
+                return "non_finite_samples", n
+        return None, n
+
+    def feed(self, joined: JoinedRange, checked: bool = False):
+        """(windows, discarded) completed by this range. ``checked``: :meth:`check` found the range
+        good already (BlockFeeder)."""
+        first = joined.first_sample_index
+        if checked:
+            reason, n = None, _common_length(joined.arrays, self.input_signals)
+        else:
+            reason, n = self.check(joined)
+        discarded: list = []
+        if reason is not None:
+            self.faults.add(reason, f"range at sample {first}" + (f", {n} samples" if n >= 0 else ""))
+            if n > 0 and is_index(first) and (self._next is None or first >= self._next):
+                # the range had its place in the stream: resume after it
+                discarded = self._break(reason, first + n)
+                self._note_gap(first)
+                self.lost_samples += n
+                self._next = first + n
+            return [], discarded
+        first = int(first)
+        if self._next is not None and first < self._next:
+            if self._is_restart(first, n):
+                self.faults.add("stream_restart", f"index {first} after {self._next}")
+                discarded = self._break("stream_restart", None)
+                self._next = None
+            else:
+                # late or repeated: dropped; the open windows keep their (complete) samples
+                self.faults.add("out_of_order", f"range at sample {first}, expected {self._next}")
+                return [], []
+        self._note_gap(first)
+        self._next = first + n
+        entries = self.detector.feed(first, joined.arrays, joined.sample_period_s)
+        windows, more = self.capture.feed(first, joined.arrays, entries=entries,
+                                          sample_period_s=joined.sample_period_s)
+        return windows, discarded + more
+
+    def _is_restart(self, first: int, n: int) -> bool:
+        return self._next - first >= self.resync_samples
+
+    def _note_gap(self, first: int) -> None:
+        if self._next is not None and first > self._next:
+            lost = first - self._next
+            self.lost_samples += lost
+            self.faults.add("gap", f"samples {self._next}..{first - 1} ({lost}) missing")
+
+    def _break(self, reason: str, resume_at: int | None) -> list:
+        """Discard the open windows with ``reason``; detector and capture start afresh (at
+        ``resume_at``, or at the next range when None)."""
+        discarded = self.capture._discard_all(reason)
+        self.detector._reset(stream_start=reason == "stream_restart")
+        self.detector._next_index = resume_at
+        self.capture._next = resume_at
+        if resume_at is not None:
+            self.capture._restart(resume_at)
+        return discarded
+
+
+def _common_length(arrays, names) -> int:
+    """Common length of the named 1-D arrays; -1 when they differ, -2 when one is not 1-D or empty."""
+    n = -1
+    for name in names:
+        a = arrays.get(name)
+        if a is None:
+            continue
+        a = np.asarray(a)
+        if a.ndim != 1 or a.size == 0:
+            return -2
+        if n >= 0 and a.size != n:
+            return -1
+        n = a.size
+    return n
 
 
 class BlockFeeder:
@@ -118,22 +257,11 @@ class BlockFeeder:
         self._pending: list[JoinedRange] = []
         self._n = 0
 
-    @staticmethod
-    def _length(joined: JoinedRange) -> int:
-        """Common length of the range's 1-D arrays; -1 when they differ (or are not 1-D)."""
-        n = -1
-        for a in joined.arrays.values():
-            if a.ndim != 1 or (n >= 0 and a.size != n):
-                return -1
-            n = a.size
-        return n
-
     def add(self, joined: JoinedRange):
         windows, discarded = [], []
-        n = self._length(joined)
+        reason, n = self.stage.check(joined)
         period = joined.sample_period_s
-        regular = (self.block_samples > 0 and n > 0 and isinstance(period, float)
-                   and 0.0 < period < float("inf"))
+        regular = self.block_samples > 0 and reason is None
         if self._pending:
             last = self._pending[-1]
             if not (regular and joined.first_sample_index == last.first_sample_index + self._last_n
@@ -141,9 +269,9 @@ class BlockFeeder:
                     and joined.arrays.keys() == last.arrays.keys()):
                 windows, discarded = self.flush()
         if regular and not self._pending and not self._accepts(joined):
-            regular = False     # ignored one by one (out of order): followers must not merge
+            regular = False     # dropped one by one (behind the stream): followers must not merge
         if not regular:
-            w, d = self._feed([joined])
+            w, d = self._feed([joined], checked=reason is None)
             return windows + w, discarded + d
         self._pending.append(joined)
         self._last_n = n
@@ -155,16 +283,15 @@ class BlockFeeder:
         return windows, discarded
 
     def _accepts(self, joined: JoinedRange) -> bool:
-        """The stage takes the range in (not ignored as out of order): it may head a block."""
-        first = joined.first_sample_index
-        return all(nxt is None or first >= nxt
-                   for nxt in (self.stage.detector._next_index, self.stage.capture._next))
+        """The stage takes the range in (not behind the stream): it may head a block."""
+        nxt = self.stage._next
+        return nxt is None or joined.first_sample_index >= nxt
 
     def flush(self):
         ranges, self._pending, self._n = self._pending, [], 0
-        return self._feed(ranges) if ranges else ([], [])
+        return self._feed(ranges, checked=True) if ranges else ([], [])
 
-    def _feed(self, ranges: list[JoinedRange]):
+    def _feed(self, ranges: list[JoinedRange], checked: bool):
         if len(ranges) == 1:
             block = ranges[0]
         else:
@@ -172,7 +299,7 @@ class BlockFeeder:
             block = JoinedRange(first.first_sample_index, first.sample_period_s,
                                 {k: np.concatenate([r.arrays[k] for r in ranges])
                                  for k in first.arrays}, first.stamp, first.frame_id)
-        windows, discarded = self.stage.feed(block)
+        windows, discarded = self.stage.feed(block, checked=checked)
         if len(ranges) == 1:
             return [(w, block) for w in windows], discarded
         # one by one, a window comes out of the feed of the range holding both its confirmation
@@ -185,6 +312,28 @@ class BlockFeeder:
         at = [max(0, bisect.bisect_right(starts, d) - 1) for d in done]
         order = sorted(range(len(windows)), key=lambda i: at[i])
         return [(windows[i], ranges[at[i]]) for i in order], discarded
+
+
+def check_window_pair(a1, a2, level: int = DENOISE_DEFAULTS["level"],
+                      window_length: int | None = None) -> str | None:
+    """The reason a window's (a1, a2) cannot be denoised (or classified), or None: both 1-D of one
+    length (``window_length`` when given), long enough for ``level``, finite (input_faults.REASONS)."""
+    try:
+        a1 = np.asarray(a1, dtype=np.float64)
+        a2 = np.asarray(a2, dtype=np.float64)
+    except (TypeError, ValueError):
+        return "non_finite_samples"
+    if a1.ndim != 1 or a2.ndim != 1:
+        return "bad_shape"
+    if a1.size != a2.size:
+        return "length_mismatch"
+    if window_length is not None and a1.size != window_length:
+        return "wrong_window_length"
+    if a1.size == 0 or max_level(a1.size) < level:
+        return "wrong_window_length"
+    if not (np.isfinite(a1).all() and np.isfinite(a2).all()):
+        return "non_finite_samples"
+    return None
 
 
 def denoise_pair(a1, a2, **options):

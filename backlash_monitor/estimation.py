@@ -7,7 +7,15 @@
         estimate.width_m, estimate.b_vector, estimate.fused_width_m, ...
 
 Only onset windows are classified (SPEC section 3: the return entries' windows follow another
-transient); a return window gives no estimate. Each signal keeps its own fusion of the last
+transient); a return window gives no estimate.
+
+Every window is checked where it enters (:meth:`DriveEstimator.check_window`): a1 and a2 1-D, of
+the library's window length, finite, of the library's sample period (when given), a known entry
+kind. A bad window is not classified: it gives no estimate, is counted in ``faults`` with its
+reason and leaves the fusion untouched. A B vector that comes out non-finite or negative (a
+finite window unlike any training window can overflow a feature) is not published or fused
+either (``non_finite_estimate``). So every estimate has a candidate width and a B vector of
+finite, non-negative entries. Each signal keeps its own fusion of the last
 ``fusion_events`` onset events (backlash_monitor.classifier.fusion).
 """
 from __future__ import annotations
@@ -22,6 +30,9 @@ from backlash_monitor.classifier.fusion import WidthFusion, default_fusion_rule
 from backlash_monitor.classifier.patterns import PatternLibrary
 from backlash_monitor.classifier.shape import (SHAPE, SHAPE_SIGNALS, ShapeModel, _expand,
                                               a1_features, a2_features)
+from backlash_monitor.input_faults import FaultLog, is_period
+
+ENTRY_KINDS = ("onset", "return")
 
 MODES = tuple(CPN_VARIANTS) + (SHAPE,)
 DEFAULT_MODE = SHAPE
@@ -73,6 +84,36 @@ class DriveEstimator:
         self.fusion = {s: WidthFusion(self.widths_m, window_events=fusion_events,
                                       rule=default_fusion_rule(mode))
                        for s in self.signals}
+        settings = library.settings or {}
+        length = settings.get("window_length")
+        self.window_length = int(length) if length else None       # None: any length
+        period = settings.get("sample_period_s")
+        self.sample_period_s = float(period) if is_period(period) else None
+        self.faults = FaultLog()
+        self.last_reasons: list[str | None] = []   # per window of the last estimate_many call
+
+    def check_window(self, a1, a2, entry_kind: str, sample_period_s: float | None = None):
+        """The reason a window cannot be classified, or None. ``sample_period_s`` None: not checked."""
+        if entry_kind not in ENTRY_KINDS:
+            return "unknown_entry_kind"
+        if sample_period_s is not None and (
+                not is_period(sample_period_s) or self.sample_period_s is not None
+                and abs(float(sample_period_s) - self.sample_period_s) > 1e-9 * self.sample_period_s):
+            return "wrong_sample_period"
+        try:
+            a1 = np.asarray(a1, dtype=float)
+            a2 = np.asarray(a2, dtype=float)
+        except (TypeError, ValueError):
+            return "non_finite_samples"
+        if a1.ndim != 1 or a2.ndim != 1 or a1.size == 0:
+            return "wrong_window_length"
+        if a1.size != a2.size:
+            return "length_mismatch"
+        if self.window_length is not None and a1.size != self.window_length:
+            return "wrong_window_length"
+        if not (np.isfinite(a1).all() and np.isfinite(a2).all()):
+            return "non_finite_samples"
+        return None
 
     def reset(self) -> None:
         """Forget the fused history (a new drive, or the drive was repaired)."""
@@ -83,21 +124,31 @@ class DriveEstimator:
         """Whether a window of this kind gives estimates (only onsets; see the module docstring)."""
         return entry_kind == "onset"
 
-    def estimate(self, a1, a2, entry_kind: str = "onset") -> list[WidthEstimate]:
-        """Estimates of one denoised window (a1, a2: equal-length float arrays); [] for non-onsets.
+    def estimate(self, a1, a2, entry_kind: str = "onset",
+                 sample_period_s: float | None = None) -> list[WidthEstimate]:
+        """Estimates of one denoised window (a1, a2: equal-length float arrays); [] for non-onsets
+        and rejected windows (``last_reasons[0]``).
 
         The batch of one of :meth:`estimate_many`: the live node's window-by-window estimates and
         ``analyze``'s batched ones run the same code."""
-        return self.estimate_many([(a1, a2, entry_kind)])[0]
+        return self.estimate_many([(a1, a2, entry_kind, sample_period_s)])[0]
 
     def estimate_many(self, windows) -> list[list[WidthEstimate]]:
-        """``estimate`` for a sequence of (a1, a2, entry_kind), in order (the fusion sees them in
-        that order); one list per window. Shape mode: the features of all onset windows of one
+        """``estimate`` for a sequence of (a1, a2, entry_kind[, sample_period_s]), in order (the
+        fusion sees them in that order); one list per window, [] for a window that is not an onset
+        or is rejected (``last_reasons[i]`` says why; counted in ``faults``). Shape mode: the features of all onset windows of one
         length are extracted in one batch -- row for row bit-identical to a batch of one (every
         step is elementwise or a per-row reduction; the regression's dot product is taken row
         by row on a fresh (1, n) copy, as for a single window; test_analyze_estimation.py)."""
         out: list[list[WidthEstimate]] = [[] for _ in windows]
-        onsets = [i for i, w in enumerate(windows) if self.classifies(w[2])]
+        self.last_reasons = []
+        for i, w in enumerate(windows):
+            reason = self.check_window(w[0], w[1], w[2], w[3] if len(w) > 3 else None)
+            self.last_reasons.append(reason)
+            if reason is not None:
+                self.faults.add(reason, f"window {i} of {len(windows)}")
+        onsets = [i for i, w in enumerate(windows)
+                  if self.last_reasons[i] is None and self.classifies(w[2])]
         if not onsets:
             return out
         a1s = [np.asarray(windows[i][0], dtype=float) for i in onsets]
@@ -119,20 +170,34 @@ class DriveEstimator:
                     shape_b[r] = {s: (b[k], float(w[k]), int(index[k]), float(margin[k]))
                                   for s, (b, w, index, margin) in per_signal.items()}
         for r, i in enumerate(onsets):
+            results = []
             for signal in self.signals:
                 if self.mode == SHAPE:
                     b, continuous, index, margin = shape_b[r][signal]
                 else:
                     b, continuous = self.models[signal].b({"a1": a1s[r], "a2": a2s[r]}[signal]), math.nan
                     index, margin = int(np.argmin(b)), float(b_margin(b))
+                results.append((signal, np.asarray(b, dtype=float), continuous, index, margin))
+            if not all(_valid_b(b, index, self.widths_m) for _, b, _, index, _ in results):
+                # nothing non-finite is published or fused: the window gives no estimate
+                self.faults.add("non_finite_estimate", f"window {i} of {len(windows)}")
+                self.last_reasons[i] = "non_finite_estimate"
+                continue
+            for signal, b, continuous, index, margin in results:
                 fused = self.fusion[signal].add(b, kind="onset")
                 out[i].append(WidthEstimate(
                     signal_name=signal, mode=self.mode, candidate_widths_m=self.widths_m,
-                    b_vector=np.asarray(b, dtype=float), width_index=index,
+                    b_vector=b, width_index=index,
                     width_m=float(self.widths_m[index]), b_margin=margin,
                     continuous_width_m=continuous, fused_width_m=fused.width_m,
                     fused_events=fused.events))
         return out
+
+
+def _valid_b(b: np.ndarray, index: int, widths_m: np.ndarray) -> bool:
+    """A B vector that may be published: one finite, non-negative entry per candidate width."""
+    return (b.shape == widths_m.shape and bool(np.isfinite(b).all()) and bool((b >= 0).all())
+            and 0 <= index < widths_m.size)
 
 
 def _shape_b(model: ShapeModel, A1: np.ndarray, A2: np.ndarray, cache: dict):

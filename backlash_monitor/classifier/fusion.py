@@ -87,6 +87,7 @@ class WidthFusion:
         self.window_events = int(window_events)
         self.rule = rule
         self._bs: deque = deque(maxlen=self.window_events)
+        self.rejected = 0       # B vectors not fused: non-finite or negative entries
 
     def reset(self) -> None:
         self._bs.clear()
@@ -98,7 +99,10 @@ class WidthFusion:
         b = np.asarray(b, dtype=float)
         if b.shape != self.widths_m.shape:
             raise ValueError(f"B vector has {b.size} entries, expected {self.widths_m.size}")
-        if kind == "onset":
+        if not (np.isfinite(b).all() and (b >= 0).all()):
+            # a B vector of a bad window must not steer the fused width for the next N events
+            self.rejected += 1
+        elif kind == "onset":
             self._bs.append(b)
         return self.estimate()
 

@@ -18,6 +18,14 @@ DISCARD_REASONS = (
     "sample_period_change",   # the chunk's sample period differs from the window's
     "entry_before_history",   # the (back-dated) entry is older than the kept history
     "end_of_stream",          # flush() with the window still incomplete
+    "non_finite_samples",     # a chunk with NaN/inf samples (the window would contain them)
+    "length_mismatch",        # the captured signals of a chunk differ in length
+    "bad_sample_period",      # a chunk whose sample period is not a finite number > 0
+    "bad_index",              # a range whose first_sample_index is unusable (WindowingStage)
+    "bad_shape",              # a range whose samples are not 1-D or empty (WindowingStage)
+    "incomplete_range",       # a range missing a signal (WindowingStage)
+    "sample_period_mismatch", # the signals of a range came with different periods (WindowingStage)
+    "stream_restart",         # the sample index went back: re-synchronised (WindowingStage)
 )
 
 
@@ -95,7 +103,13 @@ class WindowCapture:
         first = int(first_sample_index)
         discarded: list[DiscardedWindow] = []
         if sample_period_s is not None:
-            sp = _check_positive("sample_period_s", sample_period_s)
+            try:
+                sp = _check_positive("sample_period_s", sample_period_s)
+            except ValueError:
+                discarded += self._discard_all("bad_sample_period")
+                discarded += [DiscardedWindow(e.sample_index, "bad_sample_period", e.kind) for e in entries]
+                self._next = None
+                return [], discarded
             if abs(sp - self.sample_period_s) > 1e-9 * self.sample_period_s:
                 discarded += self._discard_all("sample_period_change")
                 self.sample_period_s = sp
@@ -113,8 +127,18 @@ class WindowCapture:
             raise ValueError(f"signals: missing {missing} (capture signals={self.signals})")
         arrays = [np.asarray(signals[s], dtype=np.float64) for s in self.signals]
         n = arrays[0].size
-        if any(a.ndim != 1 or a.size != n for a in arrays):
+        if any(a.ndim != 1 for a in arrays):
             raise ValueError("signals: every captured signal must be a 1-D array of the same length")
+        bad = ("length_mismatch" if any(a.size != n for a in arrays) else
+               "non_finite_samples" if not all(np.isfinite(a).all() for a in arrays) else None)
+        if bad is not None:
+            # the windows open across this chunk would hold it: discard them, start again after it
+            discarded += self._discard_all(bad)
+            discarded += [DiscardedWindow(e.sample_index, bad, e.kind) for e in entries]
+            end = first + max(a.size for a in arrays)
+            self._restart(end)
+            self._next = end
+            return [], discarded
         for s, a in zip(self.signals, arrays):
             self._buf[s] = np.concatenate((self._buf[s], a))
         self._next = first + n

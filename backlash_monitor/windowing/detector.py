@@ -315,7 +315,14 @@ class BacklashEntryDetector:
              sample_period_s: float | None = None) -> list[BacklashEntry]:
         first = int(first_sample_index)
         if sample_period_s is not None:
-            sp = _check_positive("sample_period_s", sample_period_s)
+            try:
+                sp = _check_positive("sample_period_s", sample_period_s)
+            except ValueError:
+                # a chunk without a usable period cannot be placed in time: a gap, start again after it
+                self.events.append((first, f"reset: bad sample period {sample_period_s!r}"))
+                self._reset()
+                self._next_index = None
+                return []
             if abs(sp - self.sample_period_s) > 1e-9 * self.sample_period_s:
                 self.events.append((first, f"reset: sample period {self.sample_period_s} -> {sp} s"))
                 self.sample_period_s = sp
@@ -343,6 +350,12 @@ class BacklashEntryDetector:
         if delta.ndim != 1:
             raise ValueError(f"signals: arrays must be 1-D (one drive); got shape {delta.shape}")
         n = delta.size
+        if not np.isfinite(delta).all():
+            # NaN/inf would poison the contact tracker for good: drop the chunk, start again after it
+            self.events.append((first, f"reset: non-finite samples in {first}..{first + n - 1}"))
+            self._reset()
+            self._next_index = first + n
+            return []
         self._source = src
         if self._seg_start is None:
             self._seg_start = first
