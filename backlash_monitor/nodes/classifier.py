@@ -7,16 +7,24 @@ signal on ``estimate`` (width, index, candidate widths, B vector, margin, contin
 width over the last onset events) and keeps a ``diagnostic_msgs/DiagnosticArray`` on
 ``/diagnostics``: OK / WARN / ERROR by the fused width against ``warn_width_m`` and
 ``error_width_m`` (config/diagnostics.yaml), hardware_id = the drive's name.
+
+ERROR means one thing: the fused width is at or beyond ``error_width_m``. A window that cannot be
+classified (not denoised, a1/a2 of unequal or the wrong length, another sample period than the
+library's, non-finite samples, an unknown entry kind; DriveEstimator.check_window) is dropped and
+counted with its reason and gives WARN with the reason while such windows come (``fault_hold_s``),
+never ERROR; no window for ``stale_after_s`` gives STALE. A width level of ERROR stays ERROR.
 """
 from __future__ import annotations
 
 import math
 import sys
+import time
 
 from rclpy.node import Node
 
 from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator
+from backlash_monitor.input_faults import FaultLog, InputHealth
 from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
@@ -49,6 +57,10 @@ PARAMETERS = (
                   0.0, 1.0),
     ParameterSpec("error_width_m", 0.009, "fused width from which the drive is ERROR [m]",
                   0.0, 1.0),
+    ParameterSpec("stale_after_s", 60.0, "seconds without a window after which /diagnostics "
+                  "says STALE (windows come only with load pulses)", 0.01, 86400.0),
+    ParameterSpec("fault_hold_s", 10.0, "seconds /diagnostics stays WARN after the last "
+                  "window dropped as bad", 0.01, 3600.0),
 )
 
 
@@ -72,17 +84,32 @@ class ClassifierNode(Node):
             raise ParameterValueError(str(error)) from None
         self.publisher = self.create_publisher(BacklashEstimate, "estimate", ESTIMATE_QOS)
         self.create_subscription(BacklashWindow, "windows/denoised", self.on_window, WINDOW_QOS)
-        self.diagnostics = DriveDiagnostics(self, "backlash width", p["drive_name"])
         self.classified = 0
         self.repeated = RepeatedWindows()
+        self.faults = FaultLog()            # windows dropped here (not denoised)
+        self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "windows")
+        self.width_state = None             # (level, message, values) of the last fused width
+        self.diagnostics = DriveDiagnostics(self, "backlash width", p["drive_name"],
+                                            refresh=self.update_diagnostics)
         self.get_logger().info(f"mode {p['mode']}, signals {', '.join(self.estimator.signals)}, "
                                f"library {library.path}")
 
     def on_window(self, msg: BacklashWindow):
+        now = time.monotonic()
+        self.health.arrived(now)
+        try:
+            self.classify(msg)
+        finally:
+            if self.health.update(now, self.faults, self.estimator.faults):
+                self.get_logger().warning(f"window at sample {msg.entry_sample_index} not "
+                                          f"classified: {self.health.last_fault[0]}",
+                                          throttle_duration_sec=5.0)
+                self.update_diagnostics(publish_now=True)
+
+    def classify(self, msg: BacklashWindow):
         if not msg.denoising:
-            self.get_logger().warning(f"window at sample {msg.entry_sample_index} is not denoised; "
-                                      "classifying raw windows against denoised patterns is wrong: "
-                                      "skipped", throttle_duration_sec=10.0)
+            # classifying raw windows against denoised patterns is wrong
+            self.faults.add("not_denoised", f"window at sample {msg.entry_sample_index}")
             return
         stamp_ns = msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
         if self.repeated.is_repeat(stamp_ns, msg.entry_sample_index, msg.entry_kind,
@@ -92,20 +119,16 @@ class ClassifierNode(Node):
             self.get_logger().info(f"window at sample {msg.entry_sample_index} arrived again: "
                                    "skipped", throttle_duration_sec=10.0)
             return
-        try:
-            estimates = self.estimator.estimate(from_float64_field(msg.a1),
-                                                from_float64_field(msg.a2), msg.entry_kind)
-        except ValueError as error:
-            self.diagnostics.set("ERROR", f"window at sample {msg.entry_sample_index} not "
-                                          f"classified: {error}")
-            return
+        # checked by the core (DriveEstimator.check_window): a bad window gives no estimate
+        estimates = self.estimator.estimate(from_float64_field(msg.a1), from_float64_field(msg.a2),
+                                            msg.entry_kind, msg.sample_period_s)
         for estimate in estimates:
             self.publisher.publish(self.to_message(msg, estimate))
         if estimates:
             self.classified += 1
             # Both signals together is the most informative estimate where the mode has it.
             primary = next((e for e in estimates if e.signal_name == "a1+a2"), estimates[0])
-            self.update_diagnostics(primary)
+            self.set_width(primary)
 
     def to_message(self, window: BacklashWindow, estimate) -> BacklashEstimate:
         out = BacklashEstimate()
@@ -125,17 +148,41 @@ class ClassifierNode(Node):
         out.true_width_m = window.true_width_m
         return out
 
-    def update_diagnostics(self, estimate):
+    def set_width(self, estimate):
         p = self.params
         width = estimate.fused_width_m
         level = ("ERROR" if width >= p["error_width_m"] else
                  "WARN" if width >= p["warn_width_m"] else "OK")
-        self.diagnostics.set(
-            level, f"backlash {width * 1e3:.2f} mm (fused over {estimate.fused_events} events)",
+        self.width_state = (level, f"backlash {width * 1e3:.2f} mm (fused over "
+                                   f"{estimate.fused_events} events)", dict(
             fused_width_m=f"{width:.5f}", last_width_m=f"{estimate.width_m:.5f}",
             continuous_width_m="" if math.isnan(estimate.continuous_width_m)
             else f"{estimate.continuous_width_m:.5f}",
-            signal=estimate.signal_name, mode=estimate.mode, windows_classified=self.classified,
+            signal=estimate.signal_name, mode=estimate.mode))
+        self.update_diagnostics()
+
+    def update_diagnostics(self, publish_now: bool = False):
+        """The drive's level: ERROR only from the fused width; else STALE when no window came for
+        stale_after_s; WARN from the width or while bad windows come; OK."""
+        p = self.params
+        input_level, problem = self.health.state(time.monotonic())
+        width_level, message, values = self.width_state or ("OK", "no estimate yet", {})
+        if width_level == "ERROR":
+            level = "ERROR"
+        elif input_level == "STALE":
+            level = "STALE"
+        elif "WARN" in (width_level, input_level):
+            level = "WARN"
+        else:
+            level = "OK"
+        if problem:
+            message = f"{message}; {problem}"
+        rejected = self.faults.total + self.estimator.faults.total
+        self.diagnostics.set(
+            level, message, publish_now=publish_now, **values,
+            windows_classified=self.classified, windows_rejected=rejected,
+            input_faults=", ".join(f for f in (self.faults.summary(), self.estimator.faults.summary())
+                                   if f != "none") or "none",
             repeated_windows_skipped=self.repeated.repeats,
             warn_width_m=p["warn_width_m"], error_width_m=p["error_width_m"])
 

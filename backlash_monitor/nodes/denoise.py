@@ -4,14 +4,21 @@
 
 Subscribes to ``windows/raw`` and publishes ``windows/denoised``: the same windows with a1 and a2
 decomposed to level 6 with sym5, details d1..d6 zeroed and reconstructed (backlash_monitor.denoise).
+A window that cannot be denoised (a1 and a2 of unequal lengths, non-finite samples, too short for
+the level; backlash_monitor.chain.check_window_pair) is dropped and counted with its reason;
+``/diagnostics`` says WARN with it while such windows come, STALE when none came for
+``stale_after_s``.
 """
 from __future__ import annotations
 
 import sys
+import time
 
 from rclpy.node import Node
 
-from backlash_monitor.chain import denoise_pair, denoising_label
+from backlash_monitor.chain import check_window_pair, denoise_pair, denoising_label
+from backlash_monitor.input_faults import FaultLog, InputHealth
+from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.denoise import DEFAULT_MODE
 from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
@@ -26,6 +33,11 @@ PARAMETERS = (
     ParameterSpec("mode", DEFAULT_MODE, "signal extension mode at the window's edges (PyWavelets)",
                   choices=("symmetric", "smooth", "periodization", "reflect", "zero", "constant",
                            "periodic", "antisymmetric", "antireflect")),
+    ParameterSpec("drive_name", "drive", "the drive's name: diagnostics hardware_id"),
+    ParameterSpec("stale_after_s", 60.0, "seconds without a window after which /diagnostics "
+                  "says STALE (windows come only with load pulses)", 0.01, 86400.0),
+    ParameterSpec("fault_hold_s", 10.0, "seconds /diagnostics stays WARN after the last "
+                  "window dropped as bad", 0.01, 3600.0),
 )
 
 
@@ -40,19 +52,43 @@ class DenoiseNode(Node):
         self.options = dict(level=p["level"], details_removed=details, mode=p["mode"])
         self.label = denoising_label(p["level"], details, p["mode"])
         self.publisher = self.create_publisher(BacklashWindow, "windows/denoised", WINDOW_QOS)
+        self.faults = FaultLog()
+        self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "windows")
+        self.counts = {"denoised": 0, "dropped": 0}
+        self.diagnostics = DriveDiagnostics(self, "denoise", p["drive_name"],
+                                            refresh=self.update_diagnostics)
         self.create_subscription(BacklashWindow, "windows/raw", self.on_window, WINDOW_QOS)
 
     def on_window(self, msg: BacklashWindow):
-        try:
-            a1, a2 = denoise_pair(from_float64_field(msg.a1), from_float64_field(msg.a2),
-                                  **self.options)
-        except ValueError as error:
-            self.get_logger().error(f"window at sample {msg.entry_sample_index} not denoised: {error}")
+        now = time.monotonic()
+        self.health.arrived(now)
+        a1, a2 = from_float64_field(msg.a1), from_float64_field(msg.a2)
+        reason = check_window_pair(a1, a2, level=self.options["level"])
+        if reason is None:
+            try:
+                a1, a2 = denoise_pair(a1, a2, **self.options)
+            except ValueError:
+                reason = "denoise_failed"
+        if reason is not None:
+            self.faults.add(reason, f"window at sample {msg.entry_sample_index}")
+            self.counts["dropped"] += 1
+            self.health.update(now, self.faults)
+            self.get_logger().warning(f"window at sample {msg.entry_sample_index} dropped: "
+                                      f"{reason}", throttle_duration_sec=5.0)
+            self.update_diagnostics(publish_now=True)
             return
         msg.a1 = to_float64_array(a1)
         msg.a2 = to_float64_array(a2)
         msg.denoising = self.label
         self.publisher.publish(msg)
+        self.counts["denoised"] += 1
+
+    def update_diagnostics(self, publish_now: bool = False):
+        level, problem = self.health.state(time.monotonic())
+        summary = f"{self.counts['denoised']} windows denoised, {self.counts['dropped']} dropped"
+        self.diagnostics.set(level, f"{problem}; {summary}" if problem else summary,
+                             publish_now=publish_now, input_faults=self.faults.summary(),
+                             **self.counts)
 
 
 def main(args=None):

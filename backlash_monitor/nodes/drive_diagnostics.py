@@ -14,8 +14,11 @@ LEVELS = {"OK": DiagnosticStatus.OK, "WARN": DiagnosticStatus.WARN,
 
 
 class DriveDiagnostics:
-    def __init__(self, node, task: str, hardware_id: str, period_s: float = 1.0):
+    def __init__(self, node, task: str, hardware_id: str, period_s: float = 1.0, refresh=None):
+        """``refresh()``, when given, is called before each periodic publication (so a level
+        that depends on time, e.g. STALE when the input stopped, is current)."""
         self.node = node
+        self.refresh = refresh
         self.hardware_id = hardware_id
         self.name = f"{node.get_fully_qualified_name().lstrip('/')}: {task}"
         self.publisher = node.create_publisher(DiagnosticArray, "/diagnostics", 10)
@@ -40,6 +43,8 @@ class DriveDiagnostics:
             values=[KeyValue(key=k, value=v) for k, v in sorted(self.values.items())])
 
     def publish(self) -> None:
+        if self.refresh is not None:
+            self.refresh()
         msg = DiagnosticArray()
         msg.header.stamp = self.node.get_clock().now().to_msg()
         msg.status = [self.status()]

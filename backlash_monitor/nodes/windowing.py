@@ -7,11 +7,17 @@ Subscribes to ``plant/a1``, ``plant/a2`` and ``plant/angle_difference`` (or ``pl
 windowing core (backlash_monitor.windowing) and publishes each captured window (a1 and a2, 2048
 samples from the entry + ``window_offset_samples``, tagged onset/return) on ``windows/raw``. A window that spans a dropped or
 out-of-order chunk is discarded with its reason (logged, counted on ``/diagnostics``), never used.
+
+Every chunk is checked by the cores it enters (ChunkJoiner, WindowingStage; docs/windowing.md
+"Input faults"): a bad one is dropped and counted with its reason, the stream resumes after it or
+re-synchronises (an index restart), and ``/diagnostics`` says WARN with the reason while faults
+come (``fault_hold_s``), STALE when no chunk arrived for ``stale_after_s``.
 """
 from __future__ import annotations
 
 import math
 import sys
+import time
 
 from rclpy.node import Node
 from std_msgs.msg import Float64
@@ -24,6 +30,7 @@ from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueErro
 from backlash_monitor.nodes.qos import LATCHED, WINDOW_QOS, chunk_qos
 from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor.chain import ChunkJoiner, WindowingStage
+from backlash_monitor.input_faults import FaultLog, InputHealth, is_period
 from backlash_monitor_msgs.msg import BacklashWindow, SignalChunk
 
 PARAMETERS = (
@@ -42,6 +49,10 @@ PARAMETERS = (
                   "contact_loss 200, paper 0)", -1, 65536),
     ParameterSpec("qos", "sensor_data", "QoS of the chunk subscriptions",
                   choices=("sensor_data", "reliable")),
+    ParameterSpec("stale_after_s", 2.0, "seconds without a chunk after which /diagnostics says "
+                  "STALE (a drive streams chunks continuously)", 0.01, 3600.0),
+    ParameterSpec("fault_hold_s", 10.0, "seconds /diagnostics stays WARN after the last bad "
+                  "chunk (dropped, gap, restart)", 0.01, 3600.0),
 )
 
 
@@ -62,7 +73,10 @@ class WindowingNode(Node):
         except ValueError as error:
             raise ParameterValueError(str(error)) from None
         self.signals = self.stage.input_signals
-        self.joiner = ChunkJoiner(self.signals)
+        self.faults = FaultLog()
+        self.stage.faults = self.faults
+        self.joiner = ChunkJoiner(self.signals, faults=self.faults)
+        self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "chunks")
         self.true_width_m = math.nan
         self.stream_start_s = None
         self.counts = {"windows": 0, "onsets": 0, "discarded": 0, "chunks": 0}
@@ -73,7 +87,8 @@ class WindowingNode(Node):
                                      lambda msg, n=name: self.on_chunk(n, msg), qos)
         self.create_subscription(Float64, "plant/true_width_m", self.on_true_width, LATCHED)
         self.publisher = self.create_publisher(BacklashWindow, "windows/raw", WINDOW_QOS)
-        self.diagnostics = DriveDiagnostics(self, "windowing", p["drive_name"])
+        self.diagnostics = DriveDiagnostics(self, "windowing", p["drive_name"],
+                                            refresh=self.update_diagnostics)
         self.get_logger().info(f"trigger {p['trigger']}, angles {p['angle_source']}, "
                                f"{p['window_length']} samples per window, starting "
                                f"{self.stage.window_offset_samples} samples after the entry")
@@ -82,38 +97,62 @@ class WindowingNode(Node):
         self.true_width_m = msg.data
 
     def on_chunk(self, name: str, msg: SignalChunk):
+        now = time.monotonic()
+        self.health.arrived(now)
         joined = self.joiner.add(name, msg.first_sample_index, msg.sample_period_s,
                                  from_float64_field(msg.samples), msg.header.stamp,
                                  msg.header.frame_id)
+        discarded = []
         if joined is not None:
-            self.process(joined)
+            discarded = self.process(joined)
+        new_faults = self.health.update(now, self.faults)
+        for reason, detail in self.faults.take():
+            self.get_logger().warning(f"input dropped or repaired: {reason} ({detail})",
+                                      throttle_duration_sec=5.0)
+        if new_faults or discarded:
+            self.update_diagnostics(publish_now=True)   # else the periodic refresh updates it
 
     def process(self, joined):
-        if self.stream_start_s is None:
-            self.stream_start_s = (seconds_from_time(joined.stamp)
-                                   - joined.first_sample_index * joined.sample_period_s)
-            # > 0: this process joined a running stream (started late or restarted); the samples
-            # before it were not windowed here (docs/graph.md, process faults)
-            self.counts["joined_at_sample"] = joined.first_sample_index
+        """Feeds one joined range; returns the windows it discarded."""
+        resyncs = self.faults.counts["stream_restart"] + self.faults.counts["gap"]
         windows, discarded = self.stage.feed(joined)
         self.counts["chunks"] += 1
+        resynced = self.faults.counts["stream_restart"] + self.faults.counts["gap"] > resyncs
+        if (self.stream_start_s is None or resynced) and is_period(joined.sample_period_s):
+            if self.stream_start_s is None:
+                # > 0: this process joined a running stream (started late or restarted); the
+                # samples before it were not windowed here (docs/graph.md, process faults)
+                self.counts["joined_at_sample"] = joined.first_sample_index
+            # the stream's time origin, from this range's stamp (again after a restart or a gap)
+            self.stream_start_s = (seconds_from_time(joined.stamp)
+                                   - joined.first_sample_index * joined.sample_period_s)
         for window in windows:
-            self.publish_window(window, joined.frame_id or self.params["drive_name"])
+            self.publish_window(window, joined.frame_id or self.params["drive_name"], joined.stamp)
         for item in discarded:
             self.counts["discarded"] += 1
             self.last_discard = f"entry {item.entry_sample_index}: {item.reason}"
             self.get_logger().warning(f"window discarded ({self.last_discard})")
-        incomplete = self.joiner.dropped_ranges
-        level = "WARN" if self.counts["discarded"] or incomplete else "OK"
-        self.diagnostics.set(level, f"{self.counts['windows']} windows, "
-                                    f"{self.counts['discarded']} discarded",
-                             publish_now=bool(discarded), last_discard=self.last_discard,
-                             incomplete_chunks=incomplete, **self.counts)
+        return discarded
 
-    def publish_window(self, window, frame_id: str):
+    def update_diagnostics(self, publish_now: bool = False):
+        level, problem = self.health.state(time.monotonic())
+        summary = f"{self.counts['windows']} windows, {self.counts['discarded']} discarded"
+        self.diagnostics.set(level, f"{problem}; {summary}" if problem else summary,
+                             publish_now=publish_now, last_discard=self.last_discard,
+                             incomplete_chunks=self.joiner.dropped_ranges,
+                             lost_samples=self.stage.lost_samples,
+                             input_faults=self.faults.summary(), **self.counts)
+
+    def publish_window(self, window, frame_id: str, range_stamp=None):
         msg = BacklashWindow()
-        msg.header.stamp = stamp_of_sample(self.stream_start_s, window.entry_sample_index,
-                                           window.sample_period_s)
+        seconds = (math.nan if self.stream_start_s is None else
+                   self.stream_start_s + window.entry_sample_index * window.sample_period_s)
+        if math.isfinite(seconds) and 0.0 <= seconds < 2.0 ** 31:
+            msg.header.stamp = stamp_of_sample(self.stream_start_s, window.entry_sample_index,
+                                               window.sample_period_s)
+        elif range_stamp is not None:
+            msg.header.stamp = range_stamp    # a stamp outside builtin_interfaces/Time's range
+
         msg.header.frame_id = frame_id
         msg.entry_sample_index = window.entry_sample_index
         msg.entry_kind = window.kind
