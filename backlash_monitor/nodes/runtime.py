@@ -47,6 +47,12 @@ def run_nodes(node_factories, args=None, spin=None) -> int:
     """:func:`run_node` for several nodes in one process on one executor (built in order)."""
     start_watchdog()    # started by a supervisor (pipeline --processes): end with it
     configure_fast_dds()
+    from backlash_monitor.nodes.params_file import check_params_files
+    try:   # unknown keys and broken YAML in --params-file files: one line, not rclpy's traceback
+        check_params_files(sys.argv if args is None else args)
+    except ParameterValueError as error:
+        print(f"[ERROR] {error}", file=sys.stderr, flush=True)
+        return 2
     rclpy.init(args=args)
     nodes = []
     executor = None

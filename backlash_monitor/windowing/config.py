@@ -5,6 +5,8 @@ import os
 from pathlib import Path
 from typing import Any, Mapping
 
+from backlash_monitor.config_errors import nearest, yaml_error_line
+
 __all__ = ["DEFAULTS", "DEFAULT_CONFIG_PATH", "load_windowing_config", "TRIGGERS", "ANGLE_SOURCES",
            "INTEGRATION_RULES", "KIND_ONSET", "KIND_RETURN", "default_window_offset"]
 
@@ -68,15 +70,31 @@ def load_windowing_config(path: str | os.PathLike | None = None) -> dict[str, An
     cfg = {sec: dict(vals) for sec, vals in DEFAULTS.items()}
     if path is None:
         return cfg
-    with open(path, "r", encoding="utf-8") as fh:
-        raw = yaml.safe_load(fh) or {}
+    try:
+        with open(path, "r", encoding="utf-8") as fh:
+            raw = yaml.safe_load(fh) or {}
+    except yaml.YAMLError as error:
+        raise ValueError(yaml_error_line(path, error)) from None
+    except OSError as error:
+        raise ValueError(f"{path}: cannot be read ({error.strerror or error})") from None
+    if not isinstance(raw, Mapping):
+        raise ValueError(f"{path}: not a mapping of sections (allowed sections: {sorted(cfg)})")
     for sec, vals in raw.items():
         if sec not in cfg:
-            raise ValueError(f"{path}: unknown section {sec!r} (allowed: {sorted(cfg)})")
+            raise ValueError(f"{path}: unknown section {sec!r}{nearest(sec, cfg)} "
+                             f"(allowed: {sorted(cfg)})")
+        if vals is not None and not isinstance(vals, Mapping):
+            raise ValueError(f"{path}: section {sec!r} must be a mapping of keys")
         for key, val in (vals or {}).items():
             if key not in cfg[sec]:
-                raise ValueError(f"{path}: unknown key {sec}.{key} (allowed: {sorted(cfg[sec])})")
+                raise ValueError(f"{path}: unknown key {sec}.{key}{nearest(key, cfg[sec])} "
+                                 f"(allowed: {sorted(cfg[sec])})")
             if isinstance(val, Mapping) and "value" in val:
+                unknown = sorted(set(val) - {"value", "unit", "reason"})
+                if unknown:
+                    raise ValueError(f"{path}: unknown field {sec}.{key}.{unknown[0]}"
+                                     f"{nearest(str(unknown[0]), ('value', 'unit', 'reason'))} "
+                                     "(allowed: value, unit, reason)")
                 val = val["value"]
             cfg[sec][key] = val
     return cfg

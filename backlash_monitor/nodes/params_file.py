@@ -1,0 +1,128 @@
+"""Checks the ``--params-file`` files a node is started with, before rclpy reads them.
+
+rclpy ignores a parameter a node does not declare, so a misspelled key (``warn_widht_m``) would
+silently leave the default in force, and broken YAML ends in an rclpy traceback. Here every file
+given after ``--ros-args`` with ``--params-file FILE`` is read first:
+
+- broken YAML, a missing file or a file that is not ``node: {ros__parameters: {...}}`` is one
+  line naming the file (and the line);
+- a key under a section for one node (``/**/classifier``, ``/line1/drive7/classifier``,
+  ``classifier``) must be a parameter that node declares; a key under a wildcard section
+  (``/**``, ``/*/*``) one that some node of the package declares (the same file serves the
+  chain's three nodes); a section for a node the package does not have is an error as well.
+  The error names the key and the nearest valid one (difflib).
+
+:func:`check_params_files` raises :class:`ParamsFileError` (a ParameterValueError: run_node
+prints its one line and exits with 2).
+"""
+from __future__ import annotations
+
+import importlib
+from pathlib import Path
+
+from backlash_monitor.config_errors import nearest, yaml_error_line
+from backlash_monitor.nodes.parameters import ParameterValueError
+
+# node name -> module whose PARAMETERS (ParameterSpec tuple) the node declares
+NODE_MODULES = {
+    "windowing": "backlash_monitor.nodes.windowing",
+    "denoise": "backlash_monitor.nodes.denoise",
+    "classifier": "backlash_monitor.nodes.classifier",
+    "plant_simulator": "backlash_monitor.nodes.plant_simulator",
+    "record": "backlash_monitor.nodes.record",
+    "replay": "backlash_monitor.nodes.replay",
+}
+# parameters every rclpy node has (declared by rclpy itself)
+ROS_PARAMETERS = ("use_sim_time", "start_type_description_service")
+ROS_PREFIXES = ("qos_overrides.",)
+
+
+class ParamsFileError(ParameterValueError):
+    """A parameters file that cannot be used as it is."""
+
+
+def node_parameters() -> dict[str, tuple[str, ...]]:
+    """{node name: the parameter names it declares}."""
+    out = {}
+    for node, module in NODE_MODULES.items():
+        specs = importlib.import_module(module).PARAMETERS
+        out[node] = tuple(spec.name for spec in specs) + ROS_PARAMETERS
+    return out
+
+
+def params_files(argv) -> list[str]:
+    """The files given with ``--params-file`` after ``--ros-args`` in ``argv``."""
+    files, in_ros = [], False
+    argv = list(argv or [])
+    for i, arg in enumerate(argv):
+        if arg == "--ros-args":
+            in_ros = True
+        elif arg == "--":
+            in_ros = False
+        elif in_ros and arg == "--params-file" and i + 1 < len(argv):
+            files.append(argv[i + 1])
+    return files
+
+
+def _flatten(mapping, prefix=""):
+    for key, value in mapping.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict):
+            yield from _flatten(value, name + ".")
+        else:
+            yield name
+
+
+def check_params_file(path, nodes: dict[str, tuple[str, ...]] | None = None) -> None:
+    """Raise ParamsFileError naming the file (and line / key) if ``path`` is not a valid file."""
+    import yaml
+
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        raise ParamsFileError(f"parameters file {path}: cannot be read ({error.__class__.__name__}: "
+                              f"{getattr(error, 'strerror', None) or error})") from None
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as error:
+        raise ParamsFileError(f"parameters file {yaml_error_line(path, error)}") from None
+    if data is None:
+        return
+    shape = ("allowed: '<node>:' sections each holding 'ros__parameters:' "
+             "(e.g. '/**: {ros__parameters: {drive_name: drive7}}')")
+    if not isinstance(data, dict):
+        raise ParamsFileError(f"parameters file {path}: not a mapping of node sections; {shape}")
+    nodes = node_parameters() if nodes is None else nodes
+    everything = sorted({name for names in nodes.values() for name in names})
+    for section, body in data.items():
+        node = str(section).rstrip("/").split("/")[-1]
+        if not isinstance(body, dict) or set(body) != {"ros__parameters"} or \
+                not isinstance(body["ros__parameters"], dict):
+            keys = sorted(body) if isinstance(body, dict) else []
+            hint = nearest(keys[0], ["ros__parameters"]) if keys else ""
+            raise ParamsFileError(f"parameters file {path}: section '{section}' must hold exactly "
+                                  f"'ros__parameters' (has {keys or type(body).__name__}){hint}")
+        if "*" in node:
+            allowed, scope = everything, "any node of backlash_monitor"
+        elif node in nodes:
+            allowed, scope = nodes[node], f"node '{node}'"
+        else:
+            raise ParamsFileError(f"parameters file {path}: section '{section}' is for node "
+                                  f"'{node}', which backlash_monitor does not have"
+                                  f"{nearest(node, nodes)} (nodes: {', '.join(sorted(nodes))})")
+        for key in _flatten(body["ros__parameters"]):
+            if key in allowed or key.startswith(ROS_PREFIXES):
+                continue
+            raise ParamsFileError(f"parameters file {path}: unknown key '{key}' in section "
+                                  f"'{section}' (not a parameter of {scope}){nearest(key, allowed)}")
+
+
+def check_params_files(argv) -> None:
+    """:func:`check_params_file` for every ``--params-file`` in ``argv``."""
+    files = params_files(argv)
+    if not files:
+        return
+    nodes = node_parameters()
+    for path in files:
+        check_params_file(path, nodes)
