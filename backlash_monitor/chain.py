@@ -114,10 +114,10 @@ class WindowingStage:
     are discarded and the detector starts again after it (it re-arms on the next settled
     contact). Samples missing before a range are counted (``gap``, ``lost_samples``); a range
     behind the stream is dropped (``out_of_order``; the open windows keep their samples) unless it
-    is a restart of the stream (at least ``resync_samples`` behind): then detector and capture
-    start afresh at it (``stream_restart``). A restart less than ``resync_samples`` into the
-    old stream is dropped as out of order until it passes the old index: at most
-    ``resync_samples`` samples lost, and counted.
+    is a restart of the stream (at index 0, or at least ``resync_samples`` behind): then detector
+    and capture start afresh at it (``stream_restart``). A restart that does not start at 0 and
+    is less than ``resync_samples`` behind is dropped as out of order until it passes the old
+    index: at most ``resync_samples`` samples lost, and counted.
     """
 
     def __init__(self, trigger: str = "contact_loss", width_m: float | None = None,
@@ -198,7 +198,9 @@ class WindowingStage:
         return windows, discarded + more
 
     def _is_restart(self, first: int, n: int) -> bool:
-        return self._next - first >= self.resync_samples
+        """A stream starts at index 0: a range at 0 behind the stream, or one at least
+        resync_samples behind it, is a new stream (a late chunk is never that far behind)."""
+        return first == 0 or self._next - first >= self.resync_samples
 
     def _note_gap(self, first: int) -> None:
         if self._next is not None and first > self._next:
@@ -334,6 +336,24 @@ def check_window_pair(a1, a2, level: int = DENOISE_DEFAULTS["level"],
     if not (np.isfinite(a1).all() and np.isfinite(a2).all()):
         return "non_finite_samples"
     return None
+
+
+def denoise_checked(a1, a2, **options):
+    """``((a1, a2), None)`` denoised, or ``(None, reason)``: the window is checked first
+    (:func:`check_window_pair`) and a result that is not finite (finite samples near the float
+    limit can overflow the transform) is refused as ``denoise_failed``. The denoise node's core."""
+    level = options.get("level", DENOISE_DEFAULTS["level"])
+    reason = check_window_pair(a1, a2, level=level)
+    if reason is not None:
+        return None, reason
+    try:
+        with np.errstate(over="ignore", invalid="ignore"):
+            clean = denoise_pair(a1, a2, **options)
+    except ValueError:
+        return None, "denoise_failed"
+    if not (np.isfinite(clean[0]).all() and np.isfinite(clean[1]).all()):
+        return None, "denoise_failed"
+    return clean, None
 
 
 def denoise_pair(a1, a2, **options):

@@ -5,7 +5,7 @@
 Subscribes to ``windows/raw`` and publishes ``windows/denoised``: the same windows with a1 and a2
 decomposed to level 6 with sym5, details d1..d6 zeroed and reconstructed (backlash_monitor.denoise).
 A window that cannot be denoised (a1 and a2 of unequal lengths, non-finite samples, too short for
-the level; backlash_monitor.chain.check_window_pair) is dropped and counted with its reason;
+the level; backlash_monitor.chain.denoise_checked) is dropped and counted with its reason;
 ``/diagnostics`` says WARN with it while such windows come, STALE when none came for
 ``stale_after_s``.
 """
@@ -16,7 +16,7 @@ import time
 
 from rclpy.node import Node
 
-from backlash_monitor.chain import check_window_pair, denoise_pair, denoising_label
+from backlash_monitor.chain import denoise_checked, denoising_label
 from backlash_monitor.input_faults import FaultLog, InputHealth
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.denoise import DEFAULT_MODE
@@ -63,12 +63,7 @@ class DenoiseNode(Node):
         now = time.monotonic()
         self.health.arrived(now)
         a1, a2 = from_float64_field(msg.a1), from_float64_field(msg.a2)
-        reason = check_window_pair(a1, a2, level=self.options["level"])
-        if reason is None:
-            try:
-                a1, a2 = denoise_pair(a1, a2, **self.options)
-            except ValueError:
-                reason = "denoise_failed"
+        clean, reason = denoise_checked(a1, a2, **self.options)
         if reason is not None:
             self.faults.add(reason, f"window at sample {msg.entry_sample_index}")
             self.counts["dropped"] += 1
@@ -77,8 +72,8 @@ class DenoiseNode(Node):
                                       f"{reason}", throttle_duration_sec=5.0)
             self.update_diagnostics(publish_now=True)
             return
-        msg.a1 = to_float64_array(a1)
-        msg.a2 = to_float64_array(a2)
+        msg.a1 = to_float64_array(clean[0])
+        msg.a2 = to_float64_array(clean[1])
         msg.denoising = self.label
         self.publisher.publish(msg)
         self.counts["denoised"] += 1

@@ -1,0 +1,107 @@
+"""Fuzz tests of the signal chain's cores (hypothesis; the properties are in fuzz_cores.py, which
+bench/reliability.py runs with >= 10,000 examples each). No exception escapes a core given any
+input; windows have the configured length and finite samples; every estimate is a candidate
+width with 6 finite, non-negative B entries; after a bad chunk or window the next good one is
+classified."""
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+
+import fuzz_cores as fc
+from backlash_monitor.chain import ChunkJoiner, JoinedRange, WindowingStage
+
+SETTINGS = settings(max_examples=150, deadline=None, database=None, derandomize=True,
+                    suppress_health_check=list(HealthCheck))
+
+
+@SETTINGS
+@given(fc.chunk_streams())
+def test_fuzz_windowing_stage_survives_faulty_streams_and_resumes(stream):
+    fc.check_windowing(*stream)
+
+
+@SETTINGS
+@given(fc.chunk_streams())
+def test_fuzz_windowing_stage_with_a_short_resync_distance(stream):
+    fc.check_windowing(*stream, resync_samples=1000)
+
+
+@SETTINGS
+@given(fc.detector_chunks())
+def test_fuzz_detector_and_capture_take_any_chunk(chunks):
+    fc.check_detector(chunks)
+
+
+@SETTINGS
+@given(fc.window_pairs())
+def test_fuzz_denoise_gives_finite_windows_or_a_reason(pair):
+    fc.check_denoise(*pair)
+
+
+@pytest.fixture(scope="module")
+def estimators():
+    return {mode: fc.make_estimator(mode) for mode in ("shape", "paper")}
+
+
+@pytest.mark.parametrize("mode", ["shape", "paper"])
+def test_fuzz_estimator_classifies_or_rejects(estimators, mode):
+    estimator = estimators[mode]
+
+    @settings(max_examples=100, deadline=None, database=None, derandomize=True,
+              suppress_health_check=list(HealthCheck))
+    @given(fc.estimator_windows())
+    def run(window):
+        fc.check_estimate(estimator, window)
+    run()
+
+
+@SETTINGS
+@given(fc.b_sequences())
+def test_fuzz_fusion_always_gives_a_candidate(seq):
+    fc.check_fusion(*seq)
+
+
+# ---- the faults the issue named, each once, with its reason (the fuzz finds the rest) ----
+def test_a_nan_chunk_is_dropped_counted_and_the_windows_resume():
+    windows, stage = fc.check_windowing([1000] * 30, {3: "nan"}, fc.SIGNALS)
+    assert stage.faults.counts["non_finite_samples"] == 1
+    assert stage.lost_samples == 1000
+    assert min(w.entry_sample_index for w, _ in windows if w.entry_sample_index > 4000) < 8000
+
+
+def test_a_restart_at_zero_resynchronises():
+    windows, stage = fc.check_windowing([1000] * 30, {12: "restart"}, fc.SIGNALS)
+    assert stage.faults.counts["stream_restart"] == 1
+    # the stream from 0 again: windows at the same offsets as the first time
+    entries = [w.entry_sample_index for w, lo in windows if lo >= 12000]
+    assert entries and min(entries) < 5000
+
+
+def test_a_far_jump_is_a_counted_gap_and_the_windows_resume():
+    windows, stage = fc.check_windowing([1000] * 30, {5: "far_jump"}, fc.SIGNALS)
+    assert stage.faults.counts["gap"] == 1 and stage.lost_samples >= 10 ** 12
+    assert max(w.entry_sample_index for w, _ in windows) > 10 ** 12
+
+
+def test_a_lost_range_after_a_window_is_counted():
+    # no window open at chunk 6 (the windows of 1250 and 3500 are complete by 5748)
+    windows, stage = fc.check_windowing([1000] * 30, {6: "lose_chunk"}, fc.SIGNALS)
+    assert stage.faults.counts["gap"] == 1 and stage.lost_samples == 1000
+
+
+@pytest.mark.parametrize("period", [0.0, -2e-5, float("nan"), float("inf")])
+def test_a_bad_sample_period_is_dropped_not_raised(period):
+    stage = WindowingStage()
+    joined = JoinedRange(0, period, {s: np.zeros(100) for s in stage.input_signals})
+    assert stage.feed(joined) == ([], [])
+    assert stage.faults.counts["bad_sample_period"] == 1
+
+
+def test_unequal_lengths_in_one_range_are_dropped():
+    stage = WindowingStage()
+    joiner = ChunkJoiner(stage.input_signals, faults=stage.faults)
+    joiner.add("a1", 0, 2e-5, np.zeros(100))
+    joiner.add("a2", 0, 2e-5, np.zeros(99))
+    joined = joiner.add("angle_difference", 0, 2e-5, np.zeros(100))
+    assert stage.feed(joined) == ([], [])
+    assert stage.faults.counts["length_mismatch"] == 1
