@@ -113,6 +113,10 @@ class DriveEstimator:
             return "wrong_window_length"
         if not (np.isfinite(a1).all() and np.isfinite(a2).all()):
             return "non_finite_samples"
+        if self.mode != SHAPE:
+            with np.errstate(over="ignore", under="ignore"):
+                if any(np.sum(x * x) == 0.0 for x in (a1, a2)):
+                    return "no_signal"      # eq. 12 divides by the sum of squares
         return None
 
     def reset(self) -> None:
@@ -175,7 +179,9 @@ class DriveEstimator:
                 if self.mode == SHAPE:
                     b, continuous, index, margin = shape_b[r][signal]
                 else:
-                    b, continuous = self.models[signal].b({"a1": a1s[r], "a2": a2s[r]}[signal]), math.nan
+                    with np.errstate(over="ignore", invalid="ignore"):   # overflow: refused below
+                        b = self.models[signal].b({"a1": a1s[r], "a2": a2s[r]}[signal])
+                    continuous = math.nan
                     index, margin = int(np.argmin(b)), float(b_margin(b))
                 results.append((signal, np.asarray(b, dtype=float), continuous, index, margin))
             if not all(_valid_b(b, index, self.widths_m) for _, b, _, index, _ in results):

@@ -35,6 +35,7 @@ REASONS = {
     "wrong_sample_period": "a window whose sample period is not the pattern library's",
     "unknown_entry_kind": "entry kind neither 'onset' nor 'return'",
     "not_denoised": "a raw window on windows/denoised",
+    "no_signal": "a window whose a1 or a2 is all zeros (the paper modes' eq. 12 cannot normalise it)",
     "denoise_failed": "the window cannot be denoised with the configured level",
     "non_finite_estimate": "the classifier's B vector or width was not finite (not published)",
     "bad_b_vector": "a B vector of the wrong length, non-finite or negative (not fused)",

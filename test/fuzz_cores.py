@@ -216,8 +216,14 @@ def window_pairs(draw, lengths=(2048, 2048, 2048, 2047, 1024, 100, 63, 1, 0)):
     n2 = n1 if draw(st.booleans()) or draw(st.booleans()) else draw(st.sampled_from(lengths))
     rng = np.random.default_rng(draw(st.integers(0, 2 ** 32 - 1)))
     scale = draw(st.sampled_from([1e-3, 1.0, 50.0, 1e6]))
-    a1 = rng.normal(0, scale, n1)
-    a2 = rng.normal(0, scale, n2)
+    base = draw(st.sampled_from(["noise", "noise", "noise", "zeros", "constant", "denormal", "huge"]))
+
+    def make(n):
+        if base == "noise":
+            return rng.normal(0, scale, n)
+        return np.full(n, {"zeros": 0.0, "constant": scale, "denormal": 5e-324, "huge": 1e300}[base])
+    a1 = make(n1)
+    a2 = make(n2) if draw(st.booleans()) else rng.normal(0, scale, n2)
     for arr in (a1, a2):
         for k in draw(st.lists(st.integers(0, max(arr.size - 1, 0)), max_size=3)) if arr.size else []:
             arr[k] = draw(FLOATS)

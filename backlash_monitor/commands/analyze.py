@@ -157,7 +157,7 @@ def run(args) -> int:
             if width_topic:
                 for m in reader.messages([width_topic]):
                     true_width = float(m.message.data)
-            joiner = ChunkJoiner(stage.input_signals)
+            joiner = ChunkJoiner(stage.input_signals, faults=stage.faults)
             # contiguous ranges go to the stage in blocks: the same windows as range by range
             feeder = BlockFeeder(stage)
             batch = []   # onset windows, denoised and estimated together (same numbers as one by one)
@@ -180,8 +180,8 @@ def run(args) -> int:
                     batch.append((source, window))
                 if len(batch) >= ESTIMATE_BATCH or (m is None and batch):
                     denoised = denoise_pairs([(w.signals["a1"], w.signals["a2"]) for _, w in batch])
-                    results = estimator.estimate_many([(a1, a2, w.kind) for (_, w), (a1, a2)
-                                                       in zip(batch, denoised)])
+                    results = estimator.estimate_many([(a1, a2, w.kind, w.sample_period_s)
+                                                       for (_, w), (a1, a2) in zip(batch, denoised)])
                     for (source, window), estimates in zip(batch, results):
                         for est in estimates:
                             rows.append(_row(window, est, true_width))
@@ -214,10 +214,15 @@ def run(args) -> int:
                        "discarded_windows": [{"entry_sample_index": d.entry_sample_index,
                                               "reason": d.reason} for d in discarded],
                        "discarded_chunks": check.summary(), "bag_integrity": integrity,
+                       "input_faults": {**stage.faults.counts, **estimator.faults.counts},
+                       "lost_samples": stage.lost_samples,
                        "summary": summary, "estimates": rows}, allow_nan=True))
         _write_estimate_bag(mcap_tmp, estimates_msgs, true_width)
     _print_summary(summary, rows, discarded, n_samples, elapsed, outputs)
     _print_input_problems(check, integrity)
+    if stage.faults.total or estimator.faults.total:   # dropped input (docs/windowing.md)
+        print(f"input faults: {stage.faults.summary()}; windows rejected: "
+              f"{estimator.faults.summary()}; {stage.lost_samples} samples not analysed")
     return 0
 
 
