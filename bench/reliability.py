@@ -57,10 +57,7 @@ def fuzz(examples: int) -> tuple[dict, int, dict]:
     counts, failures, details = {}, 0, {}
     for name, (strategy, check) in cores.items():
         counter = {"n": 0}
-
-        def body(value, check=check, counter=counter):
-            counter["n"] += 1
-            check(value)
+        body = _counted(check, counter)
         test = settings(max_examples=examples, deadline=None, database=None,
                         suppress_health_check=list(HealthCheck))(given(strategy)(body))
         started = time.perf_counter()
@@ -73,6 +70,13 @@ def fuzz(examples: int) -> tuple[dict, int, dict]:
         counts[name] = counter["n"]
         print(f"fuzz {name}: {counter['n']} inputs, {details[name]}", file=sys.stderr)
     return counts, failures, details
+
+
+def _counted(check, counter):
+    def body(value):
+        counter["n"] += 1
+        check(value)
+    return body
 
 
 def modules() -> list[tuple[str, dict]]:
