@@ -23,7 +23,6 @@ import numpy as np
 from backlash_monitor.denoise import DEFAULT_MODE, denoise_sym5, max_level
 from backlash_monitor.input_faults import FaultLog, is_index, is_period
 from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture, default_window_offset
-from backlash_monitor.windowing.capture import DiscardedWindow
 
 MAX_PENDING_RANGES = 16
 # A range that starts this far (or more) behind the expected index is a restart of the stream (a

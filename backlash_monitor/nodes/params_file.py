@@ -18,6 +18,7 @@ prints its one line and exits with 2).
 from __future__ import annotations
 
 import importlib
+import sys
 from pathlib import Path
 
 from backlash_monitor.config_errors import nearest, yaml_error_line
@@ -41,13 +42,35 @@ class ParamsFileError(ParameterValueError):
     """A parameters file that cannot be used as it is."""
 
 
+class NodeParameters:
+    """The parameter names of the package's nodes, imported only as far as needed: a node's
+    module for its own section; for a wildcard section the modules already loaded first, the
+    others only for a key none of those declares (the plant's module loads numba; a classifier
+    started with drive.yaml need not)."""
+
+    def __init__(self):
+        self._names: dict[str, tuple[str, ...]] = {}
+
+    def of(self, node: str) -> tuple[str, ...]:
+        if node not in self._names:
+            specs = importlib.import_module(NODE_MODULES[node]).PARAMETERS
+            self._names[node] = tuple(spec.name for spec in specs) + ROS_PARAMETERS
+        return self._names[node]
+
+    def declared_anywhere(self, key: str) -> bool:
+        loaded = [n for n, m in NODE_MODULES.items() if m in sys.modules or n in self._names]
+        if any(key in self.of(n) for n in loaded):
+            return True
+        return any(key in self.of(n) for n in NODE_MODULES if n not in loaded)
+
+    def everything(self) -> list[str]:
+        return sorted({name for node in NODE_MODULES for name in self.of(node)})
+
+
 def node_parameters() -> dict[str, tuple[str, ...]]:
-    """{node name: the parameter names it declares}."""
-    out = {}
-    for node, module in NODE_MODULES.items():
-        specs = importlib.import_module(module).PARAMETERS
-        out[node] = tuple(spec.name for spec in specs) + ROS_PARAMETERS
-    return out
+    """{node name: the parameter names it declares} (imports every node module)."""
+    names = NodeParameters()
+    return {node: names.of(node) for node in NODE_MODULES}
 
 
 def params_files(argv) -> list[str]:
@@ -73,7 +96,7 @@ def _flatten(mapping, prefix=""):
             yield name
 
 
-def check_params_file(path, nodes: dict[str, tuple[str, ...]] | None = None) -> None:
+def check_params_file(path, nodes: NodeParameters | None = None) -> None:
     """Raise ParamsFileError naming the file (and line / key) if ``path`` is not a valid file."""
     import yaml
 
@@ -93,27 +116,30 @@ def check_params_file(path, nodes: dict[str, tuple[str, ...]] | None = None) -> 
              "(e.g. '/**: {ros__parameters: {drive_name: drive7}}')")
     if not isinstance(data, dict):
         raise ParamsFileError(f"parameters file {path}: not a mapping of node sections; {shape}")
-    nodes = node_parameters() if nodes is None else nodes
-    everything = sorted({name for names in nodes.values() for name in names})
+    nodes = NodeParameters() if nodes is None else nodes
     for section, body in data.items():
         node = str(section).rstrip("/").split("/")[-1]
         if not isinstance(body, dict) or set(body) != {"ros__parameters"} or \
                 not isinstance(body["ros__parameters"], dict):
-            keys = sorted(body) if isinstance(body, dict) else []
+            keys = sorted(map(str, body)) if isinstance(body, dict) else []
             hint = nearest(keys[0], ["ros__parameters"]) if keys else ""
             raise ParamsFileError(f"parameters file {path}: section '{section}' must hold exactly "
                                   f"'ros__parameters' (has {keys or type(body).__name__}){hint}")
-        if "*" in node:
-            allowed, scope = everything, "any node of backlash_monitor"
-        elif node in nodes:
-            allowed, scope = nodes[node], f"node '{node}'"
-        else:
+        if "*" not in node and node not in NODE_MODULES:
             raise ParamsFileError(f"parameters file {path}: section '{section}' is for node "
                                   f"'{node}', which backlash_monitor does not have"
-                                  f"{nearest(node, nodes)} (nodes: {', '.join(sorted(nodes))})")
+                                  f"{nearest(node, NODE_MODULES)} (nodes: {', '.join(sorted(NODE_MODULES))})")
         for key in _flatten(body["ros__parameters"]):
-            if key in allowed or key.startswith(ROS_PREFIXES):
+            if key.startswith(ROS_PREFIXES):
                 continue
+            if "*" in node:
+                if nodes.declared_anywhere(key):
+                    continue
+                allowed, scope = nodes.everything(), "any node of backlash_monitor"
+            else:
+                allowed, scope = nodes.of(node), f"node '{node}'"
+                if key in allowed:
+                    continue
             raise ParamsFileError(f"parameters file {path}: unknown key '{key}' in section "
                                   f"'{section}' (not a parameter of {scope}){nearest(key, allowed)}")
 
@@ -123,6 +149,6 @@ def check_params_files(argv) -> None:
     files = params_files(argv)
     if not files:
         return
-    nodes = node_parameters()
+    nodes = NodeParameters()
     for path in files:
         check_params_file(path, nodes)
