@@ -96,6 +96,17 @@ class ChunkJoiner:
             joined.period_mismatch = True
         return joined
 
+    def flush(self) -> int:
+        """End of the stream: the ranges still incomplete are dropped and counted
+        (``incomplete_range``); returns how many."""
+        n = len(self.pending)
+        for first in sorted(self.pending):
+            self.faults.add("incomplete_range", f"range at sample {first} (end of stream)")
+        self.dropped_ranges += n
+        self.pending.clear()
+        self.meta.clear()
+        return n
+
 
 def _isnan(value) -> bool:
     try:

@@ -105,3 +105,10 @@ def test_unequal_lengths_in_one_range_are_dropped():
     joined = joiner.add("angle_difference", 0, 2e-5, np.zeros(100))
     assert stage.feed(joined) == ([], [])
     assert stage.faults.counts["length_mismatch"] == 1
+
+
+def test_a_range_still_incomplete_at_the_end_is_counted():
+    joiner = ChunkJoiner(("a1", "a2"))
+    joiner.add("a1", 0, 2e-5, np.zeros(10))
+    assert joiner.flush() == 1 and joiner.faults.counts["incomplete_range"] == 1
+    assert joiner.pending == {}

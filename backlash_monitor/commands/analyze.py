@@ -164,6 +164,7 @@ def run(args) -> int:
             for m in _then_none(reader.signal_chunks(list(topics))):
                 if m is None:
                     joined = None
+                    joiner.flush()      # ranges never completed: counted, not silently lost
                 else:
                     if not check.chunk(m, topics[m.topic]):
                         continue
