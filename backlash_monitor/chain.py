@@ -50,7 +50,9 @@ class ChunkJoiner:
     gap and discards the windows spanning it. A chunk whose index is not an integer in
     0..2**53 is dropped at once (``bad_index``): it cannot be placed in the stream. Everything
     else about the samples (period, lengths, values) is checked by :class:`WindowingStage`,
-    which knows the range's place in the stream.
+    which knows the range's place in the stream. A chunk at index 0 (or RESYNC_SAMPLES behind)
+    after complete ranges is a restarted stream: the incomplete ranges still waiting are dropped
+    first (counted), so that no old chunk is joined with a new one.
     """
 
     def __init__(self, signals, max_pending: int = MAX_PENDING_RANGES, faults: FaultLog | None = None):
@@ -60,6 +62,7 @@ class ChunkJoiner:
         self.meta: dict[int, tuple] = {}
         self.dropped_ranges = 0
         self.faults = faults if faults is not None else FaultLog()
+        self._end: int | None = None    # end of the last complete range (restart detection)
 
     def add(self, name: str, first_sample_index: int, sample_period_s: float, samples,
             stamp=None, frame_id: str = "") -> JoinedRange | None:
@@ -69,6 +72,11 @@ class ChunkJoiner:
             self.faults.add("bad_index", f"{name} chunk at index {first_sample_index!r}")
             return None
         first_sample_index = int(first_sample_index)
+        if self._end is not None and first_sample_index < self._end and (
+                first_sample_index == 0 or self._end - first_sample_index >= RESYNC_SAMPLES):
+            # the stream restarted: an old incomplete range must not be completed by new chunks
+            self._drop_pending("stream restart")
+            self._end = None
         try:
             array = np.asarray(samples, dtype=np.float64)
         except (TypeError, ValueError):
@@ -88,6 +96,7 @@ class ChunkJoiner:
                 self.faults.add("incomplete_range", f"range at sample {oldest}")
             return None
         del self.pending[first_sample_index]
+        self._end = first_sample_index + int(array.size)
         periods = group.pop("__periods__", {})
         period, stamp, frame_id = self.meta.pop(first_sample_index)
         joined = JoinedRange(first_sample_index, period, group, stamp, frame_id)
@@ -99,9 +108,12 @@ class ChunkJoiner:
     def flush(self) -> int:
         """End of the stream: the ranges still incomplete are dropped and counted
         (``incomplete_range``); returns how many."""
+        return self._drop_pending("end of stream")
+
+    def _drop_pending(self, why: str) -> int:
         n = len(self.pending)
         for first in sorted(self.pending):
-            self.faults.add("incomplete_range", f"range at sample {first} (end of stream)")
+            self.faults.add("incomplete_range", f"range at sample {first} ({why})")
         self.dropped_ranges += n
         self.pending.clear()
         self.meta.clear()
@@ -181,11 +193,17 @@ class WindowingStage:
         else:
             reason, n = self.check(joined)
         discarded: list = []
+        if (reason is not None and is_index(first) and self._next is not None
+                and first < self._next and self._is_restart(int(first), n)):
+            # a bad range that starts a new stream: re-synchronise, then drop it in its place
+            self.faults.add("stream_restart", f"index {first} after {self._next}")
+            discarded = self._break("stream_restart", None)
+            self._next = None
         if reason is not None:
             self.faults.add(reason, f"range at sample {first}" + (f", {n} samples" if n >= 0 else ""))
             if n > 0 and is_index(first) and (self._next is None or first >= self._next):
                 # the range had its place in the stream: resume after it
-                discarded = self._break(reason, first + n)
+                discarded += self._break(reason, first + n)
                 self._note_gap(first)
                 self.lost_samples += n
                 self._next = first + n

@@ -112,3 +112,12 @@ def test_a_range_still_incomplete_at_the_end_is_counted():
     joiner.add("a1", 0, 2e-5, np.zeros(10))
     assert joiner.flush() == 1 and joiner.faults.counts["incomplete_range"] == 1
     assert joiner.pending == {}
+
+
+def test_a_restart_does_not_join_new_chunks_to_an_old_incomplete_range():
+    # found by the fuzz: chunk 0 lost its a1, so a2/angle of range 0 waited in the joiner; the
+    # restarted stream's range 0 completed it with its own a1 (a range of two streams)
+    windows, stage = fc.check_windowing([200] * 10 + [4000] * 7, {0: "lose_signal", 6: "restart"},
+                                        fc.SIGNALS)
+    assert stage.faults.counts["stream_restart"] == 1
+    assert stage.faults.counts["incomplete_range"] == 1 and not stage.faults.counts["out_of_order"]
