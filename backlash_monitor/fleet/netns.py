@@ -21,6 +21,8 @@ import uuid
 from contextlib import contextmanager
 from dataclasses import dataclass
 
+from backlash_monitor.nodes.fast_dds import WRITER_PROFILE_XML
+
 SUBNET = "10.231.{n}.{host}"
 
 
@@ -51,12 +53,7 @@ def fast_dds_profile(own_address: str, peer_address: str) -> str:
       </defaultUnicastLocatorList>
     </rtps>
   </participant>
-  <data_writer profile_name="backlash_monitor_writer" is_default_profile="true">
-    <times>
-      <heartbeatPeriod><sec>0</sec><nanosec>10000000</nanosec></heartbeatPeriod>
-    </times>
-  </data_writer>
-</profiles>
+""" + WRITER_PROFILE_XML + """</profiles>
 """
 
 

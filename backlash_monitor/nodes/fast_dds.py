@@ -12,15 +12,18 @@ from __future__ import annotations
 import os
 import tempfile
 
-FAST_DDS_PROFILE = """<?xml version="1.0" encoding="UTF-8" ?>
-<profiles xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
-  <data_writer profile_name="backlash_monitor_writer" is_default_profile="true">
+# The writers' profile (the heartbeat period, docs/graph.md); other profiles embed it too.
+WRITER_PROFILE_XML = """  <data_writer profile_name="backlash_monitor_writer" is_default_profile="true">
     <times>
       <heartbeatPeriod><sec>0</sec><nanosec>10000000</nanosec></heartbeatPeriod>
     </times>
   </data_writer>
-</profiles>
 """
+
+FAST_DDS_PROFILE = ("""<?xml version="1.0" encoding="UTF-8" ?>
+<profiles xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
+""" + WRITER_PROFILE_XML + """</profiles>
+""")
 
 
 def configure_fast_dds() -> None:
