@@ -30,13 +30,14 @@ from pathlib import Path
 import numpy as np
 
 from . import effects as _effects
+from . import outputs as _outputs
 from ._numba import HAVE_NUMBA, numba
 
 STATE_NAMES = ("psi_sa", "psi_sb", "psi_ra", "psi_rb", "w1", "delta", "alpha1", "alpha2", "omega2", "z", "xdot")
 N_STATES = len(STATE_NAMES)
 GLOBAL_NAMES = ("g_rs", "g_rr", "g_xs", "g_xr", "g_xm", "g_w", "g_omega_b", "g_T_m", "g_omega_mb", "g_T_b", "g_r")
 BASE_ROWS = ("beta", "wheel_inertia_kgm2", "mass_kg")     # per-scenario model values every kernel reads
-GENERATOR_VERSION = "4"
+GENERATOR_VERSION = "5"
 
 
 def global_vector(cfg) -> np.ndarray:
@@ -253,7 +254,8 @@ def rk4_simd(x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states,
     for k in range(n):
         for s in range(Sp):
             LT[k, s] = load[min(s, S - 1), k]
-    r = G[10]; omb = G[8]; hh = 0.5 * h; h6 = h / 6.0
+{GLOBALS}
+    hh = 0.5 * h; h6 = h / 6.0
     y0 = np.empty(N_STATES); y1 = np.empty(N_STATES); ps = np.empty(NP)
     nsel = sel.shape[0]
     buf = np.empty((nsel, OUT_BLOCK, Sp))
@@ -268,22 +270,7 @@ def rk4_simd(x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states,
             b = k % OUT_BLOCK
             for j in range(nsel):
                 o = sel[j]
-                if o == 0:
-                    for s in range(Sp): buf[j, b, s] = r * omb * K1[4, s]
-                elif o == 1:
-                    for s in range(Sp): buf[j, b, s] = K1[10, s]
-                elif o == 2:
-                    for s in range(Sp): buf[j, b, s] = Y[4, s] * omb
-                elif o == 3:
-                    for s in range(Sp): buf[j, b, s] = Y[8, s]
-                elif o == 4:
-                    for s in range(Sp): buf[j, b, s] = Y[5, s]
-                elif o == 5:
-                    for s in range(Sp): buf[j, b, s] = Y[6, s]
-                elif o == 6:
-                    for s in range(Sp): buf[j, b, s] = Y[7, s]
-                else:
-                    for s in range(Sp): buf[j, b, s] = TC[s]
+{OUTPUT_SELECT}
             if b == OUT_BLOCK - 1 or k == n - 1:
                 k_start = k - b
                 for j in range(nsel):
@@ -355,6 +342,18 @@ def _scalar_term_source(cls) -> str:
     return ast.unparse(fn)
 
 
+def _simd_output_select() -> str:
+    """rk4_simd's recording of the selected outputs ``sel`` into ``buf``: one branch per output of
+    :data:`outputs.OUTPUTS` (the only definition), on the stage's Y (state), K1 (derivatives), TC."""
+    lines = []
+    for j, o in enumerate(_outputs.OUTPUTS):
+        kw = "if" if j == 0 else ("else" if j == len(_outputs.OUTPUTS) - 1 else "elif")
+        lines.append(f"                {kw}:" if kw == "else" else f"                {kw} o == {j}:")
+        lines.append(f"                    for s in range(Sp): buf[j, b, s] = "
+                     + _outputs.render(o.expression, "Y[{i}, s]", "K1[{i}, s]", "TC[s]"))
+    return "\n".join(lines)
+
+
 def _scalar_loop() -> str:
     """rk4_scalar: scenarios outer, samples inner, the state in named locals (registers), the four stages
     calling f_tuple; the same scheme as rk4_simd."""
@@ -370,7 +369,7 @@ def _scalar_loop() -> str:
         "@numba.njit(**_JIT)",
         "def rk4_scalar(x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states):",
         '    """Scenarios outer, samples inner (the numba-scalar backend)."""',
-        "    n_scen = x.shape[0]", "    n = load.shape[1]", "    r = G[10]", "    omb = G[8]",
+        "    n_scen = x.shape[0]", "    n = load.shape[1]", _globals("    "),
         "    hh = 0.5 * h", "    h6 = h / 6.0",
         "    y0a = np.empty(N_STATES); y1a = np.empty(N_STATES); ps = np.empty(P.shape[0])",
         "    for s in range(n_scen):",
@@ -382,8 +381,8 @@ def _scalar_loop() -> str:
         "            if record_states:",
         "                " + "; ".join(f"states[{i}, s, k] = y{i}" for i in range(N)),
         stage("a", None, None, 0),
-        "            out[0, s, k] = r * omb * a4; out[1, s, k] = a10; out[2, s, k] = y4 * omb; out[3, s, k] = y8",
-        "            out[4, s, k] = y5; out[5, s, k] = y6; out[6, s, k] = y7; out[7, s, k] = tc",
+        *(f"            out[{j}, s, k] = {_outputs.render(o.expression, 'y{i}', 'a{i}', 'tc')}"
+          for j, o in enumerate(_outputs.OUTPUTS)),
         stage("b", "a", "hh", 1), stage("c", "b", "hh", 1), stage("e", "c", "h", 2),
         "            " + "; ".join(f"n{i} = y{i} + h6 * (a{i} + 2.0 * b{i} + 2.0 * c{i} + e{i})" for i in range(N)),
         "            if CLUTCH and ((abs(y5) < bs) != (abs(n5) < bs)):",
@@ -410,7 +409,8 @@ def generate_source(effect_classes) -> str:
         binds_scalar=_binds(effect_classes, "y[{i}]", "ps[{i}]", "    "),
         binds_tuple=_binds(effect_classes, "y{i}", "ps[{i}]", "    "),
         body_scalar=_body(effect_classes, "    ", "_ts_"))
-    return head + "\n\n" + terms + "\n\n" + kern + _LOOPS + _scalar_loop()
+    loops = _LOOPS.replace("{GLOBALS}", _globals("    ")).replace("{OUTPUT_SELECT}", _simd_output_select())
+    return head + "\n\n" + terms + "\n\n" + kern + loops + _scalar_loop()
 
 
 def generate_numpy(effect_classes):

@@ -11,7 +11,8 @@ Three backends, same scheme, all generated from the enabled effects' terms (:mod
 Per step k (state x_k at t_k = k*h, held load L_k, supply u evaluated at t_k, t_k+h/2, t_k+h):
     k1 = f(x_k, u(t_k)), k2 = f(x_k + h/2 k1, u(t_k+h/2)), k3 = f(x_k + h/2 k2, u(t_k+h/2)),
     k4 = f(x_k + h k3, u(t_k+h)),  x_{k+1} = x_k + h/6 (k1 + 2 k2 + 2 k3 + k4).
-The recorded sample k holds x_k and the exact derivatives k1 (a1 = r*Omega_mb*dw1/dt, a2 = x'').
+The recorded sample k holds x_k and the exact derivatives k1; the outputs (a1 = r*Omega_mb*dw1/dt,
+a2 = x'', ...) are the expressions of :mod:`outputs` on them, in every backend.
 
 Zone crossings: when |Delta| - beta changes sign over a step, the step is redone by
 :func:`crossing_step` (crossing located on the Hermite interpolant of Delta, RK4 to it and from it),
@@ -28,15 +29,13 @@ from .codegen import N_STATES, STATE_NAMES
 
 S_PSA, S_PSB, S_PRA, S_PRB, S_W1, S_DELTA, S_ALPHA1, S_ALPHA2, S_OMEGA2, S_Z, S_XDOT = range(N_STATES)
 
-# recorded outputs, first axis of the output block
-OUTPUT_NAMES = ("a1", "a2", "omega1", "omega2", "angle_difference", "alpha1", "alpha2", "transmitted_torque_Nm")
-N_OUTPUTS = len(OUTPUT_NAMES)
+# recorded outputs, first axis of the output block: defined once in outputs.py
+from .outputs import N_OUTPUTS, OUTPUT_NAMES, numpy_outputs  # noqa: E402
 
 
 def _rk4_numpy(kernel, x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states):
     """Same scheme, vectorised over the scenarios with numpy calls (the state is advanced in place)."""
     n = load.shape[1]
-    r, omega_mb = G[10], G[8]
     rhs = kernel.rhs_numpy
     y = [x[:, i].copy() for i in range(N_STATES)]
     clutch = "backlash_clutch" in kernel.names
@@ -47,14 +46,8 @@ def _rk4_numpy(kernel, x, load, ua, ub, phase, u_amp, P, G, h, out, states, reco
             for i in range(N_STATES):
                 states[i, :, k] = y[i]
         f1, aux = rhs(y, ua[k, 0], ub[k, 0], ld, P, G)
-        out[0, :, k] = r * omega_mb * f1[4]
-        out[1, :, k] = f1[10]
-        out[2, :, k] = y[S_W1] * omega_mb
-        out[3, :, k] = y[S_OMEGA2]
-        out[4, :, k] = y[S_DELTA]
-        out[5, :, k] = y[S_ALPHA1]
-        out[6, :, k] = y[S_ALPHA2]
-        out[7, :, k] = aux[1]
+        for j, v in enumerate(numpy_outputs(y, f1, aux[1], G)):
+            out[j, :, k] = v
         f2, _ = rhs([y[i] + 0.5 * h * f1[i] for i in range(N_STATES)], ua[k, 1], ub[k, 1], ld, P, G)
         f3, _ = rhs([y[i] + 0.5 * h * f2[i] for i in range(N_STATES)], ua[k, 1], ub[k, 1], ld, P, G)
         f4, _ = rhs([y[i] + h * f3[i] for i in range(N_STATES)], ua[k, 2], ub[k, 2], ld, P, G)

@@ -1,7 +1,9 @@
 """Per-unit induction motor in the stationary alpha-beta frame (SPEC section 3).
 
-The functions below use only arithmetic, so they work on floats (inside the numba kernel) and on
-numpy arrays (numpy backend, solve_ivp reference) alike.
+The simulated right-hand side writes these equations once, in the generated block of
+:mod:`codegen` (``codegen._body``: the same text in every backend). :func:`currents` below is an
+independent array form for tests and analyses (energy balance, stator current); it works on floats and
+on numpy arrays alike.
 
     i_s = (x_r psi_s - x_m psi_r)/w,   i_r = (x_s psi_r - x_m psi_s)/w
     dpsi_s/dt = Omega_b (u_s - r_s i_s)
@@ -28,18 +30,6 @@ def currents(psa, psb, pra, prb, xs, xr, xm, w):
     ira = (xs * pra - xm * psa) * iw
     irb = (xs * prb - xm * psb) * iw
     return isa, isb, ira, irb
-
-
-@jitable
-def flux_derivatives(psa, psb, pra, prb, w1, ua, ub, rs, rr, xs, xr, xm, w, omega_b):
-    """d/dt of (psi_sa, psi_sb, psi_ra, psi_rb) [p.u./s] and the electromagnetic torque t_e [p.u.]."""
-    isa, isb, ira, irb = currents(psa, psb, pra, prb, xs, xr, xm, w)
-    dpsa = omega_b * (ua - rs * isa)
-    dpsb = omega_b * (ub - rs * isb)
-    dpra = omega_b * (-rr * ira - w1 * prb)
-    dprb = omega_b * (-rr * irb + w1 * pra)
-    te = psa * isb - psb * isa
-    return dpsa, dpsb, dpra, dprb, te
 
 
 @dataclass(frozen=True)

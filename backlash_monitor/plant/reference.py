@@ -11,15 +11,16 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .drivetrain import N_STATES, S_DELTA, S_OMEGA2, S_W1
+from .drivetrain import N_STATES
+from .outputs import OUTPUT_NAMES, numpy_outputs
 
 
 def reference_run(sim, index: int, load_pu: np.ndarray, method: str = "DOP853", rtol: float = 1e-9,
                   atol: float = 1e-12, state0: np.ndarray | None = None, first_sample_index: int = 0,
                   rhs=None, extra=None) -> dict:
     """Integrate scenario ``index`` of ``sim`` over len(load_pu) samples from ``state0`` (default: its
-    current state) with solve_ivp; return the samples a1, a2, omega1, omega2, angle_difference and the
-    solver statistics (nfev, wall).
+    current state) with solve_ivp; return the samples of every output (outputs.OUTPUT_NAMES: a1, a2, omega1,
+    ..., from the one definition in outputs.py), the states and the solver statistics (nfev).
 
     ``rhs``: another :class:`codegen.Kernel` (e.g. the nominal model's, for a test that adds an effect's
     equation written independently; its parameters are taken from the simulator's values); ``extra(t, y,
@@ -32,7 +33,6 @@ def reference_run(sim, index: int, load_pu: np.ndarray, method: str = "DOP853", 
     else:
         rhs_np, P = rhs, sim.P[:, index]
     G = sim.G
-    r, omega_mb = G[10], G[8]
     h = sim.sample_period_s
     omega_b = cfg.motor.base_angular_frequency_rad_s
     u_amp = cfg.motor.supply_voltage_pu
@@ -71,6 +71,6 @@ def reference_run(sim, index: int, load_pu: np.ndarray, method: str = "DOP853", 
     if extra is not None:
         corr = np.array([extra(float(t0 + k_ * h), states[k_], None) for k_ in range(n)])
         der = [der[i] + corr[:, i] for i in range(N_STATES)]
-    return {"a1": r * omega_mb * der[4], "a2": der[10], "omega1": states[:, S_W1] * omega_mb,
-            "omega2": states[:, S_OMEGA2], "angle_difference": states[:, S_DELTA], "transmitted_torque_Nm": aux[1],
-            "states": states, "final_state": x, "nfev": nfev}
+    res = dict(zip(OUTPUT_NAMES, numpy_outputs([states[:, i] for i in range(N_STATES)], der, aux[1], G)))
+    res.update(states=states, final_state=x, nfev=nfev)
+    return res
