@@ -32,3 +32,17 @@ def ros_env():
 @pytest.fixture
 def repo_root():
     return REPO_ROOT
+
+
+@pytest.fixture(autouse=True)
+def _effects_registry_isolated():
+    """Effects a test registers (plug-in files, broken terms) stay with that test: the registry is
+    process-wide, and the workbench switches on every registered effect."""
+    import sys
+    effects = sys.modules.get("backlash_monitor.plant.effects")
+    saved = dict(effects._REGISTRY) if effects is not None else None
+    yield
+    effects = sys.modules.get("backlash_monitor.plant.effects")
+    if effects is not None and saved is not None:
+        effects._REGISTRY.clear()
+        effects._REGISTRY.update(saved)

@@ -236,10 +236,10 @@ def test_sigkill_loses_only_what_a_second_recorder_got_in_the_last_open_chunk(ro
     time.sleep(1.0)
     pub = _publish(ros_env, 4.0, 1.0, wait=False)
     try:
-        deadline = time.monotonic() + 60    # the stream flows: the reference closed chunks
-        while time.monotonic() < deadline and (not reference_bag.exists()
-                                               or reference_bag.stat().st_size < 150_000):
-            time.sleep(0.05)
+        deadline = time.monotonic() + 60    # the stream flows: both recorders closed chunks
+        while time.monotonic() < deadline and not all(
+                b.exists() and b.stat().st_size >= 150_000 for b in (reference_bag, killed_bag)):
+            time.sleep(0.05)                # (a recorder slow to start on a loaded machine)
         time.sleep(1.0)
         killed_ns = time.time_ns()
         victim.kill()
