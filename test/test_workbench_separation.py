@@ -1,0 +1,46 @@
+"""diagnose names what would separate two indistinguishable candidates, from where each acts."""
+from backlash_monitor.plant import effects as plant_effects
+from backlash_monitor.workbench import separation
+
+
+def _where(name):
+    cls = plant_effects.catalogue()[name]
+    return separation.location(name, cls.balance, getattr(cls, "target", None))
+
+
+def test_every_catalogue_effect_has_a_place_on_the_drive():
+    for cls in plant_effects.CATALOGUE:
+        assert _where(cls.name) in separation.PLACE, cls.name
+
+
+def test_drifts_act_where_their_parameter_sits():
+    assert _where("working_resistance_drift") == _where("mass_force_offset") == "mass"
+    assert _where("backlash_width_drift") == _where("clutch_contact_stiffness") == "coupling"
+    assert _where("wheel_inertia_drift") == _where("wheel_coulomb_friction") == "wheel"
+    assert _where("pulse_amplitude_drift") == _where("motor_load_offset") == "motor"
+
+
+def test_wheel_friction_against_working_resistance_needs_a_load_side_sensor():
+    text = separation.separating_measurement("wheel_coulomb_friction", _where("wheel_coulomb_friction"),
+                                             "working_resistance_drift", _where("working_resistance_drift"))
+    assert "Omega2" in text and "load cell" in text
+
+
+def test_a_sensor_effect_against_a_physical_one_needs_a_second_accelerometer():
+    text = separation.separating_measurement("accelerometer_gain[a2]", "sensor", "load_mass_drift",
+                                             _where("load_mass_drift"))
+    assert "second accelerometer" in text
+
+
+def test_two_effects_at_one_place_need_another_operating_point():
+    text = separation.separating_measurement("wheel_coulomb_friction", "wheel",
+                                             "wheel_viscous_friction", "wheel")
+    assert "another operating point" in text
+
+
+def test_every_pair_of_places_has_a_sentence():
+    places = list(separation.PLACE)
+    for a in places:
+        for b in places:
+            text = separation.separating_measurement("A", a, "B", b)
+            assert "A" in text and "B" in text and len(text) > 40
