@@ -106,6 +106,28 @@ def _ip(*args: str) -> None:
     subprocess.run(["ip", *args], check=True, capture_output=True, text=True)
 
 
+def _wait_until_running(netns: str, dev: str, timeout_s: float = 10.0) -> None:
+    """Wait until a veth end has carrier (operstate UP): `link set up` returns before the pair's
+    carrier comes, and Fast DDS started earlier finds no usable interface for its whitelisted
+    address ("All whitelist interfaces were filtered out") and never talks to the other host."""
+    import json
+    import time
+    deadline = time.monotonic() + timeout_s
+    while True:
+        out = subprocess.run(["ip", "-n", netns, "-j", "link", "show", dev],
+                             capture_output=True, text=True).stdout
+        try:
+            state = json.loads(out)[0].get("operstate")
+        except (ValueError, IndexError):
+            state = None
+        if state == "UP":
+            return
+        if time.monotonic() > deadline:
+            raise RuntimeError(f"veth {dev} in namespace {netns} has no carrier after {timeout_s:g} s "
+                               f"(operstate {state})")
+        time.sleep(0.02)
+
+
 @contextmanager
 def two_hosts(workdir: str, subnet_index: int | None = None):
     """Namespaces A and B joined by a veth pair; removed again whatever happens."""
@@ -130,6 +152,8 @@ def two_hosts(workdir: str, subnet_index: int | None = None):
             with open(path, "w", encoding="utf-8") as f:
                 f.write(fast_dds_profile(own, peer))
             hosts.append(Host(name, own, path, veth))
+        for host in hosts:
+            _wait_until_running(host.netns, host.veth)
         yield hosts[0], hosts[1]
     finally:
         for name in made:     # deleting a namespace deletes its end of the veth pair, and so both
