@@ -36,7 +36,7 @@ REALTIME_LAG_S = 1.0           # a chain that keeps up answers within tens of ms
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--drives", type=int, default=0, metavar="N",
+    parser.add_argument("--drives", type=int, default=None, metavar="N",
                         help="simulate N drives drive01..driveNN on --line (default: 4 unless "
                              "--config is given)")
     parser.add_argument("--config", default="", metavar="FLEET.yaml",
@@ -80,11 +80,12 @@ def validate(args):
                                 ("--view-period", args.view_period, 0.0, 3600.0)):
         if not (lo <= value <= hi):
             raise UsageError(f"{name} = {value:g} is out of range; allowed: {lo:g} .. {hi:g}")
-    if args.config and args.drives:
+    if args.config and args.drives is not None:
         raise UsageError("give --drives or --config, not both")
     if args.config:
         return load_drives(args.config)
-    return drives_from_count(args.drives or 4, line=args.line, width_m=args.width_m)
+    return drives_from_count(4 if args.drives is None else args.drives, line=args.line,
+                             width_m=args.width_m)
 
 
 def load_analyzers(path: str) -> dict:
@@ -301,11 +302,10 @@ def run(args) -> int:
         return 0
     import rclpy
     from rclpy.executors import ExternalShutdownException
-    from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
     from backlash_monitor.nodes.fast_dds import configure_fast_dds
     from backlash_monitor.nodes.lean_executor import make_executor
     from backlash_monitor.nodes.parameters import ParameterValueError
-    from backlash_monitor.nodes.runtime import freeze_startup_objects
+    from backlash_monitor.nodes.runtime import freeze_startup_objects, is_shutdown_error
     configure_fast_dds()   # before rclpy.init; the drives' processes inherit it
     expected_chunks = int(round(args.duration / CHUNK_S))
     children: dict[str, subprocess.Popen] = {}
@@ -377,10 +377,9 @@ def run(args) -> int:
         return 2
     except (KeyboardInterrupt, ExternalShutdownException):
         print("fleet: interrupted", file=sys.stderr)
-    except _rclpy.RCLError:
-        if rclpy.ok():
+    except Exception as error:
+        if not is_shutdown_error(error):   # Ctrl-C/SIGTERM while a callback published: not a fault
             raise
-        # Ctrl-C/SIGTERM invalidated the context while a callback published (nodes/lifecycle.py)
         print("fleet: interrupted", file=sys.stderr)
     finally:
         for child in children.values():
@@ -408,17 +407,8 @@ def run(args) -> int:
 
 def main(argv=None) -> int:
     """`ros2 run backlash_monitor fleet [options]` (ROS arguments are passed through)."""
-    from rclpy.utilities import remove_ros_args
-    from backlash_monitor.errors import UsageError
-    parser = argparse.ArgumentParser(prog="fleet", description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    add_arguments(parser)
-    args = parser.parse_args(remove_ros_args(sys.argv if argv is None else argv)[1:])
-    try:
-        return run(args)
-    except UsageError as error:
-        print(f"fleet: error: {error}", file=sys.stderr)
-        return 2
+    from backlash_monitor.nodes.runtime import command_main
+    return command_main("fleet", __doc__, add_arguments, run, argv)
 
 
 if __name__ == "__main__":

@@ -96,12 +96,12 @@ def spin_until_shutdown(executor) -> None:
     callback is publishing (the plant publishes a burst of chunks per tick): that publish then
     fails with RCLError, which here is the shutdown, not a fault."""
     import rclpy
-    from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
+    from backlash_monitor.nodes.runtime import is_shutdown_error
     while rclpy.ok():
         try:
             executor.spin_once(timeout_sec=0.1)
-        except _rclpy.RCLError:
-            if rclpy.ok():
+        except Exception as error:
+            if not is_shutdown_error(error):
                 raise
             return
 

@@ -395,17 +395,8 @@ def run(args) -> int:
 
 def main(argv=None) -> int:
     """`ros2 run backlash_monitor pipeline [options]` (ROS arguments are passed through)."""
-    from rclpy.utilities import remove_ros_args
-    from backlash_monitor.errors import UsageError
-    parser = argparse.ArgumentParser(prog="pipeline", description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    add_arguments(parser)
-    args = parser.parse_args(remove_ros_args(sys.argv if argv is None else argv)[1:])
-    try:
-        return run(args)
-    except UsageError as error:
-        print(f"pipeline: error: {error}", file=sys.stderr)
-        return 2
+    from backlash_monitor.nodes.runtime import command_main
+    return command_main("pipeline", __doc__, add_arguments, run, argv)
 
 
 if __name__ == "__main__":

@@ -26,9 +26,30 @@ def freeze_startup_objects() -> None:
     gc.freeze()
 
 
-def _is_rcl_error(error: BaseException) -> bool:
+def is_shutdown_error(error: BaseException) -> bool:
+    """True for the RCLError a callback gets when Ctrl-C/SIGTERM has already invalidated the
+    context (the signal may arrive while it publishes: the plant publishes a burst of chunks per
+    tick). That error is the shutdown, not a fault; an RCLError while the context is valid is."""
     from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
-    return isinstance(error, _rclpy.RCLError)
+    return isinstance(error, _rclpy.RCLError) and not rclpy.ok()
+
+
+def command_main(prog: str, description: str, add_arguments, run, argv=None) -> int:
+    """``main()`` of an executable that takes options (``ros2 run backlash_monitor pipeline|fleet``):
+    ROS arguments are passed through, a :class:`~backlash_monitor.errors.UsageError` is one line
+    ``PROG: error: ...`` and exit code 2."""
+    import argparse
+    from rclpy.utilities import remove_ros_args
+    from backlash_monitor.errors import UsageError
+    parser = argparse.ArgumentParser(prog=prog, description=description,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_arguments(parser)
+    args = parser.parse_args(remove_ros_args(sys.argv if argv is None else argv)[1:])
+    try:
+        return run(args)
+    except UsageError as error:
+        print(f"{prog}: error: {error}", file=sys.stderr)
+        return 2
 
 
 def run_node(node_factory, args=None, spin=None) -> int:
@@ -74,10 +95,7 @@ def run_nodes(node_factories, args=None, spin=None) -> int:
     except (KeyboardInterrupt, rclpy.executors.ExternalShutdownException):
         return 0
     except Exception as error:
-        # Ctrl-C/SIGTERM invalidates the context at once, possibly while a callback publishes (the
-        # plant publishes a burst of chunks per tick): that publish then fails with RCLError, which
-        # is the shutdown, not a fault. Anything else while the context is valid is a fault.
-        if _is_rcl_error(error) and not rclpy.ok():
+        if is_shutdown_error(error):
             return 0
         raise
     finally:
