@@ -23,6 +23,34 @@ def add_model_arguments(parser, measurement: bool = True) -> None:
                         help="noise seeds of the model's ensemble (>= 3; the band and the fits use them)")
 
 
+REPORT_FILES = ("index.html", "event_average.png", "where.png", "ranked.png", "spectra.png")
+COMPARE_FILES = ("compare.json", "event_average.png", "spectra.png")
+
+
+def add_overwrite_argument(parser) -> None:
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace output files that exist already (default: refuse, naming the file)")
+
+
+def check_outputs(args, outputs, option: str) -> None:
+    """Before any work: no output may be one of the command's inputs (the measurement, the model
+    file), nor an existing file unless --overwrite (backlash_monitor.output_files)."""
+    from backlash_monitor.commands import UsageError
+    from backlash_monitor.output_files import OutputError, check_outputs as check
+    inputs = [p for p in (getattr(args, "measurement", None), args.model, getattr(args, "source", None)) if p]
+    try:
+        check(outputs, inputs=inputs, overwrite=args.overwrite, option=option)
+    except OutputError as exc:
+        raise UsageError(str(exc)) from None
+
+
+def write_text_staged(path, text: str) -> None:
+    """Write ``text`` to ``path`` under its .partial name, renamed once complete."""
+    from backlash_monitor.output_files import staged_outputs
+    with staged_outputs([path]) as (tmp,):
+        tmp.write_text(text)
+
+
 def load(args, measurement: bool = True):
     from backlash_monitor.commands import UsageError
     from backlash_monitor.workbench.measurement import MeasurementError, check_against_model, load_measurement
@@ -43,7 +71,8 @@ def load(args, measurement: bool = True):
     return model, meas
 
 
-def print_table(rows, header, file=sys.stdout) -> None:
+def print_table(rows, header, file=None) -> None:
+    file = sys.stdout if file is None else file
     rows = [tuple(str(c) for c in r) for r in rows]
     widths = [max(len(str(h)), *(len(r[i]) for r in rows)) if rows else len(str(h)) for i, h in enumerate(header)]
     print("  ".join(str(h).rjust(w) for h, w in zip(header, widths)), file=file)

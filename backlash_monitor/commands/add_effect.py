@@ -25,13 +25,16 @@ def add_arguments(parser) -> None:
                         help="with an effect name: a parameter's value, e.g. --value mass_kg=12.5 (default: its "
                              "current value); repeatable")
     parser.add_argument("--name", default=None, help="model name (default: the input model's)")
+    from backlash_monitor.commands._workbench import add_overwrite_argument
+    add_overwrite_argument(parser)
 
 
 def run(args) -> int:
     from backlash_monitor.commands import UsageError
-    from backlash_monitor.commands._workbench import load, print_table
+    from backlash_monitor.commands._workbench import check_outputs, load, print_table
     from backlash_monitor.workbench.model import append_history
     from backlash_monitor.workbench.versions import EffectValues, add_effects
+    check_outputs(args, [args.output], "-o")
     model, _ = load(args, measurement=False)
     src = Path(args.source)
     additions = []

@@ -24,6 +24,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--json", default=None, metavar="PATH", help="also write the JSON here")
     parser.add_argument("--no-record", action="store_true",
                         help="do not add this check to the model's history (workbench_history.jsonl)")
+    from backlash_monitor.commands._workbench import add_overwrite_argument
+    add_overwrite_argument(parser)
 
 
 def compare_result(meas, model, seeds):
@@ -48,12 +50,16 @@ def compare_result(meas, model, seeds):
 def run(args) -> int:
     from tqdm import tqdm
     from backlash_monitor.commands import UsageError
-    from backlash_monitor.commands._workbench import load, print_table
+    from backlash_monitor.commands._workbench import (COMPARE_FILES, check_outputs, load, print_table,
+                                                      write_text_staged)
     from backlash_monitor.workbench import report
     from backlash_monitor.workbench.analysis import ConditionsError
     from backlash_monitor.workbench.model import record_check
-    model, meas = load(args)
     out = Path(args.out_dir)
+    check_outputs(args, [out / f for f in COMPARE_FILES], "--out-dir")
+    if args.json:
+        check_outputs(args, [args.json], "--json")
+    model, meas = load(args)
     out.mkdir(parents=True, exist_ok=True)
     with tqdm(total=1, desc=f"model ensemble ({args.seeds} seeds)", disable=None) as bar:
         try:
@@ -64,9 +70,9 @@ def run(args) -> int:
     report.plot_event_average(comp, out / "event_average.png", title=f"{model.label()} vs measurement")
     report.plot_spectra(comp, spec, out / "spectra.png")
     text = json.dumps(res, indent=1, default=float)
-    (out / "compare.json").write_text(text)
+    write_text_staged(out / "compare.json", text)
     if args.json:
-        Path(args.json).write_text(text)
+        write_text_staged(args.json, text)
     if not args.no_record:
         record_check(model, meas.source, "compare", res["fit_percent"], res["residual_over_noise_floor"])
     rows = [(s, f"{res['fit_percent'][s]:.1f}", f"{res['noise_band_fit_percent'][s]['median']:.1f}",

@@ -28,16 +28,24 @@ def add_arguments(parser) -> None:
                         help="fit only these catalogue effects (default: the whole catalogue)")
     parser.add_argument("--no-second", action="store_true", help="do not try a second effect on top")
     parser.add_argument("--no-record", action="store_true", help="do not add this check to the model's history")
+    from backlash_monitor.commands._workbench import add_overwrite_argument
+    add_overwrite_argument(parser)
 
 
 def run(args) -> int:
     from tqdm import tqdm
     from backlash_monitor.commands import UsageError
-    from backlash_monitor.commands._workbench import load, print_table
+    from backlash_monitor.commands._workbench import (REPORT_FILES, check_outputs, load, print_table,
+                                                      write_text_staged)
     from backlash_monitor.workbench import plant_adapter, report
     from backlash_monitor.workbench.analysis import ConditionsError
     from backlash_monitor.workbench.diagnose import diagnose, public
     from backlash_monitor.workbench.model import record_check
+    json_path = Path(args.json) if args.json else (Path(args.report) / "diagnosis.json" if args.report
+                                                   else Path("diagnosis.json"))
+    check_outputs(args, [json_path], "--json")
+    if args.report:
+        check_outputs(args, [Path(args.report) / f for f in REPORT_FILES], "--report")
     model, meas = load(args)
     effects = [e.strip() for e in args.effects.split(",") if e.strip()] if args.effects else None
     n = len(effects) if effects else len(plant_adapter.catalogue(model))
@@ -47,11 +55,9 @@ def run(args) -> int:
                               second=not args.no_second)
         except (ConditionsError, ValueError) as exc:
             raise UsageError(str(exc)) from None
-    json_path = Path(args.json) if args.json else (Path(args.report) / "diagnosis.json" if args.report
-                                                   else Path("diagnosis.json"))
     json_path.parent.mkdir(parents=True, exist_ok=True)
     pub = public(result)
-    json_path.write_text(json.dumps(pub, indent=1, default=float))
+    write_text_staged(json_path, json.dumps(pub, indent=1, default=float))
     if args.report:
         page = report.write_report(result, args.report)
         print(f"report: {page}")
