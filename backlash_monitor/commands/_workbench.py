@@ -16,6 +16,10 @@ def add_model_arguments(parser, measurement: bool = True) -> None:
                              "conditions below")
     parser.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
                         help="override one plant config value of the model, e.g. --set load.mass_kg=12; repeatable")
+    parser.add_argument("--effects-file", action="append", default=[], metavar="FILE.py",
+                        help="a Python file with your own Effect classes (docs/effects.md): registered, fitted as "
+                             "candidates by diagnose, usable in --set, and kept in the model add-effect writes; "
+                             "repeatable")
     parser.add_argument("--width-m", type=float, default=None, help="the drive's nominal backlash width [m]")
     parser.add_argument("--eta-k", type=float, default=None, help="nominal absorber consistency eta_k [Pa*s^n]")
     parser.add_argument("--n1", type=float, default=None, help="nominal absorber flow index n1 [-]")
@@ -58,7 +62,8 @@ def load(args, measurement: bool = True):
     if not 3 <= args.seeds <= 64:
         raise UsageError(f"--seeds {args.seeds}: allowed 3 <= K <= 64")
     try:
-        model = load_model(args.model, args.set, args.width_m, args.eta_k, args.n1)
+        model = load_model(args.model, args.set, args.width_m, args.eta_k, args.n1,
+                           effect_files=args.effects_file)
     except ModelError as exc:
         raise UsageError(str(exc)) from None
     if not measurement:

@@ -11,6 +11,7 @@ File layout (docs/workbench.md)::
     plant: {load: {mass_kg: 12.9}, effects: {constant_motor_load: true}, constant_motor_load_pu: 0.1}
     effects_added:              # what add-effect put in, with the fitted values and uncertainties
       - {effect: load_mass, parameters: {mass_kg: 12.9}, uncertainty: {mass_kg: 0.2}, from: diagnosis.json}
+    effect_files: [my_effects.py]   # optional: the user's plug-in effect files (relative to this file)
 
 The history log is ``workbench_history.jsonl`` beside the model file: one JSON line per version made and
 per check (compare/diagnose of a version against a measurement, with its errors).
@@ -48,6 +49,7 @@ class WorkbenchModel:
     plant: dict = field(default_factory=dict)        # overrides of config/plant.yaml (nested)
     effects_added: list = field(default_factory=list)
     path: Path | None = None
+    effect_files: list = field(default_factory=list)  # absolute paths of the user's plug-in effect files
 
     def plant_config(self, extra: Mapping | None = None):
         """The validated PlantConfig of this model (``extra``: flat overrides on top, e.g. conditions)."""
@@ -60,10 +62,16 @@ class WorkbenchModel:
         except ValueError as exc:
             raise ModelError(str(exc)) from None
 
-    def to_dict(self) -> dict:
-        return {"workbench_model": FORMAT_VERSION, "name": self.name, "version": int(self.version),
-                "parent": self.parent, "nominal": dict(self.nominal), "plant": copy.deepcopy(self.plant),
-                "effects_added": copy.deepcopy(self.effects_added)}
+    def to_dict(self, directory=None) -> dict:
+        """The file's content; ``directory``: where it is saved (plug-in files are written relative to it)."""
+        out = {"workbench_model": FORMAT_VERSION, "name": self.name, "version": int(self.version),
+               "parent": self.parent, "nominal": dict(self.nominal), "plant": copy.deepcopy(self.plant),
+               "effects_added": copy.deepcopy(self.effects_added)}
+        if self.effect_files:
+            import os
+            out["effect_files"] = [os.path.relpath(f, directory) if directory else str(f)
+                                   for f in self.effect_files]
+        return out
 
     def label(self) -> str:
         return f"{self.name} v{self.version}"
@@ -71,7 +79,7 @@ class WorkbenchModel:
     def save(self, path) -> Path:
         p = Path(path)
         p.write_text("# backlash_monitor workbench model (docs/workbench.md)\n"
-                     + yaml.safe_dump(self.to_dict(), sort_keys=False))
+                     + yaml.safe_dump(self.to_dict(p.resolve().parent), sort_keys=False))
         self.path = p
         return p
 
@@ -93,10 +101,28 @@ def parse_set(text: str) -> tuple[str, object]:
     return key.strip(), yaml.safe_load(value)
 
 
+def _load_effect_files(paths) -> list:
+    """Register the user's plug-in effects of ``paths`` (plant.effects.load_effects_file); their
+    absolute paths."""
+    from backlash_monitor.plant import load_effects_file
+    out = []
+    for f in paths:
+        f = Path(f).resolve()
+        try:
+            load_effects_file(f)
+        except ValueError as exc:
+            raise ModelError(str(exc)) from None
+        if f not in out:
+            out.append(f)
+    return out
+
+
 def load_model(path=None, sets: Sequence[str] = (), width_m: float | None = None, eta_k: float | None = None,
-               n1: float | None = None) -> WorkbenchModel:
+               n1: float | None = None, effect_files: Sequence = ()) -> WorkbenchModel:
     """The model of ``path`` (None: the default model = config/plant.yaml at the default nominal
-    conditions), with ``--set`` overrides and the nominal conditions' overrides; validated."""
+    conditions), with ``--set`` overrides and the nominal conditions' overrides; validated.
+    ``effect_files``: the user's plug-in effect files (``--effects-file``), registered before the
+    plant config is validated and kept in the model (with those the file names)."""
     if path is None:
         model = WorkbenchModel()
     else:
@@ -112,15 +138,24 @@ def load_model(path=None, sets: Sequence[str] = (), width_m: float | None = None
             raise ModelError(f"model file {p}: not a workbench model (needs 'workbench_model: {FORMAT_VERSION}'; "
                              "see docs/workbench.md)")
         unknown = sorted(set(data) - {"workbench_model", "name", "version", "parent", "nominal", "plant",
-                                      "effects_added"})
+                                      "effects_added", "effect_files"})
         if unknown:
             raise ModelError(f"model file {p}: unknown key {unknown[0]!r}; allowed: name, version, parent, "
-                             "nominal, plant, effects_added")
+                             "nominal, plant, effects_added, effect_files")
+        files = data.get("effect_files") or []
+        if not isinstance(files, list) or not all(isinstance(f, str) for f in files):
+            raise ModelError(f"model file {p}: effect_files must be a list of Python file paths "
+                             "(relative to the model file)")
+        files = [p.resolve().parent / f for f in files]
         nominal = dict(DEFAULT_NOMINAL)
         nominal.update(data.get("nominal") or {})
         model = WorkbenchModel(name=str(data.get("name", p.stem)), version=int(data.get("version", 1)),
                                parent=data.get("parent"), nominal=nominal, plant=data.get("plant") or {},
-                               effects_added=list(data.get("effects_added") or []), path=p)
+                               effects_added=list(data.get("effects_added") or []), path=p,
+                               effect_files=_load_effect_files(files))
+    for f in _load_effect_files(effect_files):
+        if f not in model.effect_files:
+            model.effect_files.append(f)
     for text in sets:
         key, value = parse_set(text)
         _set_nested(model.plant, key, value)

@@ -156,9 +156,13 @@ def config_overrides(parameter_set: Mapping) -> dict:
 
 
 def _catalogue_switches() -> dict:
+    """Every candidate effect switched on: the catalogue's and the user's plug-ins registered in this
+    process (at their defaults, which an effect's author makes neutral: docs/effects.md)."""
     reg = plant_effects.catalogue()
-    return {f"effects.{n}": True for n in plant_effects.CATALOGUE_NAMES
-            if n in reg and n not in NOT_EVENT_LOCKED}
+    names = [n for n in plant_effects.CATALOGUE_NAMES if n in reg and n not in NOT_EVENT_LOCKED]
+    names += [n for n, c in reg.items() if n not in names and n not in NOT_EVENT_LOCKED and not c.nominal
+              and n not in plant_effects.CATALOGUE_NAMES and c.kind in ("term", "drift", "sensor")]
+    return {f"effects.{n}": True for n in names}
 
 
 def simulate_sets(model, sets: Sequence[Mapping], seeds: Sequence[int], n_samples: int,

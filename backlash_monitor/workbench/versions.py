@@ -21,7 +21,8 @@ def add_effects(model: WorkbenchModel, additions, name: str | None = None) -> Wo
     new = WorkbenchModel(name=name or model.name, version=model.version + 1,
                          parent=model.path.name if model.path else f"{model.name} v{model.version} (unsaved)",
                          nominal=dict(model.nominal), plant=copy.deepcopy(model.plant),
-                         effects_added=copy.deepcopy(model.effects_added))
+                         effects_added=copy.deepcopy(model.effects_added),
+                         effect_files=list(model.effect_files))
     cands = plant_adapter.catalogue(model)
     for add in additions:
         mine = [c for c in cands if c.effect == add.effect or c.name == add.effect]
