@@ -3,9 +3,12 @@
 Suite: 4 s recordings made by the project's simulator with seeds (9001..) and strengths the tests do not
 use: clean drives, one-effect drives, two-effect drives and one effect outside the catalogue. Per recording
 `diagnose` (whole catalogue, 6 seeds); for the discoveries the effect is added (versions.add_effects with
-the fitted values) and the new version compared (residual over the noise floor). The width check retrains
-the pattern library on the updated model (`train --model` core) and on the default model with the same
-seeds (control), and reports the monitor's mean |continuous width - truth| before/after.
+the fitted values) and the new version compared (residual over the noise floor). The width check
+(width_check): 4 hidden-effect drives, each diagnosed on its own recording, the effect added, the pattern
+library retrained on that drive's updated model (`train --model` core), the monitor's widths at 3 widths
+before (packaged library) / after (retrained) / control (the same small training on the default model):
+per-window mean |continuous width - truth| (the goal's figure, `width_error_*_mm`) and the published fused
+width's error (`width_fused_error_*_mm`).
 NUMBA_NUM_THREADS=1: one core.
 """
 import os
@@ -110,35 +113,107 @@ def run_suite():
     return rows
 
 
+# Width check (issue 11: "mean |continuous width - truth| of the monitor on those drives, before and after the
+# model update and retraining"): hidden-effect drives, each diagnosed on its own 4 s recording at the nominal
+# 7.5 mm, the discovered effect(s) added, the library retrained on that drive's updated model; then the
+# monitor's widths on 8 s recordings of the same drive at WIDTH_CHECK_WIDTHS_M (the drive wears; the model
+# update is about its physics). Seeds 9101.. (the tests use others).
+WIDTH_CHECK_DRIVES = [
+    ("wheel_friction_1.5", on("wheel_coulomb_friction", torque_Nm=1.5)),
+    ("mass_+0.3", on("load_mass_drift", relative_change=0.3)),
+    ("clutch_softer_-0.3", on("clutch_contact_stiffness", relative_change=-0.3)),
+    ("gain_a2_-0.2", on("accelerometer_gain", a2_relative_change=-0.2)),
+]
+WIDTH_CHECK_WIDTHS_M = (0.005, 0.0075, 0.009)    # candidate widths: the fused (published) width can be exact
+WIDTH_CHECK_SECONDS = 8.0
+WIDTH_TRAIN_SEEDS = (1000, 1001)                  # the retrained libraries: 2 seeds x 2 s (windows cached per model)
+WIDTH_TRAIN_DURATION_S = 2.0
+
+
+def twins(pub) -> list:
+    """EffectValues of every other candidate the diagnosis names as indistinguishable from the discovery, at
+    its own fitted values (from the ranked, refined candidates)."""
+    out = []
+    for name in pub["indistinguishable"]:
+        if name == pub["discovery"]:
+            continue
+        fit = next((r for r in pub["ranked"] if r["effect"] == name and r.get("uncertainty")), None)
+        if fit is not None:
+            out.append(EffectValues(name, fit["parameters"]))
+    return out
+
+
 def width_check():
-    """Hidden wheel friction 1.5 N*m at 7.5 mm (the issue's example): monitor width before/after retraining."""
+    """Per drive: diagnose -> add-effect -> retrain -> the monitor's widths before (packaged library) and after
+    (retrained library), and a control (the same small training on the default model)."""
     from backlash_monitor.classifier.training import build_library
-    from backlash_monitor.workbench.width import continuous_widths
-    model = load_model(None)
-    hidden = on("wheel_coulomb_friction", torque_Nm=1.5)
-    meas = hidden_effect_recording(model, 8.0, seed=9101, config_overrides=hidden)
+    from backlash_monitor.workbench.width import monitor_widths, width_errors
     t0 = time.perf_counter()
-    pub = public(diagnose(meas, model))
-    adds = [EffectValues(pub["discovery_parameters"]["effect"], pub["discovery_parameters"]["parameters"])]
-    m2 = add_effects(model, adds)
-    seeds = (1000, 1001)
+    model = load_model(None)
+    drives = []
     with tempfile.TemporaryDirectory() as d:
-        lib_after = build_library("contact_loss", seeds, duration_s=2.0, config=m2.plant_config())
-        p_after = lib_after.save(os.path.join(d, "after.npz"))
-        lib_ctrl = build_library("contact_loss", seeds, duration_s=2.0)
-        p_ctrl = lib_ctrl.save(os.path.join(d, "control.npz"))
-        truth = model.nominal["width_m"]
-        w_before = continuous_widths(meas)                 # the packaged library (default model)
-        w_ctrl = continuous_widths(meas, p_ctrl)
-        w_after = continuous_widths(meas, p_after)
-    return {"width_truth_mm": truth * 1e3, "added": pub["discovery_parameters"],
-            "width_error_before_mm": float(np.mean(np.abs(w_before - truth)) * 1e3),
-            "width_error_control_same_training_mm": float(np.mean(np.abs(w_ctrl - truth)) * 1e3),
-            "width_error_after_mm": float(np.mean(np.abs(w_after - truth)) * 1e3),
-            "width_bias_before_mm": float((np.mean(w_before) - truth) * 1e3),
-            "width_bias_after_mm": float((np.mean(w_after) - truth) * 1e3),
-            "onset_windows": int(len(w_after)), "seconds": time.perf_counter() - t0,
-            "training_seeds": list(seeds)}
+        ctrl = build_library("contact_loss", WIDTH_TRAIN_SEEDS, duration_s=WIDTH_TRAIN_DURATION_S)
+        p_ctrl = ctrl.save(os.path.join(d, "control.npz"))
+        for i, (label, hidden) in enumerate(WIDTH_CHECK_DRIVES):
+            t1 = time.perf_counter()
+            meas = hidden_effect_recording(model, DURATION_S, seed=9101 + 10 * i, config_overrides=hidden)
+            pub = public(diagnose(meas, model))
+            adds = []
+            if pub["discovery"] is not None:
+                adds.append(EffectValues(pub["discovery_parameters"]["effect"], pub["discovery_parameters"]["parameters"]))
+                if pub.get("second_effect"):
+                    adds.append(EffectValues(pub["second_effect"]["effect"], pub["second_effect"]["parameters"]))
+            if adds:
+                # one model version per candidate the diagnosis cannot tell apart (fitted values of each),
+                # the library trained on all of them (train --model V2a --model V2b)
+                versions = [add_effects(model, adds)] + [add_effects(model, [t] + adds[1:]) for t in twins(pub)]
+                lib = build_library("contact_loss", WIDTH_TRAIN_SEEDS, duration_s=WIDTH_TRAIN_DURATION_S,
+                                    config=[v.plant_config() for v in versions])
+                p_after = lib.save(os.path.join(d, f"after_{i}.npz"))
+                lib_w = build_library("contact_loss", WIDTH_TRAIN_SEEDS, duration_s=WIDTH_TRAIN_DURATION_S,
+                                      config=versions[0].plant_config()) if len(versions) > 1 else None
+                p_winner = lib_w.save(os.path.join(d, f"winner_{i}.npz")) if lib_w is not None else p_after
+            else:
+                versions = []
+                p_after = p_winner = None     # no model update: the monitor keeps the packaged library
+            per_width = []
+            for j, w in enumerate(WIDTH_CHECK_WIDTHS_M):
+                rec = hidden_effect_recording(model, WIDTH_CHECK_SECONDS, seed=9101 + 10 * i + 1 + j,
+                                              config_overrides=hidden, scenario={"width_m": w})
+                per_width.append({"width_mm": w * 1e3,
+                                  "before": width_errors(monitor_widths(rec), w),
+                                  "control_same_training": width_errors(monitor_widths(rec, p_ctrl), w),
+                                  "after": width_errors(monitor_widths(rec, p_after), w),
+                                  # the discovery's model alone (what a library on the winner gives)
+                                  "after_winner_only": width_errors(monitor_widths(rec, p_winner), w)})
+            row = {"label": label, "hidden": hidden, "discovery": pub["discovery"],
+                   "indistinguishable": pub["indistinguishable"],
+                   "added": [{"effect": a.effect, "parameters": a.parameters} for a in adds],
+                   "trained_on": [[e["effect"] for e in v.effects_added] for v in versions],
+                   "per_width": per_width, "seconds": time.perf_counter() - t1}
+            for k in ("before", "control_same_training", "after", "after_winner_only"):
+                row[f"per_window_mean_abs_mm_{k}"] = float(np.mean([p[k]["per_window_mean_abs_mm"] for p in per_width]))
+                row[f"fused_final_abs_mm_{k}"] = float(np.mean([p[k]["fused_final_abs_mm"] for p in per_width]))
+                row[f"abs_bias_mm_{k}"] = float(np.mean([abs(p[k]["bias_mm"]) for p in per_width]))
+            log(f"[width {i + 1}/{len(WIDTH_CHECK_DRIVES)}] {label}: added {row['added']}; per-window mean |error| "
+                f"{row['per_window_mean_abs_mm_before']:.3f} -> {row['per_window_mean_abs_mm_after']:.3f} mm, "
+                f"fused {row['fused_final_abs_mm_before']:.3f} -> {row['fused_final_abs_mm_after']:.3f} mm "
+                f"({row['seconds']:.0f} s)")
+            drives.append(row)
+
+    def mean_of(key):
+        return float(np.mean([r[key] for r in drives]))
+    return {"widths_mm": [w * 1e3 for w in WIDTH_CHECK_WIDTHS_M], "recording_s": WIDTH_CHECK_SECONDS,
+            "training_seeds": list(WIDTH_TRAIN_SEEDS), "training_duration_s": WIDTH_TRAIN_DURATION_S,
+            "per_window_mean_abs_mm_before": mean_of("per_window_mean_abs_mm_before"),
+            "per_window_mean_abs_mm_after": mean_of("per_window_mean_abs_mm_after"),
+            "per_window_mean_abs_mm_control_same_training": mean_of("per_window_mean_abs_mm_control_same_training"),
+            "fused_final_abs_mm_before": mean_of("fused_final_abs_mm_before"),
+            "fused_final_abs_mm_after": mean_of("fused_final_abs_mm_after"),
+            "per_window_mean_abs_mm_after_winner_only": mean_of("per_window_mean_abs_mm_after_winner_only"),
+            "abs_bias_mm_after_winner_only": mean_of("abs_bias_mm_after_winner_only"),
+            "abs_bias_mm_before": mean_of("abs_bias_mm_before"), "abs_bias_mm_after": mean_of("abs_bias_mm_after"),
+            "drives": drives, "seconds": time.perf_counter() - t0}
 
 
 def main():
@@ -158,8 +233,12 @@ def main():
         "param_rel_error_median": float(np.median(errs)) if errs else None,
         "fit_after_over_noise_floor": float(np.median(after)) if after else None,
         "fit_after_over_noise_floor_max": float(np.max(after)) if after else None,
-        "width_error_before_mm": width["width_error_before_mm"],
-        "width_error_after_mm": width["width_error_after_mm"],
+        # the goal's figure (strict reading): mean over drives and widths of the per-window mean |continuous
+        # width - truth|; the fused (published candidate) width's error beside it, labelled
+        "width_error_before_mm": width["per_window_mean_abs_mm_before"],
+        "width_error_after_mm": width["per_window_mean_abs_mm_after"],
+        "width_fused_error_before_mm": width["fused_final_abs_mm_before"],
+        "width_fused_error_after_mm": width["fused_final_abs_mm_after"],
         "width_check": width,
         "discovery_seconds": float(np.median([r["seconds"] for r in rows])),
         "discovery_seconds_max": float(np.max([r["seconds"] for r in rows])),

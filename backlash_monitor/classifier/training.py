@@ -51,16 +51,34 @@ def paper_networks(ws: WindowSet, variant: str, signal: str, *, epochs: int = DE
     return np.array(m3s), np.array(w5s)
 
 
+def _collect(seeds, trigger, duration_s, progress, window_offset, config) -> WindowSet:
+    configs = list(config) if isinstance(config, (list, tuple)) else [config]
+    if len(configs) == 1:
+        return collect_windows(seeds, trigger, duration_s=duration_s, progress=progress,
+                               window_offset=window_offset, config=configs[0])
+    seeds = [int(s) for s in seeds]
+    if len(seeds) < len(configs):
+        raise ValueError(f"{len(configs)} plant configs need at least {len(configs)} training seeds "
+                         f"(one per config at least), got {len(seeds)}")
+    parts = [collect_windows(seeds[k::len(configs)], trigger, duration_s=duration_s, progress=progress,
+                             window_offset=window_offset, config=c) for k, c in enumerate(configs)]
+    ws = WindowSet.concat(parts)
+    ws.info = dict(parts[0].info, seeds=seeds,
+                   plant_config_hash="+".join(str(p.info.get("plant_config_hash")) for p in parts),
+                   seeds_per_config=[p.info.get("seeds") for p in parts])
+    return ws
+
+
 def build_library(trigger: str = "contact_loss", seeds=DEFAULT_TRAIN_SEEDS, *, epochs: int = DEFAULT_EPOCHS,
                   l1: float = DEFAULT_L1, l2: float = DEFAULT_L2, ridge: float = DEFAULT_RIDGE,
                   duration_s: float = DEFAULT_DURATION_S, windows: WindowSet | None = None,
                   progress=None, window_offset: int | None = None, config=None) -> PatternLibrary:
     """Simulate (or take ``windows``), then fit every mode. ``progress(n)`` is called per seed simulated.
     ``config``: the plant config of the training drives (default: config/plant.yaml; the workbench passes a
-    model version's config, ``train --model``)."""
-    ws = windows if windows is not None else collect_windows(seeds, trigger, duration_s=duration_s,
-                                                             progress=progress, window_offset=window_offset,
-                                                             config=config)
+    model version's config, ``train --model``), or a list of configs: the training seeds are dealt out
+    round-robin (seed k -> config k mod n) and the windows pooled -- for a drive whose diagnosis names
+    physically indistinguishable effects, train on every candidate model (docs/workbench.md)."""
+    ws = windows if windows is not None else _collect(seeds, trigger, duration_s, progress, window_offset, config)
     widths = np.asarray(K2_WIDTHS_M, dtype=float)
     arrays = {}
     for variant in CPN_VARIANTS:
@@ -91,6 +109,8 @@ def build_library(trigger: str = "contact_loss", seeds=DEFAULT_TRAIN_SEEDS, *, e
                   "a1_jump_m_s2": A1_JUMP, "a2_drop_m_s2": A2_DROP, "a1_offsets": list(A1_OFFSETS),
                   "a2_offsets": list(A2_OFFSETS), "fit": shape_fit},
     }
+    if info.get("seeds_per_config"):
+        training["seeds_per_config"] = info["seeds_per_config"]    # several plant configs pooled
     return PatternLibrary(settings=settings, widths_m=widths, n1_values=np.asarray(N1_VALUES, dtype=float),
                           arrays=arrays, training=training, shape_meta={"mode": SHAPE},
                           created_utc=_dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"))

@@ -56,9 +56,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--overwrite", action="store_true",
                         help="replace an existing --out file (without --out, the packaged library "
                              "is replaced: that is what `make patterns` asks for)")
-    parser.add_argument("--model", default=None, metavar="M.yaml",
+    parser.add_argument("--model", action="append", default=None, metavar="M.yaml",
                         help="train on a workbench model version's plant config (docs/workbench.md; e.g. after "
-                             "add-effect) instead of config/plant.yaml; needs --out")
+                             "add-effect) instead of config/plant.yaml; needs --out. Repeat it to train on "
+                             "several versions at once (the seeds dealt out round-robin, the windows pooled): "
+                             "when diagnose names indistinguishable effects, one version per candidate")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -77,6 +79,9 @@ def _check(args) -> None:
         raise UsageError(f"--window-offset {args.window_offset}: must be 0 <= SAMPLES <= 65536")
     if getattr(args, "model", None) and args.out is None:
         raise UsageError("--model needs --out LIB.npz (the packaged library stays the default model's)")
+    if getattr(args, "model", None) and len(args.model) > len(args.seeds):
+        raise UsageError(f"{len(args.model)} --model files need at least {len(args.model)} --seeds "
+                         f"(the seeds are dealt out one per model), got {len(args.seeds)}")
     if args.out is not None and not str(args.out).endswith(".npz"):
         raise UsageError(f"--out {args.out}: the library is an .npz file; give a name ending in .npz")
     if args.out is not None:   # before the minutes of training, not after
@@ -98,9 +103,10 @@ def run(args) -> int:
     if args.model:
         from backlash_monitor.workbench.model import ModelError, load_model
         try:
-            config = load_model(args.model).plant_config()
+            configs = [load_model(m).plant_config() for m in args.model]
         except ModelError as exc:
             raise UsageError(str(exc)) from None
+        config = configs[0] if len(configs) == 1 else configs
     t0 = time.time()
     with tqdm(total=len(args.seeds), desc=f"simulate+window ({args.trigger})", unit="seed",
               disable=args.no_progress, file=sys.stderr) as bar:

@@ -1,0 +1,76 @@
+"""The workbench's width check (workbench/width.py): what the monitor publishes per onset window of a
+recording -- the continuous width (shape a1+a2) and the fused candidate width -- and the errors of one drive
+against its true width."""
+import numpy as np
+import pytest
+
+from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS
+from backlash_monitor.plant import K2_WIDTHS_M
+from backlash_monitor.workbench.model import load_model
+from backlash_monitor.workbench.synthetic import hidden_effect_recording
+from backlash_monitor.workbench.width import WidthTrace, continuous_widths, monitor_widths, width_errors
+
+DURATION_S = 3.0            # 12 onset events: the fusion (8 events) fills
+PER_WINDOW_BOUND_MM = 0.3   # per-window mean |error| at a candidate width on the default model (measured ~0.1)
+
+
+@pytest.fixture(scope="module")
+def clean_drive():
+    width = 0.005
+    model = load_model(None, width_m=width)
+    return width, hidden_effect_recording(model, DURATION_S, seed=61)
+
+
+def test_monitor_widths_on_a_clean_drive_give_the_true_width(clean_drive):
+    width, meas = clean_drive
+    trace = monitor_widths(meas)
+    assert trace.continuous_m.size >= 10
+    # the fused width fills up to the fusion length, one more event per onset window
+    assert list(trace.fused_events[:DEFAULT_FUSION_EVENTS]) == list(range(1, DEFAULT_FUSION_EVENTS + 1))
+    assert set(np.round(trace.fused_m, 6)) <= set(np.round(K2_WIDTHS_M, 6))
+    err = width_errors(trace, width)
+    assert err["per_window_mean_abs_mm"] < PER_WINDOW_BOUND_MM
+    assert err["fused_final_abs_mm"] == 0.0 and err["fused_mean_abs_mm"] == 0.0
+    assert err["onset_windows"] == trace.continuous_m.size
+    np.testing.assert_array_equal(continuous_widths(meas), trace.continuous_m)
+
+
+def test_width_errors_definitions():
+    trace = WidthTrace(continuous_m=np.array([0.0074, 0.0077, 0.0075, 0.0072]),
+                       fused_m=np.array([0.005, 0.0075, 0.0075, 0.009]), fused_events=np.array([1, 2, 2, 2]))
+    err = width_errors(trace, 0.0075, fusion_events=2)
+    assert err["per_window_mean_abs_mm"] == pytest.approx((0.1 + 0.2 + 0.0 + 0.3) / 4)
+    assert err["bias_mm"] == pytest.approx((-0.1 + 0.2 + 0.0 - 0.3) / 4)
+    assert err["fused_final_abs_mm"] == pytest.approx(1.5)              # the last published fused width
+    assert err["fused_mean_abs_mm"] == pytest.approx(1.5 / 3)           # over the full fusions only
+    with pytest.raises(ValueError, match="no onset window"):
+        width_errors(WidthTrace(np.zeros(0), np.zeros(0), np.zeros(0, dtype=int)), 0.0075)
+
+
+def test_training_on_several_model_versions_deals_the_seeds_out(tmp_path):
+    """build_library with a list of plant configs (train --model A --model B): seed k simulates config k mod n,
+    the windows are pooled (the same windows as each config trained alone on its seeds)."""
+    from backlash_monitor.classifier.dataset import collect_windows
+    from backlash_monitor.classifier.training import build_library
+    from backlash_monitor.workbench.versions import EffectValues, add_effects
+    model = load_model(None)
+    heavy = add_effects(model, [EffectValues("load_mass_drift", {"relative_change": 0.3})])
+    configs = [model.plant_config(), heavy.plant_config()]
+    lib = build_library("contact_loss", (1000, 1001), duration_s=0.5, config=configs)
+    alone = [collect_windows((s,), "contact_loss", duration_s=0.5, config=c) for s, c in zip((1000, 1001), configs)]
+    assert lib.training["seeds_per_config"] == [[1000], [1001]]
+    assert lib.training["n_onset_windows"] == sum(len(w) for w in alone)
+    assert lib.settings["plant_config_hash"] == "+".join(w.info["plant_config_hash"] for w in alone)
+    assert alone[0].info["plant_config_hash"] != alone[1].info["plant_config_hash"]
+    with pytest.raises(ValueError, match="at least 2 training seeds"):
+        build_library("contact_loss", (1000,), duration_s=0.5, config=configs)
+
+
+def test_train_several_models_needs_as_many_seeds(tmp_path, capsys):
+    from backlash_monitor.__main__ import main
+    model = load_model(None)
+    model.save(tmp_path / "a.yaml")
+    model.save(tmp_path / "b.yaml")
+    assert main(["train", "--model", str(tmp_path / "a.yaml"), "--model", str(tmp_path / "b.yaml"),
+                 "--seeds", "1000", "--out", str(tmp_path / "x.npz"), "--no-progress"]) == 2
+    assert "2 --model files need at least 2 --seeds" in capsys.readouterr().err
