@@ -11,6 +11,7 @@ from typing import Mapping
 
 import numpy as np
 
+from .filters import exponential_average, window_range
 from .config import (ANGLE_SOURCES, DEFAULTS, INTEGRATION_RULES, KIND_ONSET, KIND_RETURN, TRIGGERS)
 
 __all__ = ["BacklashEntry", "BacklashEntryDetector", "fit_departure", "integrate_relative_speed"]
@@ -166,20 +167,6 @@ def _check_positive(name: str, value, integer: bool = False):
     return v
 
 
-lfilter = maximum_filter1d = minimum_filter1d = None   # scipy's, bound by _load_filters()
-
-
-def _load_filters() -> None:
-    """Import scipy's filters when the first detector is built, not with the package: the
-    classifier node imports this package for its configuration alone (default_window_offset) and
-    so does not load scipy.signal (about 1 s and 40 MB; docs/fleet.md)."""
-    global lfilter, maximum_filter1d, minimum_filter1d
-    if lfilter is None:
-        from scipy.ndimage import maximum_filter1d as _max, minimum_filter1d as _min
-        from scipy.signal import lfilter as _lfilter
-        lfilter, maximum_filter1d, minimum_filter1d = _lfilter, _max, _min
-
-
 class BacklashEntryDetector:
     """Streaming entry detector for ONE drive (one scenario).  Feed consecutive chunks.
 
@@ -208,7 +195,6 @@ class BacklashEntryDetector:
                  contact_deflection_rad: float = DEFAULTS["detector"]["contact_deflection_rad"],
                  initial_contact_side: int = DEFAULTS["detector"]["initial_contact_side"],
                  rereference_interval_s: float = DEFAULTS["detector"]["rereference_interval_s"]):
-        _load_filters()
         if trigger not in TRIGGERS:
             raise ValueError(f"trigger={trigger!r}: allowed values are {TRIGGERS}")
         if angle_source not in ANGLE_SOURCES:
@@ -385,7 +371,7 @@ class BacklashEntryDetector:
         """
         lam = self._alpha()
         e0 = self._trk[0]
-        ema = lfilter([lam], [1.0, lam - 1.0], seg, zi=[(1.0 - lam) * e0])[0]
+        ema = exponential_average(seg, lam, e0)
         dev = np.empty_like(seg)
         dev[:1] = seg[:1] - e0
         np.subtract(seg[1:], ema[:-1], out=dev[1:])
@@ -408,9 +394,7 @@ class BacklashEntryDetector:
             block = min(4 * block, _BLOCK)
             lo = i - w + 1 - base
             seg = buf[lo:j - base]
-            org = (w - 1) // 2
-            rng = maximum_filter1d(seg, w, origin=org) - minimum_filter1d(seg, w, origin=org)
-            ok = rng[w - 1:] <= self.settle_range_rad
+            ok = window_range(seg, w) <= self.settle_range_rad
             if self.trigger == "paper" and self._source == "measured":
                 ok &= np.abs(buf[i - base:j - base]) >= self.beta
             elif paper_int and self._offset_valid and self._expected_side() == -1:
