@@ -10,15 +10,19 @@ diagnostics_complete: over a 60 s window of a run of that many drives, the share
   (drive, second) pairs for which the drive's classifier status arrived on /diagnostics (each
   drive's 1 Hz status at its own phase, within +-0.5 s of its second: status_share).
 fleet_analyze_speedup: `analyze FOLDER` on 100 recorded bags (3 s each, simulated: 12 onsets
-  per bag), `--jobs <cores>` vs `--jobs 1` (one after the other in one process), each the whole
-  command with its start-up, alternated twice, best of each.
+  per bag), `--jobs 1` pinned to ONE CPU (os.sched_setaffinity: one core is one core; unpinned,
+  the bag reader's decompression thread would use the second) vs `--jobs <cores>` on all CPUs,
+  each the whole command with its start-up, alternated --analyze-repeats times: the ratio of the
+  best times, each pair's ratio and the load average before each run.
 two_host_estimates_delivered: plant and monitor in one network namespace, the chain in another
   (veth pair, DDS on exactly those two addresses): onset estimates received back / onset windows.
 
 The machine is shared with other jobs; load_average says how busy it was: real-time capacity
 measured on a busy machine is a lower bound.
 
-    python bench/fleet.py [--quick]
+    python bench/fleet.py [--quick] [--parts capacity diagnostics analyze two_host]
+    python bench/fleet.py --parts analyze                         # only the analysis speed-up
+    python bench/fleet.py --parts capacity --layouts process single --counts 8 10
 """
 import argparse
 import json
@@ -91,9 +95,14 @@ def diagnostics_complete(n, layout, workdir, window_s=60):
     return status_share(result["drives"] if result else [], window_s)
 
 
-def analyze_speedup(workdir, n_bags=100, repeats=2, bag_s=3.0):
-    """`analyze FOLDER --jobs 1` vs `--jobs <cores>`, each the command as a user runs it (start-up
-    included), alternated ``repeats`` times; the best time of each."""
+def analyze_speedup(workdir, n_bags=100, repeats=3, bag_s=3.0):
+    """`analyze FOLDER --jobs 1` on ONE core vs `--jobs <cores>` on all of them, each the command
+    as a user runs it (start-up included), alternated ``repeats`` times; the ratio of the best
+    times, and each pair's ratio side by side.
+
+    One core means one core: the `--jobs 1` process is pinned to one CPU (os.sched_setaffinity,
+    the CPUs taken in turn over the repeats); unpinned, its bag reader's decompression thread runs
+    on the second core (1.1 cores busy), which is not a one-core baseline."""
     from backlash_monitor.fleet.recordings import write_fleet_bags
     bag_dir = os.path.join(workdir, "bags")
     widths = (0.0025, 0.005, 0.0075, 0.009)
@@ -102,64 +111,99 @@ def analyze_speedup(workdir, n_bags=100, repeats=2, bag_s=3.0):
     started = time.perf_counter()
     write_fleet_bags(bag_dir, recordings, duration_s=bag_s)
     log(f"wrote {n_bags} bags of {bag_s:g} s in {time.perf_counter() - started:.1f} s")
-    cores = os.cpu_count() or 1
+    cpus = sorted(os.sched_getaffinity(0))
+    cores = len(cpus)
     import resource
-    times = {"one_core": [], "cores": []}
-    cpu = {"one_core": [], "cores": []}   # CPU seconds of the command and its workers
+    runs = {"one_core": [], "cores": []}
     for repeat in range(repeats):
         for label, n_jobs in (("one_core", 1), ("cores", cores)):
             out = os.path.join(workdir, f"out_{label}_{repeat}")   # fresh: no --overwrite
+            cpu_pin = cpus[repeat % cores] if n_jobs == 1 else None
+            load = os.getloadavg()[0]
             started = time.perf_counter()
             before = resource.getrusage(resource.RUSAGE_CHILDREN)
             proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", bag_dir,
                                    "--out", out, "--jobs", str(n_jobs), "--no-plots"],
-                                  capture_output=True, text=True, timeout=1800)
-            times[label].append(time.perf_counter() - started)
+                                  capture_output=True, text=True, timeout=1800,
+                                  preexec_fn=(None if cpu_pin is None else
+                                              lambda: os.sched_setaffinity(0, {cpu_pin})))
+            wall = time.perf_counter() - started
             after = resource.getrusage(resource.RUSAGE_CHILDREN)
-            cpu[label].append(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
-            log(f"  CPU {cpu[label][-1]:.1f} s: {cpu[label][-1] / times[label][-1]:.2f} cores busy")
-            log(f"analyze {n_bags} bags on {n_jobs} worker(s): {times[label][-1]:.1f} s, "
-                f"exit {proc.returncode}, load {os.getloadavg()[0]:.1f}")
+            cpu = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+            runs[label].append({"wall_s": wall, "cpu_s": cpu, "cores_busy": cpu / wall,
+                                "cpu": "all" if cpu_pin is None else cpu_pin,
+                                "load_average_1min": load, "exit": proc.returncode})
+            log(f"analyze {n_bags} bags, --jobs {n_jobs} on "
+                f"{'CPU ' + str(cpu_pin) if cpu_pin is not None else str(cores) + ' CPUs'}: "
+                f"{wall:.2f} s, CPU {cpu:.2f} s ({cpu / wall:.2f} cores busy), exit "
+                f"{proc.returncode}, load {load:.2f}")
             if proc.returncode != 0:
                 log(proc.stdout[-2000:], proc.stderr[-2000:])
-    return min(times["one_core"]) / min(times["cores"]), {"wall_s": times, "cpu_s": cpu}, cores
+    best = {k: min(r["wall_s"] for r in v) for k, v in runs.items()}
+    pairs = [a["wall_s"] / b["wall_s"] for a, b in zip(runs["one_core"], runs["cores"])]
+    return best["one_core"] / best["cores"], {"runs": runs, "pair_ratios": pairs}, cores
+
+
+PARTS = ("capacity", "diagnostics", "analyze", "two_host")
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__)
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true", help="fewer drive counts, shorter runs")
+    parser.add_argument("--parts", nargs="+", choices=PARTS, default=list(PARTS),
+                        help="measure only these (default: all; 'diagnostics' runs at the "
+                             "capacity found, or --drives)")
+    parser.add_argument("--layouts", nargs="+", choices=("process", "single"),
+                        default=["process", "single"], help="layouts of the capacity part")
+    parser.add_argument("--counts", type=int, nargs="+", default=None, metavar="N",
+                        help="drive counts of the capacity part, in order, until one fails "
+                             "(default: 2 4 6 ... 16; --quick: 2 4 8)")
+    parser.add_argument("--drives", type=int, default=0,
+                        help="drives of the diagnostics part when capacity is not measured")
+    parser.add_argument("--analyze-repeats", type=int, default=3,
+                        help="alternated pairs of the analyze part")
     args = parser.parse_args()
-    result = {"load_average_1min_start": os.getloadavg()[0], "cores": os.cpu_count()}
+    result = {"load_average_1min_start": os.getloadavg()[0], "cores": os.cpu_count(),
+              "parts": args.parts}
     with tempfile.TemporaryDirectory() as workdir:
         duration = 10 if args.quick else 20
-        counts = (2, 4, 8) if args.quick else (2, 4, 6, 8, 10, 12, 14, 16)
-        per_layout = {}
-        for layout in ("process", "single"):
-            best, runs = capacity(layout, counts, duration, workdir)
-            per_layout[layout] = {"drives_realtime": best, "runs": runs}
-        layout = max(per_layout, key=lambda k: per_layout[k]["drives_realtime"])
-        best = per_layout[layout]["drives_realtime"]
-        best_run = next((r for r in per_layout[layout]["runs"] if r["drives"] == best), None)
-        result.update(drives_realtime=best, drives_realtime_layout=layout,
-                      cpu_percent_per_drive=best_run["cpu_percent_per_drive"] if best_run else None,
-                      drives_realtime_by_layout=per_layout)
-        n_diag = max(best, 2)
-        result["diagnostics_complete"] = diagnostics_complete(
-            n_diag, layout, workdir, window_s=30 if args.quick else 60)
-        result["diagnostics_complete_drives"] = n_diag
-        speedup, times, cores = analyze_speedup(workdir, 20 if args.quick else 100)
-        result.update(fleet_analyze_speedup=speedup, fleet_analyze_seconds=times,
-                      fleet_analyze_bags=20 if args.quick else 100, fleet_analyze_bag_s=3.0)
-        from backlash_monitor.fleet.netns import can_make_namespaces, run_two_hosts
-        reason = can_make_namespaces()
-        if reason:
-            result["two_host_estimates_delivered"] = None
-            result["two_host_skipped"] = reason
-        else:
-            two = run_two_hosts(workdir, dict(os.environ), int(os.environ["ROS_DOMAIN_ID"]),
-                                duration_s=10.0)
-            result["two_host_estimates_delivered"] = two["delivered"]
-            result["two_host_onsets"] = [two["onsets_estimated"], two["onset_windows"]]
+        counts = args.counts or ((2, 4, 8) if args.quick else (2, 4, 6, 8, 10, 12, 14, 16))
+        layout, best = "process", args.drives
+        if "capacity" in args.parts:
+            per_layout = {}
+            for name in args.layouts:
+                found, runs = capacity(name, counts, duration, workdir)
+                per_layout[name] = {"drives_realtime": found, "runs": runs}
+            layout = max(per_layout, key=lambda k: per_layout[k]["drives_realtime"])
+            best = per_layout[layout]["drives_realtime"]
+            best_run = next((r for r in per_layout[layout]["runs"] if r["drives"] == best), None)
+            result.update(drives_realtime=best, drives_realtime_layout=layout,
+                          cpu_percent_per_drive=(best_run["cpu_percent_per_drive"] if best_run
+                                                 else None),
+                          drives_realtime_by_layout=per_layout, capacity_run_s=duration)
+        if "diagnostics" in args.parts:
+            n_diag = max(best, 2)
+            result["diagnostics_complete"] = diagnostics_complete(
+                n_diag, layout, workdir, window_s=30 if args.quick else 60)
+            result["diagnostics_complete_drives"] = n_diag
+        if "analyze" in args.parts:
+            n_bags = 20 if args.quick else 100
+            speedup, times, cores = analyze_speedup(workdir, n_bags, repeats=args.analyze_repeats)
+            result.update(fleet_analyze_speedup=speedup, fleet_analyze=times,
+                          fleet_analyze_bags=n_bags, fleet_analyze_bag_s=3.0,
+                          fleet_analyze_cores=cores)
+        if "two_host" in args.parts:
+            from backlash_monitor.fleet.netns import can_make_namespaces, run_two_hosts
+            reason = can_make_namespaces()
+            if reason:
+                result["two_host_estimates_delivered"] = None
+                result["two_host_skipped"] = reason
+            else:
+                two = run_two_hosts(workdir, dict(os.environ), int(os.environ["ROS_DOMAIN_ID"]),
+                                    duration_s=10.0)
+                result["two_host_estimates_delivered"] = two["delivered"]
+                result["two_host_onsets"] = [two["onsets_estimated"], two["onset_windows"]]
     result["load_average_1min_end"] = os.getloadavg()[0]
     print(json.dumps(result))
 

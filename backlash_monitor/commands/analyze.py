@@ -89,14 +89,47 @@ def _find_topic(available, namespace, name):
 
 
 def run(args) -> int:
-    from backlash_monitor.commands import UsageError
     from backlash_monitor.fleet.analyze import is_many, run_many
     if is_many(args.bag):
         return run_many(args)
+    result = analyze_bag(args)
+    _print_summary(result["summary"], result["rows"], result["discarded"], result["n_samples"],
+                   result["seconds"], result["outputs"])
+    _print_input_problems(result["check"], result["integrity"])
+    stage_faults, estimator_faults = result["faults"]
+    if stage_faults.total or estimator_faults.total:   # dropped input (docs/windowing.md)
+        print(f"input faults: {stage_faults.summary()}; windows rejected: "
+              f"{estimator_faults.summary()}; {result['lost_samples']} samples not analysed")
+    return 0
+
+
+def load_bag_library(args):
+    """(pattern library, window offset) for these options; UsageError for a bad option or file.
+    The fleet's workers load it once and pass it to every :func:`analyze_bag`."""
+    from backlash_monitor.commands import UsageError
+    from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
+    from backlash_monitor.windowing import default_window_offset
+    offset = default_window_offset(args.trigger) if args.window_offset is None else args.window_offset
+    if not 0 <= offset <= 65536:
+        raise UsageError(f"--window-offset = {offset}; allowed: 0 <= SAMPLES <= 65536")
+    try:
+        return load_library(args.library or None, trigger=args.trigger,
+                            window_offset_samples=offset), offset
+    except (PatternLibraryError, ValueError) as error:
+        raise UsageError(str(error)) from None
+
+
+def analyze_bag(args, library=None) -> dict:
+    """One bag through the chain; writes PREFIX.csv/.json/.mcap and returns what `run` prints:
+    rows, summary, discarded windows, samples, seconds, outputs, the chunk check, the bag's
+    integrity, the faults, and ``drive``/``first_stamp_s`` (the first a1 chunk's frame_id and the
+    stamp of its first sample). ``library``: (library, offset) from :func:`load_bag_library`, loaded
+    here when None. Raises UsageError (one line) for anything wrong with the bag or the options."""
+    from backlash_monitor.commands import UsageError
     from backlash_monitor.commands._memory import reuse_freed_memory
     from backlash_monitor.bag import BagError, BagReader, BagWriter
     from backlash_monitor.chain import BlockFeeder, ChunkJoiner, WindowingStage, denoise_pairs
-    from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
+    from backlash_monitor.classifier.patterns import PatternLibraryError
     from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator
     from backlash_monitor.output_files import OutputError, check_outputs, staged_outputs
 
@@ -110,12 +143,8 @@ def run(args) -> int:
     if args.fusion_events < 1:
         raise UsageError(f"--fusion-events = {args.fusion_events}; allowed: 1 or more")
     mode = args.mode or DEFAULT_MODE
-    from backlash_monitor.windowing import default_window_offset
-    offset = default_window_offset(args.trigger) if args.window_offset is None else args.window_offset
-    if not 0 <= offset <= 65536:
-        raise UsageError(f"--window-offset = {offset}; allowed: 0 <= SAMPLES <= 65536")
+    library, offset = library or load_bag_library(args)
     try:
-        library = load_library(args.library or None, trigger=args.trigger, window_offset_samples=offset)
         estimator = DriveEstimator(library, mode=mode, n1=args.n1,
                                    fusion_events=args.fusion_events)
         stage = WindowingStage(trigger=args.trigger,
@@ -161,7 +190,11 @@ def run(args) -> int:
             # contiguous ranges go to the stage in blocks: the same windows as range by range
             feeder = BlockFeeder(stage)
             batch = []   # onset windows, denoised and estimated together (same numbers as one by one)
+            first_a1 = ("", math.nan)   # the drive's name and the first sample's time
             for m in _then_none(reader.signal_chunks(list(topics))):
+                if m is not None and math.isnan(first_a1[1]) and topics[m.topic] == "a1":
+                    first_a1 = (m.frame_id, m.stamp.sec + m.stamp.nanosec * 1e-9
+                                - m.first_sample_index * m.sample_period_s)
                 if m is None:
                     joined = None
                     joiner.flush()      # ranges never completed: counted, not silently lost
@@ -219,12 +252,10 @@ def run(args) -> int:
                        "lost_samples": stage.lost_samples,
                        "summary": summary, "estimates": rows}, allow_nan=True))
         _write_estimate_bag(mcap_tmp, estimates_msgs, true_width)
-    _print_summary(summary, rows, discarded, n_samples, elapsed, outputs)
-    _print_input_problems(check, integrity)
-    if stage.faults.total or estimator.faults.total:   # dropped input (docs/windowing.md)
-        print(f"input faults: {stage.faults.summary()}; windows rejected: "
-              f"{estimator.faults.summary()}; {stage.lost_samples} samples not analysed")
-    return 0
+    return {"rows": rows, "summary": summary, "discarded": discarded, "n_samples": n_samples,
+            "seconds": elapsed, "outputs": outputs, "check": check, "integrity": integrity,
+            "faults": (stage.faults, estimator.faults), "lost_samples": stage.lost_samples,
+            "drive": first_a1[0], "first_stamp_s": first_a1[1]}
 
 
 class ChunkCheck:

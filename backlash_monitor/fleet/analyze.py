@@ -30,6 +30,8 @@ from pathlib import Path
 from backlash_monitor.errors import UsageError
 
 ENGINES = ("local", "dask")
+THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
+                    "NUMBA_NUM_THREADS")   # thread pools a worker's libraries would start
 ESTIMATES_SUFFIX = ".estimates.mcap"   # what analyze writes: never an input
 
 
@@ -66,21 +68,30 @@ def expand_bags(spec: str) -> list[Path]:
     return bags
 
 
-def _bag_identity(path: Path, namespace: str) -> tuple[str, float]:
-    """(drive, time of the first sample [s since the epoch]) from the bag's first a1 chunk."""
-    from backlash_monitor.bag import BagReader
-    from backlash_monitor.commands.analyze import _find_topic
-    with BagReader(path) as reader:
-        topic = _find_topic(set(reader.topics), namespace, "a1")
-        for m in reader.signal_chunks([topic]):
-            stamp = m.stamp.sec + m.stamp.nanosec * 1e-9 - m.first_sample_index * m.sample_period_s
-            return (m.frame_id or path.stem), stamp
-    return path.stem, math.nan
+_WORKER: dict = {}   # this process's worker state: the options' pattern library, loaded once
+
+
+def init_worker(options: dict, library=None) -> None:
+    """A worker's start (ProcessPoolExecutor/Dask initializer, and the --jobs 1 loop): one core's
+    worth of threads (BLAS, OpenMP and numba pools of one thread: the pool already has a worker
+    per core) and the pattern library loaded once for all its bags. ``library``: already loaded
+    (inherited by a forked worker)."""
+    for var in THREAD_VARIABLES:
+        os.environ[var] = "1"
+    import multiprocessing
+    from backlash_monitor.bag import reader
+    if multiprocessing.parent_process() is not None:
+        reader._DECOMPRESS_POOL = None   # a forked copy of the parent's pool has no thread
+    from backlash_monitor.commands.analyze import load_bag_library
+    _WORKER.update(pid=os.getpid(), options=options,
+                   library=library or load_bag_library(argparse.Namespace(**options)))
 
 
 def analyze_one(job: dict) -> dict:
     """One bag through the single-bag `analyze` (a worker's task); returns its fleet-table row."""
-    from backlash_monitor.commands import analyze
+    from backlash_monitor.commands.analyze import analyze_bag
+    if _WORKER.get("options") != job["options"] or _WORKER.get("pid") != os.getpid():
+        init_worker(job["options"])      # a worker started without the initializer (Dask)
     args = argparse.Namespace(**job["options"])
     args.bag, args.out = job["bag"], job["out"]
     started = time.perf_counter()
@@ -88,25 +99,22 @@ def analyze_one(job: dict) -> dict:
            "fused_width_m": math.nan, "true_width_m": math.nan, "onsets": 0, "discarded": 0,
            "error": ""}
     try:
-        with contextlib.redirect_stdout(io.StringIO()):
-            analyze.run(args)
-        row["drive"], row["time_s"] = _bag_identity(Path(job["bag"]), args.namespace)
+        result = analyze_bag(args, library=_WORKER["library"])
     except UsageError as error:
         row["error"] = str(error)
         return row
-    with open(analyze.output_paths(job["out"])["json"], encoding="utf-8") as f:
-        result = json.load(f)
-    rows = result["estimates"]
+    rows = result["rows"]
     signals = {r["signal"] for r in rows}
     primary = "a1+a2" if "a1+a2" in signals else (sorted(signals)[0] if signals else "")
     mine = [r for r in rows if r["signal"] == primary]
     widths = [r["continuous_width_m"] if r["continuous_width_m"] == r["continuous_width_m"]
               else r["width_m"] for r in mine]
-    row.update(width_m=statistics.median(widths) if widths else math.nan,
+    row.update(drive=result["drive"] or Path(job["bag"]).stem, time_s=result["first_stamp_s"],
+               width_m=statistics.median(widths) if widths else math.nan,
                fused_width_m=mine[-1]["fused_width_m"] if mine else math.nan,
                true_width_m=result["summary"]["true_width_m"],
                onsets=len({r["entry_sample_index"] for r in mine}),
-               discarded=len(result["discarded_windows"]),
+               discarded=len(result["discarded"]),
                seconds=time.perf_counter() - started, signal=primary)
     return row
 
@@ -127,44 +135,70 @@ def _jobs(args, bags: list[Path], out_dir: Path) -> list[dict]:
     return jobs
 
 
-def run_local(jobs: list[dict], n_jobs: int, progress=True) -> list[dict]:
+def limit_threads() -> bool:
+    """One thread per pool (BLAS, OpenMP, numba) in this process and the processes it starts;
+    True when it takes effect here too (numpy not imported yet: OpenBLAS reads it at import)."""
+    import sys
+    for var in THREAD_VARIABLES:
+        os.environ.setdefault(var, "1")
+    return "numpy" not in sys.modules
+
+
+def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
+              threads_limited: bool | None = None) -> list[dict]:
+    """The bags on this machine: --jobs 1 one after the other in this process; otherwise a pool of
+    ``n_jobs`` worker processes, started once (each with its library, :func:`init_worker`), handed
+    one bag at a time (a worker takes the next bag when it is done: no idle core while bags remain),
+    their rows collected as they finish."""
     from tqdm import tqdm
     rows = []
+    bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
     if n_jobs == 1:
-        bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
+        if jobs:
+            init_worker(jobs[0]["options"], library)
         for job in jobs:
             rows.append(analyze_one(job))
             bar.update()
+        bar.close()
+        return rows
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+    import multiprocessing
+    if threads_limited is None:
+        threads_limited = limit_threads()
+    # Workers forked from this process start at once, with the chain's modules imported and the
+    # library loaded; a fresh interpreter per worker would import numpy, pywt and the bag reader
+    # again before its first bag. The thread pools are limited to one thread per worker before
+    # numpy is imported (its OpenBLAS starts its threads then); where numpy was imported before
+    # with more threads, a forkserver with the limits set in its environment starts the workers.
+    modules = ["backlash_monitor.bag", "backlash_monitor.chain",
+               "backlash_monitor.commands.analyze", "backlash_monitor.estimation"]
+    if threads_limited and "fork" in multiprocessing.get_all_start_methods():
+        import importlib
+        for name in modules:
+            importlib.import_module(name)
+        context = multiprocessing.get_context("fork")
     else:
-        from concurrent.futures import ProcessPoolExecutor, as_completed
-        import multiprocessing
-        # Workers forked from this process with the chain's modules already imported start at
-        # once; a fresh interpreter per worker (spawn) spends ~1-3 s importing numpy, scipy,
-        # pywt and the bag reader before its first bag, most of the gain on 2 cores and 100
-        # short bags (bench/fleet.py). Forking is safe only while no other thread runs here:
-        # numpy's BLAS starts a thread pool on its first call, so BLAS stays single-threaded
-        # (set before numpy is imported; one BLAS thread per worker is right for a pool anyway).
-        # Where numpy was already used, a forkserver preloading the modules is used instead.
-        import sys
-        modules = ["backlash_monitor.bag", "backlash_monitor.chain",
-                   "backlash_monitor.commands.analyze", "backlash_monitor.estimation",
-                   "scipy.signal", "scipy.ndimage"]   # the detector's filters (detector.py)
-        if "numpy" not in sys.modules and "fork" in multiprocessing.get_all_start_methods():
-            for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-                os.environ.setdefault(var, "1")
-            import importlib
-            for name in modules:
-                importlib.import_module(name)
-            context = multiprocessing.get_context("fork")
-        else:
-            context = multiprocessing.get_context("forkserver")
-            context.set_forkserver_preload(modules)
-        with ProcessPoolExecutor(max_workers=n_jobs, mp_context=context) as pool:
-            futures = [pool.submit(analyze_one, job) for job in jobs]
-            bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
-            for future in as_completed(futures):
+        context = multiprocessing.get_context("forkserver")
+        context.set_forkserver_preload(modules)
+        library = None          # loaded by each worker
+    options = jobs[0]["options"] if jobs else {}
+    with ProcessPoolExecutor(max_workers=n_jobs, mp_context=context, initializer=init_worker,
+                             initargs=(options, library)) as pool:
+        # at most two bags per worker queued: a worker never waits for its next bag, and the
+        # rows stream back while the rest are handed out
+        pending, todo = set(), iter(jobs)
+        for job in todo:
+            pending.add(pool.submit(analyze_one, job))
+            if len(pending) >= 2 * n_jobs:
+                break
+        while pending:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for future in done:
                 rows.append(future.result())
                 bar.update()
+                job = next(todo, None)
+                if job is not None:
+                    pending.add(pool.submit(analyze_one, job))
     bar.close()
     return rows
 
@@ -234,6 +268,8 @@ def run_many(args) -> int:
     n_jobs = args.jobs or os.cpu_count() or 1
     if n_jobs < 1 or n_jobs > 1024:
         raise UsageError(f"--jobs = {args.jobs}; allowed: 1 .. 1024 (0: this machine's cores)")
+    # before numpy is imported here: forked workers inherit this process's thread pools
+    threads_limited = limit_threads() if n_jobs > 1 and args.engine == "local" else None
     out_dir = Path(args.out) if args.out else bags[0].parent / "fleet_analysis"
     out_dir.mkdir(parents=True, exist_ok=True)
     try:
@@ -246,7 +282,11 @@ def run_many(args) -> int:
     if args.engine == "dask":
         rows = run_dask(jobs, n_jobs, args.scheduler)
     else:
-        rows = run_local(jobs, n_jobs)
+        # the options checked and the library loaded once, here: a bad option is one error
+        # before any worker starts, and forked workers inherit the library
+        from backlash_monitor.commands.analyze import load_bag_library
+        rows = run_local(jobs, n_jobs, library=load_bag_library(args),
+                         threads_limited=threads_limited)
     wall = time.perf_counter() - started
     rows.sort(key=lambda r: (r["drive"], r["time_s"] if r["time_s"] == r["time_s"] else 0.0,
                              r["bag"]))
