@@ -11,6 +11,7 @@ EXECUTABLES = {
     "windowing": "backlash_monitor.nodes.windowing:main",
     "denoise": "backlash_monitor.nodes.denoise:main",
     "classifier": "backlash_monitor.nodes.classifier:main",
+    "width_trend": "backlash_monitor.nodes.width_trend:main",
     "chain": "backlash_monitor.nodes.chain_container:main",
     "managed_chain": "backlash_monitor.nodes.lifecycle:main_chain",
     "managed_plant": "backlash_monitor.nodes.lifecycle:main_plant",

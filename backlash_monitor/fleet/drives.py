@@ -63,7 +63,7 @@ class Drive:
         classifier = {k: p[k] for k in CLASSIFIER_KEYS if k in p}
         classifier["drive_name"] = self.hardware_id
         return {"plant_simulator": plant, "windowing": windowing, "denoise": {},
-                "classifier": classifier}
+                "classifier": classifier, "width_trend": {"drive_name": self.hardware_id}}
 
     def to_dict(self) -> dict:
         return {"line": self.line, "name": self.name, "parameters": dict(self.parameters)}

@@ -11,6 +11,10 @@ last fused estimate, docs/classifier.md). The trend is the least-squares slope o
 - OK otherwise.
 
 config/trend.yaml gives the rate with its reason.
+
+The running monitor applies the same rule live (:class:`LiveTrend`, node ``width_trend``): the
+fused widths as they come, one point per ``live_point_period_s`` (the median of that period), the
+points of the last ``live_history_s``, and no rate before they span ``live_min_span_s``.
 """
 from __future__ import annotations
 
@@ -26,15 +30,29 @@ class TrendRule:
     warn_growth_m_per_day: float
     warn_width_m: float
     error_width_m: float
+    live_point_period_s: float = 60.0
+    live_history_s: float = 7 * 86400.0
+    live_min_span_s: float = 86400.0
+
+
+LIVE_KEYS = ("live_point_period_s", "live_history_s", "live_min_span_s")
 
 
 def load_rule(path: str | None = None) -> TrendRule:
+    """The rule of config/trend.yaml (or ``path``); KeyError/ValueError/TypeError for a missing or
+    non-positive value."""
     import yaml
     path = path or _default_path()
     with open(path, encoding="utf-8") as f:
         cfg = yaml.safe_load(f)
-    return TrendRule(float(cfg["warn_growth_m_per_day"]), float(cfg["warn_width_m"]),
-                     float(cfg["error_width_m"]))
+    live = {k: float(cfg[k]) for k in LIVE_KEYS if k in cfg}
+    rule = TrendRule(float(cfg["warn_growth_m_per_day"]), float(cfg["warn_width_m"]),
+                     float(cfg["error_width_m"]), **live)
+    for key in ("warn_growth_m_per_day", *LIVE_KEYS):
+        value = getattr(rule, key)
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"{key} = {value!r}; allowed: a positive number")
+    return rule
 
 
 def _default_path() -> str:
@@ -70,13 +88,14 @@ def slope_per_day(times_s, widths_m) -> float:
     return sum((x - mx) * (y - my) for x, y in zip(xs, widths_m)) / sxx
 
 
-def drive_trend(points, rule: TrendRule) -> Trend:
-    """``points``: [(time_s, fused_width_m)] of one drive, any order; NaN widths are left out."""
+def drive_trend(points, rule: TrendRule, min_span_s: float = 0.0) -> Trend:
+    """``points``: [(time_s, fused_width_m)] of one drive, any order; NaN widths are left out.
+    No rate (NaN) while the points span less than ``min_span_s``."""
     pts = sorted((t, w) for t, w in points if not math.isnan(w))
     if not pts:
         return Trend(0, math.nan, math.nan, math.nan, math.nan, "STALE", "no estimate")
     times, widths = [t for t, _ in pts], [w for _, w in pts]
-    rate = slope_per_day(times, widths)
+    rate = slope_per_day(times, widths) if times[-1] - times[0] >= min_span_s else math.nan
     last = widths[-1]
     days = ((rule.error_width_m - last) / rate if rate == rate and rate > 0 else math.inf)
     if last >= rule.error_width_m:
@@ -88,8 +107,62 @@ def drive_trend(points, rule: TrendRule) -> Trend:
     elif last >= rule.warn_width_m:
         level, reason = "WARN", f"width {last * 1e3:.2f} mm >= {rule.warn_width_m * 1e3:g} mm"
     else:
-        level, reason = "OK", "" if rate == rate else "one recording: no trend yet"
+        level, reason = "OK", "" if rate == rate else (
+            "one recording: no trend yet" if min_span_s <= 0 else
+            f"no trend yet: {(times[-1] - times[0]) / 3600:.1f} h of {min_span_s / 3600:g} h")
     return Trend(len(pts), times[-1], last, rate, days, level, reason)
+
+
+class LiveTrend:
+    """:func:`drive_trend` over a running drive's fused widths.
+
+    ``add(time_s, width_m)`` as estimates come (time: the window's stamp); one point per
+    ``rule.live_point_period_s`` (the median time and width of that period's estimates, whatever
+    the onset rate; the trend is taken when a period closes), points older than ``rule.live_history_s`` before
+    the newest dropped, no rate while they span less than ``rule.live_min_span_s``. An estimate
+    older than the period being collected (out of order) or non-finite is not used (counted).
+    """
+
+    def __init__(self, rule: TrendRule):
+        self.rule = rule
+        self.points: list[tuple[float, float]] = []     # closed periods: (time_s, width_m)
+        self._period = None                              # index of the period being collected
+        self._open: list[tuple[float, float]] = []
+        self._cached = None
+        self.ignored = 0
+
+    def add(self, time_s: float, width_m: float) -> None:
+        if not (math.isfinite(time_s) and math.isfinite(width_m)):
+            self.ignored += 1
+            return
+        period = math.floor(time_s / self.rule.live_point_period_s)
+        if self._period is not None and period < self._period:
+            self.ignored += 1
+            return
+        if period != self._period:
+            if self._open:
+                self.points.append(self._median(self._open))
+            self._period, self._open = period, []
+            horizon = time_s - self.rule.live_history_s
+            if self.points and self.points[0][0] < horizon:
+                self.points = [p for p in self.points if p[0] >= horizon]
+        self._open.append((time_s, width_m))
+
+    @staticmethod
+    def _median(samples):
+        import statistics
+        return (statistics.median(t for t, _ in samples), statistics.median(w for _, w in samples))
+
+    def trend(self) -> Trend:
+        """The trend over the closed periods (recomputed when one closes); before the first
+        closes, over the period being collected."""
+        if not self.points:
+            return drive_trend([self._median(self._open)] if self._open else [], self.rule,
+                               self.rule.live_min_span_s)
+        key = (len(self.points), self.points[-1])
+        if self._cached is None or self._cached[0] != key:
+            self._cached = (key, drive_trend(self.points, self.rule, self.rule.live_min_span_s))
+        return self._cached[1]
 
 
 def plot_trends(points_by_drive: dict, trends: dict, rule: TrendRule, out_dir) -> list:

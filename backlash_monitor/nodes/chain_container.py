@@ -1,4 +1,4 @@
-"""chain: the windowing, denoise and classifier nodes in one process, on one executor.
+"""chain: the windowing, denoise, classifier and width_trend nodes in one process, on one executor.
 
     ros2 run backlash_monitor chain --ros-args -p drive_name:=drive7 -r __ns:=/line1/drive7
 
@@ -21,9 +21,10 @@ from backlash_monitor.nodes.runtime import run_nodes
 def main(args=None) -> int:
     from backlash_monitor.nodes.classifier import ClassifierNode
     from backlash_monitor.nodes.denoise import DenoiseNode
+    from backlash_monitor.nodes.width_trend import WidthTrendNode
     from backlash_monitor.nodes.windowing import WindowingNode
     # Downstream first: each reader exists before its writer starts publishing.
-    return run_nodes([ClassifierNode, DenoiseNode, WindowingNode], args=args)
+    return run_nodes([WidthTrendNode, ClassifierNode, DenoiseNode, WindowingNode], args=args)
 
 
 if __name__ == "__main__":

@@ -112,10 +112,12 @@ def drive_node_factories(drive, duration_s: float, rate_factor: float) -> list:
     from backlash_monitor.nodes.classifier import ClassifierNode
     from backlash_monitor.nodes.denoise import DenoiseNode
     from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode
+    from backlash_monitor.nodes.width_trend import WidthTrendNode
     from backlash_monitor.nodes.windowing import WindowingNode
     params = drive.node_parameters(duration_s, rate_factor)
     out = []
-    for cls, name in ((ClassifierNode, "classifier"), (DenoiseNode, "denoise"),
+    for cls, name in ((WidthTrendNode, "width_trend"), (ClassifierNode, "classifier"),
+                      (DenoiseNode, "denoise"),
                       (WindowingNode, "windowing"), (PlantSimulatorNode, "plant_simulator")):
         overrides = [Parameter(k, value=v) for k, v in params[name].items()]
         out.append(lambda cls=cls, overrides=overrides: cls(namespace=drive.namespace,
@@ -255,8 +257,8 @@ def managed_drive(drive, duration_s: float, rate_factor: float) -> list:
     ``<namespace>/plant`` (nodes/lifecycle.py): a supervisor can take one drive down and up."""
     from backlash_monitor.nodes.lifecycle import ManagedNodes
     factories = drive_node_factories(drive, duration_s, rate_factor)
-    return [ManagedNodes("chain", factories[:3], namespace=drive.namespace),
-            ManagedNodes("plant", factories[3:], namespace=drive.namespace)]
+    return [ManagedNodes("chain", factories[:-1], namespace=drive.namespace),
+            ManagedNodes("plant", factories[-1:], namespace=drive.namespace)]
 
 
 def activate(managed, executor) -> None:

@@ -109,8 +109,9 @@ def spin_until_shutdown(executor) -> None:
 def chain_factories():
     from backlash_monitor.nodes.classifier import ClassifierNode
     from backlash_monitor.nodes.denoise import DenoiseNode
+    from backlash_monitor.nodes.width_trend import WidthTrendNode
     from backlash_monitor.nodes.windowing import WindowingNode
-    return [ClassifierNode, DenoiseNode, WindowingNode]   # downstream first
+    return [WidthTrendNode, ClassifierNode, DenoiseNode, WindowingNode]   # downstream first
 
 
 def plant_factories():

@@ -1,0 +1,94 @@
+"""width_trend: the drive's width trend live, as a status on /diagnostics.
+
+    ros2 run backlash_monitor width_trend --ros-args -r __ns:=/line1/drive07 -p drive_name:=line1/drive07
+
+Subscribes to the classifier's ``estimate``; feeds each fused width of the drive's primary signal
+(a1+a2 where the classifier publishes it, else the first signal it publishes) with its window's
+stamp to the offline trend's core (backlash_monitor/fleet/trend.py: LiveTrend, drive_trend, the
+rule of config/trend.yaml) and publishes, once a second, the status ``<node>: width trend`` with
+hardware_id = the drive's name: WARN when the drive grows faster than ``warn_growth_m_per_day``
+(with the days left to ``error_width_m``) or is past ``warn_width_m``, ERROR past
+``error_width_m``, OK otherwise (also before the first estimate and while the points span less
+than ``live_min_span_s``: no rate yet). The trend starts anew when the node starts; the offline
+trend (`analyze FOLDER`) covers the recordings of any length of time.
+"""
+from __future__ import annotations
+
+import math
+import sys
+
+from rclpy.node import Node
+
+from backlash_monitor.fleet.trend import LiveTrend, load_rule
+from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
+from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
+                                               declare_and_validate)
+from backlash_monitor.nodes.qos import ESTIMATE_QOS
+from backlash_monitor.nodes.runtime import run_node
+from backlash_monitor_msgs.msg import BacklashEstimate
+
+PRIMARY_SIGNAL = "a1+a2"
+
+PARAMETERS = (
+    ParameterSpec("drive_name", "drive", "the drive's name: diagnostics hardware_id"),
+    ParameterSpec("trend_config", "", "trend rule file (empty: the packaged config/trend.yaml)"),
+    ParameterSpec("signal", "", "signal whose fused width is followed (empty: a1+a2 where the "
+                  "classifier publishes it, else the first signal it publishes)"),
+)
+
+
+class WidthTrendNode(Node):
+    def __init__(self, **overrides):
+        super().__init__("width_trend", **overrides)
+        p = declare_and_validate(self, PARAMETERS)
+        try:
+            self.rule = load_rule(p["trend_config"] or None)
+        except (OSError, KeyError, TypeError, ValueError) as error:
+            raise ParameterValueError(
+                f"parameter 'trend_config' = {p['trend_config']!r}: {error}; it needs "
+                "warn_growth_m_per_day, warn_width_m, error_width_m (config/trend.yaml)") from None
+        self.trend = LiveTrend(self.rule)
+        self.signal = p["signal"]
+        self.first_signal = ""
+        self.create_subscription(BacklashEstimate, "estimate", self.on_estimate, ESTIMATE_QOS)
+        self.diagnostics = DriveDiagnostics(self, "width trend", p["drive_name"],
+                                            refresh=self.update_diagnostics)
+        self.update_diagnostics()
+
+    def on_estimate(self, msg: BacklashEstimate):
+        if not self.signal:
+            if msg.signal_name == PRIMARY_SIGNAL:
+                self.signal = PRIMARY_SIGNAL
+            elif not self.first_signal:
+                self.first_signal = msg.signal_name
+        if msg.signal_name != (self.signal or self.first_signal):
+            return
+        self.trend.add(msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9, msg.fused_width_m)
+
+    def update_diagnostics(self, publish_now: bool = False):
+        t = self.trend.trend()
+        rule = self.rule
+        if t.points == 0:
+            level, message = "OK", "no estimate yet"
+        else:
+            level = "OK" if t.level == "STALE" else t.level
+            rate = ("no rate" if math.isnan(t.rate_m_per_day)
+                    else f"{t.rate_m_per_day * 1e3:+.3f} mm/day")
+            message = f"{rate}; {t.reason}" if t.reason else rate
+        self.diagnostics.set(
+            level, message, publish_now=publish_now,
+            rate_m_per_day="" if math.isnan(t.rate_m_per_day) else f"{t.rate_m_per_day:.3e}",
+            days_to_limit="" if not math.isfinite(t.days_to_limit) else f"{t.days_to_limit:.1f}",
+            last_fused_width_m="" if math.isnan(t.last_width_m) else f"{t.last_width_m:.5f}",
+            points=t.points, estimates_not_used=self.trend.ignored,
+            signal=self.signal or self.first_signal,
+            warn_growth_m_per_day=rule.warn_growth_m_per_day,
+            min_span_s=rule.live_min_span_s, point_period_s=rule.live_point_period_s)
+
+
+def main(args=None):
+    return run_node(WidthTrendNode, args=args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

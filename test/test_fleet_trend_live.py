@@ -1,0 +1,149 @@
+"""The live width trend: the offline trend's rule over a running drive's fused widths (core), and
+the width_trend node's status on /diagnostics (node)."""
+import math
+import os
+import time
+
+import numpy as np
+import pytest
+
+from backlash_monitor.fleet.trend import LiveTrend, TrendRule, drive_trend, load_rule
+
+DAY = 86400.0
+RULE = TrendRule(warn_growth_m_per_day=5e-5, warn_width_m=0.0075, error_width_m=0.009,
+                 live_point_period_s=60.0, live_history_s=7 * DAY, live_min_span_s=DAY)
+
+
+def _ramp(trend, rate_m_per_day, days, start_m=0.004, every_s=30.0, noise_m=1e-4, t0=1.76e9,
+          seed=0):
+    """Fused widths of a drive wearing at ``rate_m_per_day`` (+ scatter), one every ``every_s``."""
+    rng = np.random.default_rng(seed)
+    times = t0 + np.arange(0.0, days * DAY, every_s)
+    widths = start_m + rate_m_per_day * (times - t0) / DAY + rng.normal(0, noise_m, times.size)
+    for t, w in zip(times, widths):
+        trend.add(float(t), float(w))
+    return times, widths
+
+
+def test_a_drive_wearing_faster_than_the_rule_warns_with_the_days_left():
+    live = LiveTrend(RULE)
+    rate = 2e-4                               # 0.2 mm/day: 4x the allowed 0.05 mm/day
+    times, _ = _ramp(live, rate, days=0.5)
+    half_day = live.trend()
+    assert half_day.level == "OK" and math.isnan(half_day.rate_m_per_day)   # < live_min_span_s
+    assert "no trend yet" in half_day.reason
+    _ramp(live, rate, days=2.0, t0=times[0], seed=1)[0]
+    t = live.trend()
+    assert t.level == "WARN" and "grows" in t.reason
+    assert t.rate_m_per_day == pytest.approx(rate, rel=0.05)
+    # days left from the last width at that rate: (9 mm - (4 mm + 2 days x 0.2 mm)) / 0.2 mm/day
+    assert t.days_to_limit == pytest.approx((0.009 - 0.0044) / rate, rel=0.05)
+    assert t.last_width_m < RULE.warn_width_m          # warned while still narrow
+    assert t.points == pytest.approx(2 * DAY / 60, abs=2)   # one point a minute
+
+
+def test_a_drive_wearing_slowly_stays_ok_and_its_rate_is_measured():
+    live = LiveTrend(RULE)
+    _ramp(live, 1e-5, days=3.0)               # 0.01 mm/day: a normal coupling's wear
+    t = live.trend()
+    assert t.level == "OK"
+    assert t.rate_m_per_day == pytest.approx(1e-5, abs=3e-6)
+
+
+def test_live_points_are_the_offline_trend_of_per_minute_medians():
+    live = LiveTrend(RULE)
+    times, widths = _ramp(live, 1e-4, days=1.5, every_s=20.0)
+    minute = np.floor(times / 60.0)
+    points = [(float(np.median(times[minute == m])), float(np.median(widths[minute == m])))
+              for m in np.unique(minute)[:-1]]          # the last minute is still open
+    offline = drive_trend(points, RULE, RULE.live_min_span_s)
+    t = live.trend()
+    assert (t.level, t.points) == (offline.level, offline.points)
+    assert t.rate_m_per_day == pytest.approx(offline.rate_m_per_day, rel=1e-12)
+
+
+def test_history_limits_the_rate_to_the_last_days_and_bad_input_is_not_used():
+    rule = TrendRule(5e-5, 0.0075, 0.009, live_point_period_s=60.0, live_history_s=2 * DAY,
+                     live_min_span_s=DAY)
+    live = LiveTrend(rule)
+    times, _ = _ramp(live, 0.0, days=5.0, start_m=0.003)     # flat for 5 days ...
+    _ramp(live, 3e-4, days=3.0, start_m=0.003, t0=times[-1] + 30.0, seed=2)   # ... then wears
+    t = live.trend()
+    assert t.rate_m_per_day == pytest.approx(3e-4, rel=0.05)   # not diluted by the flat days
+    assert t.level == "WARN"
+    span = live.points[-1][0] - live.points[0][0]
+    assert span <= 2 * DAY
+    live.add(live.points[0][0] - 3600.0, 0.004)     # out of order (older than the open minute)
+    live.add(times[-1] + 9 * DAY, float("nan"))
+    assert live.ignored == 2
+
+
+def test_packaged_rule_has_the_live_settings():
+    rule = load_rule()
+    assert rule.live_min_span_s >= rule.live_point_period_s > 0
+    assert rule.live_history_s > rule.live_min_span_s
+
+
+def test_node_publishes_the_trend_warn_per_drive_on_diagnostics(ros_env, tmp_path):
+    """Two drives' width_trend nodes; estimates with stamps a minute apart (a day's wear in 30
+    messages, rule scaled to match): the wearing drive is WARN on /diagnostics with its
+    hardware_id, the steady one OK; the other signal's estimates do not count."""
+    os.environ["ROS_DOMAIN_ID"] = ros_env["ROS_DOMAIN_ID"]
+    import rclpy
+    from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+    from rclpy.parameter import Parameter
+
+    from backlash_monitor.nodes.qos import ESTIMATE_QOS
+    from backlash_monitor.nodes.width_trend import WidthTrendNode
+    from backlash_monitor_msgs.msg import BacklashEstimate
+    config = tmp_path / "trend.yaml"
+    config.write_text("warn_growth_m_per_day: 5.0e-5\nwarn_width_m: 0.0075\nerror_width_m: 0.009\n"
+                      "live_point_period_s: 1.0\nlive_history_s: 86400.0\nlive_min_span_s: 600.0\n")
+    rclpy.init()
+    try:
+        nodes = {d: WidthTrendNode(namespace=f"/line1/{d}", parameter_overrides=[
+            Parameter("drive_name", value=f"line1/{d}"),
+            Parameter("trend_config", value=str(config))]) for d in ("drive01", "drive02")}
+        probe = rclpy.create_node("probe")
+        statuses = {}
+        probe.create_subscription(DiagnosticArray, "/diagnostics", lambda m: statuses.update(
+            {s.hardware_id: s for s in m.status if s.name.endswith("width trend")}), 10)
+        pubs = {d: probe.create_publisher(BacklashEstimate, f"/line1/{d}/estimate", ESTIMATE_QOS)
+                for d in nodes}
+        executor = rclpy.executors.SingleThreadedExecutor()
+        for node in (*nodes.values(), probe):
+            executor.add_node(node)
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline and not all(p.get_subscription_count() for p in pubs.values()):
+            executor.spin_once(timeout_sec=0.05)
+        t0 = 1_760_000_000
+        for k in range(31):                      # 30 minutes of stamps
+            for d, rate in (("drive01", 0.5e-3), ("drive02", 0.0)):   # m/day
+                for signal, offset in (("a1+a2", 0.0), ("a1", 0.002)):
+                    msg = BacklashEstimate(signal_name=signal, mode="shape",
+                                           fused_width_m=0.004 + offset + rate * k * 60 / 86400)
+                    msg.header.stamp.sec = t0 + 60 * k
+                    msg.header.frame_id = f"line1/{d}"
+                    pubs[d].publish(msg)
+            executor.spin_once(timeout_sec=0.01)
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline:
+            executor.spin_once(timeout_sec=0.1)
+            wear = statuses.get("line1/drive01")
+            if wear is not None and wear.level == DiagnosticStatus.WARN and "line1/drive02" in statuses \
+                    and dict((kv.key, kv.value) for kv in statuses["line1/drive02"].values)["points"] == "30":
+                break
+        wear, steady = statuses["line1/drive01"], statuses["line1/drive02"]
+        # 31 minutes of estimates: 30 closed minutes (the 31st is still being collected)
+        assert {kv.key: kv.value for kv in wear.values}["points"] == "30"
+        assert wear.level == DiagnosticStatus.WARN, wear.message
+        assert "grows 0.500 mm/day" in wear.message
+        assert wear.name == "line1/drive01/width_trend: width trend"
+        values = {kv.key: kv.value for kv in wear.values}
+        assert float(values["rate_m_per_day"]) == pytest.approx(0.5e-3, rel=1e-6)
+        assert values["signal"] == "a1+a2"
+        assert steady.level == DiagnosticStatus.OK, steady.message
+        assert float({kv.key: kv.value for kv in steady.values}["last_fused_width_m"]) == \
+            pytest.approx(0.004)                  # a1's estimates (6 mm) were not used
+    finally:
+        rclpy.shutdown()
