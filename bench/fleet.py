@@ -4,7 +4,8 @@ drives_realtime: the most 50 kHz simulated drives `fleet` runs in real time with
   monitored in real time (every chunk taken, no window discarded, every onset window classified,
   each estimate within 1 s of its window's last sample after the start-up), for each layout (one
   process per drive; every drive in one process), N = 2, 4, 6, ... until a run fails; with the CPU
-  per drive (plant simulator + chain, share of one core) at that N. The drives' plants run on the
+  per drive (plant simulator + chain, share of one core, over the stream) at that N, and the
+  whole command's CPU seconds per drive (every process, start-up and the fleet monitor included). The drives' plants run on the
   same machine: a real line's drives would not cost this machine their simulation.
 diagnostics_complete: over a 60 s window of a run of that many drives, the share of
   (drive, second) pairs for which the drive's classifier status arrived on /diagnostics (each
@@ -41,21 +42,51 @@ def log(*args):
 
 
 def run_fleet(n, layout, duration_s, workdir):
+    """The `fleet` command's summary, with ``command_cpu_s`` (CPU of the command and every process
+    it started, start-up included: rusage of the waited-for children) and ``command_wall_s``."""
+    import resource
     summary = os.path.join(workdir, f"fleet_{layout}_{n}.json")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    started = time.perf_counter()
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "fleet", "--drives", str(n),
                            "--duration", str(duration_s), "--layout", layout,
                            "--view-period", "0", "--summary-json", summary],
                           capture_output=True, text=True, timeout=duration_s * 4 + 300)
+    wall = time.perf_counter() - started
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if not os.path.isfile(summary):
         log(proc.stdout[-2000:], proc.stderr[-2000:])
         return None
     with open(summary) as f:
-        return json.load(f)
+        result = json.load(f)
+    result.update(command_wall_s=wall, command_cpu_s=after.ru_utime + after.ru_stime
+                  - before.ru_utime - before.ru_stime)
+    return result
+
+
+def capacity_alternated(layouts, counts, duration_s, workdir):
+    """:func:`capacity` of each layout, their runs alternated at each N (layout A at N, layout B
+    at N, then the next N): both see the machine's load of the same minutes. A layout stops at its
+    first failed N."""
+    per_layout = {name: {"drives_realtime": 0, "runs": [], "failed": False} for name in layouts}
+    for n in counts:
+        for name in layouts:
+            entry = per_layout[name]
+            if entry["failed"]:
+                continue
+            best, runs = capacity(name, [n], duration_s, workdir)
+            entry["runs"].extend(runs)
+            if best:
+                entry["drives_realtime"] = best
+            else:
+                entry["failed"] = True
+    return per_layout
 
 
 def capacity(layout, counts, duration_s, workdir):
     best, runs = 0, []
     for n in counts:
+        load_before = os.getloadavg()[0]
         result = run_fleet(n, layout, duration_s, workdir)
         rows = result["drives"] if result else []
         ok = bool(rows) and all(r["realtime"] for r in rows)
@@ -66,6 +97,9 @@ def capacity(layout, counts, duration_s, workdir):
                "onsets_missed": sum(r["onset_windows"] - r["onsets_estimated"] for r in rows),
                "lag_ms_max": max(lag) if lag else None,
                "cpu_percent_per_drive": sum(cpu) / len(cpu) if cpu else None,
+               "command_cpu_s_per_drive": result["command_cpu_s"] / n if result else None,
+               "command_wall_s": result["command_wall_s"] if result else None,
+               "load_average_1min_before": load_before,
                "load_average_1min": os.getloadavg()[0]}
         runs.append(run)
         log(f"fleet {layout} {n} drives: {run}")
@@ -171,10 +205,7 @@ def main():
         counts = args.counts or ((2, 4, 8) if args.quick else (2, 4, 6, 8, 10, 12, 14, 16))
         layout, best = "process", args.drives
         if "capacity" in args.parts:
-            per_layout = {}
-            for name in args.layouts:
-                found, runs = capacity(name, counts, duration, workdir)
-                per_layout[name] = {"drives_realtime": found, "runs": runs}
+            per_layout = capacity_alternated(args.layouts, counts, duration, workdir)
             layout = max(per_layout, key=lambda k: per_layout[k]["drives_realtime"])
             best = per_layout[layout]["drives_realtime"]
             best_run = next((r for r in per_layout[layout]["runs"] if r["drives"] == best), None)
