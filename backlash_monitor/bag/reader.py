@@ -34,6 +34,7 @@ import threading
 from collections import deque
 from collections.abc import Iterable, Iterator
 from dataclasses import asdict, dataclass, field
+from functools import partial
 from pathlib import Path
 from typing import NamedTuple
 
@@ -1132,7 +1133,9 @@ def _series(topic: str, msgs: list) -> SignalSeries:
                         first.header.frame_id, gaps)
 
 
-CHUNKS_AHEAD = 6   # chunks decompressed ahead of the one being read (~6 MiB at the default chunk size)
+CHUNKS_AHEAD = 6   # chunks decompressed ahead of the one being read (~6 MiB at the default chunk size);
+                   # 0: no decompression thread (a process with no core to spare, e.g. one of a pool
+                   # with a worker per core: the thread would only take turns with it)
 
 _DECOMPRESS_POOL = None
 _POOL_LOCK = threading.Lock()
@@ -1169,6 +1172,10 @@ def _prefetch(fn, items, ahead: int):
     and checked while the caller decodes and processes the messages of the previous one. Same
     results and errors as calling ``fn`` item by item. ``close()`` (or exhausting it) waits for
     the work still running: the items (views of the reader's map) are not used after that."""
+    if ahead <= 0:
+        for item in items:
+            yield partial(fn, item)
+        return
     pending = deque()
     try:
         for item in items:

@@ -74,7 +74,8 @@ _WORKER: dict = {}   # this process's worker state: the options' pattern library
 def init_worker(options: dict, library=None) -> None:
     """A worker's start (ProcessPoolExecutor/Dask initializer, and the --jobs 1 loop): one core's
     worth of threads (BLAS, OpenMP and numba pools of one thread: the pool already has a worker
-    per core) and the pattern library loaded once for all its bags. ``library``: already loaded
+    per core; no bag decompression thread in a pool worker or on one CPU) and the pattern library
+    loaded once for all its bags. ``library``: already loaded
     (inherited by a forked worker)."""
     for var in THREAD_VARIABLES:
         os.environ[var] = "1"
@@ -82,6 +83,10 @@ def init_worker(options: dict, library=None) -> None:
     from backlash_monitor.bag import reader
     if multiprocessing.parent_process() is not None:
         reader._DECOMPRESS_POOL = None   # a forked copy of the parent's pool has no thread
+    if multiprocessing.parent_process() is not None or len(os.sched_getaffinity(0)) == 1:
+        # a pool worker (a worker per core) or a process on one CPU: no core for the bag
+        # reader's decompression thread, which would only take turns with the worker
+        reader.CHUNKS_AHEAD = 0
     from backlash_monitor.commands.analyze import load_bag_library
     _WORKER.update(pid=os.getpid(), options=options,
                    library=library or load_bag_library(argparse.Namespace(**options)))
