@@ -155,10 +155,10 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
     ``n_jobs`` worker processes, started once (each with its library, :func:`init_worker`), handed
     one bag at a time (a worker takes the next bag when it is done: no idle core while bags remain),
     their rows collected as they finish."""
-    from tqdm import tqdm
     rows = []
-    bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
     if n_jobs == 1:
+        from tqdm import tqdm
+        bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
         if jobs:
             init_worker(jobs[0]["options"], library)
         for job in jobs:
@@ -196,6 +196,8 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
             pending.add(pool.submit(analyze_one, job))
             if len(pending) >= 2 * n_jobs:
                 break
+        from tqdm import tqdm     # imported while the workers start: not on the serial path
+        bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
         while pending:
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
             for future in done:
