@@ -33,8 +33,19 @@ def test_exponential_average_step_response():
     y = exponential_average(np.ones(5000), lam, 0.0)
     n = np.arange(5000)
     np.testing.assert_allclose(y, 1.0 - (1.0 - lam) ** (n + 1), rtol=0, atol=1e-14)
-    with pytest.raises(ValueError, match="allowed: 0 < lam <= 1"):
-        exponential_average(np.ones(3), 0.0, 0.0)
+    with pytest.raises(ValueError, match="allowed: 0 <= lam <= 1"):
+        exponential_average(np.ones(3), -0.1, 0.0)
+
+
+@pytest.mark.parametrize("lam", [0.0, 1e-300])
+def test_exponential_average_of_a_vanishing_weight_holds_its_start(lam):
+    """lam = 0 (or below 1's float resolution: a sample period ~0 against the time constant):
+    the average stays at its start value, as the recurrence (and scipy's lfilter) gives."""
+    x = _walk(3000)
+    y = exponential_average(x, lam, 0.29)
+    assert np.array_equal(y, np.full(3000, 0.29))
+    assert np.allclose(lfilter([lam], [1.0, lam - 1.0], x, zi=[(1.0 - lam) * 0.29])[0], y,
+                       rtol=0, atol=1e-15)
 
 
 @pytest.mark.parametrize("n", [1, 99, 100, 101, 257, 5000])

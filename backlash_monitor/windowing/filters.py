@@ -19,7 +19,7 @@ EMA_MAX_GROWTH = 4.0    # largest (1 - lam)^-k inside a block: keeps the block s
 
 
 def exponential_average(x: np.ndarray, lam: float, y_before: float) -> np.ndarray:
-    """y[n] = lam * x[n] + (1 - lam) * y[n-1] with y[-1] = ``y_before``, 0 < lam <= 1.
+    """y[n] = lam * x[n] + (1 - lam) * y[n-1] with y[-1] = ``y_before``, 0 <= lam <= 1.
 
     What ``lfilter([lam], [1, lam - 1], x, zi=[(1 - lam) * y_before])[0]`` computes. In blocks of B
     samples with the block's start value s: y[k] = r^(k+1) s + lam r^k cumsum(r^-j x[j])[k] (r = 1 -
@@ -28,13 +28,15 @@ def exponential_average(x: np.ndarray, lam: float, y_before: float) -> np.ndarra
     """
     x = np.asarray(x, dtype=np.float64)
     n = x.size
-    if not 0.0 < lam <= 1.0:
-        raise ValueError(f"exponential_average: lam = {lam!r}; allowed: 0 < lam <= 1")
+    if not 0.0 <= lam <= 1.0:
+        raise ValueError(f"exponential_average: lam = {lam!r}; allowed: 0 <= lam <= 1")
     if n == 0:
         return np.empty(0)
     r = 1.0 - lam
     if r == 0.0:
         return x.copy()
+    if r == 1.0:     # lam below the float resolution of 1 (a time constant ~1e16 samples long)
+        return np.full(n, float(y_before))
     block = max(1, min(EMA_BLOCK, n, int(math.log(EMA_MAX_GROWTH) / -math.log(r))))
     n_blocks = -(-n // block)
     padded = np.zeros(n_blocks * block)
