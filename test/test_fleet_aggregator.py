@@ -113,8 +113,10 @@ def test_the_view_marks_a_silent_drive_stale_and_a_half_silent_one_error():
     for t in range(0, 6):                       # drive01 reports every second
         status(view, drives[0], "classifier", WARN, t)
         status(view, drives[0], "windowing", OK, t)
+        status(view, drives[0], "width_trend", OK, t)
     status(view, drives[1], "classifier", OK, 1.0)   # drive02: only its classifier, then silence
     status(view, drives[1], "windowing", OK, 5.0)
+    status(view, drives[1], "width_trend", OK, 5.0)
     levels = {row["path"].rsplit("/", 1)[1]: row["level"] for row in view.report(5.5)}
     assert levels["drive01"] == WARN           # the highest of its items
     assert levels["drive02"] == ERROR          # one item stale (4.5 s > 3 s), one not

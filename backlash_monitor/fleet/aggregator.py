@@ -35,7 +35,7 @@ GROUP_KEYS = {"type": str, "path": str, "analyzers": dict}
 AGGREGATOR_KEYS = {"pub_rate": float, "path": str, "other_as_errors": bool, "history_depth": int,
                    "critical": bool}
 
-STATUS_TASKS = ("classifier: backlash width", "windowing: windowing")   # per drive
+STATUS_TASKS = ("classifier: backlash width", "windowing: windowing", "width_trend: width trend")   # per drive
 DEFAULT_TIMEOUT_S = 3.0   # three missed one-per-second statuses: a drive that went silent
 BASE_PATH = "BacklashMonitor"
 
