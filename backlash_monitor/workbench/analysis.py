@@ -13,7 +13,7 @@ import pywt
 from scipy import signal as sps
 from scipy import stats
 
-from . import plant_adapter
+from . import plant_adapter, spectral
 from .events import (IMPACT_SETTLE_S, PRE_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, denoise,
                      ensemble_from_runs, event_set, onset_entries)
 
@@ -65,6 +65,7 @@ class Comparison:
     ensemble: Ensemble
     weights: np.ndarray          # per signal 1/noise floor rms (denoised)
     floor_rms: np.ndarray        # per signal, rms of the leave-one-seed-out deviation
+    spec_weights: np.ndarray | None = None   # per spectral-shape feature 1/its noise floor (workbench/spectral.py)
 
     @property
     def target(self):
@@ -86,7 +87,12 @@ def build_comparison(meas, model, seeds=None) -> Comparison:
     ens = ensemble_from_runs(runs, meas.sample_period_s, keep_records=True)
     loo = ens.loo_deviation()
     floor = np.sqrt(np.mean(loo ** 2, axis=(0, 2)))
-    return Comparison(model, meas, conditions, seeds, ev, ens, 1.0 / floor, floor)
+    # the spectral-shape features' floor: their event-to-event spread in the model's own events over the
+    # square root of the measurement's number of events (the noise of the measured events' mean)
+    feats = np.vstack([spectral.event_features(p, meas.sample_period_s) for p in ens.per_event])
+    spec_floor = feats.std(axis=0) / np.sqrt(max(ev.n_events, 1))
+    return Comparison(model, meas, conditions, seeds, ev, ens, 1.0 / floor, floor,
+                      1.0 / np.maximum(spec_floor, 1e-12))
 
 
 def fit_percent(target, model_mean) -> np.ndarray:

@@ -13,6 +13,8 @@ import numpy as np
 from backlash_monitor.denoise import denoise_sym5
 from backlash_monitor.windowing import BacklashEntryDetector
 
+from . import spectral
+
 PRE_SAMPLES = 250          # 5 ms before the entry: the "before entry" phase
 POST_SAMPLES = 2048        # the paper's window after the entry
 SEGMENT_SIGNALS = ("a1", "a2")
@@ -83,6 +85,7 @@ class Ensemble:
     per_event: list               # per seed of set 0: (n_events, 2, L)
     raw_records: dict | None = None
     per_event_entries: list | None = None   # per seed of set 0: the entry indices of per_event
+    seed_spec: np.ndarray | None = None     # (n_sets, n_seeds, F) event-mean spectral shape (workbench/spectral.py)
 
     def mean_raw(self, s: int = 0) -> np.ndarray:
         w = self.n_events[s].astype(float)
@@ -90,6 +93,11 @@ class Ensemble:
 
     def mean_denoised(self, s: int = 0) -> np.ndarray:
         return denoise(self.mean_raw(s))
+
+    def spec_mean(self, s: int = 0) -> np.ndarray:
+        """The spectral-shape features averaged over all events of set s (every seed's events)."""
+        w = self.n_events[s].astype(float)
+        return np.tensordot(w / w.sum(), self.seed_spec[s], axes=(0, 0))
 
     def seed_denoised(self, s: int = 0) -> np.ndarray:
         return denoise(self.seed_means[s])
@@ -109,6 +117,7 @@ def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = 
     L = PRE_SAMPLES + POST_SAMPLES
     means = np.zeros((n_sets, n_seeds, len(SEGMENT_SIGNALS), L))
     counts = np.zeros((n_sets, n_seeds), dtype=np.int64)
+    spec = np.zeros((n_sets, n_seeds, spectral.n_features(len(SEGMENT_SIGNALS))))
     per_event, per_entries = [], []
     for i in range(n_sets):
         for j in range(n_seeds):
@@ -117,6 +126,7 @@ def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = 
             counts[i, j] = ev.n_events
             if ev.n_events:
                 means[i, j] = ev.mean_raw()
+                spec[i, j] = spectral.event_features(ev.raw, sample_period_s).mean(axis=0)
             if i == 0:
                 per_event.append(ev.raw)
                 per_entries.append(ev.entries)
@@ -124,4 +134,4 @@ def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = 
         raise ValueError("a simulated run of the model gave no complete onset window; the model does not cross "
                          "its backlash under these conditions")
     records = {s: runs[s][0] for s in runs} if keep_records else None
-    return Ensemble(means, counts, per_event, records, per_entries)
+    return Ensemble(means, counts, per_event, records, per_entries, spec)
