@@ -297,8 +297,11 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
             na = len(by_name[a].parameters)
             first = _part(fit2, by_name[a], slice(0, na), [])
             second_fit = _part(fit2, by_name[b], slice(na, None), [a])
-            first.indistinguishable_from = list(alt[a])
-            second_fit.indistinguishable_from = list(alt[b])
+            # the single winner's twins stay named with it when it is part of the pair (e.g. a heavier mass and
+            # a lower a2 gain), besides the pairs that tie with this one
+            twins = {discovery.effect: list(discovery.indistinguishable_from)}
+            first.indistinguishable_from = list(alt[a]) + twins.get(a, [])
+            second_fit.indistinguishable_from = list(alt[b]) + twins.get(b, [])
             discovery = first
         else:
             second_fit = _greedy_second(comp, problem, model, discovery, by_name, scr, order)
