@@ -1,13 +1,18 @@
 """``diagnose``: where the model fails on a measurement, and which catalogue effect is missing.
 
-Decision rules (docs/workbench.md, "Decisions"):
-- the model is *inconsistent* with the measurement when the residual of the event average exceeds
-  INCONSISTENT_RATIO times the noise floor (the model's own leave-one-seed-out deviation);
+Evidence: the weighted denoised event average and the raw events' spectral shape (workbench/spectral.py),
+each in its own whitened block of the candidates' subspace; the events are the units. Decision rules
+(docs/workbench.md, "Decisions"):
+- the model is *inconsistent* when T^2 of either block exceeds its 1 % limit or the event-average residual
+  exceeds INCONSISTENT_RATIO times the noise floor;
 - a candidate is a *discovery* when the model is inconsistent, its delta_ic <= -DELTA_IC_STRONG (BIC on
-  the events), it explains >= MIN_EXPLAINED of the residual and its value is not pinned at a bound;
-- two candidates are *indistinguishable* when both qualify and their IC differ by < DELTA_IC_TIE;
-- after a discovery whose model is still inconsistent, every other candidate is fitted on top of it and
-  reported as a second effect by the same rules (delta_ic against the one-effect model).
+  the events), it explains >= MIN_EXPLAINED of the residual, its values are significant (> SIGNIFICANCE
+  uncertainties from the model's) and not pinned at a bound;
+- two candidates are *indistinguishable* when both qualify and their IC differ by < DELTA_IC_TIE; every
+  screened candidate whose linearised IC may tie is refined before this comparison;
+- after a discovery whose model is still inconsistent, pairs (one of the best singles + any other) are
+  fitted linearly, the best PAIR_REFINE with no member in common refined, and the best that passes kept;
+- *confident*: the model with the effect(s) is consistent, also outside the candidates' subspace.
 """
 from __future__ import annotations
 
