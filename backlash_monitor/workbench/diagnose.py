@@ -349,7 +349,13 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
         if discovery.indistinguishable_from:
             message += ("; not distinguishable from this recording from " + ", ".join(discovery.indistinguishable_from))
             twins = [f for f in fits if f.effect in discovery.indistinguishable_from]
-            message += "".join(f". To tell them apart: {_separating_measurement(discovery, t)}" for t in twins)
+            by_place: dict = {}          # twins acting at one place share one separating measurement
+            for t in twins:
+                by_place.setdefault(_where_acts(t), []).append(t.effect)
+            message += "".join(
+                ". To tell them apart: " + separation.separating_measurement(
+                    discovery.effect, _where_acts(discovery), " and ".join(names), place)
+                for place, names in by_place.items())
         if second_fit is not None:
             message += f"; a second effect on top: {second_fit.effect} ({second_fit.values[0]:.4g})"
             if second_fit.indistinguishable_from:
