@@ -111,7 +111,8 @@ class WidthFusion:
             return None
         idx, score = fuse_b_vectors(np.array(self._bs), self.rule)
         s = np.sort(score)
-        margin = float(s[1] / s[0]) if s[0] > 0 else (1.0 if s[1] == s[0] else float("inf"))
+        with np.errstate(over="ignore"):   # s[0] subnormal: the ratio is +inf, as for s[0] == 0
+            margin = float(s[1] / s[0]) if s[0] > 0 else (1.0 if s[1] == s[0] else float("inf"))
         return FusedEstimate(index=idx, width_m=float(self.widths_m[idx]), events=len(self._bs),
                              score=score, margin=margin)
 
