@@ -171,7 +171,10 @@ def width_check():
                 # one model version per candidate the diagnosis cannot tell apart (fitted values of each),
                 # the library trained on all of them (train --model V2a --model V2b)
                 versions = [add_effects(model, adds)] + [add_effects(model, [t] + adds[1:]) for t in twins(pub)]
-                lib = build_library("contact_loss", WIDTH_TRAIN_SEEDS, duration_s=WIDTH_TRAIN_DURATION_S,
+                # seeds dealt out over the versions: at least one per version (three twins: 3 seeds)
+                pooled_seeds = tuple(range(WIDTH_TRAIN_SEEDS[0], WIDTH_TRAIN_SEEDS[0]
+                                           + max(len(WIDTH_TRAIN_SEEDS), len(versions))))
+                lib = build_library("contact_loss", pooled_seeds, duration_s=WIDTH_TRAIN_DURATION_S,
                                     config=[v.plant_config() for v in versions])
                 p_after = lib.save(os.path.join(d, f"after_{i}.npz"))
                 lib_w = build_library("contact_loss", WIDTH_TRAIN_SEEDS, duration_s=WIDTH_TRAIN_DURATION_S,
