@@ -107,14 +107,21 @@ def _range(key, p, cfg, width_m, current):
     return min(lo, current), max(hi, current)
 
 
+def candidate_effect_names() -> list[str]:
+    """The effects the workbench fits: the catalogue's (event-locked ones) and the user's plug-ins
+    registered in this process (not nominal, not built-in catalogue)."""
+    reg = plant_effects.catalogue()
+    names = [n for n in plant_effects.CATALOGUE_NAMES if n in reg and n not in NOT_EVENT_LOCKED]
+    names += [n for n, c in reg.items() if n not in names and n not in NOT_EVENT_LOCKED and not c.nominal
+              and n not in plant_effects.CATALOGUE_NAMES and c.kind in ("term", "drift", "sensor")]
+    return names
+
+
 def catalogue(model) -> list[CandidateEffect]:
     """The candidate effects the workbench fits on ``model`` (a WorkbenchModel), defaults = its values."""
     cfg = model.plant_config()
     reg = plant_effects.catalogue()
-    names = [n for n in plant_effects.CATALOGUE_NAMES if n not in NOT_EVENT_LOCKED]
-    # user plug-ins registered in this process (not nominal, not built-in catalogue)
-    names += [n for n, c in reg.items() if n not in names and n not in NOT_EVENT_LOCKED and not c.nominal
-              and n not in plant_effects.CATALOGUE_NAMES and c.kind in ("term", "drift", "sensor")]
+    names = candidate_effect_names()
     out = []
     for name in names:
         cls = reg[name]
@@ -156,13 +163,9 @@ def config_overrides(parameter_set: Mapping) -> dict:
 
 
 def _catalogue_switches() -> dict:
-    """Every candidate effect switched on: the catalogue's and the user's plug-ins registered in this
-    process (at their defaults, which an effect's author makes neutral: docs/effects.md)."""
-    reg = plant_effects.catalogue()
-    names = [n for n in plant_effects.CATALOGUE_NAMES if n in reg and n not in NOT_EVENT_LOCKED]
-    names += [n for n, c in reg.items() if n not in names and n not in NOT_EVENT_LOCKED and not c.nominal
-              and n not in plant_effects.CATALOGUE_NAMES and c.kind in ("term", "drift", "sensor")]
-    return {f"effects.{n}": True for n in names}
+    """Every candidate effect switched on (at its defaults, which an effect's author makes neutral:
+    docs/effects.md)."""
+    return {f"effects.{n}": True for n in candidate_effect_names()}
 
 
 def simulate_sets(model, sets: Sequence[Mapping], seeds: Sequence[int], n_samples: int,
