@@ -307,7 +307,8 @@ def run(args) -> int:
     from backlash_monitor.nodes.fast_dds import configure_fast_dds
     from backlash_monitor.nodes.lean_executor import make_executor
     from backlash_monitor.nodes.parameters import ParameterValueError
-    from backlash_monitor.nodes.runtime import freeze_startup_objects, is_shutdown_error
+    from backlash_monitor.nodes.runtime import (freeze_startup_objects, is_shutdown_error,
+                                               release_nodes)
     configure_fast_dds()   # before rclpy.init; the drives' processes inherit it
     expected_chunks = int(round(args.duration / CHUNK_S))
     children: dict[str, subprocess.Popen] = {}
@@ -392,11 +393,7 @@ def run(args) -> int:
                 child.wait(timeout=10)
             except subprocess.TimeoutExpired:
                 child.kill()
-        if executor is not None:
-            executor.shutdown()
-        for node in nodes:
-            node.destroy_node()
-        rclpy.try_shutdown()
+        release_nodes(executor, nodes)
     rows = monitor.summary(drives, expected_chunks)
     print(format_table(monitor.view, time.monotonic()))
     print(format_summary(rows), flush=True)

@@ -293,7 +293,7 @@ def run(args) -> int:
     from backlash_monitor_msgs.msg import BacklashEstimate
     from backlash_monitor.nodes.qos import ESTIMATE_QOS
     from backlash_monitor.nodes.parameters import ParameterValueError
-    from backlash_monitor.nodes.runtime import freeze_startup_objects
+    from backlash_monitor.nodes.runtime import freeze_startup_objects, release_nodes
 
     from backlash_monitor.estimation import DEFAULT_MODE, default_signals
     from backlash_monitor.nodes.fast_dds import configure_fast_dds
@@ -383,11 +383,7 @@ def run(args) -> int:
                 view.on_fault(fault.describe())     # one that ended as the run did
                 exit_code = 1
             supervisor.stop()
-        if executor is not None:
-            executor.shutdown()
-        for node in nodes:
-            node.destroy_node()
-        rclpy.try_shutdown()
+        release_nodes(executor, nodes)
     view.flush()
     print(view.summary(), flush=True)
     return exit_code or (0 if view.tally else 1)

@@ -52,6 +52,16 @@ def command_main(prog: str, description: str, add_arguments, run, argv=None) -> 
         return 2
 
 
+def release_nodes(executor, nodes) -> None:
+    """The end of a process's ROS life: the executor stopped, every node destroyed, rclpy shut down
+    (safe after a signal already did it)."""
+    if executor is not None:
+        executor.shutdown()
+    for node in nodes:
+        node.destroy_node()
+    rclpy.try_shutdown()
+
+
 def run_node(node_factory, args=None, spin=None) -> int:
     """``main()`` body shared by the nodes: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
 
@@ -99,8 +109,4 @@ def run_nodes(node_factories, args=None, spin=None) -> int:
             return 0
         raise
     finally:
-        if executor is not None:
-            executor.shutdown()
-        for node in nodes:
-            node.destroy_node()
-        rclpy.try_shutdown()
+        release_nodes(executor, nodes)
