@@ -20,6 +20,16 @@ def _plt():
     return plt
 
 
+def _save(plt, fig, path, title: str = "") -> Path:
+    """Title, lay out, write the PNG and free the figure."""
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
+    return Path(path)
+
+
 def plot_event_average(comp, path, after_mean=None, title="") -> Path:
     """Measured event average vs the model's ensemble mean with its band (min..max of the seeds)."""
     plt = _plt()
@@ -39,11 +49,7 @@ def plot_event_average(comp, path, after_mean=None, title="") -> Path:
         if i == 0:
             ax.legend(fontsize=7, loc="upper right")
     axes[-1].set_xlabel("time from the onset entry [ms]")
-    fig.suptitle(title or "event-averaged, denoised onset segment")
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
-    return Path(path)
+    return _save(plt, fig, path, title or "event-averaged, denoised onset segment")
 
 
 def plot_spectra(comp, spec, path) -> Path:
@@ -58,11 +64,7 @@ def plot_spectra(comp, spec, path) -> Path:
         ax.set_xlabel("frequency [Hz]")
         ax.set_ylabel(f"PSD of {s}")
         ax.legend(fontsize=7)
-    fig.suptitle("whole-record raw spectra (Welch)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
-    return Path(path)
+    return _save(plt, fig, path, "whole-record raw spectra (Welch)")
 
 
 def plot_where(where_before, where_after, path) -> Path:
@@ -81,10 +83,7 @@ def plot_where(where_before, where_after, path) -> Path:
         ax.legend(fontsize=7)
     axes[0].set_title("per phase of the window")
     axes[1].set_title("per sym5 wavelet level (raw)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
-    return Path(path)
+    return _save(plt, fig, path)
 
 
 def plot_ranked(ranked, path) -> Path:
@@ -103,10 +102,7 @@ def plot_ranked(ranked, path) -> Path:
     axes[1].set_xlabel("share of the residual explained")
     axes[1].set_xlim(min(0, min(r["explained_fraction"] for r in allr)), 1)
     axes[1].invert_yaxis()
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
-    return Path(path)
+    return _save(plt, fig, path)
 
 
 def _table(rows, header) -> str:
