@@ -31,6 +31,8 @@ from rclpy.waitable import NumberOfEntities
 from backlash_monitor.nodes.parameters import ParameterValueError
 
 
+MAX_WAIT_S = 0.5   # longest single wait: how late a shutdown whose wake-up was lost is noticed [s]
+
 class _Plan:
     """The entities of the executor's nodes, entered, with the rcl wait set sized for them."""
 
@@ -139,7 +141,13 @@ class LeanExecutor(SingleThreadedExecutor):
             plan = None
         if plan is None:
             return super().spin_once(timeout_sec)
-        timeout_ns = -1 if timeout_sec is None or timeout_sec < 0 else int(timeout_sec * 1e9)
+        # "Forever" is capped: rclpy's signal handler triggers the executors' guard condition before
+        # it shuts the context down, so a wait woken by SIGTERM can still find the context ok, loop,
+        # and wait again with the trigger consumed: an uncapped wait then never returns (live_view
+        # hung in 3 of 15 runs). spin() re-checks the context after every spin_once.
+        if timeout_sec is None or timeout_sec < 0 or timeout_sec > MAX_WAIT_S:
+            timeout_sec = MAX_WAIT_S
+        timeout_ns = int(timeout_sec * 1e9)
         ws = plan.wait_set
         ws.clear_entities()
         for sub in plan.subscriptions:
