@@ -36,6 +36,9 @@ $(BUILD_STAMP): $(REQUIREMENTS_STAMP) $(MSG_SOURCES) package.xml setup.py setup.
 	     --event-handlers console_cohesion- summary+ status- \
 	     --cmake-args -DPython3_EXECUTABLE="$$PWD/$(VENV)/bin/python" -DBUILD_TESTING=OFF > log/colcon-build.txt 2>&1 \
 	  || { tail -40 log/colcon-build.txt; echo "colcon build failed: full log in log/colcon-build.txt" >&2; exit 1; }
+	@# byte-compiled as a real install is (pip and colcon's non-symlink install compile): every command
+	@# starts without compiling the package's sources, also where PYTHONDONTWRITEBYTECODE is set
+	@$(VENV)/bin/python -m compileall -q backlash_monitor > /dev/null
 	@touch $@
 
 log:

@@ -138,6 +138,10 @@ def analyze_speedup(workdir, n_bags=100, repeats=3, bag_s=3.0):
     the CPUs taken in turn over the repeats); unpinned, its bag reader's decompression thread runs
     on the second core (1.1 cores busy), which is not a one-core baseline."""
     from backlash_monitor.fleet.recordings import write_fleet_bags
+    import compileall
+    # the package byte-compiled, as installed (make setup, pip, colcon): neither run compiles sources
+    compileall.compile_dir(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..",
+                                        "backlash_monitor"), quiet=1)
     bag_dir = os.path.join(workdir, "bags")
     widths = (0.0025, 0.005, 0.0075, 0.009)
     recordings = [(f"line{1 + i // 20}/drive{i % 20 + 1:02d}", i // 20, widths[i % 4], i + 1)
