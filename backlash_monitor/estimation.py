@@ -51,6 +51,7 @@ class WidthEstimate:
     continuous_width_m: float
     fused_width_m: float
     fused_events: int
+    fused_continuous_width_m: float = math.nan   # median continuous width of the fused events
 
 
 def default_signals(mode: str) -> tuple[str, ...]:
@@ -190,13 +191,14 @@ class DriveEstimator:
                 self.last_reasons[i] = "non_finite_estimate"
                 continue
             for signal, b, continuous, index, margin in results:
-                fused = self.fusion[signal].add(b, kind="onset")
+                fused = self.fusion[signal].add(b, kind="onset", continuous_width_m=continuous)
                 out[i].append(WidthEstimate(
                     signal_name=signal, mode=self.mode, candidate_widths_m=self.widths_m,
                     b_vector=b, width_index=index,
                     width_m=float(self.widths_m[index]), b_margin=margin,
                     continuous_width_m=continuous, fused_width_m=fused.width_m,
-                    fused_events=fused.events))
+                    fused_events=fused.events,
+                    fused_continuous_width_m=fused.continuous_width_m))
         return out
 
 

@@ -23,7 +23,8 @@ def estimate(**over):
            "candidate_widths_m": np.array([0.0025, 0.00375, 0.005, 0.0075, 0.009, 0.01]),
            "b_vector": np.array([3.5, 2.0, 0.1, 1e-300, math.inf, 7.0]),
            "width_index": 2, "width_m": 0.005, "b_margin": 20.0, "continuous_width_m": 0.0051,
-           "fused_width_m": 0.005, "fused_events": 8, "true_width_m": math.nan}
+           "fused_width_m": 0.005, "fused_events": 8, "true_width_m": math.nan,
+           "fused_continuous_width_m": 0.00507}
     msg.update(over)
     return msg
 
@@ -39,7 +40,7 @@ CASES = [
     {"entry_sample_index": np.uint64(2**64 - 1), "width_index": np.int64(5),
      "fused_events": np.uint32(0), "width_m": np.float64(0.0025), "true_width_m": 1},
     {"entry_kind": "x" * 7, "mode": "ab"},
-    {"continuous_width_m": math.nan, "fused_width_m": -0.0},
+    {"continuous_width_m": math.nan, "fused_width_m": -0.0, "fused_continuous_width_m": math.nan},
 ]
 
 

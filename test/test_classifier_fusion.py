@@ -81,3 +81,35 @@ def test_default_rule_per_mode():
     from backlash_monitor.classifier.fusion import default_fusion_rule
     assert default_fusion_rule("shape") == "trimmed_normalised_b"
     assert default_fusion_rule("paper") == default_fusion_rule("paper_corrected") == "sum_normalised_b"
+
+
+def test_fused_continuous_width_is_the_median_of_the_fused_events():
+    f = WidthFusion(WIDTHS, window_events=3)
+    b = np.array([5, 4, 3, 0.5, 1, 2.0])
+    assert np.isnan(f.add(b).continuous_width_m)                      # no continuous width given
+    f.reset()
+    for c in (0.0074, 0.0080, 0.0075):
+        est = f.add(b, continuous_width_m=c)
+    assert est.continuous_width_m == pytest.approx(0.0075)
+    est = f.add(b, continuous_width_m=0.0125)                         # one outlier 5 mm off
+    assert est.continuous_width_m == pytest.approx(0.0080)            # the median of the last 3
+    f.add(b, kind="return", continuous_width_m=0.1)                   # not an onset: not fused
+    f.add(np.full(6, np.nan), continuous_width_m=0.1)                 # rejected B: not fused either
+    assert f.estimate().continuous_width_m == pytest.approx(0.0080)
+    est = f.add(b, continuous_width_m=float("nan"))                   # a window without one
+    assert est.continuous_width_m == pytest.approx((0.0075 + 0.0125) / 2) and est.events == 3
+
+
+def test_fused_continuous_width_shrinks_the_window_scatter():
+    # per-window continuous widths scattered by sigma around the truth: the median of 8 events has about
+    # sigma * sqrt(pi / 2) / sqrt(8) = 0.44 sigma of scatter (a mean would have 0.35 sigma)
+    rng = np.random.default_rng(1)
+    sigma, truth = 0.17e-3, 0.0075
+    fused = []
+    for _ in range(2000):
+        f = WidthFusion(WIDTHS, window_events=8)
+        for c in truth + sigma * rng.standard_normal(8):
+            est = f.add(np.ones(6), continuous_width_m=c)
+        fused.append(est.continuous_width_m)
+    assert 0.35 * sigma < np.std(fused) < 0.5 * sigma
+    assert abs(np.mean(fused) - truth) < 0.05 * sigma

@@ -61,12 +61,17 @@ def test_a_folder_of_bags_becomes_one_fleet_table_with_trends(fleet_bags, tmp_pa
         assert r["fused_width_m"] == r["true_width_m"], r            # 1.2 s: 4-5 onsets fused
         assert r["time_s"] == pytest.approx(1_760_000_000 + 86400 * int(name[-8:-5]), abs=1e-3)
     assert result["trends"]["line1/driveA"]["level"] == "WARN"
+    # the trend follows each recording's continuous width (median over its windows), not the
+    # candidate grid: its slope over the three recordings, near the true 0.125 mm/day
+    driveA = sorted((r for r in rows if r["drive"] == "line1/driveA"), key=lambda r: r["time_s"])
+    assert all(abs(r["width_m"] - r["true_width_m"]) < 3e-4 for r in rows)
     assert result["trends"]["line1/driveA"]["rate_m_per_day"] == pytest.approx(
-        slope_per_day([0, 10 * 86400, 20 * 86400], [0.005, 0.005, 0.0075]))
+        slope_per_day([r["time_s"] for r in driveA], [r["width_m"] for r in driveA]), rel=1e-9)
+    assert result["trends"]["line1/driveA"]["rate_m_per_day"] == pytest.approx(1.25e-4, abs=2e-5)
     assert result["trends"]["line1/driveB"]["level"] == "OK"
     assert (out / "trend_fleet.png").stat().st_size > 0
     assert (out / "trend_line1_driveA.png").is_file()
-    assert "line1/driveA: WARN: grows 0.125 mm/day" in proc.stdout
+    assert "line1/driveA: WARN: grows 0.1" in proc.stdout
 
 
 def test_a_glob_without_bags_is_one_clear_error(tmp_path):

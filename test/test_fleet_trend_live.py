@@ -120,8 +120,12 @@ def test_node_publishes_the_trend_warn_per_drive_on_diagnostics(ros_env, tmp_pat
         for k in range(31):                      # 30 minutes of stamps
             for d, rate in (("drive01", 0.5e-3), ("drive02", 0.0)):   # m/day
                 for signal, offset in (("a1+a2", 0.0), ("a1", 0.002)):
-                    msg = BacklashEstimate(signal_name=signal, mode="shape",
-                                           fused_width_m=0.004 + offset + rate * k * 60 / 86400)
+                    # drive01 publishes its fused continuous width (the grid width stays at 5 mm: the
+                    # trend follows the continuous one); drive02 leaves it unset (0): its fused width
+                    width = 0.004 + offset + rate * k * 60 / 86400
+                    msg = (BacklashEstimate(signal_name=signal, mode="shape", fused_width_m=0.005,
+                                            fused_continuous_width_m=width) if d == "drive01" else
+                           BacklashEstimate(signal_name=signal, mode="shape", fused_width_m=width))
                     msg.header.stamp.sec = t0 + 60 * k
                     msg.header.frame_id = f"line1/{d}"
                     pubs[d].publish(msg)

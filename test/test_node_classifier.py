@@ -83,6 +83,9 @@ def test_estimates_and_namespaced_diagnostics(ros_env):
     smallest, second = np.sort(np.asarray(est.b_vector))[:2]     # the margin of this B vector
     assert est.b_margin == pytest.approx(second / smallest, rel=1e-12)
     assert est.fused_events == min(8, len(windows))
+    # the fused continuous width: the median of the same events' continuous widths (this signal's)
+    mine = [e.continuous_width_m for e in estimates if e.signal_name == est.signal_name][-est.fused_events:]
+    assert est.fused_continuous_width_m == pytest.approx(float(np.median(mine)), rel=1e-12)
     assert est.true_width_m == 0.009
     status = [d.status[0] for d in diagnostics if d.status[0].level != DiagnosticStatus.STALE][-1]
     assert status.name == "line1/drive7/classifier: backlash width"

@@ -37,14 +37,16 @@ def test_monitor_widths_on_a_clean_drive_give_the_true_width(clean_drive):
 
 def test_width_errors_definitions():
     trace = WidthTrace(continuous_m=np.array([0.0074, 0.0077, 0.0075, 0.0072]),
-                       fused_m=np.array([0.005, 0.0075, 0.0075, 0.009]), fused_events=np.array([1, 2, 2, 2]))
+                       fused_m=np.array([0.005, 0.0075, 0.0075, 0.009]), fused_events=np.array([1, 2, 2, 2]),
+                       fused_continuous_m=np.array([0.0074, 0.00755, 0.0076, 0.00735]))
     err = width_errors(trace, 0.0075, fusion_events=2)
     assert err["per_window_mean_abs_mm"] == pytest.approx((0.1 + 0.2 + 0.0 + 0.3) / 4)
     assert err["bias_mm"] == pytest.approx((-0.1 + 0.2 + 0.0 - 0.3) / 4)
     assert err["fused_final_abs_mm"] == pytest.approx(1.5)              # the last published fused width
     assert err["fused_mean_abs_mm"] == pytest.approx(1.5 / 3)           # over the full fusions only
+    assert err["fused_continuous_mean_abs_mm"] == pytest.approx((0.05 + 0.1 + 0.15) / 3)
     with pytest.raises(ValueError, match="no onset window"):
-        width_errors(WidthTrace(np.zeros(0), np.zeros(0), np.zeros(0, dtype=int)), 0.0075)
+        width_errors(WidthTrace(np.zeros(0), np.zeros(0), np.zeros(0, dtype=int), np.zeros(0)), 0.0075)
 
 
 def test_training_on_several_model_versions_deals_the_seeds_out(tmp_path):

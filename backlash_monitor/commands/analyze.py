@@ -30,7 +30,7 @@ ESTIMATE_BATCH = 64   # onset windows per batched denoise + DriveEstimator.estim
 
 CSV_COLUMNS = ("entry_sample_index", "entry_time_s", "signal", "mode", "width_m", "width_index",
                "b_margin", "continuous_width_m", "fused_width_m", "fused_events", "true_width_m",
-               "b_vector")
+               "b_vector", "fused_continuous_width_m")
 
 
 def add_arguments(parser) -> None:
@@ -344,6 +344,7 @@ def _row(window, est, true_width) -> dict:
         "continuous_width_m": est.continuous_width_m, "fused_width_m": est.fused_width_m,
         "fused_events": est.fused_events, "true_width_m": true_width,
         "b_vector": [float(b) for b in est.b_vector],
+        "fused_continuous_width_m": est.fused_continuous_width_m,
         "candidate_widths_m": [float(w) for w in est.candidate_widths_m],
         "entry_kind": window.kind,
     }
@@ -363,6 +364,7 @@ def _summary(rows, true_width):
         s["correct"] += int(not math.isnan(true_width) and abs(r["width_m"] - true_width) < 1e-9)
         s["fused_width_m"] = r["fused_width_m"]
         s["fused_events"] = r["fused_events"]
+        s["fused_continuous_width_m"] = r.get("fused_continuous_width_m", math.nan)
     return {"true_width_m": true_width, "per_signal": per}
 
 
@@ -370,12 +372,13 @@ def _print_summary(summary, rows, discarded, n_samples, elapsed, outputs):
     true_width = summary["true_width_m"]
     print(f"analyzed {n_samples} samples in {elapsed:.2f} s; {len({r['entry_sample_index'] for r in rows})} "
           f"onset windows, {len(discarded)} discarded")
-    header = ("signal", "estimates", "accuracy", "fused width", "fused events")
+    header = ("signal", "estimates", "accuracy", "fused width", "fused continuous", "fused events")
     lines = [header]
     for signal, s in sorted(summary["per_signal"].items()):
         acc = "-" if math.isnan(true_width) else f"{s['correct'] / s['estimates']:.0%}"
+        cont = s.get("fused_continuous_width_m", math.nan)
         lines.append((signal, str(s["estimates"]), acc, f"{s['fused_width_m'] * 1e3:.2f} mm",
-                      str(s["fused_events"])))
+                      "-" if math.isnan(cont) else f"{cont * 1e3:.2f} mm", str(s["fused_events"])))
     widths = [max(len(line[i]) for line in lines) for i in range(len(header))]
     for i, line in enumerate(lines):
         print("  ".join(c.rjust(w) for c, w in zip(line, widths)))
@@ -408,4 +411,5 @@ def _write_estimate_bag(path, estimates_msgs, true_width):
                 "width_index": est.width_index, "width_m": est.width_m,
                 "b_margin": est.b_margin, "continuous_width_m": est.continuous_width_m,
                 "fused_width_m": est.fused_width_m, "fused_events": est.fused_events,
-                "true_width_m": true_width}, log_time_ns=stamp_ns)
+                "true_width_m": true_width,
+                "fused_continuous_width_m": est.fused_continuous_width_m}, log_time_ns=stamp_ns)

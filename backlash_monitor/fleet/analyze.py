@@ -242,7 +242,10 @@ def add_trends(rows: list[dict], rule) -> dict:
     points: dict[str, list] = {}
     for r in rows:
         if not r["error"]:
-            points.setdefault(r["drive"], []).append((r["time_s"], r["fused_width_m"]))
+            # the recording's width (median continuous width of its windows) where the mode gives one:
+            # wear shows as it grows, not as a jump between candidate widths
+            width = r["width_m"] if r["width_m"] == r["width_m"] else r["fused_width_m"]
+            points.setdefault(r["drive"], []).append((r["time_s"], width))
     trends = {drive: drive_trend(pts, rule) for drive, pts in points.items()}
     for r in rows:
         t = trends.get(r["drive"])

@@ -1,10 +1,11 @@
 """The width trend of each drive over its recordings, and the WARN it earns before the limit.
 
-A drive's points are (time [s since the epoch], fused width [m]): one per analysed recording (its
-last fused estimate, docs/classifier.md). The trend is the least-squares slope of width over time
+A drive's points are (time [s since the epoch], width [m]): one per analysed recording (the median
+of its windows' continuous widths; its last fused estimate where the mode gives no continuous width,
+docs/classifier.md). The trend is the least-squares slope of width over time
 [m/day]. A drive is
 
-- ERROR when its last fused width has reached ``error_width_m`` (as the live diagnostics),
+- ERROR when its last width has reached ``error_width_m`` (as the live diagnostics),
 - WARN when it has reached ``warn_width_m`` or when it grows faster than
   ``warn_growth_m_per_day``: the second warns a drive that is still narrow but wearing fast,
   before it reaches the limit, with the days left at that rate,
@@ -13,7 +14,7 @@ last fused estimate, docs/classifier.md). The trend is the least-squares slope o
 config/trend.yaml gives the rate with its reason.
 
 The running monitor applies the same rule live (:class:`LiveTrend`, node ``width_trend``): the
-fused widths as they come, one point per ``live_point_period_s`` (the median of that period), the
+fused continuous widths as they come, one point per ``live_point_period_s`` (the median of that period), the
 points of the last ``live_history_s``, and no rate before they span ``live_min_span_s``.
 """
 from __future__ import annotations
@@ -89,7 +90,7 @@ def slope_per_day(times_s, widths_m) -> float:
 
 
 def drive_trend(points, rule: TrendRule, min_span_s: float = 0.0) -> Trend:
-    """``points``: [(time_s, fused_width_m)] of one drive, any order; NaN widths are left out.
+    """``points``: [(time_s, width_m)] of one drive, any order; NaN widths are left out.
     No rate (NaN) while the points span less than ``min_span_s``."""
     pts = sorted((t, w) for t, w in points if not math.isnan(w))
     if not pts:
@@ -114,7 +115,7 @@ def drive_trend(points, rule: TrendRule, min_span_s: float = 0.0) -> Trend:
 
 
 class LiveTrend:
-    """:func:`drive_trend` over a running drive's fused widths.
+    """:func:`drive_trend` over a running drive's fused (continuous) widths.
 
     ``add(time_s, width_m)`` as estimates come (time: the window's stamp); one point per
     ``rule.live_point_period_s`` (the median time and width of that period's estimates, whatever
@@ -166,7 +167,7 @@ class LiveTrend:
 
 
 def plot_trends(points_by_drive: dict, trends: dict, rule: TrendRule, out_dir) -> list:
-    """A PNG per drive (fused width per recording over time, the fitted trend, the limits) and a
+    """A PNG per drive (width per recording over time, the fitted trend, the limits) and a
     fleet PNG with every drive; returns the paths written."""
     import matplotlib
     matplotlib.use("Agg")
@@ -192,7 +193,7 @@ def plot_trends(points_by_drive: dict, trends: dict, rule: TrendRule, out_dir) -
     def limits(ax):
         ax.axhline(rule.warn_width_m * 1e3, color="orange", lw=1, label="warn width")
         ax.axhline(rule.error_width_m * 1e3, color="red", lw=1, label="error width")
-        ax.set_ylabel("fused backlash width [mm]")
+        ax.set_ylabel("backlash width [mm]")
         ax.set_xlabel("recording time (UTC)")
         ax.grid(alpha=0.3)
 

@@ -145,6 +145,7 @@ class ClassifierNode(Node):
         out.continuous_width_m = estimate.continuous_width_m
         out.fused_width_m = estimate.fused_width_m
         out.fused_events = estimate.fused_events
+        out.fused_continuous_width_m = estimate.fused_continuous_width_m
         out.true_width_m = window.true_width_m
         return out
 
@@ -158,6 +159,8 @@ class ClassifierNode(Node):
             fused_width_m=f"{width:.5f}", last_width_m=f"{estimate.width_m:.5f}",
             continuous_width_m="" if math.isnan(estimate.continuous_width_m)
             else f"{estimate.continuous_width_m:.5f}",
+            fused_continuous_width_m="" if math.isnan(estimate.fused_continuous_width_m)
+            else f"{estimate.fused_continuous_width_m:.5f}",
             signal=estimate.signal_name, mode=estimate.mode))
         self.update_diagnostics()
 

@@ -130,6 +130,7 @@ class DriveTally:
     onsets_estimated: set = field(default_factory=set)
     lags_s: list = field(default_factory=list)         # (monotonic arrival, lag [s]) per onset
     fused_width_m: float = math.nan
+    fused_continuous_width_m: float = math.nan       # a1+a2's (the primary signal)
     true_width_m: float = math.nan
     windowing: dict = field(default_factory=dict)
     classifier: dict = field(default_factory=dict)
@@ -164,6 +165,8 @@ class FleetMonitor:
             t.lags_s.append((time.monotonic(), time.time() - (stamp + WINDOW_END_S)))
         t.onsets_estimated.add(msg.entry_sample_index)
         t.fused_width_m = msg.fused_width_m
+        if msg.signal_name == "a1+a2":
+            t.fused_continuous_width_m = msg.fused_continuous_width_m
         t.true_width_m = msg.true_width_m
 
     def on_diagnostics(self, msg) -> None:
@@ -203,7 +206,8 @@ class FleetMonitor:
             startup = [lag for at, lag in t.lags_s if at < steady_from]
             onsets = int(w.get("onsets", 0))
             row = {"drive": d.hardware_id, "true_width_m": t.true_width_m,
-                   "fused_width_m": t.fused_width_m, "level": t.level,
+                   "fused_width_m": t.fused_width_m,
+                   "fused_continuous_width_m": t.fused_continuous_width_m, "level": t.level,
                    "chunks": int(w.get("chunks", 0)), "expected_chunks": expected_chunks,
                    "discarded": int(w.get("discarded", 0)),
                    "incomplete_chunks": int(w.get("incomplete_chunks", 0)),
@@ -223,13 +227,14 @@ class FleetMonitor:
 
 
 def format_summary(rows: list[dict]) -> str:
-    head = ("drive", "true", "fused", "level", "chunks", "discarded", "onsets", "estimated",
+    head = ("drive", "true", "fused", "continuous", "level", "chunks", "discarded", "onsets", "estimated",
             "lag p50/max", "CPU", "real time")
     table = [head]
     for r in rows:
         def mm(x):
             return "-" if x != x else f"{x * 1e3:.2f} mm"
-        table.append((r["drive"], mm(r["true_width_m"]), mm(r["fused_width_m"]), r["level"],
+        table.append((r["drive"], mm(r["true_width_m"]), mm(r["fused_width_m"]),
+                      mm(r.get("fused_continuous_width_m", math.nan)), r["level"],
                       f"{r['chunks']}/{r['expected_chunks']}", str(r["discarded"]),
                       str(r["onset_windows"]), str(r["onsets_estimated"]),
                       "-" if r["lag_ms_median"] != r["lag_ms_median"]

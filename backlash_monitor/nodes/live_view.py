@@ -44,6 +44,7 @@ WIDTH_SCHEMA = {"type": "object", "properties": {
     "drive": {"type": "string"}, "signal": {"type": "string"},
     "width_mm": {"type": "number"}, "continuous_width_mm": {"type": "number"},
     "fused_width_mm": {"type": "number"}, "fused_events": {"type": "integer"},
+    "fused_continuous_width_mm": {"type": "number"},
     "true_width_mm": {"type": "number"}}}
 
 
@@ -110,6 +111,8 @@ class LiveViewNode(Node):
             "continuous_width_mm": msg.continuous_width_m * 1e3 if msg.continuous_width_m
             == msg.continuous_width_m else None,
             "fused_width_mm": msg.fused_width_m * 1e3, "fused_events": msg.fused_events,
+            "fused_continuous_width_mm": msg.fused_continuous_width_m * 1e3
+            if msg.fused_continuous_width_m == msg.fused_continuous_width_m else None,
             "true_width_mm": msg.true_width_m * 1e3 if msg.true_width_m == msg.true_width_m
             else None})
         self.fleet_widths[drive] = msg.fused_width_m * 1e3

@@ -2,8 +2,9 @@
 
     ros2 run backlash_monitor width_trend --ros-args -r __ns:=/line1/drive07 -p drive_name:=line1/drive07
 
-Subscribes to the classifier's ``estimate``; feeds each fused width of the drive's primary signal
-(a1+a2 where the classifier publishes it, else the first signal it publishes) with its window's
+Subscribes to the classifier's ``estimate``; feeds each fused continuous width of the drive's primary
+signal (the median of the fused events' continuous widths; the fused candidate width where the mode
+gives none; a1+a2 where the classifier publishes it, else the first signal it publishes) with its window's
 stamp to the offline trend's core (backlash_monitor/fleet/trend.py: LiveTrend, drive_trend, the
 rule of config/trend.yaml) and publishes, once a second, the status ``<node>: width trend`` with
 hardware_id = the drive's name: WARN when the drive grows faster than ``warn_growth_m_per_day``
@@ -63,7 +64,11 @@ class WidthTrendNode(Node):
                 self.first_signal = msg.signal_name
         if msg.signal_name != (self.signal or self.first_signal):
             return
-        self.trend.add(msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9, msg.fused_width_m)
+        # the continuous width: wear shows as it grows, not as a jump from one candidate width to the next
+        # (NaN: the mode gives none; 0: the message default of a publisher that does not set it)
+        width = (msg.fused_continuous_width_m if math.isfinite(msg.fused_continuous_width_m)
+                 and msg.fused_continuous_width_m > 0 else msg.fused_width_m)
+        self.trend.add(msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9, width)
 
     def update_diagnostics(self, publish_now: bool = False):
         t = self.trend.trend()

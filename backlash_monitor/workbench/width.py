@@ -5,7 +5,9 @@ before/after check of a model update (`train --model M2 --out LIB.npz`).
 Two figures per drive, as the monitor publishes them per onset window (classifier node / `analyze`):
 - the *continuous width* of each window (shape mode, a1+a2): ``continuous_width_m``;
 - the *fused width*: the candidate width (one of the library's grid widths) of the fusion of the last
-  ``fusion_events`` windows' B vectors: ``fused_width_m``.
+  ``fusion_events`` windows' B vectors: ``fused_width_m``;
+- the *fused continuous width*: the median of the same windows' continuous widths:
+  ``fused_continuous_width_m``.
 """
 from __future__ import annotations
 
@@ -25,6 +27,7 @@ class WidthTrace:
     continuous_m: np.ndarray
     fused_m: np.ndarray
     fused_events: np.ndarray
+    fused_continuous_m: np.ndarray
 
 
 def monitor_widths(meas, library_path=None, signal: str = "a1+a2", mode: str = "shape",
@@ -37,12 +40,13 @@ def monitor_widths(meas, library_path=None, signal: str = "a1+a2", mode: str = "
                            sample_period_s=meas.sample_period_s, window_offset_samples=offset)
     wins = [w for w in wins if w.kind == "onset"]
     if not wins:
-        return WidthTrace(np.zeros(0), np.zeros(0), np.zeros(0, dtype=int))
+        return WidthTrace(np.zeros(0), np.zeros(0), np.zeros(0, dtype=int), np.zeros(0))
     den = denoise_pairs([(w.signals["a1"], w.signals["a2"]) for w in wins])
     results = est.estimate_many([(a1, a2, "onset") for a1, a2 in den])
     mine = [e for r in results for e in r if e.signal_name == signal]
     return WidthTrace(np.array([e.continuous_width_m for e in mine]), np.array([e.fused_width_m for e in mine]),
-                      np.array([e.fused_events for e in mine], dtype=int))
+                      np.array([e.fused_events for e in mine], dtype=int),
+                      np.array([e.fused_continuous_width_m for e in mine]))
 
 
 def continuous_widths(meas, library_path=None, signal: str = "a1+a2", mode: str = "shape") -> np.ndarray:
@@ -55,7 +59,8 @@ def width_errors(trace: WidthTrace, truth_m: float, fusion_events: int = DEFAULT
     ``per_window_mean_abs_mm``  mean over the onset windows of |continuous width - truth| (the strict figure);
     ``bias_mm``                 mean continuous width - truth;
     ``fused_final_abs_mm``      |last published fused width - truth| (the drive's answer at the end);
-    ``fused_mean_abs_mm``       mean |fused width - truth| over the windows whose fusion is full."""
+    ``fused_mean_abs_mm``       mean |fused width - truth| over the windows whose fusion is full;
+    ``fused_continuous_mean_abs_mm``  mean |fused continuous width - truth| over those windows."""
     c = np.asarray(trace.continuous_m, dtype=float)
     if c.size == 0:
         raise ValueError("the measurement has no onset window: no width to check")
@@ -67,4 +72,12 @@ def width_errors(trace: WidthTrace, truth_m: float, fusion_events: int = DEFAULT
             "fused_final_mm": float(fused[-1] * 1e3),
             "fused_final_abs_mm": float(abs(fused[-1] - truth_m) * 1e3),
             "fused_mean_abs_mm": float(np.mean(np.abs(fused[full] - truth_m)) * 1e3) if full.any() else None,
+            "fused_continuous_mean_abs_mm": _mean_abs_mm(np.asarray(trace.fused_continuous_m, dtype=float)[full]
+                                                         - truth_m) if full.any() else None,
             "onset_windows": int(c.size)}
+
+
+def _mean_abs_mm(error_m: np.ndarray):
+    """Mean |error| [mm] over the finite entries; None when there is none (a mode without continuous widths)."""
+    e = error_m[np.isfinite(error_m)]
+    return float(np.mean(np.abs(e)) * 1e3) if e.size else None
