@@ -16,7 +16,7 @@ def estimate(entry: int, signal: str, stream_start_s: float = 100.0, width_m: fl
         signal_name=signal, entry_sample_index=entry, entry_kind="onset", mode="shape",
         header=SimpleNamespace(stamp=SimpleNamespace(sec=int(t), nanosec=int(round((t % 1) * 1e9)))),
         width_m=width_m, true_width_m=0.005, continuous_width_m=width_m, fused_width_m=width_m,
-        fused_events=1, b_margin=2.0)
+        fused_events=1, b_margin=2.0, fused_continuous_width_m=width_m)
 
 
 def onset(k: int) -> int:

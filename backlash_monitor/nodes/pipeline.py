@@ -128,6 +128,7 @@ class SignalTally:
     correct: int = 0
     fused_width_m: float = math.nan
     fused_events: int = 0
+    fused_continuous_width_m: float = math.nan
     margins: list = field(default_factory=list)
     continuous: list = field(default_factory=list)
 
@@ -202,6 +203,7 @@ class LiveView:
         t.estimates += 1
         t.correct += int(abs(msg.width_m - self.true_width_m) < 1e-9)
         t.fused_width_m, t.fused_events = msg.fused_width_m, msg.fused_events
+        t.fused_continuous_width_m = msg.fused_continuous_width_m
         t.margins.append(msg.b_margin)
         if not math.isnan(msg.continuous_width_m):
             t.continuous.append(msg.continuous_width_m)
@@ -229,9 +231,11 @@ class LiveView:
             parts.append(f"{name} {msg.width_m * 1e3:5.2f}{cont} {'ok' if ok else 'MISS'}")
         last = event.get("a1+a2", first)
         fused_ok = abs(last.fused_width_m - self.true_width_m) < 1e-9
+        cont = ("" if not last.fused_continuous_width_m == last.fused_continuous_width_m
+                else f" ({last.fused_continuous_width_m * 1e3:4.2f})")
         print(f"t={first.entry_sample_index * self.sample_period_s:8.3f} s  onset  "
               + " | ".join(parts)
-              + f" | fused {last.fused_width_m * 1e3:5.2f} mm over {last.fused_events} "
+              + f" | fused {last.fused_width_m * 1e3:5.2f}{cont} mm over {last.fused_events} "
               f"{'ok' if fused_ok else 'MISS'}   true {self.true_width_m * 1e3:.2f} mm",
               file=self.out, flush=True)
 
@@ -250,13 +254,15 @@ class LiveView:
 
     def summary(self) -> str:
         rows = [("signal", "estimates", "correct", "accuracy", "median margin", "fused width",
-                 "fused events", "fused ok")]
+                 "fused continuous", "fused events", "fused ok")]
         for name, t in sorted(self.tally.items()):
             margins = sorted(t.margins)
             rows.append((name, str(t.estimates), str(t.correct),
                          f"{t.correct / t.estimates:.0%}" if t.estimates else "-",
                          f"{margins[len(margins) // 2]:.2f}" if margins else "-",
-                         f"{t.fused_width_m * 1e3:.2f} mm", str(t.fused_events),
+                         f"{t.fused_width_m * 1e3:.2f} mm",
+                         "-" if math.isnan(t.fused_continuous_width_m)
+                         else f"{t.fused_continuous_width_m * 1e3:.2f} mm", str(t.fused_events),
                          "yes" if abs(t.fused_width_m - self.true_width_m) < 1e-9 else "no"))
         widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
         lines = ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
