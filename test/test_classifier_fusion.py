@@ -12,6 +12,12 @@ def test_normalise_b_divides_by_mean():
     np.testing.assert_allclose(normalise_b([0.0, 0.0]), [0.0, 0.0])
 
 
+def test_normalise_b_near_the_float_limit():
+    # the plain mean of these overflows to inf; the normalised vector must still pick the smallest B
+    np.testing.assert_allclose(normalise_b([1e308, 1.5e308, 0.5e308]), [1.0, 1.5, 0.5])
+    assert fuse_b_vectors([[1e308, 1.7e308, 1.7e308], [1.2e308, 1.7e308, 1.7e308]])[0] == 0
+
+
 def test_sum_rule_by_hand():
     bs = np.array([[1.0, 2.0, 3.0],      # normalised [0.5, 1, 1.5]
                    [4.0, 1.0, 1.0]])     # normalised [2, 0.5, 0.5]

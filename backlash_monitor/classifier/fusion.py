@@ -43,10 +43,14 @@ def default_fusion_rule(mode: str) -> str:
 
 
 def normalise_b(b) -> np.ndarray:
-    """B divided by its mean (all-zero B stays zero)."""
+    """B divided by its mean (all-zero B stays zero). Taken as (B / max) / mean(B / max): the same
+    value, without the mean overflowing for entries near the float64 limit (1e308: the sum is inf,
+    and B / inf would read as a perfect match on every candidate)."""
     b = np.asarray(b, dtype=float)
-    m = b.mean(axis=-1, keepdims=True)
-    return np.divide(b, m, out=np.zeros_like(b), where=m > 0)
+    top = b.max(axis=-1, keepdims=True)
+    scaled = np.divide(b, top, out=np.zeros_like(b), where=top > 0)
+    m = scaled.mean(axis=-1, keepdims=True)
+    return np.divide(scaled, m, out=np.zeros_like(b), where=m > 0)
 
 
 def fuse_b_vectors(bs, rule: str = "sum_normalised_b") -> tuple[int, np.ndarray]:
