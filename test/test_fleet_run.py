@@ -11,7 +11,8 @@ def test_two_drives_each_report_their_own_estimates_and_diagnostics(ros_env, tmp
     summary = tmp_path / "summary.json"
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "fleet", "--drives", "2",
                            "--width-m", "0.0075", "--duration", "2.5", "--layout", layout,
-                           "--view-period", "0", "--summary-json", str(summary)],
+                           "--view-period", "0", "--summary-json", str(summary),
+                           "--trend-state-dir", str(tmp_path / "trend")],
                           env=ros_env, capture_output=True, text=True, timeout=150)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     rows = {r["drive"]: r for r in json.loads(summary.read_text())["drives"]}
@@ -25,3 +26,10 @@ def test_two_drives_each_report_their_own_estimates_and_diagnostics(ros_env, tmp
         assert row["level"] == "WARN"      # fused 7.5 mm >= warn_width_m (config/diagnostics.yaml)
         assert row["status_times"], row    # its classifier's status reached /diagnostics
     assert "line1/drive02" in proc.stdout and "Traceback" not in proc.stderr
+    # each drive's live trend was kept at shutdown (the minute being collected: no point closed
+    # in 2.5 s), under its own name, with its own widths (the fused continuous width near 7.5 mm)
+    for drive in rows:
+        state = json.loads((tmp_path / "trend" / f"{drive.replace('/', '_')}.json").read_text())
+        assert state["drive"] == drive and state["points"] == []
+        assert len(state["open"]) >= 5
+        assert all(abs(w - 0.0075) < 5e-4 for _, w in state["open"]), state["open"]

@@ -151,3 +151,73 @@ def test_node_publishes_the_trend_warn_per_drive_on_diagnostics(ros_env, tmp_pat
             pytest.approx(0.004)                  # a1's estimates (6 mm) were not used
     finally:
         rclpy.shutdown()
+
+
+def test_saved_points_give_the_same_trend_after_a_restart(tmp_path):
+    from backlash_monitor.fleet.trend import load_live_points, save_live_points
+    live = LiveTrend(RULE)
+    _ramp(live, 2e-4, days=2.0)                       # 2 days of wear at 0.2 mm/day: WARN
+    before = live.trend()
+    path = str(tmp_path / "line1_drive07.json")
+    save_live_points(path, "line1/drive07", live)
+    restarted = LiveTrend(RULE)
+    assert load_live_points(path, "line1/drive07", restarted) == ""
+    after = restarted.trend()
+    assert (after.level, after.points) == (before.level, before.points) and after.level == "WARN"
+    assert after.rate_m_per_day == pytest.approx(before.rate_m_per_day, rel=1e-12)
+    assert restarted.open_samples == live.open_samples      # the minute being collected too
+    # what is not this drive's trend state is not taken, and says why; no file yet is no problem
+    assert "holds drive 'line1/drive07'" in load_live_points(path, "line1/drive08", LiveTrend(RULE))
+    (tmp_path / "bad.json").write_text('{"version": 1, "drive": "line1/drive07", "points": [[1')
+    fresh = LiveTrend(RULE)
+    assert "not read" in load_live_points(str(tmp_path / "bad.json"), "line1/drive07", fresh)
+    assert fresh.points == [] and fresh.open_samples == []
+    assert load_live_points(str(tmp_path / "none.json"), "line1/drive07", LiveTrend(RULE)) == ""
+
+
+def test_node_goes_on_with_its_saved_history_and_keeps_it(ros_env, tmp_path):
+    """A width_trend node started with a state file holding two days of fast wear is WARN from
+    its first status (no day without a rate after a restart), adds the new estimates and writes
+    them back; a state file it cannot write is a WARN, not a silent loss of history."""
+    os.environ["ROS_DOMAIN_ID"] = ros_env["ROS_DOMAIN_ID"]
+    import rclpy
+    from rclpy.parameter import Parameter
+
+    from backlash_monitor.fleet.trend import load_live_points, save_live_points
+    from backlash_monitor.nodes.width_trend import WidthTrendNode
+    from backlash_monitor_msgs.msg import BacklashEstimate
+    saved = LiveTrend(load_rule())
+    times, _ = _ramp(saved, 2e-4, days=2.0, every_s=120.0)
+    state = tmp_path / "line1_drive07.json"
+    save_live_points(str(state), "line1/drive07", saved)
+    rclpy.init()
+    try:
+        node = WidthTrendNode(namespace="/line1/drive07", parameter_overrides=[
+            Parameter("drive_name", value="line1/drive07"), Parameter("state_file", value=str(state))])
+        t = node.trend.trend()
+        assert t.level == "WARN" and t.points == len(saved.points) and not node.state_problem
+        assert node.diagnostics.level == "WARN" and "grows 0.2" in node.diagnostics.message
+        # an hour of new estimates (a point a minute): points close and the file follows them
+        for k in range(1, 61):
+            msg = BacklashEstimate(signal_name="a1+a2", mode="shape", fused_width_m=0.005,
+                                   fused_continuous_width_m=0.0044 + 2e-4 * k * 60 / DAY)
+            msg.header.stamp.sec = int(times[-1]) + 60 * k
+            node.on_estimate(msg)
+        kept = LiveTrend(load_rule())
+        assert load_live_points(str(state), "line1/drive07", kept) == ""
+        assert len(kept.points) == len(node.trend.points) > len(saved.points)
+        node.destroy_node()
+        bad = WidthTrendNode(namespace="/line1/drive08", parameter_overrides=[
+            Parameter("drive_name", value="line1/drive08"),
+            Parameter("state_file", value=str(tmp_path / "no_such_dir" / "x.json"))])
+        for k in range(3):
+            msg = BacklashEstimate(signal_name="a1+a2", mode="shape", fused_width_m=0.005,
+                                   fused_continuous_width_m=0.005)
+            msg.header.stamp.sec = 1_760_000_000 + 3600 * k
+            bad.on_estimate(msg)
+        assert "not written" in bad.state_problem
+        bad.update_diagnostics()
+        assert bad.diagnostics.level == "WARN" and "not written" in bad.diagnostics.message
+        bad.destroy_node()
+    finally:
+        rclpy.try_shutdown()

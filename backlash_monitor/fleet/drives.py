@@ -25,7 +25,8 @@ from backlash_monitor.errors import UsageError
 PLANT_KEYS = ("width_m", "eta_k", "n1", "seed", "noise")
 CLASSIFIER_KEYS = ("mode", "n1", "trigger", "fusion_events", "warn_width_m", "error_width_m")
 WINDOWING_KEYS = ("trigger",)
-DRIVE_KEYS = tuple(sorted(set(PLANT_KEYS + CLASSIFIER_KEYS + WINDOWING_KEYS)))
+TREND_KEYS = ("trend_state_file",)       # width_trend's state_file: the live trend over restarts
+DRIVE_KEYS = tuple(sorted(set(PLANT_KEYS + CLASSIFIER_KEYS + WINDOWING_KEYS + TREND_KEYS)))
 
 NAME_PATTERN = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")   # a ROS name token: namespaces, node names
 DEFAULT_LINE = "line1"
@@ -63,7 +64,10 @@ class Drive:
         classifier = {k: p[k] for k in CLASSIFIER_KEYS if k in p}
         classifier["drive_name"] = self.hardware_id
         return {"plant_simulator": plant, "windowing": windowing, "denoise": {},
-                "classifier": classifier, "width_trend": {"drive_name": self.hardware_id}}
+                "classifier": classifier,
+                "width_trend": {"drive_name": self.hardware_id,
+                                **({"state_file": str(p["trend_state_file"])}
+                                   if p.get("trend_state_file") else {})}}
 
     def to_dict(self) -> dict:
         return {"line": self.line, "name": self.name, "parameters": dict(self.parameters)}

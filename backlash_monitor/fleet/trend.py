@@ -15,7 +15,10 @@ config/trend.yaml gives the rate with its reason.
 
 The running monitor applies the same rule live (:class:`LiveTrend`, node ``width_trend``): the
 fused continuous widths as they come, one point per ``live_point_period_s`` (the median of that period), the
-points of the last ``live_history_s``, and no rate before they span ``live_min_span_s``.
+points of the last ``live_history_s``, and no rate before they span ``live_min_span_s``. Its
+points can be kept in a file (:func:`save_live_points`, :func:`load_live_points`; the node's
+``state_file``) so that a restarted monitor goes on with the drive's history instead of a day
+without a rate.
 """
 from __future__ import annotations
 
@@ -149,6 +152,11 @@ class LiveTrend:
                 self.points = [p for p in self.points if p[0] >= horizon]
         self._open.append((time_s, width_m))
 
+    @property
+    def open_samples(self) -> list:
+        """The (time_s, width_m) of the period being collected (not a point yet)."""
+        return list(self._open)
+
     @staticmethod
     def _median(samples):
         import statistics
@@ -164,6 +172,49 @@ class LiveTrend:
         if self._cached is None or self._cached[0] != key:
             self._cached = (key, drive_trend(self.points, self.rule, self.rule.live_min_span_s))
         return self._cached[1]
+
+
+LIVE_STATE_VERSION = 1
+
+
+def save_live_points(path: str, drive: str, trend: "LiveTrend") -> None:
+    """The live trend's closed points (and the period being collected) as JSON, written to a
+    temporary file and renamed over ``path``: a crash while writing leaves the previous file."""
+    import json
+    state = {"version": LIVE_STATE_VERSION, "drive": drive, "points": trend.points,
+             "open": trend.open_samples}
+    tmp = f"{path}.tmp{os.getpid()}"
+    with open(tmp, "w", encoding="utf-8") as f:
+        json.dump(state, f)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+
+
+def load_live_points(path: str, drive: str, trend: "LiveTrend") -> str:
+    """Feeds a saved state's points into ``trend`` (a fresh one); returns "" or why nothing was
+    taken: no file yet is not a problem (""), a damaged file, another drive's or another version's
+    is (the trend then starts anew, and the reason is shown)."""
+    import json
+    try:
+        with open(path, encoding="utf-8") as f:
+            state = json.load(f)
+    except FileNotFoundError:
+        return ""
+    except (OSError, ValueError) as error:
+        return f"state file {path} not read ({error}): the trend starts anew"
+    if not isinstance(state, dict) or state.get("version") != LIVE_STATE_VERSION:
+        return f"state file {path} has no version-{LIVE_STATE_VERSION} trend state: the trend starts anew"
+    if state.get("drive") != drive:
+        return (f"state file {path} holds drive {state.get('drive')!r}, not {drive!r}: the trend "
+                "starts anew")
+    try:
+        samples = [(float(t), float(w)) for t, w in list(state["points"]) + list(state["open"])]
+    except (KeyError, TypeError, ValueError):
+        return f"state file {path}: points are not [time_s, width_m] pairs: the trend starts anew"
+    for t, w in sorted(samples):
+        trend.add(t, w)     # the rule of add(): periods, history, non-finite values left out
+    return ""
 
 
 def plot_trends(points_by_drive: dict, trends: dict, rule: TrendRule, out_dir) -> list:

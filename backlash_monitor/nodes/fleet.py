@@ -68,6 +68,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "config/foxglove_fleet_layout.json)")
     parser.add_argument("--summary-json", default="", metavar="FILE",
                         help="also write the per-drive summary as JSON")
+    parser.add_argument("--trend-state-dir", default="", metavar="DIR",
+                        help="keep each drive's live width trend in DIR/<line>_<drive>.json, so that "
+                             "a restarted fleet goes on with the drives' history (a drive's own "
+                             "trend_state_file in the fleet YAML wins); default: the trend starts anew")
     parser.add_argument("--drive-json", default="", help=argparse.SUPPRESS)   # a drive's process
 
 
@@ -82,10 +86,21 @@ def validate(args):
             raise UsageError(f"{name} = {value:g} is out of range; allowed: {lo:g} .. {hi:g}")
     if args.config and args.drives is not None:
         raise UsageError("give --drives or --config, not both")
-    if args.config:
-        return load_drives(args.config)
-    return drives_from_count(4 if args.drives is None else args.drives, line=args.line,
-                             width_m=args.width_m)
+    drives = (load_drives(args.config) if args.config else
+              drives_from_count(4 if args.drives is None else args.drives, line=args.line,
+                                width_m=args.width_m))
+    if args.trend_state_dir:
+        import os
+        from backlash_monitor.fleet.drives import Drive
+        try:
+            os.makedirs(args.trend_state_dir, exist_ok=True)
+        except OSError as error:
+            raise UsageError(f"--trend-state-dir {args.trend_state_dir}: {error.strerror}; allowed: "
+                             "a folder this user can create and write") from None
+        drives = [d if d.parameters.get("trend_state_file") else Drive(d.line, d.name, {
+            **d.parameters, "trend_state_file": os.path.join(
+                os.path.abspath(args.trend_state_dir), f"{d.line}_{d.name}.json")}) for d in drives]
+    return drives
 
 
 def load_analyzers(path: str) -> dict:

@@ -10,8 +10,11 @@ rule of config/trend.yaml) and publishes, once a second, the status ``<node>: wi
 hardware_id = the drive's name: WARN when the drive grows faster than ``warn_growth_m_per_day``
 (with the days left to ``error_width_m``) or is past ``warn_width_m``, ERROR past
 ``error_width_m``, OK otherwise (also before the first estimate and while the points span less
-than ``live_min_span_s``: no rate yet). The trend starts anew when the node starts; the offline
-trend (`analyze FOLDER`) covers the recordings of any length of time.
+than ``live_min_span_s``: no rate yet). With ``state_file`` the trend's points are kept in that
+file (written when a point closes, once per ``live_point_period_s``, and at shutdown) and read at
+start: a restarted monitor goes on with the drive's history; without it the trend starts anew
+when the node starts. The offline trend (`analyze FOLDER`) covers the recordings of any length
+of time.
 """
 from __future__ import annotations
 
@@ -20,7 +23,7 @@ import sys
 
 from rclpy.node import Node
 
-from backlash_monitor.fleet.trend import LiveTrend, load_rule
+from backlash_monitor.fleet.trend import LiveTrend, load_live_points, load_rule, save_live_points
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
@@ -35,6 +38,8 @@ PARAMETERS = (
     ParameterSpec("trend_config", "", "trend rule file (empty: the packaged config/trend.yaml)"),
     ParameterSpec("signal", "", "signal whose fused width is followed (empty: a1+a2 where the "
                   "classifier publishes it, else the first signal it publishes)"),
+    ParameterSpec("state_file", "", "file that keeps the trend's points over restarts (JSON, "
+                  "written once per point period and at shutdown; empty: the trend starts anew)"),
 )
 
 
@@ -49,6 +54,11 @@ class WidthTrendNode(Node):
                 f"parameter 'trend_config' = {p['trend_config']!r}: {error}; it needs "
                 "warn_growth_m_per_day, warn_width_m, error_width_m (config/trend.yaml)") from None
         self.trend = LiveTrend(self.rule)
+        self.drive_name = p["drive_name"]
+        self.state_file = p["state_file"]
+        self.state_problem = (load_live_points(self.state_file, self.drive_name, self.trend)
+                              if self.state_file else "")
+        self.saved_points = len(self.trend.points)
         self.signal = p["signal"]
         self.first_signal = ""
         self.create_subscription(BacklashEstimate, "estimate", self.on_estimate, ESTIMATE_QOS)
@@ -69,6 +79,22 @@ class WidthTrendNode(Node):
         width = (msg.fused_continuous_width_m if math.isfinite(msg.fused_continuous_width_m)
                  and msg.fused_continuous_width_m > 0 else msg.fused_width_m)
         self.trend.add(msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9, width)
+        if self.state_file and len(self.trend.points) != self.saved_points:
+            self.save_state()        # a point closed: once per live_point_period_s
+
+    def save_state(self) -> None:
+        try:
+            save_live_points(self.state_file, self.drive_name, self.trend)
+            self.saved_points = len(self.trend.points)
+            self.state_problem = ""
+        except OSError as error:    # the monitor goes on; the status says the history is not kept
+            self.state_problem = f"state file {self.state_file} not written ({error.strerror})"
+            self.saved_points = len(self.trend.points)
+
+    def destroy_node(self):
+        if getattr(self, "state_file", "") and (self.trend.points or self.trend.open_samples):
+            self.save_state()
+        return super().destroy_node()
 
     def update_diagnostics(self, publish_now: bool = False):
         t = self.trend.trend()
@@ -80,13 +106,16 @@ class WidthTrendNode(Node):
             rate = ("no rate" if math.isnan(t.rate_m_per_day)
                     else f"{t.rate_m_per_day * 1e3:+.3f} mm/day")
             message = f"{rate}; {t.reason}" if t.reason else rate
+        if self.state_problem:      # the history is not kept (or was not read): never silently
+            level = "WARN" if level == "OK" else level
+            message = f"{message}; {self.state_problem}"
         self.diagnostics.set(
             level, message, publish_now=publish_now,
             rate_m_per_day="" if math.isnan(t.rate_m_per_day) else f"{t.rate_m_per_day:.3e}",
             days_to_limit="" if not math.isfinite(t.days_to_limit) else f"{t.days_to_limit:.1f}",
             last_fused_width_m="" if math.isnan(t.last_width_m) else f"{t.last_width_m:.5f}",
             points=t.points, estimates_not_used=self.trend.ignored,
-            signal=self.signal or self.first_signal,
+            signal=self.signal or self.first_signal, state_file=self.state_file,
             warn_growth_m_per_day=rule.warn_growth_m_per_day,
             min_span_s=rule.live_min_span_s, point_period_s=rule.live_point_period_s)
 
