@@ -129,7 +129,7 @@ def diagnostics_complete(n, layout, workdir, window_s=60):
     return status_share(result["drives"] if result else [], window_s)
 
 
-def analyze_speedup(workdir, n_bags=100, repeats=3, bag_s=3.0):
+def analyze_speedup(workdir, n_bags=100, repeats=5, bag_s=3.0):
     """`analyze FOLDER --jobs 1` on ONE core vs `--jobs <cores>` on all of them, each the command
     as a user runs it (start-up included), alternated ``repeats`` times; the ratio of the best
     times, and each pair's ratio side by side.
@@ -241,8 +241,9 @@ def main():
                              "(default: 2 4 6 ... 16; --quick: 2 4 8)")
     parser.add_argument("--drives", type=int, default=0,
                         help="drives of the diagnostics part when capacity is not measured")
-    parser.add_argument("--analyze-repeats", type=int, default=3,
-                        help="alternated pairs of the analyze part")
+    parser.add_argument("--analyze-repeats", type=int, default=5,
+                        help="alternated pairs of the analyze part (each ~5 s; the best time of each "
+                             "side is its least disturbed run on a shared machine)")
     args = parser.parse_args()
     result = {"load_average_1min_start": os.getloadavg()[0], "cores": os.cpu_count(),
               "parts": args.parts,
