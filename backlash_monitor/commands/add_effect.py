@@ -1,6 +1,7 @@
 """`python -m backlash_monitor add-effect DIAGNOSIS_OR_EFFECT --model M -o M2`: the next model version.
 
-DIAGNOSIS_OR_EFFECT is a `diagnose --json` file (its discovery, and its second effect if any, are added
+DIAGNOSIS_OR_EFFECT is a `diagnose --json` file (its discovery, its second effect if any, and a torque ripple
+found in the raw spectrum (`spectral_discovery`, when confident) are added
 with their fitted values) or a catalogue effect's name with its values given by --value NAME=VALUE.
 The new version records the effect, its values and uncertainties and its source, and the model's
 history (workbench_history.jsonl beside -o) gets a line for it.
@@ -47,9 +48,12 @@ def run(args) -> int:
             raise UsageError(f"diagnosis {src} is not JSON: {exc}") from None
         if not isinstance(diag, dict) or "discovery" not in diag:
             raise UsageError(f"{src} is not a diagnose --json file (no 'discovery')")
-        if diag["discovery"] is None:
+        spectral_fit = diag.get("spectral_discovery")
+        spectral_fit = spectral_fit if isinstance(spectral_fit, dict) and spectral_fit.get("confident") else None
+        if diag["discovery"] is None and spectral_fit is None:
             raise UsageError(f"diagnosis {src} names no discovery ({diag.get('message', '')}); nothing to add")
-        for entry in (diag.get("discovery_parameters"), diag.get("second_effect")):
+        # the event-average discovery (and its second effect) and a ripple found in the raw spectrum
+        for entry in (diag.get("discovery_parameters"), diag.get("second_effect"), spectral_fit):
             if entry:
                 additions.append(EffectValues(entry["effect"], entry["parameters"], entry.get("uncertainty") or {},
                                               str(src)))

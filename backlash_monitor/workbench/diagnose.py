@@ -22,7 +22,7 @@ import time
 import numpy as np
 from scipy import stats
 
-from . import analysis, fitting, plant_adapter, separation, spectral
+from . import analysis, fitting, plant_adapter, ripple, separation, spectral
 from .events import SEGMENT_SIGNALS, denoise
 
 DELTA_IC_STRONG = 2.0     # "positive" evidence (Kass & Raftery) on E events; docs/workbench.md
@@ -364,6 +364,11 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
     fit_before = analysis.fit_percent(comp.target, base_mean)
     fit_after = analysis.fit_percent(comp.target, after_mean)
     band = analysis.noise_band_fit_percent(comp)
+    # the catalogue effect the event average cannot see: a ripple locked to the motor angle, from the raw spectrum
+    spec = analysis.spectra(comp)
+    ripple_fit = ripple.fit_torque_ripple(comp, spec)
+    if ripple_fit is not None and ripple_fit["confident"]:
+        message += "; " + ripple.describe(ripple_fit)
     result = {
         "measurement": meas.source, "model": model.label(),
         "model_file": str(model.path) if model.path else None,
@@ -405,7 +410,8 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
         "not_identifiable": [n for n, v in identifiability.items() if not v["identifiable"]],
         "whiteness": analysis.whiteness(comp),
         "input_correlation": analysis.input_correlation(comp),
-        "spectral_peaks": analysis.spectral_peaks(analysis.spectra(comp)),
+        "spectral_peaks": analysis.spectral_peaks(spec),
+        "spectral_discovery": ripple_fit,
         "information_criterion": "BIC on the events: IC = E*ln(mean_e L_e) + k*ln(E), E onset events, L_e the "
                                  "weighted mean squared difference of event e's denoised segment from the model "
                                  "mean",

@@ -107,21 +107,25 @@ def _range(key, p, cfg, width_m, current):
     return min(lo, current), max(hi, current)
 
 
-def candidate_effect_names() -> list[str]:
-    """The effects the workbench fits: the catalogue's (event-locked ones) and the user's plug-ins
-    registered in this process (not nominal, not built-in catalogue)."""
+def candidate_effect_names(not_event_locked: bool = False) -> list[str]:
+    """The effects the workbench fits from the event average: the catalogue's (event-locked ones) and the
+    user's plug-ins registered in this process (not nominal, not built-in catalogue); with
+    ``not_event_locked`` also the ones fitted elsewhere (a torque ripple, from the raw spectrum: ripple.py),
+    which a model version may hold as well."""
     reg = plant_effects.catalogue()
-    names = [n for n in plant_effects.CATALOGUE_NAMES if n in reg and n not in NOT_EVENT_LOCKED]
-    names += [n for n, c in reg.items() if n not in names and n not in NOT_EVENT_LOCKED and not c.nominal
+    skip = () if not_event_locked else NOT_EVENT_LOCKED
+    names = [n for n in plant_effects.CATALOGUE_NAMES if n in reg and n not in skip]
+    names += [n for n, c in reg.items() if n not in names and n not in skip and not c.nominal
               and n not in plant_effects.CATALOGUE_NAMES and c.kind in ("term", "drift", "sensor")]
     return names
 
 
-def catalogue(model) -> list[CandidateEffect]:
-    """The candidate effects the workbench fits on ``model`` (a WorkbenchModel), defaults = its values."""
+def catalogue(model, not_event_locked: bool = False) -> list[CandidateEffect]:
+    """The candidate effects the workbench fits on ``model`` (a WorkbenchModel), defaults = its values;
+    ``not_event_locked``: also the effects fitted outside the event average (candidate_effect_names)."""
     cfg = model.plant_config()
     reg = plant_effects.catalogue()
-    names = candidate_effect_names()
+    names = candidate_effect_names(not_event_locked)
     out = []
     for name in names:
         cls = reg[name]

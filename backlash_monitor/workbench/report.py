@@ -144,6 +144,15 @@ def write_report(result: dict, directory) -> Path:
                                                "residual/noise before", "residual/noise after")),
             "<h2>Candidates</h2>", _table(rank_rows, ("effect", "fitted values", "delta IC", "explained",
                                                       "indistinguishable from"))]
+    sd = result.get("spectral_discovery")
+    if sd:
+        p, u = sd["parameters"], sd["uncertainty"]
+        body += ["<h2>From the raw spectrum</h2>",
+                 f"<p>{html.escape(sd['effect'])}: amplitude_pu = {p['amplitude_pu']:.3g} ± {u['amplitude_pu']:.2g}, "
+                 f"order {p['order']:.2f} ± {u['order']:.2f} (line at {sd['line_hz']:.1f} Hz, rotation "
+                 f"{sd['rotation_hz']:.2f} Hz); explains {sd['explained_fraction']:.0%} of the line's excess power; "
+                 f"{'confident' if sd['confident'] else 'not confident'}; phase not identifiable from a spectrum. "
+                 "The event average cannot show it (not locked to the events): see the spectra below.</p>"]
     if result.get("not_identifiable"):
         body.append("<h2>Not identifiable from this recording</h2><p>Over their whole fit range these effects move "
                     "the event average by less than the noise floor (linearised): "
@@ -151,7 +160,8 @@ def write_report(result: dict, directory) -> Path:
     for title, p in imgs:
         body.append(f"<h2>{html.escape(title)}</h2><img src='{p.name}' alt='{html.escape(title)}'>")
     body.append("<h2>JSON</h2><pre>" + html.escape(json.dumps(
-        {k: v for k, v in result.items() if k in ("where", "whiteness", "input_correlation", "spectral_peaks")},
+        {k: v for k, v in result.items() if k in ("where", "whiteness", "input_correlation", "spectral_peaks",
+                                                   "spectral_discovery")},
         indent=1, default=float)[:20000]) + "</pre>")
     page = ("<!DOCTYPE html><html><head><meta charset='utf-8'><title>backlash_monitor diagnosis</title>"
             "<style>body{font-family:sans-serif;margin:2em;max-width:1100px}table{border-collapse:collapse}"

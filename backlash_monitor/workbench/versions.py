@@ -23,7 +23,7 @@ def add_effects(model: WorkbenchModel, additions, name: str | None = None) -> Wo
                          nominal=dict(model.nominal), plant=copy.deepcopy(model.plant),
                          effects_added=copy.deepcopy(model.effects_added),
                          effect_files=list(model.effect_files))
-    cands = plant_adapter.catalogue(model)
+    cands = plant_adapter.catalogue(model, not_event_locked=True)   # a version may hold any catalogue effect
     for add in additions:
         mine = [c for c in cands if c.effect == add.effect or c.name == add.effect]
         if not mine:
