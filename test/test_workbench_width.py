@@ -68,6 +68,26 @@ def test_training_on_several_model_versions_deals_the_seeds_out(tmp_path):
         build_library("contact_loss", (1000,), duration_s=0.5, config=configs)
 
 
+def test_versions_that_differ_only_in_an_effect_value_do_not_share_training_windows(tmp_path, monkeypatch):
+    """The window cache is keyed by the plant config's hash: it must cover the effects' values (held beside
+    the config's dataclass fields). Before, load_mass_drift +0.30 and +0.45 hashed alike and the second
+    training silently reused the first one's windows."""
+    from backlash_monitor.classifier import dataset
+    from backlash_monitor.classifier.patterns import config_hash
+    from backlash_monitor.workbench.versions import EffectValues, add_effects
+    monkeypatch.setattr(dataset, "CACHE_DIR", tmp_path / "cache")
+    model = load_model(None)
+    a, b = (add_effects(model, [EffectValues("load_mass_drift", {"relative_change": v})]).plant_config()
+            for v in (0.30, 0.45))
+    assert config_hash(a) != config_hash(b)
+    assert config_hash(model.plant_config()) == config_hash(dataset.load_plant_config())   # nominal: as before
+    wa = dataset.collect_windows((1000,), "contact_loss", duration_s=0.5, config=a)         # cached
+    wb = dataset.collect_windows((1000,), "contact_loss", duration_s=0.5, config=b)
+    fresh = dataset.collect_windows((1000,), "contact_loss", duration_s=0.5, config=b, cache=False)
+    assert wb.a1.shape == fresh.a1.shape and np.array_equal(wb.a1, fresh.a1)
+    assert not (wa.a1.shape == wb.a1.shape and np.array_equal(wa.a1, wb.a1))
+
+
 def test_train_several_models_needs_as_many_seeds(tmp_path, capsys):
     from backlash_monitor.__main__ import main
     model = load_model(None)

@@ -67,10 +67,16 @@ class PatternLibraryMismatch(PatternLibraryError):
 
 
 def config_hash(obj) -> str:
-    """Short stable hash of a (nested) config: dataclass, dict or anything JSON-able via repr."""
+    """Short stable hash of a (nested) config: dataclass, dict or anything JSON-able via repr. A plant config's
+    effect parameters (held beside its dataclass fields) are part of it: two model versions that differ only
+    in an effect's value (load_mass_drift +0.30 vs +0.32) must not share training windows (dataset.py's cache
+    key). A config without any (the nominal plant) hashes as before, so existing libraries keep their hash."""
     import dataclasses
+    extra = getattr(obj, "effect_parameters", None) if dataclasses.is_dataclass(obj) else None
     if dataclasses.is_dataclass(obj):
         obj = dataclasses.asdict(obj)
+    if extra:
+        obj = {**obj, "effect_parameters": extra}
     text = json.dumps(obj, sort_keys=True, default=repr)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
