@@ -133,8 +133,8 @@ def diagnostics_complete(n, layout, workdir, window_s=60):
 
 def analyze_speedup(workdir, n_bags=100, repeats=7, bag_s=3.0):
     """`analyze FOLDER --jobs 1` on ONE core vs `--jobs <cores>` on all of them, each the command
-    as a user runs it (start-up included), alternated ``repeats`` times; the ratio of the best
-    times, and each pair's ratio side by side.
+    as a user runs it (start-up included), alternated ``repeats`` times; the median of the pairs'
+    ratios (side by side), and the ratio of each side's best time.
 
     One core means one core: the `--jobs 1` process is pinned to one CPU (os.sched_setaffinity,
     the CPUs taken in turn over the repeats); unpinned, its bag reader's decompression thread runs
