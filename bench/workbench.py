@@ -74,9 +74,11 @@ def log(*a):
     print(*a, file=sys.stderr, flush=True)
 
 
-def run_suite():
+def run_suite(only=None):
     rows = []
     for i, (label, kind, hidden, scen, truth) in enumerate(SUITE):
+        if only and label not in only:
+            continue
         nominal = {k: v for k, v in scen.items()}
         model = load_model(None, width_m=nominal.get("width_m"), eta_k=nominal.get("eta_k"), n1=nominal.get("n1"))
         meas = hidden_effect_recording(model, DURATION_S, seed=9001 + i, config_overrides=hidden)
@@ -245,9 +247,22 @@ def width_check():
             "drives": drives, "seconds": time.perf_counter() - t0}
 
 
-def main():
+def parse_args(argv=None):
+    import argparse
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--only", action="append", metavar="LABEL", choices=[s[0] for s in SUITE],
+                    help="run only this suite row (repeatable; seeds as in the full run: 9001 + its index in "
+                         "SUITE) and skip the width check; the JSON then holds only those rows' figures")
+    return ap.parse_args(argv)
+
+
+def main(argv=None):
+    args = parse_args(argv)
     t0 = time.perf_counter()
-    rows = run_suite()
+    rows = run_suite(args.only)
+    if args.only:
+        print(json.dumps({"only": args.only, "per_recording": rows, "wall_seconds": time.perf_counter() - t0}))
+        return
     width = width_check()
     clean = [r for r in rows if r["kind"] == "clean"]
     pos = [r for r in rows if r["kind"] in ("one", "two")]
