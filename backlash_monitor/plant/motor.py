@@ -12,6 +12,7 @@ on numpy arrays alike.
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -64,7 +65,17 @@ def equivalent_circuit(slip: float, motor) -> MotorSteadyState:
 
 
 def breakdown_slip(motor) -> float:
-    """Slip of maximum motoring torque (searched numerically)."""
+    """Slip of maximum motoring torque (searched numerically; 4000 slips, so remembered per circuit: every
+    simulator construction asks for it, the workbench ~100 times per diagnosis)."""
+    return _breakdown_slip(motor.r_s_pu, motor.x_s_pu, motor.x_m_pu, motor.r_r_pu, motor.x_r_pu,
+                           motor.supply_voltage_pu)
+
+
+@functools.lru_cache(maxsize=64)
+def _breakdown_slip(r_s_pu, x_s_pu, x_m_pu, r_r_pu, x_r_pu, supply_voltage_pu) -> float:
+    from types import SimpleNamespace
+    motor = SimpleNamespace(r_s_pu=r_s_pu, x_s_pu=x_s_pu, x_m_pu=x_m_pu, r_r_pu=r_r_pu, x_r_pu=x_r_pu,
+                            supply_voltage_pu=supply_voltage_pu)
     s = np.geomspace(1e-5, 1.0, 4000)
     te = [equivalent_circuit(x, motor).torque_pu for x in s]
     return float(s[int(np.argmax(te))])

@@ -11,7 +11,9 @@ each in its own whitened block of the candidates' subspace; the events are the u
 - two candidates are *indistinguishable* when both qualify and their IC differ by < DELTA_IC_TIE; every
   screened candidate whose linearised IC may tie is refined before this comparison;
 - after a discovery whose model is still inconsistent, pairs (one of the best singles + any other) are
-  fitted linearly, the best PAIR_REFINE with no member in common refined, and the best that passes kept;
+  fitted linearly; the best with no member in common refined in order until one passes (<= PAIR_REFINE),
+  then its members' single-effect twins substituted and the pairs whose linearised IC may tie (<= PAIR_EXTRA)
+  refined; pairs within DELTA_IC_TIE of the best are named as indistinguishable (the rule of singles);
 - *confident*: the model with the effect(s) is consistent, also outside the candidates' subspace.
 """
 from __future__ import annotations
@@ -30,9 +32,12 @@ DELTA_IC_TIE = 2.0
 MIN_EXPLAINED = 0.5
 MIN_EXPLAINED_SECOND = 0.3
 PAIR_MAX_NFEV = 4            # as a single effect (measured: 6 converged to the same values on a pair)
-PAIR_REFINE = 3              # pairs (no member in common) refined on the simulator
+PAIR_REFINE = 3              # pairs (no member in common) refined on the simulator until one passes
+PAIR_EXTRA = 1               # more pairs refined when their linearised IC may tie with the best refined pair
+                             # (besides its members' single-effect twins substituted; measured: 6 pairs within
+                             # reach on a friction + inertia recording, each refinement ~9 simulated sets)
 PAIR_FIRST = 6               # pairs: the first effect among the best 6 screened singles, the second any
-REFINE_TOP = 3
+REFINE_TOP = 3               # singles refined first: the best 3 by explained share (model inconsistent)
 REFINE_EXTRA = 3            # more candidates refined when their linearised IC may tie with the winner
 LINEAR_IC_MARGIN = 2.0     # how far the linearised IC may be off the refined one (docs/workbench.md)
 SUBSPACE_ENERGY = 0.99       # share of the candidates' reach the subspace keeps
@@ -234,7 +239,16 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
         info["explained_lin"] = 1.0 - float(np.sum((r0g - jg @ d) ** 2) / max(np.sum(r0g ** 2), 1e-300))
         info["delta_ic_lin"] = problem.ic(base_pred + info["J"] @ d, len(x0)) - base_ic
     order = sorted(scr, key=lambda k: -scr[k]["explained_lin"])
-    fits = [fitting.refine(problem, by_name[n], scr[n], base_pred, base_ic) for n in order[:REFINE_TOP]]
+    if inconsistent:
+        # the best REFINE_TOP by explained share; the candidates that may tie or still qualify follow below (by
+        # the reach rule). (Measured: the best 2 by linearised IC + the best by share instead missed the wheel
+        # friction's tie on a 2 N*m recording: a dry friction's linearised IC is far worse than its refined one)
+        first_refined = order[:REFINE_TOP]
+    else:
+        # the model agrees with the measurement: nothing can be discovered; the best candidate is fitted for
+        # the report (its value and uncertainty say how far it could be off)
+        first_refined = order[:1]
+    fits = [fitting.refine(problem, by_name[n], scr[n], base_pred, base_ic) for n in first_refined]
 
     def qualifies(f, min_expl):
         # (no significance test here: the IC is the test of a single effect, and the jackknife through the
@@ -247,8 +261,10 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
     # refined IC is refined too, so the indistinguishability rule compares all that might tie
     if inconsistent:
         ok = [f.delta_ic for f in fits if qualifies(f, MIN_EXPLAINED)]
-        reach = (min(ok) if ok else -DELTA_IC_STRONG) + DELTA_IC_TIE + LINEAR_IC_MARGIN
-        extra = sorted((n for n in order[REFINE_TOP:] if scr[n]["delta_ic_lin"] <= reach),
+        # with a qualifying winner: what may tie with it; without one: what may still qualify (delta_ic <=
+        # -DELTA_IC_STRONG after refinement); the tie margin is about a winner, so it applies only with one
+        reach = (min(ok) + DELTA_IC_TIE if ok else -DELTA_IC_STRONG) + LINEAR_IC_MARGIN
+        extra = sorted((n for n in order if n not in first_refined and scr[n]["delta_ic_lin"] <= reach),
                        key=lambda n: scr[n]["delta_ic_lin"])[:REFINE_EXTRA]
         fits += [fitting.refine(problem, by_name[n], scr[n], base_pred, base_ic) for n in extra]
     refined = {f.effect for f in fits}
@@ -262,7 +278,7 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
                 discovery.indistinguishable_from.append(f.effect)
                 f.indistinguishable_from.append(discovery.effect)
     unrefined = [n for n in order if n not in refined]
-    ranked = [f.to_json() for f in fits] + [
+    ranked = [f.to_json() | {"delta_ic_linearised": float(scr[f.effect]["delta_ic_lin"])} for f in fits] + [
         {"effect": n, "parameters": {p.name: float(v) for p, v in zip(by_name[n].parameters, scr[n]["x_lin"])},
          "uncertainty": None, "delta_ic": None, "explained_fraction": float(scr[n]["explained_lin"]),
          "indistinguishable_from": [], "screening_only": True, "balance": by_name[n].balance,
@@ -292,11 +308,16 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
     second_fit = None
     pair = None
     pairs_tried: list = []
+    pair_alternatives: list = []     # pairs not distinguishable from the discovered pair
     if discovery is not None and second:
+        # the single-effect twins (qualifying candidates within the tie margin of each other): a pair's member
+        # is also tried with each of its twins in its place
+        twins_of = {f.effect: [g.effect for g in qual if g is not f and abs(g.delta_ic - f.delta_ic) < DELTA_IC_TIE]
+                    for f in qual}
         pair = _second_effect(comp, problem, model, discovery, by_name, scr, order, base_pred, base_ic,
-                              pairs_tried)
+                              pairs_tried, twins_of, fits)
         if pair is not None:
-            fit2, a, b, alt = pair
+            fit2, a, b, ties = pair
             after_mean = fit2.model_mean
             after_pred = fit2.pred
             after_raw = fit2.model_mean_raw
@@ -304,11 +325,20 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
             na = len(by_name[a].parameters)
             first = _part(fit2, by_name[a], slice(0, na), [])
             second_fit = _part(fit2, by_name[b], slice(na, None), [a])
-            # the single winner's twins stay named with it when it is part of the pair (e.g. a heavier mass and
-            # a lower a2 gain), besides the pairs that tie with this one
-            twins = {discovery.effect: list(discovery.indistinguishable_from)}
-            first.indistinguishable_from = list(alt[a]) + twins.get(a, [])
-            second_fit.indistinguishable_from = list(alt[b]) + twins.get(b, [])
+            # pairs that tie with it (the same rule as singles): one member in common -> the other is
+            # indistinguishable from the member it replaces; no member in common -> an alternative pair
+            for f2, c, d in ties:
+                if {c, d} & {a, b} and {c, d} != {a, b}:
+                    keep = ({c, d} & {a, b}).pop()
+                    other = c if d == keep else d
+                    (second_fit if keep == a else first).indistinguishable_from.append(other)
+                pair_alternatives.append({
+                    "effects": [c.split("[")[0], d.split("[")[0]], "candidates": [c, d],
+                    "parameters": {f"{c}.{n}": float(v) for n, v in zip(f2.parameter_names[:len(by_name[c].parameters)],
+                                                                        f2.values)}
+                    | {f"{d}.{n}": float(v) for n, v in zip(f2.parameter_names[len(by_name[c].parameters):],
+                                                            f2.values[len(by_name[c].parameters):])},
+                    "delta_ic": float(f2.delta_ic), "delta_ic_from_winner": float(f2.delta_ic - fit2.delta_ic)})
             discovery = first
         else:
             second_fit = _greedy_second(comp, problem, model, discovery, by_name, scr, order)
@@ -361,6 +391,9 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
             if second_fit.indistinguishable_from:
                 message += (" (not distinguishable from this recording from "
                             + ", ".join(second_fit.indistinguishable_from) + ")")
+            if pair_alternatives:
+                message += ("; the pair is not distinguishable from this recording from "
+                            + ", ".join(" + ".join(p["candidates"]) for p in pair_alternatives))
     fit_before = analysis.fit_percent(comp.target, base_mean)
     fit_after = analysis.fit_percent(comp.target, after_mean)
     band = analysis.noise_band_fit_percent(comp)
@@ -380,6 +413,7 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
                                                            [discovery.effect] + discovery.indistinguishable_from],
         "second_effect": None if second_fit is None else second_fit.to_json(),
         "pairs_tried": pairs_tried,
+        "pair_alternatives": pair_alternatives if second_fit is not None and discovery is not None else [],
         "partial_explanation": None if partial is None else [f.to_json() for f in partial if f is not None],
         "message": message,
         "model_inconsistent": bool(inconsistent),
@@ -430,52 +464,80 @@ def _combined(a, b):
                                          tuple(a.parameters) + tuple(b.parameters))
 
 
-def _second_effect(comp, problem, model, first, by_name, scr, order, base_pred, base_ic, tried=None):
-    """Two effects at once: every pair of the best screened candidates is fitted linearly together (the
-    screening Jacobians); the best pair is refitted on the simulator. Returned when it beats the single
-    winner by DELTA_IC_STRONG and its second effect explains >= MIN_EXPLAINED_SECOND of what the first
-    left. -> (fit of the pair, name of the second effect) or None."""
+def _pair_key(a, b, order):
+    """A pair's canonical order: the member that screened better first (as the linear pair search names it)."""
+    return (a, b) if order.index(a) <= order.index(b) else (b, a)
+
+
+def _second_effect(comp, problem, model, first, by_name, scr, order, base_pred, base_ic, tried=None,
+                   twins_of=None, singles=None):
+    """Two effects at once. Every pair (one of the best PAIR_FIRST screened singles + any other candidate) is
+    fitted linearly together on the screening Jacobians (cheap, no simulation) and ranked by its linearised
+    IC. Then on the simulator (bounded least squares, common random numbers):
+    A member refined as a single effect is linearised at its fitted values (simulated prediction and Jacobian
+    there), any other at the model's values (screening secant): the pairs' start values and linearised ICs.
+    1. the best pairs with no member in common, in that order, until one passes (at most PAIR_REFINE);
+    2. the pairs that may tie with the best passing one: each member replaced by its single-effect twins
+       (the candidates the single-effect analysis calls indistinguishable from it), and any other pair whose
+       linearised IC comes within DELTA_IC_TIE + LINEAR_IC_MARGIN of the best refined IC (the singles' rule;
+       at most PAIR_EXTRA, best first).
+    A pair passes when it beats the single winner by DELTA_IC_STRONG, is not pinned, its values are
+    significant, its second effect explains >= MIN_EXPLAINED_SECOND of what the first left, and the model with
+    both is confident. -> (fit of the best pair, a, b, [(fit, c, d) of the passing pairs within DELTA_IC_TIE of
+    it]) or None."""
     r1 = problem.residual(first.pred)
     if not _inconsistent(comp, problem, r1):
         return None
     r0 = problem.project(problem.residual(base_pred))
-    pairs = []
-    lin_ic = {}
+    r1g = problem.project(r1)
+    single = 1 - float(np.sum(r1g ** 2) / max(np.sum(r0 ** 2), 1e-300))
+    twins_of = twins_of or {}
+    lin: dict = {}           # (a, b) -> (explained, x_lin, h, linearised IC)
+
+    singles = {f.effect: f for f in (singles or []) if f.jacobian is not None}
+
+    def expansion(n):
+        """Where a member's linear model is taken: at its refined single-effect fit when there is one (its
+        simulated prediction and forward-difference Jacobian there: exact at that value, and the pair's value
+        of a member is usually near it), else at the model's value with the screening secant."""
+        f = singles.get(n)
+        if f is not None:
+            return np.asarray(f.values, float), f.pred - base_pred, f.jacobian
+        return by_name[n].default_vector(), np.zeros_like(base_pred), scr[n]["J"]
+
+    def linear(a, b):
+        key = _pair_key(a, b, order)
+        if key not in lin:
+            a, b = key
+            (xa, da, ja), (xb, db, jb) = expansion(a), expansion(b)
+            Jf = np.hstack([ja, jb])
+            J = problem.project(Jf)
+            ea, eb = by_name[a], by_name[b]
+            xe = np.concatenate([xa, xb])
+            lo = np.concatenate([ea.bounds()[0], eb.bounds()[0]])
+            hi = np.concatenate([ea.bounds()[1], eb.bounds()[1]])
+            shift = da + db
+            rr = r0 - problem.project(shift)
+            res = fitting.lsq_linear(J, rr, bounds=(lo - xe, hi - xe + 1e-300))
+            expl = 1 - float(np.sum((rr - J @ res.x) ** 2) / np.sum(r0 ** 2))
+            ic = problem.ic(base_pred + shift + Jf @ res.x, len(xe))
+            lin[key] = (expl, xe + res.x, np.concatenate([scr[a]["h"], scr[b]["h"]]), ic)
+        return key
+
     # every pair (linear, on the screening Jacobians: cheap): the first of the best PAIR_FIRST singles, the
     # second any other candidate -- a second effect need not screen well on its own (measured: wheel friction
     # 1.0 N*m + wheel inertia +30 % screened 12th alone)
     for i, a in enumerate(order[:PAIR_FIRST]):
         for b in order:
-            if b == a or (b in order[:i]):
-                continue
-            J = problem.project(np.hstack([scr[a]["J"], scr[b]["J"]]))
-            ea, eb = by_name[a], by_name[b]
-            x0 = np.concatenate([ea.default_vector(), eb.default_vector()])
-            lo = np.concatenate([ea.bounds()[0], eb.bounds()[0]])
-            hi = np.concatenate([ea.bounds()[1], eb.bounds()[1]])
-            res = fitting.lsq_linear(J, r0, bounds=(lo - x0, hi - x0 + 1e-300))
-            expl = 1 - float(np.sum((r0 - J @ res.x) ** 2) / np.sum(r0 ** 2))
-            pairs.append((expl, a, b, x0 + res.x, np.concatenate([scr[a]["h"], scr[b]["h"]])))
-            lin_ic[(a, b)] = lin_ic[(b, a)] = problem.ic(base_pred + np.hstack([scr[a]["J"], scr[b]["J"]]) @ res.x,
-                                                         len(x0))
-    r1g = problem.project(r1)
-    single = 1 - float(np.sum(r1g ** 2) / max(np.sum(r0 ** 2), 1e-300))
-    # many pairs fit about equally well linearly (measured: the 12 best pairs of a friction + inertia
-    # recording within 3 of each other's linearised IC; the right one 8th), and only the simulator tells them
-    # apart: the best pairs by linearised IC with no member in common (PAIR_REFINE of them) are refined on
-    # the simulator; among those that pass, the best IC wins, and any other within the tie margin is named
-    # as not distinguishable from it
+            if b != a and b not in order[:i]:
+                linear(a, b)
+    ranked = sorted((k for k, v in lin.items() if v[0] > single), key=lambda k: lin[k][3])
     tried = [] if tried is None else tried
-    chosen, used = [], set()
-    for p in sorted((p for p in pairs if p[0] > single), key=lambda p: lin_ic[(p[1], p[2])]):
-        if p[1] in used or p[2] in used:
-            continue
-        chosen.append(p)
-        used |= {p[1], p[2]}
-        if len(chosen) == PAIR_REFINE:
-            break
-    passed = []
-    for expl, a, b, x_lin, h in chosen:
+    done: dict = {}          # (a, b) -> (fit, passed)
+
+    def run(key):
+        a, b = key
+        expl, x_lin, h, _ = lin[key]
         pair = _combined(by_name[a], by_name[b])
         fit = fitting.refine(problem, pair, {"x_lin": x_lin, "h": h, "explained_lin": expl}, base_pred, base_ic,
                              max_nfev=PAIR_MAX_NFEV)
@@ -484,19 +546,40 @@ def _second_effect(comp, problem, model, first, by_name, scr, order, base_pred, 
                   "not_pinned": not fit.at_bound, "significant": significant(fit),
                   "second_explains_30pc_of_what_first_left": bool(left >= MIN_EXPLAINED_SECOND),
                   "confident": _confident(comp, problem, fit.pred, base_pred)}
+        ok = all(checks.values())
         tried.append({"pair": [a, b], "parameters": [float(v) for v in fit.values],
-                      "delta_ic": float(fit.delta_ic), "checks": checks})
-        if all(checks.values()):
-            passed.append((fit, a, b))
+                      "delta_ic": float(fit.delta_ic), "delta_ic_linearised": float(lin[key][3] - base_ic),
+                      "checks": checks, "passed": ok})
+        done[key] = (fit, ok)
+        return ok
+
+    # 1. many pairs fit about equally well linearly (measured: the 12 best pairs of a friction + inertia
+    # recording within 3 of each other's linearised IC; the right one 8th), and only the simulator tells them
+    # apart: the best disjoint pairs are refined in order until one passes
+    used: set = set()
+    for key in ranked:
+        if key[0] in used or key[1] in used:
+            continue
+        used |= set(key)
+        if run(key) or len(done) == PAIR_REFINE:
+            break
+    passed = [k for k, (f, ok) in done.items() if ok]
     if not passed:
         return None
-    passed.sort(key=lambda t: t[0].delta_ic)
-    fit, a, b = passed[0]
-    alt = {a: [], b: []}
-    for f2, a2, b2 in passed[1:]:
-        if f2.delta_ic - fit.delta_ic < DELTA_IC_TIE:
-            alt[a].append(f"{a2}+{b2}")
-    return fit, a, b, alt
+    best = min(passed, key=lambda k: done[k][0].delta_ic)
+    # 2. what may tie with it: its members' single-effect twins substituted (a heavier mass for a lower a2
+    # gain), then the pairs within reach of its refined IC by their linearised IC
+    subs = [linear(t, best[1]) for t in twins_of.get(best[0], []) if t != best[1]]
+    subs += [linear(best[0], t) for t in twins_of.get(best[1], []) if t != best[0]]
+    reach = done[best][0].ic + DELTA_IC_TIE + LINEAR_IC_MARGIN
+    subs = [k for k in dict.fromkeys(subs) if k not in done]
+    near = [k for k in ranked if lin[k][3] <= reach and k not in done and k not in subs]
+    for key in subs + near[:PAIR_EXTRA]:
+        run(key)
+    passed = sorted((k for k, (f, ok) in done.items() if ok), key=lambda k: done[k][0].delta_ic)
+    fit, (a, b) = done[passed[0]][0], passed[0]
+    ties = [(done[k][0], k[0], k[1]) for k in passed[1:] if done[k][0].delta_ic - fit.delta_ic < DELTA_IC_TIE]
+    return fit, a, b, ties
 
 
 def _greedy_second(comp, problem, model, first, by_name, scr, order):

@@ -54,6 +54,7 @@ class FitResult:
     base: list = field(default_factory=list)   # effects this fit was made on top of
     model_mean_raw: np.ndarray | None = None   # (2, L) raw (not denoised) mean at the fitted values
     pred: np.ndarray | None = None             # the prediction vector at the fitted values (Problem.pred)
+    jacobian: np.ndarray | None = None         # (N, k) d pred / d values at the fitted values (forward difference)
 
     def to_json(self) -> dict:
         return {"effect": self.effect.split("[")[0], "candidate": self.effect,
@@ -238,16 +239,19 @@ def refine(problem: Problem, effect, screening: dict, base_pred: np.ndarray, bas
     def fun(x):
         return problem.fit_residual(preds_at([x])[0])
 
-    def jac(x):
-        steps = []
-        for i in range(len(x)):
-            e = np.eye(len(x))[i] * h_abs[i]
-            xi = x + e if x[i] + e[i] <= hi[i] else x - e
-            steps.append(xi)
-        f0 = fun(x)
+    def jac_pred(x):
+        """Forward difference of the prediction (prediction space, not projected)."""
+        steps = _fd_steps(x, h_abs, hi)
+        p0 = preds_at([x])[0]
         ps = preds_at(steps)
-        return np.stack([(problem.fit_residual(m) - f0) / (s[i] - x[i]) for i, (m, s) in enumerate(zip(ps, steps))],
-                        axis=1)
+        return np.stack([(m - p0) / (s[i] - x[i]) for i, (m, s) in enumerate(zip(ps, steps))], axis=1)
+
+    last = {}
+
+    def jac(x):
+        # residual = target - pred: d residual = -d pred
+        last["x"], last["J"] = np.array(x, float), jac_pred(x)
+        return -problem.project(last["J"])
 
     margin = 1e-3 * (hi - lo)   # strictly inside: trf's first trust radius scales with the start's distance
     start = np.clip(screening["x_lin"], lo + margin, hi - margin)
@@ -258,7 +262,13 @@ def refine(problem: Problem, effect, screening: dict, base_pred: np.ndarray, bas
     key = tuple(np.round(x, 12))
     m = means.get(key)
     m_raw = raw.get(key)
-    J = jac(x)
+    # the Jacobian for the uncertainty (and the pair search's linearisation): at x when its steps are simulated
+    # already (x is where trf last took one), else the last one trf took -- one accepted step before x, which
+    # trf reached on its last allowed evaluation (a step that small changes the uncertainty by a few per cent,
+    # not worth n more simulated sets)
+    done_here = all(tuple(np.round(s_, 12)) in cache for s_ in _fd_steps(x, h_abs, hi))
+    J_pred = jac_pred(x) if done_here or "J" not in last else last["J"]
+    J = -problem.project(J_pred)
     unc = jackknife_uncertainty(problem, J, x, effect, m)
     # share of the residual explained, in the metric of the fit (the whitened candidates' subspace)
     r0 = problem.fit_residual(base_pred)
@@ -272,7 +282,16 @@ def refine(problem: Problem, effect, screening: dict, base_pred: np.ndarray, bas
     at_bound = bool(np.any(((x - lo <= tol) & (np.abs(x0 - lo) > tol)) | ((hi - x <= tol) & (np.abs(hi - x0) > tol))))
     return FitResult(effect.name, [p_.name for p_ in effect.parameters], [p_.unit for p_ in effect.parameters], x,
                      unc, x0, (lo, hi), explained, ic - base_ic, ic, m, screening["explained_lin"], len(cache),
-                     effect.balance, effect.description, at_bound, model_mean_raw=m_raw, pred=p)
+                     effect.balance, effect.description, at_bound, model_mean_raw=m_raw, pred=p, jacobian=J_pred)
+
+
+def _fd_steps(x, h_abs, hi) -> list:
+    """The forward-difference points of x: one parameter stepped by h_abs (backwards at the upper bound)."""
+    steps = []
+    for i in range(len(x)):
+        e = np.eye(len(x))[i] * h_abs[i]
+        steps.append(x + e if x[i] + e[i] <= hi[i] else x - e)
+    return steps
 
 
 def jackknife_uncertainty(problem: Problem, J: np.ndarray, x, effect, m) -> np.ndarray:
