@@ -125,14 +125,23 @@ def spread(c: Comparison) -> dict:
             for i, s in enumerate(SEGMENT_SIGNALS)}
 
 
-def spectra(c: Comparison, nperseg: int = 8192) -> dict:
+SPECTRUM_NPERSEG = 8192     # Welch segment of the whole-record spectra (6.1 Hz bins at 50 kHz)
+
+
+def welch_psd(x, fs: float) -> tuple[np.ndarray, np.ndarray]:
+    """(f, PSD) of one record or of each row of (n, samples): the workbench's one spectrum estimate, so that
+    every spectrum it compares has the same segment and bins."""
+    x = np.asarray(x, dtype=float)
+    return sps.welch(x, fs=fs, nperseg=min(SPECTRUM_NPERSEG, x.shape[-1]), axis=-1)
+
+
+def spectra(c: Comparison) -> dict:
     """Whole-record raw spectra (Welch) of the measurement and every ensemble run."""
     fs = 1.0 / c.meas.sample_period_s
     out = {}
     for s in SEGMENT_SIGNALS:
-        f, pm = sps.welch(c.meas.signals[s], fs=fs, nperseg=min(nperseg, c.meas.n_samples))
-        pe = np.array([sps.welch(r, fs=fs, nperseg=min(nperseg, len(r)))[1] for r in c.ensemble.raw_records[s]])
-        out[s] = {"f": f, "measured": pm, "ensemble": pe}
+        f, pm = welch_psd(c.meas.signals[s], fs)
+        out[s] = {"f": f, "measured": pm, "ensemble": welch_psd(c.ensemble.raw_records[s], fs)[1]}
     return out
 
 

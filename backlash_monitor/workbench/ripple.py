@@ -13,9 +13,9 @@ line into the raw a1 spectrum at order x the motor's rotation frequency. This mo
    ``REF_AMPLITUDE_PU`` (the same seeds: common random numbers) gives A = A_ref * sqrt(excess / excess_ref),
    and one more at that A corrects it (a strong ripple is not quite linear: it moves the speed);
 4. the check: the model with the fitted ripple, simulated, must reproduce the line: its excess within the
-   measurement's own uncertainty. The independent units are the seeds of the ensemble (whole-record
-   spectra): the band power's spread over them is the noise of one recording's band power; the line
-   counts only when its excess is ``MIN_Z`` of those spreads above the ensemble mean.
+   measurement's own uncertainty. The independent units: the seeds of the ensemble for the band's noise
+   (the line counts only when its excess is ``MIN_Z`` of their spreads above the ensemble mean), and
+   ``BLOCKS`` time blocks of the record for the measured line power's own uncertainty.
 
 The phase is not identifiable from a power spectrum (reported as such). Docs: docs/workbench.md
 "Torque ripple: the spectral fit".
@@ -25,7 +25,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import scipy.signal as sps
 
 from . import analysis, plant_adapter
 
@@ -35,7 +34,7 @@ LINE_FACTOR = 2.0              # the measured PSD over the ensemble's largest: a
 MIN_Z = 5.0                    # the line's excess over the band's spread across the model's seeds
 ORDER_RANGE = (0.5, 50.0)      # the effect's orders (bounds 0..50; below 0.5 the line is at DC)
 REF_SEEDS = 3                  # seeds of the reference and check simulations (common random numbers)
-NPERSEG = 8192
+BLOCKS = 4                     # time blocks of the record for the measured line power's uncertainty
 
 
 def _band_power(f, psd, lo_hz, hi_hz) -> np.ndarray:
@@ -43,18 +42,11 @@ def _band_power(f, psd, lo_hz, hi_hz) -> np.ndarray:
     return psd[..., sel].sum(axis=-1)
 
 
-def _a1_psd(records, fs) -> np.ndarray:
-    return np.array([sps.welch(r, fs=fs, nperseg=min(NPERSEG, len(r)))[1] for r in records])
-
-
-BLOCKS = 4                     # time blocks of the record for the measured line power's uncertainty
-
-
 def _block_spread(a1, fs, lo_hz, hi_hz) -> float:
     """Relative standard error of the record's band power from its BLOCKS time blocks' band powers."""
     x = np.asarray(a1, dtype=float)
     n = len(x) // BLOCKS
-    f, p = sps.welch(x[:n * BLOCKS].reshape(BLOCKS, n), fs=fs, nperseg=min(NPERSEG, n), axis=-1)
+    f, p = analysis.welch_psd(x[:n * BLOCKS].reshape(BLOCKS, n), fs)
     band = _band_power(f, p, lo_hz, hi_hz)
     return float(band.std(ddof=1) / max(band.mean(), 1e-300) / math.sqrt(BLOCKS))
 
@@ -99,7 +91,7 @@ def fit_torque_ripple(comp, spec: dict | None = None) -> dict | None:
         runs = plant_adapter.simulate_sets(
             comp.model, [{f"{EFFECT}.amplitude_pu": amplitude_pu, f"{EFFECT}.order": order}], seeds,
             comp.meas.n_samples, conditions=switch, signals=("a1",))
-        return _band_power(f, _a1_psd(runs["a1"][0], fs), lo, hi) - ens_band[:len(seeds)]
+        return _band_power(f, analysis.welch_psd(runs["a1"][0], fs)[1], lo, hi) - ens_band[:len(seeds)]
 
     # A from the A^2 scaling of the line's power, from the reference; then once more from a simulation at
     # that A (the drive's response is not exactly linear in A: a strong ripple moves the speed)
