@@ -231,7 +231,7 @@ class LiveView:
             parts.append(f"{name} {msg.width_m * 1e3:5.2f}{cont} {'ok' if ok else 'MISS'}")
         last = event.get("a1+a2", first)
         fused_ok = abs(last.fused_width_m - self.true_width_m) < 1e-9
-        cont = ("" if not last.fused_continuous_width_m == last.fused_continuous_width_m
+        cont = ("" if math.isnan(last.fused_continuous_width_m)
                 else f" ({last.fused_continuous_width_m * 1e3:4.2f})")
         print(f"t={first.entry_sample_index * self.sample_period_s:8.3f} s  onset  "
               + " | ".join(parts)

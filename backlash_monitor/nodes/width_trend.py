@@ -83,13 +83,12 @@ class WidthTrendNode(Node):
             self.save_state()        # a point closed: once per live_point_period_s
 
     def save_state(self) -> None:
+        self.saved_points = len(self.trend.points)     # tried for these points, written or not
         try:
             save_live_points(self.state_file, self.drive_name, self.trend)
-            self.saved_points = len(self.trend.points)
             self.state_problem = ""
         except OSError as error:    # the monitor goes on; the status says the history is not kept
             self.state_problem = f"state file {self.state_file} not written ({error.strerror})"
-            self.saved_points = len(self.trend.points)
 
     def destroy_node(self):
         if getattr(self, "state_file", "") and (self.trend.points or self.trend.open_samples):
