@@ -26,10 +26,13 @@ def test_two_drives_each_report_their_own_estimates_and_diagnostics(ros_env, tmp
         assert row["level"] == "WARN"      # fused 7.5 mm >= warn_width_m (config/diagnostics.yaml)
         assert row["status_times"], row    # its classifier's status reached /diagnostics
     assert "line1/drive02" in proc.stdout and "Traceback" not in proc.stderr
-    # each drive's live trend was kept at shutdown (the minute being collected: no point closed
-    # in 2.5 s), under its own name, with its own widths (the fused continuous width near 7.5 mm)
+    # each drive's live trend was kept at shutdown, under its own name, with its own widths (the
+    # fused continuous width near 7.5 mm). Trend periods are wall-clock minutes, so a 2.5 s run
+    # closes at most one point (when it straddles a minute boundary); the period being collected
+    # always holds the latest estimates.
     for drive in rows:
         state = json.loads((tmp_path / "trend" / f"{drive.replace('/', '_')}.json").read_text())
-        assert state["drive"] == drive and state["points"] == []
-        assert len(state["open"]) >= 5
-        assert all(abs(w - 0.0075) < 5e-4 for _, w in state["open"]), state["open"]
+        assert state["drive"] == drive and len(state["points"]) <= 1, state
+        assert len(state["open"]) >= (5 if not state["points"] else 1), state
+        widths = [w for _, w in state["points"] + state["open"]]
+        assert all(abs(w - 0.0075) < 5e-4 for w in widths), state
