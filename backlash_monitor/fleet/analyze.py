@@ -28,6 +28,7 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 from backlash_monitor.errors import UsageError
+from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
 
 ENGINES = ("local", "dask")
 THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
@@ -110,7 +111,7 @@ def analyze_one(job: dict) -> dict:
         return row
     rows = result["rows"]
     signals = {r["signal"] for r in rows}
-    primary = "a1+a2" if "a1+a2" in signals else (sorted(signals)[0] if signals else "")
+    primary = PRIMARY_SIGNAL if PRIMARY_SIGNAL in signals else (sorted(signals)[0] if signals else "")
     mine = [r for r in rows if r["signal"] == primary]
     widths = [r["continuous_width_m"] if r["continuous_width_m"] == r["continuous_width_m"]
               else r["width_m"] for r in mine]

@@ -28,6 +28,10 @@ from dataclasses import dataclass
 
 SECONDS_PER_DAY = 86400.0
 
+# The signal whose estimates speak for the drive (live and offline trend, fleet view, fleet table):
+# both accelerations, the most accurate one (README, identification table).
+PRIMARY_SIGNAL = "a1+a2"
+
 
 @dataclass(frozen=True)
 class TrendRule:

@@ -26,6 +26,8 @@ import sys
 import time
 from dataclasses import dataclass, field
 
+from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
+
 LAYOUTS = ("process", "single")
 DEFAULT_LAYOUT = "process"     # holds more drives in real time (docs/fleet.md)
 CHUNK_S = 1000 * 2e-5          # the plant's default chunk: 1000 samples at 50 kHz
@@ -180,7 +182,7 @@ class FleetMonitor:
             t.lags_s.append((time.monotonic(), time.time() - (stamp + WINDOW_END_S)))
         t.onsets_estimated.add(msg.entry_sample_index)
         t.fused_width_m = msg.fused_width_m
-        if msg.signal_name == "a1+a2":
+        if msg.signal_name == PRIMARY_SIGNAL:
             t.fused_continuous_width_m = msg.fused_continuous_width_m
         t.true_width_m = msg.true_width_m
 

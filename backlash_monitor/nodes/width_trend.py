@@ -23,7 +23,8 @@ import sys
 
 from rclpy.node import Node
 
-from backlash_monitor.fleet.trend import LiveTrend, load_live_points, load_rule, save_live_points
+from backlash_monitor.fleet.trend import (PRIMARY_SIGNAL, LiveTrend, load_live_points, load_rule,
+                                          save_live_points)
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
@@ -31,7 +32,6 @@ from backlash_monitor.nodes.qos import ESTIMATE_QOS
 from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor_msgs.msg import BacklashEstimate
 
-PRIMARY_SIGNAL = "a1+a2"
 
 PARAMETERS = (
     ParameterSpec("drive_name", "drive", "the drive's name: diagnostics hardware_id"),
