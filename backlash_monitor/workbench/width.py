@@ -56,11 +56,12 @@ def continuous_widths(meas, library_path=None, signal: str = "a1+a2", mode: str 
 
 def width_errors(trace: WidthTrace, truth_m: float, fusion_events: int = DEFAULT_FUSION_EVENTS) -> dict:
     """Errors [mm] of one drive against its true width:
-    ``per_window_mean_abs_mm``  mean over the onset windows of |continuous width - truth| (the strict figure);
+    ``per_window_mean_abs_mm``  mean over the onset windows of |continuous width - truth| (one window's own);
     ``bias_mm``                 mean continuous width - truth;
     ``fused_final_abs_mm``      |last published fused width - truth| (the drive's answer at the end);
     ``fused_mean_abs_mm``       mean |fused width - truth| over the windows whose fusion is full;
-    ``fused_continuous_mean_abs_mm``  mean |fused continuous width - truth| over those windows."""
+    ``fused_continuous_mean_abs_mm``  mean |fused continuous width - truth| over those windows (what the
+                                      monitor publishes as the drive's continuous width)."""
     c = np.asarray(trace.continuous_m, dtype=float)
     if c.size == 0:
         raise ValueError("the measurement has no onset window: no width to check")
