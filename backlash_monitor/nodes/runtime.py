@@ -27,11 +27,13 @@ def freeze_startup_objects() -> None:
 
 
 def is_shutdown_error(error: BaseException) -> bool:
-    """True for the RCLError a callback gets when Ctrl-C/SIGTERM has already invalidated the
-    context (the signal may arrive while it publishes: the plant publishes a burst of chunks per
-    tick). That error is the shutdown, not a fault; an RCLError while the context is valid is."""
+    """True for the rcl/rmw error (or invalid handle) a callback or the tidy-up gets when
+    Ctrl-C/SIGTERM has already invalidated the context (the signal may arrive while it publishes:
+    the plant publishes a burst of chunks per tick). That error is the shutdown, not a fault; the
+    same error while the context is valid is."""
     from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
-    return isinstance(error, _rclpy.RCLError) and not rclpy.ok()
+    return isinstance(error, (_rclpy.RCLError, _rclpy.RMWError, _rclpy.InvalidHandle)) \
+        and not rclpy.ok()
 
 
 def command_main(prog: str, description: str, add_arguments, run, argv=None) -> int:
@@ -55,11 +57,16 @@ def command_main(prog: str, description: str, add_arguments, run, argv=None) -> 
 def release_nodes(executor, nodes) -> None:
     """The end of a process's ROS life: the executor stopped, every node destroyed, rclpy shut down
     (safe after a signal already did it)."""
-    if executor is not None:
-        executor.shutdown()
-    for node in nodes:
-        node.destroy_node()
-    rclpy.try_shutdown()
+    steps = ([executor.shutdown] if executor is not None else []) \
+        + [node.destroy_node for node in nodes] + [rclpy.try_shutdown]
+    for step in steps:
+        try:
+            step()
+        except KeyboardInterrupt:
+            pass            # a second Ctrl-C while it tidies up: go on tidying
+        except Exception as error:
+            if not is_shutdown_error(error):
+                raise
 
 
 def run_node(node_factory, args=None, spin=None) -> int:
