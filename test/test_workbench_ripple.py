@@ -40,9 +40,9 @@ def test_no_ripple_is_claimed_on_a_drive_without_one(seed):
 
 
 def test_diagnose_names_the_ripple_and_add_effect_puts_it_into_the_next_version(tmp_path):
-    """End to end: diagnose (the event average finds nothing to add) reports the spectral discovery in its
-    message and JSON; add-effect takes it into the next model version; that version's own spectrum has
-    the line (no excess line left in the comparison)."""
+    """End to end: diagnose (the event average finds nothing to add) names the ripple as its discovery, in
+    its message and JSON, with the spectral fit's values; add-effect takes it into the next model version
+    once; that version's own spectrum has the line (no excess line left in the comparison)."""
     import json
 
     from backlash_monitor.__main__ import main
@@ -52,12 +52,17 @@ def test_diagnose_names_the_ripple_and_add_effect_puts_it_into_the_next_version(
     pub = public(diagnose(meas, model))
     fit = pub["spectral_discovery"]
     assert fit is not None and fit["confident"] and "torque_ripple of order" in pub["message"]
+    # named like any discovery (the goal's JSON fields), with the spectral fit's values
+    assert pub["discovery"] == "torque_ripple" and pub["indistinguishable"] == ["torque_ripple"]
+    assert pub["discovery_parameters"]["parameters"] == fit["parameters"]
+    assert pub["discovery_parameters"]["uncertainty"] == fit["uncertainty"] and pub["second_effect"] is None
     diag = tmp_path / "diag.json"
     diag.write_text(json.dumps(pub))
     v1 = model.save(tmp_path / "v1.yaml")
     v2 = tmp_path / "v2.yaml"
     assert main(["add-effect", str(diag), "--model", str(v1), "-o", str(v2)]) == 0
     new = load_model(str(v2))
+    assert [a["effect"] for a in new.effects_added] == ["torque_ripple"]      # once, not twice
     from backlash_monitor.plant import effects as plant_effects
     cfg = new.plant_config()
     assert "torque_ripple" in {c.name for c in plant_effects.enabled_effects(cfg)}

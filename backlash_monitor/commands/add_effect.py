@@ -54,7 +54,8 @@ def run(args) -> int:
             raise UsageError(f"diagnosis {src} names no discovery ({diag.get('message', '')}); nothing to add")
         # the event-average discovery (and its second effect) and a ripple found in the raw spectrum
         for entry in (diag.get("discovery_parameters"), diag.get("second_effect"), spectral_fit):
-            if entry:
+            # a confident ripple is also the discovery or the second effect (diagnose names it there): once
+            if entry and all(a.effect != entry["effect"] for a in additions):
                 additions.append(EffectValues(entry["effect"], entry["parameters"], entry.get("uncertainty") or {},
                                               str(src)))
     else:

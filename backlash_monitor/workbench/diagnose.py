@@ -400,18 +400,27 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
     # the catalogue effect the event average cannot see: a ripple locked to the motor angle, from the raw spectrum
     spec = analysis.spectra(comp)
     ripple_fit = ripple.fit_torque_ripple(comp, spec)
+    ripple_entry = None
     if ripple_fit is not None and ripple_fit["confident"]:
         message += "; " + ripple.describe(ripple_fit)
+        # a confident ripple is named like any other discovery: the winner when the event average found
+        # nothing, else the second effect when there is none (add-effect takes it once)
+        ripple_entry = ripple.as_discovery(ripple_fit)
+        if discovery is None:
+            message = message.replace("nothing to discover", "nothing to discover in the event average", 1)
     result = {
         "measurement": meas.source, "model": model.label(),
         "model_file": str(model.path) if model.path else None,
         "conditions": comp.conditions, "seeds": comp.seeds, "events": comp.events.n_events,
-        "discovery": None if discovery is None else discovery.effect.split("[")[0],
-        "discovery_candidate": None if discovery is None else discovery.effect,
-        "discovery_parameters": None if discovery is None else discovery.to_json(),
-        "indistinguishable": [] if discovery is None else [e.split("[")[0] for e in
-                                                           [discovery.effect] + discovery.indistinguishable_from],
-        "second_effect": None if second_fit is None else second_fit.to_json(),
+        "discovery": (discovery.effect.split("[")[0] if discovery is not None
+                      else ripple_entry["effect"] if ripple_entry else None),
+        "discovery_candidate": (discovery.effect if discovery is not None
+                                else ripple_entry["candidate"] if ripple_entry else None),
+        "discovery_parameters": discovery.to_json() if discovery is not None else ripple_entry,
+        "indistinguishable": ([e.split("[")[0] for e in [discovery.effect] + discovery.indistinguishable_from]
+                              if discovery is not None else [ripple_entry["effect"]] if ripple_entry else []),
+        "second_effect": (second_fit.to_json() if second_fit is not None
+                          else ripple_entry if discovery is not None else None),
         "pairs_tried": pairs_tried,
         "pair_alternatives": pair_alternatives if second_fit is not None and discovery is not None else [],
         "partial_explanation": None if partial is None else [f.to_json() for f in partial if f is not None],
