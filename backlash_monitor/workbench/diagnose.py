@@ -408,17 +408,16 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
         ripple_entry = ripple.as_discovery(ripple_fit)
         if discovery is None:
             message = message.replace("nothing to discover", "nothing to discover in the event average", 1)
+    winner = discovery.to_json() if discovery is not None else ripple_entry
     result = {
         "measurement": meas.source, "model": model.label(),
         "model_file": str(model.path) if model.path else None,
         "conditions": comp.conditions, "seeds": comp.seeds, "events": comp.events.n_events,
-        "discovery": (discovery.effect.split("[")[0] if discovery is not None
-                      else ripple_entry["effect"] if ripple_entry else None),
-        "discovery_candidate": (discovery.effect if discovery is not None
-                                else ripple_entry["candidate"] if ripple_entry else None),
-        "discovery_parameters": discovery.to_json() if discovery is not None else ripple_entry,
-        "indistinguishable": ([e.split("[")[0] for e in [discovery.effect] + discovery.indistinguishable_from]
-                              if discovery is not None else [ripple_entry["effect"]] if ripple_entry else []),
+        "discovery": None if winner is None else winner["effect"],
+        "discovery_candidate": None if winner is None else winner["candidate"],
+        "discovery_parameters": winner,
+        "indistinguishable": [] if winner is None else [e.split("[")[0] for e in
+                                                        [winner["candidate"]] + winner["indistinguishable_from"]],
         "second_effect": (second_fit.to_json() if second_fit is not None
                           else ripple_entry if discovery is not None else None),
         "pairs_tried": pairs_tried,

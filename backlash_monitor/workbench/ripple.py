@@ -129,21 +129,22 @@ def fit_torque_ripple(comp, spec: dict | None = None) -> dict | None:
                       "line's own power"}
 
 
-def as_discovery(fit: dict, model_values: dict | None = None) -> dict:
+def as_discovery(fit: dict) -> dict:
     """The ripple fit in the form of diagnose's fitted candidates (``discovery_parameters``,
-    ``second_effect``): effect, candidate, parameters, uncertainty, nominal, explained_fraction,
-    indistinguishable_from, ... ``delta_ic`` is None: its evidence is the spectral line (``line_z``), not
-    the event-average information criterion. ``model_values``: the model's own amplitude and order."""
-    nominal = {"amplitude_pu": 0.0, "order": 1.0}
-    nominal.update({k: float(v) for k, v in (model_values or {}).items() if k in nominal})
+    ``second_effect``): effect, candidate, parameters, uncertainty, nominal, units, explained_fraction,
+    indistinguishable_from, ... (nominal values, units and description: the catalogue effect's own).
+    ``delta_ic`` is None: its evidence is the spectral line (``line_z``), not the event-average
+    information criterion."""
+    from backlash_monitor.plant import effects as plant_effects
+    effect = plant_effects.catalogue()[EFFECT]
+    fitted = [p for p in effect.parameters if p.name in fit["parameters"]]
     return {"effect": EFFECT, "candidate": EFFECT,
-            "parameters": dict(fit["parameters"]), "uncertainty": dict(fit["uncertainty"]), "nominal": nominal,
-            "units": {"amplitude_pu": "p.u.", "order": "per revolution"},
+            "parameters": dict(fit["parameters"]), "uncertainty": dict(fit["uncertainty"]),
+            "nominal": {p.name: float(p.default) for p in fitted}, "units": {p.name: p.unit for p in fitted},
             "delta_ic": None, "explained_fraction": fit["explained_fraction"], "indistinguishable_from": [],
             "at_bound": False, "not_identifiable": list(fit["not_identifiable"]),
             "evidence": "raw a1 spectrum", "line_hz": fit["line_hz"], "line_z": fit["line_z"],
-            "description": "a load-moment ripple locked to the motor angle, from the line it makes in the raw "
-                           "a1 spectrum"}
+            "description": effect.description}
 
 
 def describe(fit: dict) -> str:
