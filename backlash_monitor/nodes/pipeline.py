@@ -23,6 +23,7 @@ import sys
 import time
 from dataclasses import dataclass, field
 
+from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
 from backlash_monitor.supervisor import RESTART_POLICIES, Supervisor
 
 DEFAULTS = dict(width_m=0.005, eta_k=0.025, n1=0.89, seed=0, duration=10.0, rate_factor=1.0)
@@ -234,7 +235,7 @@ class LiveView:
             cont = ("" if math.isnan(msg.continuous_width_m)
                     else f" ({msg.continuous_width_m * 1e3:4.2f})")
             parts.append(f"{name} {msg.width_m * 1e3:5.2f}{cont} {'ok' if ok else 'MISS'}")
-        last = event.get("a1+a2", first)
+        last = event.get(PRIMARY_SIGNAL, first)
         fused_ok = abs(last.fused_width_m - self.true_width_m) < 1e-9
         cont = ("" if math.isnan(last.fused_continuous_width_m)
                 else f" ({last.fused_continuous_width_m * 1e3:4.2f})")
