@@ -11,7 +11,8 @@ import pytest
 from scipy.signal import lfilter
 
 from backlash_monitor.workbench import spectral
-from backlash_monitor.workbench.diagnose import diagnose, public, significant
+from backlash_monitor.workbench.decisions import significant
+from backlash_monitor.workbench.diagnose import diagnose, public
 from backlash_monitor.workbench.fitting import FitResult
 from backlash_monitor.workbench.model import load_model
 from backlash_monitor.workbench.synthetic import hidden_effect_recording

@@ -107,16 +107,19 @@ def load_bag_library(args):
     """(pattern library, window offset) for these options; UsageError for a bad option or file.
     The fleet's workers load it once and pass it to every :func:`analyze_bag`."""
     from backlash_monitor.commands import UsageError
-    from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
+    from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_warning, load_library
     from backlash_monitor.windowing import default_window_offset
     offset = default_window_offset(args.trigger) if args.window_offset is None else args.window_offset
     if not 0 <= offset <= 65536:
         raise UsageError(f"--window-offset = {offset}; allowed: 0 <= SAMPLES <= 65536")
     try:
-        return load_library(args.library or None, trigger=args.trigger,
-                            window_offset_samples=offset), offset
+        library = load_library(args.library or None, trigger=args.trigger, window_offset_samples=offset)
     except (PatternLibraryError, ValueError) as error:
         raise UsageError(str(error)) from None
+    warning = flagged_warning(library)
+    if warning:
+        print(f"WARNING: {warning}", file=sys.stderr)
+    return library, offset
 
 
 def analyze_bag(args, library=None) -> dict:

@@ -100,10 +100,18 @@ def run(args) -> int:
     from backlash_monitor.classifier.training import build_library
     out = args.out or default_library_path(args.trigger)
     config = None
+    models = []
     if args.model:
         from backlash_monitor.workbench.model import ModelError, load_model
+        from backlash_monitor.workbench.retrain import training_config
+        configs = []
         try:
-            configs = [load_model(m).plant_config() for m in args.model]
+            for m in args.model:
+                models.append(load_model(m))
+                cfg, note = training_config(models[-1])
+                configs.append(cfg)
+                if note:
+                    print(f"note: {note}")
         except ModelError as exc:
             raise UsageError(str(exc)) from None
         config = configs[0] if len(configs) == 1 else configs
@@ -113,6 +121,11 @@ def run(args) -> int:
         lib = build_library(args.trigger, args.seeds, epochs=args.epochs, l1=args.l1, l2=args.l2,
                             ridge=args.ridge, duration_s=args.duration, progress=bar.update,
                             window_offset=args.window_offset, config=config)
+    check = None
+    if models and any(m.provenance.get("measurement") for m in models):
+        from backlash_monitor.workbench.retrain import check_library
+        check = check_library(lib, models)
+        lib.training["check"] = check
     path = lib.save(out)
     fit = lib.training["shape"]["fit"]
     print(f"pattern library written: {path}")
@@ -123,4 +136,11 @@ def run(args) -> int:
         f"{s} {v['training_residual_std_m'] * 1e3:.3f} mm" for s, v in fit.items()))
     print(f"  modes: {', '.join(lib.modes)}; plant config {lib.settings['plant_config_hash']}; "
           f"{time.time() - t0:.0f} s")
+    if check is not None:
+        from backlash_monitor.workbench.retrain import describe
+        for line in describe(check):
+            print("  " + line)
+        if check["flagged"]:
+            print(f"WARNING: the library {path} is FLAGGED (written into it; analyze and the classifier warn when "
+                  "they load it): " + "; ".join(check["reasons"]), file=sys.stderr)
     return 0

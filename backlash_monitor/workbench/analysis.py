@@ -20,8 +20,7 @@ from .events import (IMPACT_SETTLE_S, PRE_SAMPLES, SEGMENT_SIGNALS, Ensemble, Ev
 DEFAULT_SEEDS = 6
 PHASES = ("before_entry", "gap_traversal", "impact", "settling")
 LEVELS = ("d1", "d2", "d3", "d4", "d5", "d6", "a6")
-INCONSISTENT_RATIO = 2.0     # residual / noise floor above which the model is called inconsistent (clean 4 s
-                             # recordings measured up to 1.78; the T^2 test in the candidates' subspace is the finer gate)
+from .consistency import INCONSISTENT_RATIO  # noqa: E402,F401  (kept here for its users)
 
 
 class ConditionsError(ValueError):
@@ -66,6 +65,7 @@ class Comparison:
     weights: np.ndarray          # per signal 1/noise floor rms (denoised)
     floor_rms: np.ndarray        # per signal, rms of the leave-one-seed-out deviation
     spec_weights: np.ndarray | None = None   # per spectral-shape feature 1/its noise floor (workbench/spectral.py)
+    dc_weights: np.ndarray | None = None     # per signal 1/the noise floor of the mean of its period means
 
     @property
     def target(self):
@@ -91,8 +91,11 @@ def build_comparison(meas, model, seeds=None) -> Comparison:
     # square root of the measurement's number of events (the noise of the measured events' mean)
     feats = np.vstack([spectral.event_features(p, meas.sample_period_s) for p in ens.per_event])
     spec_floor = feats.std(axis=0) / np.sqrt(max(ev.n_events, 1))
+    # the record-mean view's floor: the same for the events' period means (events.period_means)
+    dcs = np.vstack(ens.per_event_dc)
+    dc_floor = dcs.std(axis=0) / np.sqrt(max(ev.n_events, 1))
     return Comparison(model, meas, conditions, seeds, ev, ens, 1.0 / floor, floor,
-                      1.0 / np.maximum(spec_floor, 1e-12))
+                      1.0 / np.maximum(spec_floor, 1e-12), 1.0 / np.maximum(dc_floor, 1e-12))
 
 
 def fit_percent(target, model_mean) -> np.ndarray:

@@ -52,9 +52,11 @@ def denoise(x: np.ndarray) -> np.ndarray:
 
 @dataclass
 class EventSet:
-    """The onset segments of one record: raw (n_events, 2, L); ``entries`` their entry indices."""
+    """The onset segments of one record: raw (n_events, 2, L); ``entries`` their entry indices; ``dc``
+    (n_events, 2) each event's *period mean* of a1, a2 (period_means: the record-mean view's units)."""
     raw: np.ndarray
     entries: np.ndarray
+    dc: np.ndarray | None = None
 
     @property
     def n_events(self) -> int:
@@ -67,12 +69,29 @@ class EventSet:
         return denoise(self.mean_raw())
 
 
+def period_means(signals: dict, entries: np.ndarray, all_entries: np.ndarray) -> np.ndarray:
+    """(n_events, 2): per onset event, the mean of a1 and a2 over one pulse period starting PRE_SAMPLES before
+    its entry (the period: the median spacing of the record's onset entries; clipped to the record -- the model's
+    runs have the measurement's length and pulse phase, so a clipped last period is clipped alike there).
+    An acceleration averages to zero over a stretch whose speed returns to its value: over a period of the
+    periodic steady state the physics' mean is ~0, a sensor's constant offset is not (docs/workbench.md)."""
+    n = len(signals["a1"])
+    period = int(np.median(np.diff(all_entries))) if len(all_entries) > 1 else n
+    out = np.empty((len(entries), len(SEGMENT_SIGNALS)))
+    for i, k in enumerate(entries):
+        lo = max(int(k) - PRE_SAMPLES, 0)
+        hi = min(lo + period, n)
+        for j, s in enumerate(SEGMENT_SIGNALS):
+            out[i, j] = float(np.mean(signals[s][lo:hi]))
+    return out
+
+
 def event_set(signals: dict, sample_period_s: float) -> EventSet:
     entries = onset_entries(signals, sample_period_s)
     seg = segments(signals, entries)
     n = len(signals["a1"])
     kept = np.array([k for k in entries if k - PRE_SAMPLES >= 0 and k + POST_SAMPLES <= n], dtype=np.int64)
-    return EventSet(seg, kept)
+    return EventSet(seg, kept, period_means(signals, kept, entries))
 
 
 @dataclass
@@ -86,6 +105,8 @@ class Ensemble:
     raw_records: dict | None = None
     per_event_entries: list | None = None   # per seed of set 0: the entry indices of per_event
     seed_spec: np.ndarray | None = None     # (n_sets, n_seeds, F) event-mean spectral shape (workbench/spectral.py)
+    seed_dc: np.ndarray | None = None       # (n_sets, n_seeds, 2) event-mean period means of a1, a2
+    per_event_dc: list | None = None        # per seed of set 0: (n_events, 2)
 
     def mean_raw(self, s: int = 0) -> np.ndarray:
         w = self.n_events[s].astype(float)
@@ -98,6 +119,15 @@ class Ensemble:
         """The spectral-shape features averaged over all events of set s (every seed's events)."""
         w = self.n_events[s].astype(float)
         return np.tensordot(w / w.sum(), self.seed_spec[s], axes=(0, 0))
+
+    def dc_mean(self, s: int = 0) -> np.ndarray:
+        """The period means of a1, a2 averaged over all events of set s (every seed's events)."""
+        w = self.n_events[s].astype(float)
+        return np.tensordot(w / w.sum(), self.seed_dc[s], axes=(0, 0))
+
+    def dc_samples(self, k: int) -> np.ndarray:
+        """The period means of seed k's events of set 0: (n_events, 2)."""
+        return self.per_event_dc[k]
 
     def seed_denoised(self, s: int = 0) -> np.ndarray:
         return denoise(self.seed_means[s])
@@ -118,7 +148,8 @@ def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = 
     means = np.zeros((n_sets, n_seeds, len(SEGMENT_SIGNALS), L))
     counts = np.zeros((n_sets, n_seeds), dtype=np.int64)
     spec = np.zeros((n_sets, n_seeds, spectral.n_features(len(SEGMENT_SIGNALS))))
-    per_event, per_entries = [], []
+    dc = np.zeros((n_sets, n_seeds, len(SEGMENT_SIGNALS)))
+    per_event, per_entries, per_dc = [], [], []
     for i in range(n_sets):
         for j in range(n_seeds):
             sig = {s: runs[s][i, j] for s in runs}
@@ -127,11 +158,13 @@ def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = 
             if ev.n_events:
                 means[i, j] = ev.mean_raw()
                 spec[i, j] = spectral.event_features(ev.raw, sample_period_s).mean(axis=0)
+                dc[i, j] = ev.dc.mean(axis=0)
             if i == 0:
                 per_event.append(ev.raw)
                 per_entries.append(ev.entries)
+                per_dc.append(ev.dc)
     if (counts == 0).any():
         raise ValueError("a simulated run of the model gave no complete onset window; the model does not cross "
                          "its backlash under these conditions")
     records = {s: runs[s][0] for s in runs} if keep_records else None
-    return Ensemble(means, counts, per_event, records, per_entries, spec)
+    return Ensemble(means, counts, per_event, records, per_entries, spec, dc, per_dc)

@@ -73,11 +73,12 @@ class Problem:
     """The measurement's target and the shared-noise machinery to evaluate the model at parameter sets.
 
     A *prediction* is one flat vector: the weighted denoised event average (w * m, 2 x L values) followed by
-    the weighted spectral-shape features of the raw events (ws * s, workbench/spectral.py). The measured
+    the weighted spectral-shape features of the raw events (ws * s, workbench/spectral.py) and the weighted
+    period means of a1, a2 (wdc * dc, events.period_means: the record-mean view). The measured
     events give the same vector per event; their mean is the target."""
 
     def __init__(self, model, measured_events, seeds, n_samples, sample_period_s, conditions, weights,
-                 spec_weights, base_sets=None):
+                 spec_weights, dc_weights, base_sets=None):
         self.model = model
         self.events = measured_events                         # EventSet (raw)
         self.target = measured_events.mean_denoised()         # (2, L)
@@ -88,14 +89,24 @@ class Problem:
         self.conditions = dict(conditions)
         self.w = np.asarray(weights, dtype=float)[:, None]    # per signal 1 / noise-floor rms
         self.ws = np.asarray(spec_weights, dtype=float)       # per spectral feature 1 / its noise floor
+        self.wdc = np.asarray(dc_weights, dtype=float)        # per signal 1 / the record mean's noise floor
         self.base = dict(base_sets or {})                     # parameter set of effects already added
         self.n_sets_simulated = 0
-        self.basis = None      # (N, q): the whitened directions the candidates act in (set by diagnose)
-        self.blocks = None     # [(name, slice of the basis' columns)]: event average, spectral shape
+        self.basis = None      # (N, q): the whitened directions the views look in (set by diagnose)
+        self.blocks = None     # [(name, slice of the basis' columns)]: event average, spectral shape, record mean
+        self.complement = None           # (n_event_coords, P): whitened noise directions outside the subspace
+        self.tolerance_z = None          # (q, m): the model-form tolerance in the basis' coordinates
         e = self.event_denoised.shape[0]
+        self.n_events = int(e)
+        self.n_seeds = len(self.seeds)
         self.n_event_coords = int(self.target.size)
         spec = spectral.event_features(measured_events.raw, self.dt)
-        self.event_vecs = np.hstack([(self.event_denoised * self.w[None]).reshape(e, -1), spec * self.ws[None]])
+        ns = spec.shape[1]
+        self.event_slice = slice(0, self.n_event_coords)
+        self.spectral_slice = slice(self.n_event_coords, self.n_event_coords + ns)
+        self.dc_slice = slice(self.n_event_coords + ns, self.n_event_coords + ns + self.wdc.size)
+        self.event_vecs = np.hstack([(self.event_denoised * self.w[None]).reshape(e, -1), spec * self.ws[None],
+                                     measured_events.dc * self.wdc[None]])
         self.target_vec = self.event_vecs.mean(axis=0)
 
     def _merge(self, sets):
@@ -114,11 +125,12 @@ class Problem:
         ens = ensemble_from_runs(runs, self.dt)
         return ens
 
-    def pred(self, mean_denoised, spec) -> np.ndarray:
-        return np.concatenate([(mean_denoised * self.w).ravel(), np.asarray(spec) * self.ws])
+    def pred(self, mean_denoised, spec, dc) -> np.ndarray:
+        return np.concatenate([(mean_denoised * self.w).ravel(), np.asarray(spec) * self.ws,
+                               np.asarray(dc) * self.wdc])
 
     def pred_of(self, ens, i: int = 0) -> np.ndarray:
-        return self.pred(ens.mean_denoised(i), ens.spec_mean(i))
+        return self.pred(ens.mean_denoised(i), ens.spec_mean(i), ens.dc_mean(i))
 
     def residual(self, pred) -> np.ndarray:
         return self.target_vec - pred

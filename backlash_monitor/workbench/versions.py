@@ -5,6 +5,7 @@ import copy
 from dataclasses import dataclass, field
 
 from . import plant_adapter
+from .diagnosis import MEASURAND_EFFECTS
 from .model import WorkbenchModel, _set_nested
 
 
@@ -16,13 +17,21 @@ class EffectValues:
     source: str = ""
 
 
-def add_effects(model: WorkbenchModel, additions, name: str | None = None) -> WorkbenchModel:
-    """A new WorkbenchModel (version + 1) with every addition applied (validated)."""
+def add_effects(model: WorkbenchModel, additions, name: str | None = None, nominal=None,
+                provenance=None) -> WorkbenchModel:
+    """A new WorkbenchModel (version + 1) with every addition applied (validated); ``nominal``: nominal values
+    that change (a measured backlash width: the measurand, never an effect); ``provenance``: where it came from.
+    A backlash width drift among the additions is refused: the width is what the monitor measures."""
+    for add in additions:
+        if add.effect in MEASURAND_EFFECTS:
+            raise ValueError(f"effect {add.effect}: the backlash width is the monitor's measurand, not a model effect; "
+                             "set the model's nominal width instead (--width-m), or let add-effect take it from a "
+                             "diagnosis")
     new = WorkbenchModel(name=name or model.name, version=model.version + 1,
                          parent=model.path.name if model.path else f"{model.name} v{model.version} (unsaved)",
-                         nominal=dict(model.nominal), plant=copy.deepcopy(model.plant),
+                         nominal={**model.nominal, **(nominal or {})}, plant=copy.deepcopy(model.plant),
                          effects_added=copy.deepcopy(model.effects_added),
-                         effect_files=list(model.effect_files))
+                         effect_files=list(model.effect_files), provenance=dict(provenance or {}))
     cands = plant_adapter.catalogue(model, not_event_locked=True)   # a version may hold any catalogue effect
     for add in additions:
         mine = [c for c in cands if c.effect == add.effect or c.name == add.effect]

@@ -1,0 +1,80 @@
+"""The decision rules of a diagnosis (docs/workbench.md, "Decisions"), shared by the single-effect steps
+(diagnose.py) and the pair search (pairs.py).
+
+- a candidate *qualifies* when its BIC on the events beats the model's by DELTA_IC_STRONG, it explains at least
+  MIN_EXPLAINED of the residual, it is not pinned at a bound of its fit range, and its change exceeds the
+  model-form tolerance of the parameter it moves (tolerance.py);
+- a second effect's values must be *significant*: more than SIGNIFICANCE uncertainties from the model's;
+- an update is *confident* when the model with it is consistent in every view (consistency.py, with the
+  tolerance), or, for a strong effect fitted to >= CONFIDENT_EXPLAINED of the residual, consistent outside the
+  candidates' subspace and in its overall residual; and it never makes a view worse (*every view*: an effect must
+  not trade the event average for the raw spectra or the record mean).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import consistency, tolerance
+
+DELTA_IC_STRONG = 2.0        # "positive" evidence (Kass & Raftery) on E events
+DELTA_IC_TIE = 2.0           # two candidates closer than this are not distinguishable from the recording
+MIN_EXPLAINED = 0.5
+MIN_EXPLAINED_SECOND = 0.3
+SIGNIFICANCE = 2.0           # a fitted value must differ from the model's by > 2 uncertainties (second effects)
+TOLERANCE_FACTOR = 2.0       # a fitted change must exceed 2 x its nominal tolerance
+CONFIDENT_EXPLAINED = 0.9
+COMPLEMENT_EXPLAINED = 0.6   # outside the subspace: within the limit, or this share of the model's T^2 removed
+VIEW_WORSE_MARGIN = 0.1      # per signal: residual/noise may not grow by more than this (above max(before, 1))
+
+
+def significant(fit) -> bool:
+    """Every fitted value differs from the model's by more than SIGNIFICANCE x its (jackknife) uncertainty."""
+    d = np.abs(np.asarray(fit.values) - np.asarray(fit.nominal))
+    return bool(np.all(d > SIGNIFICANCE * np.asarray(fit.uncertainty)))
+
+
+def qualifies(fit, candidate, min_explained: float = MIN_EXPLAINED) -> bool:
+    """(No significance test for a single effect: its test is the IC, and the jackknife through the final
+    Jacobian can be far off for a strongly nonlinear parameter -- measured: a quadratic wheel drag fitted
+    0.064 +- 0.040 at delta_ic -250.)"""
+    return (fit.delta_ic <= -DELTA_IC_STRONG and fit.explained_fraction >= min_explained and not fit.at_bound
+            and tolerance.beyond_tolerance(fit, candidate, TOLERANCE_FACTOR))
+
+
+def views_not_worse(problem, before_pred, after_pred) -> tuple[bool, list]:
+    """Every view at least as good after the update as before: a view outside its band must not grow, a view
+    inside must stay inside; per signal the event average's residual/noise must not grow beyond
+    max(before, 1) + VIEW_WORSE_MARGIN. -> (ok, [names of the views made worse])."""
+    b = consistency.test(problem, problem.residual(before_pred))
+    a = consistency.test(problem, problem.residual(after_pred))
+    worse = [n for n, v in a.views.items() if v.t2 > max(b.views[n].t2, b.views[n].limit) * (1 + 1e-9)]
+    rb = per_signal_ratio(problem, before_pred)
+    ra = per_signal_ratio(problem, after_pred)
+    worse += [f"event_average_{s}" for s, x, y in zip(("a1", "a2"), rb, ra) if y > max(x, 1.0) + VIEW_WORSE_MARGIN]
+    return not worse, worse
+
+
+def per_signal_ratio(problem, pred) -> np.ndarray:
+    """Per signal: rms of the weighted event-average residual (residual / noise floor)."""
+    r = problem.event_part(problem.residual(pred)).reshape(2, -1)
+    return np.sqrt(np.mean(r ** 2, axis=1))
+
+
+def confident(problem, after_pred, base_pred) -> tuple[bool, dict]:
+    """The model with the discovered effect(s) agrees with the measurement. -> (confident, checks)."""
+    r = problem.residual(after_pred)
+    after = consistency.test(problem, r)
+    before = consistency.test(problem, problem.residual(base_pred))
+    r0g = problem.fit_residual(base_pred)
+    explained = 1 - float(np.sum(problem.project(r) ** 2) / max(np.sum(r0g ** 2), 1e-300))
+    inside = after.consistent
+    # outside the candidates' subspace the effect must not leave what the model's noise does not account for
+    # (an effect outside the catalogue that a catalogue effect mimics inside the subspace)
+    out_a, out_b = after.views[consistency.OUTSIDE], before.views[consistency.OUTSIDE]
+    outside_ok = out_a.t2 <= out_a.limit or out_a.t2 <= (1.0 - COMPLEMENT_EXPLAINED) * out_b.t2
+    overall_ok = after.residual_over_noise <= consistency.INCONSISTENT_RATIO
+    not_worse, worse = views_not_worse(problem, base_pred, after_pred)
+    ok = bool(overall_ok and (inside or explained >= CONFIDENT_EXPLAINED) and outside_ok and not_worse)
+    return ok, {"consistent_in_every_view": bool(inside), "explained": explained, "outside_subspace_ok": bool(outside_ok),
+                "overall_ok": bool(overall_ok), "no_view_worse": bool(not_worse), "views_made_worse": worse,
+                "views_after": after.to_json()}

@@ -1,0 +1,60 @@
+"""The model-form tolerance: how far a real drive may differ from its model without any effect missing.
+
+A real drive never matches its model exactly: its nominal values are known to within a tolerance (a mass weighed,
+an inertia from a drawing, an elastomer jaw's stiffness from a catalogue), and its laws are written differently
+from the model's (another friction curve, another contact law). The null hypothesis of the consistency test
+(consistency.py) allows for that: the model's prediction may be off by the spread of its nominal parameters,
+N(0, sum_j (J_j sigma_j)(J_j sigma_j)'), J_j the prediction's derivative by parameter j (the screening's
+secants, common random numbers) and sigma_j its plausible error (NOMINAL_SIGMA, config/workbench.yaml has the
+reasons). An effect must exceed that to be discovered. The width is not in it: it is the measurand.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+# plausible 1-sigma error of each nominal value of a drive's model, in the parameter's unit (reasons:
+# config/workbench.yaml "tolerance"); keys are the catalogue parameters that change the nominal value
+NOMINAL_SIGMA = {
+    "load_mass_drift.relative_change": 0.02,
+    "wheel_inertia_drift.relative_change": 0.05,
+    "spring_stiffness_drift.relative_change": 0.05,
+    "absorber_consistency_drift.relative_change": 0.05,
+    "absorber_flow_index_drift.change": 0.005,
+    "working_resistance_drift.relative_change": 0.05,
+    "pulse_amplitude_drift.relative_change": 0.02,
+    "clutch_contact_stiffness.relative_change": 0.10,
+    "clutch_contact_damping.relative_change": 0.20,
+    "accelerometer_gain.a1_relative_change": 0.02,
+    "accelerometer_gain.a2_relative_change": 0.02,
+}
+
+
+SCALE = 0.0   # under measurement (docs/workbench.md "Model-form tolerance"): the nominal spread above, x SCALE
+
+
+def sigma_of(candidate) -> np.ndarray:
+    """Per fitted parameter of a candidate (plant_adapter.CandidateEffect): its nominal tolerance (0: none)."""
+    return np.array([NOMINAL_SIGMA.get(p.key, 0.0) * SCALE for p in candidate.parameters])
+
+
+def directions(screening: dict, by_name: dict, scale: float = 1.0) -> np.ndarray:
+    """(N, m): the prediction-space directions of the nominal parameters' spread, J_j * sigma_j * scale, from the
+    screening Jacobians of the candidates that carry a tolerance."""
+    cols = []
+    for name, info in screening.items():
+        sig = sigma_of(by_name[name])
+        for i, s in enumerate(sig):
+            if s > 0:
+                cols.append(info["J"][:, i] * s * scale)
+    if not cols:
+        n = next(iter(screening.values()))["J"].shape[0] if screening else 0
+        return np.zeros((n, 0))
+    return np.stack(cols, axis=1)
+
+
+def beyond_tolerance(fit, candidate, factor: float = 2.0) -> bool:
+    """A fitted candidate's change exceeds ``factor`` x its nominal tolerance in at least one parameter (always
+    True for a parameter without a tolerance: an effect the model lacks altogether)."""
+    sig = sigma_of(candidate)
+    d = np.abs(np.asarray(fit.values) - np.asarray(fit.nominal))
+    return bool(np.any((sig == 0) | (d > factor * sig)))
