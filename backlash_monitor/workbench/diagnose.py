@@ -86,8 +86,8 @@ def prepare(meas, model, seeds=None, effects=None, overrides=None) -> Run:
     """The comparison (conditions, the model's noise ensemble) and the fit problem; the candidate catalogue."""
     comp = analysis.build_comparison(meas, model, seeds)
     problem = fitting.Problem(model, comp.events, comp.seeds, meas.n_samples, meas.sample_period_s,
-                              comp.conditions, comp.weights, comp.spec_weights, comp.dc_weights)
-    base_pred = problem.pred(comp.model_mean, comp.ensemble.spec_mean(0), comp.ensemble.dc_mean(0))
+                              comp.conditions, comp.weights, comp.spec_weights, comp.dc_weights, comp.segment_noise)
+    base_pred = problem.pred_of(comp.ensemble, 0)
     catalogue = plant_adapter.catalogue(model)
     if effects:
         known = {c.name for c in catalogue} | {c.effect for c in catalogue}
@@ -115,6 +115,9 @@ def screen_step(run: Run, effects=None, progress=None) -> None:
     z_all = consistency.model_event_vectors(run.comp, p)
     p.basis, p.blocks = consistency.whiten(consistency.candidate_basis(spans, p), z_all)
     p.complement = consistency.complement_basis(z_all, p)
+    outside = np.zeros((p.basis.shape[0], p.complement.shape[1]))
+    outside[p.event_slice] = p.complement
+    p.fit_basis = np.hstack([p.basis, outside])
     tol = tolerance.directions(run.scr, run.by_name)
     p.tolerance_z = p.basis.T @ tol
     run.base_ic = p.ic(run.base_pred, 0)
@@ -405,6 +408,12 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
                                                       spectral.BAND_EDGES_HZ[2:])],
                                map(float, (p.target_vec - run.base_pred)[p.spectral_slice] / p.ws))),
                            "units": "ln(power ratio of adjacent bands), mean over the events"},
+        "sensor_noise_floor": {"rms_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, np.sqrt(
+                                   comp.noise_psd * 0.5 / comp.meas.sample_period_s)))),
+                               "psd_m2_s4_per_hz": dict(zip(SEGMENT_SIGNALS, map(float, comp.noise_psd))),
+                               "note": "the white noise the recording's sensor chain adds (read off above "
+                                       f"{analysis.NOISE_BAND_HZ[0] / 1e3:.0f} kHz); a nuisance the spectral views "
+                                       "allow for, not an effect"},
         "record_mean": {"measured_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, p.events.dc.mean(axis=0)))),
                         "model_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, comp.ensemble.dc_mean(0)))),
                         "units": "m/s^2, mean over the events of each one's pulse-period mean"},

@@ -104,7 +104,7 @@ class Ensemble:
     per_event: list               # per seed of set 0: (n_events, 2, L)
     raw_records: dict | None = None
     per_event_entries: list | None = None   # per seed of set 0: the entry indices of per_event
-    seed_spec: np.ndarray | None = None     # (n_sets, n_seeds, F) event-mean spectral shape (workbench/spectral.py)
+    seed_bands: list | None = None          # [set][seed]: (n_events, 2, n_bands) raw band powers (spectral.py)
     seed_dc: np.ndarray | None = None       # (n_sets, n_seeds, 2) event-mean period means of a1, a2
     per_event_dc: list | None = None        # per seed of set 0: (n_events, 2)
 
@@ -115,10 +115,14 @@ class Ensemble:
     def mean_denoised(self, s: int = 0) -> np.ndarray:
         return denoise(self.mean_raw(s))
 
-    def spec_mean(self, s: int = 0) -> np.ndarray:
-        """The spectral-shape features averaged over all events of set s (every seed's events)."""
-        w = self.n_events[s].astype(float)
-        return np.tensordot(w / w.sum(), self.seed_spec[s], axes=(0, 0))
+    def spec_mean(self, s: int = 0, noise=None) -> np.ndarray:
+        """The spectral-shape features averaged over all events of set s (every seed's events); ``noise``: a
+        sensor noise floor per signal added to the band powers first (spectral.features_from_bands)."""
+        return spectral.features_from_bands(np.concatenate(self.seed_bands[s], axis=0), noise).mean(axis=0)
+
+    def event_bands(self, k: int) -> np.ndarray:
+        """Band powers of seed k's events of set 0: (n_events, 2, n_bands)."""
+        return self.seed_bands[0][k]
 
     def dc_mean(self, s: int = 0) -> np.ndarray:
         """The period means of a1, a2 averaged over all events of set s (every seed's events)."""
@@ -147,7 +151,7 @@ def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = 
     L = PRE_SAMPLES + POST_SAMPLES
     means = np.zeros((n_sets, n_seeds, len(SEGMENT_SIGNALS), L))
     counts = np.zeros((n_sets, n_seeds), dtype=np.int64)
-    spec = np.zeros((n_sets, n_seeds, spectral.n_features(len(SEGMENT_SIGNALS))))
+    bands = [[None] * n_seeds for _ in range(n_sets)]
     dc = np.zeros((n_sets, n_seeds, len(SEGMENT_SIGNALS)))
     per_event, per_entries, per_dc = [], [], []
     for i in range(n_sets):
@@ -157,7 +161,7 @@ def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = 
             counts[i, j] = ev.n_events
             if ev.n_events:
                 means[i, j] = ev.mean_raw()
-                spec[i, j] = spectral.event_features(ev.raw, sample_period_s).mean(axis=0)
+                bands[i][j] = spectral.band_powers(ev.raw, sample_period_s)
                 dc[i, j] = ev.dc.mean(axis=0)
             if i == 0:
                 per_event.append(ev.raw)
@@ -167,4 +171,4 @@ def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = 
         raise ValueError("a simulated run of the model gave no complete onset window; the model does not cross "
                          "its backlash under these conditions")
     records = {s: runs[s][0] for s in runs} if keep_records else None
-    return Ensemble(means, counts, per_event, records, per_entries, spec, dc, per_dc)
+    return Ensemble(means, counts, per_event, records, per_entries, bands, dc, per_dc)

@@ -35,32 +35,35 @@ from backlash_monitor.plant import effects as plant_effects
 SIGNALS = ("a1", "a2", "omega1", "omega2", "angle_difference")
 NOT_EVENT_LOCKED = ("torque_ripple",)
 
-# practical search range of each parameter [unit of the parameter]; "width" = relative to the model's width
+# practical search range of each parameter [unit of the parameter]; "width" = relative to the model's width.
+# Every range is the size of the error real drives and sensors show (docs/workbench.md "Fit ranges" has the
+# reasons; F0*r = 4.5 N*m is the working resistance's torque at the rim, T_b = 20 N*m the motor's base torque,
+# the wheel turns at ~151 rad/s):
 FIT_RANGES = {
-    "wheel_coulomb_friction.torque_Nm": (0.0, 5.0),
-    "wheel_viscous_friction.damping_Nms_per_rad": (0.0, 0.2),
-    "wheel_stribeck_friction.excess_torque_Nm": (0.0, 5.0),
-    "wheel_stribeck_friction.stribeck_speed_rad_s": (0.5, 50.0),
-    "motor_coulomb_friction.torque_Nm": (0.0, 5.0),
-    "clutch_contact_stiffness.relative_change": (-0.6, 1.5),
-    "clutch_contact_damping.relative_change": (-0.8, 3.0),
-    "shaft_compliance.compliance_rad_per_Nm": (0.0, 2e-3),
-    "mass_force_offset.force_N": (-60.0, 60.0),
-    "motor_load_offset.load_pu": (-0.4, 0.4),
-    "accelerometer_bias.a1_m_s2": (-20.0, 20.0),
-    "accelerometer_bias.a2_m_s2": (-0.5, 0.5),
-    "accelerometer_gain.a1_relative_change": (-0.5, 0.5),
+    "wheel_coulomb_friction.torque_Nm": (0.0, 5.0),            # up to F0*r: more would stall the load
+    "wheel_viscous_friction.damping_Nms_per_rad": (0.0, 0.05),  # 7.5 N*m at 151 rad/s (1.7 F0*r)
+    "wheel_stribeck_friction.excess_torque_Nm": (0.0, 5.0),     # as the dry friction
+    "wheel_stribeck_friction.stribeck_speed_rad_s": (0.5, 50.0),  # lubricated bearings to dry contacts
+    "motor_coulomb_friction.torque_Nm": (0.0, 5.0),             # a quarter of T_b: a failing motor bearing
+    "clutch_contact_stiffness.relative_change": (-0.6, 1.5),    # elastomer jaws: worn soft to aged hard
+    "clutch_contact_damping.relative_change": (-0.8, 3.0),      # elastomer damping: temperature, ageing
+    "shaft_compliance.compliance_rad_per_Nm": (0.0, 2e-3),      # a shaft up to 6x softer than the jaw contact
+    "mass_force_offset.force_N": (-60.0, 60.0),                 # 2 F0: an incline up to ~37 deg, a preload
+    "motor_load_offset.load_pu": (-0.4, 0.4),                   # 40 % of T_b: a constant extra load or drag
+    "accelerometer_bias.a1_m_s2": (-10.0, 10.0),                # MEMS offset (+-0.2 g) + gravity on a tilted axis
+    "accelerometer_bias.a2_m_s2": (-10.0, 10.0),                # (up to 1 g)
+    "accelerometer_gain.a1_relative_change": (-0.5, 0.5),       # sensitivity error to a range set x2 / x0.5
     "accelerometer_gain.a2_relative_change": (-0.5, 0.5),
-    "accelerometer_lowpass.a1_time_constant_s": (0.0, 2e-3),
+    "accelerometer_lowpass.a1_time_constant_s": (0.0, 2e-3),    # sensor bandwidths down to 80 Hz
     "accelerometer_lowpass.a2_time_constant_s": (0.0, 2e-3),
-    "backlash_width_drift.change": ("width", -0.4, 0.4),
-    "absorber_consistency_drift.relative_change": (-0.6, 1.5),
-    "absorber_flow_index_drift.change": (-0.1, 0.1),
-    "spring_stiffness_drift.relative_change": (-0.75, 3.0),
-    "load_mass_drift.relative_change": (-0.5, 1.0),
-    "wheel_inertia_drift.relative_change": (-0.5, 1.0),
-    "working_resistance_drift.relative_change": (-1.0, 2.0),
-    "pulse_amplitude_drift.relative_change": (-0.3, 0.3),
+    "backlash_width_drift.change": ("width", -0.4, 0.4),        # wear: a clutch is serviced long before +40 %
+    "absorber_consistency_drift.relative_change": (-0.6, 1.5),  # fluid viscosity: ~-2 %/K over +-30 K
+    "absorber_flow_index_drift.change": (-0.1, 0.1),            # shear-thinning index: temperature, ageing
+    "spring_stiffness_drift.relative_change": (-0.75, 3.0),     # a spring of another grade, or a cracked one
+    "load_mass_drift.relative_change": (-0.5, 1.0),             # the product carried: half to double
+    "wheel_inertia_drift.relative_change": (-0.5, 1.0),         # another wheel or hub mounted
+    "working_resistance_drift.relative_change": (-1.0, 2.0),    # the process force: gone to tripled
+    "pulse_amplitude_drift.relative_change": (-0.3, 0.3),       # the machine's duty cycle load +-30 %
 }
 
 
