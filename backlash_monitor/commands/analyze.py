@@ -41,7 +41,8 @@ def add_arguments(parser) -> None:
                         help="output prefix (default: the bag's path without .mcap, plus "
                              "'.estimates'): writes PREFIX.csv, PREFIX.json, PREFIX.mcap")
     parser.add_argument("--namespace", default="",
-                        help="namespace of the drive's topics in the bag (e.g. /line1/drive7)")
+                        help="namespace of the drive's topics in the bag (e.g. /line1/drive7; default: the one drive "
+                             "the bag holds, found by its plant/a1 topic)")
     parser.add_argument("--trigger", choices=("contact_loss", "paper"), default="contact_loss",
                         help="entry trigger (the library must be trained with it)")
     parser.add_argument("--width-m", type=float, default=0.0,
@@ -79,6 +80,18 @@ def output_paths(out_prefix) -> dict[str, pathlib.Path]:
 def _topic(namespace: str, name: str) -> str:
     ns = namespace.strip("/")
     return f"/{ns}/plant/{name}" if ns else f"/plant/{name}"
+
+
+def drive_namespace(available, bag_path) -> str:
+    """The namespace of the one drive whose plant topics the bag holds (``<ns>/plant/a1``), as the workbench
+    finds it; several drives: refused, naming them (``--namespace`` chooses)."""
+    found = sorted({t[:-len("/plant/a1")].strip("/") for t in available if t.endswith("plant/a1")
+                    and (t == "/plant/a1" or t == "plant/a1" or t.endswith("/plant/a1"))})
+    if len(found) > 1:
+        from backlash_monitor.commands import UsageError
+        raise UsageError(f"bag {bag_path} holds several drives' plant topics ({', '.join('/' + f for f in found)}); "
+                         "choose one with --namespace")
+    return found[0] if found else ""
 
 
 def _find_topic(available, namespace, name):
@@ -176,15 +189,16 @@ def analyze_bag(args, library=None) -> dict:
     try:
         with BagReader(bag_path, recover=args.recover) as reader:
             available = set(reader.topics)
+            namespace = args.namespace or drive_namespace(available, bag_path)
             topics = {}
             for name in stage.input_signals:
-                topic = _find_topic(available, args.namespace, name)
+                topic = _find_topic(available, namespace, name)
                 if topic is None:
                     raise UsageError(
-                        f"bag {bag_path} has no topic {_topic(args.namespace, name)}; it has: "
+                        f"bag {bag_path} has no topic {_topic(namespace, name)}; it has: "
                         f"{', '.join(sorted(available))}")
                 topics[topic] = name
-            width_topic = _find_topic(available, args.namespace, "true_width_m")
+            width_topic = _find_topic(available, namespace, "true_width_m")
             true_width = math.nan
             if width_topic:
                 for m in reader.messages([width_topic]):
