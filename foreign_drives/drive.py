@@ -32,6 +32,26 @@ class Recording:
     def n_samples(self) -> int:
         return len(self.signals["a1"])
 
+    def true_entries(self) -> list:
+        """[(sample_index, "onset" | "return")]: the true backlash-zone entries, from the jaw's exact angle
+        difference and the true width: |D_k| < beta after |D_k-1| >= beta; "onset" when D_k-1 > 0 (the load
+        side overran the motor as a pulse began), "return" otherwise (the motor catches up after it)."""
+        d = self.internal["jaw_angle_difference"]
+        beta = self.truth.true_width_m / C.WHEEL_RADIUS_M
+        inside = np.abs(d) < beta
+        ks = np.flatnonzero(inside[1:] & ~inside[:-1]) + 1
+        return [(int(k), "onset" if d[k - 1] > 0 else "return") for k in ks]
+
+    def summary(self) -> dict:
+        """What the made recording holds, for the manifest: true entries and their spacing, the run's figures."""
+        ent = self.true_entries()
+        ks = [k for k, _ in ent]
+        return {"n_samples": self.n_samples, "sample_period_s": self.sample_period_s,
+                "onset_entries": [k for k, kd in ent if kd == "onset"],
+                "return_entries": [k for k, kd in ent if kd == "return"],
+                "min_entry_spacing_samples": int(np.min(np.diff(ks))) if len(ks) > 1 else None,
+                "integrator": {k: v for k, v in self.stats.items()}}
+
 
 def build_parameters(spec: RecordingSpec):
     """(parameter vector, Build) of a spec's drive: nominal values, then the drifts, then the physics forms."""
@@ -101,6 +121,7 @@ def make_recording(spec: RecordingSpec, tol_scale: float = 1.0) -> Recording:
                                                          spec.sensor.angle_offset_rad)}
     internal = {"a1_physical": accel["a1"][n_pre:].copy(), "a2_physical": accel["a2"][n_pre:].copy(),
                 "angle_difference_exact": run.signal("angle_difference").copy(),
+                "jaw_angle_difference": run.signal("jaw_angle_difference").copy(),
                 "clutch_torque_Nm": run.signal("clutch_torque_Nm").copy(), "te_pu": run.signal("te_pu").copy(),
                 "rim_force_N": run.signal("rim_force_N").copy(), "mode": run.signal("mode").copy(),
                 "parameters": P, "pulse_amplitude_pu": b.pulse_amplitude_pu}

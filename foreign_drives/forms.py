@@ -33,9 +33,11 @@ OPERATING_POINT = {
     "mean_te_pu": 0.609,                     # mean electromagnetic torque: 0.225 (r*F0/T_b) + 1.6*60/250
     "mean_rim_force_N": C.WORKING_RESISTANCE_N,
     "static_clutch_torque_Nm": C.WHEEL_RADIUS_M * C.WORKING_RESISTANCE_N,
-    # an impact's reference torque: about half the far-side impact's peak (105..120 N*m on the grid); secant
-    # stiffness and penetration of a non-linear contact law are compared with the linear law's there
-    "impact_reference_torque_Nm": 50.0,
+    # an impact's reference ELASTIC torque: about half the largest elastic torque k_c*p of a far-side impact
+    # (max penetration 0.013 rad at 7.5 mm: ~39 N*m; the impact's peak torque, 105..120 N*m, is mostly the
+    # damper's d_c*p' at contact); the secant stiffness of a non-linear law and the penetration at which a
+    # penetration-dependent damping is compared with the linear law's are taken there
+    "impact_reference_torque_Nm": 20.0,
 }
 REFERENCE_PENETRATION_RAD = OPERATING_POINT["impact_reference_torque_Nm"] / C.CONTACT_STIFFNESS_NM_PER_RAD
 SIGNALS = ("a1", "a2")
@@ -336,7 +338,7 @@ class ClutchContactHertz(Form):
     description = "a Hertz-like jaw contact, k_h*p^n (n = 1.5 for a line/point contact) + d_c*p'"
     parameters = (Param("stiffness", "N*m/rad^n", (1.0, 1e8), "k_h"),
                   Param("exponent", "-", (1.0, 2.5), "n"))
-    note = "equivalent: the linear stiffness with the same penetration at 50 N*m (half an impact's peak)"
+    note = "equivalent: the linear stiffness with the same penetration at 20 N*m (half an impact's elastic peak)"
 
     def apply(self, b, p):
         n, kh = p["exponent"], p["stiffness"]
@@ -378,7 +380,7 @@ class ClutchDampingHuntCrossley(Form):
     family = "clutch_contact_damping"
     description = "Hunt-Crossley contact damping that grows with the penetration: (d_c + lambda*p)*p'"
     parameters = (Param("lambda_Nms_per_rad2", "N*m*s/rad^2", (0.0, 1e6), "lambda"),)
-    note = "equivalent: lambda*p_ref/d_c at the linear law's penetration at 50 N*m (p_ref = 0.0167 rad)"
+    note = "equivalent: lambda*p_ref/d_c at the linear law's penetration at 20 N*m (p_ref = 0.00667 rad)"
 
     def apply(self, b, p):
         b.P[P_HCL] += p["lambda_Nms_per_rad2"]

@@ -46,7 +46,7 @@ D7 = 69997945 / 29380423
 
 # output columns of a recorded run
 OUT_NAMES = ("a1", "a2", "omega1", "omega2", "angle_difference", "clutch_torque_Nm", "te_pu", "rim_force_N",
-             "alpha1", "alpha2", "mode")
+             "alpha1", "alpha2", "mode", "jaw_angle_difference")
 N_OUT = len(OUT_NAMES)
 
 
@@ -110,6 +110,7 @@ def _record(out, row, y, dy, tc, te, f, mode, P):
     out[row, 8] = y[S_A1]
     out[row, 9] = y[S_A2]
     out[row, 10] = mode
+    out[row, 11] = y[S_AH] - y[S_A2] if P[P_KS] > 0.0 else y[S_A1] - y[S_A2]
 
 
 @njit(cache=True)
