@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import constants as C
-from .physics import (P_BETA, P_C, P_CEXP, P_CPRE, P_CREF, P_DC, P_DS, P_DW, P_EME, P_EMN, P_EMP, P_F0, P_GMA,
+from .kernel import (P_BETA, P_C, P_CEXP, P_CPRE, P_CPRS, P_CREF, P_DC, P_DS, P_DW, P_EME, P_EMN, P_EMP, P_F0, P_GMA,
                       P_GMN, P_GMP, P_HCL, P_J2, P_JH, P_JR, P_K, P_KCD, P_KCF, P_KS, P_KW, P_M, P_MCF, P_MCT,
                       P_MDC, P_MFAN, P_MFANW, P_MFT, P_MFTW, P_MFV, P_N1, P_PROG, P_RAILF, P_RAILV, P_RA0, P_RN0,
                       P_RP0, P_RR, P_U, P_VIBA, P_VIBF, P_VIBP, P_WCT, P_WFDC, P_WFDP, P_WFL, P_WFT, P_WFTW, P_WSC,
@@ -720,11 +720,16 @@ class ClutchContactProgressive(Form):
 class ClutchContactPreload(Form):
     name = "clutch_contact_preload"
     family = None
-    description = "a preloaded jaw (a pre-compressed insert): the contact torque jumps to T_pre at contact, T_pre + k_c*p + d_c*p'"
-    parameters = (Param("preload_Nm", "N*m", (0.0, 200.0), "T_pre"),)
+    description = ("a preloaded jaw insert: the contact torque builds up to the preload T_pre within a small "
+                   "penetration p_s, T_pre*(1 - exp(-p/p_s)) + k_c*p + d_c*p'")
+    parameters = (Param("preload_Nm", "N*m", (0.0, 200.0), "T_pre"),
+                  Param("build_up_rad", "rad", (1e-5, 1e-2), "p_s"))
+    note = ("a step of T_pre at contact would be ill-posed with a penalty contact (below T_pre the jaw would "
+            "chatter at p = 0); the build-up over p_s is a stiff initial segment, T_pre/p_s")
 
     def apply(self, b, p):
         b.P[P_CPRE] = p["preload_Nm"]
+        b.P[P_CPRS] = p["build_up_rad"]
 
 
 class SpringHardening(Form):

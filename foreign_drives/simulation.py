@@ -16,7 +16,6 @@ Settled start (not the run-in from an equivalent-circuit steady state of ``backl
 """
 from __future__ import annotations
 
-import cmath
 import math
 from dataclasses import dataclass, field
 
@@ -25,8 +24,8 @@ from scipy.optimize import brentq
 
 from . import constants as C
 from . import noise as N
-from .integrator import N_OUT, OUT_NAMES, run_segments
-from .physics import (N_STATES, P_BETA, P_C, P_F0, P_J2, P_K, P_KCD, P_KS, P_KW, P_R, P_RR, P_RS, P_U, P_XM, P_XR,
+from .kernel import (N_OUT, OUT_NAMES, run_segments,
+                     N_STATES, P_BETA, P_C, P_F0, P_J2, P_K, P_KCD, P_KS, P_KW, P_R, P_RR, P_RS, P_U, P_XM, P_XR,
                       P_XS, S_A1, S_A2, S_AH, S_AR, S_ISD, S_ISQ, S_PRD, S_PRQ, S_V, S_W1, S_W2, S_WH, S_WR, S_X,
                       implied_mode)
 

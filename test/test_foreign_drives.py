@@ -117,7 +117,7 @@ def test_constants_are_spec_section_3():
 
 # ------------------------------------------------------------------------------------------- integrator
 def _drive_rhs(P, mode=1, load=0.3):
-    from foreign_drives.physics import N_STATES, rhs
+    from foreign_drives.kernel import N_STATES, rhs
 
     def f(t, y):
         dy = np.empty(N_STATES)
@@ -136,7 +136,7 @@ def _engaged_state():
 def test_one_dopri_step_is_scipys_rk45_step():
     """The Dormand-Prince tableau: one step equals scipy's RK45 step of the same length (same method)."""
     from scipy.integrate import RK45
-    from foreign_drives.integrator import dopri_step
+    from foreign_drives.kernel import dopri_step
     P, y0 = _engaged_state()
     f = _drive_rhs(P)
     h = 1.5e-4
@@ -152,7 +152,7 @@ def test_one_dopri_step_is_scipys_rk45_step():
 
 def test_continuous_extension_is_fourth_order():
     """The samples between steps come from DOPRI5's continuous extension: its mid-step error falls as h^5."""
-    from foreign_drives.integrator import dense_coefficients, dense_eval, dopri_step
+    from foreign_drives.kernel import dense_coefficients, dense_eval, dopri_step
     P, y0 = _engaged_state()
     f = _drive_rhs(P)
 
@@ -310,7 +310,8 @@ def test_contact_laws_are_the_stated_laws_and_a_softer_contact_is_compressed_dee
             (E("clutch_damping_hunt_crossley", {"lambda_Nms_per_rad2": 900.0}),
              lambda p, r: 3000 * p + (20 + 900 * p) * r),
             (E("clutch_contact_progressive", {"p0_rad": 0.03}), lambda p, r: 3000 * p * (1 + (p / 0.03) ** 2) + 20 * r),
-            (E("clutch_contact_preload", {"preload_Nm": 3.0}), lambda p, r: 3.0 + 3000 * p + 20 * r),
+            (E("clutch_contact_preload", {"preload_Nm": 8.0, "build_up_rad": 2e-4}),
+             lambda p, r: 8.0 * (1 - np.exp(-p / 2e-4)) + 3000 * p + 20 * r),
             (E("clutch_contact_asymmetric", {"drive_relative_change": 0.2, "far_relative_change": -0.4}),
              lambda p, r: 1800 * p + 20 * r)]
     base = make_recording(spec())
@@ -429,7 +430,7 @@ def test_drifts_change_what_they_name():
     p = make_recording(spec([E("drift_pulse_amplitude", {"relative_change": -0.15})]))
     assert p.signals["omega1"].min() > base.signals["omega1"].min() + 0.3
     # spring, absorber: values in the parameter vector, and the mass's motion changes
-    from foreign_drives.physics import P_C, P_K, P_N1
+    from foreign_drives.kernel import P_C, P_K, P_N1
     s = make_recording(spec([E("drift_spring", {"relative_change": 0.5})]))
     assert s.internal["parameters"][P_K] == pytest.approx(150.0)
     a = make_recording(spec([E("drift_eta_k", {"relative_change": 0.6})]))
