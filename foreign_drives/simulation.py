@@ -221,6 +221,9 @@ def simulate(P, *, duration_s: float, seed: int, noise: bool = True, pulse_ampli
         mode, h = _advance(y, mode, -n_pre, loads_run[n_run - n_pre:], P, 1.0, tol_scale, h, out=out[:n_pre * ss],
                            stats=stats)
     mode, h = _advance(y, mode, 0, loads_rec, P, 1.0, tol_scale, h, out=out[n_pre * ss:], stats=stats)
+    if not np.all(np.isfinite(out)):
+        raise RuntimeError("the drive's simulation diverged (a non-finite state); its parameters leave the "
+                           "range in which this drive runs (e.g. a load beyond the motor's breakdown torque)")
     st = dict(zip(("accepted_steps", "rejected_steps", "events", "rhs_calls"), (int(v) for v in stats)))
     st.update(info)
     return Run(out=out, first_index=-n_pre * ss, sample_period_s=C.SAMPLE_PERIOD_S, stats=st)

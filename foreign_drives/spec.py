@@ -99,7 +99,7 @@ class RecordingSpec:
     effects: tuple = ()                # EffectSpec
     sensor: SensorNuisance = SensorNuisance()
     seed: int = 0
-    duration_s: float = 4.0
+    duration_s: float = 4.0            # s, <= 120 (the whole recording is held in memory: ~100 MB per minute)
     chunk_samples: int = 1000          # samples per SignalChunk message in a bag
     namespace: str = ""                # topics <namespace>/plant/<signal>
     drive_name: str = "drive"          # header.frame_id
@@ -122,7 +122,7 @@ class RecordingSpec:
         if self.kind not in KINDS:
             raise ValueError(f"recording {self.label}: kind {self.kind!r}; allowed: {', '.join(KINDS)}")
         for name, (lo, hi) in (("width_m", (1e-4, 0.05)), ("eta_k", (1e-4, 1.0)), ("n1", (0.3, 1.5)),
-                               ("duration_s", (0.4, 3600.0)), ("run_in_s", (0.25, 60.0))):
+                               ("duration_s", (0.4, 120.0)), ("run_in_s", (0.25, 60.0))):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
                 raise ValueError(f"recording {self.label}: {name} = {v!r}; allowed: {lo:g}..{hi:g}")
