@@ -98,9 +98,6 @@ class Form:
         """{other catalogue family: its equivalent parameters or None} that explain this form as well here."""
         return {}
 
-    def signal_of(self, p):
-        return p.get("signal")
-
 
 W_OP = OPERATING_POINT["speed_rad_s"]
 V_OP = OPERATING_POINT["mass_speed_m_s"]
@@ -169,7 +166,8 @@ class WheelFrictionStribeckPower(Form):
             "Coulomb and viscous families explain it as well")
 
     def _torque(self, p, w):
-        return p["coulomb_torque_Nm"] + p["excess_torque_Nm"] * math.exp(-(w / p["stribeck_speed_rad_s"]) ** p["exponent"])
+        x = (w / p["stribeck_speed_rad_s"]) ** p["exponent"]
+        return p["coulomb_torque_Nm"] + p["excess_torque_Nm"] * math.exp(-x)
 
     def apply(self, b, p):
         b.P[P_WSC] = p["coulomb_torque_Nm"]
@@ -287,7 +285,8 @@ class MassRailFriction(Form):
         return {"force_N": -p["force_N"] * math.tanh(V_OP / p["smoothing_speed_m_s"])}
 
     def also(self, p):
-        return {"working_resistance_drift": {"relative_change": -self.equivalent(p)["force_N"] / C.WORKING_RESISTANCE_N}}
+        e = -self.equivalent(p)["force_N"] / C.WORKING_RESISTANCE_N
+        return {"working_resistance_drift": {"relative_change": e}}
 
 
 class MassDrag(Form):
@@ -324,7 +323,7 @@ class MassForceConstant(Form):
 
 
 # ============================================================ clutch contact
-def _secant_stiffness(b_or_none, law) -> float:
+def _secant_stiffness(law) -> float:
     """Linear stiffness with the same penetration at the impact reference torque (OPERATING_POINT)."""
     t_ref = OPERATING_POINT["impact_reference_torque_Nm"]
     from scipy.optimize import brentq
@@ -347,7 +346,7 @@ class ClutchContactHertz(Form):
         b.P[P_KCD] = b.P[P_KCF] = kh * pref ** (n - 1.0)     # k*p_ref*(p/p_ref)^n = k_h*p^n
 
     def equivalent(self, p):
-        k = _secant_stiffness(None, lambda x: p["stiffness"] * x ** p["exponent"])
+        k = _secant_stiffness(lambda x: p["stiffness"] * x ** p["exponent"])
         return {"relative_change": k / C.CONTACT_STIFFNESS_NM_PER_RAD - 1.0}
 
     @staticmethod
@@ -522,7 +521,8 @@ DriftWidth = _drift("drift_width", "backlash_width_drift", "the backlash width (
 DriftMass = _drift("drift_mass", "load_mass_drift", "the mass m", True, (-0.9, 10.0), _scale(P_M))
 DriftWheelInertia = _drift("drift_wheel_inertia", "wheel_inertia_drift", "the wheel inertia J2", True, (-0.9, 10.0),
                            _scale(P_J2))
-DriftSpring = _drift("drift_spring", "spring_stiffness_drift", "the spring stiffness k", True, (-0.9, 10.0), _scale(P_K))
+DriftSpring = _drift("drift_spring", "spring_stiffness_drift", "the spring stiffness k", True, (-0.9, 10.0),
+                     _scale(P_K))
 DriftEtaK = _drift("drift_eta_k", "absorber_consistency_drift", "the absorber consistency eta_k", True, (-0.9, 10.0),
                    lambda b, e: b.set_absorber(b.eta_k * (1.0 + e), b.n1))
 DriftN1 = _drift("drift_n1", "absorber_flow_index_drift", "the absorber flow index n1", False, (-0.5, 0.5),
@@ -556,9 +556,6 @@ def _lowpass_tau(b, a, fs) -> float:
 class _Sensor(Form):
     stage = "sensor"
     order = 1                       # 0 gain/bias (sensing element), 1 filters
-
-    def _key(self, p, what):
-        return f"{p['signal']}_{what}"
 
 
 class LowpassButterworth(_Sensor):
@@ -690,7 +687,8 @@ class BiasDrifting(_Sensor):
 class MotorRotorResistance(Form):
     name = "motor_rotor_resistance"
     family = None
-    description = "the rotor resistance changed (a hot or a cracked rotor bar): r_r -> r_r*(1+e): slip and breakdown slip move"
+    description = ("the rotor resistance changed (a hot or a cracked rotor bar): r_r -> r_r*(1+e): slip and "
+                   "breakdown slip move")
     parameters = (Param("relative_change", "-", (-0.5, 5.0), "e"),)
 
     def apply(self, b, p):
@@ -700,7 +698,8 @@ class MotorRotorResistance(Form):
 class SupplyVoltage(Form):
     name = "supply_voltage"
     family = None
-    description = "the supply voltage is not 1 p.u. (a weak grid, a sag): U -> U*(1+e); the breakdown torque goes with U^2"
+    description = ("the supply voltage is not 1 p.u. (a weak grid, a sag): U -> U*(1+e); the breakdown torque "
+                   "goes with U^2")
     parameters = (Param("relative_change", "-", (-0.3, 0.3), "e"),)
 
     def apply(self, b, p):
@@ -710,7 +709,8 @@ class SupplyVoltage(Form):
 class ClutchContactProgressive(Form):
     name = "clutch_contact_progressive"
     family = None
-    description = "a strongly progressive jaw contact (an elastomer that stiffens as it fills): k_c*p*(1 + (p/p0)^2) + d_c*p'"
+    description = ("a strongly progressive jaw contact (an elastomer that stiffens as it fills): "
+                   "k_c*p*(1 + (p/p0)^2) + d_c*p'")
     parameters = (Param("p0_rad", "rad", (1e-4, 1.0), "p0: at p = p0 the elastic torque is twice the linear law's"),)
 
     def apply(self, b, p):

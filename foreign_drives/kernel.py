@@ -338,7 +338,8 @@ def dopri_step(t, y, k, h, mode, u, P, tv, ynew, ytmp):
 
 @njit(cache=True)
 def dense_coefficients(y, ynew, k, h, rc):
-    """The 5 vectors of the continuous extension: y(t + th*h) = rc0 + th*(rc1 + (1-th)*(rc2 + th*(rc3 + (1-th)*rc4)))."""
+    """The 5 vectors of the continuous extension:
+    y(t + th*h) = rc0 + th*(rc1 + (1-th)*(rc2 + th*(rc3 + (1-th)*rc4)))."""
     for i in range(y.size):
         dy = ynew[i] - y[i]
         bspl = h * k[0, i] - dy

@@ -16,7 +16,6 @@ Settled start (not the run-in from an equivalent-circuit steady state of ``backl
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -24,10 +23,9 @@ from scipy.optimize import brentq
 
 from . import constants as C
 from . import noise as N
-from .kernel import (N_OUT, OUT_NAMES, run_segments,
-                     N_STATES, P_BETA, P_C, P_F0, P_J2, P_K, P_KCD, P_KS, P_KW, P_R, P_RR, P_RS, P_U, P_XM, P_XR,
-                      P_XS, S_A1, S_A2, S_AH, S_AR, S_ISD, S_ISQ, S_PRD, S_PRQ, S_V, S_W1, S_W2, S_WH, S_WR, S_X,
-                      implied_mode)
+from .kernel import (N_OUT, N_STATES, OUT_NAMES, P_BETA, P_F0, P_K, P_KCD, P_KS, P_KW, P_R, P_RR, P_RS, P_U, P_XM,
+                     P_XR, P_XS, S_A1, S_A2, S_AH, S_AR, S_ISD, S_ISQ, S_PRD, S_PRQ, S_V, S_W1, S_W2, S_WH, S_WR,
+                     S_X, implied_mode, run_segments)
 
 # tolerances of the DOPRI5 error control (per state; angles and the mass position absolute only)
 ATOL = np.array([1e-9, 1e-9, 1e-9, 1e-9, 1e-8, 1e-10, 1e-8, 1e-10, 1e-8, 1e-10, 1e-8, 1e-10, 1e-10, 1e-9])

@@ -136,7 +136,8 @@ class RecordingSpec:
         if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
             raise ValueError(f"recording {self.label}: seed = {self.seed!r}; allowed: an integer >= 0")
         if isinstance(self.chunk_samples, bool) or not isinstance(self.chunk_samples, int) or self.chunk_samples < 1:
-            raise ValueError(f"recording {self.label}: chunk_samples = {self.chunk_samples!r}; allowed: an integer >= 1")
+            raise ValueError(f"recording {self.label}: chunk_samples = {self.chunk_samples!r}; allowed: an "
+                             "integer >= 1")
         if not isinstance(self.namespace, str) or not _NAMESPACE_RE.match(self.namespace):
             raise ValueError(f"recording {self.label}: namespace {self.namespace!r}; allowed: ROS name segments "
                              "(letters, digits, _; each starting with a letter) separated by /")

@@ -8,7 +8,7 @@ shaft encoders with an arbitrary zero).
 """
 from __future__ import annotations
 
-from .forms import ClutchContactHertz, SecondTorsionalMode
+from .forms import ClutchContactHertz
 from .spec import EffectSpec as E
 from .spec import RecordingSpec, SensorNuisance
 

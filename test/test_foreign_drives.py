@@ -109,7 +109,8 @@ def test_the_catalogue_families_written_out_are_the_catalogues_and_each_has_a_fo
 
 
 def test_constants_are_spec_section_3():
-    assert C.STATOR_REACTANCE_PU * C.ROTOR_REACTANCE_PU - C.MAGNETISING_REACTANCE_PU ** 2 == pytest.approx(0.374, abs=5e-4)
+    w = C.STATOR_REACTANCE_PU * C.ROTOR_REACTANCE_PU - C.MAGNETISING_REACTANCE_PU ** 2
+    assert w == pytest.approx(0.374, abs=5e-4)
     assert C.MOTOR_INERTIA_KGM2 == pytest.approx(0.1095, abs=1e-4)
     assert C.BASE_MECHANICAL_SPEED_RAD_S == pytest.approx(157.08, abs=0.01)
     assert C.absorber_coefficient(0.025, 0.89) == pytest.approx(17.0, abs=0.05)     # docs/model.md
@@ -243,7 +244,8 @@ def test_noisy_drive_has_four_onsets_and_four_returns_per_second():
 def test_wheel_frictions_raise_the_mean_clutch_torque_by_their_torque():
     """Over whole pulse periods the wheel's and the mass's speeds return: mean T_c = r*F0 + mean friction."""
     base = make_recording(spec())
-    assert np.mean(whole_periods(base.internal["clutch_torque_Nm"])) == pytest.approx(W * C.WORKING_RESISTANCE_N, rel=1e-3)
+    tc0 = np.mean(whole_periods(base.internal["clutch_torque_Nm"]))
+    assert tc0 == pytest.approx(W * C.WORKING_RESISTANCE_N, rel=1e-3)
     cases = [(E("wheel_friction_tanh", {"torque_Nm": 2.5, "smoothing_speed_rad_s": 40.0}),
               lambda w2, f: 2.5 * np.tanh(w2 / 40.0)),
              (E("wheel_friction_load_dependent", {"base_torque_Nm": 0.3, "load_coefficient_m": 0.05}),
@@ -266,7 +268,8 @@ def test_wheel_frictions_raise_the_mean_clutch_torque_by_their_torque():
 def test_motor_side_loads_raise_the_mean_electromagnetic_torque():
     """The motor's speed returns over a period: mean T_b*t_e = r*F0 + T_b*mean pulse + mean motor-side load."""
     pulse_mean = C.PULSE_AMPLITUDE_PU * C.PULSE_DURATION_S / C.PULSE_PERIOD_S
-    cases = [(E("motor_friction_tanh", {"torque_Nm": 1.4, "smoothing_speed_rad_s": 5.0}), lambda w: 1.4 * np.tanh(w / 5)),
+    cases = [(E("motor_friction_tanh", {"torque_Nm": 1.4, "smoothing_speed_rad_s": 5.0}),
+              lambda w: 1.4 * np.tanh(w / 5)),
              (E("motor_friction_viscous", {"damping_Nms_per_rad": 0.01}), lambda w: 0.01 * w),
              (E("motor_fan_load", {"torque_Nm": 2.2, "reference_speed_rad_s": 150.0}), lambda w: 2.2 * (w / 150) ** 2),
              (E("motor_load_constant", {"torque_Nm": -0.8}), lambda w: -0.8 + 0 * w)]
@@ -274,7 +277,8 @@ def test_motor_side_loads_raise_the_mean_electromagnetic_torque():
         rec = make_recording(spec([eff]))
         te = np.mean(whole_periods(rec.internal["te_pu"])) * C.BASE_TORQUE_NM
         load = np.mean(whole_periods(law(rec.signals["omega1"])))
-        assert te == pytest.approx(W * C.WORKING_RESISTANCE_N + C.BASE_TORQUE_NM * pulse_mean + load, rel=2e-3), eff.form
+        expected = W * C.WORKING_RESISTANCE_N + C.BASE_TORQUE_NM * pulse_mean + load
+        assert te == pytest.approx(expected, rel=2e-3), eff.form
 
 
 def test_forces_on_the_mass_move_the_mean_rim_force():
@@ -376,7 +380,8 @@ def test_ripples_put_lines_at_order_times_the_rotation_frequency():
     for order in (4, 9):
         assert any(abs(p - order * f_rot) < 0.01 * order * f_rot for p in peaks)
     with pytest.raises(ValueError, match="not an integer"):
-        make_recording(spec([E("ripple_motor_harmonics", {"orders": [4.45], "amplitudes_pu": [0.3], "phases_rad": [0.0]})]))
+        make_recording(spec([E("ripple_motor_harmonics", {"orders": [4.45], "amplitudes_pu": [0.3],
+                                                          "phases_rad": [0.0]})]))
 
 
 def test_a_fixed_frequency_vibration_stays_put_when_the_speed_changes_and_a_ripple_moves():
