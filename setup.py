@@ -27,7 +27,9 @@ EXECUTABLES = {
 setup(
     name=PACKAGE_NAME,
     version="0.1.0",
-    packages=find_packages(exclude=["test", "test.*"]),
+    # foreign_drives/ is the independent drive generator of the tests and benches (docs/foreign_drives.md), not
+    # part of the installed package
+    packages=find_packages(exclude=["test", "test.*", "foreign_drives", "foreign_drives.*"]),
     data_files=[
         ("share/ament_index/resource_index/packages", ["resource/" + PACKAGE_NAME]),
         ("share/" + PACKAGE_NAME, ["package.xml"]),

@@ -1,0 +1,513 @@
+"""The compiled drive: state and parameter layout, the right-hand side, and its integrator (numba).
+
+One file on purpose: numba's on-disk cache (``cache=True``) is invalidated only when the file that holds a
+cached function changes; a change in a file it depends on (a layout index, an inlined right-hand side) is not
+seen. Everything the compiled functions use is therefore here. The equations: :mod:`foreign_drives.physics`
+and docs/foreign_drives.md.
+
+Right-hand side
+---------------
+The drive's right-hand side, written from the equations of SPEC section 3 in a formulation of its own.
+
+Not the formulation of ``backlash_monitor.plant`` (docs/foreign_drives.md "Equations"):
+
+- motor: stator CURRENT and rotor flux as states, in the SYNCHRONOUS frame (rotating with the supply, so the
+  supply is the constant U and the electrical states are constant in steady state); the speed in rad/s
+  (SI mechanical balance J1*dOmega1/dt = T_b*t_e - T_shaft - T_load);
+- clutch: the two shaft ANGLES are states (alpha1, alpha2; the angle difference is a derived quantity), the
+  contact state is a discrete MODE (free / drive-side contact / far-side contact) switched by located events
+  (below) instead of a gate on the state;
+- load: the mass in ABSOLUTE coordinates (position x and speed v), the rim at y = r*alpha2; the spring
+  extension z = y - x is derived;
+- optional extra states: a shaft hub of its own inertia between the motor and the jaw (shaft compliance
+  with a real inertia) and a wheel rim of its own inertia on a torsional spring (a second torsional mode).
+
+All angles are in rad, speeds in rad/s, torques in N*m, forces in N; the motor's electrical states are in
+per unit. Every effect form of :mod:`foreign_drives.forms` acts through the parameter vector ``P`` (all
+forms are compiled into this one right-hand side; a form at its neutral value is exactly absent).
+
+Integrator
+----------
+The integrator: Dormand-Prince 5(4) with step-size control, its continuous extension for the 50 kHz output,
+and located contact events.
+
+Not the fixed-step classic RK4 at the sample period of ``backlash_monitor.plant``:
+
+- the held inputs (pulse load, Gaussian generator every 0.2 ms, telegraph every 2 ms) change only on a
+  0.2 ms grid, so the time axis is cut into SEGMENTS of 0.2 ms (10 samples) with a constant input each;
+- inside a segment, adaptive Dormand-Prince 5(4) steps (FSAL; error per state against
+  atol_i + rtol_i*|y_i|; step factor 0.9*err^(-1/5) in [0.2, 5]); a step never crosses a segment boundary;
+- the samples inside a step come from the method's 4th-order continuous extension (Hairer's ``dense output``
+  of DOPRI5); a1 and a2 are the right-hand side at the interpolated state (exact derivatives of the state,
+  with the input held over [t_k, t_k+1));
+- the contact mode (free / drive side / far side) is constant within a step. After each accepted step the mode
+  the state implies is checked at the step's end and at three interior points of the interpolant; on a change,
+  the first instant of change is found by bisection on the interpolant (to 1e-13 s), the step is redone up to
+  that instant with the old law, and the mode is switched there;
+- angles are re-referenced by whole turns at every segment (alpha1, alpha2 and the mass position move
+  together, so every difference and every integer-order angle ripple is unchanged).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+
+# ---------------------------------------------------------------- state layout (14 states)
+STATE_NAMES = ("i_sd", "i_sq", "psi_rd", "psi_rq", "omega1", "alpha1", "omega_hub", "alpha_hub",
+               "omega2", "alpha2", "omega_rim", "alpha_rim", "x", "v")
+(S_ISD, S_ISQ, S_PRD, S_PRQ, S_W1, S_A1, S_WH, S_AH, S_W2, S_A2, S_WR, S_AR, S_X, S_V) = range(14)
+N_STATES = 14
+ANGLE_STATES = (S_A1, S_AH, S_A2, S_AR)
+
+# ---------------------------------------------------------------- parameter vector layout
+PARAM_NAMES = (
+    # motor
+    "rs", "rr", "xs", "xr", "xm", "supply_pu", "omega_b", "omega_mb", "torque_base", "j1",
+    # clutch contact law (per side stiffness; exponent and reference penetration of a power law; Hunt-Crossley
+    # damping per rad of penetration; an insert's preload and the penetration over which it builds up;
+    # progressive-law penetration scale, 0 = off)
+    "beta", "kc_drive", "kc_far", "dc", "contact_exponent", "contact_ref_rad", "hc_lambda", "contact_preload",
+    "contact_preload_scale", "progressive_p0",
+    # shaft with a hub inertia (ks = 0: rigid, no hub)
+    "shaft_k", "shaft_d", "hub_inertia",
+    # wheel (hub) inertia, optional rim on a torsional spring (wheel_k = 0: no rim)
+    "j2", "wheel_k", "wheel_d", "rim_inertia",
+    # load
+    "radius", "mass", "spring_k", "spring_z0", "absorber_c", "absorber_n", "working_force",
+    # wheel friction forms (torques against the wheel's rotation)
+    "wf_tanh_torque", "wf_tanh_speed", "wf_load_mu_r", "wf_drag_c", "wf_drag_p",
+    "wf_str_coulomb", "wf_str_excess", "wf_str_speed", "wf_str_exponent", "wheel_const_torque",
+    # motor-side forms (torques on the motor shaft's load)
+    "mf_tanh_torque", "mf_tanh_speed", "mf_viscous_b", "m_fan_torque", "m_fan_speed", "m_const_torque",
+    # mass forms (forces on the mass, + along x)
+    "rail_force", "rail_speed", "mass_drag_c", "mass_const_force",
+    # torque ripples locked to the motor angle on the load moment (p.u.; integer orders), four harmonics
+    "rip_n0", "rip_a0", "rip_ph0", "rip_n1", "rip_a1", "rip_ph1", "rip_n2", "rip_a2", "rip_ph2",
+    "rip_n3", "rip_a3", "rip_ph3",
+    # ripple of the electromagnetic torque (relative), gear mesh on the wheel (N*m, locked to alpha2)
+    "em_eps", "em_n", "em_ph", "gm_torque", "gm_n", "gm_ph",
+    # structural vibration at a fixed frequency on the motor's load moment (p.u.)
+    "vib_pu", "vib_hz", "vib_ph",
+)
+N_PARAMS = len(PARAM_NAMES)
+PI = {name: i for i, name in enumerate(PARAM_NAMES)}
+(P_RS, P_RR, P_XS, P_XR, P_XM, P_U, P_OMB, P_OMMB, P_TB, P_J1,
+ P_BETA, P_KCD, P_KCF, P_DC, P_CEXP, P_CREF, P_HCL, P_CPRE, P_CPRS, P_PROG,
+ P_KS, P_DS, P_JH,
+ P_J2, P_KW, P_DW, P_JR,
+ P_R, P_M, P_K, P_Z0, P_C, P_N1, P_F0,
+ P_WFT, P_WFTW, P_WFL, P_WFDC, P_WFDP, P_WSC, P_WSE, P_WSW, P_WSD, P_WCT,
+ P_MFT, P_MFTW, P_MFV, P_MFAN, P_MFANW, P_MCT,
+ P_RAILF, P_RAILV, P_MDC, P_MCF,
+ P_RN0, P_RA0, P_RP0, P_RN1, P_RA1, P_RP1, P_RN2, P_RA2, P_RP2, P_RN3, P_RA3, P_RP3,
+ P_EME, P_EMN, P_EMP, P_GMA, P_GMN, P_GMP,
+ P_VIBA, P_VIBF, P_VIBP) = range(N_PARAMS)
+
+
+@njit(cache=True, inline="always")
+def contact_torque(pen, pen_rate, k, P):
+    """Torque [N*m] the jaw contact law gives at penetration ``pen`` [rad] (>= 0 where it acts) and
+    penetration rate ``pen_rate`` [rad/s]:
+    T_pre*(1 - exp(-p/p_s)) + k*p_ref*(p/p_ref)^n*(1 + (p/p0)^2) + (d + lambda*p)*p'.
+    The nominal law (n = 1, T_pre = 0, p0 = 0, lambda = 0) is k*p + d*p' (SPEC)."""
+    pp = pen if pen > 0.0 else 0.0
+    n = P[P_CEXP]
+    if n == 1.0:
+        el = k * pp
+    else:
+        el = k * P[P_CREF] * (pp / P[P_CREF]) ** n
+    p0 = P[P_PROG]
+    if p0 > 0.0:
+        q = pp / p0
+        el = el * (1.0 + q * q)
+    if P[P_CPRE] != 0.0:
+        el += P[P_CPRE] * (1.0 - math.exp(-pp / P[P_CPRS]))
+    return el + (P[P_DC] + P[P_HCL] * pp) * pen_rate
+
+
+@njit(cache=True, inline="always")
+def clutch_angles(y, P):
+    """(angle difference across the jaw [rad], its rate [rad/s]): drive half = hub if there is a shaft, else the
+    motor."""
+    if P[P_KS] > 0.0:
+        return y[S_AH] - y[S_A2], y[S_WH] - y[S_W2]
+    return y[S_A1] - y[S_A2], y[S_W1] - y[S_W2]
+
+
+@njit(cache=True)
+def implied_mode(y, P):
+    """The contact mode the state implies: +1 drive side pushing (jaw angle difference > beta and the law's
+    torque > 0), -1 far side pushing, 0 free (in the gap, or touching without pushing: a contact never pulls)."""
+    d, dd = clutch_angles(y, P)
+    beta = P[P_BETA]
+    pen = d - beta
+    if pen > 0.0 and contact_torque(pen, dd, P[P_KCD], P) > 0.0:
+        return 1
+    pen = -d - beta
+    if pen > 0.0 and contact_torque(pen, -dd, P[P_KCF], P) > 0.0:
+        return -1
+    return 0
+
+
+@njit(cache=True, inline="always")
+def _sgn(x):
+    return 1.0 if x > 0.0 else (-1.0 if x < 0.0 else 0.0)
+
+
+@njit(cache=True)
+def rhs(t, y, mode, load_pu, P, timevar, dy):
+    """dy/dt of the 14 states into ``dy``; returns (clutch torque T_c [N*m], electromagnetic torque [p.u.],
+    rim-mass force F [N]). ``load_pu``: the held motor load moment (pulse + disturbances) [p.u.];
+    ``timevar``: 1.0 = include the terms that are not periodic with the pulse train (angle-locked ripples,
+    a fixed-frequency vibration), 0.0 = leave them out (the periodic orbit of the settled start)."""
+    # ---- motor, synchronous frame (supply = U + j0), states i_s and psi_r
+    xs, xr, xm = P[P_XS], P[P_XR], P[P_XM]
+    sig = (xs * xr - xm * xm) / xr          # transient reactance w/x_r
+    kr = xm / xr
+    ob = P[P_OMB]
+    isd, isq, prd, prq = y[S_ISD], y[S_ISQ], y[S_PRD], y[S_PRQ]
+    w1 = y[S_W1]
+    a1 = y[S_A1]
+    slip = 1.0 - w1 / P[P_OMMB]
+    ird = (prd - xm * isd) / xr
+    irq = (prq - xm * isq) / xr
+    dprd = ob * (-P[P_RR] * ird + slip * prq)      # dpsi_r/dt = Omega_b(-r_r i_r - j(1 - w) psi_r)
+    dprq = ob * (-P[P_RR] * irq - slip * prd)
+    psd = sig * isd + kr * prd
+    psq = sig * isq + kr * prq
+    dpsd = ob * (P[P_U] - P[P_RS] * isd + psq)     # dpsi_s/dt = Omega_b(U - r_s i_s - j psi_s)
+    dpsq = ob * (-P[P_RS] * isq - psd)
+    dy[S_ISD] = (dpsd - kr * dprd) / sig           # psi_s = sig*i_s + kr*psi_r
+    dy[S_ISQ] = (dpsq - kr * dprq) / sig
+    dy[S_PRD] = dprd
+    dy[S_PRQ] = dprq
+    te = psd * isq - psq * isd                     # = kr*(psi_rd i_sq - psi_rq i_sd)
+    if timevar != 0.0 and P[P_EME] != 0.0:
+        te = te * (1.0 + P[P_EME] * math.sin(P[P_EMN] * a1 + P[P_EMP]))
+    # ---- load moment on the motor [N*m]
+    tl = load_pu
+    if timevar != 0.0:
+        if P[P_RA0] != 0.0:
+            tl += P[P_RA0] * math.sin(P[P_RN0] * a1 + P[P_RP0])
+        if P[P_RA1] != 0.0:
+            tl += P[P_RA1] * math.sin(P[P_RN1] * a1 + P[P_RP1])
+        if P[P_RA2] != 0.0:
+            tl += P[P_RA2] * math.sin(P[P_RN2] * a1 + P[P_RP2])
+        if P[P_RA3] != 0.0:
+            tl += P[P_RA3] * math.sin(P[P_RN3] * a1 + P[P_RP3])
+        if P[P_VIBA] != 0.0:
+            tl += P[P_VIBA] * math.sin(2.0 * math.pi * P[P_VIBF] * t + P[P_VIBP])
+    tb = P[P_TB]
+    tload = tb * tl
+    if P[P_MFT] != 0.0:
+        tload += P[P_MFT] * math.tanh(w1 / P[P_MFTW])
+    if P[P_MFV] != 0.0:
+        tload += P[P_MFV] * w1
+    if P[P_MFAN] != 0.0:
+        q = w1 / P[P_MFANW]
+        tload += P[P_MFAN] * q * abs(q)
+    tload += P[P_MCT]
+    # ---- shaft and clutch
+    if P[P_KS] > 0.0:
+        tshaft = P[P_KS] * (a1 - y[S_AH]) + P[P_DS] * (w1 - y[S_WH])
+    else:
+        tshaft = 0.0
+    d, dd = clutch_angles(y, P)
+    if mode == 1:
+        tc = contact_torque(d - P[P_BETA], dd, P[P_KCD], P)
+    elif mode == -1:
+        tc = -contact_torque(-d - P[P_BETA], -dd, P[P_KCF], P)
+    else:
+        tc = 0.0
+    if P[P_KS] > 0.0:
+        dy[S_W1] = (tb * te - tshaft - tload) / P[P_J1]
+        dy[S_WH] = (tshaft - tc) / P[P_JH]
+        dy[S_AH] = y[S_WH]
+    else:
+        dy[S_W1] = (tb * te - tc - tload) / P[P_J1]
+        dy[S_WH] = 0.0
+        dy[S_AH] = 0.0
+    dy[S_A1] = w1
+    # ---- wheel, rim, spring/absorber, mass (absolute coordinates)
+    r = P[P_R]
+    w2 = y[S_W2]
+    a2 = y[S_A2]
+    if P[P_KW] > 0.0:
+        twist = P[P_KW] * (a2 - y[S_AR]) + P[P_DW] * (w2 - y[S_WR])
+        yr = r * y[S_AR]
+        yrd = r * y[S_WR]
+    else:
+        twist = 0.0
+        yr = r * a2
+        yrd = r * w2
+    x = y[S_X]
+    v = y[S_V]
+    z = yr - x
+    fs = P[P_K] * z
+    if P[P_Z0] > 0.0:
+        q = z / P[P_Z0]
+        fs = fs * (1.0 + q * q)
+    vr = yrd - v
+    fa = P[P_C] * abs(vr) ** P[P_N1] * _sgn(vr)
+    f = fs + fa
+    s2 = _sgn(w2)
+    tf = P[P_WCT]
+    if P[P_WFT] != 0.0:
+        tf += P[P_WFT] * math.tanh(w2 / P[P_WFTW])
+    if P[P_WFL] != 0.0:
+        tf += P[P_WFL] * abs(f) * s2
+    if P[P_WFDC] != 0.0:
+        tf += P[P_WFDC] * abs(w2) ** P[P_WFDP] * s2
+    if P[P_WSC] != 0.0 or P[P_WSE] != 0.0:
+        tf += (P[P_WSC] + P[P_WSE] * math.exp(-(abs(w2) / P[P_WSW]) ** P[P_WSD])) * s2
+    if timevar != 0.0 and P[P_GMA] != 0.0:
+        tf += P[P_GMA] * math.sin(P[P_GMN] * a2 + P[P_GMP])
+    if P[P_KW] > 0.0:
+        dy[S_W2] = (tc - twist - tf) / P[P_J2]
+        dy[S_WR] = (twist - r * f) / P[P_JR]
+        dy[S_AR] = y[S_WR]
+    else:
+        dy[S_W2] = (tc - r * f - tf) / P[P_J2]
+        dy[S_WR] = 0.0
+        dy[S_AR] = 0.0
+    dy[S_A2] = w2
+    dy[S_X] = v
+    fm = f - P[P_F0] + P[P_MCF]
+    if P[P_RAILF] != 0.0:
+        fm -= P[P_RAILF] * math.tanh(v / P[P_RAILV])
+    if P[P_MDC] != 0.0:
+        fm -= P[P_MDC] * v * abs(v)
+    dy[S_V] = fm / P[P_M]
+    return tc, te, f
+
+
+
+# Dormand & Prince (1980), RK5(4)7M
+A21 = 1 / 5
+A31, A32 = 3 / 40, 9 / 40
+A41, A42, A43 = 44 / 45, -56 / 15, 32 / 9
+A51, A52, A53, A54 = 19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729
+A61, A62, A63, A64, A65 = 9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656
+B1, B3, B4, B5, B6 = 35 / 384, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84
+C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
+E1, E3, E4, E5, E6, E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40
+# continuous extension (Hairer, Norsett & Wanner, Solving ODEs I, DOPRI5 dense output)
+D1 = -12715105075 / 11282082432
+D3 = 87487479700 / 32700410799
+D4 = -10690763975 / 1880347072
+D5 = 701980252875 / 199316789632
+D6 = -1453857185 / 822651844
+D7 = 69997945 / 29380423
+
+# output columns of a recorded run
+OUT_NAMES = ("a1", "a2", "omega1", "omega2", "angle_difference", "clutch_torque_Nm", "te_pu", "rim_force_N",
+             "alpha1", "alpha2", "mode", "jaw_angle_difference")
+N_OUT = len(OUT_NAMES)
+
+
+@njit(cache=True)
+def dopri_step(t, y, k, h, mode, u, P, tv, ynew, ytmp):
+    """One DOPRI5 step from (t, y) with k[0] = f(t, y); fills k[1..6] (k[6] = f(ynew)) and ``ynew``;
+    returns the error estimate vector in ``ytmp``'s place (ytmp is overwritten with it)."""
+    n = y.size
+    for i in range(n):
+        ytmp[i] = y[i] + h * A21 * k[0, i]
+    rhs(t + C2 * h, ytmp, mode, u, P, tv, k[1])
+    for i in range(n):
+        ytmp[i] = y[i] + h * (A31 * k[0, i] + A32 * k[1, i])
+    rhs(t + C3 * h, ytmp, mode, u, P, tv, k[2])
+    for i in range(n):
+        ytmp[i] = y[i] + h * (A41 * k[0, i] + A42 * k[1, i] + A43 * k[2, i])
+    rhs(t + C4 * h, ytmp, mode, u, P, tv, k[3])
+    for i in range(n):
+        ytmp[i] = y[i] + h * (A51 * k[0, i] + A52 * k[1, i] + A53 * k[2, i] + A54 * k[3, i])
+    rhs(t + C5 * h, ytmp, mode, u, P, tv, k[4])
+    for i in range(n):
+        ytmp[i] = y[i] + h * (A61 * k[0, i] + A62 * k[1, i] + A63 * k[2, i] + A64 * k[3, i] + A65 * k[4, i])
+    rhs(t + h, ytmp, mode, u, P, tv, k[5])
+    for i in range(n):
+        ynew[i] = y[i] + h * (B1 * k[0, i] + B3 * k[2, i] + B4 * k[3, i] + B5 * k[4, i] + B6 * k[5, i])
+    rhs(t + h, ynew, mode, u, P, tv, k[6])
+    for i in range(n):
+        ytmp[i] = h * (E1 * k[0, i] + E3 * k[2, i] + E4 * k[3, i] + E5 * k[4, i] + E6 * k[5, i] + E7 * k[6, i])
+
+
+@njit(cache=True)
+def dense_coefficients(y, ynew, k, h, rc):
+    """The 5 vectors of the continuous extension:
+    y(t + th*h) = rc0 + th*(rc1 + (1-th)*(rc2 + th*(rc3 + (1-th)*rc4)))."""
+    for i in range(y.size):
+        dy = ynew[i] - y[i]
+        bspl = h * k[0, i] - dy
+        rc[0, i] = y[i]
+        rc[1, i] = dy
+        rc[2, i] = bspl
+        rc[3, i] = dy - h * k[6, i] - bspl
+        rc[4, i] = h * (D1 * k[0, i] + D3 * k[2, i] + D4 * k[3, i] + D5 * k[4, i] + D6 * k[5, i] + D7 * k[6, i])
+
+
+@njit(cache=True)
+def dense_eval(rc, th, out):
+    th1 = 1.0 - th
+    for i in range(out.size):
+        out[i] = rc[0, i] + th * (rc[1, i] + th1 * (rc[2, i] + th * (rc[3, i] + th1 * rc[4, i])))
+
+
+@njit(cache=True)
+def _record(out, row, y, dy, tc, te, f, mode, P):
+    out[row, 0] = P[P_R] * dy[S_W1]
+    out[row, 1] = dy[S_V]
+    out[row, 2] = y[S_W1]
+    out[row, 3] = y[S_W2]
+    out[row, 4] = y[S_A1] - y[S_A2]
+    out[row, 5] = tc
+    out[row, 6] = te
+    out[row, 7] = f
+    out[row, 8] = y[S_A1]
+    out[row, 9] = y[S_A2]
+    out[row, 10] = mode
+    out[row, 11] = y[S_AH] - y[S_A2] if P[P_KS] > 0.0 else y[S_A1] - y[S_A2]
+
+
+@njit(cache=True)
+def _error_norm(err, y, ynew, atol, rtol):
+    s = 0.0
+    for i in range(y.size):
+        a = abs(y[i])
+        b = abs(ynew[i])
+        sc = atol[i] + rtol[i] * (a if a > b else b)
+        q = err[i] / sc
+        s += q * q
+    return math.sqrt(s / y.size)
+
+
+@njit(cache=True)
+def run_segments(y, mode, seg0, loads, seg_samples, dt, P, timevar, atol, rtol, h, out, stats):
+    """Advance ``y`` (in place) over len(loads) segments of ``seg_samples`` samples of ``dt`` each, the
+    held load moment ``loads[j]`` [p.u.] over segment j (absolute segment index seg0 + j, t = index*seg_dt).
+    ``out`` (rows = samples, N_OUT columns) is filled when it has rows (else nothing is recorded).
+    Returns (mode, h); ``stats`` += [accepted steps, rejected steps, events, right-hand side calls]."""
+    n = y.size
+    k = np.empty((7, n))
+    ynew = np.empty(n)
+    ytmp = np.empty(n)
+    yint = np.empty(n)
+    dyint = np.empty(n)
+    rc = np.empty((5, n))
+    seg_dt = seg_samples * dt
+    record = out.shape[0] > 0
+    two_pi = 2.0 * math.pi
+    nacc = 0
+    nrej = 0
+    nev = 0
+    nf = 0
+    for j in range(loads.size):
+        tj = (seg0 + j) * seg_dt
+        u = loads[j]
+        turns = math.floor(y[S_A2] / two_pi)
+        if turns != 0.0:
+            shift = turns * two_pi
+            y[S_A1] -= shift
+            y[S_A2] -= shift
+            if P[P_KS] > 0.0:
+                y[S_AH] -= shift
+            if P[P_KW] > 0.0:
+                y[S_AR] -= shift
+            y[S_X] -= P[P_R] * shift
+        tc, te, f = rhs(tj, y, mode, u, P, timevar, k[0])
+        nf += 1
+        if record:
+            _record(out, j * seg_samples, y, k[0], tc, te, f, mode, P)
+        tau = 0.0
+        nxt = 1                       # next sample (within the segment) to record
+        tiny = 0
+        while seg_dt - tau > 1e-12 * seg_dt:
+            hh = h if h < seg_dt - tau else seg_dt - tau
+            if seg_dt - tau - hh < 0.01 * hh:
+                hh = seg_dt - tau     # no sliver at the segment's end
+            t = tj + tau
+            dopri_step(t, y, k, hh, mode, u, P, timevar, ynew, ytmp)
+            nf += 6
+            err = _error_norm(ytmp, y, ynew, atol, rtol)
+            if err > 1.0:
+                h = hh * max(0.2, 0.9 * err ** -0.2)
+                nrej += 1
+                continue
+            dense_coefficients(y, ynew, k, hh, rc)
+            # ---- contact events: first instant at which the implied mode differs from the step's mode
+            hi = -1.0
+            for q in range(1, 5):
+                th = 0.25 * q
+                if q < 4:
+                    dense_eval(rc, th, yint)
+                    m = implied_mode(yint, P)
+                else:
+                    m = implied_mode(ynew, P)
+                if m != mode:
+                    hi = th
+                    break
+            if hi > 0.0:
+                lo = hi - 0.25
+                new_mode = m
+                while (hi - lo) * hh > 1e-13:
+                    mid = 0.5 * (lo + hi)
+                    dense_eval(rc, mid, yint)
+                    m = implied_mode(yint, P)
+                    if m != mode:
+                        hi = mid
+                        new_mode = m
+                    else:
+                        lo = mid
+                hs = hi * hh
+                if hs > 1e-14:
+                    dopri_step(t, y, k, hs, mode, u, P, timevar, ynew, ytmp)   # redo up to the event, old law
+                    nf += 6
+                    dense_coefficients(y, ynew, k, hs, rc)
+                    tiny = 0
+                elif tiny < 20:
+                    hs = 0.0            # the change is at the step's start: switch the mode, step again
+                    tiny += 1
+                else:                   # a grazing contact that keeps flipping: take the whole step, then the
+                    hs = hh             # mode its end state implies
+                    new_mode = implied_mode(ynew, P)
+                    tiny = 0
+                step_len = hs
+                nev += 1
+            else:
+                step_len = hh
+                new_mode = mode
+            # ---- samples inside (tau, tau + step_len]
+            if record and step_len > 0.0:
+                while nxt < seg_samples and nxt * dt <= tau + step_len + 1e-9 * dt:
+                    th = (nxt * dt - tau) / step_len
+                    if th > 1.0:
+                        th = 1.0
+                    dense_eval(rc, th, yint)
+                    tc, te, f = rhs(tj + nxt * dt, yint, mode, u, P, timevar, dyint)
+                    nf += 1
+                    _record(out, j * seg_samples + nxt, yint, dyint, tc, te, f, mode, P)
+                    nxt += 1
+            if step_len > 0.0:
+                for i in range(n):
+                    y[i] = ynew[i]
+                tau += step_len
+            nacc += 1
+            if new_mode != mode:
+                mode = new_mode
+                rhs(tj + tau, y, mode, u, P, timevar, k[0])
+                nf += 1
+            else:
+                for i in range(n):
+                    k[0, i] = k[6, i]
+                if hi <= 0.0:
+                    fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
+                    h = hh * fac
+    stats[0] += nacc
+    stats[1] += nrej
+    stats[2] += nev
+    stats[3] += nf
+    return mode, h

@@ -1,0 +1,164 @@
+"""The suites: TEST (a handful of short recordings the tests use, seeds 100-199), BENCH (>= 30 recordings of 4 s
+with seeds 5000+, strengths and forms no test uses) and WIDTH_LOOP (hidden-effect drives at several widths
+whose monitor width is checked before/after retraining, seeds 6000+).
+
+Like real recorders, the recordings differ in chunk size, namespace, drive name, start time and the pulse
+train's phase at the first sample; some carry sensor nuisance (white noise after the sensor, a 16-bit ADC,
+shaft encoders with an arbitrary zero).
+"""
+from __future__ import annotations
+
+from .forms import ClutchContactHertz
+from .spec import EffectSpec as E
+from .spec import RecordingSpec, SensorNuisance
+
+# realistic nuisance: MEMS noise after a ~1 kHz sensor bandwidth, 16-bit ADCs over +-50 g (a1) / +-4 g (a2)
+ADC16 = SensorNuisance(a1_lsb_m_s2=2 * 50 * 9.81 / 2 ** 16, a2_lsb_m_s2=2 * 4 * 9.81 / 2 ** 16)
+NOISY_ADC16 = SensorNuisance(a1_noise_rms_m_s2=0.05, a2_noise_rms_m_s2=0.01,
+                             a1_lsb_m_s2=ADC16.a1_lsb_m_s2, a2_lsb_m_s2=ADC16.a2_lsb_m_s2)
+ENCODERS_14BIT = SensorNuisance(encoder_counts_per_rev=2 ** 14, angle_offset_rad=0.37)
+ENCODERS_16BIT = SensorNuisance(encoder_counts_per_rev=2 ** 16, angle_offset_rad=-1.21,
+                                a1_lsb_m_s2=ADC16.a1_lsb_m_s2, a2_lsb_m_s2=ADC16.a2_lsb_m_s2)
+
+CHUNKS = (1000, 500, 2500, 777, 5000, 1250, 2000, 640, 10000, 1024, 333)
+NAMESPACES = ("", "line1/drive01", "press7", "cell2/axis3", "plant_b", "", "line2/drive14", "hall3/conveyor2",
+              "", "test_rig")
+PHASES = (0.05, 0.05, 0.1176, 0.05, 0.2192, 0.05, 0.0308, 0.05, 0.1644, 0.05, 0.05, 0.2036)
+
+
+def _variety(i: int, seed: int) -> dict:
+    """Recorder variety of the i-th recording of a suite."""
+    ns = NAMESPACES[i % len(NAMESPACES)]
+    return dict(seed=seed, chunk_samples=CHUNKS[i % len(CHUNKS)], namespace=ns,
+                drive_name=(ns.split("/")[-1] if ns else "drive"), pulse_first_s=PHASES[i % len(PHASES)],
+                start_time_ns=1_714_000_000_000_000_000 + i * 3_600_123_456_789)
+
+
+def _suite(rows, first_seed: int, duration_s: float):
+    out = []
+    for i, (label, kind, w, eta, n1, effects, *extra) in enumerate(rows):
+        kw = _variety(i, first_seed + i)
+        if extra:
+            kw.update(extra[0])
+        out.append(RecordingSpec(label=label, kind=kind, width_m=w, eta_k=eta, n1=n1, effects=tuple(effects),
+                                 duration_s=duration_s, **kw).check())
+    return out
+
+
+def _sig(signal, **p):
+    return dict(signal=signal, **p)
+
+
+# (label, kind, nominal width, eta_k, n1, effects[, extra spec fields])
+BENCH_ROWS = [
+    # ---- clean drives over the nominal grid (continuous values), some with sensor nuisance
+    ("clean_w2.5_eta0.05_n0.97", "clean", 0.0025, 0.05, 0.97, []),
+    ("clean_w3.1_eta0.0125_n0.89", "clean", 0.0031, 0.0125, 0.89, []),
+    ("clean_w4.4_eta0.031_n0.93_adc", "clean", 0.0044, 0.031, 0.93, [], {"sensor": NOISY_ADC16}),
+    ("clean_w5.0_eta0.025_n0.89", "clean", 0.005, 0.025, 0.89, []),
+    ("clean_w6.2_eta0.044_n0.91_enc14", "clean", 0.0062, 0.044, 0.91, [], {"sensor": ENCODERS_14BIT}),
+    ("clean_w7.1_eta0.0125_n0.97", "clean", 0.0071, 0.0125, 0.97, []),
+    ("clean_w8.3_eta0.0375_n0.95", "clean", 0.0083, 0.0375, 0.95, []),
+    ("clean_w9.0_eta0.019_n0.90_enc16", "clean", 0.009, 0.019, 0.90, [], {"sensor": ENCODERS_16BIT}),
+    ("clean_w10_eta0.05_n0.89", "clean", 0.010, 0.05, 0.89, []),
+    ("clean_w5.6_eta0.015_n0.96_adc", "clean", 0.0056, 0.015, 0.96, [], {"sensor": ADC16}),
+    # ---- one effect: every catalogue family in a foreign form
+    ("wheel_friction_loaddep_1.6Nm", "one", 0.0075, 0.025, 0.89,
+     [E("wheel_friction_load_dependent", {"base_torque_Nm": 0.4, "load_coefficient_m": 0.04})]),
+    ("wheel_drag_quadratic_1.2Nm", "one", 0.006, 0.03, 0.91,
+     [E("wheel_drag_power", {"coefficient": 1.2 / 151.4 ** 2, "exponent": 2.0})]),
+    ("wheel_stribeck_exp1_1.0Nm", "one", 0.008, 0.02, 0.93,
+     [E("wheel_friction_stribeck_power", {"coulomb_torque_Nm": 0.6, "excess_torque_Nm": 1.4,
+                                          "stribeck_speed_rad_s": 120.0, "exponent": 1.0})]),
+    ("motor_friction_tanh_1.8Nm", "one", 0.005, 0.025, 0.89,
+     [E("motor_friction_tanh", {"torque_Nm": 1.8, "smoothing_speed_rad_s": 20.0})]),
+    ("clutch_hertz_softer_-0.3", "one", 0.005, 0.025, 0.89,
+     [E("clutch_contact_hertz", {"stiffness": ClutchContactHertz.stiffness_for(-0.3, 1.5), "exponent": 1.5})]),
+    ("clutch_hunt_crossley_+0.6", "one", 0.0075, 0.025, 0.89,
+     [E("clutch_damping_hunt_crossley", {"lambda_Nms_per_rad2": 1800.0})]),
+    ("shaft_hub_9000", "one", 0.0065, 0.0375, 0.91,
+     [E("shaft_with_hub", {"stiffness_Nm_per_rad": 9000.0, "damping_Nms_per_rad": 40.0, "hub_inertia_kgm2": 0.03})]),
+    ("mass_rail_friction_12N", "one", 0.0075, 0.025, 0.89,
+     [E("mass_rail_friction", {"force_N": 12.0, "smoothing_speed_m_s": 0.05})]),
+    ("motor_fan_load_0.1pu", "one", 0.004, 0.025, 0.93,
+     [E("motor_fan_load", {"torque_Nm": 2.0, "reference_speed_rad_s": 151.4})]),
+    ("ripple_cogging_6_12_18", "one", 0.0075, 0.025, 0.89,
+     [E("ripple_motor_harmonics", {"orders": [6, 12, 18], "amplitudes_pu": [0.3, 0.12, 0.05],
+                                   "phases_rad": [0.3, -1.1, 2.0]})]),
+    ("ripple_order2_0.4", "one", 0.009, 0.0125, 0.95,
+     [E("ripple_motor_harmonics", {"orders": [2], "amplitudes_pu": [0.4], "phases_rad": [-0.7]})]),
+    ("ripple_em_order23", "one", 0.0055, 0.04, 0.89,
+     [E("ripple_electromagnetic", {"relative_amplitude": 0.5, "order": 23, "phase_rad": 1.3})]),
+    ("bias_a2_+2.0", "one", 0.009, 0.0375, 0.89, [E("bias_constant", _sig("a2", bias_m_s2=2.0))]),
+    ("bias_a1_drift_-2", "one", 0.0075, 0.025, 0.91,
+     [E("bias_drifting", _sig("a1", start_m_s2=-1.5, end_m_s2=-2.5))]),
+    ("gain_a2_+0.15", "one", 0.006, 0.025, 0.89, [E("gain_constant", _sig("a2", relative_change=0.15))]),
+    ("butterworth4_a1_800Hz", "one", 0.005, 0.02, 0.90,
+     [E("lowpass_butterworth", _sig("a1", order=4, corner_hz=800.0))]),
+    ("bessel2_a2_600Hz", "one", 0.007, 0.03, 0.92, [E("lowpass_bessel", _sig("a2", order=2, corner_hz=600.0))]),
+    ("width_drift_5.0_to_6.2", "one", 0.005, 0.025, 0.89, [E("drift_width", {"change": 0.0012})]),
+    ("mass_+0.3", "one", 0.0075, 0.025, 0.89, [E("drift_mass", {"relative_change": 0.3})]),
+    ("wheel_inertia_+0.35", "one", 0.006, 0.0375, 0.93, [E("drift_wheel_inertia", {"relative_change": 0.35})]),
+    ("spring_+0.5", "one", 0.0075, 0.025, 0.89, [E("drift_spring", {"relative_change": 0.5})]),
+    ("absorber_eta_+0.6", "one", 0.005, 0.025, 0.89, [E("drift_eta_k", {"relative_change": 0.6})]),
+    ("absorber_n1_+0.05", "one", 0.0075, 0.025, 0.90, [E("drift_n1", {"change": 0.05})]),
+    ("working_resistance_+0.4", "one", 0.008, 0.02, 0.91, [E("drift_working_resistance", {"relative_change": 0.4})]),
+    ("pulse_amplitude_-0.15", "one", 0.0065, 0.025, 0.89, [E("drift_pulse_amplitude", {"relative_change": -0.15})]),
+    # ---- two effects
+    ("friction+butterworth2_a1_700Hz", "two", 0.0075, 0.025, 0.89,
+     [E("wheel_friction_tanh", {"torque_Nm": 1.2, "smoothing_speed_rad_s": 25.0}),
+      E("lowpass_butterworth", _sig("a1", order=2, corner_hz=700.0))]),
+    ("mass_drag_10N+fan_load", "two", 0.006, 0.03, 0.9,
+     [E("mass_drag", {"coefficient_Ns2_per_m2": 10.0 / (151.4 * 0.15) ** 2}),
+      E("motor_fan_load", {"torque_Nm": 1.5, "reference_speed_rad_s": 151.4})]),
+    ("mass_+0.25+gain_a2_drift", "two", 0.0085, 0.025, 0.89,
+     [E("drift_mass", {"relative_change": 0.25}), E("gain_drifting", _sig("a2", start_relative_change=-0.08,
+                                                                             end_relative_change=-0.12))]),
+    ("clutch_asym_far-0.35+wheel_mesh", "two", 0.005, 0.025, 0.89,
+     [E("clutch_contact_asymmetric", {"drive_relative_change": 0.0, "far_relative_change": -0.35}),
+      E("ripple_wheel_mesh", {"amplitude_Nm": 6.0, "order": 8, "phase_rad": 0.4})]),
+    # ---- outside the catalogue (family None)
+    ("outside_progressive_contact", "outside", 0.0075, 0.025, 0.89,
+     [E("clutch_contact_progressive", {"p0_rad": 0.03})]),
+    ("outside_vibration_107Hz", "outside", 0.006, 0.025, 0.89,
+     [E("structural_vibration", {"amplitude_pu": 0.4, "frequency_hz": 107.0, "phase_rad": 0.0})]),
+    ("outside_rotor_resistance_+0.6", "outside", 0.0075, 0.025, 0.91,
+     [E("motor_rotor_resistance", {"relative_change": 0.6})]),
+    ("outside_hardening_spring", "outside", 0.0045, 0.03, 0.89, [E("spring_hardening", {"z0_m": 0.4})]),
+    ("outside_second_mode_120Hz", "outside", 0.0075, 0.025, 0.89,
+     [E("second_torsional_mode", {"rim_fraction": 0.4,
+                                  "stiffness_Nm_per_rad": (2 * 3.141592653589793 * 120.0) ** 2
+                                  / (1 / (0.4 * 0.2) + 1 / (0.6 * 0.2 + 0.10950)),
+                                  "damping_Nms_per_rad": 0.5})]),
+]
+
+WIDTH_LOOP_ROWS = [
+    ("wl_width_drift_7.5_to_8.5", "one", 0.0075, 0.025, 0.89, [E("drift_width", {"change": 0.001})]),
+    ("wl_wheel_friction_w3.75", "one", 0.00375, 0.025, 0.89,
+     [E("wheel_friction_tanh", {"torque_Nm": 1.5, "smoothing_speed_rad_s": 15.0})]),
+    ("wl_clutch_damping_+0.6_w9", "one", 0.009, 0.025, 0.89, [E("clutch_damping_value", {"relative_change": 0.6})]),
+    ("wl_gain_a1_+0.12_w6", "one", 0.006, 0.025, 0.89, [E("gain_constant", _sig("a1", relative_change=0.12))]),
+    ("wl_mass_force_-12N_w5", "one", 0.005, 0.025, 0.89, [E("mass_force_constant", {"force_N": -12.0})]),
+]
+
+TEST_ROWS = [
+    ("t_clean_w5", "clean", 0.005, 0.025, 0.89, []),
+    ("t_wheel_friction_2Nm", "one", 0.0075, 0.025, 0.89,
+     [E("wheel_friction_tanh", {"torque_Nm": 2.0, "smoothing_speed_rad_s": 10.0})]),
+    ("t_bessel4_a1_1kHz", "one", 0.006, 0.025, 0.89, [E("lowpass_bessel", _sig("a1", order=4, corner_hz=1000.0))]),
+    ("t_two_width-0.5mm+bias_a1", "two", 0.006, 0.025, 0.89,
+     [E("drift_width", {"change": -0.0005}), E("bias_constant", _sig("a1", bias_m_s2=1.0))], {"sensor": NOISY_ADC16}),
+    ("t_outside_vibration_83Hz", "outside", 0.005, 0.025, 0.89,
+     [E("structural_vibration", {"amplitude_pu": 0.3, "frequency_hz": 83.0, "phase_rad": 0.5})]),
+]
+
+BENCH = _suite(BENCH_ROWS, 5000, 4.0)
+WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
+TEST = _suite(TEST_ROWS, 100, 1.2)
+SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST}
+
+
+def suite(name: str) -> list:
+    if name not in SUITES:
+        raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITES)}")
+    return list(SUITES[name])
