@@ -12,6 +12,7 @@ EXECUTABLES = {
     "denoise": "backlash_monitor.nodes.denoise:main",
     "classifier": "backlash_monitor.nodes.classifier:main",
     "width_trend": "backlash_monitor.nodes.width_trend:main",
+    "model_watch": "backlash_monitor.nodes.model_watch:main",
     "chain": "backlash_monitor.nodes.chain_container:main",
     "managed_chain": "backlash_monitor.nodes.lifecycle:main_chain",
     "managed_plant": "backlash_monitor.nodes.lifecycle:main_plant",

@@ -60,7 +60,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="train on a workbench model version's plant config (docs/workbench.md; e.g. after "
                              "add-effect) instead of config/plant.yaml; needs --out. Repeat it to train on "
                              "several versions at once (the seeds dealt out round-robin, the windows pooled): "
-                             "when diagnose names indistinguishable effects, one version per candidate")
+                             "when diagnose names indistinguishable effects, one version per candidate. Also writes "
+                             "the live model watch's reference of the (first) version beside the library: "
+                             "LIB.watch.npz (~30 s more; docs/model_watch.md)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -86,8 +88,10 @@ def _check(args) -> None:
         raise UsageError(f"--out {args.out}: the library is an .npz file; give a name ending in .npz")
     if args.out is not None:   # before the minutes of training, not after
         from backlash_monitor.output_files import OutputError, check_outputs
+        from backlash_monitor.workbench.reference import reference_path_for_library
+        outs = [args.out] + ([str(reference_path_for_library(args.out))] if getattr(args, "model", None) else [])
         try:
-            check_outputs([args.out], overwrite=args.overwrite, option="--out")
+            check_outputs(outs, overwrite=args.overwrite, option="--out")
         except OutputError as error:
             raise UsageError(str(error)) from None
 
@@ -127,6 +131,13 @@ def run(args) -> int:
         check = check_library(lib, models)
         lib.training["check"] = check
     path = lib.save(out)
+    ref_path = None
+    if models:
+        # the live model watch's reference of the (first) version: the consistency test without simulation
+        from backlash_monitor.workbench.reference import build as build_reference, reference_path_for_library
+        t_ref = time.time()
+        ref_path = build_reference(models[0]).save(reference_path_for_library(path))
+        ref_seconds = time.time() - t_ref
     fit = lib.training["shape"]["fit"]
     print(f"pattern library written: {path}")
     print(f"  trigger {args.trigger}, seeds {','.join(map(str, args.seeds))}, "
@@ -136,6 +147,9 @@ def run(args) -> int:
         f"{s} {v['training_residual_std_m'] * 1e3:.3f} mm" for s, v in fit.items()))
     print(f"  modes: {', '.join(lib.modes)}; plant config {lib.settings['plant_config_hash']}; "
           f"{time.time() - t0:.0f} s")
+    if ref_path is not None:
+        print(f"model watch reference written: {ref_path} (model {models[0].label()}, {ref_seconds:.0f} s; "
+              "model_watch takes it with -p reference:=..., pipeline --watch with --library)")
     if check is not None:
         from backlash_monitor.workbench.retrain import describe
         for line in describe(check):

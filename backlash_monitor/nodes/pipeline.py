@@ -71,6 +71,24 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "--set wheel_coulomb_friction.torque_Nm=1.5 (docs/effects.md); repeatable")
     parser.add_argument("--effects", dest="effects_files", action="append", default=[], metavar="FILE.py",
                         help="a Python file with your own Effect classes for the plant (docs/effects.md); repeatable")
+    parser.add_argument("--set-at", dest="set_at", action="append", nargs="+", default=[],
+                        metavar=("TIME", "SECTION.KEY=VALUE"),
+                        help="change the simulated plant at simulated TIME (e.g. 30s) with these overrides, as "
+                             "--set: --set-at 30s effects.wheel_coulomb_friction=true "
+                             "wheel_coulomb_friction.torque_Nm=1.5 (an effect that appears mid-run); repeatable")
+    parser.add_argument("--library", default="", metavar="LIB.npz",
+                        help="the classifier's pattern library (default: the packaged one); with --watch its "
+                             "model reference LIB.watch.npz beside it (written by `train --model`) is the watch's")
+    parser.add_argument("--watch", action="store_true",
+                        help="also run the model watch (node model_watch, docs/model_watch.md): the drive's onset "
+                             "events against its model version, OK/WARN on /diagnostics and in the live view, a "
+                             "snapshot bag on a WARN")
+    parser.add_argument("--model", default="", metavar="M.yaml",
+                        help="with --watch: the drive's model version (default: config/plant.yaml at --width-m, "
+                             "--eta-k, --n1); its reference: --library's LIB.watch.npz, else the cache (built "
+                             "there once, ~30 s)")
+    parser.add_argument("--snapshot-dir", default=".", metavar="DIR",
+                        help="with --watch: where the snapshot bags go")
 
 
 def validate(args) -> None:
@@ -90,6 +108,11 @@ def validate(args) -> None:
     if args.restart != "no" and not args.processes:
         raise UsageError(f"--restart {args.restart} needs --processes (one process has no node "
                          "process to restart); allowed: --restart no, or add --processes")
+    args.set_at_entries = set_at_entries(args.set_at)
+    if (args.model or args.snapshot_dir != ".") and not args.watch:
+        raise UsageError("--model and --snapshot-dir are options of the model watch; add --watch")
+    if args.library and not os.path.isfile(args.library):
+        raise UsageError(f"--library {args.library}: no such file; give a pattern library (train --out LIB.npz)")
     if args.record:
         from backlash_monitor.output_files import OutputError, check_outputs
         try:
@@ -98,9 +121,34 @@ def validate(args) -> None:
             raise UsageError(str(error)) from None
 
 
+def set_at_entries(groups) -> list[str]:
+    """--set-at TIME KEY=VALUE ... groups -> the plant_simulator's plant_set_at entries 'T_S:KEY=VALUE;...'."""
+    from backlash_monitor.errors import UsageError
+    out = []
+    for group in groups or []:
+        if len(group) < 2:
+            raise UsageError(f"--set-at {' '.join(group)}: allowed: --set-at TIME SECTION.KEY=VALUE [...], e.g. "
+                             "--set-at 30s effects.wheel_coulomb_friction=true")
+        head = group[0].strip()
+        try:
+            t_s = float(head[:-1] if head.endswith("s") else head)
+        except ValueError:
+            t_s = -1.0
+        if not 0.0 <= t_s < 1e6:
+            raise UsageError(f"--set-at {head}: the time is simulated seconds >= 0, e.g. 30s or 12.5")
+        bad = [x for x in group[1:] if "=" not in x]
+        if bad:
+            raise UsageError(f"--set-at {head} {bad[0]}: expected SECTION.KEY=VALUE, e.g. "
+                             "effects.wheel_coulomb_friction=true")
+        out.append(f"{t_s:g}:" + ";".join(group[1:]))
+    return out
+
+
+WATCH_READS = "model_watch"                            # --watch: the model watch reads every plant signal
 WINDOWING_READS = "windowing:a1,a2,angle_difference"   # the windowing node, measured angles
 RECORD_NODE = "record"                                 # --record: records every plant signal
 NODE_ORDER = ("classifier", "denoise", "windowing", "plant_simulator")   # readers first
+WATCH_ORDER = ("model_watch",) + NODE_ORDER
 # After the stream ends the run waits for the estimates still in flight: until none has come for
 # IN_FLIGHT_QUIET_S [s]; while none has come at all, up to FIRST_ESTIMATE_GRACE_S [s] (a loaded
 # machine: the node processes' first window can take seconds; CI saw a 2 s run end with none).
@@ -115,17 +163,44 @@ def node_parameters(args) -> dict[str, dict]:
                                 n1=args.n1, seed=args.seed, rate_factor=args.rate_factor,
                                 duration_s=args.duration, qos="reliable",
                                 plant_set=";".join(getattr(args, "plant_set", None) or []),
+                                plant_set_at=getattr(args, "set_at_entries", None) or [""],
                                 effects_files=";".join(getattr(args, "effects_files", None) or []),
                                 # the readers the stream is for (not a count: another subscriber
                                 # in the domain must not start it early)
                                 wait_for_subscribers=[WINDOWING_READS]
-                                + ([RECORD_NODE] if args.record else [])),
+                                + ([RECORD_NODE] if args.record else [])
+                                + ([WATCH_READS] if getattr(args, "watch", False) else [])),
         "windowing": dict(drive_name=args.drive_name, trigger=args.trigger, qos="reliable",
                           width_m=args.width_m if args.trigger == "paper" else 0.0),
         "denoise": {},
         "classifier": dict(drive_name=args.drive_name, n1=args.n1, trigger=args.trigger,
-                           **({"mode": args.mode} if args.mode else {})),
+                           **({"mode": args.mode} if args.mode else {}),
+                           **({"library": args.library} if getattr(args, "library", "") else {})),
+        "model_watch": dict(drive_name=args.drive_name, qos="reliable",
+                            reference=str(getattr(args, "watch_reference", "") or ""),
+                            snapshot_dir=getattr(args, "snapshot_dir", ".")),
     }
+
+
+def watch_reference(args, log=print) -> str:
+    """--watch: the path of the drive's model reference (--library's LIB.watch.npz, else the model's from the
+    cache, built there when missing)."""
+    from backlash_monitor.errors import UsageError
+    from backlash_monitor.workbench import reference
+    from backlash_monitor.workbench.model import ModelError, load_model
+    if args.library:
+        beside = reference.reference_path_for_library(args.library)
+        if beside.is_file():
+            return str(beside)
+        if args.model:
+            raise UsageError(f"--library {args.library} has no model reference beside it ({beside}); make it with "
+                             f"`python -m backlash_monitor watch-reference --model {args.model} --out {beside}`")
+    try:
+        model = load_model(args.model or None, width_m=None if args.model else args.width_m,
+                           eta_k=None if args.model else args.eta_k, n1=None if args.model else args.n1)
+    except ModelError as error:
+        raise UsageError(str(error)) from None
+    return str(reference.cached(model, log=lambda text: log(f"pipeline: {text}")).path)
 
 
 @dataclass
@@ -163,6 +238,10 @@ class LiveView:
         self.repeated = 0                 # estimates received again (a restarted classifier)
         self.faults: list[str] = []       # node processes that ended before the run was over
         self.windowing_joined_at = 0      # first sample the (latest) windowing process saw
+        self.model_fit = None             # the model watch's last ModelFit (--watch)
+        self.watch_status = ""            # its last /diagnostics status, "LEVEL: message"
+        self.watch_level = ""
+        self.watch_snapshot = ""
 
     def onset_gaps(self) -> list[tuple[float, float, int]]:
         """Gaps in the onset estimates of each stream: (t before, t after [s], onsets missing at
@@ -239,11 +318,17 @@ class LiveView:
         fused_ok = abs(last.fused_width_m - self.true_width_m) < 1e-9
         cont = ("" if math.isnan(last.fused_continuous_width_m)
                 else f" ({last.fused_continuous_width_m * 1e3:4.2f})")
+        fit = self.model_fit
+        watch = ("" if fit is None else
+                 f" | model {fit.residual_over_noise_overall:3.1f}x {'WARN' if fit.level == fit.WARN else 'ok'}")
         print(f"t={first.entry_sample_index * self.sample_period_s:8.3f} s  onset  "
               + " | ".join(parts)
               + f" | fused {last.fused_width_m * 1e3:5.2f}{cont} mm over {last.fused_events} "
-              f"{'ok' if fused_ok else 'MISS'}   true {self.true_width_m * 1e3:.2f} mm",
+              f"{'ok' if fused_ok else 'MISS'}   true {self.true_width_m * 1e3:.2f} mm" + watch,
               file=self.out, flush=True)
+
+    def on_model_fit(self, msg) -> None:
+        self.model_fit = msg
 
     def on_diagnostics(self, msg) -> None:
         for status in msg.status:
@@ -252,6 +337,15 @@ class LiveView:
             values = {kv.key: kv.value for kv in status.values}
             if "classifier" in status.name:
                 self.diagnostic = text
+            elif "model_watch" in status.name:
+                self.watch_status = text
+                name = ['OK', 'WARN', 'ERROR', 'STALE'][min(level, 3)]
+                snapshot = values.get("snapshot", "")
+                if name != self.watch_level and (name != "OK" or self.watch_level):
+                    print(f"pipeline: model watch {text}", file=self.out, flush=True)
+                elif snapshot != self.watch_snapshot and snapshot and "recording" not in snapshot:
+                    print(f"pipeline: model watch: {snapshot} written", file=self.out, flush=True)
+                self.watch_level, self.watch_snapshot = name, snapshot
             elif "windowing" in status.name:
                 self.windowing_joined_at = int(values.get("joined_at_sample") or 0)
                 self.windowing = (f"{text} (incomplete chunk ranges "
@@ -279,6 +373,8 @@ class LiveView:
             if self.diagnostic else []
         tail += [f"last diagnostics (sent once a second): windowing {self.windowing}"] \
             if self.windowing else []
+        tail += [f"last diagnostics (sent once a second): model_watch {self.watch_status}"] \
+            if self.watch_status else []
         tail += [f"repeated estimates ignored: {self.repeated} (re-sent by a restarted node)"] \
             if self.repeated else []
         tail += [f"node fault: {fault}" for fault in self.faults]
@@ -298,6 +394,8 @@ def _executable(name: str) -> str:
 
 def run(args) -> int:
     validate(args)
+    if args.watch:
+        args.watch_reference = watch_reference(args)
     import rclpy
     from rclpy.executors import ExternalShutdownException
     from rclpy.parameter import Parameter
@@ -313,6 +411,7 @@ def run(args) -> int:
     configure_fast_dds()  # before rclpy.init; the child processes inherit it
     from backlash_monitor.nodes.parameters import ros_parameter_args
     params = node_parameters(args)
+    order = WATCH_ORDER if args.watch else NODE_ORDER
     view = LiveView(args.width_m, default_signals(args.mode or DEFAULT_MODE))
     supervisor = None
     exit_code = 0
@@ -325,6 +424,10 @@ def run(args) -> int:
         nodes.append(monitor)
         monitor.create_subscription(BacklashEstimate, "estimate", view.on_estimate, ESTIMATE_QOS)
         monitor.create_subscription(DiagnosticArray, "/diagnostics", view.on_diagnostics, 10)
+        if args.watch:
+            from backlash_monitor.nodes.model_watch import MODEL_FIT_QOS
+            from backlash_monitor_msgs.msg import ModelFit
+            monitor.create_subscription(ModelFit, "model_fit", view.on_model_fit, MODEL_FIT_QOS)
         if args.record:
             from backlash_monitor.nodes.record import RecordNode
             nodes.append(RecordNode(parameter_overrides=[Parameter("output", value=args.record),
@@ -332,7 +435,7 @@ def run(args) -> int:
         plant = None
         if args.processes:
             supervisor = Supervisor({name: [_executable(name)] + ros_parameter_args(params[name])
-                                     for name in NODE_ORDER},
+                                     for name in order},
                                     restart=args.restart, max_restarts=args.max_restarts,
                                     finishing=("plant_simulator",))
             supervisor.start()
@@ -341,8 +444,12 @@ def run(args) -> int:
             from backlash_monitor.nodes.denoise import DenoiseNode
             from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode
             from backlash_monitor.nodes.windowing import WindowingNode
-            for cls, name in ((ClassifierNode, "classifier"), (DenoiseNode, "denoise"),
-                              (WindowingNode, "windowing"), (PlantSimulatorNode, "plant_simulator")):
+            classes = [(ClassifierNode, "classifier"), (DenoiseNode, "denoise"),
+                       (WindowingNode, "windowing"), (PlantSimulatorNode, "plant_simulator")]
+            if args.watch:
+                from backlash_monitor.nodes.model_watch import ModelWatchNode
+                classes.insert(0, (ModelWatchNode, "model_watch"))
+            for cls, name in classes:
                 nodes.append(cls(parameter_overrides=[Parameter(k, value=v)
                                                       for k, v in params[name].items()]))
             plant = nodes[-1]
@@ -354,6 +461,12 @@ def run(args) -> int:
               f"{args.eta_k:g}, n1 {args.n1:g}, trigger {args.trigger}, "
               f"{'one process per node' if args.processes else 'one process'}; "
               f"{args.duration:g} simulated s at x{args.rate_factor:g}", flush=True)
+        for entry in args.set_at_entries:
+            t_s, _, changes = entry.partition(":")
+            print(f"pipeline: the plant changes at t = {float(t_s):g} s: {changes.replace(';', ', ')}", flush=True)
+        if args.watch:
+            print(f"pipeline: model watch on, reference {args.watch_reference}; snapshots into "
+                  f"{os.path.abspath(args.snapshot_dir)}", flush=True)
         if supervisor is not None:
             print("pipeline: node processes: " + ", ".join(
                 f"{name} pid {pid}" for name, pid in supervisor.pids().items())

@@ -39,6 +39,10 @@ PARAMETERS = (
     ParameterSpec("plant_config", "", "plant YAML (empty: the packaged config/plant.yaml)"),
     ParameterSpec("plant_set", "", "plant config overrides 'SECTION.KEY=VALUE' separated by ';', as simulate's "
                   "--set (e.g. 'effects.wheel_coulomb_friction=true;wheel_coulomb_friction.torque_Nm=1.5')"),
+    ParameterSpec("plant_set_at", [""], "run-time plant changes, each 'T_S:SECTION.KEY=VALUE;...' (e.g. "
+                  "'30:effects.wheel_coulomb_friction=true;wheel_coulomb_friction.torque_Nm=1.5'): from simulated "
+                  "second T_S on, the plant runs with these overrides too (an effect switched on then is on from "
+                  "the start at its neutral default); [''] = none"),
     ParameterSpec("effects_files", "", "Python files with your own Effect classes, separated by ';' "
                   "(docs/effects.md; as simulate's --effects)"),
     ParameterSpec("chunk_samples", 1000, "samples per chunk (1000 = 20 ms at 50 kHz)", 64, 50000),
@@ -64,6 +68,25 @@ PARAMETERS = (
                   0.0, 86400.0),
 )
 
+def parse_set_at(entries) -> list:
+    """['T_S:KEY=VALUE;KEY=VALUE', ...] -> [(T_S, {key: value})] in time order; ValueError naming a bad entry."""
+    from backlash_monitor.plant.config import parse_override
+    out = []
+    for entry in entries:
+        if not entry.strip():
+            continue
+        head, sep, rest = entry.partition(":")
+        try:
+            t_s = float(head.strip().rstrip("s"))
+        except ValueError:
+            t_s = -1.0
+        if not sep or not (t_s >= 0.0 and t_s < 1e7) or not rest.strip():
+            raise ValueError(f"parameter 'plant_set_at' entry {entry!r}: allowed: 'T_S:SECTION.KEY=VALUE;...' with "
+                             "0 <= T_S simulated seconds, e.g. '30:effects.wheel_coulomb_friction=true'")
+        out.append((t_s, dict(parse_override(t) for t in rest.split(";") if t.strip())))
+    return sorted(out, key=lambda x: x[0])
+
+
 class PlantSimulatorNode(Node):
     def __init__(self, **overrides):
         super().__init__("plant_simulator", **overrides)
@@ -75,11 +98,25 @@ class PlantSimulatorNode(Node):
             for path in filter(None, (x.strip() for x in p["effects_files"].split(";"))):
                 load_effects_file(path)
             overrides = dict(parse_override(t) for t in p["plant_set"].split(";") if t.strip())
-            config = load_plant_config(p["plant_config"] or None, overrides=overrides or None)
+            self.set_at = parse_set_at(p["plant_set_at"])
+            # an effect switched on later is on from the start, at its neutral default (one compiled kernel)
+            switches = {k: v for _, changes in self.set_at for k, v in changes.items()
+                        if k.startswith("effects.") and v is True}
+            config = load_plant_config(p["plant_config"] or None, overrides={**switches, **overrides} or None)
+            # the configs of the changes, checked now (a bad one stops the node at start, not mid-run)
+            self.set_at_configs = []
+            applied = dict(switches)
+            for t_s, changes in self.set_at:
+                applied.update(changes)
+                self.set_at_configs.append((t_s, changes, load_plant_config(
+                    p["plant_config"] or None, overrides={**applied, **overrides})))
             scenario = Scenario(width_m=p["width_m"], eta_k=p["eta_k"], n1=p["n1"], seed=p["seed"])
             self.simulator = PlantSimulator([scenario], config=config, noise=p["noise"],
                                             outputs=tuple(SIGNAL_UNITS),
                                             backend=None if p["backend"] == "auto" else p["backend"])
+            from backlash_monitor.plant.simulate import check_runtime_change
+            for _t, _changes, cfg in self.set_at_configs:
+                check_runtime_change(config, cfg)
         except ValueError as error:
             from backlash_monitor.nodes.parameters import ParameterValueError
             raise ParameterValueError(str(error)) from None
@@ -173,7 +210,18 @@ class PlantSimulatorNode(Node):
             self.get_logger().info(f"published {self.chunks_published} chunks "
                                    f"({self.chunks_published * self.params['chunk_samples'] * self.sample_period_s:g} s)")
 
+    def apply_changes(self) -> None:
+        """The plant_set_at changes whose time has come (at the first chunk that starts at or after it)."""
+        t = self.simulator.sample_index * self.sample_period_s
+        while self.set_at_configs and self.set_at_configs[0][0] <= t + 1e-12:
+            t_s, changes, cfg = self.set_at_configs.pop(0)
+            self.simulator.set_config(cfg)
+            self.get_logger().info(f"at t = {t:.3f} s (sample {self.simulator.sample_index}): "
+                                   + ", ".join(f"{k}={v}" for k, v in changes.items()))
+
     def publish_chunk(self):
+        if self.set_at_configs:
+            self.apply_changes()
         chunk = self.simulator.run(self.params["chunk_samples"])
         stamp = stamp_of_sample(self.stream_start_s, chunk.first_sample_index, self.sample_period_s)
         for name, publisher in self.publishers_by_signal.items():

@@ -117,21 +117,12 @@ class PlantSimulator:
         self.sample_period_s = cfg.simulation.sample_period_s
         self.effects = _effects.enabled_effects(cfg)
         self.kernel = kernel_for(tuple(c for c in self.effects if c.kind == "term"))
-        self._values = self._parameter_table(parameters or {})
-        v = self._values
-        self.beta = v["width_m"] / cfg.load.wheel_radius_m
-        self.n1 = v["absorber_power_law.flow_index"]
-        self.c = v["absorber_power_law.coefficient"]
-        self.P = np.array([v[row] for row in self.kernel.param_rows], dtype=np.float64).reshape(
-            len(self.kernel.param_rows), len(self.scenarios))
-        self.G = global_vector(cfg)
+        self._overrides = dict(parameters or {})
+        self._derive_parameters()
         self._seeds = [self._seed(i) for i in range(len(self.scenarios))]
         self.inputs = _shared_inputs(self._seeds, cfg)
-        self._constants = [float(c) for c in v["constant_motor_load.load_pu"]]
-        amp = v["pulse_load.amplitude_pu"]
-        self._pulse_scale = None if np.all(amp == cfg.pulse_load.amplitude_pu) else amp
         self._sensor_state: dict = {}
-        self.state, self.motor_steady_state = settled_state(self.beta, cfg, values=v)
+        self.state, self.motor_steady_state = settled_state(self.beta, cfg, values=self._values)
         self.sample_index = 0
         self._last_delta = None
         run_in = int(round(cfg.simulation.run_in_s * cfg.simulation.sample_rate_hz))
@@ -139,6 +130,48 @@ class PlantSimulator:
             self._run_in(run_in)
 
     # ------------------------------------------------------------------ parameters
+    def _derive_parameters(self) -> None:
+        """The per-scenario values and the kernel's parameter arrays from the config and the overrides."""
+        cfg = self.config
+        self._values = self._parameter_table(self._overrides)
+        v = self._values
+        self.beta = v["width_m"] / cfg.load.wheel_radius_m
+        self.n1 = v["absorber_power_law.flow_index"]
+        self.c = v["absorber_power_law.coefficient"]
+        self.P = np.array([v[row] for row in self.kernel.param_rows], dtype=np.float64).reshape(
+            len(self.kernel.param_rows), len(self.scenarios))
+        self.G = global_vector(cfg)
+        self._constants = [float(c) for c in v["constant_motor_load.load_pu"]]
+        amp = v["pulse_load.amplitude_pu"]
+        self._pulse_scale = None if np.all(amp == cfg.pulse_load.amplitude_pu) else amp
+
+    def set_config(self, config: PlantConfig) -> None:
+        """Change the plant's effect parameters at run time: the simulation goes on from its current state with
+        ``config``'s values (an effect that wears in, a sensor that fails mid-run). Only what the effects API
+        makes run-time may change: the effects' parameters (``<effect>.<parameter>``) and the values of the
+        sections the kernel reads per step (load, clutch, absorber values). The set of switched-on effects must
+        stay the same (it is the compiled kernel): switch an effect on from the start at its neutral default
+        (every catalogue effect's default is neutral) and give it its value here. The sample rate, the motor,
+        the pulse train and the disturbances cannot change (they fix the stream's timing, the settled start and
+        the noise generators)."""
+        check_runtime_change(self.config, config)
+        self.config = config
+        self._derive_parameters()
+
+    def set_parameters(self, parameters: Mapping[str, Any]) -> None:
+        """Change per-scenario effect parameters at run time ({"effect.param": scalar or (n_scenarios,) array},
+        as ``parameters=`` of the constructor; the effects must be switched on): the simulation goes on from its
+        current state with them."""
+        merged = dict(self._overrides)
+        merged.update(parameters)
+        old = self._overrides
+        self._overrides = merged
+        try:
+            self._derive_parameters()
+        except ValueError:
+            self._overrides = old
+            raise
+
     def _parameter_table(self, overrides: Mapping[str, Any]) -> dict:
         """Per-scenario values (n_scenarios,) of every model value and every parameter of the enabled
         effects: defaults (config, effect class, Scenario), then ``overrides``, then the drifts."""
@@ -322,6 +355,25 @@ class PlantSimulator:
                     a = cls.apply(name, a, {p.name: self._values[f"{cls.name}.{p.name}"] for p in cls.parameters},
                                   self._sensor_state.setdefault(cls.name + "." + name, {}), h)
             sig[name] = a
+
+
+def check_runtime_change(old: PlantConfig, new: PlantConfig) -> None:
+    """ValueError (naming what) when ``new`` cannot replace ``old`` in a running simulator (set_config): another
+    set of switched-on effects, or another simulation, motor, pulse train or disturbance section."""
+    names = [c.name for c in _effects.enabled_effects(new)]
+    have = [c.name for c in _effects.enabled_effects(old)]
+    if names != have:
+        on = sorted(set(names) - set(have))
+        off = sorted(set(have) - set(names))
+        what = "; ".join(x for x in (f"would switch on {', '.join(on)}" if on else "",
+                                     f"would switch off {', '.join(off)}" if off else "") if x)
+        raise ValueError(f"plant change at run time: the switched-on effects cannot change ({what}); allowed: "
+                         "switch an effect on from the start at its neutral default and change its parameters")
+    fixed = [sec for sec in ("simulation", "motor", "pulse_load", "disturbances")
+             if getattr(new, sec) != getattr(old, sec)]
+    if fixed:
+        raise ValueError(f"plant change at run time: section(s) {', '.join(fixed)} cannot change; allowed: effect "
+                         "parameters and the load, clutch and absorber values")
 
 
 def _check_noise_seed(noise_seed, n: int):

@@ -1,0 +1,137 @@
+"""The alarm rule of the model watch: when a drive is said to no longer match its model (docs/model_watch.md).
+
+The watch tests the model after every onset event, on the last N events (consistency.test, diagnose's test). At
+diagnose's 1 % level per view, 14,400 tests an hour of a correct model would alarm about every few seconds, and the
+windows of consecutive tests share N - 1 of their events, so they are not independent either. The rule:
+
+- an evaluation *exceeds* when a view of the consistency test (event average, spectral shape, record mean) has a
+  p-value below ``view_p`` (its chi^2 tail, the view's dimension), or the event average's residual exceeds
+  ``residual_ratio`` times the noise floor of an N-event mean (diagnose's second criterion, 2.0 at its level);
+- WARN after ``persistence`` consecutive exceeding evaluations; OK again after ``clear_after`` consecutive
+  evaluations that do not exceed (a window that no longer holds the evidence).
+
+The values are measured (bench/model_watch.py: false alarms over >= 1 h of clean drives, own and foreign, and the
+onsets to detection of every catalogue family; config/model_watch.yaml gives them with the reasons).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+from scipy import stats
+
+ALARM_VIEWS = ("event_average", "spectral_shape", "record_mean")     # consistency.ConsistencyResult.consistent's
+
+
+@dataclass(frozen=True)
+class AlarmRule:
+    view_p: float = 1e-6
+    residual_ratio: float = 3.0
+    persistence: int = 3
+    clear_after: int = 16
+
+    def check(self) -> "AlarmRule":
+        if not (0.0 < self.view_p < 0.5):
+            raise ValueError(f"alarm view_p = {self.view_p!r}; allowed: 0 < view_p < 0.5")
+        if not (self.residual_ratio > 0):
+            raise ValueError(f"alarm residual_ratio = {self.residual_ratio!r}; allowed: > 0")
+        for name in ("persistence", "clear_after"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int) or v < 1:
+                raise ValueError(f"alarm {name} = {v!r}; allowed: an integer >= 1")
+        return self
+
+    def exceeds(self, evaluation) -> tuple[bool, list]:
+        """(the evaluation exceeds the rule, [the views / 'residual' that do])."""
+        names = []
+        for name in ALARM_VIEWS:
+            v = evaluation.result.views.get(name)
+            if v is not None and stats.chi2.sf(v.t2, v.dimension) < self.view_p:
+                names.append(name)
+        if evaluation.result.residual_over_noise > self.residual_ratio:
+            names.append("residual")
+        return bool(names), names
+
+    def limits(self, evaluation) -> dict:
+        """Per alarm view: the T^2 at which it exceeds (the chi^2 point of view_p)."""
+        return {n: _isf(self.view_p, v.dimension) for n, v in evaluation.result.views.items() if n in ALARM_VIEWS}
+
+
+class AlarmState:
+    """OK / WARN with persistence and clearing; ``since``: what the state changed at (the caller's time)."""
+
+    def __init__(self, rule: AlarmRule):
+        self.rule = rule.check()
+        self.level = "OK"
+        self.run = 0              # consecutive exceeding (OK) or not exceeding (WARN) evaluations
+        self.since = None
+        self.first_exceeding = None
+
+    def update(self, exceeding: bool, at) -> bool:
+        """One evaluation; True when the level changed."""
+        if self.level == "OK":
+            if exceeding:
+                if self.run == 0:
+                    self.first_exceeding = at
+                self.run += 1
+                if self.run >= self.rule.persistence:
+                    self.level, self.since, self.run = "WARN", self.first_exceeding, 0
+                    return True
+            else:
+                self.run = 0
+            return False
+        if exceeding:
+            self.run = 0
+            return False
+        self.run += 1
+        if self.run >= self.rule.clear_after:
+            self.level, self.since, self.run = "OK", at, 0
+            return True
+        return False
+
+
+def config_path() -> str:
+    """config/model_watch.yaml (the repository's, else the installed package's share)."""
+    import os
+    here = os.path.join(os.path.dirname(__file__), "..", "..", "config", "model_watch.yaml")
+    if os.path.isfile(here):
+        return os.path.normpath(here)
+    from ament_index_python.packages import get_package_share_directory
+    return os.path.join(get_package_share_directory("backlash_monitor"), "config", "model_watch.yaml")
+
+
+def load_config(path: str | None = None) -> dict:
+    """The model watch's settings (config/model_watch.yaml): ValueError naming a missing or bad key."""
+    import yaml
+    path = path or config_path()
+    with open(path, encoding="utf-8") as f:
+        cfg = yaml.safe_load(f) or {}
+    want = {"window_events": int, "view_p": float, "residual_ratio": float, "persistence": int, "clear_after": int,
+            "snapshot_before_s": float, "snapshot_after_s": float}
+    out = {}
+    for key, kind in want.items():
+        if key not in cfg:
+            raise ValueError(f"{path}: missing key {key!r}; allowed keys: {', '.join(want)}")
+        v = cfg[key]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or (kind is int and not isinstance(v, int)):
+            raise ValueError(f"{path}: {key} = {v!r} is not {'an integer' if kind is int else 'a number'}")
+        out[key] = kind(v)
+    AlarmRule(out["view_p"], out["residual_ratio"], out["persistence"], out["clear_after"]).check()
+    return out
+
+
+def load_rule(path: str | None = None) -> AlarmRule:
+    c = load_config(path)
+    return AlarmRule(c["view_p"], c["residual_ratio"], c["persistence"], c["clear_after"])
+
+
+@lru_cache(maxsize=64)
+def _isf(p: float, dimension: int) -> float:
+    return float(stats.chi2.isf(p, dimension))
+
+
+def p_min(evaluation) -> float:
+    """The smallest p-value of the alarm views (what ``view_p`` is compared with)."""
+    ps = [stats.chi2.sf(v.t2, v.dimension) for n, v in evaluation.result.views.items() if n in ALARM_VIEWS]
+    return float(np.min(ps)) if ps else 1.0

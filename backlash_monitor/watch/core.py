@@ -1,0 +1,122 @@
+"""The model watch's core: a drive's last N onset events against its model version's reference, after every event.
+
+``ModelWatch.feed`` takes the stream (a1, a2, angle difference by sample index; watch/events.py makes the events),
+``add_event`` one completed event. Once the window holds N events, every new event evaluates the reference
+(workbench/reference.py: consistency.test, diagnose's test, at the width that fits best -- the measurand) on the
+window, with the sensor noise floor read off the window's spectra; the alarm rule (watch/alarm.py) turns the
+evaluations into OK / WARN. Each evaluation is a :class:`WatchUpdate`: what the node publishes on ``model_fit``
+and ``/diagnostics``. Plain numpy, no rclpy (docs/model_watch.md).
+"""
+from __future__ import annotations
+
+import math
+from collections import deque
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from backlash_monitor.workbench.events import SEGMENT_SIGNALS
+from backlash_monitor.workbench.reference import Evidence, ModelReference
+
+from .alarm import AlarmRule, AlarmState, p_min
+from .events import LiveEvent, LiveEvents
+
+DEFAULT_WINDOW_EVENTS = 16       # about a 4 s recording: the length the workbench is measured on
+NOISE_REBUILD_FACTOR = 1.5       # the views are rebuilt when the noise floor moved by more than this factor
+NOISE_NEGLIGIBLE = 1e-3          # a noise floor below this share of the model's weakest spectral band is taken as 0
+
+
+@dataclass
+class WatchUpdate:
+    """One evaluation of the watch (after an onset event, once the window is full)."""
+    entry_sample_index: int
+    level: str                         # "OK" | "WARN" (the alarm rule's state after this evaluation)
+    changed: bool                      # the level changed with this evaluation
+    since_sample_index: int | None     # the evaluation the current level started at (WARN: its first exceeding)
+    exceeding: bool
+    exceeding_views: list
+    evaluation: object                 # reference.Evaluation
+    p_min: float
+    events: int
+    limits: dict = field(default_factory=dict)
+
+    @property
+    def where(self) -> tuple[str, str]:
+        w = self.evaluation.where or {}
+        return w.get("dominant_phase", ""), w.get("dominant_level", "")
+
+
+class ModelWatch:
+    def __init__(self, reference: ModelReference, window_events: int = DEFAULT_WINDOW_EVENTS,
+                 rule: AlarmRule | None = None):
+        if isinstance(window_events, bool) or not isinstance(window_events, int) or window_events < 3:
+            raise ValueError(f"window_events = {window_events!r}; allowed: an integer >= 3 (diagnose needs 3 "
+                             "onset events)")
+        self.reference = reference
+        self.window_events = window_events
+        self.rule = (rule or AlarmRule()).check()
+        self.state = AlarmState(self.rule)
+        self.events: deque = deque(maxlen=window_events)
+        self.live = LiveEvents(reference.sample_period_s, reference.pulse_period_samples)
+        self.views_noise = np.zeros(len(SEGMENT_SIGNALS))
+        self.noise_scale = self._noise_scale()
+        self.evaluations = 0
+        self.last: WatchUpdate | None = None
+        reference.views(self.views_noise, window_events)      # the views at zero noise, before the stream
+
+    def _noise_scale(self) -> np.ndarray:
+        """Per signal: the model's weakest spectral band as a white PSD [(m/s^2)^2/Hz]."""
+        from backlash_monitor.workbench import spectral
+        from backlash_monitor.workbench.events import POST_SAMPLES, PRE_SAMPLES
+        unit = spectral.noise_power(np.ones(len(SEGMENT_SIGNALS)), PRE_SAMPLES + POST_SAMPLES,
+                                    self.reference.sample_period_s)
+        return self.reference.base_bands.mean(axis=0).min(axis=-1) / unit
+
+    def feed(self, first_sample_index: int, a1, a2, angle_difference) -> list[WatchUpdate]:
+        out = []
+        for ev in self.live.feed(first_sample_index, a1, a2, angle_difference):
+            u = self.add_event(ev)
+            if u is not None:
+                out.append(u)
+        return out
+
+    def noise_floor(self) -> np.ndarray:
+        """The sensor noise floor of the window's events (their periods' mean Welch spectrum vs the model's)."""
+        psds = [e.psd for e in self.events if e.psd is not None]
+        if not psds:
+            return self.views_noise
+        psd = np.mean(psds, axis=0)
+        return self.reference.noise_floor(dict(zip(SEGMENT_SIGNALS, psd)))
+
+    def _views_noise(self) -> np.ndarray:
+        """The noise floor the views are built for: the window's, once it moved by NOISE_REBUILD_FACTOR (a
+        rebuild costs ~0.1 s; the floor of a sensor does not change from event to event)."""
+        if not any(e.psd is not None for e in list(self.events)[-1:]):
+            return self.views_noise          # no new spectrum since the last look
+        est = self.noise_floor()
+        floor = NOISE_NEGLIGIBLE * self.noise_scale
+        new = np.where(est < floor, 0.0, est)
+        a, b = np.maximum(new, floor), np.maximum(self.views_noise, floor)
+        if np.any(np.abs(np.log(a / b)) > math.log(NOISE_REBUILD_FACTOR)):
+            self.views_noise = new
+        return self.views_noise
+
+    def evidence(self) -> Evidence:
+        ev = list(self.events)
+        return Evidence(np.stack([e.raw for e in ev]), np.stack([e.dc for e in ev]), np.stack([e.spec for e in ev]),
+                        self._views_noise(), np.array([e.entry_sample_index for e in ev]))
+
+    def add_event(self, event: LiveEvent) -> WatchUpdate | None:
+        self.events.append(event)
+        if len(self.events) < self.window_events:
+            return None
+        evidence = self.evidence()
+        ev = self.reference.evaluate(evidence, where=False)
+        self.evaluations += 1
+        exceeding, names = self.rule.exceeds(ev)
+        if exceeding or self.state.level != "OK" or self.evaluations % self.window_events == 1:
+            ev.where = self.reference.where(evidence, ev)       # ~3 ms: when it matters, and once per window
+        changed = self.state.update(exceeding, event.entry_sample_index)
+        self.last = WatchUpdate(event.entry_sample_index, self.state.level, changed, self.state.since, exceeding,
+                                names, ev, p_min(ev), len(self.events), self.rule.limits(ev))
+        return self.last

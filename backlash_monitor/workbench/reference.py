@@ -1,0 +1,528 @@
+"""The model reference: everything the workbench's consistency test needs for one model version, precomputed, so
+that the live model watch simulates nothing (docs/model_watch.md).
+
+``diagnose`` builds its comparison per recording: the model's K-seed noise ensemble under the recording's
+conditions, the weights, the views (consistency.py: the whitened candidates' subspace of the event average, the raw
+events' spectral shape, the record mean, and the noise directions outside the subspace) and the model-form
+tolerance. A reference does the same once, when the model version is trained, with the workbench's own steps
+(``diagnose.prepare`` and ``diagnose.screen_step`` on a recording the model makes of itself), and keeps what the
+test needs:
+
+- the model's own onset events of the ensemble (raw segments, period means): the whitening and the views' noise;
+- the screening Jacobians of every catalogue candidate (the directions the subspace is spanned by, and the
+  model-form tolerance), the spectral block's as band powers of every stepped set;
+- the model's prediction at a grid of backlash widths (``backlash_width_drift`` over its fit range, common
+  random numbers): the width is the monitor's measurand, so a drive whose clutch wears is compared with the model
+  at the width it has (profiled: the width that fits best in the fits' metric), not read as "the model no longer
+  explains the drive";
+- the model's whole-record spectrum above 12 kHz (the recording's sensor noise floor is read off against it) and
+  its leave-one-seed-out deviations (where the residual sits: phase, wavelet level).
+
+Two things depend on the recording and are applied when a reference is evaluated: the number of events E (the
+noise of an E-event mean; the weights scale with sqrt(E)) and the sensor noise floor (the spectral block's
+prediction and whitening include it, as diagnose's do). ``views(noise_psd, n_events)`` builds the views for them
+with consistency.py's own functions (``candidate_basis``, ``whiten``, ``complement_basis``,
+``model_event_vectors``) and tolerance.py's ``directions``; ``evaluate(evidence)`` runs ``consistency.test``.
+
+File: ``LIB.watch.npz`` beside a pattern library (``train --model``), or the cache (.cache/watch/) for the default
+model at a drive's nominal conditions. FORMAT_VERSION counts the layout; a file of another version is refused
+with the command that rebuilds it.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+
+from . import analysis, consistency, spectral, tolerance
+from .events import PRE_SAMPLES, POST_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, denoise
+
+FORMAT_VERSION = 1
+SUFFIX = ".watch.npz"              # LIB.npz -> LIB.watch.npz
+BUILD_DURATION_S = 4.0             # the model's own recording the views are built on: 16 onset events per seed, the
+                                   # 4 s recordings the workbench is measured on (docs/model_watch.md)
+BUILD_SEED = 424_242               # its noise seed (not one of the ensemble's 0..K-1)
+WIDTH_STEP = 0.025                 # the width grid's step, relative to the nominal width (docs/model_watch.md)
+WIDTH_RANGE = 0.4                  # +-, relative: the fit range of backlash_width_drift (plant_adapter.FIT_RANGES)
+WIDTH_EFFECT = "backlash_width_drift"
+WIDTH_KEY = "backlash_width_drift.change"
+
+
+class ReferenceError(ValueError):
+    """A reference file that cannot be used (names the problem and the command that rebuilds it)."""
+
+
+def reference_path_for_library(library_path) -> Path:
+    """Where ``train --model ... --out LIB.npz`` writes the library's reference: LIB.watch.npz."""
+    p = Path(library_path)
+    name = p.name[:-4] if p.name.endswith(".npz") else p.name
+    return p.with_name(name + SUFFIX)
+
+
+# ------------------------------------------------------------------------------------------------ evidence
+
+@dataclass
+class Evidence:
+    """The onset events a reference is evaluated on: raw segments (E, 2, L), their period means (E, 2), their raw
+    spectral-shape features (E, n_features), the recording's sensor noise floor per signal [(m/s^2)^2/Hz], and the
+    entries' sample indices (E,)."""
+    raw: np.ndarray
+    dc: np.ndarray
+    spec: np.ndarray
+    noise_psd: np.ndarray
+    entries: np.ndarray
+
+    @property
+    def n_events(self) -> int:
+        return int(self.raw.shape[0])
+
+
+def evidence_from_measurement(meas, reference: "ModelReference", last_n: int | None = None) -> Evidence:
+    """The evidence of a recording as diagnose takes it (events.event_set, spectral.event_features, the sensor noise
+    floor from the whole record's Welch spectrum against the model's); ``last_n``: only the last n events (the
+    watch's window at the end of the recording)."""
+    from .events import event_set
+    ev = event_set(meas.signals, meas.sample_period_s)
+    if ev.n_events == 0:
+        raise ValueError(f"measurement {meas.source}: no complete onset event")
+    sel = slice(None) if last_n is None else slice(max(ev.n_events - int(last_n), 0), None)
+    noise = reference.noise_floor({s: analysis.welch_psd(meas.signals[s], 1.0 / meas.sample_period_s)[1]
+                                   for s in SEGMENT_SIGNALS})
+    raw = ev.raw[sel]
+    return Evidence(raw, ev.dc[sel], spectral.event_features(raw, meas.sample_period_s), noise, ev.entries[sel])
+
+
+# ------------------------------------------------------------------------------------------------ evaluation
+
+@dataclass
+class Evaluation:
+    """One evaluation of a reference on evidence (E events)."""
+    result: consistency.ConsistencyResult      # at the profiled width (the test diagnose runs)
+    width_m: float                             # the profiled backlash width (the measurand)
+    residual_over_noise: dict                  # per signal: rms(measured mean - model mean) / the E-event noise floor
+    where: dict | None                         # analysis.where: per phase and wavelet level; dominant_phase/_level
+    n_events: int
+    noise_psd: np.ndarray
+    nominal_width_m: float
+    model_mean: np.ndarray | None = field(default=None, repr=False)   # (2, L) at width_m, denoised
+    model_raw: np.ndarray | None = field(default=None, repr=False)    # (2, L) raw
+    weights: np.ndarray | None = field(default=None, repr=False)      # (2,) the E-event weights
+
+    @property
+    def consistent(self) -> bool:
+        return self.result.consistent
+
+    def p_values(self) -> dict:
+        """Per view: the chance of a T^2 this large from the model's own noise (chi^2 of the view's dimension)."""
+        from scipy import stats
+        return {n: float(stats.chi2.sf(v.t2, v.dimension)) for n, v in self.result.views.items()}
+
+    def to_json(self) -> dict:
+        return {"consistent": self.consistent, "n_events": self.n_events, "width_m": self.width_m,
+                "nominal_width_m": self.nominal_width_m,
+                "residual_over_noise": dict(self.residual_over_noise),
+                "residual_over_noise_overall": self.result.residual_over_noise,
+                "views": {n: v.to_json() | {"p": p} for (n, v), p in
+                          zip(self.result.views.items(), self.p_values().values())},
+                "noise_psd_m2_s4_per_hz": dict(zip(SEGMENT_SIGNALS, map(float, self.noise_psd))),
+                "where": None if self.where is None else {"dominant_phase": self.where["dominant_phase"],
+                                                          "dominant_level": self.where["dominant_level"]}}
+
+
+class Views:
+    """What consistency.test reads of a fitting.Problem, for one (noise floor, number of events): the slices, the
+    weights, the views (basis, blocks, complement, tolerance) and the model's predictions at the width grid.
+    Built by ModelReference.views with consistency.py's own functions."""
+
+    def __init__(self, ref: "ModelReference", noise_psd, n_events: int):
+        self.noise_psd = np.asarray(noise_psd, dtype=float)
+        self.n_events = int(n_events)
+        self.n_seeds = len(ref.seeds)
+        self.n_event_coords = int(ref.base_mean.size)
+        ns = spectral.n_features(len(SEGMENT_SIGNALS))
+        self.event_slice = slice(0, self.n_event_coords)
+        self.spectral_slice = slice(self.n_event_coords, self.n_event_coords + ns)
+        self.dc_slice = slice(self.n_event_coords + ns, self.n_event_coords + ns + len(SEGMENT_SIGNALS))
+        dt = ref.sample_period_s
+        scale = math.sqrt(self.n_events / ref.build_events)
+        self.w = ref.weights * scale                            # 1 / the E-event noise floor of the event average
+        self.floor_rms = 1.0 / self.w
+        model_event_spec = [spectral.noisy_event_features(raw, dt, self.noise_psd, seed=k)
+                            for k, raw in enumerate(ref.seed_events)]
+        feats = np.vstack(model_event_spec)
+        self.ws = 1.0 / np.maximum(feats.std(axis=0) / math.sqrt(self.n_events), 1e-12)
+        dcs = np.vstack(ref.seed_dc)
+        self.wdc = 1.0 / np.maximum(dcs.std(axis=0) / math.sqrt(self.n_events), 1e-12)
+        self.spec_noise = spectral.noise_power(self.noise_psd, PRE_SAMPLES + POST_SAMPLES, dt)
+        # the model's prediction at the nominal width and at every width of the grid
+        self.base = self._pred(ref.base_mean, ref.base_bands, ref.base_dc)
+        self.grid = np.stack([self._pred(m, b, d) for m, b, d in zip(ref.grid_mean, ref.grid_bands, ref.grid_dc)])
+        # the screening Jacobians in this weighting: event and record-mean parts scale, the spectral part is taken
+        # from the stepped sets' band powers with this noise floor
+        base_spec = spectral.features_from_bands(ref.base_bands, self.spec_noise).mean(axis=0)
+        cols = []
+        for j in range(ref.jac_event.shape[0]):
+            spec = (spectral.features_from_bands(ref.jac_bands[j], self.spec_noise).mean(axis=0) - base_spec) \
+                / ref.jac_step[j]
+            cols.append(np.concatenate([(ref.jac_event[j].reshape(self.w.size, -1) * self.w[:, None]).ravel(),
+                                        spec * self.ws, ref.jac_dc[j] * self.wdc]))
+        jac = np.stack(cols, axis=1)
+        scr, spans = {}, []
+        for cand in ref.candidates:
+            cj = jac[:, cand["columns"]]
+            scr[cand["name"]] = {"J": cj}
+            spans.append(cj * (np.array(cand["upper"]) - np.array(cand["lower"]))[None, :])
+        comp = SimpleNamespace(ensemble=SimpleNamespace(per_event=ref.seed_events,
+                                                        dc_samples=lambda k: ref.seed_dc[k]),
+                               weights=self.w, model_event_spec=model_event_spec)
+        self.basis = self.blocks = self.complement = self.tolerance_z = None
+        z_all = consistency.model_event_vectors(comp, self)
+        self.basis, self.blocks = consistency.whiten(consistency.candidate_basis(spans, self), z_all)
+        self.complement = consistency.complement_basis(z_all, self)
+        self.tolerance_z = self.basis.T @ tolerance.directions(scr, ref.candidate_objects())
+        outside = np.zeros((self.basis.shape[0], self.complement.shape[1]))
+        outside[self.event_slice] = self.complement
+        self.fit_basis = np.hstack([self.basis, outside])      # the fits' metric (fitting.Problem.project)
+        self.grid_fit = self.grid @ self.fit_basis              # (G, q + P): the grid in that metric
+
+    def _pred(self, mean_denoised, bands, dc) -> np.ndarray:
+        return np.concatenate([(np.asarray(mean_denoised) * self.w[:, None]).ravel(),
+                               spectral.features_from_bands(bands, self.spec_noise).mean(axis=0) * self.ws,
+                               np.asarray(dc) * self.wdc])
+
+    # what consistency.py reads of a fitting.Problem
+    def pred_of(self, ens, i: int = 0) -> np.ndarray:
+        return self.base
+
+    def event_part(self, r) -> np.ndarray:
+        return r[:self.n_event_coords]
+
+    def target(self, evidence: Evidence) -> np.ndarray:
+        """The measured vector: the weighted denoised event average, the mean spectral shape and record mean."""
+        return np.concatenate([(denoise(evidence.raw.mean(axis=0)) * self.w[:, None]).ravel(),
+                               evidence.spec.mean(axis=0) * self.ws, evidence.dc.mean(axis=0) * self.wdc])
+
+
+@dataclass
+class ModelReference:
+    """A model version's precomputed reference (see the module doc). Arrays in SI units; weights per signal are
+    1 / the noise floor of a ``build_events``-event average [(m/s^2)^-1]."""
+    meta: dict                      # model label and content, seeds, conditions, build settings, candidates
+    sample_period_s: float
+    seeds: list
+    build_events: int               # events per seed of the build recording (E_ref)
+    weights: np.ndarray             # (2,) 1 / the event-average noise floor at build_events
+    seed_events: list               # per seed: (E_k, 2, L) raw onset segments of the model's own runs
+    seed_dc: list                   # per seed: (E_k, 2) their period means [m/s^2]
+    seed_means: np.ndarray          # (K, 2, L) raw event average per seed (noise floor, where)
+    base_mean: np.ndarray           # (2, L) the model's denoised event average at the nominal width
+    base_raw: np.ndarray            # (2, L) raw
+    base_bands: np.ndarray          # (K*E, 2, n_bands) band powers of every model event (spectral.band_powers)
+    base_dc: np.ndarray             # (2,) mean period means [m/s^2]
+    jac_event: np.ndarray           # (n_cols, 2*L) d(denoised event average)/d(parameter), unweighted
+    jac_dc: np.ndarray              # (n_cols, 2) d(record mean)/d(parameter)
+    jac_bands: list                 # per column: (E_j, 2, n_bands) band powers at the stepped set
+    jac_step: np.ndarray            # (n_cols,) the step [parameter unit]
+    candidates: list                # [{name, effect, keys, lower, upper, default, columns}]
+    widths_m: np.ndarray            # (G,) the width grid [m]
+    grid_mean: np.ndarray           # (G, 2, L) denoised event average per width
+    grid_raw: np.ndarray            # (G, 2, L) raw
+    grid_bands: list                # per width: (E_g, 2, n_bands)
+    grid_dc: np.ndarray             # (G, 2)
+    noise_band_psd: np.ndarray      # (2, F) the model's whole-record Welch PSD (mean over seeds)
+    noise_band_f: np.ndarray        # (F,) its frequencies [Hz]
+    path: Path | None = None
+    _views: dict = field(default_factory=dict, repr=False)
+
+    # -------------------------------------------------------------------------------------------- identity
+    @property
+    def model_label(self) -> str:
+        return self.meta["model_label"]
+
+    @property
+    def nominal_width_m(self) -> float:
+        return float(self.meta["nominal"]["width_m"])
+
+    @property
+    def pulse_period_samples(self) -> int:
+        return int(self.meta["pulse_period_samples"])
+
+    def candidate_objects(self) -> dict:
+        """The candidates as plant_adapter.CandidateEffect (what tolerance.py reads)."""
+        from .plant_adapter import CandidateEffect, EffectParameter
+        out = {}
+        for c in self.candidates:
+            params = tuple(EffectParameter(k.split(".", 1)[1], "", d, lo, hi, k)
+                           for k, d, lo, hi in zip(c["keys"], c["default"], c["lower"], c["upper"]))
+            out[c["name"]] = CandidateEffect(c["name"], c["effect"], "", "", params)
+        return out
+
+    # -------------------------------------------------------------------------------------------- views
+    def noise_floor(self, measured_psd: dict) -> np.ndarray:
+        """The sensor noise floor per signal from measured whole-record Welch PSDs ({signal: PSD on
+        analysis.welch_psd's bins}) against the model's: analysis.sensor_noise_floor."""
+        spectra = {s: {"f": self.noise_band_f, "measured": np.asarray(measured_psd[s], dtype=float),
+                       "ensemble": self.noise_band_psd[i][None]} for i, s in enumerate(SEGMENT_SIGNALS)}
+        return analysis.sensor_noise_floor(spectra)
+
+    def views(self, noise_psd, n_events: int) -> Views:
+        key = (tuple(float(x) for x in np.asarray(noise_psd, dtype=float)), int(n_events))
+        v = self._views.get(key)
+        if v is None:
+            if len(self._views) >= 8:
+                self._views.clear()
+            v = self._views[key] = Views(self, noise_psd, n_events)
+        return v
+
+    # -------------------------------------------------------------------------------------------- evaluation
+    def profile_width(self, views: Views, target: np.ndarray) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
+        """The width whose prediction fits the target best in the fits' metric (fitting.Problem.project: the
+        whitened subspace and the noise outside it), the predictions linear between the grid's widths.
+        -> (width [m], prediction, denoised model mean (2, L), raw model mean (2, L))."""
+        t = views.fit_basis.T @ target
+        d = t[None, :] - views.grid_fit
+        cost = np.einsum("ij,ij->i", d, d)
+        g = int(np.argmin(cost))
+        best = (cost[g], g, g, 0.0)
+        for a, b in ((g - 1, g), (g, g + 1)):
+            if a < 0 or b >= len(self.widths_m):
+                continue
+            step = views.grid_fit[b] - views.grid_fit[a]
+            den = float(step @ step)
+            x = 0.0 if den <= 0 else float(np.clip((d[a] @ step) / den, 0.0, 1.0))
+            c = float(np.sum((d[a] - x * step) ** 2))
+            if c < best[0]:
+                best = (c, a, b, x)
+        _, a, b, x = best
+        lerp = (lambda arr: (1 - x) * arr[a] + x * arr[b])
+        return (float(lerp(self.widths_m)), lerp(views.grid), lerp(self.grid_mean), lerp(self.grid_raw))
+
+    def evaluate(self, evidence: Evidence, profile_width: bool = True, where: bool = True) -> Evaluation:
+        """The consistency test (consistency.test: diagnose's) of ``evidence`` against the model; with
+        ``profile_width`` at the width that fits best (the measurand), else at the model's nominal width."""
+        if evidence.n_events < 1:
+            raise ValueError("no onset event to evaluate")
+        views = self.views(evidence.noise_psd, evidence.n_events)
+        target = views.target(evidence)
+        if profile_width:
+            width, pred, mean, raw = self.profile_width(views, target)
+        else:
+            width, pred, mean, raw = self.nominal_width_m, views.base, self.base_mean, self.base_raw
+        result = consistency.test(views, target - pred)
+        measured = denoise(evidence.raw.mean(axis=0))
+        ratio = np.sqrt(np.mean((measured - mean) ** 2, axis=-1)) / views.floor_rms
+        out = Evaluation(result, width, dict(zip(SEGMENT_SIGNALS, map(float, ratio))), None, evidence.n_events,
+                         np.asarray(evidence.noise_psd, dtype=float), self.nominal_width_m, mean, raw, views.w)
+        if where:
+            out.where = self.where(evidence, out)
+        return out
+
+    def where(self, evidence: Evidence, evaluation: Evaluation) -> dict:
+        """Where the residual of an evaluation sits (per phase and sym5 level): analysis.where on a comparison made
+        of the reference (the model's seeds) and the evidence, at the evaluation's width."""
+        k = self.seed_means.shape[0]
+        ens = Ensemble(self.seed_means[None], np.full((1, k), self.build_events), [])
+        comp = analysis.Comparison(None, SimpleNamespace(sample_period_s=self.sample_period_s), {}, list(self.seeds),
+                                   EventSet(evidence.raw, evidence.entries), ens, evaluation.weights,
+                                   1.0 / evaluation.weights)
+        return analysis.where(comp, evaluation.model_mean, evaluation.model_raw)
+
+    # -------------------------------------------------------------------------------------------- files
+    def save(self, path) -> Path:
+        """Write the reference (npz, no pickles); an existing file is replaced only once the new one is complete."""
+        p = Path(path)
+        arrays = {"format_version": np.array(FORMAT_VERSION), "meta": np.array(json.dumps(self.meta)),
+                  "sample_period_s": np.array(self.sample_period_s), "seeds": np.array(self.seeds),
+                  "build_events": np.array(self.build_events), "weights": self.weights,
+                  "seed_means": self.seed_means, "base_mean": self.base_mean, "base_raw": self.base_raw,
+                  "base_bands": self.base_bands, "base_dc": self.base_dc, "jac_event": self.jac_event,
+                  "jac_dc": self.jac_dc, "jac_step": self.jac_step, "widths_m": self.widths_m,
+                  "grid_mean": self.grid_mean, "grid_raw": self.grid_raw, "grid_dc": self.grid_dc,
+                  "noise_band_psd": self.noise_band_psd, "noise_band_f": self.noise_band_f}
+        for name, parts in (("seed_events", self.seed_events), ("seed_dc", self.seed_dc),
+                            ("jac_bands", self.jac_bands), ("grid_bands", self.grid_bands)):
+            arrays[name] = np.concatenate(parts, axis=0)
+            arrays[name + "_counts"] = np.array([len(x) for x in parts])
+        tmp = p.with_name(p.name + f".partial{os.getpid()}")
+        with open(tmp, "wb") as f:
+            np.savez_compressed(f, **arrays)
+        os.replace(tmp, p)
+        self.path = p
+        return p
+
+
+def _split(arr: np.ndarray, counts: np.ndarray) -> list:
+    return np.split(arr, np.cumsum(counts)[:-1]) if len(counts) else []
+
+
+def load(path) -> ModelReference:
+    """A reference file; ReferenceError (naming the file, the problem and the rebuild command) when it cannot be
+    used."""
+    p = Path(path)
+    rebuild = ("rebuild it with `python -m backlash_monitor train --model M.yaml --out LIB.npz` (writes "
+               "LIB.watch.npz) or `python -m backlash_monitor watch-reference`")
+    if not p.is_file():
+        raise ReferenceError(f"model reference {str(p)!r} does not exist; {rebuild}")
+    try:
+        with np.load(p, allow_pickle=False) as z:
+            version = int(z["format_version"]) if "format_version" in z.files else None
+            if version != FORMAT_VERSION:
+                raise ReferenceError(f"model reference {p} has format version {version}; this code reads "
+                                     f"{FORMAT_VERSION}; {rebuild}")
+            d = {k: z[k] for k in z.files}
+    except ReferenceError:
+        raise
+    except (OSError, ValueError, KeyError) as exc:
+        raise ReferenceError(f"model reference {p} cannot be read ({exc}); {rebuild}") from None
+    meta = json.loads(str(d["meta"]))
+    return ModelReference(
+        meta=meta, sample_period_s=float(d["sample_period_s"]), seeds=[int(s) for s in d["seeds"]],
+        build_events=int(d["build_events"]), weights=d["weights"],
+        seed_events=_split(d["seed_events"], d["seed_events_counts"]),
+        seed_dc=_split(d["seed_dc"], d["seed_dc_counts"]), seed_means=d["seed_means"], base_mean=d["base_mean"],
+        base_raw=d["base_raw"], base_bands=d["base_bands"], base_dc=d["base_dc"], jac_event=d["jac_event"],
+        jac_dc=d["jac_dc"], jac_bands=_split(d["jac_bands"], d["jac_bands_counts"]), jac_step=d["jac_step"],
+        candidates=meta["candidates"], widths_m=d["widths_m"], grid_mean=d["grid_mean"], grid_raw=d["grid_raw"],
+        grid_bands=_split(d["grid_bands"], d["grid_bands_counts"]), grid_dc=d["grid_dc"],
+        noise_band_psd=d["noise_band_psd"], noise_band_f=d["noise_band_f"], path=p)
+
+
+# ------------------------------------------------------------------------------------------------ build
+
+BUILT_BY = ("diagnose.py", "analysis.py", "events.py", "spectral.py", "fitting.py", "plant_adapter.py",
+            "synthetic.py", "model.py")      # what a reference's arrays come from (the views are made at load time)
+
+
+def source_hash() -> str:
+    """Hash of the code a reference's arrays are made by (plant, windowing, denoising, the workbench modules of
+    BUILT_BY): a cached reference made by other code is not reused."""
+    from backlash_monitor.classifier.dataset import source_hash as plant_source_hash
+    h = hashlib.sha256(plant_source_hash().encode())
+    here = Path(__file__).resolve().parent
+    for f in (here / n for n in BUILT_BY):
+        h.update(f.name.encode())
+        h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def cache_path(model) -> Path:
+    """Where the cached reference of ``model`` lives: .cache/watch/<name>_v<version>_<key>.watch.npz, the key a
+    hash of the model's plant config and nominal conditions, the build settings and the code (source_hash)."""
+    from backlash_monitor.classifier.dataset import CACHE_DIR
+    from backlash_monitor.classifier.patterns import config_hash
+    parts = {"plant": config_hash(model.plant_config()), "nominal": dict(model.nominal), "label": model.label(),
+             "format": FORMAT_VERSION, "duration_s": BUILD_DURATION_S, "seed": BUILD_SEED, "width_step": WIDTH_STEP,
+             "width_range": WIDTH_RANGE, "code": source_hash()}
+    key = hashlib.sha256(json.dumps(parts, sort_keys=True, default=repr).encode()).hexdigest()[:16]
+    safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in f"{model.name}_v{model.version}")
+    return Path(CACHE_DIR) / "watch" / f"{safe}_{key}{SUFFIX}"
+
+
+def cached(model, progress=None, log=None) -> ModelReference:
+    """The reference of ``model`` from the cache, built (and cached) when missing (~30 s of one core);
+    ``log(text)`` is told when it is built."""
+    p = cache_path(model)
+    if p.is_file():
+        try:
+            return load(p)
+        except ReferenceError:
+            pass                         # a damaged cache entry: build it again
+    if log is not None:
+        log(f"building the model watch's reference for {model.label()} at width "
+            f"{model.nominal['width_m'] * 1e3:g} mm, eta_k {model.nominal['eta_k']:g}, n1 {model.nominal['n1']:g} "
+            f"(once; cached in {p.parent})")
+    ref = build(model, progress=progress)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    ref.save(p)
+    return ref
+
+
+def _width_grid(nominal_width_m: float) -> np.ndarray:
+    n = int(round(WIDTH_RANGE / WIDTH_STEP))
+    return nominal_width_m * WIDTH_STEP * np.arange(-n, n + 1)       # the drift's change [m]
+
+
+def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None) -> ModelReference:
+    """The reference of ``model`` (a WorkbenchModel): diagnose's prepare and screening on a recording the model
+    makes of itself (``duration_s``, noise seed BUILD_SEED), plus the width grid on the same seeds."""
+    from . import diagnose, synthetic
+    t0 = time.perf_counter()
+    meas = synthetic.hidden_effect_recording(model, duration_s, BUILD_SEED)
+    run = diagnose.prepare(meas, model, seeds)
+    p = run.problem
+    captured = []                    # every simulated set: (parameter set, its ensemble)
+    evaluate = p.evaluate
+
+    def capturing(sets):
+        ens = evaluate(sets)
+        captured.extend((dict(s), ens, i) for i, s in enumerate(sets))
+        return ens
+    p.evaluate = capturing
+    try:
+        diagnose.screen_step(run, progress=progress)
+        changes = _width_grid(float(model.nominal["width_m"]))
+        grid_ens = evaluate([{WIDTH_KEY: float(c)} for c in changes])
+    finally:
+        p.evaluate = evaluate
+    comp = run.comp
+    w = comp.weights
+    n_sig = len(SEGMENT_SIGNALS)
+    base_bands = np.concatenate(comp.ensemble.seed_bands[0], axis=0)
+
+    def set_of(parameter_set):
+        for s, ens, i in captured:
+            if s == parameter_set:
+                return ens, i
+        raise RuntimeError(f"screening set {parameter_set} was not simulated")   # pragma: no cover
+
+    from .plant_adapter import apply_values
+    candidates, jac_event, jac_dc, jac_bands, jac_step = [], [], [], [], []
+    for name, info in run.scr.items():
+        cand = run.by_name[name]
+        x0 = cand.default_vector()
+        cols = []
+        for i, h in enumerate(np.atleast_1d(info["h"])):
+            ens, j = set_of(apply_values(cand, x0 + h * np.eye(len(x0))[i]))
+            J = info["J"][:, i]
+            cols.append(len(jac_step))
+            jac_event.append((J[p.event_slice].reshape(n_sig, -1) / w[:, None]).ravel())
+            jac_dc.append(J[p.dc_slice] / p.wdc)
+            jac_bands.append(np.concatenate(ens.seed_bands[j], axis=0))
+            jac_step.append(float(h))
+        lo, hi = cand.bounds()
+        candidates.append({"name": name, "effect": cand.effect, "keys": [q.key for q in cand.parameters],
+                           "default": [float(v) for v in x0], "lower": [float(v) for v in lo],
+                           "upper": [float(v) for v in hi], "columns": cols})
+    spectra = comp.record_spectra
+    nominal = dict(model.nominal)
+    meta = {"model_label": model.label(), "model": model.to_dict(), "nominal": nominal,
+            "model_path": str(model.path) if model.path else None, "conditions": dict(comp.conditions),
+            "build_duration_s": float(duration_s), "build_seed": BUILD_SEED,
+            "pulse_period_samples": int(round(model.plant_config().pulse_load.period_s / meas.sample_period_s)),
+            "candidates": candidates, "tolerance_scale": float(tolerance.SCALE),
+            "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()), "source_hash": source_hash(),
+            "build_seconds": None, "format_version": FORMAT_VERSION}
+    ref = ModelReference(
+        meta=meta, sample_period_s=float(meas.sample_period_s), seeds=list(comp.seeds),
+        build_events=int(round(float(np.mean(comp.ensemble.n_events[0])))), weights=np.asarray(w, dtype=float),
+        seed_events=[np.asarray(x) for x in comp.ensemble.per_event],
+        seed_dc=[np.asarray(x) for x in comp.ensemble.per_event_dc], seed_means=comp.ensemble.seed_means[0],
+        base_mean=comp.ensemble.mean_denoised(0), base_raw=comp.ensemble.mean_raw(0), base_bands=base_bands,
+        base_dc=comp.ensemble.dc_mean(0), jac_event=np.array(jac_event), jac_dc=np.array(jac_dc),
+        jac_bands=jac_bands, jac_step=np.array(jac_step), candidates=candidates,
+        widths_m=float(model.nominal["width_m"]) + changes,
+        grid_mean=np.stack([grid_ens.mean_denoised(i) for i in range(len(changes))]),
+        grid_raw=np.stack([grid_ens.mean_raw(i) for i in range(len(changes))]),
+        grid_bands=[np.concatenate(grid_ens.seed_bands[i], axis=0) for i in range(len(changes))],
+        grid_dc=np.stack([grid_ens.dc_mean(i) for i in range(len(changes))]),
+        noise_band_psd=np.stack([spectra[s]["ensemble"].mean(axis=0) for s in SEGMENT_SIGNALS]),
+        noise_band_f=np.asarray(spectra[SEGMENT_SIGNALS[0]]["f"]))
+    ref.meta["build_seconds"] = time.perf_counter() - t0
+    return ref
