@@ -196,7 +196,7 @@ def detect_own(seeds=(0, 1)) -> list:
             offline[lab] = {"detected_offline": not ev.consistent,
                             "views_outside": [n for n, v in ev.result.views.items() if v.outside_band],
                             "residual_over_noise": ev.result.residual_over_noise}
-        switches = plant_adapter._catalogue_switches()
+        switches = {f"effects.{n}": True for n in plant_adapter.candidate_effect_names(not_event_locked=True)}
         cfg = model.plant_config(switches)
         scen = [Scenario(width_m=g[0], eta_k=g[1], n1=g[2], seed=900 + s) for s in seeds for _ in labels]
         sim = PlantSimulator(scen, config=cfg, outputs=("a1", "a2", "angle_difference"))
@@ -365,7 +365,8 @@ def main() -> int:
                     choices=["clean", "detect", "snapshot", "cpu"])
     ap.add_argument("--quick", action="store_true", help="a few minutes instead of an hour of clean drives")
     ap.add_argument("--traces-out", default="", help="write the per-evaluation traces (JSON)")
-    ap.add_argument("--traces-in", default="", help="re-score traces written by --traces-out (no simulation)")
+    ap.add_argument("--traces-in", default="", help="traces written by --traces-out: re-scored, and the parts they "
+                                                    "hold are not simulated again")
     ap.add_argument("--rule", default="", metavar="VIEW_P,RATIO,PERSISTENCE",
                     help="score another alarm rule on the same evaluations")
     args = ap.parse_args()
@@ -377,25 +378,31 @@ def main() -> int:
     t0 = time.perf_counter()
     result = {"rule": {"view_p": rule.view_p, "residual_ratio": rule.residual_ratio,
                        "persistence": rule.persistence, "clear_after": rule.clear_after}}
-    clean, detect = [], []
+    data = {"clean": [], "detect": []}
     if args.traces_in:
         with open(args.traces_in) as f:
-            data = json.load(f)
-        clean, detect = data["clean"], data["detect"]
-    else:
-        if "clean" in args.parts:
-            clean = clean_own(60.0 if args.quick else 450.0) + clean_foreign(1 if args.quick else 8,
-                                                                             30.0 if args.quick else 60.0)
-        if "detect" in args.parts:
-            detect = detect_own(seeds=(0,) if args.quick else (0, 1)) + detect_foreign()
-    if args.traces_out:
-        with open(args.traces_out, "w") as f:
-            json.dump({"clean": clean, "detect": detect}, f)
+            data.update(json.load(f))
+
+    def save():
+        if args.traces_out:
+            with open(args.traces_out, "w") as f:
+                json.dump(data, f)
+    runs = {"clean_own": lambda: clean_own(60.0 if args.quick else 450.0),
+            "clean_foreign": lambda: clean_foreign(1 if args.quick else 8, 30.0 if args.quick else 60.0),
+            "detect_own": lambda: detect_own(seeds=(0,) if args.quick else (0, 1)),
+            "detect_foreign": detect_foreign}
+    for part, fn in runs.items():
+        kind, source = part.split("_")
+        if kind not in args.parts or any(t["source"] == source for t in data[kind]):
+            continue               # not asked for, or already in --traces-in
+        data[kind] += fn()
+        save()
+    clean, detect = data["clean"], data["detect"]
     result.update(summarize(clean, detect, rule))
-    if "snapshot" in args.parts and not args.traces_in:
+    if "snapshot" in args.parts:
         from _model_watch.snapshot import snapshot_agreement
         result.update(snapshot_agreement(quick=args.quick, log=log))
-    if "cpu" in args.parts and not args.traces_in:
+    if "cpu" in args.parts:
         from _model_watch.cpu import cpu_per_drive
         result.update(cpu_per_drive(log=log))
     result["seconds"] = round(time.perf_counter() - t0, 1)

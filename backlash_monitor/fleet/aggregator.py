@@ -36,13 +36,15 @@ AGGREGATOR_KEYS = {"pub_rate": float, "path": str, "other_as_errors": bool, "his
                    "critical": bool}
 
 STATUS_TASKS = ("classifier: backlash width", "windowing: windowing", "width_trend: width trend")   # per drive
+WATCH_TASK = "model_watch: model fit"      # per drive with a model watch (docs/model_watch.md)
 DEFAULT_TIMEOUT_S = 3.0   # three missed one-per-second statuses: a drive that went silent
 BASE_PATH = "BacklashMonitor"
 
 
 def drive_status_names(drive) -> list[str]:
-    """The /diagnostics status names one drive's chain publishes."""
-    return [f"{drive.hardware_id}/{task}" for task in STATUS_TASKS]
+    """The /diagnostics status names one drive's chain (and its model watch) publishes."""
+    tasks = STATUS_TASKS + ((WATCH_TASK,) if getattr(drive, "watched", False) else ())
+    return [f"{drive.hardware_id}/{task}" for task in tasks]
 
 
 def analyzer_config(drives, timeout_s: float = DEFAULT_TIMEOUT_S, pub_rate_hz: float = 1.0,
@@ -181,9 +183,25 @@ class AggregatorView:
         return levels
 
 
+def short_model_fit(message: str) -> str:
+    """The model watch's status for a table cell: 'OK 0.9x', 'WARN 2.8x since 12:03:11 (gap traversal, d4)', the
+    collecting/STALE text as it is."""
+    import re
+    m = re.match(r"model (.+?) explains the drive \(residual ([\d.]+)x", message)
+    if m:
+        return f"OK {m.group(2)}x ({m.group(1)})"
+    m = re.match(r"model (.+?) no longer explains the drive since ([\d:]+): residual ([\d.]+)x the noise floor"
+                 r"(?:, in the (.+?), wavelet level (\w+))?", message)
+    if m:
+        where = f", {m.group(4)} {m.group(5)}" if m.group(4) else ""
+        return f"WARN {m.group(3)}x since {m.group(2)} ({m.group(1)}{where})"
+    return message
+
+
 def format_table(view: AggregatorView, now_s: float) -> str:
-    """The view as text: a line per group, then a row per drive with its two statuses."""
-    rows = [("drive", "level", "backlash width", "windowing", "age")]
+    """The view as text: a line per group, then a row per drive with its statuses (the model fit where the drive
+    has a model watch)."""
+    rows = [("drive", "level", "backlash width", "model fit", "windowing", "age")]
     groups = view.group_levels(now_s)
     report = {row["path"]: row for row in view.report(now_s)}
     for members in (view.groups or {"": view.analyzers}).values():
@@ -200,7 +218,7 @@ def format_table(view: AggregatorView, now_s: float) -> str:
                     ages.append(item["age_s"])
             rows.append((analyzer.path.removeprefix(view.base_path + "/"),
                          LEVEL_NAMES[row["level"]], msgs.get("classifier", "-"),
-                         msgs.get("windowing", "-"),
+                         short_model_fit(msgs.get("model_watch", "-")), msgs.get("windowing", "-"),
                          f"{max(ages):.1f} s" if ages else "-"))
     widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
     lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows]

@@ -51,6 +51,13 @@ def add_arguments(parser) -> None:
     group.add_argument("--trend-config", default="",
                        help="trend rule file (default: the packaged config/trend.yaml)")
     group.add_argument("--no-plots", action="store_true", help="write no trend plots")
+    group.add_argument("--watch-reference", default="", metavar="REF.watch.npz",
+                       help="the model version the model-fit column holds every bag against (default: "
+                            "--library's LIB.watch.npz where it exists, else the default model's at the pattern "
+                            "width nearest the drive's measured width, eta_k 0.025 and --n1: from the cache, "
+                            "built there once when missing; docs/model_watch.md)")
+    group.add_argument("--no-model-fit", action="store_true",
+                       help="no model-fit column (the model watch's test on each bag's last onset events)")
 
 
 def is_many(bag: str) -> bool:
@@ -122,7 +129,90 @@ def analyze_one(job: dict) -> dict:
                onsets=len({r["entry_sample_index"] for r in mine}),
                discarded=len(result["discarded"]),
                seconds=time.perf_counter() - started, signal=primary)
+    if not job["options"].get("no_model_fit"):
+        row.update(model_fit(job["bag"], job["options"], row))
     return row
+
+
+# ------------------------------------------------------------------------------------------- model fit
+
+def reference_for_bag(options: dict, width_m: float) -> str:
+    """The reference a bag's model fit takes (see --watch-reference): a path (may not exist yet: the default
+    model's cache entry, built by the parent)."""
+    from backlash_monitor.workbench import reference
+    if options.get("watch_reference"):
+        return options["watch_reference"]
+    if options.get("library"):
+        beside = reference.reference_path_for_library(options["library"])
+        if beside.is_file():
+            return str(beside)
+    return str(reference.cache_path(default_model(options, width_m)))
+
+
+def default_model(options: dict, width_m: float):
+    """The default model at the pattern width nearest ``width_m`` (the drive's measured width), eta_k 0.025 and
+    the drive's n1 (analyze's --n1): its reference covers +-40 % of that width (the width is profiled)."""
+    from backlash_monitor.plant.scenarios import K2_WIDTHS_M
+    from backlash_monitor.workbench.model import load_model
+    w = width_m if width_m == width_m else 0.005
+    nearest = min(K2_WIDTHS_M, key=lambda k: abs(k - w))
+    return load_model(None, width_m=nearest, eta_k=0.025, n1=float(options.get("n1") or 0.89))
+
+
+def model_fit(bag: str, options: dict, row: dict) -> dict:
+    """The bag's model fit (watch/core.evaluate_recording) against its reference; a missing reference or a bag
+    that cannot be evaluated gives the reason instead."""
+    from backlash_monitor.watch.alarm import load_rule
+    from backlash_monitor.watch.core import evaluate_recording
+    from backlash_monitor.workbench import reference
+    from backlash_monitor.workbench.measurement import MeasurementError, load_measurement
+    width = row["width_m"] if row["width_m"] == row["width_m"] else row["fused_width_m"]
+    path = reference_for_bag(options, width)
+    out = {"model_fit_reference": path, "model_fit": "", "model_fit_level": "", "model_fit_ratio": math.nan}
+    refs = _WORKER.setdefault("references", {})
+    try:
+        ref = refs.get(path) or refs.setdefault(path, reference.load(path))
+    except reference.ReferenceError as error:
+        out["model_fit"] = "no reference" if not Path(path).exists() else str(error)
+        return out
+    try:
+        meas = load_measurement(bag, options.get("namespace") or None)
+        fit = evaluate_recording(meas, ref, load_rule())
+    except (MeasurementError, ValueError) as error:
+        out["model_fit"] = f"not evaluated: {error}"
+        return out
+    out.update(model_fit=fit, model_fit_level=fit["level"], model_fit_ratio=fit["residual_over_noise"])
+    return out
+
+
+def model_fit_text(r: dict) -> str:
+    fit = r.get("model_fit")
+    if not fit:
+        return "-"
+    if isinstance(fit, str):
+        return fit if len(fit) < 40 else fit[:37] + "..."
+    text = f"{fit['level']} {fit['residual_over_noise']:.1f}x"
+    if fit["level"] != "OK":
+        where = ", ".join(x for x in (fit["phase"].replace("_", " "), fit["wavelet_level"]) if x)
+        text += f" ({where})" if where else ""
+    return text
+
+
+def missing_references(rows: list[dict], options: dict, log=print) -> list[dict]:
+    """Build the default model's references the workers did not find (once, into the cache); the rows they
+    concern, to evaluate again."""
+    from backlash_monitor.workbench import reference
+    again, built = [], set()
+    for r in rows:
+        if r.get("model_fit") == "no reference" and not options.get("watch_reference"):
+            width = r["width_m"] if r["width_m"] == r["width_m"] else r["fused_width_m"]
+            model = default_model(options, width)
+            path = str(reference.cache_path(model))
+            if path not in built:
+                reference.cached(model, log=lambda text: log(f"analyze: {text}"))
+                built.add(path)
+            again.append(r)
+    return again
 
 
 def _jobs(args, bags: list[Path], out_dir: Path) -> list[dict]:
@@ -256,7 +346,7 @@ def add_trends(rows: list[dict], rule) -> dict:
     return points, trends
 
 
-TABLE = ("drive", "time", "width", "fused width", "trend", "level", "bag")
+TABLE = ("drive", "time", "width", "fused width", "trend", "level", "model fit", "bag")
 
 
 def format_rows(rows: list[dict]) -> list[tuple]:
@@ -269,7 +359,7 @@ def format_rows(rows: list[dict]) -> list[tuple]:
         trend = ("-" if r["trend_m_per_day"] != r["trend_m_per_day"]
                  else f"{r['trend_m_per_day'] * 1e3:+.3f} mm/day")
         out.append((r["drive"] or "?", when, mm(r["width_m"]), mm(r["fused_width_m"]), trend,
-                    r["level"], Path(r["bag"]).name))
+                    r["level"], model_fit_text(r), Path(r["bag"]).name))
     return out
 
 
@@ -298,12 +388,16 @@ def run_many(args) -> int:
         from backlash_monitor.commands.analyze import load_bag_library
         rows = run_local(jobs, n_jobs, library=load_bag_library(args),
                          threads_limited=threads_limited)
+    if not args.no_model_fit:
+        options = jobs[0]["options"] if jobs else {}
+        for r in missing_references(rows, options):
+            r.update(model_fit(r["bag"], options, r))
     wall = time.perf_counter() - started
     rows.sort(key=lambda r: (r["drive"], r["time_s"] if r["time_s"] == r["time_s"] else 0.0,
                              r["bag"]))
     points, trends = add_trends(rows, rule)
     columns = ("drive", "time_s", "width_m", "fused_width_m", "trend_m_per_day", "level",
-               "reason", "true_width_m", "onsets", "discarded", "bag")
+               "reason", "model_fit_level", "model_fit_ratio", "true_width_m", "onsets", "discarded", "bag")
     with open(out_dir / "fleet.csv", "w", newline="", encoding="utf-8") as f:
         writer = csv.writer(f)
         writer.writerow(columns)
@@ -326,6 +420,12 @@ def run_many(args) -> int:
     warned = sorted(d for d, t in trends.items() if t.level != "OK")
     for d in warned:
         print(f"{d}: {trends[d].level}: {trends[d].reason}")
+    for r in rows:
+        fit = r.get("model_fit")
+        if isinstance(fit, dict) and fit["level"] != "OK":
+            print(f"{r['drive']}: model {fit['model']} does not explain {Path(r['bag']).name} (residual "
+                  f"{fit['residual_over_noise']:.1f}x the noise floor; {', '.join(fit['exceeding'])}): run diagnose "
+                  "on it")
     print(f"analysed {len(bags)} bags of {len(points)} drives in {wall:.1f} s on {n_jobs} "
           f"{'worker' if n_jobs == 1 else 'workers'} ({args.engine}); wrote {out_dir / 'fleet.csv'}"
           f", .json{', ' + str(len(plots)) + ' plots' if plots else ''}")

@@ -26,11 +26,16 @@ PLANT_KEYS = ("width_m", "eta_k", "n1", "seed", "noise")
 CLASSIFIER_KEYS = ("mode", "n1", "trigger", "fusion_events", "warn_width_m", "error_width_m")
 WINDOWING_KEYS = ("trigger",)
 TREND_KEYS = ("trend_state_file",)       # width_trend's state_file: the live trend over restarts
-DRIVE_KEYS = tuple(sorted(set(PLANT_KEYS + CLASSIFIER_KEYS + WINDOWING_KEYS + TREND_KEYS)))
+WATCH_KEYS = ("watch", "watch_reference", "snapshot_dir")   # the model watch: on/off, its model version's
+                                                            # reference (default: the default model's at the
+                                                            # drive's width_m, eta_k, n1), its snapshot folder
+DRIVE_KEYS = tuple(sorted(set(PLANT_KEYS + CLASSIFIER_KEYS + WINDOWING_KEYS + TREND_KEYS + WATCH_KEYS)))
 
 NAME_PATTERN = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")   # a ROS name token: namespaces, node names
 DEFAULT_LINE = "line1"
 DEFAULT_WIDTH_M = 0.005
+DEFAULT_ETA_K = 0.025           # the plant_simulator node's defaults (the paper's pattern group)
+DEFAULT_N1 = 0.89
 
 
 @dataclass(frozen=True)
@@ -47,9 +52,21 @@ class Drive:
     def hardware_id(self) -> str:
         return f"{self.line}/{self.name}"
 
+    @property
+    def watched(self) -> bool:
+        """The drive runs a model watch (the fleet's default; ``watch: false`` in the fleet file turns it off)."""
+        return bool(self.parameters.get("watch", True))
+
+    def nominal(self) -> tuple[float, float, float]:
+        """The drive's nominal width [m], eta_k [Pa*s^n], n1 [-] (its simulated plant's; the plant_simulator
+        node's defaults where the fleet file gives none)."""
+        p = self.parameters
+        return (float(p.get("width_m", DEFAULT_WIDTH_M)), float(p.get("eta_k", DEFAULT_ETA_K)),
+                float(p.get("n1", DEFAULT_N1)))
+
     def node_parameters(self, duration_s: float = 0.0, rate_factor: float = 1.0) \
             -> dict[str, dict]:
-        """{node name: {parameter: value}} for this drive's plant and chain."""
+        """{node name: {parameter: value}} for this drive's plant and chain (and model watch)."""
         p = self.parameters
         trigger = p.get("trigger", "contact_loss")
         plant = {k: p[k] for k in PLANT_KEYS if k in p}
@@ -63,8 +80,12 @@ class Drive:
                          width_m=float(plant["width_m"]) if trigger == "paper" else 0.0)
         classifier = {k: p[k] for k in CLASSIFIER_KEYS if k in p}
         classifier["drive_name"] = self.hardware_id
+        width, eta_k, n1 = self.nominal()
+        watch = {"drive_name": self.hardware_id, "qos": "reliable", "width_m": width, "eta_k": eta_k, "n1": n1,
+                 "snapshot_dir": str(p.get("snapshot_dir", ".")),
+                 **({"reference": str(p["watch_reference"])} if p.get("watch_reference") else {})}
         return {"plant_simulator": plant, "windowing": windowing, "denoise": {},
-                "classifier": classifier,
+                "classifier": classifier, "model_watch": watch,
                 "width_trend": {"drive_name": self.hardware_id,
                                 **({"state_file": str(p["trend_state_file"])}
                                    if p.get("trend_state_file") else {})}}

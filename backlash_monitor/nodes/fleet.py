@@ -74,6 +74,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="keep each drive's live width trend in DIR/<line>_<drive>.json, so that "
                              "a restarted fleet goes on with the drives' history (a drive's own "
                              "trend_state_file in the fleet YAML wins); default: the trend starts anew")
+    parser.add_argument("--no-watch", action="store_true",
+                        help="run no model watch (by default every drive has one: its onset events against its "
+                             "model version, the model-fit column; docs/model_watch.md)")
+    parser.add_argument("--snapshot-dir", default="", metavar="DIR",
+                        help="where the drives' model watches write their snapshot bags on a WARN (a drive's own "
+                             "snapshot_dir in the fleet YAML wins); default: the current folder")
     parser.add_argument("--drive-json", default="", help=argparse.SUPPRESS)   # a drive's process
 
 
@@ -102,7 +108,28 @@ def validate(args):
         drives = [d if d.parameters.get("trend_state_file") else Drive(d.line, d.name, {
             **d.parameters, "trend_state_file": os.path.join(
                 os.path.abspath(args.trend_state_dir), f"{d.line}_{d.name}.json")}) for d in drives]
+    from backlash_monitor.fleet.drives import Drive
+    if args.no_watch:
+        drives = [Drive(d.line, d.name, {**d.parameters, "watch": False}) for d in drives]
+    elif args.snapshot_dir:
+        drives = [d if d.parameters.get("snapshot_dir") else Drive(d.line, d.name, {
+            **d.parameters, "snapshot_dir": os.path.abspath(args.snapshot_dir)}) for d in drives]
     return drives
+
+
+def ensure_references(drives, log=print) -> None:
+    """Every watched drive without its own reference needs the default model's at its nominal conditions: built
+    into the cache before the drives start (~30 s each, once; the nodes never simulate)."""
+    from backlash_monitor.workbench import reference
+    from backlash_monitor.workbench.model import load_model
+    done = set()
+    for d in drives:
+        if not d.watched or d.parameters.get("watch_reference") or d.nominal() in done:
+            continue
+        done.add(d.nominal())
+        width, eta_k, n1 = d.nominal()
+        reference.cached(load_model(None, width_m=width, eta_k=eta_k, n1=n1),
+                         log=lambda text: log(f"fleet: {text}"))
 
 
 def load_analyzers(path: str) -> dict:
@@ -133,9 +160,12 @@ def drive_node_factories(drive, duration_s: float, rate_factor: float) -> list:
     from backlash_monitor.nodes.windowing import WindowingNode
     params = drive.node_parameters(duration_s, rate_factor)
     out = []
-    for cls, name in ((WidthTrendNode, "width_trend"), (ClassifierNode, "classifier"),
-                      (DenoiseNode, "denoise"),
-                      (WindowingNode, "windowing"), (PlantSimulatorNode, "plant_simulator")):
+    nodes = [(WidthTrendNode, "width_trend"), (ClassifierNode, "classifier"), (DenoiseNode, "denoise"),
+             (WindowingNode, "windowing"), (PlantSimulatorNode, "plant_simulator")]
+    if drive.watched:
+        from backlash_monitor.nodes.model_watch import ModelWatchNode
+        nodes.insert(0, (ModelWatchNode, "model_watch"))
+    for cls, name in nodes:
         overrides = [Parameter(k, value=v) for k, v in params[name].items()]
         out.append(lambda cls=cls, overrides=overrides: cls(namespace=drive.namespace,
                                                             parameter_overrides=overrides))
@@ -152,6 +182,7 @@ class DriveTally:
     windowing: dict = field(default_factory=dict)
     classifier: dict = field(default_factory=dict)
     level: str = "STALE"
+    model_fit: str = "-"             # the model watch's last status ("OK: ..." / "WARN: ..."), '-' without one
     status_times: list = field(default_factory=list)   # wall times of the classifier's statuses
     cpu_s: float = math.nan          # CPU share over the stream [%]
     stream_mark: tuple | None = None   # (monotonic, CPU seconds) when its first chunk was reported
@@ -202,6 +233,8 @@ class FleetMonitor:
                 t.status_times.append(time.time())
             elif status.name.endswith("windowing: windowing"):
                 t.windowing = values
+            elif status.name.endswith("model_watch: model fit"):
+                t.model_fit = f"{LEVEL_NAMES[min(level, 3)]}: {status.message}"
 
     def drive_done(self, hardware_id: str, expected_chunks: int) -> bool:
         t = self.tally[hardware_id]
@@ -225,6 +258,7 @@ class FleetMonitor:
             row = {"drive": d.hardware_id, "true_width_m": t.true_width_m,
                    "fused_width_m": t.fused_width_m,
                    "fused_continuous_width_m": t.fused_continuous_width_m, "level": t.level,
+                   "model_fit": t.model_fit,
                    "chunks": int(w.get("chunks", 0)), "expected_chunks": expected_chunks,
                    "discarded": int(w.get("discarded", 0)),
                    "incomplete_chunks": int(w.get("incomplete_chunks", 0)),
@@ -244,14 +278,18 @@ class FleetMonitor:
 
 
 def format_summary(rows: list[dict]) -> str:
-    head = ("drive", "true", "fused", "continuous", "level", "chunks", "discarded", "onsets", "estimated",
-            "lag p50/max", "CPU", "real time")
+    from backlash_monitor.fleet.aggregator import short_model_fit
+    head = ("drive", "true", "fused", "continuous", "level", "model fit", "chunks", "discarded", "onsets",
+            "estimated", "lag p50/max", "CPU", "real time")
     table = [head]
     for r in rows:
         def mm(x):
             return "-" if x != x else f"{x * 1e3:.2f} mm"
+        fit = r.get("model_fit", "-")
+        level, _, text = fit.partition(": ")
         table.append((r["drive"], mm(r["true_width_m"]), mm(r["fused_width_m"]),
                       mm(r.get("fused_continuous_width_m", math.nan)), r["level"],
+                      short_model_fit(text) if text else level,
                       f"{r['chunks']}/{r['expected_chunks']}", str(r["discarded"]),
                       str(r["onset_windows"]), str(r["onsets_estimated"]),
                       "-" if r["lag_ms_median"] != r["lag_ms_median"]
@@ -324,6 +362,7 @@ def run(args) -> int:
             yaml.safe_dump(config, f, sort_keys=False, default_flow_style=None, width=1000)
         print(f"fleet: wrote the analyzers of {len(drives)} drives to {args.aggregator_yaml}")
         return 0
+    ensure_references(drives)
     import rclpy
     from rclpy.executors import ExternalShutdownException
     from backlash_monitor.nodes.fast_dds import configure_fast_dds

@@ -6,10 +6,11 @@
 Open Foxglove, "Open connection" -> Foxglove WebSocket -> ws://localhost:8765, and import the
 layout config/foxglove_fleet_layout.json. For every namespace the node forwards, as received
 (serialized CDR, no decoding; schema = the ROS 2 message definition, as a bag holds it):
-``<ns>/plant/a1``, ``<ns>/plant/a2``, ``<ns>/windows/denoised``, ``<ns>/estimate``, and the one
-``/diagnostics``; and it publishes per drive ``<ns>/width`` (JSON: the last estimate's width,
-continuous and fused widths in mm) and the fleet's ``/fleet/widths`` (JSON: drive -> fused width
-in mm), which the layout plots.
+``<ns>/plant/a1``, ``<ns>/plant/a2``, ``<ns>/windows/denoised``, ``<ns>/estimate``, ``<ns>/model_fit``
+(the model watch's, docs/model_watch.md) and the one ``/diagnostics``; and it publishes per drive
+``<ns>/width`` (JSON: the last estimate's width, continuous and fused widths in mm), the fleet's
+``/fleet/widths`` (JSON: drive -> fused width in mm) and ``/fleet/model_fit`` (JSON: drive -> the model
+watch's residual over the noise floor and level), which the layout plots.
 
 Needs the Foxglove SDK (``pip install foxglove-sdk``, an optional extra): without it the node stops
 at start with one line saying so.
@@ -38,7 +39,8 @@ PARAMETERS = (
 FORWARDED = (("plant/a1", "backlash_monitor_msgs/msg/SignalChunk", "sensor"),
              ("plant/a2", "backlash_monitor_msgs/msg/SignalChunk", "sensor"),
              ("windows/denoised", "backlash_monitor_msgs/msg/BacklashWindow", "window"),
-             ("estimate", "backlash_monitor_msgs/msg/BacklashEstimate", "estimate"))
+             ("estimate", "backlash_monitor_msgs/msg/BacklashEstimate", "estimate"),
+             ("model_fit", "backlash_monitor_msgs/msg/ModelFit", "model_fit"))
 
 WIDTH_SCHEMA = {"type": "object", "properties": {
     "drive": {"type": "string"}, "signal": {"type": "string"},
@@ -73,24 +75,33 @@ class LiveViewNode(Node):
         self.server = foxglove.start_server(name="backlash_monitor", host=p["host"],
                                             port=p["port"])
         self.port = self.server.port
-        qos = {"sensor": qos_profile_sensor_data, "window": WINDOW_QOS, "estimate": ESTIMATE_QOS}
+        from backlash_monitor.nodes.model_watch import MODEL_FIT_QOS
+        qos = {"sensor": qos_profile_sensor_data, "window": WINDOW_QOS, "estimate": ESTIMATE_QOS,
+               "model_fit": MODEL_FIT_QOS}
         self.channels = {}
         self.estimate_type = _message_class("backlash_monitor_msgs/msg/BacklashEstimate")
         self.fleet_widths: dict[str, float] = {}
+        self.fleet_fits: dict[str, dict] = {}
+        self.fit_type = _message_class("backlash_monitor_msgs/msg/ModelFit")
         self.width_channels = {}
         for ns in namespaces:
             for topic, type_name, qos_name in FORWARDED:
                 self._forward(f"{ns}/{topic}", type_name, qos[qos_name], full_definition,
-                              on_estimate=ns if topic == "estimate" else None)
+                              on_estimate=ns if topic == "estimate" else None,
+                              on_model_fit=ns if topic == "model_fit" else None)
             self.width_channels[ns] = foxglove.Channel(f"{ns}/width", schema=WIDTH_SCHEMA)
         self._forward("/diagnostics", "diagnostic_msgs/msg/DiagnosticArray", DIAGNOSTICS_DEPTH,
                       full_definition)
         self.fleet_channel = foxglove.Channel("/fleet/widths", schema={
             "type": "object", "additionalProperties": {"type": "number"}})
+        self.fit_channel = foxglove.Channel("/fleet/model_fit", schema={
+            "type": "object", "additionalProperties": {"type": "object", "properties": {
+                "residual_over_noise": {"type": "number"}, "level": {"type": "string"},
+                "model": {"type": "string"}, "width_mm": {"type": "number"}}}})
         self.get_logger().info(f"Foxglove WebSocket on ws://{p['host']}:{self.port}: "
                                f"{len(namespaces)} drives")
 
-    def _forward(self, topic, type_name, qos, full_definition, on_estimate=None):
+    def _forward(self, topic, type_name, qos, full_definition, on_estimate=None, on_model_fit=None):
         schema = self.foxglove.Schema(name=type_name, encoding="ros2msg",
                                       data=full_definition(type_name).encode())
         channel = self.foxglove.Channel(topic, schema=schema, message_encoding="cdr")
@@ -100,6 +111,8 @@ class LiveViewNode(Node):
             channel.log(bytes(data), log_time=time.time_ns())
             if on_estimate is not None:
                 self._on_estimate(on_estimate, data)
+            if on_model_fit is not None:
+                self._on_model_fit(on_model_fit, data)
         self.create_subscription(_message_class(type_name), topic, callback, qos, raw=True)
 
     def _on_estimate(self, ns: str, data: bytes) -> None:
@@ -117,6 +130,14 @@ class LiveViewNode(Node):
             else None})
         self.fleet_widths[drive] = msg.fused_width_m * 1e3
         self.fleet_channel.log(dict(self.fleet_widths))
+
+    def _on_model_fit(self, ns: str, data: bytes) -> None:
+        from rclpy.serialization import deserialize_message
+        msg = deserialize_message(bytes(data), self.fit_type)
+        self.fleet_fits[ns.strip("/")] = {"residual_over_noise": msg.residual_over_noise_overall,
+                                          "level": "WARN" if msg.level == msg.WARN else "OK", "model": msg.model,
+                                          "width_mm": msg.width_m * 1e3}
+        self.fit_channel.log(dict(self.fleet_fits))
 
     def destroy_node(self):
         server = getattr(self, "server", None)

@@ -120,3 +120,23 @@ class ModelWatch:
         self.last = WatchUpdate(event.entry_sample_index, self.state.level, changed, self.state.since, exceeding,
                                 names, ev, p_min(ev), len(self.events), self.rule.limits(ev))
         return self.last
+
+
+def evaluate_recording(meas, reference: ModelReference, rule: AlarmRule | None = None,
+                       window_events: int = DEFAULT_WINDOW_EVENTS) -> dict:
+    """The model fit of a recording as the watch sees it at its end: one evaluation of its last ``window_events``
+    onset events (fewer in a short recording, at least 3), the events and the noise floor taken as diagnose takes
+    them (reference.evidence_from_measurement); WARN when the alarm rule's test exceeds (one evaluation: no
+    persistence). -> {level, residual_over_noise, consistent, exceeding, width_m, phase, wavelet_level, events}."""
+    from backlash_monitor.workbench.reference import evidence_from_measurement
+    rule = (rule or AlarmRule()).check()
+    evidence = evidence_from_measurement(meas, reference, last_n=window_events)
+    if evidence.n_events < 3:
+        raise ValueError(f"{meas.source}: {evidence.n_events} complete onset events; the model fit needs >= 3")
+    ev = reference.evaluate(evidence)
+    exceeding, names = rule.exceeds(ev)
+    return {"level": "WARN" if exceeding else "OK", "residual_over_noise": ev.result.residual_over_noise,
+            "consistent": ev.consistent, "exceeding": names, "width_m": ev.width_m,
+            "phase": (ev.where or {}).get("dominant_phase", ""),
+            "wavelet_level": (ev.where or {}).get("dominant_level", ""), "events": evidence.n_events,
+            "model": reference.model_label, "p_min": p_min(ev)}

@@ -109,7 +109,8 @@ class LiveEvents:
                 continue
             if self.last_entry is not None:
                 self.spacings.append(e.sample_index - self.last_entry)
-                self.period = int(np.median(self.spacings))
+                if len(self.spacings) >= 2:      # one spacing may be a restart's: the model's period until two
+                    self.period = int(np.median(self.spacings))
             self.last_entry = e.sample_index
             self.pending.append(e.sample_index)
         out = []

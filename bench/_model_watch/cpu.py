@@ -1,0 +1,52 @@
+"""cpu_per_drive: the model_watch node's CPU share of one core while a 50 kHz drive streams in real time.
+
+`pipeline --watch --processes` runs every node in its own process; the model_watch process's CPU time (user +
+system, /proc/PID/stat) is read at two moments inside the stream (after its start-up: the reference loaded, the
+views built) and divided by the wall time between them. The windowing node's process is read in the same run, side
+by side: it takes the same three plant topics and runs the same onset detector.
+"""
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+import time
+
+
+def _cpu_s(pid: int) -> float:
+    with open(f"/proc/{pid}/stat") as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def cpu_per_drive(duration_s: float = 40.0, skip_s: float = 10.0, log=print) -> dict:
+    cmd = [sys.executable, "-m", "backlash_monitor", "pipeline", "--watch", "--processes", "--duration",
+           str(duration_s), "--snapshot-dir", os.path.join("/tmp", f"model_watch_cpu_{os.getpid()}")]
+    log("cpu: " + " ".join(cmd[2:]))
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    pids, started = {}, None
+    samples = {}
+    out = []
+    try:
+        for line in proc.stdout:
+            out.append(line)
+            m = re.search(r"node processes: (.*?); restart", line)
+            if m:
+                pids = {name: int(pid) for name, pid in re.findall(r"(\w+) pid (\d+)", m.group(1))}
+            if started is None and line.startswith("t="):
+                started = time.monotonic()            # the first estimate: the stream runs
+            if started is not None and "a" not in samples and time.monotonic() - started >= skip_s:
+                samples["a"] = (time.monotonic(), {n: _cpu_s(p) for n, p in pids.items()})
+            if "a" in samples and "b" not in samples and \
+                    time.monotonic() - started >= duration_s - 5.0:
+                samples["b"] = (time.monotonic(), {n: _cpu_s(p) for n, p in pids.items()})
+    finally:
+        proc.wait(timeout=120)
+    if "b" not in samples:
+        raise RuntimeError("cpu: the pipeline ended before the second sample:\n" + "".join(out[-20:]))
+    (ta, ca), (tb, cb) = samples["a"], samples["b"]
+    share = {n: (cb[n] - ca[n]) / (tb - ta) for n in ca}
+    log(f"cpu: over {tb - ta:.1f} s: " + ", ".join(f"{n} {v * 100:.1f} %" for n, v in share.items()))
+    return {"cpu_per_drive": share.get("model_watch"), "cpu_windowing_same_run": share.get("windowing"),
+            "cpu_plant_simulator_same_run": share.get("plant_simulator"), "cpu_window_s": round(tb - ta, 1)}
