@@ -114,9 +114,11 @@ def test_the_view_marks_a_silent_drive_stale_and_a_half_silent_one_error():
         status(view, drives[0], "classifier", WARN, t)
         status(view, drives[0], "windowing", OK, t)
         status(view, drives[0], "width_trend", OK, t)
+        status(view, drives[0], "model_watch", OK, t)
     status(view, drives[1], "classifier", OK, 1.0)   # drive02: only its classifier, then silence
     status(view, drives[1], "windowing", OK, 5.0)
     status(view, drives[1], "width_trend", OK, 5.0)
+    status(view, drives[1], "model_watch", OK, 5.0)
     levels = {row["path"].rsplit("/", 1)[1]: row["level"] for row in view.report(5.5)}
     assert levels["drive01"] == WARN           # the highest of its items
     assert levels["drive02"] == ERROR          # one item stale (4.5 s > 3 s), one not
@@ -127,6 +129,27 @@ def test_the_view_marks_a_silent_drive_stale_and_a_half_silent_one_error():
     assert {r["path"].rsplit("/", 1)[1]: r["level"] for r in view.report(6.5)}["drive02"] == OK
     table = format_table(view, 6.5)
     assert "line1/drive03  STALE" in table and "never heard" in table
+
+
+def test_the_table_has_a_model_fit_column_per_drive_and_a_drive_without_a_watch_expects_none():
+    drives = drives_from_config({"lines": {"line1": {"drive01": {}, "drive02": {"watch": False}}}})
+    assert [n.rsplit(": ", 1)[1] for n in drive_status_names(drives[0])][-1] == "model fit"
+    assert not any("model_watch" in n for n in drive_status_names(drives[1]))
+    assert "model_watch" in drives[0].node_parameters() and drives[0].node_parameters()["model_watch"]["width_m"] \
+        == 0.005
+    view = AggregatorView(analyzer_config(drives), now_s=0.0)
+    for d in drives:
+        for task in ("classifier", "windowing", "width_trend"):
+            status(view, d, task, OK, 1.0)
+    status(view, drives[0], "model_watch", WARN, 1.0, message=(
+        "model drive7 v3 no longer explains the drive since 12:03:11: residual 2.8x the noise floor, in the gap "
+        "traversal, wavelet level d4; snapshot drive7_20261124T120311.mcap; run diagnose on it"))
+    table = format_table(view, 1.5)
+    head, rows = table.splitlines()[1], table.splitlines()[3:]
+    assert "model fit" in head
+    assert "WARN 2.8x since 12:03:11 (drive7 v3, gap traversal d4)" in rows[0]
+    assert rows[0].split()[1] == "WARN"            # the drive's level: its model fit's
+    assert "WARN" not in rows[1] and "OK" in rows[1]
 
 
 def test_a_fleet_file_with_an_unknown_key_or_a_bad_name_is_refused_with_the_allowed_values():

@@ -50,7 +50,7 @@ def fleet_bags(tmp_path_factory):
 def test_a_folder_of_bags_becomes_one_fleet_table_with_trends(fleet_bags, tmp_path, engine_args):
     out = tmp_path / "out"
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze",
-                           str(fleet_bags[0].parent), "--out", str(out), *engine_args],
+                           str(fleet_bags[0].parent), "--out", str(out), "--no-model-fit", *engine_args],
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     result = json.loads((out / "fleet.json").read_text())
@@ -74,6 +74,35 @@ def test_a_folder_of_bags_becomes_one_fleet_table_with_trends(fleet_bags, tmp_pa
     assert "line1/driveA: WARN: grows 0.1" in proc.stdout
 
 
+def test_the_model_fit_column_holds_each_bag_against_the_drives_model(tmp_path):
+    """Two 2 s recordings of a 5 mm drive, one on its model and one with 2.5 N*m of wheel friction the model
+    lacks: the fleet table's model-fit column says OK for the first and WARN (with where the residual sits) for
+    the second, and the command names the bag to run diagnose on. The reference is the default model's at the
+    pattern width nearest the measured width (5 mm: the cache)."""
+    from backlash_monitor.workbench import reference
+    from backlash_monitor.workbench.model import load_model
+    reference.cached(load_model(None, width_m=0.005))
+    bags = tmp_path / "bags"
+    for name, sets in (("clean", []), ("friction", ["effects.wheel_coulomb_friction=true",
+                                                     "wheel_coulomb_friction.torque_Nm=2.5"])):
+        subprocess.run([sys.executable, "-m", "backlash_monitor", "simulate", "--widths", "0.005", "--eta-k", "0.025",
+                        "--n1", "0.89", "--seeds", "21", "--duration", "2", "--no-npz", "--mcap", str(bags / name),
+                        *[x for s_ in sets for x in ("--set", s_)]], check=True, capture_output=True, timeout=300)
+    for d in ("clean", "friction"):
+        for f in (bags / d).glob("*.mcap"):
+            f.rename(bags / f"{d}_{f.name}")
+    out = tmp_path / "out"
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(bags), "--out", str(out),
+                           "--jobs", "1", "--no-plots"], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    rows = {r["bag"].rsplit("/", 1)[1].split("_")[0]: r for r in json.loads((out / "fleet.json").read_text())["rows"]}
+    assert rows["clean"]["model_fit"]["level"] == "OK"
+    assert rows["friction"]["model_fit"]["level"] == "WARN"
+    assert rows["friction"]["model_fit"]["model"] == "default v1"
+    assert "model fit" in proc.stdout.splitlines()[0]
+    assert "does not explain friction_" in proc.stdout and "run diagnose on it" in proc.stdout
+
+
 def test_a_glob_without_bags_is_one_clear_error(tmp_path):
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze",
                            str(tmp_path / "*.mcap")], capture_output=True, text=True, timeout=60)
@@ -87,7 +116,7 @@ def test_the_dask_engine_gives_the_same_table_on_a_local_cluster(fleet_bags, tmp
     out = tmp_path / "dask"
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze",
                            str(fleet_bags[0].parent / "*.mcap"), "--out", str(out),
-                           "--engine", "dask", "--jobs", "2", "--no-plots"],
+                           "--engine", "dask", "--jobs", "2", "--no-plots", "--no-model-fit"],
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     rows = json.loads((out / "fleet.json").read_text())["rows"]

@@ -98,7 +98,6 @@ def validate(args):
               drives_from_count(4 if args.drives is None else args.drives, line=args.line,
                                 width_m=args.width_m))
     if args.trend_state_dir:
-        import os
         from backlash_monitor.fleet.drives import Drive
         try:
             os.makedirs(args.trend_state_dir, exist_ok=True)
