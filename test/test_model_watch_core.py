@@ -113,6 +113,20 @@ def test_sample_ring_keeps_the_last_samples_across_its_wrap():
     assert (ring.start, ring.end) == (30, 33)
 
 
+def test_sample_ring_returns_exactly_the_samples_it_was_given():
+    rng = np.random.default_rng(1)
+    ring, held, k = SampleRing(("x",), 97), [], 0
+    for _ in range(300):
+        n = int(rng.integers(1, 150))
+        x = rng.standard_normal(n)
+        ring.append(k, {"x": x})
+        held.extend(x)
+        k += n
+        lo = int(rng.integers(ring.start, ring.end))
+        hi = int(rng.integers(lo, ring.end + 1))
+        assert np.array_equal(ring.get("x", lo, hi), np.array(held[lo:hi])), (lo, hi)
+
+
 def test_live_events_are_the_workbench_events_in_any_chunking(model):
     """Fed in chunks of 777 or 5000 samples, the live events are diagnose's events (events.event_set): the same
     entries and segments, and the period means to the few samples the period estimates differ by."""

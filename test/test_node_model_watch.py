@@ -78,7 +78,7 @@ def test_ok_on_its_model_then_warn_with_a_snapshot_when_friction_switches_on(ros
     snaps = list(tmp_path.glob("line1_drive7_*.mcap"))
     assert len(snaps) == 1
     meas = load_measurement(snaps[0])                 # an ordinary bag: diagnose reads it
-    assert meas.duration_s >= 1.0 and set(meas.signals) >= {"a1", "a2", "angle_difference", "omega1", "omega2"}
+    assert meas.duration_s >= 1.0 and set(meas.signals) == {"a1", "a2", "angle_difference"}
 
 
 @pytest.mark.parametrize("override, named", [("window_events:=2", "window_events"),

@@ -4,7 +4,7 @@
         -p reference:=drive7_v3.watch.npz
 
 One per drive, in its namespace beside the classifier. Subscribes to the drive's ``plant/a1``, ``a2``,
-``angle_difference`` (and ``omega1``, ``omega2`` for the snapshots) as serialized messages; the core
+``angle_difference`` (``snapshot_signals``: ``omega1``, ``omega2`` too if asked) as serialized messages; the core
 (backlash_monitor/watch/: the live onset events, ModelWatch, the alarm rule) evaluates the model version's
 precomputed reference (workbench/reference.py: no simulation here) on the last ``window_events`` onset events after
 every event, and the node publishes:
@@ -40,7 +40,7 @@ from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor.watch.alarm import load_config
 
 WATCHED = ("a1", "a2", "angle_difference")
-RECORDED = ("a1", "a2", "omega1", "omega2", "angle_difference")
+PLANT_SIGNALS = ("a1", "a2", "omega1", "omega2", "angle_difference")
 MODEL_FIT_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)
 
 
@@ -70,6 +70,9 @@ def _parameters():
         ParameterSpec("snapshot_before_s", c["snapshot_before_s"], "snapshot: seconds of the stream before the "
                       "WARN [s]", 0.0, 60.0),
         ParameterSpec("snapshot_after_s", c["snapshot_after_s"], "snapshot: seconds after it [s]", 0.5, 120.0),
+        ParameterSpec("snapshot_signals", ["a1", "a2", "angle_difference"], "the plant signals a snapshot holds: "
+                      "diagnose reads a1, a2 and angle_difference; omega1 and omega2 may be added (two more "
+                      "subscriptions: ~1 % of a core more, docs/model_watch.md)"),
         ParameterSpec("max_snapshots", 20, "snapshots this node writes at most (a drive that goes WARN again and "
                       "again does not fill the disk; later WARNs say so)", 0, 100000),
         ParameterSpec("qos", "sensor_data", "QoS of the chunk subscriptions", choices=CHUNK_QOS_CHOICES),
@@ -108,7 +111,12 @@ class ModelWatchNode(Node):
             raise ParameterValueError(f"snapshot_before_s + snapshot_after_s = "
                                       f"{p['snapshot_before_s'] + p['snapshot_after_s']:g} s; allowed: <= 180 s "
                                       "(the ring is held in memory: ~2 MB/s of stream)")
+        bad = [x for x in p["snapshot_signals"] if x not in PLANT_SIGNALS]
+        if bad or not set(WATCHED) <= set(p["snapshot_signals"]):
+            raise ParameterValueError(f"parameter 'snapshot_signals' = {list(p['snapshot_signals'])!r}; allowed: "
+                                      f"a1, a2, angle_difference and any of omega1, omega2")
         self.params = p
+        self.signals = tuple(n for n in PLANT_SIGNALS if n in p["snapshot_signals"])
         from backlash_monitor.bag.cdr import Codec
         from backlash_monitor.chain import ChunkJoiner
         from backlash_monitor.watch.alarm import AlarmRule
@@ -122,7 +130,7 @@ class ModelWatchNode(Node):
             raise ParameterValueError(str(error)) from None
         self.model = self.reference.model_label
         self.codec = Codec.for_type("backlash_monitor_msgs/msg/SignalChunk")
-        self.strings = {name: [None] for name in RECORDED}
+        self.strings = {name: [None] for name in self.signals}
         self.faults = FaultLog()
         self.joiner = ChunkJoiner(WATCHED, faults=self.faults)
         self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "chunks")
@@ -138,7 +146,7 @@ class ModelWatchNode(Node):
                 raise ParameterValueError(f"parameter 'snapshot_dir' = {p['snapshot_dir']!r}: "
                                           f"{error.strerror or error}; allowed: a folder this user can create and "
                                           "write (or '' for no snapshots)") from None
-            topics = {self.resolve_topic_name(f"plant/{n}"): SIGNAL_CHUNK for n in RECORDED}
+            topics = {self.resolve_topic_name(f"plant/{n}"): SIGNAL_CHUNK for n in self.signals}
             self.recorder = SnapshotRecorder(p["snapshot_dir"], p["drive_name"], self.reference.sample_period_s,
                                              p["snapshot_before_s"], p["snapshot_after_s"], topics,
                                              p["max_snapshots"])
@@ -146,7 +154,8 @@ class ModelWatchNode(Node):
         qos = chunk_qos(p["qos"])
         from backlash_monitor_msgs.msg import ModelFit, SignalChunk
         self.fit_type = ModelFit
-        for name in RECORDED:
+        self.topic_names = {n: self.resolve_topic_name(f"plant/{n}") for n in self.signals}
+        for name in self.signals:
             self.create_subscription(SignalChunk, f"plant/{name}", lambda data, n=name: self.on_chunk(n, data), qos,
                                      raw=True)
         self.publisher = self.create_publisher(ModelFit, "model_fit", MODEL_FIT_QOS)
@@ -168,8 +177,7 @@ class ModelWatchNode(Node):
         else:
             sec, nanosec, frame_id, _sig, _unit, period, first, samples = fields
             if self.recorder is not None:
-                self.recorder.add(self.resolve_topic_name(f"plant/{name}"), first, len(samples), time.time_ns(),
-                                  data)
+                self.recorder.add(self.topic_names[name], first, len(samples), time.time_ns(), data)
             if name in WATCHED:
                 joined = self.joiner.add(name, first, period, samples, (sec, nanosec), frame_id)
                 if joined is not None:

@@ -71,8 +71,13 @@ class SampleRing:
         """Samples lo..hi-1 (stream indices; must be held)."""
         if lo < self.start or hi > self.end or hi < lo:
             raise IndexError(f"samples {lo}..{hi} not held ({self.start}..{self.end})")
-        idx = np.arange(lo, hi) % self.capacity
-        return self.data[name][idx]
+        buf = self.data[name]
+        a, b = lo % self.capacity, hi % self.capacity
+        if hi - lo == 0:
+            return buf[:0].copy()
+        if a < b or b == 0:
+            return buf[a:b or self.capacity].copy()
+        return np.concatenate([buf[a:], buf[:b]])
 
 
 class LiveEvents:
