@@ -91,3 +91,18 @@ def test_bad_parameters_stop_the_node_with_a_clear_line(ros_env, override, named
     assert proc.returncode == 2, proc.stderr
     assert named in proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+@pytest.mark.parametrize("args, named", [
+    (["--set-at", "abc", "effects.wheel_coulomb_friction=true"], "--set-at abc: the time"),
+    (["--set-at", "30s"], "--set-at 30s: allowed"),
+    (["--set-at", "30s", "torque"], "expected SECTION.KEY=VALUE"),
+    (["--model", "m.yaml"], "add --watch"),
+    (["--watch", "--library", "/nonexistent.npz"], "--library /nonexistent.npz: no such file"),
+])
+def test_the_pipelines_watch_options_are_checked_before_anything_runs(ros_env, args, named):
+    import sys
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "pipeline", *args], env=ros_env,
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2 and named in proc.stderr, proc.stderr
+    assert "Traceback" not in proc.stderr
