@@ -77,6 +77,7 @@ OWN_FAMILIES = {
     "torque_ripple_0.25_x6": {"torque_ripple.amplitude_pu": 0.25, "torque_ripple.order": 6.0},
 }
 SWITCH_AT_S = 10.0          # own detection runs: the effect switches on here
+TRACE_RULE = None           # set in main: view_p 1e-3, ratio 2.5, persistence never
 AFTER_S = 30.0              # ... and the run goes on this long (120 onsets)
 
 
@@ -95,10 +96,21 @@ def reference_for(width_m, eta_k, n1):
 # ------------------------------------------------------------------------------------------------ traces
 
 def trace_of(updates, switch_index=None) -> dict:
-    """What the rule is applied to: per evaluation its entry, smallest alarm-view p-value and residual ratio."""
+    """What the rule is applied to: per evaluation its entry, smallest alarm-view p-value and residual ratio, and
+    for a window that exceeds the loose TRACE_RULE the same of each leave-one-out window (the robust rule)."""
     return {"entry": [int(u.entry_sample_index) for u in updates], "p_min": [float(u.p_min) for u in updates],
             "ratio": [float(u.evaluation.result.residual_over_noise) for u in updates],
+            "loo": [[[float(p), float(r)] for p, r in u.loo] for u in updates],
+            "views": [{n: round(v.t2, 2) for n, v in u.evaluation.result.views.items()} if u.exceeding else None
+                      for u in updates],
             "width_m": [float(u.evaluation.width_m) for u in updates], "switch": switch_index}
+
+
+def tracing_watch(ref):
+    """A watch whose evaluations the traces record: the rule loose enough that every window a rule to be scored
+    could call exceeding gets its leave-one-out windows computed, and it never goes WARN (a WARN stops them)."""
+    from backlash_monitor.watch.core import ModelWatch
+    return ModelWatch(ref, rule=TRACE_RULE)
 
 
 def stream(watch, signals: dict, chunk: int = 1000) -> list:
@@ -120,7 +132,7 @@ def clean_own(seconds_per_point: float, widen: bool = True) -> list:
     traces = []
     for wear in ((False, True) if widen else (False,)):
         refs = [reference_for(*g) for g in CLEAN_GRID]
-        watches = [ModelWatch(r) for r in refs]
+        watches = [tracing_watch(r) for r in refs]
         scen = [Scenario(width_m=w, eta_k=e, n1=n, seed=700 + i + 50 * wear) for i, (w, e, n) in enumerate(CLEAN_GRID)]
         cfg = load_model(None).plant_config({"effects.backlash_width_drift": True} if wear else None)
         sim = PlantSimulator(scen, config=cfg, outputs=("a1", "a2", "angle_difference"))
@@ -166,9 +178,9 @@ def clean_foreign(recordings_per_point: int, seconds: float) -> list:
         for j in range(recordings_per_point):
             sensor = FOREIGN_NUISANCE[(gi + j) % len(FOREIGN_NUISANCE)]
             spec = foreign_spec(f"clean_{gi}_{j}", *g, seed=8000 + 37 * gi + j, duration_s=seconds, sensor=sensor,
-                                first_s=0.05 + 0.031 * j)
+                                first_s=round((0.05 + 0.031 * j) % 0.25, 4))
             rec = make_recording(spec)
-            u = stream(ModelWatch(ref), rec.signals)
+            u = stream(tracing_watch(ref), rec.signals)
             traces.append({"source": "foreign", "grid": g, "sensor": sensor, **trace_of(u)})
             del rec
         log(f"clean foreign: grid point {gi + 1} of {len(CLEAN_GRID)}")
@@ -200,7 +212,7 @@ def detect_own(seeds=(0, 1)) -> list:
         cfg = model.plant_config(switches)
         scen = [Scenario(width_m=g[0], eta_k=g[1], n1=g[2], seed=900 + s) for s in seeds for _ in labels]
         sim = PlantSimulator(scen, config=cfg, outputs=("a1", "a2", "angle_difference"))
-        watches = [ModelWatch(ref) for _ in scen]
+        watches = [tracing_watch(ref) for _ in scen]
         ups = [[] for _ in scen]
         switch = int(round(SWITCH_AT_S / sim.sample_period_s))
         for c in range(int(round((SWITCH_AT_S + AFTER_S) / 0.02))):
@@ -253,7 +265,7 @@ def detect_foreign() -> list:
         n4 = int(round(4.0 / eff.sample_period_s))
         meas = Measurement(spec.label, eff.sample_period_s, {k: v[:n4] for k, v in eff.signals.items()})
         ev = ref.evaluate(reference.evidence_from_measurement(meas, ref), profile_width=False)
-        watch = ModelWatch(ref)
+        watch = tracing_watch(ref)
         ev_clean = events_of(clean.signals, clean.sample_period_s, ref.pulse_period_samples)
         ev_eff = events_of(eff.signals, eff.sample_period_s, ref.pulse_period_samples)
         ups = []
@@ -284,8 +296,11 @@ def apply_rule(trace: dict, rule) -> dict:
     from backlash_monitor.watch.alarm import AlarmState
     state = AlarmState(rule)
     warns, first_warn = 0, None
-    for i, (e, p, r) in enumerate(zip(trace["entry"], trace["p_min"], trace["ratio"])):
-        if state.update(p < rule.view_p or r > rule.residual_ratio, e) and state.level == "WARN":
+    for i, (e, p, r, loo) in enumerate(zip(trace["entry"], trace["p_min"], trace["ratio"], trace["loo"])):
+        exceeding = p < rule.view_p or r > rule.residual_ratio
+        if exceeding and rule.robust and state.level == "OK":
+            exceeding = bool(loo) and all(pl < rule.view_p or rl > rule.residual_ratio for pl, rl in loo)
+        if state.update(exceeding, e) and state.level == "WARN":
             warns += 1
             if first_warn is None:
                 first_warn = i
@@ -367,17 +382,22 @@ def main() -> int:
     ap.add_argument("--traces-out", default="", help="write the per-evaluation traces (JSON)")
     ap.add_argument("--traces-in", default="", help="traces written by --traces-out: re-scored, and the parts they "
                                                     "hold are not simulated again")
-    ap.add_argument("--rule", default="", metavar="VIEW_P,RATIO,PERSISTENCE",
-                    help="score another alarm rule on the same evaluations")
+    ap.add_argument("--rule", default="", metavar="VIEW_P,RATIO,PERSISTENCE[,ROBUST]",
+                    help="score another alarm rule on the same evaluations (view_p >= 1e-3 and ratio >= 2.5: the "
+                         "traces hold the leave-one-out windows of what exceeds those)")
     args = ap.parse_args()
     from backlash_monitor.watch.alarm import AlarmRule, load_rule
+    global TRACE_RULE
+    TRACE_RULE = AlarmRule(view_p=1e-3, residual_ratio=2.5, persistence=10 ** 9, clear_after=1)
     rule = load_rule()
     if args.rule:
-        vp, rr, pe = args.rule.split(",")
-        rule = replace(rule, view_p=float(vp), residual_ratio=float(rr), persistence=int(pe)).check()
+        parts = args.rule.split(",")
+        rule = replace(rule, view_p=float(parts[0]), residual_ratio=float(parts[1]), persistence=int(parts[2]),
+                       robust=(parts[3].lower() not in ("0", "false", "no")) if len(parts) > 3 else rule.robust
+                       ).check()
     t0 = time.perf_counter()
     result = {"rule": {"view_p": rule.view_p, "residual_ratio": rule.residual_ratio,
-                       "persistence": rule.persistence, "clear_after": rule.clear_after}}
+                       "persistence": rule.persistence, "clear_after": rule.clear_after, "robust": rule.robust}}
     data = {"clean": [], "detect": []}
     if args.traces_in:
         with open(args.traces_in) as f:

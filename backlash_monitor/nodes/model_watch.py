@@ -66,6 +66,8 @@ def _parameters():
                       "evaluations", 1, 1000),
         ParameterSpec("clear_after", c["clear_after"], "alarm: OK again after this many consecutive evaluations "
                       "that do not exceed", 1, 100000),
+        ParameterSpec("robust", c["robust"], "alarm: an evaluation exceeds only if it also does with any one of its "
+                      "events left out"),
         ParameterSpec("snapshot_dir", ".", "where the snapshot bags go (created if missing; empty: no snapshots)"),
         ParameterSpec("snapshot_before_s", c["snapshot_before_s"], "snapshot: seconds of the stream before the "
                       "WARN [s]", 0.0, 60.0),
@@ -124,7 +126,8 @@ class ModelWatchNode(Node):
         from backlash_monitor.watch.snapshot import SIGNAL_CHUNK, SnapshotRecorder
         self.reference = _load_reference(p)
         try:
-            rule = AlarmRule(p["view_p"], p["residual_ratio"], p["persistence"], p["clear_after"]).check()
+            rule = AlarmRule(p["view_p"], p["residual_ratio"], p["persistence"], p["clear_after"],
+                             p["robust"]).check()
             self.watch = ModelWatch(self.reference, p["window_events"], rule)
         except ValueError as error:
             raise ParameterValueError(str(error)) from None

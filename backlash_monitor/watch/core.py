@@ -18,7 +18,7 @@ import numpy as np
 from backlash_monitor.workbench.events import SEGMENT_SIGNALS
 from backlash_monitor.workbench.reference import Evidence, ModelReference
 
-from .alarm import AlarmRule, AlarmState, p_min
+from .alarm import AlarmRule, AlarmState, p_min, result_p_min
 from .events import LiveEvent, LiveEvents
 
 DEFAULT_WINDOW_EVENTS = 16       # about a 4 s recording: the length the workbench is measured on
@@ -42,6 +42,8 @@ class WatchUpdate:
     p_min: float
     events: int
     limits: dict = field(default_factory=dict)
+    loo: list = field(default_factory=list)   # the robust rule's leave-one-out windows: [(smallest p, residual
+                                              # ratio)] per left-out event (computed for an exceeding window)
 
     @property
     def where(self) -> tuple[str, str]:
@@ -89,7 +91,7 @@ class ModelWatch:
         if not psds:
             return self.views_noise
         psd = np.mean(psds, axis=0)
-        return self.reference.noise_floor(dict(zip(SEGMENT_SIGNALS, psd)))
+        return self.reference.noise_floor(dict(zip(SEGMENT_SIGNALS, psd)), significant=True)
 
     def _views_noise(self) -> np.ndarray:
         """The noise floor the views are built for: the window's, once it moved by NOISE_REBUILD_FACTOR (a
@@ -117,11 +119,18 @@ class ModelWatch:
         ev = self.reference.evaluate(evidence, where=False)
         self.evaluations += 1
         exceeding, names = self.rule.exceeds(ev)
+        loo = []
+        if exceeding and self.rule.robust and self.state.level == "OK":
+            # a WARN must not hinge on one event: the window without each of its events must exceed too (~10 ms,
+            # only for a window that exceeds; not needed to hold a WARN)
+            results = self.reference.leave_one_out(evidence, ev)
+            loo = [(result_p_min(r), r.residual_over_noise) for r in results]
+            exceeding = all(self.rule.result_exceeds(r)[0] for r in results)
         if exceeding or self.state.level != "OK" or self.evaluations % self.window_events == 1:
             ev.where = self.reference.where(evidence, ev)       # ~3 ms: when it matters, and once per window
         changed = self.state.update(exceeding, event.entry_sample_index)
         self.last = WatchUpdate(event.entry_sample_index, self.state.level, changed, self.state.since, exceeding,
-                                names, ev, p_min(ev), len(self.events), self.rule.limits(ev))
+                                names, ev, p_min(ev), len(self.events), self.rule.limits(ev), loo)
         return self.last
 
 
@@ -133,11 +142,13 @@ def evaluate_recording(meas, reference: ModelReference, rule: AlarmRule | None =
     persistence). -> {level, residual_over_noise, consistent, exceeding, width_m, phase, wavelet_level, events}."""
     from backlash_monitor.workbench.reference import evidence_from_measurement
     rule = (rule or AlarmRule()).check()
-    evidence = evidence_from_measurement(meas, reference, last_n=window_events)
+    evidence = evidence_from_measurement(meas, reference, last_n=window_events, significant_noise=True)
     if evidence.n_events < 3:
         raise ValueError(f"{meas.source}: {evidence.n_events} complete onset events; the model fit needs >= 3")
     ev = reference.evaluate(evidence)
     exceeding, names = rule.exceeds(ev)
+    if exceeding and rule.robust:
+        exceeding = all(rule.result_exceeds(r)[0] for r in reference.leave_one_out(evidence, ev))
     return {"level": "WARN" if exceeding else "OK", "residual_over_noise": ev.result.residual_over_noise,
             "consistent": ev.consistent, "exceeding": names, "width_m": ev.width_m,
             "phase": (ev.where or {}).get("dominant_phase", ""),

@@ -53,6 +53,7 @@ WIDTH_STEP = 0.025                 # the width grid's step, relative to the nomi
 WIDTH_RANGE = 0.4                  # +-, relative: the fit range of backlash_width_drift (plant_adapter.FIT_RANGES)
 WIDTH_EFFECT = "backlash_width_drift"
 WIDTH_KEY = "backlash_width_drift.change"
+NOISE_SIGNIFICANT = 10.0           # the watch's sensor noise floor: measured noise-band level / the model's own (noise_floor)
 
 
 class ReferenceError(ValueError):
@@ -84,17 +85,19 @@ class Evidence:
         return int(self.raw.shape[0])
 
 
-def evidence_from_measurement(meas, reference: "ModelReference", last_n: int | None = None) -> Evidence:
+def evidence_from_measurement(meas, reference: "ModelReference", last_n: int | None = None,
+                              significant_noise: bool = False) -> Evidence:
     """The evidence of a recording as diagnose takes it (events.event_set, spectral.event_features, the sensor noise
     floor from the whole record's Welch spectrum against the model's); ``last_n``: only the last n events (the
-    watch's window at the end of the recording)."""
+    watch's window at the end of the recording); ``significant_noise``: the noise floor as the watch takes it
+    (ModelReference.noise_floor)."""
     from .events import event_set
     ev = event_set(meas.signals, meas.sample_period_s)
     if ev.n_events == 0:
         raise ValueError(f"measurement {meas.source}: no complete onset event")
     sel = slice(None) if last_n is None else slice(max(ev.n_events - int(last_n), 0), None)
     noise = reference.noise_floor({s: analysis.welch_psd(meas.signals[s], 1.0 / meas.sample_period_s)[1]
-                                   for s in SEGMENT_SIGNALS})
+                                   for s in SEGMENT_SIGNALS}, significant=significant_noise)
     raw = ev.raw[sel]
     return Evidence(raw, ev.dc[sel], spectral.event_features(raw, meas.sample_period_s), noise, ev.entries[sel])
 
@@ -114,6 +117,7 @@ class Evaluation:
     model_mean: np.ndarray | None = field(default=None, repr=False)   # (2, L) at width_m, denoised
     model_raw: np.ndarray | None = field(default=None, repr=False)    # (2, L) raw
     weights: np.ndarray | None = field(default=None, repr=False)      # (2,) the E-event weights
+    position: float | None = None          # the width's fractional index in the grid (None: the nominal width)
 
     @property
     def consistent(self) -> bool:
@@ -271,12 +275,22 @@ class ModelReference:
         return out
 
     # -------------------------------------------------------------------------------------------- views
-    def noise_floor(self, measured_psd: dict) -> np.ndarray:
+    def noise_floor(self, measured_psd: dict, significant: bool = False) -> np.ndarray:
         """The sensor noise floor per signal from measured whole-record Welch PSDs ({signal: PSD on
-        analysis.welch_psd's bins}) against the model's: analysis.sensor_noise_floor."""
+        analysis.welch_psd's bins}) against the model's: analysis.sensor_noise_floor (diagnose's estimate). With
+        ``significant`` (the watch) a signal's floor counts only where the measured level in the noise band is
+        NOISE_SIGNIFICANT times the model's own: below that the excess is the model's own level wandering from
+        recording to recording (measured on clean own drives: a2's excess 1e-15..2.5e-15 (m/s^2)^2/Hz against a
+        model level of ~3e-15 at 10 mm, and the spectral view at T^2 66 against its limit 16.8 when it was taken
+        as a sensor's; a real sensor chain's floor is orders above: a 16-bit ADC over +-4 g alone 5e-12)."""
         spectra = {s: {"f": self.noise_band_f, "measured": np.asarray(measured_psd[s], dtype=float),
                        "ensemble": self.noise_band_psd[i][None]} for i, s in enumerate(SEGMENT_SIGNALS)}
-        return analysis.sensor_noise_floor(spectra)
+        floor = analysis.sensor_noise_floor(spectra)
+        if significant:
+            sel = (self.noise_band_f >= analysis.NOISE_BAND_HZ[0]) & (self.noise_band_f <= analysis.NOISE_BAND_HZ[1])
+            model = np.median(self.noise_band_psd[:, sel], axis=1)
+            floor = np.where(floor > (NOISE_SIGNIFICANT - 1.0) * model, floor, 0.0)
+        return floor
 
     def views(self, noise_psd, n_events: int) -> Views:
         key = (tuple(float(x) for x in np.asarray(noise_psd, dtype=float)), int(n_events))
@@ -312,6 +326,7 @@ class ModelReference:
             den = c0 - 2 * c1 + c2
             if den > 0:
                 best += 0.5 * (c0 - c2) / den * (xs[1] - xs[0])
+        self._last_position = best
         idx, w = _lagrange(best, n)
         return (float(w @ self.widths_m[idx]), w @ views.grid[idx], np.tensordot(w, self.grid_mean[idx], 1),
                 np.tensordot(w, self.grid_raw[idx], 1))
@@ -325,15 +340,39 @@ class ModelReference:
         target = views.target(evidence)
         if profile_width:
             width, pred, mean, raw = self.profile_width(views, target)
+            position = self._last_position
         else:
             width, pred, mean, raw = self.nominal_width_m, views.base, self.base_mean, self.base_raw
+            position = None
         result = consistency.test(views, target - pred)
         measured = denoise(evidence.raw.mean(axis=0))
         ratio = np.sqrt(np.mean((measured - mean) ** 2, axis=-1)) / views.floor_rms
         out = Evaluation(result, width, dict(zip(SEGMENT_SIGNALS, map(float, ratio))), None, evidence.n_events,
-                         np.asarray(evidence.noise_psd, dtype=float), self.nominal_width_m, mean, raw, views.w)
+                         np.asarray(evidence.noise_psd, dtype=float), self.nominal_width_m, mean, raw, views.w,
+                         position)
         if where:
             out.where = self.where(evidence, out)
+        return out
+
+    def leave_one_out(self, evidence: Evidence, evaluation: Evaluation) -> list:
+        """consistency.test of the window without each one of its events in turn (E - 1 events), at the
+        evaluation's width: [ConsistencyResult] per left-out event. The watch's alarm asks that the evidence not
+        hinge on one event (watch/alarm.py: one odd event stays in N consecutive windows)."""
+        n = evidence.n_events
+        if n < 4:
+            return []
+        views = self.views(evidence.noise_psd, n - 1)
+        if evaluation.position is None:
+            pred = views.base
+        else:
+            idx, w = _lagrange(evaluation.position, len(self.widths_m))
+            pred = w @ views.grid[idx]
+        out = []
+        for e in range(n):
+            keep = np.arange(n) != e
+            sub = Evidence(evidence.raw[keep], evidence.dc[keep], evidence.spec[keep], evidence.noise_psd,
+                           evidence.entries[keep])
+            out.append(consistency.test(views, views.target(sub) - pred))
         return out
 
     def where(self, evidence: Evidence, evaluation: Evaluation) -> dict:
