@@ -163,6 +163,33 @@ def test_alarm_state_persistence_and_clearing():
         AlarmRule(persistence=0).check()
 
 
+def _events(model, seconds, seed, overrides=None):
+    meas = synthetic.hidden_effect_recording(model, seconds, seed=seed, config_overrides=overrides)
+    live = LiveEvents(meas.sample_period_s, ref_period := 12500)
+    out = []
+    for k in range(0, meas.n_samples, 5000):
+        out += live.feed(k, *(meas.signals[s][k:k + 5000] for s in ("a1", "a2", "angle_difference")))
+    assert ref_period == 12500
+    return out
+
+
+def test_one_odd_event_does_not_raise_the_alarm_but_an_effect_does(model, ref):
+    """The robust rule: a window in which one event is odd (its a1 and a2 doubled) exceeds as it is, but not with
+    that event left out, so it does not count; a window of events with 2.5 N*m of friction exceeds with any one
+    left out."""
+    rule = AlarmRule(view_p=1e-6, residual_ratio=3.0, persistence=1)
+    clean = _events(model, 5.0, 37)[:16]
+    clean[7].raw = clean[7].raw * 2.0
+    watch = ModelWatch(ref, window_events=16, rule=rule)
+    u = [watch.add_event(e) for e in clean][-1]
+    assert rule.exceeds(u.evaluation)[0] and not u.exceeding and u.level == "OK"
+    assert len(u.loo) == 16 and max(p for p, _ in u.loo) > 1e-6        # the window without the odd one is fine
+    friction = _events(model, 5.0, 38, FRICTION | {"wheel_coulomb_friction.torque_Nm": 2.5})[:16]
+    watch = ModelWatch(ref, window_events=16, rule=rule)
+    u = [watch.add_event(e) for e in friction][-1]
+    assert u.exceeding and u.level == "WARN"
+
+
 def test_the_watch_stays_ok_on_its_model_and_warns_when_an_effect_switches_on(model, ref):
     """A 5 mm drive on its model for 8 s, then 2 N*m of wheel friction switched on at run time
     (PlantSimulator.set_parameters): OK before, WARN within 16 onsets after, the WARN's evaluations outside the

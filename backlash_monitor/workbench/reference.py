@@ -355,24 +355,19 @@ class ModelReference:
         return out
 
     def leave_one_out(self, evidence: Evidence, evaluation: Evaluation) -> list:
-        """consistency.test of the window without each one of its events in turn (E - 1 events), at the
-        evaluation's width: [ConsistencyResult] per left-out event. The watch's alarm asks that the evidence not
-        hinge on one event (watch/alarm.py: one odd event stays in N consecutive windows)."""
+        """consistency.test of the window without each one of its events in turn (E - 1 events), each at the width
+        that fits it (an odd event moves the width too): [ConsistencyResult] per left-out event. The watch's alarm
+        asks that the evidence not hinge on one event (watch/alarm.py: one odd event stays in N consecutive
+        windows)."""
         n = evidence.n_events
         if n < 4:
             return []
-        views = self.views(evidence.noise_psd, n - 1)
-        if evaluation.position is None:
-            pred = views.base
-        else:
-            idx, w = _lagrange(evaluation.position, len(self.widths_m))
-            pred = w @ views.grid[idx]
         out = []
         for e in range(n):
             keep = np.arange(n) != e
             sub = Evidence(evidence.raw[keep], evidence.dc[keep], evidence.spec[keep], evidence.noise_psd,
                            evidence.entries[keep])
-            out.append(consistency.test(views, views.target(sub) - pred))
+            out.append(self.evaluate(sub, profile_width=evaluation.position is not None, where=False).result)
         return out
 
     def where(self, evidence: Evidence, evaluation: Evaluation) -> dict:
