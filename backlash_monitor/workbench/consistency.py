@@ -141,6 +141,25 @@ def complement_basis(z_all, problem) -> np.ndarray:
     return vt[:p].T / np.maximum(sv[:p] / np.sqrt(max(z.shape[0] - 1, 1)), 1e-300)[None]
 
 
+def fit_basis(problem) -> np.ndarray:
+    """(N, q + P): the fits' metric -- every view's whitened basis with its model-form tolerance folded in
+    (basis_b (I + Z_b Z_b' / c)^(-1/2): generalised least squares with the noise and the tolerance, so a fit does not
+    bend to explain what the tolerance allows) and the complement's directions."""
+    c = noise_scale(problem.n_events, problem.n_seeds)
+    cols = []
+    for _, sl in problem.blocks:
+        b = problem.basis[:, sl]
+        z = None if problem.tolerance_z is None else problem.tolerance_z[sl]
+        if z is None or not np.any(z):
+            cols.append(b)
+            continue
+        vals, vecs = np.linalg.eigh(np.eye(z.shape[0]) + z @ z.T / c)
+        cols.append(b @ (vecs / np.sqrt(vals)[None, :]) @ vecs.T)
+    outside = np.zeros((problem.basis.shape[0], problem.complement.shape[1]))
+    outside[problem.event_slice] = problem.complement
+    return np.hstack(cols + [outside])
+
+
 def noise_scale(n_events: int, n_seeds: int) -> float:
     """Variance, per whitened direction, of an E-event mean against a K-seed model mean (units: one event)."""
     return 1.0 / n_events + 1.0 / (n_events * n_seeds)

@@ -22,7 +22,10 @@ MIN_EXPLAINED = 0.5
 MIN_EXPLAINED_SECOND = 0.3
 SIGNIFICANCE = 2.0           # a fitted value must differ from the model's by > 2 uncertainties (second effects)
 TOLERANCE_FACTOR = 2.0       # a fitted change must exceed 2 x its nominal tolerance
-CONFIDENT_EXPLAINED = 0.9
+CONFIDENT_EXPLAINED = 0.85   # the model-form tolerance of an effect's own law: explaining this share of the residual in
+                             # the fits' whole metric (every view and outside the subspace), what is left is the form in
+                             # which the drive writes the effect (docs/workbench.md "Model-form tolerance"; measured on
+                             # foreign drives: their catalogue families in other laws 0.89-0.997, outside effects <= 0.79)
 COMPLEMENT_EXPLAINED = 0.6   # outside the subspace: within the limit, or this share of the model's T^2 removed
 VIEW_WORSE_MARGIN = 0.25     # per signal: residual/noise may not grow by more than this above max(before, 1) (the
                              # rms ratio of a correct model scatters by ~0.15 over a 4 s recording's ~25 independent
@@ -63,7 +66,11 @@ def per_signal_ratio(problem, pred) -> np.ndarray:
 
 
 def confident(problem, after_pred, base_pred) -> tuple[bool, dict]:
-    """The model with the discovered effect(s) agrees with the measurement. -> (confident, checks)."""
+    """The model with the discovered effect(s) agrees with the measurement. -> (confident, checks).
+    Either the update is consistent in every view and outside the candidates' subspace (within the limit there, or
+    COMPLEMENT_EXPLAINED of the model's own T^2 there removed), or it explains CONFIDENT_EXPLAINED of the residual in
+    the fits' whole metric (the effect's law differs from the catalogue's; the rest is reported). Always: the
+    event-average residual within INCONSISTENT_RATIO of the noise floor, and no view made worse."""
     r = problem.residual(after_pred)
     after = consistency.test(problem, r)
     before = consistency.test(problem, problem.residual(base_pred))
@@ -76,7 +83,24 @@ def confident(problem, after_pred, base_pred) -> tuple[bool, dict]:
     outside_ok = out_a.t2 <= out_a.limit or out_a.t2 <= (1.0 - COMPLEMENT_EXPLAINED) * out_b.t2
     overall_ok = after.residual_over_noise <= consistency.INCONSISTENT_RATIO
     not_worse, worse = views_not_worse(problem, base_pred, after_pred)
-    ok = bool(overall_ok and (inside or explained >= CONFIDENT_EXPLAINED) and outside_ok and not_worse)
+    strict = inside and outside_ok
+    form = explained >= CONFIDENT_EXPLAINED
+    ok = bool(overall_ok and not_worse and (strict or form))
     return ok, {"consistent_in_every_view": bool(inside), "explained": explained, "outside_subspace_ok": bool(outside_ok),
                 "overall_ok": bool(overall_ok), "no_view_worse": bool(not_worse), "views_made_worse": worse,
-                "views_after": after.to_json()}
+                "within_form_tolerance": bool(form and not strict), "views_after": after.to_json()}
+
+
+def likelihood_part(fit, n_events: int) -> float:
+    """The recording's own evidence of a fit: its delta_ic without the BIC's parameter penalty k ln E. Two candidates
+    are indistinguishable when these differ by < DELTA_IC_TIE (a two-parameter law that fits as well as a
+    one-parameter one is not told apart by the recording; the penalty only prefers the simpler)."""
+    return float(fit.delta_ic - len(fit.values) * np.log(max(n_events, 2)))
+
+
+# catalogue effects that are the same term of the model (no recording and no sensor tells them apart)
+IDENTICAL = (("mass_force_offset", "working_resistance_drift"),)
+
+
+def identical_to(name: str) -> list:
+    return [b if a == name else a for a, b in IDENTICAL if name in (a, b)]

@@ -26,7 +26,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import analysis, consistency, fitting, pairs, plant_adapter, ripple, separation, spectral, tolerance
-from .decisions import DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EXPLAINED, confident, qualifies
+from .decisions import (DELTA_IC_STRONG, DELTA_IC_TIE, confident, identical_to, likelihood_part,
+                        qualifies)
 from .diagnosis import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOTHING_EXPLAINS, PARTIAL,
                         ROLE_DISCOVERY, ROLE_PARTIAL, ROLE_SECOND, Addition, Conditions, Diagnosis,
                         WidthMeasurement)
@@ -115,11 +116,9 @@ def screen_step(run: Run, effects=None, progress=None) -> None:
     z_all = consistency.model_event_vectors(run.comp, p)
     p.basis, p.blocks = consistency.whiten(consistency.candidate_basis(spans, p), z_all)
     p.complement = consistency.complement_basis(z_all, p)
-    outside = np.zeros((p.basis.shape[0], p.complement.shape[1]))
-    outside[p.event_slice] = p.complement
-    p.fit_basis = np.hstack([p.basis, outside])
-    tol = tolerance.directions(run.scr, run.by_name)
+    tol = tolerance.directions(p, run.scr, run.by_name)
     p.tolerance_z = p.basis.T @ tol
+    p.fit_basis = consistency.fit_basis(p)
     run.base_ic = p.ic(run.base_pred, 0)
     run.before = consistency.test(p, p.residual(run.base_pred))
     # the linear estimates in the whitened views (generalised least squares), and their IC
@@ -144,10 +143,16 @@ def refine_step(run: Run) -> list:
     first = run.order[:REFINE_TOP] if run.inconsistent else run.order[:1]
     fits = [fitting.refine(p, run.by_name[n], scr[n], run.base_pred, run.base_ic) for n in first]
     if run.inconsistent:
-        ok = [f.delta_ic for f in fits if qualifies(f, run.by_name[f.effect])]
+        # in the recording's evidence (the IC without its parameter penalty): a two-parameter law may tie with a
+        # one-parameter one that fits as well (decisions.likelihood_part)
+        lnE = np.log(max(p.n_events, 2))
+        ok = [likelihood_part(f, p.n_events) for f in fits if qualifies(f, run.by_name[f.effect])]
         reach = (min(ok) + DELTA_IC_TIE if ok else -DELTA_IC_STRONG) + LINEAR_IC_MARGIN
-        extra = sorted((n for n in run.order if n not in first and scr[n]["delta_ic_lin"] <= reach),
-                       key=lambda n: scr[n]["delta_ic_lin"])[:REFINE_EXTRA]
+
+        def lin_part(n):
+            return scr[n]["delta_ic_lin"] - len(run.by_name[n].parameters) * lnE
+        extra = sorted((n for n in run.order if n not in first and lin_part(n) <= reach),
+                       key=lin_part)[:REFINE_EXTRA]
         fits += [fitting.refine(p, run.by_name[n], scr[n], run.base_pred, run.base_ic) for n in extra]
     fits.sort(key=lambda f: f.delta_ic)
     run.fits = fits
@@ -155,15 +160,21 @@ def refine_step(run: Run) -> list:
 
 
 def decide_step(run: Run) -> Decision:
-    """The winner: the best qualifying candidate (only when the model is inconsistent); the qualifying ones
-    within DELTA_IC_TIE of it are not distinguishable from it."""
+    """The winner: the best qualifying candidate (only when the model is inconsistent); the qualifying ones whose
+    evidence (decisions.likelihood_part) comes within DELTA_IC_TIE of it are not distinguishable from it, and so is
+    a candidate that is the same term of the model (decisions.IDENTICAL)."""
     qual = [f for f in run.fits if qualifies(f, run.by_name[f.effect])] if run.inconsistent else []
     winner = qual[0] if qual else None
     if winner is not None:
+        e = run.problem.n_events
+        lw = likelihood_part(winner, e)
         for f in qual[1:]:
-            if f.delta_ic - winner.delta_ic < DELTA_IC_TIE:
+            if abs(likelihood_part(f, e) - lw) < DELTA_IC_TIE or f.effect in identical_to(winner.effect):
                 winner.indistinguishable_from.append(f.effect)
                 f.indistinguishable_from.append(winner.effect)
+        for twin in identical_to(winner.effect):
+            if twin in run.by_name and twin not in winner.indistinguishable_from:
+                winner.indistinguishable_from.append(twin)
     return Decision(winner, qual)
 
 
@@ -286,12 +297,13 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
     # the roles: the width is the measurand (reported, never added); the rest are model effects
     effects = [f for f in (discovery, second) if f is not None and not _is_measurand(f)]
     for role, f in zip((ROLE_DISCOVERY, ROLE_SECOND), effects):
-        additions.append(Addition(f.effect.split("[")[0], f.effect, dict(zip(f.parameter_names, map(float, f.values))),
+        additions.append(Addition(f.effect.split("[")[0], f.effect,
+                                  dict(zip(f.parameter_names, map(float, f.values))) | dict(f.fixed),
                                   dict(zip(f.parameter_names, map(float, f.uncertainty))), role))
     for f in partial:
         if not _is_measurand(f):
             additions.append(Addition(f.effect.split("[")[0], f.effect,
-                                      dict(zip(f.parameter_names, map(float, f.values))),
+                                      dict(zip(f.parameter_names, map(float, f.values))) | dict(f.fixed),
                                       dict(zip(f.parameter_names, map(float, f.uncertainty))), ROLE_PARTIAL))
     if ripple_entry is not None and not any(a.effect == ripple.EFFECT for a in additions):
         role = ROLE_DISCOVERY if not additions or all(a.role == ROLE_PARTIAL for a in additions) else ROLE_SECOND
@@ -345,7 +357,11 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
             if discovery.indistinguishable_from:
                 parts[-1] += ("; not distinguishable from this recording from "
                               + ", ".join(discovery.indistinguishable_from))
-                twins = [f for f in run.fits if f.effect in discovery.indistinguishable_from]
+                same = [t for t in discovery.indistinguishable_from if t in identical_to(discovery.effect)]
+                twins = [f for f in run.fits if f.effect in discovery.indistinguishable_from and f.effect not in same]
+                if same:
+                    parts[-1] += (f". {', '.join(same)} is the same term of the model as {discovery.effect} (no "
+                                  "recording and no sensor separates them)")
                 by_place: dict = {}
                 for t in twins:
                     by_place.setdefault(_where_acts(t), []).append(t.effect)
@@ -460,8 +476,9 @@ def _ranked(run: Run, discovery) -> list:
         for n in run.order if n not in refined]
     for r in ranked:
         if discovery is not None and r["effect"] in discovery.indistinguishable_from:
-            r["separating_measurement"] = _separating_measurement(
-                discovery, next(f for f in run.fits if f.effect == r["effect"]))
+            twin = next((f for f in run.fits if f.effect == r["effect"]), None)
+            r["separating_measurement"] = (_separating_measurement(discovery, twin) if twin is not None else
+                                           "none: the same term of the model (decisions.IDENTICAL)")
     return ranked
 
 

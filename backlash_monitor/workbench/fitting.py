@@ -55,10 +55,11 @@ class FitResult:
     model_mean_raw: np.ndarray | None = None   # (2, L) raw (not denoised) mean at the fitted values
     pred: np.ndarray | None = None             # the prediction vector at the fitted values (Problem.pred)
     jacobian: np.ndarray | None = None         # (N, k) d pred / d values at the fitted values (forward difference)
+    fixed: dict = field(default_factory=dict)  # the candidate's fixed form parameters (e.g. {"a1_sections": 2.0})
 
     def to_json(self) -> dict:
         return {"effect": self.effect.split("[")[0], "candidate": self.effect,
-                "parameters": {n: float(v) for n, v in zip(self.parameter_names, self.values)},
+                "parameters": {n: float(v) for n, v in zip(self.parameter_names, self.values)} | dict(self.fixed),
                 "uncertainty": {n: float(u) for n, u in zip(self.parameter_names, self.uncertainty)},
                 "nominal": {n: float(v) for n, v in zip(self.parameter_names, self.nominal)},
                 "units": dict(zip(self.parameter_names, self.units)),
@@ -300,7 +301,8 @@ def refine(problem: Problem, effect, screening: dict, base_pred: np.ndarray, bas
     at_bound = bool(np.any(((x - lo <= tol) & (np.abs(x0 - lo) > tol)) | ((hi - x <= tol) & (np.abs(hi - x0) > tol))))
     return FitResult(effect.name, [p_.name for p_ in effect.parameters], [p_.unit for p_ in effect.parameters], x,
                      unc, x0, (lo, hi), explained, ic - base_ic, ic, m, screening["explained_lin"], len(cache),
-                     effect.balance, effect.description, at_bound, model_mean_raw=m_raw, pred=p, jacobian=J_pred)
+                     effect.balance, effect.description, at_bound, model_mean_raw=m_raw, pred=p, jacobian=J_pred,
+                     fixed=getattr(effect, "fixed_values", {}))
 
 
 def _fd_steps(x, h_abs, hi) -> list:

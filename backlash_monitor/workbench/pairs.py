@@ -27,7 +27,7 @@ def combined(a, b):
     """One candidate holding the parameters of two (they act on different keys, so values apply together)."""
     return plant_adapter.CandidateEffect(f"{a.name}+{b.name}", f"{a.effect}+{b.effect}", a.balance,
                                          f"{a.description}; {b.description}",
-                                         tuple(a.parameters) + tuple(b.parameters))
+                                         tuple(a.parameters) + tuple(b.parameters), fixed=a.fixed + b.fixed)
 
 
 def pair_key(a, b, order):
@@ -195,5 +195,5 @@ def part(fit, effect, sl, base):
                           fit.nominal[sl], (fit.bounds[0][sl], fit.bounds[1][sl]), fit.explained_fraction,
                           fit.delta_ic, fit.ic, fit.model_mean, fit.screening_explained, fit.evaluations,
                           effect.balance, effect.description, fit.at_bound, [], list(base), fit.model_mean_raw,
-                          fit.pred)
+                          fit.pred, fixed=dict(effect.fixed_values))
     return f

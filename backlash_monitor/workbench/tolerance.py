@@ -37,19 +37,29 @@ def sigma_of(candidate) -> np.ndarray:
     return np.array([NOMINAL_SIGMA.get(p.key, 0.0) * SCALE for p in candidate.parameters])
 
 
-def directions(screening: dict, by_name: dict, scale: float = 1.0) -> np.ndarray:
-    """(N, m): the prediction-space directions of the nominal parameters' spread, J_j * sigma_j * scale, from the
-    screening Jacobians of the candidates that carry a tolerance."""
+SPECTRAL_SHAPE_SIGMA = 0.1   # ln(power ratio of adjacent bands): the model's spectral shape above the denoising's
+                             # edge is trusted to ~10 % per band ratio (measured: a foreign drive's physical a2, before
+                             # its sensor, differs from ours by 0.05-0.1 in these ratios at eta_k 0.019; the features'
+                             # event-to-event noise over 16 events is ~0.02-0.07)
+
+
+def directions(problem, screening: dict, by_name: dict) -> np.ndarray:
+    """(N, m): the prediction-space directions of the model-form tolerance: the nominal parameters' spread,
+    J_j * sigma_j from the screening Jacobians (x SCALE), and an independent discrepancy of SPECTRAL_SHAPE_SIGMA
+    per spectral-shape feature."""
+    n = problem.target_vec.size
     cols = []
     for name, info in screening.items():
         sig = sigma_of(by_name[name])
         for i, s in enumerate(sig):
             if s > 0:
-                cols.append(info["J"][:, i] * s * scale)
-    if not cols:
-        n = next(iter(screening.values()))["J"].shape[0] if screening else 0
-        return np.zeros((n, 0))
-    return np.stack(cols, axis=1)
+                cols.append(info["J"][:, i] * s)
+    sl = problem.spectral_slice
+    for i in range(sl.start, sl.stop):
+        c = np.zeros(n)
+        c[i] = problem.ws[i - sl.start] * SPECTRAL_SHAPE_SIGMA
+        cols.append(c)
+    return np.stack(cols, axis=1) if cols else np.zeros((n, 0))
 
 
 def beyond_tolerance(fit, candidate, factor: float = 2.0) -> bool:
