@@ -29,7 +29,7 @@ def _start_recorder(env, out, *params):
 
 
 def _publish(env, seconds, factor, wait=True):
-    args = [sys.executable, str(REPO / "bench" / "mcap.py"), "--role", "publish",
+    args = [sys.executable, str(REPO / "bench" / "bags.py"), "--role", "publish",
             "--seconds", str(seconds), "--factor", str(factor)]
     if not wait:
         return subprocess.Popen(args, env=env, cwd=REPO, stdout=subprocess.PIPE,
