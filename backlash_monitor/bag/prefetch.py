@@ -1,11 +1,16 @@
-"""Chunks decompressed ahead of the reader, in a worker thread of the reader's own.
+"""Chunks decompressed ahead of the reader, in a worker thread.
 
 zstd/lz4 decompression and the CRC release the GIL (or are short): on a second core a chunk is
 decompressed and checked while the caller decodes and processes the messages of the one before.
-Each BagReader has its own ChunkPrefetcher, configured by the reader's ``chunks_ahead`` argument
-(nothing here is set from outside): ``chunks_ahead=0`` decompresses in the caller's thread (a
-process with no core to spare, e.g. one of a pool with a worker per core, where the thread would
-only take turns with it). The worker thread is started on first use and ended by ``close()``.
+How far ahead is each reader's own setting: ``BagReader(path, chunks_ahead=N)`` makes its
+ChunkPrefetcher; 0 decompresses in the caller's thread (a process with no core to spare, e.g. one
+of a pool with a worker per core, where the thread would only take turns with it). Nothing here is
+set from outside.
+
+The worker thread is this process's one ``bag-decompress`` thread, started on first use and kept
+for the next reader: a new thread per reader would cost ~2 ms a bag here (its start, and fresh
+memory for its zstd context and its malloc arena, page-faulted at ~3 us per 4 KiB). A forked child
+starts its own (the parent's thread is not copied by fork).
 """
 from __future__ import annotations
 
@@ -15,6 +20,28 @@ from collections import deque
 from functools import partial
 
 DEFAULT_CHUNKS_AHEAD = 6   # ~6 MiB of decompressed chunks at the default 1 MiB chunk size
+
+_POOL = None
+_POOL_LOCK = threading.Lock()
+
+
+def _forget_pool() -> None:
+    global _POOL, _POOL_LOCK
+    _POOL = None                      # the parent's thread does not exist in the child
+    _POOL_LOCK = threading.Lock()
+
+
+os.register_at_fork(after_in_child=_forget_pool)
+
+
+def _executor():
+    global _POOL
+    with _POOL_LOCK:
+        if _POOL is None:
+            from concurrent.futures import ThreadPoolExecutor
+
+            _POOL = ThreadPoolExecutor(max_workers=1, thread_name_prefix="bag-decompress")
+        return _POOL
 
 
 def default_chunks_ahead() -> int:
@@ -28,25 +55,15 @@ def default_chunks_ahead() -> int:
 
 class ChunkPrefetcher:
     """``map(fn, items)`` yields, for each item in order, a callable returning ``fn(item)`` (or
-    raising its error), ``fn`` running up to ``chunks_ahead`` items ahead in the worker thread."""
+    raising its error), ``fn`` running up to ``chunks_ahead`` items ahead in the worker thread
+    (None: :func:`default_chunks_ahead`)."""
 
     def __init__(self, chunks_ahead: int | None = None):
         ahead = default_chunks_ahead() if chunks_ahead is None else int(chunks_ahead)
         if ahead < 0:
             raise ValueError(f"chunks_ahead = {chunks_ahead}; allowed: 0 (no thread) or more")
         self.chunks_ahead = ahead
-        self._pool = None
-        self._pid = None
-        self._lock = threading.Lock()
-
-    def _executor(self):
-        with self._lock:
-            if self._pool is None or self._pid != os.getpid():   # (a forked copy has no thread)
-                from concurrent.futures import ThreadPoolExecutor
-
-                self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="bag-decompress")
-                self._pid = os.getpid()
-            return self._pool
+        self.started = False          # this prefetcher has handed work to the thread
 
     def map(self, fn, items):
         """Same results and errors as calling ``fn`` item by item. Closing the generator (or
@@ -60,7 +77,8 @@ class ChunkPrefetcher:
         pending = deque()
         try:
             for item in items:
-                pending.append(self._executor().submit(fn, item))
+                self.started = True
+                pending.append(_executor().submit(fn, item))
                 if len(pending) > ahead:
                     yield pending.popleft().result
             while pending:
@@ -74,10 +92,3 @@ class ChunkPrefetcher:
                         future.result()
                     except Exception:  # noqa: BLE001 - its chunk is not read any more
                         pass
-
-    def close(self) -> None:
-        """End the worker thread (after the work it has)."""
-        with self._lock:
-            pool, self._pool = self._pool, None
-        if pool is not None and self._pid == os.getpid():
-            pool.shutdown(wait=True)

@@ -19,7 +19,7 @@ then every intact chunk is read (integrity.py; ``bag.recovery`` is the RecoveryR
 
 The layers (as the `mcap` package has them): records.py (the records, shared with writer.py),
 summary.py (footer and summary), index.py (what the file has), integrity.py (checks, scan,
-recovery), prefetch.py (chunks decompressed ahead in the reader's own thread), this module (the
+recovery), prefetch.py (chunks decompressed ahead, as far as each reader says), this module (the
 reading), cdr.py (the payloads).
 """
 from __future__ import annotations
@@ -109,9 +109,9 @@ class BagReader:
     """Open an MCAP file (or a rosbag2 directory holding one .mcap file).
 
     ``recover``: read the intact part of a damaged or incomplete file instead of raising.
-    ``chunks_ahead``: chunks decompressed ahead in this reader's worker thread while the caller
-    works on the current one (default: 6 where the process may use two CPUs, else 0 = no thread;
-    a pool with a worker per core passes 0).
+    ``chunks_ahead``: chunks decompressed ahead in a worker thread while the caller works on the
+    current one (default: 6 where the process may use two CPUs, else 0 = no thread; a pool with a
+    worker per core passes 0). prefetch.py.
     """
 
     def __init__(self, path, *, recover: bool = False, chunks_ahead: int | None = None):
@@ -163,7 +163,6 @@ class BagReader:
         self.close()
 
     def close(self) -> None:
-        self._prefetcher.close()
         self._last_chunk = None
         self._index.layout = []
         buf, self._buf = self._buf, memoryview(b"")
