@@ -11,7 +11,8 @@
 - bytes_per_sample: bag size / samples, against 8 bytes of a float64 (zstd chunks; plant-like
   signals: a smooth waveform plus noise; white float64 noise does not compress).
 - write_samples_per_s: BagWriter.write_raw of serialized chunks (the recorder's path);
-  write_encode_samples_per_s includes our CDR encoding.
+  write_encode_samples_per_s includes our CDR encoding; container_write_vs_mcap_library: its speed
+  over the `mcap` package's writer writing the same messages (zstd, 1 MiB chunks).
 - read_samples_per_s: BagReader, every message decoded to numpy and each topic concatenated
   (read_signal).
 - rosbags_read_samples_per_s: the same bag read and deserialized by rosbags (time_rosbags_read()).
@@ -22,8 +23,10 @@
   layouts gave the same estimates (``analyze_same_estimates_across_layouts``).
 - container_*_vs_mcap_library: the container layer alone on the same bag (the three topics' raw
   payloads; the SignalChunk fields analyze reads), backlash_monitor.bag's speed over the `mcap`
-  package's reader (with our SignalChunk decoding on its payloads); > 1: ours is faster. The
-  measured reason docs/bags.md gives for not standing on the `mcap` package.
+  package's reader (with our SignalChunk decoding on its payloads); > 1: ours is faster.
+  damaged_*_read_fraction[_mcap_*]: the messages read back from that bag with a byte flipped in its
+  middle chunk or cut in half, by our recovery and by the `mcap` package's readers. The measured
+  reason docs/bags.md gives for not standing on the `mcap` package.
 
 `time_rosbags_read(path)` and `time_project_read(path)` are importable for other benchmarks.
 With `--role publish` this file is the publisher process of the DDS part (prints its own JSON).
@@ -94,6 +97,28 @@ def time_write(path: Path, chunks, encode: bool = False) -> float:
         else:
             for topic, t, data, _msg in chunks:
                 w.write_raw(topic, data, log_time_ns=t)
+    return time.perf_counter() - start
+
+
+def time_mcap_library_write(path: Path, chunks) -> float:
+    """The same serialized messages written by the `mcap` package's writer (profile ros2, zstd
+    chunks of 1 MiB as ours, its default indexes and summary; the schema text as ours)."""
+    from mcap.writer import CompressionType, Writer
+
+    from backlash_monitor.bag import full_definition
+
+    start = time.perf_counter()
+    with open(path, "wb") as f:
+        w = Writer(f, chunk_size=1 << 20, compression=CompressionType.ZSTD)
+        w.start("ros2", "bench")
+        sid = w.register_schema(SIGNAL_CHUNK, "ros2msg", full_definition(SIGNAL_CHUNK).encode())
+        cids = {f"/plant/{name}": w.register_channel(f"/plant/{name}", "cdr", sid)
+                for name in SIGNALS}
+        seq = dict.fromkeys(cids, 0)
+        for topic, t, data, _msg in chunks:
+            w.add_message(cids[topic], t, data, t, seq[topic])
+            seq[topic] += 1
+        w.finish()
     return time.perf_counter() - start
 
 
@@ -346,6 +371,45 @@ def time_container(path: Path, rounds: int = ROUNDS) -> dict:
             "container_signal_fields_vs_mcap_library": best["mcap_fields"] / best["ours_fields"]}
 
 
+def damaged_reads(path: Path, tmp: Path) -> dict:
+    """Messages read back from the bag damaged as disks and killed writers damage it (one byte
+    flipped in the middle chunk; the file cut in the middle), as a fraction of the intact bag's: by
+    backlash_monitor.bag with recovery, and by the `mcap` package (its indexed reader, and its
+    linear reader up to where it stops). The mcap package has no recovery: a reader raises at the
+    first damaged record."""
+    from mcap.reader import NonSeekingReader, make_reader
+
+    from backlash_monitor.bag import BagReader, faults
+
+    data = path.read_bytes()
+    with BagReader(path) as bag:
+        total = bag.message_count
+        middle = bag.chunks[len(bag.chunks) // 2]
+    cases = {"flipped_byte": faults.chunk_payload_byte(data, middle.offset, middle.length),
+             "cut_in_half": faults.truncate(data, len(data) // 2)}
+    out = {}
+    for name, damaged in cases.items():
+        bad = tmp / f"damaged_{name}.mcap"
+        bad.write_bytes(damaged)
+        with BagReader(bad, recover=True) as bag:
+            ours = sum(1 for _ in bag.messages(decode=False))
+        got = {}
+        for reader_name, make in (("mcap_indexed", lambda f: make_reader(f, validate_crcs=True)),
+                                  ("mcap_linear", lambda f: NonSeekingReader(f, validate_crcs=True))):
+            n = 0
+            try:
+                with open(bad, "rb") as f:
+                    for _ in make(f).iter_messages(log_time_order=False):
+                        n += 1
+            except Exception:  # noqa: BLE001 - where it stops is the figure
+                pass
+            got[reader_name] = n
+        out[f"damaged_{name}_read_fraction"] = ours / total
+        for reader_name, n in got.items():
+            out[f"damaged_{name}_read_fraction_{reader_name}"] = n / total
+    return out
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--seconds", type=float, default=3.0, help="DDS streaming time [s]")
@@ -363,14 +427,22 @@ def main(argv=None) -> int:
         tmp = Path(tmp)
         chunks = encoded_chunks(a.chunks)
         samples = len(chunks) * CHUNK
-        t_raw = min(time_write(tmp / "w.mcap", chunks) for _ in range(2))
+        t_raw = t_mcap_write = float("inf")
+        for _ in range(2):   # interleaved, the fastest of each
+            t_raw = min(t_raw, time_write(tmp / "w.mcap", chunks))
+            t_mcap_write = min(t_mcap_write, time_mcap_library_write(tmp / "wm.mcap", chunks))
         t_enc = time_write(tmp / "we.mcap", chunks, encode=True)
         size = (tmp / "w.mcap").stat().st_size
         n_read, t_read = min((time_project_read(tmp / "w.mcap") for _ in range(2)), key=lambda x: x[1])
         n_rb, t_rb = time_rosbags_read(tmp / "w.mcap")
         assert n_read == n_rb == samples, (n_read, n_rb, samples)
+        del chunks              # 2500 messages with their arrays: not scanned by the GC below
+        import gc
+
+        gc.collect()
         analysis = time_analyze(tmp)
         container = time_container(tmp / "analyze.mcap")
+        container.update(damaged_reads(tmp / "analyze.mcap", tmp))
         try:
             dds = dds_record(tmp / "dds.mcap", a.seconds, a.factor, env)
         except Exception as exc:  # noqa: BLE001 - report, do not hide the I/O numbers
@@ -384,6 +456,7 @@ def main(argv=None) -> int:
         "bytes_per_sample": size / samples,
         "bytes_per_sample_float64": 8,
         "write_samples_per_s": samples / t_raw,
+        "container_write_vs_mcap_library": t_mcap_write / t_raw,
         "write_encode_samples_per_s": samples / t_enc,
         "read_samples_per_s": n_read / t_read,
         "rosbags_read_samples_per_s": n_rb / t_rb,
