@@ -39,7 +39,7 @@ from .errors import BagError, CorruptBagError, MissingTopicError, NotABagError, 
 from .index import BagIndex, ChunkInfo, walk_data
 from .integrity import DamagedChunk, Integrity, RecoveryReport, raise_for
 from .prefetch import ChunkPrefetcher
-from .records import (COMPRESSIONS, MAGIC, MALFORMED, MESSAGE_HEAD, OP_CHUNK, OP_HEADER,
+from .records import (MAGIC, MALFORMED, MESSAGE_HEAD, OP_CHUNK, OP_HEADER,
                       RECORD_HEADER, WRITER_METADATA, chunk_compression_name, chunk_records, crc32,
                       message_bodies, parse_header)
 from .summary import FooterState, Summary, read_footer, read_summary
