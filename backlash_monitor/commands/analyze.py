@@ -119,12 +119,14 @@ def load_bag_library(args):
         raise UsageError(str(error)) from None
 
 
-def analyze_bag(args, library=None) -> dict:
+def analyze_bag(args, library=None, chunks_ahead: int | None = None) -> dict:
     """One bag through the chain; writes PREFIX.csv/.json/.mcap and returns what `run` prints:
     rows, summary, discarded windows, samples, seconds, outputs, the chunk check, the bag's
     integrity, the faults, and ``drive``/``first_stamp_s`` (the first a1 chunk's frame_id and the
     stamp of its first sample). ``library``: (library, offset) from :func:`load_bag_library`, loaded
-    here when None. Raises UsageError (one line) for anything wrong with the bag or the options."""
+    here when None. ``chunks_ahead``: the bag reader's decompression thread (BagReader; None: its
+    default; 0: none, for a pool with a worker per core). Raises UsageError (one line) for
+    anything wrong with the bag or the options."""
     from backlash_monitor.commands import UsageError
     from backlash_monitor.commands._memory import reuse_freed_memory
     from backlash_monitor.bag import BagError, BagReader, BagWriter
@@ -171,7 +173,7 @@ def analyze_bag(args, library=None) -> dict:
     check = ChunkCheck(bag_path, library)
     integrity = None
     try:
-        with BagReader(bag_path, recover=args.recover) as reader:
+        with BagReader(bag_path, recover=args.recover, chunks_ahead=chunks_ahead) as reader:
             available = set(reader.topics)
             topics = {}
             for name in stage.input_signals:

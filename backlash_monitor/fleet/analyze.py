@@ -81,15 +81,12 @@ def init_worker(options: dict, library=None) -> None:
     for var in THREAD_VARIABLES:
         os.environ[var] = "1"
     import multiprocessing
-    from backlash_monitor.bag import reader
-    if multiprocessing.parent_process() is not None:
-        reader._DECOMPRESS_POOL = None   # a forked copy of the parent's pool has no thread
-    if multiprocessing.parent_process() is not None or len(os.sched_getaffinity(0)) == 1:
-        # a pool worker (a worker per core) or a process on one CPU: no core for the bag
-        # reader's decompression thread, which would only take turns with the worker
-        reader.CHUNKS_AHEAD = 0
     from backlash_monitor.commands.analyze import load_bag_library
-    _WORKER.update(pid=os.getpid(), options=options,
+    # a pool worker (a worker per core): no core for a bag reader's decompression thread, which
+    # would only take turns with the worker; its readers get chunks_ahead=0 (None: the reader's
+    # default, which is 0 on one CPU too)
+    chunks_ahead = 0 if multiprocessing.parent_process() is not None else None
+    _WORKER.update(pid=os.getpid(), options=options, chunks_ahead=chunks_ahead,
                    library=library or load_bag_library(argparse.Namespace(**options)))
 
 
@@ -105,7 +102,8 @@ def analyze_one(job: dict) -> dict:
            "fused_width_m": math.nan, "true_width_m": math.nan, "onsets": 0, "discarded": 0,
            "error": ""}
     try:
-        result = analyze_bag(args, library=_WORKER["library"])
+        result = analyze_bag(args, library=_WORKER["library"],
+                             chunks_ahead=_WORKER["chunks_ahead"])
     except UsageError as error:
         row["error"] = str(error)
         return row
