@@ -230,6 +230,7 @@ class FleetMonitor:
                    "discarded": int(w.get("discarded", 0)),
                    "incomplete_chunks": int(w.get("incomplete_chunks", 0)),
                    "onset_windows": onsets, "onsets_estimated": len(t.onsets_estimated),
+                   "onsets_before_offset": onsets - classifiable,
                    "lag_ms_median": lags[len(lags) // 2] * 1e3 if lags else math.nan,
                    "lag_ms_max": lags[-1] * 1e3 if lags else math.nan,
                    "lag_ms_max_startup": max(startup) * 1e3 if startup else math.nan,
