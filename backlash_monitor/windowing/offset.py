@@ -92,15 +92,25 @@ class SensorOffsetEstimator:
         self._drop_blocks_before(keep_from)
         n = int(np.asarray(arrays[self.signals[0]]).size)
         b = self.block_samples
-        skip = max(0, self._tail_start + self._tail[self.signals[0]].size - first)
-        full = 0
+        held = self._tail[self.signals[0]].size
+        skip = max(0, self._tail_start + held - first)
+        need = b - held if held else 0       # samples that complete the block under way
+        whole = 0
         for s in self.signals:
-            data = np.concatenate((self._tail[s], np.asarray(arrays[s], dtype=np.float64)[skip:]))
-            full = data.size // b
-            if full:
-                self._blocks[s].extend(data[:full * b].reshape(full, b).sum(axis=1).tolist())
-            self._tail[s] = data[full * b:].copy()
-        self._tail_start += full * b
+            x = np.asarray(arrays[s], dtype=np.float64)[skip:]
+            blocks = self._blocks[s]
+            if x.size < need:                 # the block under way is still not complete
+                self._tail[s] = np.concatenate((self._tail[s], x))
+                continue
+            if need:                          # each block is summed once, from one contiguous copy
+                blocks.append(float(np.concatenate((self._tail[s], x[:need])).sum()))
+            rest = x[need:]
+            whole = rest.size // b
+            if whole:
+                blocks.extend(rest[:whole * b].reshape(whole, b).sum(axis=1).tolist())
+            self._tail[s] = rest[whole * b:].copy()
+        if x.size >= need:
+            self._tail_start += (b if need else 0) + whole * b
         self._next = first + n
 
     def block_start(self, index: int) -> int:
