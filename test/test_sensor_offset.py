@@ -270,3 +270,28 @@ def test_the_windowing_node_warns_for_an_implausible_offset(records, ros_env):
 
 def _level(status) -> int:
     return status.level if isinstance(status.level, int) else ord(status.level)
+
+
+def test_the_bench_figure_takes_recordings_of_another_generator(records):
+    """bench/_workbench/sensor_offset.py: recordings handed in as arrays (the lead's foreign drives)
+    get the offsets and gains added to their samples; the offset shift is rounding, the gain's is
+    reported; a recording too short for a full fusion is an error naming it."""
+    import importlib.util
+    import pathlib
+    path = pathlib.Path(__file__).resolve().parents[1] / "bench" / "_workbench" / "sensor_offset.py"
+    spec = importlib.util.spec_from_file_location("bench_sensor_offset", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    recs, period = records
+    foreign = {"name": "foreign 9 mm", "sample_period_s": period, "true_width_m": 0.009,
+               "signals": {k: recs[0][k] for k in ("a1", "a2", "angle_difference")}}
+    result = module.measure(own=False, extra_recordings=[foreign])
+    assert result["recordings"] == 1 and result["per_recording"][0]["source"] == "extra"
+    assert result["sensor_offset_width_shift_mm"] < 1e-6
+    assert 0.0 < result["sensor_gain_width_shift_mm"] < 2.0
+    estimated = result["per_recording"][0]["estimated_offsets_m_s2"]
+    assert estimated["a1 offset +5"] == pytest.approx(5.0, abs=0.1)
+    assert estimated["a2 offset -2"] == pytest.approx(-2.0, abs=0.1)
+    short = {**foreign, "signals": {k: v[:50_000] for k, v in foreign["signals"].items()}}
+    with pytest.raises(ValueError, match="'foreign 9 mm': no onset window with a full fusion"):
+        module.measure(own=False, extra_recordings=[short])

@@ -113,12 +113,14 @@ def monitor_trace(recording: Mapping, library) -> dict:
     return {"trace": trace, "sensor_offsets": offsets}
 
 
-def _shift_mm(reference: dict, other: dict, fusion_events: int) -> float:
+def _shift_mm(reference: dict, other: dict, fusion_events: int, name: str) -> float:
     """Largest |fused continuous width change| [mm] over the windows whose fusion is full in both."""
     shifts = [abs(other[k][0] - w) * 1e3 for k, (w, n) in reference.items()
               if n >= fusion_events and k in other and other[k][1] >= fusion_events]
     if not shifts:
-        raise ValueError("no onset window with a full fusion in both recordings: record longer drives")
+        raise ValueError(f"recording {name!r}: no onset window with a full fusion ({fusion_events} "
+                         f"classified onsets; it has {len(reference)}): give recordings of at least "
+                         f"{(fusion_events + 1) * 0.25 + 0.1:g} s at 4 load pulses per second")
     return max(shifts)
 
 
@@ -149,7 +151,7 @@ def measure(own: bool = True, extra_recordings: Iterable[Mapping] = (), library_
                "fused_continuous_error_mm": abs(full[-1] - truth) * 1e3 if full else math.nan,
                "shift_mm": {}, "estimated_offsets_m_s2": {}}
         for (label, kind, signal, value), t in zip(perturbations, traces[1:]):
-            shift = _shift_mm(clean, t["trace"], DEFAULT_FUSION_EVENTS)
+            shift = _shift_mm(clean, t["trace"], DEFAULT_FUSION_EVENTS, name)
             row["shift_mm"][label] = shift
             if kind == "offset":
                 row["estimated_offsets_m_s2"][label] = t["sensor_offsets"].get(signal, math.nan)
