@@ -205,16 +205,34 @@ def test_windowing_stage_windows_carry_offsets_the_classifier_removes(records, l
         [(w.entry_sample_index, w.sensor_offsets, w.offset_periods) for w, _ in offline]
 
 
-def test_analyze_reports_the_offsets_and_warns_beyond_the_plausible_range(tmp_path, ros_env):
-    """As a user runs it: a recording with a 3 m/s^2 a1 offset (beyond a MEMS sensor's +-2)."""
-    env = dict(ros_env)
-    rec = tmp_path / "rec"
+@pytest.fixture(scope="module")
+def biased_bag(tmp_path_factory):
+    """As a user makes one: a 3 s recording with a 3 m/s^2 a1 offset (beyond a MEMS sensor's +-2)."""
+    rec = tmp_path_factory.mktemp("biased") / "rec"
     sim = subprocess.run([sys.executable, "-m", "backlash_monitor", "simulate", "--widths", "0.0075",
                           "--seeds", str(SEED), "--duration", "3", "--no-npz", "--mcap", str(rec),
                           "--set", "effects.accelerometer_bias=true", "--set", "accelerometer_bias.a1_m_s2=3"],
-                         env=env, capture_output=True, text=True, timeout=300)
+                         env=dict(os.environ), capture_output=True, text=True, timeout=300)   # no DDS
     assert sim.returncode == 0, sim.stderr
-    bag = next(rec.glob("*.mcap"))
+    return next(rec.glob("*.mcap"))
+
+
+def test_fleet_analyze_lists_the_offsets_and_warns_for_the_bag(biased_bag, tmp_path, ros_env):
+    out = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(biased_bag.parent),
+                          "--out", str(tmp_path / "fleet"), "--jobs", "1", "--no-plots"],
+                         env=dict(ros_env), capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert f"{biased_bag.name}: WARN: sensor offset a1 +" in out.stdout, out.stdout
+    import csv
+    with open(tmp_path / "fleet" / "fleet.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert float(rows[0]["a1_offset_m_s2"]) == pytest.approx(3.0, abs=0.1)
+    assert abs(float(rows[0]["a2_offset_m_s2"])) < 0.1
+
+
+def test_analyze_reports_the_offsets_and_warns_beyond_the_plausible_range(biased_bag, tmp_path, ros_env):
+    env = dict(ros_env)
+    bag = biased_bag
     out = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(bag), "--out",
                           str(tmp_path / "est")], env=env, capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stderr
