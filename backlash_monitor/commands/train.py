@@ -28,6 +28,7 @@ TRIGGERS = ("contact_loss", "paper")
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     from backlash_monitor.classifier.cpn import DEFAULT_EPOCHS, DEFAULT_L1, DEFAULT_L2
+    from backlash_monitor.classifier.dataset import DEFAULT_DURATION_S
     from backlash_monitor.classifier.shape import DEFAULT_RIDGE
     from backlash_monitor.classifier.training import DEFAULT_TRAIN_SEEDS
     parser.add_argument("--out", default=None, metavar="FILE.npz",
@@ -37,8 +38,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="backlash-entry trigger of the training windows: 'contact_loss' (angle difference "
                              "alone, the pipeline's default) or 'paper' (eq. 1 with the true width)")
     parser.add_argument("--seeds", type=seed_list, default=list(DEFAULT_TRAIN_SEEDS), metavar="S[,S...]",
-                        help="training noise seeds (each one is the full 120-scenario grid, 8 onset windows per "
-                             "scenario); keep them apart from the evaluation seeds 0-4")
+                        help="training noise seeds (each one is the full 120-scenario grid, 8 classified onset "
+                             "windows per scenario); keep them apart from the evaluation seeds 0-4")
     parser.add_argument("--epochs", type=int, default=DEFAULT_EPOCHS,
                         help="counter-propagation epochs per window (paper: 30), >= 1")
     parser.add_argument("--l1", type=float, default=DEFAULT_L1,
@@ -47,8 +48,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="Grossberg-layer learning coefficient l2 (paper: 0.09), 0 < l2 <= 1")
     parser.add_argument("--ridge", type=float, default=DEFAULT_RIDGE,
                         help="ridge penalty of the shape mode's regression (per window, standardised features), > 0")
-    parser.add_argument("--duration", type=float, default=2.0, metavar="S",
-                        help="simulated seconds per scenario (4 onset windows per second), 0.5 <= S <= 60")
+    parser.add_argument("--duration", type=float, default=DEFAULT_DURATION_S, metavar="S",
+                        help="simulated seconds per scenario (4 onset windows per second; the first has no "
+                             "sensor offset estimate yet and is not used, as the monitor does not classify "
+                             "it), 0.5 <= S <= 60")
     parser.add_argument("--window-offset", type=int, default=None, metavar="SAMPLES",
                         help="samples from the detected entry to the window start (default: the trigger's "
                              "configured value, config/windowing.yaml capture.window_offset_samples); the "

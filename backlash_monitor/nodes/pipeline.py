@@ -163,6 +163,7 @@ class LiveView:
         self.repeated = 0                 # estimates received again (a restarted classifier)
         self.faults: list[str] = []       # node processes that ended before the run was over
         self.windowing_joined_at = 0      # first sample the (latest) windowing process saw
+        self.onsets_before_offset = 0     # onset windows published before the sensor offset was known
 
     def onset_gaps(self) -> list[tuple[float, float, int]]:
         """Gaps in the onset estimates of each stream: (t before, t after [s], onsets missing at
@@ -254,6 +255,7 @@ class LiveView:
                 self.diagnostic = text
             elif "windowing" in status.name:
                 self.windowing_joined_at = int(values.get("joined_at_sample") or 0)
+                self.onsets_before_offset = int(values.get("onsets_before_offset") or 0)
                 self.windowing = (f"{text} (incomplete chunk ranges "
                                   f"{values.get('incomplete_chunks', '0')}, last discard: "
                                   f"{values.get('last_discard') or 'none'})")
@@ -274,7 +276,9 @@ class LiveView:
         lines = ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
         lines.insert(1, "  ".join("-" * w for w in widths))
         head = (f"summary: true width {self.true_width_m * 1e3:.2f} mm, mode {self.mode or '-'}, "
-                f"{len(self.onset_entries)} onset windows classified")
+                f"{len(self.onset_entries)} onset windows classified"
+                + (f" ({self.onsets_before_offset} more before the sensor offset was known: one whole "
+                   "load period is needed)" if self.onsets_before_offset else ""))
         tail = [f"last diagnostics (sent once a second): classifier {self.diagnostic}"] \
             if self.diagnostic else []
         tail += [f"last diagnostics (sent once a second): windowing {self.windowing}"] \
