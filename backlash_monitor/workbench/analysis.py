@@ -14,8 +14,8 @@ from scipy import signal as sps
 from scipy import stats
 
 from . import plant_adapter, spectral
-from .events import (IMPACT_SETTLE_S, POST_SAMPLES, PRE_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, denoise,
-                     ensemble_from_runs, event_set, onset_entries)
+from .events import (DC_BLOCKS, IMPACT_SETTLE_S, POST_SAMPLES, PRE_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet,
+                     dc_block_deviations, dc_signals, denoise, ensemble_from_runs, event_set, onset_entries)
 
 DEFAULT_SEEDS = 6
 PHASES = ("before_entry", "gap_traversal", "impact", "settling")
@@ -69,6 +69,7 @@ class Comparison:
     noise_psd: np.ndarray | None = None      # per signal: the recording's white sensor-noise floor [(m/s^2)^2/Hz]
     record_spectra: dict | None = None       # spectra(): the whole-record Welch PSDs (measured, ensemble)
     model_event_spec: list | None = None     # per seed: the model's events' spectral features with the noise floor
+    dc_names: tuple = ("a1", "a2")           # the record-mean view's signals (events.dc_signals)
 
     @property
     def segment_noise(self) -> np.ndarray:
@@ -89,10 +90,11 @@ def build_comparison(meas, model, seeds=None) -> Comparison:
     if len(seeds) < 3:
         raise ValueError("the ensemble needs >= 3 seeds")
     conditions = recover_conditions(meas, model)
-    ev = event_set(meas.signals, meas.sample_period_s)
+    dc_names = dc_signals(meas.signals)
+    ev = event_set(meas.signals, meas.sample_period_s, dc_names)
     runs = plant_adapter.simulate_sets(model, [{}], seeds, meas.n_samples, conditions=conditions,
                                        signals=("a1", "a2", "omega1", "omega2", "angle_difference"))
-    ens = ensemble_from_runs(runs, meas.sample_period_s, keep_records=True)
+    ens = ensemble_from_runs(runs, meas.sample_period_s, keep_records=True, dc_names=dc_names)
     loo = ens.loo_deviation()
     floor = np.sqrt(np.mean(loo ** 2, axis=(0, 2)))
     record_spectra = _welch_all(meas, ens)
@@ -105,11 +107,12 @@ def build_comparison(meas, model, seeds=None) -> Comparison:
     feats = np.vstack(model_event_spec)
     spec_floor = feats.std(axis=0) / np.sqrt(max(ev.n_events, 1))
     # the record-mean view's floor: the same for the events' period means (events.period_means)
-    dcs = np.vstack(ens.per_event_dc)
-    dc_floor = dcs.std(axis=0) / np.sqrt(max(ev.n_events, 1))
+    dcs = np.vstack([dc_block_deviations(d) for d in ens.per_event_dc])
+    dc_floor = np.sqrt(np.sum(dcs ** 2, axis=0) / max(dcs.shape[0] - len(ens.per_event_dc) * DC_BLOCKS, 1)) \
+        / np.sqrt(max(ev.n_events, 1))
     return Comparison(model, meas, conditions, seeds, ev, ens, 1.0 / floor, floor,
                       1.0 / np.maximum(spec_floor, 1e-12), 1.0 / np.maximum(dc_floor, 1e-12), noise_psd,
-                      record_spectra, model_event_spec)
+                      record_spectra, model_event_spec, dc_names)
 
 
 def fit_percent(target, model_mean) -> np.ndarray:

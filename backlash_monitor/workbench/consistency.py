@@ -22,7 +22,7 @@ import numpy as np
 from scipy import stats
 
 from . import spectral
-from .events import denoise
+from .events import dc_block_deviations, denoise
 
 SUBSPACE_ENERGY = 0.99       # share of the candidates' reach the subspace keeps
 SUBSPACE_MAX_DIM = 12
@@ -78,11 +78,12 @@ def model_event_vectors(comp, problem) -> np.ndarray:
     base = problem.pred_of(comp.ensemble, 0)
     out = []
     for k, raw in enumerate(comp.ensemble.per_event):
-        dc = comp.ensemble.dc_samples(k)
         v = np.hstack([(denoise(raw) * comp.weights[None, :, None]).reshape(raw.shape[0], -1),
-                       comp.model_event_spec[k] * problem.ws[None],
-                       dc * problem.wdc[None]])
-        out.append(v - base[None])
+                       comp.model_event_spec[k] * problem.ws[None], np.zeros((raw.shape[0], problem.wdc.size))])
+        v = v - base[None]
+        # the record-mean coordinates: block means (events.dc_block_deviations), not single periods
+        v[:, problem.dc_slice] = dc_block_deviations(comp.ensemble.dc_samples(k)) * problem.wdc[None]
+        out.append(v)
     return np.vstack(out)
 
 

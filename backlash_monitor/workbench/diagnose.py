@@ -87,7 +87,8 @@ def prepare(meas, model, seeds=None, effects=None, overrides=None) -> Run:
     """The comparison (conditions, the model's noise ensemble) and the fit problem; the candidate catalogue."""
     comp = analysis.build_comparison(meas, model, seeds)
     problem = fitting.Problem(model, comp.events, comp.seeds, meas.n_samples, meas.sample_period_s,
-                              comp.conditions, comp.weights, comp.spec_weights, comp.dc_weights, comp.segment_noise)
+                              comp.conditions, comp.weights, comp.spec_weights, comp.dc_weights, comp.segment_noise,
+                              comp.dc_names)
     base_pred = problem.pred_of(comp.ensemble, 0)
     catalogue = plant_adapter.catalogue(model)
     if effects:
@@ -107,7 +108,8 @@ def screen_step(run: Run, effects=None, progress=None) -> None:
     p = run.problem
     allowed = [c.name for c in run.catalogue if not effects or c.name in effects or c.effect in effects]
     # the requested candidates and those that carry a nominal tolerance (the null hypothesis needs them)
-    screened = [c for c in run.catalogue if c.name in allowed or np.any(tolerance.sigma_of(c) > 0)]
+    screened = [c for c in run.catalogue if c.name in allowed or (tolerance.SCALE > 0
+                                                                   and np.any(tolerance.sigma_of(c) > 0))]
     run.scr = fitting.screen(p, screened, run.base_pred, progress=progress)
     spans = []
     for n, info in run.scr.items():
@@ -144,10 +146,12 @@ def refine_step(run: Run) -> list:
     fits = [fitting.refine(p, run.by_name[n], scr[n], run.base_pred, run.base_ic) for n in first]
     if run.inconsistent:
         # in the recording's evidence (the IC without its parameter penalty): a two-parameter law may tie with a
-        # one-parameter one that fits as well (decisions.likelihood_part)
+        # one-parameter one that fits as well (decisions.likelihood_part); with the best's misfit scale
         lnE = np.log(max(p.n_events, 2))
-        ok = [likelihood_part(f, p.n_events) for f in fits if qualifies(f, run.by_name[f.effect])]
-        reach = (min(ok) + DELTA_IC_TIE if ok else -DELTA_IC_STRONG) + LINEAR_IC_MARGIN
+        ok = [f for f in fits if qualifies(f, run.by_name[f.effect])]
+        best = min(ok, key=lambda f: f.delta_ic) if ok else None
+        reach = ((likelihood_part(best, p.n_events) + DELTA_IC_TIE * misfit_scale(p, best)) if best is not None
+                 else -DELTA_IC_STRONG) + LINEAR_IC_MARGIN
 
         def lin_part(n):
             return scr[n]["delta_ic_lin"] - len(run.by_name[n].parameters) * lnE
@@ -159,22 +163,35 @@ def refine_step(run: Run) -> list:
     return fits
 
 
+def misfit_scale(problem, fit) -> float:
+    """The a-posteriori variance factor of a fit: its T^2 per dimension over every view (>= 1). Where the drive's
+    law differs from the catalogue's the fit leaves more than noise, and the recording's evidence between two
+    candidates is overstated by this factor (generalised least squares with an unknown scale)."""
+    c = consistency.test(problem, problem.residual(fit.pred))
+    t2 = sum(v.t2 for v in c.views.values())
+    dims = sum(v.dimension for v in c.views.values())
+    return max(1.0, t2 / max(dims, 1))
+
+
 def decide_step(run: Run) -> Decision:
     """The winner: the best qualifying candidate (only when the model is inconsistent); the qualifying ones whose
-    evidence (decisions.likelihood_part) comes within DELTA_IC_TIE of it are not distinguishable from it, and so is
-    a candidate that is the same term of the model (decisions.IDENTICAL)."""
+    evidence (decisions.likelihood_part, divided by the winner's misfit_scale) comes within DELTA_IC_TIE of it are
+    not distinguishable from it, and so is a candidate that is the same term of the model as it or as one of those
+    (decisions.IDENTICAL)."""
     qual = [f for f in run.fits if qualifies(f, run.by_name[f.effect])] if run.inconsistent else []
     winner = qual[0] if qual else None
     if winner is not None:
         e = run.problem.n_events
         lw = likelihood_part(winner, e)
+        scale = misfit_scale(run.problem, winner)
         for f in qual[1:]:
-            if abs(likelihood_part(f, e) - lw) < DELTA_IC_TIE or f.effect in identical_to(winner.effect):
+            if abs(likelihood_part(f, e) - lw) / scale < DELTA_IC_TIE or f.effect in identical_to(winner.effect):
                 winner.indistinguishable_from.append(f.effect)
                 f.indistinguishable_from.append(winner.effect)
-        for twin in identical_to(winner.effect):
-            if twin in run.by_name and twin not in winner.indistinguishable_from:
-                winner.indistinguishable_from.append(twin)
+        for name in [winner.effect] + list(winner.indistinguishable_from):
+            for twin in identical_to(name):
+                if twin in run.by_name and twin != winner.effect and twin not in winner.indistinguishable_from:
+                    winner.indistinguishable_from.append(twin)
     return Decision(winner, qual)
 
 
@@ -430,9 +447,10 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
                                "note": "the white noise the recording's sensor chain adds (read off above "
                                        f"{analysis.NOISE_BAND_HZ[0] / 1e3:.0f} kHz); a nuisance the spectral views "
                                        "allow for, not an effect"},
-        "record_mean": {"measured_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, p.events.dc.mean(axis=0)))),
-                        "model_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, comp.ensemble.dc_mean(0)))),
-                        "units": "m/s^2, mean over the events of each one's pulse-period mean"},
+        "record_mean": {"measured": dict(zip(comp.dc_names, map(float, p.events.dc.mean(axis=0)))),
+                        "model": dict(zip(comp.dc_names, map(float, comp.ensemble.dc_mean(0)))),
+                        "units": "a1, a2: m/s^2; omega1: rad/s; the mean over the events of each one's pulse-period "
+                                 "mean"},
         "where": wb,
         "where_after": where_after,
         "fit_percent": {"before": dict(zip(SEGMENT_SIGNALS, map(float, fit_before))),

@@ -79,7 +79,7 @@ class Problem:
     events give the same vector per event; their mean is the target."""
 
     def __init__(self, model, measured_events, seeds, n_samples, sample_period_s, conditions, weights,
-                 spec_weights, dc_weights, spec_noise=None, base_sets=None):
+                 spec_weights, dc_weights, spec_noise=None, dc_names=("a1", "a2"), base_sets=None):
         self.model = model
         self.events = measured_events                         # EventSet (raw)
         self.target = measured_events.mean_denoised()         # (2, L)
@@ -92,6 +92,7 @@ class Problem:
         self.ws = np.asarray(spec_weights, dtype=float)       # per spectral feature 1 / its noise floor
         self.wdc = np.asarray(dc_weights, dtype=float)        # per signal 1 / the record mean's noise floor
         self.spec_noise = None if spec_noise is None else np.asarray(spec_noise, dtype=float)  # sensor noise floor
+        self.dc_names = tuple(dc_names)                       # the record-mean view's signals
         self.base = dict(base_sets or {})                     # parameter set of effects already added
         self.n_sets_simulated = 0
         self.basis = None      # (N, q): the whitened directions the views look in (set by diagnose)
@@ -125,7 +126,7 @@ class Problem:
         runs = plant_adapter.simulate_sets(self.model, self._merge(sets), self.seeds, self.n_samples,
                                            conditions=self.conditions)
         self.n_sets_simulated += len(sets)
-        ens = ensemble_from_runs(runs, self.dt)
+        ens = ensemble_from_runs(runs, self.dt, dc_names=self.dc_names)
         return ens
 
     def pred(self, mean_denoised, spec, dc) -> np.ndarray:
