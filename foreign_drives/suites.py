@@ -70,8 +70,10 @@ BENCH_ROWS = [
     ("wheel_stribeck_exp1_1.0Nm", "one", 0.008, 0.02, 0.93,
      [E("wheel_friction_stribeck_power", {"coulomb_torque_Nm": 0.6, "excess_torque_Nm": 1.4,
                                           "stribeck_speed_rad_s": 120.0, "exponent": 1.0})]),
-    ("motor_friction_tanh_1.8Nm", "one", 0.005, 0.025, 0.89,
-     [E("motor_friction_tanh", {"torque_Nm": 1.8, "smoothing_speed_rad_s": 20.0})]),
+    # motor-side torques show in the motor's mean speed (its slip), not in the accelerations: at 1.8-2 N*m they were
+    # inside the speed's model-form tolerance (0.3 rad/s); 5 N*m (0.25 p.u.) is a failing bearing or a fan's load
+    ("motor_friction_tanh_5Nm", "one", 0.005, 0.025, 0.89,
+     [E("motor_friction_tanh", {"torque_Nm": 5.0, "smoothing_speed_rad_s": 20.0})]),
     ("clutch_hertz_softer_-0.3", "one", 0.005, 0.025, 0.89,
      [E("clutch_contact_hertz", {"stiffness": ClutchContactHertz.stiffness_for(-0.3, 1.5), "exponent": 1.5})]),
     ("clutch_hunt_crossley_+0.6", "one", 0.0075, 0.025, 0.89,
@@ -80,8 +82,8 @@ BENCH_ROWS = [
      [E("shaft_with_hub", {"stiffness_Nm_per_rad": 9000.0, "damping_Nms_per_rad": 40.0, "hub_inertia_kgm2": 0.03})]),
     ("mass_rail_friction_12N", "one", 0.0075, 0.025, 0.89,
      [E("mass_rail_friction", {"force_N": 12.0, "smoothing_speed_m_s": 0.05})]),
-    ("motor_fan_load_0.1pu", "one", 0.004, 0.025, 0.93,
-     [E("motor_fan_load", {"torque_Nm": 2.0, "reference_speed_rad_s": 151.4})]),
+    ("motor_fan_load_0.25pu", "one", 0.004, 0.025, 0.93,
+     [E("motor_fan_load", {"torque_Nm": 5.0, "reference_speed_rad_s": 151.4})]),
     ("ripple_cogging_6_12_18", "one", 0.0075, 0.025, 0.89,
      [E("ripple_motor_harmonics", {"orders": [6, 12, 18], "amplitudes_pu": [0.3, 0.12, 0.05],
                                    "phases_rad": [0.3, -1.1, 2.0]})]),

@@ -74,8 +74,7 @@ def confident(problem, after_pred, base_pred) -> tuple[bool, dict]:
     r = problem.residual(after_pred)
     after = consistency.test(problem, r)
     before = consistency.test(problem, problem.residual(base_pred))
-    r0g = problem.fit_residual(base_pred)
-    explained = 1 - float(np.sum(problem.project(r) ** 2) / max(np.sum(r0g ** 2), 1e-300))
+    explained = problem.explained_share(problem.project(r), problem.fit_residual(base_pred))
     inside = after.consistent
     # outside the candidates' subspace the effect must not leave what the model's noise does not account for
     # (an effect outside the catalogue that a catalogue effect mimics inside the subspace)

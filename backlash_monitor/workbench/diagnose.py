@@ -34,7 +34,8 @@ from .diagnosis import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOT
 from .events import SEGMENT_SIGNALS
 
 REFINE_TOP = 3               # singles refined first: the best 3 by explained share (model inconsistent)
-REFINE_EXTRA = 3             # more candidates refined when their linearised IC may tie with the winner
+REFINE_EXTRA = 4             # more candidates refined when they may tie with the winner (the rim-force twins of a wheel
+                             # friction are three: working resistance, a force on the mass, a viscous drag)
 LINEAR_IC_MARGIN = pairs.LINEAR_IC_MARGIN
 
 
@@ -132,7 +133,7 @@ def screen_step(run: Run, effects=None, progress=None) -> None:
         jg = p.project(info["J"])
         d = fitting.lsq_linear(jg, r0g, bounds=(lo - x0, hi - x0 + 1e-300)).x
         info["x_lin"] = x0 + d
-        info["explained_lin"] = 1.0 - float(np.sum((r0g - jg @ d) ** 2) / max(np.sum(r0g ** 2), 1e-300))
+        info["explained_lin"] = p.explained_share(r0g - jg @ d, r0g)
         info["delta_ic_lin"] = p.ic(run.base_pred + info["J"] @ d, len(x0)) - run.base_ic
     run.order = sorted(allowed, key=lambda k: -run.scr[k]["explained_lin"])
 
@@ -155,8 +156,15 @@ def refine_step(run: Run) -> list:
 
         def lin_part(n):
             return scr[n]["delta_ic_lin"] - len(run.by_name[n].parameters) * lnE
-        extra = sorted((n for n in run.order if n not in first and lin_part(n) <= reach),
-                       key=lin_part)[:REFINE_EXTRA]
+
+        def lin_distance(n):
+            x0 = run.by_name[n].default_vector()
+            pred = run.base_pred + scr[n]["J"] @ (scr[n]["x_lin"] - x0)
+            return prediction_distance(p, best.pred, pred) / misfit_scale(p, best) if best is not None else np.inf
+
+        near = {n for n in run.order if n not in first and lin_distance(n) < 4 * DELTA_IC_TIE}
+        extra = sorted((n for n in run.order if n not in first and (lin_part(n) <= reach or n in near)),
+                       key=lambda n: (n not in near, lin_part(n)))[:REFINE_EXTRA]
         fits += [fitting.refine(p, run.by_name[n], scr[n], run.base_pred, run.base_ic) for n in extra]
     fits.sort(key=lambda f: f.delta_ic)
     run.fits = fits
@@ -173,19 +181,33 @@ def misfit_scale(problem, fit) -> float:
     return max(1.0, t2 / max(dims, 1))
 
 
+def prediction_distance(problem, pred_a, pred_b) -> float:
+    """How far two fitted models' predictions lie apart, in units of the measured mean's noise over every view (the
+    fits' metric): the IC difference a recording would show between them on average were one of them right. Two
+    candidates closer than DELTA_IC_TIE x the misfit scale cannot be told apart by this recording, whatever their
+    ICs on it (measured on a foreign 12 N force on the mass: the four rim-force twins' fits within 5.3 of each
+    other, their ICs 9.5 apart: under a misfit the events' IC magnifies tiny differences)."""
+    d = problem.project(pred_a - pred_b)
+    return float(np.sum(d ** 2) / consistency.noise_scale(problem.n_events, problem.n_seeds))
+
+
+def _ties(problem, a, b, scale: float) -> bool:
+    e = problem.n_events
+    return (abs(likelihood_part(a, e) - likelihood_part(b, e)) / scale < DELTA_IC_TIE
+            or prediction_distance(problem, a.pred, b.pred) / scale < DELTA_IC_TIE)
+
+
 def decide_step(run: Run) -> Decision:
-    """The winner: the best qualifying candidate (only when the model is inconsistent); the qualifying ones whose
-    evidence (decisions.likelihood_part, divided by the winner's misfit_scale) comes within DELTA_IC_TIE of it are
-    not distinguishable from it, and so is a candidate that is the same term of the model as it or as one of those
-    (decisions.IDENTICAL)."""
+    """The winner: the best qualifying candidate (only when the model is inconsistent); the qualifying ones that tie
+    with it -- their evidence (decisions.likelihood_part) or their fitted prediction (prediction_distance) within
+    DELTA_IC_TIE of it, both divided by the winner's misfit_scale -- are not distinguishable from it, and so is a
+    candidate that is the same term of the model as it or as one of those (decisions.IDENTICAL)."""
     qual = [f for f in run.fits if qualifies(f, run.by_name[f.effect])] if run.inconsistent else []
     winner = qual[0] if qual else None
     if winner is not None:
-        e = run.problem.n_events
-        lw = likelihood_part(winner, e)
         scale = misfit_scale(run.problem, winner)
         for f in qual[1:]:
-            if abs(likelihood_part(f, e) - lw) / scale < DELTA_IC_TIE or f.effect in identical_to(winner.effect):
+            if _ties(run.problem, winner, f, scale) or f.effect in identical_to(winner.effect):
                 winner.indistinguishable_from.append(f.effect)
                 f.indistinguishable_from.append(winner.effect)
         for name in [winner.effect] + list(winner.indistinguishable_from):
@@ -204,7 +226,7 @@ def second_effect_step(run: Run, decision: Decision, second: bool = True) -> Upd
     if not second:
         return up
     twins_of = {f.effect: [g.effect for g in decision.qualifying
-                           if g is not f and abs(g.delta_ic - f.delta_ic) < DELTA_IC_TIE]
+                           if g is not f and _ties(run.problem, f, g, misfit_scale(run.problem, f))]
                 for f in decision.qualifying}
     found = pairs.best_pair(run.problem, win, run.by_name, run.scr, run.order, run.base_pred, run.base_ic,
                             up.pairs_tried, twins_of, run.fits)
@@ -225,6 +247,11 @@ def second_effect_step(run: Run, decision: Decision, second: bool = True) -> Upd
                 "parameters": {f"{c}.{n}": float(v) for n, v in zip(f2.parameter_names[:nc], f2.values[:nc])}
                 | {f"{d}.{n}": float(v) for n, v in zip(f2.parameter_names[nc:], f2.values[nc:])},
                 "delta_ic": float(f2.delta_ic), "delta_ic_from_winner": float(f2.delta_ic - fit2.delta_ic)})
+        # a member's single-effect twins (and the same terms of the model) are not distinguishable from it in the pair
+        for member, fit in ((a, first), (b, sec)):
+            for t in twins_of.get(member, []) + [x for y in [member] + twins_of.get(member, []) for x in identical_to(y)]:
+                if t not in (a, b) and t in run.by_name and t not in fit.indistinguishable_from:
+                    fit.indistinguishable_from.append(t)
         up.first, up.second = first, sec
         up.after_mean, up.after_pred, up.after_raw = fit2.model_mean, fit2.pred, fit2.model_mean_raw
         return up

@@ -48,7 +48,7 @@ FIT_RANGES = {
     "wheel_viscous_friction.damping_Nms_per_rad": (0.0, 0.05),  # 7.5 N*m at 151 rad/s (1.7 F0*r)
     "wheel_stribeck_friction.excess_torque_Nm": (0.0, 5.0),     # as the dry friction
     "wheel_stribeck_friction.stribeck_speed_rad_s": (0.5, 50.0),  # lubricated bearings to dry contacts
-    "motor_coulomb_friction.torque_Nm": (0.0, 5.0),             # a quarter of T_b: a failing motor bearing
+    "motor_coulomb_friction.torque_Nm": (0.0, 10.0),            # half of T_b: a failing motor bearing or brake
     "clutch_contact_stiffness.relative_change": (-0.6, 1.5),    # elastomer jaws: worn soft to aged hard
     "clutch_contact_damping.relative_change": (-0.8, 3.0),      # elastomer damping: temperature, ageing
     "shaft_compliance.compliance_rad_per_Nm": (0.0, 2e-3),      # a shaft up to 6x softer than the jaw contact

@@ -47,10 +47,15 @@ SPECTRAL_SHAPE_SIGMA = 0.1   # ln(power ratio of adjacent bands): the model's sp
                              # event-to-event noise over 16 events is ~0.02-0.07)
 
 
+SPEED_SIGMA_RAD_S = 0.3      # the motor's mean speed: its slip moves with the rotor's temperature (r_r +0.4 %/K: +-10 K
+                             # is +-4 % of the 3.6 % slip, +-0.2 rad/s) and the supply's frequency (+-0.1 %: 0.15 rad/s);
+                             # measured: a foreign clean drive's mean speed differs from ours by up to ~0.05 rad/s
+
+
 def directions(problem, screening: dict, by_name: dict) -> np.ndarray:
     """(N, m): the prediction-space directions of the model-form tolerance: the nominal parameters' spread,
-    J_j * sigma_j from the screening Jacobians (x SCALE), and an independent discrepancy of SPECTRAL_SHAPE_SIGMA
-    per spectral-shape feature."""
+    J_j * sigma_j from the screening Jacobians (x SCALE), an independent discrepancy of SPECTRAL_SHAPE_SIGMA per
+    spectral-shape feature, and SPEED_SIGMA_RAD_S on the motor's mean speed."""
     n = problem.target_vec.size
     cols = []
     for name, info in screening.items():
@@ -63,6 +68,11 @@ def directions(problem, screening: dict, by_name: dict) -> np.ndarray:
         c = np.zeros(n)
         c[i] = problem.ws[i - sl.start] * SPECTRAL_SHAPE_SIGMA
         cols.append(c)
+    for j, name in enumerate(getattr(problem, "dc_names", ())):
+        if name == "omega1":
+            c = np.zeros(n)
+            c[problem.dc_slice.start + j] = problem.wdc[j] * SPEED_SIGMA_RAD_S
+            cols.append(c)
     return np.stack(cols, axis=1) if cols else np.zeros((n, 0))
 
 
