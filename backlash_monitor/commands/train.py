@@ -64,6 +64,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "add-effect) instead of config/plant.yaml; needs --out. Repeat it to train on "
                              "several versions at once (the seeds dealt out round-robin, the windows pooled): "
                              "when diagnose names indistinguishable effects, one version per candidate")
+    parser.add_argument("--previous-library", default=None, metavar="LIB.npz",
+                        help="with --model: the library the monitor uses now (default: the packaged one); the "
+                             "retrained library is checked against it on the diagnosed recording")
+    parser.add_argument("--keep-worse", action="store_true",
+                        help="with --model: write the retrained library even when it puts the monitor further from "
+                             "the diagnosis than the previous library (default: the previous library is written under "
+                             "--out, flagged, and the retrained one as NAME.rejected.npz)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -90,7 +97,10 @@ def _check(args) -> None:
     if args.out is not None:   # before the minutes of training, not after
         from backlash_monitor.output_files import OutputError, check_outputs
         try:
-            check_outputs([args.out], overwrite=args.overwrite, option="--out")
+            outs = [args.out]
+            if getattr(args, "model", None) and not getattr(args, "keep_worse", False):
+                outs.append(str(args.out)[:-len(".npz")] + ".rejected.npz")   # written if the check rejects it
+            check_outputs(outs, overwrite=args.overwrite, option="--out")
         except OutputError as error:
             raise UsageError(str(error)) from None
 
@@ -125,10 +135,19 @@ def run(args) -> int:
                             ridge=args.ridge, duration_s=args.duration, progress=bar.update,
                             window_offset=args.window_offset, config=config)
     check = None
+    rejected = None
     if models and any(m.provenance.get("measurement") for m in models):
         from backlash_monitor.workbench.retrain import check_library
-        check = check_library(lib, models)
+        check = check_library(lib, models, args.previous_library)
         lib.training["check"] = check
+        if check["worse"] and not args.keep_worse:
+            # never a worse monitor: the previous library goes under the requested name, the retrained one beside it
+            from backlash_monitor.classifier.patterns import load_library
+            rejected = lib.save(str(out)[:-len(".npz")] + ".rejected.npz")
+            lib = load_library(args.previous_library or default_library_path(args.trigger))
+            lib.training = {**lib.training, "check": {**check, "kept_previous": str(args.previous_library or
+                                                                                     default_library_path(args.trigger)),
+                                                      "rejected": str(rejected)}}
     path = lib.save(out)
     fit = lib.training["shape"]["fit"]
     print(f"pattern library written: {path}")
@@ -143,7 +162,11 @@ def run(args) -> int:
         from backlash_monitor.workbench.retrain import describe
         for line in describe(check):
             print("  " + line)
-        if check["flagged"]:
+        if rejected is not None:
+            print(f"WARNING: the retrained library puts the monitor further from the diagnosis than the previous one: "
+                  f"{path} holds the previous library (flagged, saying why); the retrained one is {rejected} "
+                  "(--keep-worse writes it as --out)", file=sys.stderr)
+        elif check["flagged"]:
             print(f"WARNING: the library {path} is FLAGGED (written into it; analyze and the classifier warn when "
                   "they load it): " + "; ".join(check["reasons"]), file=sys.stderr)
     return 0
