@@ -70,7 +70,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--keep-worse", action="store_true",
                         help="with --model: write the retrained library even when it puts the monitor further from "
                              "the diagnosis than the previous library (default: the previous library is written under "
-                             "--out, flagged, and the retrained one as NAME.rejected.npz)")
+                             "--out, saying why, and the retrained one as NAME.rejected.npz)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -145,8 +145,10 @@ def run(args) -> int:
             from backlash_monitor.classifier.patterns import load_library
             rejected = lib.save(str(out)[:-len(".npz")] + ".rejected.npz")
             lib = load_library(args.previous_library or default_library_path(args.trigger))
-            lib.training = {**lib.training, "check": {**check, "kept_previous": str(args.previous_library or
-                                                                                     default_library_path(args.trigger)),
+            # (not flagged: it is the library the monitor had; the check says why it was kept)
+            lib.training = {**lib.training, "check": {**check, "flagged": False,
+                                                      "kept_previous": str(args.previous_library
+                                                                           or default_library_path(args.trigger)),
                                                       "rejected": str(rejected)}}
     path = lib.save(out)
     fit = lib.training["shape"]["fit"]
@@ -164,7 +166,7 @@ def run(args) -> int:
             print("  " + line)
         if rejected is not None:
             print(f"WARNING: the retrained library puts the monitor further from the diagnosis than the previous one: "
-                  f"{path} holds the previous library (flagged, saying why); the retrained one is {rejected} "
+                  f"{path} holds the previous library (its training.check says why); the retrained one is {rejected} "
                   "(--keep-worse writes it as --out)", file=sys.stderr)
         elif check["flagged"]:
             print(f"WARNING: the library {path} is FLAGGED (written into it; analyze and the classifier warn when "

@@ -10,7 +10,7 @@ the diagnosis the version came from: never a worse monitor (docs/workbench.md, "
   another). A library that disagrees with the diagnosis is *flagged*: the flag is written into the library
   (``training.check``) and ``analyze --library`` and the classifier node say so when they load it
   (patterns.flagged_warning). A library that is further from the diagnosis than the previous one is not used
-  at all: `train` writes the previous library under the requested name (flagged, saying why) and the retrained
+  at all: `train` writes the previous library under the requested name (saying why) and the retrained
   one beside it as ``NAME.rejected.npz`` (``--keep-worse`` writes it anyway): never a worse monitor.
 """
 from __future__ import annotations
