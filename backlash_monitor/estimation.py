@@ -9,6 +9,14 @@
 Only onset windows are classified (SPEC section 3: the return entries' windows follow another
 transient); a return window gives no estimate.
 
+Every mode reads the window minus the drive's sensor offset estimate that the window carries
+(``sensor_offsets``: a1's and a2's, the mean over the last whole load periods, estimated by the
+windowing stage; backlash_monitor.windowing.offset): a constant accelerometer offset cannot move
+the width. A window whose offsets are not known yet (NaN: the first onset window of a stream, before
+one whole load period was seen) is not classified and not fused (``last_reasons``:
+``sensor_offset_unknown``; counted in ``waiting_for_offset``, not a fault). ``sensor_offsets``
+None means the caller's windows carry no offset (already removed): nothing is subtracted.
+
 Every window is checked where it enters (:meth:`DriveEstimator.check_window`): a1 and a2 1-D, of
 the library's window length, finite, of the library's sample period (when given), a known entry
 kind. A bad window is not classified: it gives no estimate, is counted in ``faults`` with its
@@ -21,6 +29,7 @@ finite, non-negative entries. Each signal keeps its own fusion of the last
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,8 +40,10 @@ from backlash_monitor.classifier.patterns import PatternLibrary
 from backlash_monitor.classifier.shape import (SHAPE, SHAPE_SIGNALS, ShapeModel, _expand,
                                               a1_features, a2_features)
 from backlash_monitor.input_faults import FaultLog, is_period
+from backlash_monitor.windowing.offset import offset_removal_label, remove_offset
 
 ENTRY_KINDS = ("onset", "return")
+OFFSET_UNKNOWN = "sensor_offset_unknown"   # last_reasons of a window not classified for want of one
 
 MODES = tuple(CPN_VARIANTS) + (SHAPE,)
 DEFAULT_MODE = SHAPE
@@ -76,6 +87,13 @@ class DriveEstimator:
             if signal not in allowed:
                 raise ValueError(f"signal {signal!r} is not allowed in mode {mode}; allowed: "
                                  f"{', '.join(allowed)}")
+        trained = (library.settings or {}).get("sensor_offset")
+        if trained != offset_removal_label():
+            raise ValueError(
+                f"pattern library {library.path} was trained on windows "
+                + (f"with the sensor offset '{trained}'" if trained else "without the sensor offset removed")
+                + f"; the classifier reads windows with the {offset_removal_label()}: retrain it with "
+                "`python -m backlash_monitor train` (or `train --model M`)")
         self.widths_m = np.asarray(library.widths_m, dtype=float)
         if mode == SHAPE:
             arrays = {f"shape/{k}": v for k, v in library.shape_arrays().items()}
@@ -91,6 +109,7 @@ class DriveEstimator:
         period = settings.get("sample_period_s")
         self.sample_period_s = float(period) if is_period(period) else None
         self.faults = FaultLog()
+        self.waiting_for_offset = 0   # onset windows not classified: their sensor offset not known yet
         self.last_reasons: list[str | None] = []   # per window of the last estimate_many call
 
     def check_window(self, a1, a2, entry_kind: str, sample_period_s: float | None = None):
@@ -129,35 +148,43 @@ class DriveEstimator:
         """Whether a window of this kind gives estimates (only onsets; see the module docstring)."""
         return entry_kind == "onset"
 
-    def estimate(self, a1, a2, entry_kind: str = "onset",
-                 sample_period_s: float | None = None) -> list[WidthEstimate]:
+    def estimate(self, a1, a2, entry_kind: str = "onset", sample_period_s: float | None = None,
+                 sensor_offsets=None) -> list[WidthEstimate]:
         """Estimates of one denoised window (a1, a2: equal-length float arrays); [] for non-onsets
-        and rejected windows (``last_reasons[0]``).
+        and rejected windows (``last_reasons[0]``). ``sensor_offsets``: the window's (a1, a2)
+        offsets [m/s^2] (a pair or a mapping with keys a1, a2; see the module docstring).
 
         The batch of one of :meth:`estimate_many`: the live node's window-by-window estimates and
         ``analyze``'s batched ones run the same code."""
-        return self.estimate_many([(a1, a2, entry_kind, sample_period_s)])[0]
+        return self.estimate_many([(a1, a2, entry_kind, sample_period_s, sensor_offsets)])[0]
 
     def estimate_many(self, windows) -> list[list[WidthEstimate]]:
-        """``estimate`` for a sequence of (a1, a2, entry_kind[, sample_period_s]), in order (the
-        fusion sees them in that order); one list per window, [] for a window that is not an onset
-        or is rejected (``last_reasons[i]`` says why; counted in ``faults``). Shape mode: the features of all onset windows of one
+        """``estimate`` for a sequence of (a1, a2, entry_kind[, sample_period_s[, sensor_offsets]]),
+        in order (the fusion sees them in that order); one list per window, [] for a window that is
+        not an onset or is rejected (``last_reasons[i]`` says why; counted in ``faults``) or whose
+        sensor offset is not known yet (``sensor_offset_unknown``). Shape mode: the features of all onset windows of one
         length are extracted in one batch -- row for row bit-identical to a batch of one (every
         step is elementwise or a per-row reduction; the regression's dot product is taken row
         by row on a fresh (1, n) copy, as for a single window; test_analyze_estimation.py)."""
         out: list[list[WidthEstimate]] = [[] for _ in windows]
         self.last_reasons = []
+        offsets = []
         for i, w in enumerate(windows):
             reason = self.check_window(w[0], w[1], w[2], w[3] if len(w) > 3 else None)
-            self.last_reasons.append(reason)
-            if reason is not None:
+            offsets.append(_offset_pair(w[4] if len(w) > 4 else None))
+            if reason is None and self.classifies(w[2]) and offsets[-1] is None:
+                reason = OFFSET_UNKNOWN
+                self.waiting_for_offset += 1
+            elif reason is not None:
                 self.faults.add(reason, f"window {i} of {len(windows)}")
+            self.last_reasons.append(reason)
         onsets = [i for i, w in enumerate(windows)
                   if self.last_reasons[i] is None and self.classifies(w[2])]
         if not onsets:
             return out
-        a1s = [np.asarray(windows[i][0], dtype=float) for i in onsets]
-        a2s = [np.asarray(windows[i][1], dtype=float) for i in onsets]
+        # what every mode reads: the window minus its sensor offset estimate (offset-invariant)
+        a1s = [remove_offset(windows[i][0], offsets[i][0]) for i in onsets]
+        a2s = [remove_offset(windows[i][1], offsets[i][1]) for i in onsets]
         if self.mode == SHAPE:
             shapes = {a.shape for a in a1s} | {a.shape for a in a2s}
             batches = ([list(range(len(onsets)))] if len(shapes) == 1 and len(next(iter(shapes))) == 1
@@ -200,6 +227,22 @@ class DriveEstimator:
                     fused_events=fused.events,
                     fused_continuous_width_m=fused.continuous_width_m))
         return out
+
+
+def _offset_pair(sensor_offsets) -> tuple[float, float] | None:
+    """(a1, a2) offsets [m/s^2] from a pair or a mapping; (0, 0) for None (nothing to remove);
+    None when either is not a finite number (not known yet)."""
+    if sensor_offsets is None:
+        return 0.0, 0.0
+    try:
+        if isinstance(sensor_offsets, Mapping):
+            pair = (float(sensor_offsets["a1"]), float(sensor_offsets["a2"]))
+        else:
+            first, second = sensor_offsets
+            pair = (float(first), float(second))
+    except (KeyError, TypeError, ValueError):
+        return None
+    return pair if all(math.isfinite(v) for v in pair) else None
 
 
 def _valid_b(b: np.ndarray, index: int, widths_m: np.ndarray) -> bool:

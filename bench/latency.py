@@ -133,7 +133,9 @@ def run_graph(duration_s, rate_factor, chunk=None, stages=None, one_process=Fals
         executor.add_node(monitor)
         freeze_startup_objects()     # as the nodes do once built (nodes/runtime.run_nodes)
         started = time.time()
-        expected = int(duration_s * 4) - 1          # onsets whose window ends inside the run
+        # onsets whose window ends inside the run (4 per second), less the first (no sensor offset
+        # estimate before one whole load period: not classified) and one of margin
+        expected = int(duration_s * 4) - 2
         limit = started + duration_s / rate_factor + 30
         last_count, last_change = 0, time.time()
         while time.time() < limit:

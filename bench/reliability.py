@@ -27,7 +27,7 @@ import traceback
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
-# bench/ itself off the path: bench/mcap.py would hide the mcap library from the modules
+# bench/ itself off the path: a script there named like a library would hide it from the modules
 sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != REPO / "bench"]
 for extra in (REPO, REPO / "test"):
     if str(extra) not in sys.path:

@@ -272,17 +272,25 @@ def estimator_windows(draw):
     a1, a2 = draw(window_pairs(lengths=(2048, 2048, 2048, 2048, 2047, 4096, 100, 0)))
     kind = draw(st.sampled_from(["onset", "onset", "return", "", "Onset", "onset\x00"]))
     period = draw(st.sampled_from([None, PERIOD_S, PERIOD_S, 1e-5, 0.0, float("nan"), -PERIOD_S]))
-    return a1, a2, kind, period
+    offset = st.one_of(st.floats(-3.0, 3.0), st.sampled_from([0.0, float("nan"), float("inf"), 1e308, -5e-324]))
+    offsets = draw(st.one_of(st.none(), st.tuples(offset, offset)))   # the window's sensor offsets
+    return a1, a2, kind, period, offsets
 
 
 def check_estimate(estimator, window, follow_with_good=True):
+    from backlash_monitor.estimation import OFFSET_UNKNOWN
     INPUTS["estimator"] += 1
-    a1, a2, kind, period = window
+    a1, a2, kind, period, offsets = window
     widths = set(np.round(estimator.widths_m, 12))
     before = {s: len(f) for s, f in estimator.fusion.items()}
-    estimates = estimator.estimate(a1, a2, kind, period)
+    waiting = estimator.waiting_for_offset
+    estimates = estimator.estimate(a1, a2, kind, period, sensor_offsets=offsets)
     reason = estimator.last_reasons[0]
-    if reason is not None:
+    if reason == OFFSET_UNKNOWN:   # an onset window whose offset is not known: waits, no fault
+        assert estimates == [] and kind == "onset" and not np.isfinite(offsets).all()
+        assert estimator.waiting_for_offset == waiting + 1
+        assert {s: len(f) for s, f in estimator.fusion.items()} == before   # nothing fused
+    elif reason is not None:
         assert estimates == [] and reason in REASONS
         assert {s: len(f) for s, f in estimator.fusion.items()} == before   # nothing fused
     for e in estimates:

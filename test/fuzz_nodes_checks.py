@@ -57,22 +57,26 @@ def chunk_messages(draw):
     return out
 
 
-def window_msg(a1, a2, kind="onset", period=2e-5, denoised=True, index=0):
+def window_msg(a1, a2, kind="onset", period=2e-5, denoised=True, index=0, offsets=(0.0, 0.0, 8)):
+    """A window message; ``offsets``: (a1_offset_m_s2, a2_offset_m_s2, offset_periods)."""
     from backlash_monitor_msgs.msg import BacklashWindow
     msg = BacklashWindow(entry_sample_index=int(index), entry_kind=kind, trigger="contact_loss",
                          sample_period_s=float(period),
                          denoising=denoising_label(6, (1, 2, 3, 4, 5, 6), "symmetric") if denoised else "",
-                         true_width_m=float("nan"))
+                         true_width_m=float("nan"), a1_offset_m_s2=float(offsets[0]),
+                         a2_offset_m_s2=float(offsets[1]), offset_periods=int(offsets[2]))
     msg.a1, msg.a2 = to_float64_array(a1), to_float64_array(a2)
     return msg
 
 
 @st.composite
 def window_messages(draw):
-    a1, a2, kind, period = draw(fc.estimator_windows())
+    a1, a2, kind, period, offsets = draw(fc.estimator_windows())
+    pair = (0.0, 0.0) if offsets is None else offsets
     return window_msg(a1, a2, kind, 2e-5 if period is None else period,
                       denoised=draw(st.booleans()) or draw(st.booleans()),
-                      index=draw(st.integers(0, 2 ** 64 - 1)))
+                      index=draw(st.integers(0, 2 ** 64 - 1)),
+                      offsets=(*pair, draw(st.sampled_from([0, 1, 8, 2 ** 32 - 1]))))
 
 
 def windowing_node():

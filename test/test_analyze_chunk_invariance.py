@@ -38,8 +38,11 @@ def ranges_of(record, sizes, period=2e-5):
 
 
 def key(windows_with_range):
+    # the sensor offset estimates too: the classifier subtracts them, so they must be bit-identical
     return [(w.entry_sample_index, w.kind, w.trigger, w.confirm_sample_index, w.sample_period_s,
-             w.signals["a1"].tobytes(), w.signals["a2"].tobytes(), r.first_sample_index)
+             w.signals["a1"].tobytes(), w.signals["a2"].tobytes(),
+             tuple((s, repr(v)) for s, v in sorted(w.sensor_offsets.items())), w.offset_periods,
+             r.first_sample_index)
             for w, r in windows_with_range]
 
 

@@ -1,6 +1,7 @@
 """`analyze` estimates its onset windows in batches (DriveEstimator.estimate_many); the live classifier
 node one window at a time (estimate = a batch of one). Both must equal ShapeModel.b on single
-windows bit for bit, and the batched features must equal the single-window ones row for row."""
+windows (minus their sensor offset estimates) bit for bit, and the batched features must equal the
+single-window ones row for row."""
 import numpy as np
 import pytest
 
@@ -28,8 +29,8 @@ def windows():
                                  {s: getattr(c, s)[i] for s in ("a1", "a2", "angle_difference")})
             for w in stage.feed(joined)[0]:
                 a1, a2 = denoise_pair(w.signals["a1"], w.signals["a2"])
-                out.append((a1, a2, w.kind))
-    assert sum(k == "onset" for *_, k in out) >= 30
+                out.append((a1, a2, w.kind, w.sample_period_s, w.sensor_offsets))
+    assert sum(w[2] == "onset" for w in out) >= 30
     return out
 
 
@@ -57,7 +58,7 @@ def flat(estimates):
 
 def test_estimate_many_equals_window_by_window_and_shape_model(windows, library):
     single = DriveEstimator(library)
-    one_by_one = [single.estimate(a1, a2, kind) for a1, a2, kind in windows]
+    one_by_one = [single.estimate(*w) for w in windows]
     for batch in (1, 7, 64, len(windows)):
         est = DriveEstimator(library)
         got = []
@@ -65,10 +66,12 @@ def test_estimate_many_equals_window_by_window_and_shape_model(windows, library)
             got += est.estimate_many(windows[lo:lo + batch])
         assert flat(got) == flat(one_by_one), batch
     # against the classifier's own ShapeModel.b, one window at a time
-    for (a1, a2, kind), estimates in zip(windows, one_by_one):
-        assert bool(estimates) == (kind == "onset")
+    for (a1, a2, kind, _, offsets), estimates in zip(windows, one_by_one):
+        # every onset but each stream's first (no whole load period behind it: no offset estimate)
+        assert bool(estimates) == (kind == "onset" and np.isfinite(offsets["a1"]))
         for e in estimates:
-            b, w = single.models[e.signal_name].b(a1=a1[None, :], a2=a2[None, :])
+            b, w = single.models[e.signal_name].b(a1=(a1 - offsets["a1"])[None, :],
+                                                  a2=(a2 - offsets["a2"])[None, :])
             assert b[0].tobytes() == e.b_vector.tobytes()
             assert float(w[0]) == e.continuous_width_m
             # winner and margin (taken for all rows at once) as of the window's own B vector
@@ -77,8 +80,8 @@ def test_estimate_many_equals_window_by_window_and_shape_model(windows, library)
 
 
 def test_windows_of_different_lengths_are_estimated_one_by_one(windows, library):
-    onsets = [w for w in windows if w[2] == "onset"][:4]
-    mixed = [onsets[0], (onsets[1][0][:1800], onsets[1][1][:1800], "onset"), onsets[2]]
+    onsets = [w for w in windows if w[2] == "onset" and np.isfinite(w[4]["a1"])][:4]
+    mixed = [onsets[0], (onsets[1][0][:1800], onsets[1][1][:1800], "onset", None, onsets[1][4]), onsets[2]]
     ref = DriveEstimator(library)
     expected = [ref.estimate(*w) for w in mixed]
     assert flat(DriveEstimator(library).estimate_many(mixed)) == flat(expected)

@@ -3,7 +3,7 @@ continued, any buffer type."""
 import os
 import zlib
 
-from backlash_monitor.bag.mcap_format import crc32
+from backlash_monitor.bag.records import crc32
 
 
 def test_same_checksum_as_zlib():

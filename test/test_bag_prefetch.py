@@ -1,6 +1,8 @@
-"""BagReader.messages decompresses chunks ahead in a worker thread: the same messages, in the same
-order, as decompressing chunk by chunk; a corrupt chunk raises (or is skipped with recover) where
-it did; stopping early and closing the reader leaves nothing running on the file's map."""
+"""BagReader.messages decompresses chunks ahead in a worker thread (prefetch.py, ``chunks_ahead``
+per reader): the same messages, in the same order, as decompressing chunk by chunk; a corrupt
+chunk raises (or is skipped with recover) where it did; stopping early and closing the reader
+leaves nothing running on the file's map; a forked child has its own thread."""
+import os
 import threading
 
 import pytest
@@ -8,6 +10,7 @@ import pytest
 from backlash_monitor.bag import BagReader
 from backlash_monitor.bag import reader as reader_module
 from backlash_monitor.bag.errors import CorruptBagError
+from backlash_monitor.bag.records import CHUNK_HEAD
 
 from bag_helpers import write_sample_bag
 
@@ -24,11 +27,10 @@ def keys(messages):
 
 
 @pytest.mark.parametrize("ahead", [0, 1, 2, 5])
-def test_same_messages_as_chunk_by_chunk(small_chunk_bag, monkeypatch, ahead):
+def test_same_messages_as_chunk_by_chunk(small_chunk_bag, ahead):
     path, written = small_chunk_bag
-    with BagReader(path) as bag:
-        assert len(bag._chunks) > 5
-        monkeypatch.setattr(reader_module, "CHUNKS_AHEAD", ahead)
+    with BagReader(path, chunks_ahead=ahead) as bag:
+        assert len(bag.chunks) > 5
         got = keys(bag.messages())
         by_topic = keys(bag.messages(["/plant/a2", "/estimate"]))
     # reference: the mcap library's reader, in file order (no thread, no shared parsing code)
@@ -52,24 +54,55 @@ def test_stop_early_then_close(small_chunk_bag):
     bag.close()
     assert bag._mm == b""      # the map was closed (no view left in use)
     names = [t.name for t in threading.enumerate()]
-    assert sum(n.startswith("bag-decompress") for n in names) <= 1
+    assert sum(n.startswith("bag-decompress") for n in names) <= 1   # one, idle, for the next
+
+
+def test_each_reader_its_own_setting(small_chunk_bag):
+    """Two readers at once, one without a thread: neither setting leaks into the other."""
+    path, _ = small_chunk_bag
+    with BagReader(path, chunks_ahead=0) as plain, BagReader(path, chunks_ahead=3) as ahead:
+        assert keys(plain.messages()) == keys(ahead.messages())
+        assert plain._prefetcher.chunks_ahead == 0 and ahead._prefetcher.chunks_ahead == 3
+        assert not plain._prefetcher.started and ahead._prefetcher.started
+    with pytest.raises(ValueError, match="chunks_ahead"):
+        BagReader(path, chunks_ahead=-1)
+
+
+def test_a_forked_child_reads_with_its_own_thread(small_chunk_bag):
+    """The parent's worker thread is not copied by fork: the child must not wait for it."""
+    path, _ = small_chunk_bag
+    with BagReader(path, chunks_ahead=2) as bag:
+        expected = len(keys(bag.messages()))    # the parent's thread exists now
+    r, w = os.pipe()
+    pid = os.fork()
+    if pid == 0:   # the child: read with prefetch, report the count, never return into pytest
+        try:
+            with BagReader(path, chunks_ahead=2) as bag:
+                os.write(w, str(len(keys(bag.messages()))).encode())
+        finally:
+            os._exit(0)
+    os.close(w)
+    _, status = os.waitpid(pid, 0)
+    got = os.read(r, 64).decode()
+    os.close(r)
+    assert status == 0 and got == str(expected)
 
 
 def test_corrupt_chunk_raises_at_its_place(small_chunk_bag, monkeypatch):
     path, _ = small_chunk_bag
     with BagReader(path) as bag:
         all_messages = keys(bag.messages())
-        bad = bag._chunks[sorted(bag._chunks)[3]]
+        bad = bag.chunks[3]
         in_bad = [k for k in all_messages if bad.start <= k[1] <= bad.end]
         before = all_messages[:all_messages.index(in_bad[0])]
-        real = BagReader._decompress
+        real = reader_module.chunk_records
 
-        def failing(self, body):
-            if reader_module.CHUNK_HEAD.unpack_from(body, 0)[0] == bad.start:
+        def failing(body):
+            if CHUNK_HEAD.unpack_from(body, 0)[0] == bad.start:
                 raise CorruptBagError("chunk CRC mismatch")
-            return real(self, body)
+            return real(body)
 
-        monkeypatch.setattr(BagReader, "_decompress", failing)
+        monkeypatch.setattr(reader_module, "chunk_records", failing)
         seen = []
         with pytest.raises(CorruptBagError):
             for m in bag.messages():
@@ -83,18 +116,18 @@ def test_a_second_pass_starts_with_the_last_chunk_unchanged(small_chunk_bag, mon
     """As analyze reads the latched true width (first chunk only), then the signals."""
     path, _ = small_chunk_bag
     calls = []
-    real = BagReader._decompress
+    real = reader_module.chunk_records
 
-    def counting(self, body):
-        calls.append(reader_module.CHUNK_HEAD.unpack_from(body, 0)[0])
-        return real(self, body)
+    def counting(body):
+        calls.append(CHUNK_HEAD.unpack_from(body, 0)[0])
+        return real(body)
 
-    monkeypatch.setattr(BagReader, "_decompress", counting)
+    monkeypatch.setattr(reader_module, "chunk_records", counting)
     with BagReader(path) as bag:
-        first_chunk = min(bag._chunks.values(), key=lambda c: c.start)
+        first_chunk = min(bag.chunks, key=lambda c: c.start)
         head = keys(bag.messages(end_ns=first_chunk.end))
         assert calls == [first_chunk.start]
         everything = keys(bag.messages())
         assert everything[:len(head)] == head and len(everything) == bag.message_count
-        assert calls.count(first_chunk.start) == 1 and len(calls) == len(bag._chunks)
+        assert calls.count(first_chunk.start) == 1 and len(calls) == len(bag.chunks)
     assert bag._last_chunk is None                    # close() drops it

@@ -29,7 +29,7 @@ def _start_recorder(env, out, *params):
 
 
 def _publish(env, seconds, factor, wait=True):
-    args = [sys.executable, str(REPO / "bench" / "mcap.py"), "--role", "publish",
+    args = [sys.executable, str(REPO / "bench" / "bags.py"), "--role", "publish",
             "--seconds", str(seconds), "--factor", str(factor)]
     if not wait:
         return subprocess.Popen(args, env=env, cwd=REPO, stdout=subprocess.PIPE,
@@ -123,9 +123,14 @@ def test_sigkill_loses_at_most_the_open_chunk(ros_env, tmp_path, capsys):
     assert rep.chunk_duration_s == chunk_s and rep.damaged == []
 
 
-def test_replay_flow_controlled_reproduces_the_bag_and_fresh_stamps_shift(ros_env, tmp_path):
+@pytest.mark.parametrize("layout", [None, {"noSummary": True, "noRepeatedChannels": True}],
+                         ids=["project", "rosbag2 noSummary"])
+def test_replay_flow_controlled_reproduces_the_bag_and_fresh_stamps_shift(ros_env, tmp_path, layout):
     src = tmp_path / "src.mcap"
     write_sample_bag(src, n_chunks=100)
+    if layout:   # the same recording as another writer lays it out (test_bag_layouts.py)
+        from mcap_conformance import rewrite_with_mcap
+        src = rewrite_with_mcap(src, tmp_path / "other_layout.mcap", **layout)
     out = tmp_path / "replayed.mcap"
     rec = _start_recorder(ros_env, out)
     try:
@@ -171,8 +176,10 @@ def test_replay_at_recorded_rate_keeps_the_timing(ros_env, tmp_path):
         _stop(rec)
     with BagReader(out) as bag:
         assert bag.topics["/plant/a1"].count == 50
-        # 49 intervals of 20 ms at 2x: 0.49 s
-        assert 0.40e9 < bag.duration_ns < 0.75e9, bag.duration_ns / 1e9
+        # 49 intervals of 20 ms at 2x: 0.49 s. The recorder stamps on arrival, and on a loaded machine the first
+        # chunks can arrive late together (measured 0.393 s with the whole suite and four other jobs on 2 cores);
+        # a replay ignoring the rate would take a few ms
+        assert 0.30e9 < bag.duration_ns < 0.75e9, bag.duration_ns / 1e9
 
 
 @pytest.mark.parametrize("node, params, named", [

@@ -1,6 +1,7 @@
 """End to end on a few freshly simulated drives: plant -> windowing -> denoise -> the packaged libraries.
 
-Seeds 77 (never a training seed). Small: 6 drives of 2 s per trigger (48 onset windows).
+Seeds 77 (never a training seed). Small: 6 drives of 2.25 s per trigger (48 classified onset windows:
+the first of each drive's 9 has no sensor offset estimate yet).
 """
 import numpy as np
 import pytest

@@ -28,7 +28,7 @@ def test_the_chain_in_one_process_classifies_a_simulated_stream(ros_env):
     chain = subprocess.Popen([os.path.join(PREFIX, "chain"), "--ros-args", "-p", "qos:=reliable",
                               "-p", "drive_name:=drive7"],
                              env=ros_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    monitor = subprocess.Popen([sys.executable, "-c", _MONITOR, "24"], env=ros_env,
+    monitor = subprocess.Popen([sys.executable, "-c", _MONITOR, "21"], env=ros_env,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     plant = subprocess.Popen([os.path.join(PREFIX, "plant_simulator"), "--ros-args",
                               "-p", "qos:=reliable", "-p", "duration_s:=2.0", "-p", "rate_factor:=2.0",
@@ -43,8 +43,10 @@ def test_the_chain_in_one_process_classifies_a_simulated_stream(ros_env):
         chain_out, _ = chain.communicate(timeout=30)
         plant.wait(timeout=30)
     rows = [line.split() for line in out.splitlines()]
-    # 8 onsets in 2 s (0.054 s + k * 0.25 s), each classified from a1, a2 and both.
-    assert len(rows) == 24, out + err + chain_out
+    # 8 onsets in 2 s (0.054 s + k * 0.25 s); the first has no sensor offset estimate yet (no whole
+    # load period behind it) and is not classified; the 7 after it from a1, a2 and both.
+    assert len(rows) == 21, out + err + chain_out
+    assert min(int(r[0]) for r in rows) > 0.25 / 2e-5, rows     # not the first onset (t = 0.054 s)
     assert {r[1] for r in rows} == {"a1", "a2", "a1+a2"}
     # The simulated width is latched on its own topic; a window cut before the windowing node has
     # matched that topic carries NaN (unknown), never a wrong width.
@@ -52,7 +54,7 @@ def test_the_chain_in_one_process_classifies_a_simulated_stream(ros_env):
     assert all(w == 0.0075 or w != w for w in true_widths), rows
     assert all(w == 0.0075 for w in true_widths[-12:]), rows
     correct = sum(abs(float(r[2]) - 0.0075) < 1e-9 for r in rows)
-    assert correct >= 22, rows          # per-window accuracy is ~0.96-0.99 (README)
+    assert correct >= 19, rows          # per-window accuracy is ~0.96-0.99 (README)
     assert "Traceback" not in chain_out
     assert chain.returncode == 0, chain_out     # SIGTERM: a clean shutdown
 

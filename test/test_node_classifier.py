@@ -32,7 +32,10 @@ def _message(window, true_width_m):
     msg = BacklashWindow(entry_sample_index=window.entry_sample_index, entry_kind=window.kind,
                          trigger=window.trigger, sample_period_s=window.sample_period_s,
                          denoising=denoising_label(6, (1, 2, 3, 4, 5, 6), "symmetric"),
-                         true_width_m=true_width_m)
+                         true_width_m=true_width_m,
+                         a1_offset_m_s2=window.sensor_offsets["a1"],
+                         a2_offset_m_s2=window.sensor_offsets["a2"],
+                         offset_periods=window.offset_periods)
     msg.header.frame_id = "drive7"
     msg.a1, msg.a2 = to_float64_array(a1), to_float64_array(a2)
     return msg
@@ -58,7 +61,9 @@ def _probe_graph(node, namespace=None):
 def test_estimates_and_namespaced_diagnostics(ros_env):
     os.environ["ROS_DOMAIN_ID"] = ros_env["ROS_DOMAIN_ID"]
     windows = _onset_windows(0.009)
-    assert len(windows) >= 8
+    assert len(windows) >= 9
+    # the stream's first onset window has no whole load period behind it: no sensor offset yet
+    assert [w.offset_periods for w in windows][:2] == [0, 1]
     rclpy.init()
     try:
         node = ClassifierNode(namespace="/line1/drive7", parameter_overrides=[
@@ -70,19 +75,22 @@ def test_estimates_and_namespaced_diagnostics(ros_env):
             pub.publish(_message(window, 0.009))
         for _ in range(200):
             executor.spin_once(timeout_sec=0.05)
-            if len(estimates) >= len(windows) * len(node.estimator.signals) and \
+            if len(estimates) >= (len(windows) - 1) * len(node.estimator.signals) and \
                     any(d.status[0].level != DiagnosticStatus.STALE for d in diagnostics):
                 break
     finally:
         rclpy.try_shutdown()
-    assert len(estimates) == len(windows) * len(node.estimator.signals)
+    # every onset window but the first (not classified, counted, no fault)
+    assert len(estimates) == (len(windows) - 1) * len(node.estimator.signals)
+    assert windows[0].entry_sample_index not in {e.entry_sample_index for e in estimates}
+    assert node.estimator.waiting_for_offset == 1 and node.estimator.faults.total == 0
     est = estimates[-1]
     assert list(est.candidate_widths_m) == [0.0025, 0.00375, 0.005, 0.0075, 0.009, 0.01]
     assert len(est.b_vector) == 6 and est.width_m == est.candidate_widths_m[est.width_index]
     assert est.width_index == int(np.argmin(est.b_vector))
     smallest, second = np.sort(np.asarray(est.b_vector))[:2]     # the margin of this B vector
     assert est.b_margin == pytest.approx(second / smallest, rel=1e-12)
-    assert est.fused_events == min(8, len(windows))
+    assert est.fused_events == min(8, len(windows) - 1)
     # the fused continuous width: the median of the same events' continuous widths (this signal's)
     mine = [e.continuous_width_m for e in estimates if e.signal_name == est.signal_name][-est.fused_events:]
     assert est.fused_continuous_width_m == pytest.approx(float(np.median(mine)), rel=1e-12)
@@ -90,6 +98,7 @@ def test_estimates_and_namespaced_diagnostics(ros_env):
     status = [d.status[0] for d in diagnostics if d.status[0].level != DiagnosticStatus.STALE][-1]
     assert status.name == "line1/drive7/classifier: backlash width"
     assert status.hardware_id == "drive7"
+    assert {kv.key: kv.value for kv in status.values}["windows_waiting_for_offset"] == "1"
     # 9 mm is at the ERROR threshold of config/diagnostics.yaml when the fused estimate finds it.
     fused = est.fused_width_m
     expected = (DiagnosticStatus.ERROR if fused >= 0.009 else
@@ -112,7 +121,7 @@ def test_windows_sent_again_are_not_fused_twice(ros_env):
     """A restarted upstream node re-sends the transient-local history: the classifier skips the
     windows it has already classified, so the fused estimate counts each event once."""
     os.environ["ROS_DOMAIN_ID"] = ros_env["ROS_DOMAIN_ID"]
-    windows = _onset_windows(0.005, seconds=1.5)
+    windows = [w for w in _onset_windows(0.005, seconds=1.5) if w.offset_periods > 0]
     assert len(windows) >= 4
     rclpy.init()
     try:

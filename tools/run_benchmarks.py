@@ -19,8 +19,16 @@ def main(argv):
     out_path = pathlib.Path(argv[0])
     wanted = set(argv[1:])
     bench_dir = pathlib.Path(__file__).resolve().parent.parent / "bench"
-    # Running a subset updates those entries and keeps the others of an earlier full run.
+    # Running a subset updates those entries and keeps the others of an earlier full run, except
+    # entries of benchmarks that no longer exist (a renamed bench, e.g. mcap -> bags).
     results = json.loads(out_path.read_text()) if wanted and out_path.is_file() else {}
+    names = {p.stem for p in bench_dir.glob("*.py") if not p.stem.startswith("_")}
+    unknown = sorted(wanted - names)
+    if unknown:
+        print(f"no benchmark {', '.join(unknown)}; there are: {', '.join(sorted(names))}",
+              file=sys.stderr)
+        return 2
+    results = {k: v for k, v in results.items() if k in names}
     failed = []
     for script in sorted(bench_dir.glob("*.py")):
         name = script.stem

@@ -10,6 +10,11 @@ class NotABagError(BagError):
     """The file is not an MCAP file (wrong magic) or not a ROS 2 (`ros2` profile) MCAP file."""
 
 
+class UnsupportedBagError(BagError):
+    """A valid MCAP file that uses something this package cannot read (a chunk compression other
+    than none, zstd or lz4): refused with one line naming it, never read short."""
+
+
 class TruncatedBagError(BagError):
     """The file ends early: no footer/summary (the recorder was killed) or a record is cut off.
 

@@ -6,7 +6,7 @@ damaged bytes; none changes the file it was read from.
 """
 from __future__ import annotations
 
-from .mcap_format import CHUNK_HEAD, FOOTER_RECORD_LEN, OP_DATA_END, RECORD_HEADER, U32, U64
+from .records import CHUNK_HEAD, FOOTER_RECORD_LEN, OP_DATA_END, RECORD_HEADER, U32, U64
 
 
 def chunk_layout(path) -> list[tuple[int, int, int, int]]:
@@ -14,7 +14,7 @@ def chunk_layout(path) -> list[tuple[int, int, int, int]]:
     from .reader import BagReader
 
     with BagReader(path) as bag:
-        return sorted((c.offset, c.length, c.start, c.end) for c in bag._chunks.values())
+        return [(c.offset, c.length, c.start, c.end) for c in bag.chunks]
 
 
 def chunk_length_field(data: bytes, offset: int, length: int) -> bytes:

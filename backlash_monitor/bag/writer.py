@@ -32,14 +32,14 @@ from typing import Any
 from . import schema as schema_mod
 from .cdr import Codec
 from .errors import BagError, MissingTopicError
-from .mcap_format import (CHUNK_HEAD, FOOTER_BODY, MAGIC, MESSAGE_HEAD, OP_CHANNEL, OP_CHUNK,
-                          OP_CHUNK_INDEX, OP_DATA_END, OP_FOOTER, OP_HEADER, OP_MESSAGE,
-                          OP_MESSAGE_INDEX, OP_METADATA, OP_METADATA_INDEX, OP_SCHEMA,
-                          OP_STATISTICS, OP_SUMMARY_OFFSET, RECORD_HEADER, U16, U32, U64, pmap_str,
-                          crc32, pstr, record)
+from .records import (MAGIC, MESSAGE_HEAD, OP_CHANNEL, OP_CHUNK_INDEX, OP_MESSAGE,
+                      OP_METADATA_INDEX, OP_SCHEMA, OP_STATISTICS, RECORD_HEADER, U32, WRITER_METADATA,
+                      ChunkIndex, MetadataIndex, Statistics, channel_record, chunk_index_record,
+                      chunk_record_head, crc32, data_end_record, footer_head, header_record,
+                      message_index_record, metadata_index_record, metadata_record, schema_record,
+                      statistics_record, summary_offset_record)
 
 LIBRARY = "backlash_monitor.bag (rosbag2_storage_mcap compatible)"
-WRITER_METADATA = "backlash_monitor.writer"   # metadata record with the chunk limits (reader.py)
 ROSBAG2_METADATA_VERSION = 9
 DEFAULT_CHUNK_SIZE = 1 << 20
 DEFAULT_CHUNK_DURATION_S = 0.5
@@ -148,19 +148,6 @@ class _Topic:
 
 
 @dataclass
-class _ChunkIndex:
-    start: int
-    end: int
-    offset: int
-    length: int
-    index_offsets: dict[int, int]
-    index_length: int
-    compression: str
-    compressed_size: int
-    uncompressed_size: int
-
-
-@dataclass
 class WriterStats:
     messages: int = 0
     chunks: int = 0
@@ -212,7 +199,7 @@ class BagWriter:
         self._schemas: dict[str, tuple[int, str, bytes]] = {}  # type -> (id, encoding, data)
         self._schema_records: list[bytes] = []
         self._channel_records: list[bytes] = []
-        self._chunk_indexes: list[_ChunkIndex] = []
+        self._chunk_indexes: list[ChunkIndex] = []
         self._channel_counts: dict[int, int] = {}
         self._start = None
         self._end = None
@@ -226,12 +213,12 @@ class BagWriter:
         self._summary_crc = None
         self._closed = False
         self._write(MAGIC)
-        self._write(record(OP_HEADER, pstr("ros2") + pstr(LIBRARY)))
+        self._write(header_record("ros2", LIBRARY))
         # the chunk limits, first in the file: a reader of a killed writer's file can say how much
         # the lost open chunk held at most (the summary, written at close, is missing then)
-        self._writer_meta = (self._pos, record(OP_METADATA, pstr(WRITER_METADATA) + pmap_str({
+        self._writer_meta = (self._pos, metadata_record(WRITER_METADATA, {
             "chunk_duration_s": "" if self.chunk_duration_ns is None else repr(chunk_duration_s),
-            "chunk_size_bytes": str(self.chunk_size), "compression": compression})))
+            "chunk_size_bytes": str(self.chunk_size), "compression": compression}))
         self._write(self._writer_meta[1])
         self._f.flush()
 
@@ -277,8 +264,7 @@ class BagWriter:
                 sid = len(self._schemas) + 1
                 data = text.encode("utf-8")
                 self._schemas[type_name] = (sid, "ros2msg", data)
-                body = U16.pack(sid) + pstr(type_name) + pstr("ros2msg") + U32.pack(len(data)) + data
-                rec = record(OP_SCHEMA, body)
+                rec = schema_record(sid, type_name, "ros2msg", data)
                 self._schema_records.append(rec)
                 self._write(rec)
             sid = self._schemas[type_name][0]
@@ -287,9 +273,7 @@ class BagWriter:
             th = type_hash if type_hash is not None else schema_mod.type_hash(type_name)
             meta = {"offered_qos_profiles": yaml_dump(qos) if qos else "",
                     "topic_type_hash": th}
-            body = (U16.pack(cid) + U16.pack(sid) + pstr(topic) + pstr(serialization_format)
-                    + pmap_str(meta))
-            rec = record(OP_CHANNEL, body)
+            rec = channel_record(cid, sid, topic, serialization_format, meta)
             self._channel_records.append(rec)
             self._write(rec)
             self._f.flush()
@@ -392,12 +376,9 @@ class BagWriter:
         data = bytes(self._chunk)
         crc = crc32(data)
         comp = self._compress(data) if self._compress else data
-        body_head = CHUNK_HEAD.pack(self._chunk_start, self._chunk_end, len(data), crc)
-        head = (RECORD_HEADER.pack(OP_CHUNK, len(body_head) + 4 + len(self.compression) + 8
-                                   + len(comp))
-                + body_head + pstr(self.compression) + U64.pack(len(comp)))
         chunk_offset = self._pos
-        self._write(head)
+        self._write(chunk_record_head(self._chunk_start, self._chunk_end, len(data), crc,
+                                      self.compression, len(comp)))
         self._write(comp)
         chunk_length = self._pos - chunk_offset
         index_offsets = {}
@@ -405,9 +386,8 @@ class BagWriter:
         for cid in sorted(self._chunk_msgs):
             entries = self._chunk_msgs[cid]
             index_offsets[cid] = self._pos
-            arr = U16.pack(cid) + U32.pack(len(entries) * 8) + _pack_u64s(entries)
-            self._write(record(OP_MESSAGE_INDEX, arr))
-        self._chunk_indexes.append(_ChunkIndex(
+            self._write(message_index_record(cid, _pack_u64s(entries)))
+        self._chunk_indexes.append(ChunkIndex(
             self._chunk_start, self._chunk_end, chunk_offset, chunk_length, index_offsets,
             self._pos - index_start, self.compression, len(comp), len(data)))
         self._f.flush()
@@ -456,11 +436,11 @@ class BagWriter:
             try:
                 self._close_chunk()
                 meta_offset = self._pos
-                meta_rec = record(OP_METADATA, pstr("rosbag2")
-                                  + pmap_str({"serialized_metadata": self.serialized_metadata()}))
+                meta_rec = metadata_record("rosbag2",
+                                           {"serialized_metadata": self.serialized_metadata()})
                 self._write(meta_rec)
                 meta_length = self._pos - meta_offset
-                self._write(record(OP_DATA_END, U32.pack(self._crc)))
+                self._write(data_end_record(self._crc))
                 summary_start = self._pos
                 self._summary_crc = 0
                 groups = []
@@ -475,31 +455,23 @@ class BagWriter:
 
                 group(OP_SCHEMA, self._schema_records)
                 group(OP_CHANNEL, self._channel_records)
-                stats = (U64.pack(self._message_count) + U16.pack(len(self._schemas))
-                         + U32.pack(len(self._topics)) + U32.pack(0) + U32.pack(2)
-                         + U32.pack(len(self._chunk_indexes))
-                         + U64.pack(self._start or 0) + U64.pack(self._end or 0))
-                counts = b"".join(U16.pack(c) + U64.pack(n)
-                                  for c, n in sorted(self._channel_counts.items()))
-                stats += U32.pack(len(counts)) + counts
-                group(OP_STATISTICS, [record(OP_STATISTICS, stats)])
-                group(OP_CHUNK_INDEX, [record(OP_CHUNK_INDEX, _chunk_index_body(ci))
-                                       for ci in self._chunk_indexes])
+                group(OP_STATISTICS, [statistics_record(Statistics(
+                    self._message_count, len(self._schemas), len(self._topics), 0, 2,
+                    len(self._chunk_indexes), self._start or 0, self._end or 0,
+                    self._channel_counts))])
+                group(OP_CHUNK_INDEX, [chunk_index_record(ci) for ci in self._chunk_indexes])
                 writer_offset, writer_rec = self._writer_meta
                 group(OP_METADATA_INDEX, [
-                    record(OP_METADATA_INDEX, U64.pack(writer_offset) + U64.pack(len(writer_rec))
-                           + pstr(WRITER_METADATA)),
-                    record(OP_METADATA_INDEX, U64.pack(meta_offset) + U64.pack(meta_length)
-                           + pstr("rosbag2"))])
+                    metadata_index_record(MetadataIndex(writer_offset, len(writer_rec),
+                                                        WRITER_METADATA)),
+                    metadata_index_record(MetadataIndex(meta_offset, meta_length, "rosbag2"))])
                 summary_offset_start = self._pos
                 for op, start, length in groups:
-                    self._write(record(OP_SUMMARY_OFFSET, bytes((op,)) + U64.pack(start)
-                                       + U64.pack(length)))
-                footer_head = RECORD_HEADER.pack(OP_FOOTER, FOOTER_BODY.size) + U64.pack(
-                    summary_start) + U64.pack(summary_offset_start)
+                    self._write(summary_offset_record(op, start, length))
+                head = footer_head(summary_start, summary_offset_start)
                 # summary CRC: from summary_start through the footer up to the crc field
-                summary_crc = crc32(footer_head, self._summary_crc)
-                self._write(footer_head + U32.pack(summary_crc))
+                summary_crc = crc32(head, self._summary_crc)
+                self._write(head + U32.pack(summary_crc))
                 self._write(MAGIC)
                 self._f.flush()
                 if self.fsync:
@@ -523,10 +495,3 @@ def _pack_u64s(values: list[int]) -> bytes:
 
 
 _LITTLE = __import__("sys").byteorder == "little"
-
-
-def _chunk_index_body(ci: _ChunkIndex) -> bytes:
-    offsets = b"".join(U16.pack(c) + U64.pack(o) for c, o in sorted(ci.index_offsets.items()))
-    return (U64.pack(ci.start) + U64.pack(ci.end) + U64.pack(ci.offset) + U64.pack(ci.length)
-            + U32.pack(len(offsets)) + offsets + U64.pack(ci.index_length)
-            + pstr(ci.compression) + U64.pack(ci.compressed_size) + U64.pack(ci.uncompressed_size))

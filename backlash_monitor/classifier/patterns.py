@@ -48,7 +48,7 @@ def default_library_path(trigger: str | None = None) -> Path:
 
 # Settings a library is made with; load_library compares the ones the caller passes.
 SETTING_KEYS = ("trigger", "epochs", "l1", "l2", "denoising", "window_length", "window_offset_samples",
-                "sample_period_s", "plant_config_hash")
+                "sample_period_s", "plant_config_hash", "sensor_offset")
 
 
 class PatternLibraryError(ValueError):

@@ -95,7 +95,8 @@ def build_library(trigger: str = "contact_loss", seeds=DEFAULT_TRAIN_SEEDS, *, e
     settings = {"trigger": trigger, "epochs": int(epochs), "l1": float(l1), "l2": float(l2),
                 "denoising": info.get("denoising"), "window_length": int(ws.a1.shape[1]),
                 "window_offset_samples": info.get("window_offset_samples"),
-                "sample_period_s": float(ws.sample_period_s), "plant_config_hash": info.get("plant_config_hash")}
+                "sample_period_s": float(ws.sample_period_s), "plant_config_hash": info.get("plant_config_hash"),
+                "sensor_offset": info.get("sensor_offset")}
     training = {
         "seeds": info.get("seeds"), "duration_s": info.get("duration_s"), "widths_m": info.get("widths_m"),
         "eta_k_values": info.get("eta_k_values", list(ETA_K_VALUES)), "n1_values": info.get("n1_values"),

@@ -4,7 +4,7 @@ glibc returns a freed block of 128 KiB or more to the operating system (``munmap
 the heap top); the next array of that size then costs a page fault per 4 KiB page as it is first
 written. ``analyze`` allocates such arrays all the time (a decompressed 1 MiB bag chunk, the 65536-
 sample blocks of the windowing stage), so on a 10 s bag it took ~7000 page faults (~300 with this
-setting), at ~3 us each on this machine (a VM): ~20 ms of a ~100 ms analysis (bench/mcap.py). With
+setting), at ~3 us each on this machine (a VM): ~20 ms of a ~100 ms analysis (bench/bags.py). With
 the thresholds raised, freed blocks are reused instead; memory is still freed, only kept in the
 process until it exits (the command is a short-lived process), up to the trim threshold.
 """

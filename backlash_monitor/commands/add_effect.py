@@ -103,16 +103,21 @@ def run(args) -> int:
             raise UsageError(f"diagnosis {src}: {exc}") from None
         model = _base_from_diagnosis(args, conditions, src) if conditions else load(args, measurement=False)[0]
         partial = [a for a in adds if a.role == ROLE_PARTIAL]
+        confident = [a for a in adds if a.role != ROLE_PARTIAL]
+        width = diag.get("measured_width") or {}
         if partial and not args.accept_partial:
-            raise UsageError(
-                f"diagnosis {src} is partial: {', '.join(a.candidate for a in partial)} explains only part of the "
-                f"residual ({diag.get('message', '')}). Pass --accept-partial to add it anyway: the new version is "
-                "then a better approximation, not the drive's physics")
-        if partial:
+            if not confident and not width.get("differs_from_nominal"):
+                raise UsageError(
+                    f"diagnosis {src} is partial: {', '.join(a.candidate for a in partial)} explains only part of the "
+                    f"residual ({diag.get('message', '')}). Pass --accept-partial to add it anyway: the new version "
+                    "is then a better approximation, not the drive's physics")
+            notes.append(f"not added: {', '.join(a.candidate for a in partial)} explains only part of the residual "
+                         "(--accept-partial adds it)")
+            adds = confident
+        elif partial:
             notes.append(f"partial explanation added on request (--accept-partial): {', '.join(a.candidate for a in partial)} "
                          "explains only part of the residual; the monitor retrained on it may still be biased")
         additions = [EffectValues(a.effect, a.parameters, a.uncertainty, str(src)) for a in adds]
-        width = diag.get("measured_width") or {}
         if width.get("differs_from_nominal"):
             nominal["width_m"] = float(width["width_m"])
             notes.append(f"the backlash width measured {width['width_m'] * 1e3:.3f} mm (nominal "

@@ -6,6 +6,11 @@ stages as the live graph (backlash_monitor.chain: join, detect entries, capture,
 fuse) and writes the estimates to OUT.csv, OUT.json and OUT.mcap (topic `estimate`, the live
 pipeline's message type). Given the same recorded chunks, the estimates equal the live pipeline's.
 
+The accelerometers' constant offsets are estimated over whole load periods and removed before the
+classifier, as live (docs/windowing.md "Sensor offsets"): each estimate row has the offsets its
+window was read with, OUT.json's "sensor_offsets" the drive's latest estimate, and an offset beyond
+the plausible range (config/windowing.yaml sensor_offset.plausible_abs_m_s2) is printed as a WARN.
+
 A damaged bag (a chunk whose length field or CRC is bad, a missing summary) is an error naming the
 damage; with --recover every intact chunk is analysed and OUT.json's "bag_integrity" lists what was
 skipped (chunks, log-time ranges, messages). A bag sampled at another rate than the pattern library
@@ -30,7 +35,8 @@ ESTIMATE_BATCH = 64   # onset windows per batched denoise + DriveEstimator.estim
 
 CSV_COLUMNS = ("entry_sample_index", "entry_time_s", "signal", "mode", "width_m", "width_index",
                "b_margin", "continuous_width_m", "fused_width_m", "fused_events", "true_width_m",
-               "b_vector", "fused_continuous_width_m")
+               "b_vector", "fused_continuous_width_m", "a1_offset_m_s2", "a2_offset_m_s2",
+               "offset_periods")
 
 
 def add_arguments(parser) -> None:
@@ -109,6 +115,7 @@ def run(args) -> int:
     _print_summary(result["summary"], result["rows"], result["discarded"], result["n_samples"],
                    result["seconds"], result["outputs"])
     _print_input_problems(result["check"], result["integrity"])
+    _print_sensor_offsets(result["sensor_offsets"])
     stage_faults, estimator_faults = result["faults"]
     if stage_faults.total or estimator_faults.total:   # dropped input (docs/windowing.md)
         print(f"input faults: {stage_faults.summary()}; windows rejected: "
@@ -135,12 +142,14 @@ def load_bag_library(args):
     return library, offset
 
 
-def analyze_bag(args, library=None) -> dict:
+def analyze_bag(args, library=None, chunks_ahead: int | None = None) -> dict:
     """One bag through the chain; writes PREFIX.csv/.json/.mcap and returns what `run` prints:
     rows, summary, discarded windows, samples, seconds, outputs, the chunk check, the bag's
     integrity, the faults, and ``drive``/``first_stamp_s`` (the first a1 chunk's frame_id and the
     stamp of its first sample). ``library``: (library, offset) from :func:`load_bag_library`, loaded
-    here when None. Raises UsageError (one line) for anything wrong with the bag or the options."""
+    here when None. ``chunks_ahead``: the bag reader's decompression thread (BagReader; None: its
+    default; 0: none, for a pool with a worker per core). Raises UsageError (one line) for
+    anything wrong with the bag or the options."""
     from backlash_monitor.commands import UsageError
     from backlash_monitor.commands._memory import reuse_freed_memory
     from backlash_monitor.bag import BagError, BagReader, BagWriter
@@ -187,7 +196,7 @@ def analyze_bag(args, library=None) -> dict:
     check = ChunkCheck(bag_path, library)
     integrity = None
     try:
-        with BagReader(bag_path, recover=args.recover) as reader:
+        with BagReader(bag_path, recover=args.recover, chunks_ahead=chunks_ahead) as reader:
             available = set(reader.topics)
             namespace = args.namespace or drive_namespace(available, bag_path)
             topics = {}
@@ -207,6 +216,7 @@ def analyze_bag(args, library=None) -> dict:
             # contiguous ranges go to the stage in blocks: the same windows as range by range
             feeder = BlockFeeder(stage)
             batch = []   # onset windows, denoised and estimated together (same numbers as one by one)
+            last_offsets = ({}, 0)   # the latest window's sensor offset estimate, periods
             first_a1 = ("", math.nan)   # the drive's name and the first sample's time
             for m in _then_none(reader.signal_chunks(list(topics))):
                 if m is not None and math.isnan(first_a1[1]) and topics[m.topic] == "a1":
@@ -226,12 +236,13 @@ def analyze_bag(args, library=None) -> dict:
                 windows, dropped = feeder.flush() if joined is None else feeder.add(joined)
                 discarded.extend(dropped)
                 for window, source in windows:   # source: the range completing it, range by range
+                    last_offsets = (window.sensor_offsets, window.offset_periods)
                     if not estimator.classifies(window.kind):
                         continue  # no estimate from it: skip denoising it (live: denoised, unused)
                     batch.append((source, window))
                 if len(batch) >= ESTIMATE_BATCH or (m is None and batch):
                     denoised = denoise_pairs([(w.signals["a1"], w.signals["a2"]) for _, w in batch])
-                    results = estimator.estimate_many([(a1, a2, w.kind, w.sample_period_s)
+                    results = estimator.estimate_many([(a1, a2, w.kind, w.sample_period_s, w.sensor_offsets)
                                                        for (_, w), (a1, a2) in zip(batch, denoised)])
                     for (source, window), estimates in zip(batch, results):
                         for est in estimates:
@@ -250,6 +261,7 @@ def analyze_bag(args, library=None) -> dict:
         raise UsageError(f"bag {bag_path}: no samples could be analysed ({why})")
 
     summary = _summary(rows, true_width)
+    sensor_offsets = _sensor_offsets(*last_offsets, estimator.waiting_for_offset)
     # written under temporary names, renamed together once all three are complete
     with staged_outputs([outputs["csv"], outputs["json"], outputs["mcap"]]) as (csv_tmp, json_tmp, mcap_tmp):
         with open(csv_tmp, "w", newline="") as f:
@@ -266,13 +278,40 @@ def analyze_bag(args, library=None) -> dict:
                                               "reason": d.reason} for d in discarded],
                        "discarded_chunks": check.summary(), "bag_integrity": integrity,
                        "input_faults": {**stage.faults.counts, **estimator.faults.counts},
-                       "lost_samples": stage.lost_samples,
+                       "lost_samples": stage.lost_samples, "sensor_offsets": sensor_offsets,
                        "summary": summary, "estimates": rows}, allow_nan=True))
         _write_estimate_bag(mcap_tmp, estimates_msgs, true_width)
     return {"rows": rows, "summary": summary, "discarded": discarded, "n_samples": n_samples,
             "seconds": elapsed, "outputs": outputs, "check": check, "integrity": integrity,
             "faults": (stage.faults, estimator.faults), "lost_samples": stage.lost_samples,
-            "drive": first_a1[0], "first_stamp_s": first_a1[1]}
+            "drive": first_a1[0], "first_stamp_s": first_a1[1], "sensor_offsets": sensor_offsets}
+
+
+def _sensor_offsets(offsets: dict, periods: int, waiting: int) -> dict:
+    """The drive's latest sensor offset estimate for OUT.json, judged against the plausible range."""
+    from backlash_monitor.windowing import DEFAULTS
+    from backlash_monitor.windowing.offset import implausible_offsets
+    limit = float(DEFAULTS["sensor_offset"]["plausible_abs_m_s2"])
+    return {**{f"{name}_m_s2": value for name, value in offsets.items()}, "periods": periods,
+            "plausible_abs_m_s2": limit,
+            "implausible": {f"{k}_m_s2": v for k, v in implausible_offsets(offsets, limit).items()},
+            "onset_windows_before_offset_known": waiting,
+            "method": "mean over the last whole load periods (onset window end to onset window end), "
+                      "removed from every window before the classifier"}
+
+
+def _print_sensor_offsets(info: dict) -> None:
+    values = {k[:-len("_m_s2")]: v for k, v in info.items()
+              if k.endswith("_m_s2") and k != "plausible_abs_m_s2" and isinstance(v, float)}
+    if not info["periods"]:
+        print("sensor offsets: not known (no whole load period between two onset windows)")
+        return
+    print("sensor offsets: " + ", ".join(f"{k} {v:+.3f} m/s^2" for k, v in values.items())
+          + f" (over {info['periods']} load periods; removed before the classifier)")
+    for key, value in info["implausible"].items():
+        print(f"WARN: sensor offset {key[:-len('_m_s2')]} {value:+.2f} m/s^2 is beyond +-"
+              f"{info['plausible_abs_m_s2']:g} m/s^2, more than a MEMS sensor's own offset: check the "
+              "sensor and its mounting (the widths above are offset-free)")
 
 
 class ChunkCheck:
@@ -362,6 +401,9 @@ def _row(window, est, true_width) -> dict:
         "fused_events": est.fused_events, "true_width_m": true_width,
         "b_vector": [float(b) for b in est.b_vector],
         "fused_continuous_width_m": est.fused_continuous_width_m,
+        "a1_offset_m_s2": window.sensor_offsets.get("a1", math.nan),
+        "a2_offset_m_s2": window.sensor_offsets.get("a2", math.nan),
+        "offset_periods": window.offset_periods,
         "candidate_widths_m": [float(w) for w in est.candidate_widths_m],
         "entry_kind": window.kind,
     }
@@ -388,7 +430,7 @@ def _summary(rows, true_width):
 def _print_summary(summary, rows, discarded, n_samples, elapsed, outputs):
     true_width = summary["true_width_m"]
     print(f"analyzed {n_samples} samples in {elapsed:.2f} s; {len({r['entry_sample_index'] for r in rows})} "
-          f"onset windows, {len(discarded)} discarded")
+          f"onset windows classified, {len(discarded)} discarded")
     header = ("signal", "estimates", "accuracy", "fused width", "fused continuous", "fused events")
     lines = [header]
     for signal, s in sorted(summary["per_signal"].items()):

@@ -3,10 +3,12 @@
 Every chunk is checked: its record against the summary's chunk index, the data section's CRC and,
 when that fails or is missing, each chunk's own CRC (every chunk is decompressed).
 
-Exit codes: 0 = the bag is complete, intact and every topic's schema decodes (or `--recover` read
-what was intact, and the report says what was damaged or lost); 1 = the bag is damaged (truncated:
-recorder killed; a damaged chunk or summary; a schema that cannot be decoded); 2 = bad input (no
-such file, not an MCAP/ROS 2 bag, `--topic` not in the bag).
+Every valid MCAP layout is read (with or without a summary, chunks, indexes, statistics; see
+docs/bags.md). Exit codes: 0 = the bag is complete, intact and every topic's schema decodes (or
+`--recover` read what was intact, and the report says what was damaged or lost); 1 = the bag is
+damaged (truncated: recorder killed; a damaged chunk or summary; a schema that cannot be decoded);
+2 = bad input (no such file, not an MCAP/ROS 2 bag, a layout this package cannot read such as an
+unknown chunk compression, `--topic` not in the bag).
 """
 from __future__ import annotations
 
@@ -51,8 +53,7 @@ def _err(msg: str) -> None:
 
 def run(args) -> int:
     from ..bag import (BagError, BagReader, DamagedBagError, MissingTopicError, NotABagError,
-                       TruncatedBagError)
-    from ..bag import UnknownSchemaError
+                       TruncatedBagError, UnknownSchemaError, UnsupportedBagError)
 
     try:
         reader = BagReader(args.bag, recover=args.recover)
@@ -61,6 +62,9 @@ def run(args) -> int:
         return 2
     except NotABagError as exc:
         _err(f"{exc} (expected a rosbag2 MCAP file, profile 'ros2')")
+        return 2
+    except UnsupportedBagError as exc:   # a valid MCAP layout this package cannot read
+        _err(f"{args.bag}: {exc}")
         return 2
     except (TruncatedBagError, DamagedBagError) as exc:
         _err(f"{exc}")

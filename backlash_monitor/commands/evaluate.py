@@ -216,7 +216,9 @@ def _plots(out_dir: Path, trig: str, lib, test, unseen, res: dict, staged: dict)
             axes[1, 0].plot(t_ms, test.a1[k], color=colors[i], lw=1.2)
             axes[0, 1].plot(t_ms, test.raw_a2[k], color=colors[i], lw=0.6)
             axes[1, 1].plot(t_ms, test.a2[k], color=colors[i], lw=1.2)
-    for ax, title in zip(axes.flat, ("a1 raw", "a2 raw", "a1 denoised (sym5, d1-d6 removed)", "a2 denoised")):
+    for ax, title in zip(axes.flat, ("a1 raw", "a2 raw",
+                                     "a1 denoised (sym5, d1-d6 removed), sensor offset removed",
+                                     "a2 denoised, sensor offset removed (the classifier's input)")):
         ax.set_title(title, fontsize=10)
         ax.grid(alpha=0.3)
     axes[1, 0].set_xlabel("time after the window start (entry + the trigger's offset) [ms]")

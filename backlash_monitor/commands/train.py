@@ -28,6 +28,7 @@ TRIGGERS = ("contact_loss", "paper")
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     from backlash_monitor.classifier.cpn import DEFAULT_EPOCHS, DEFAULT_L1, DEFAULT_L2
+    from backlash_monitor.classifier.dataset import DEFAULT_DURATION_S
     from backlash_monitor.classifier.shape import DEFAULT_RIDGE
     from backlash_monitor.classifier.training import DEFAULT_TRAIN_SEEDS
     parser.add_argument("--out", default=None, metavar="FILE.npz",
@@ -37,8 +38,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="backlash-entry trigger of the training windows: 'contact_loss' (angle difference "
                              "alone, the pipeline's default) or 'paper' (eq. 1 with the true width)")
     parser.add_argument("--seeds", type=seed_list, default=list(DEFAULT_TRAIN_SEEDS), metavar="S[,S...]",
-                        help="training noise seeds (each one is the full 120-scenario grid, 8 onset windows per "
-                             "scenario); keep them apart from the evaluation seeds 0-4")
+                        help="training noise seeds (each one is the full 120-scenario grid, 8 classified onset "
+                             "windows per scenario); keep them apart from the evaluation seeds 0-4")
     parser.add_argument("--epochs", type=int, default=DEFAULT_EPOCHS,
                         help="counter-propagation epochs per window (paper: 30), >= 1")
     parser.add_argument("--l1", type=float, default=DEFAULT_L1,
@@ -47,8 +48,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="Grossberg-layer learning coefficient l2 (paper: 0.09), 0 < l2 <= 1")
     parser.add_argument("--ridge", type=float, default=DEFAULT_RIDGE,
                         help="ridge penalty of the shape mode's regression (per window, standardised features), > 0")
-    parser.add_argument("--duration", type=float, default=2.0, metavar="S",
-                        help="simulated seconds per scenario (4 onset windows per second), 0.5 <= S <= 60")
+    parser.add_argument("--duration", type=float, default=DEFAULT_DURATION_S, metavar="S",
+                        help="simulated seconds per scenario (4 onset windows per second; the first has no "
+                             "sensor offset estimate yet and is not used, as the monitor does not classify "
+                             "it), 0.5 <= S <= 60")
     parser.add_argument("--window-offset", type=int, default=None, metavar="SAMPLES",
                         help="samples from the detected entry to the window start (default: the trigger's "
                              "configured value, config/windowing.yaml capture.window_offset_samples); the "
@@ -63,6 +66,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "when diagnose names indistinguishable effects, one version per candidate. Also writes "
                              "the live model watch's reference of the (first) version beside the library: "
                              "LIB.watch.npz (~30 s more; docs/model_watch.md)")
+    parser.add_argument("--previous-library", default=None, metavar="LIB.npz",
+                        help="with --model: the library the monitor uses now (default: the packaged one); the "
+                             "retrained library is checked against it on the diagnosed recording")
+    parser.add_argument("--keep-worse", action="store_true",
+                        help="with --model: write the retrained library even when it puts the monitor further from "
+                             "the diagnosis than the previous library (default: the previous library is written under "
+                             "--out, saying why, and the retrained one as NAME.rejected.npz)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -91,6 +101,8 @@ def _check(args) -> None:
         from backlash_monitor.workbench.reference import reference_path_for_library
         outs = [args.out] + ([str(reference_path_for_library(args.out))] if getattr(args, "model", None) else [])
         try:
+            if getattr(args, "model", None) and not getattr(args, "keep_worse", False):
+                outs.append(str(args.out)[:-len(".npz")] + ".rejected.npz")   # written if the check rejects it
             check_outputs(outs, overwrite=args.overwrite, option="--out")
         except OutputError as error:
             raise UsageError(str(error)) from None
@@ -126,10 +138,21 @@ def run(args) -> int:
                             ridge=args.ridge, duration_s=args.duration, progress=bar.update,
                             window_offset=args.window_offset, config=config)
     check = None
+    rejected = None
     if models and any(m.provenance.get("measurement") for m in models):
         from backlash_monitor.workbench.retrain import check_library
-        check = check_library(lib, models)
+        check = check_library(lib, models, args.previous_library)
         lib.training["check"] = check
+        if check["worse"] and not args.keep_worse:
+            # never a worse monitor: the previous library goes under the requested name, the retrained one beside it
+            from backlash_monitor.classifier.patterns import load_library
+            rejected = lib.save(str(out)[:-len(".npz")] + ".rejected.npz")
+            lib = load_library(args.previous_library or default_library_path(args.trigger))
+            # (not flagged: it is the library the monitor had; the check says why it was kept)
+            lib.training = {**lib.training, "check": {**check, "flagged": False,
+                                                      "kept_previous": str(args.previous_library
+                                                                           or default_library_path(args.trigger)),
+                                                      "rejected": str(rejected)}}
     path = lib.save(out)
     ref_path = None
     if models:
@@ -154,7 +177,11 @@ def run(args) -> int:
         from backlash_monitor.workbench.retrain import describe
         for line in describe(check):
             print("  " + line)
-        if check["flagged"]:
+        if rejected is not None:
+            print(f"WARNING: the retrained library puts the monitor further from the diagnosis than the previous one: "
+                  f"{path} holds the previous library (its training.check says why); the retrained one is {rejected} "
+                  "(--keep-worse writes it as --out)", file=sys.stderr)
+        elif check["flagged"]:
             print(f"WARNING: the library {path} is FLAGGED (written into it; analyze and the classifier warn when "
                   "they load it): " + "; ".join(check["reasons"]), file=sys.stderr)
     return 0

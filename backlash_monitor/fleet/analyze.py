@@ -88,15 +88,12 @@ def init_worker(options: dict, library=None) -> None:
     for var in THREAD_VARIABLES:
         os.environ[var] = "1"
     import multiprocessing
-    from backlash_monitor.bag import reader
-    if multiprocessing.parent_process() is not None:
-        reader._DECOMPRESS_POOL = None   # a forked copy of the parent's pool has no thread
-    if multiprocessing.parent_process() is not None or len(os.sched_getaffinity(0)) == 1:
-        # a pool worker (a worker per core) or a process on one CPU: no core for the bag
-        # reader's decompression thread, which would only take turns with the worker
-        reader.CHUNKS_AHEAD = 0
     from backlash_monitor.commands.analyze import load_bag_library
-    _WORKER.update(pid=os.getpid(), options=options,
+    # a pool worker (a worker per core): no core for a bag reader's decompression thread, which
+    # would only take turns with the worker; its readers get chunks_ahead=0 (None: the reader's
+    # default, which is 0 on one CPU too)
+    chunks_ahead = 0 if multiprocessing.parent_process() is not None else None
+    _WORKER.update(pid=os.getpid(), options=options, chunks_ahead=chunks_ahead,
                    library=library or load_bag_library(argparse.Namespace(**options)))
 
 
@@ -112,7 +109,8 @@ def analyze_one(job: dict) -> dict:
            "fused_width_m": math.nan, "true_width_m": math.nan, "onsets": 0, "discarded": 0,
            "error": ""}
     try:
-        result = analyze_bag(args, library=_WORKER["library"])
+        result = analyze_bag(args, library=_WORKER["library"],
+                             chunks_ahead=_WORKER["chunks_ahead"])
     except UsageError as error:
         row["error"] = str(error)
         return row
@@ -131,6 +129,10 @@ def analyze_one(job: dict) -> dict:
                seconds=time.perf_counter() - started, signal=primary)
     if not job["options"].get("no_model_fit"):
         row.update(model_fit(job["bag"], job["options"], row))
+    offsets = result.get("sensor_offsets", {})      # the drive's latest sensor offset estimate
+    row.update(a1_offset_m_s2=offsets.get("a1_m_s2", math.nan),
+               a2_offset_m_s2=offsets.get("a2_m_s2", math.nan),
+               offset_implausible=sorted(k[:-len("_m_s2")] for k in offsets.get("implausible", {})))
     return row
 
 
@@ -397,7 +399,8 @@ def run_many(args) -> int:
                              r["bag"]))
     points, trends = add_trends(rows, rule)
     columns = ("drive", "time_s", "width_m", "fused_width_m", "trend_m_per_day", "level",
-               "reason", "model_fit_level", "model_fit_ratio", "true_width_m", "onsets", "discarded", "bag")
+               "reason", "model_fit_level", "model_fit_ratio", "true_width_m", "onsets", "discarded", "bag",
+               "a1_offset_m_s2", "a2_offset_m_s2")
     with open(out_dir / "fleet.csv", "w", newline="", encoding="utf-8") as f:
         writer = csv.writer(f)
         writer.writerow(columns)
@@ -426,6 +429,10 @@ def run_many(args) -> int:
             print(f"{r['drive']}: model {fit['model']} does not explain {Path(r['bag']).name} (residual "
                   f"{fit['residual_over_noise']:.1f}x the noise floor; {', '.join(fit['exceeding'])}): run diagnose "
                   "on it")
+        for signal in r.get("offset_implausible", []):
+            print(f"{Path(r['bag']).name}: WARN: sensor offset {signal} "
+                  f"{r[signal + '_offset_m_s2']:+.2f} m/s^2 beyond what a MEMS sensor shows "
+                  "(config/windowing.yaml sensor_offset): check the sensor (the widths are offset-free)")
     print(f"analysed {len(bags)} bags of {len(points)} drives in {wall:.1f} s on {n_jobs} "
           f"{'worker' if n_jobs == 1 else 'workers'} ({args.engine}); wrote {out_dir / 'fleet.csv'}"
           f", .json{', ' + str(len(plots)) + ' plots' if plots else ''}")

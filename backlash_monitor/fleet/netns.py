@@ -164,7 +164,8 @@ def run_two_hosts(workdir: str, base_env: dict, domain_id: int, duration_s: floa
                   rate_factor: float = 1.0, namespace: str = "/line1/drive01",
                   timeout_s: float = 120.0) -> dict:
     """Plant and monitor on host A, the chain on host B; returns the monitor's counts plus
-    ``delivered`` = onset estimates received on A / onset windows captured on B, and the hosts'
+    ``delivered`` = onset estimates received on A / onset windows captured on B that the
+    classifier classifies (all but those before the sensor offset was known), and the hosts'
     outputs under ``logs``."""
     import json
     import sys
@@ -204,8 +205,8 @@ def run_two_hosts(workdir: str, base_env: dict, domain_id: int, duration_s: floa
         veth_bytes = a.veth_bytes()
         lines = [line for line in (out or "").splitlines() if line.startswith("{")]
         result = json.loads(lines[-1]) if lines else {"onsets_estimated": 0, "onset_windows": 0}
-        result["delivered"] = (result["onsets_estimated"] / result["onset_windows"]
-                               if result["onset_windows"] else 0.0)
+        classifiable = result["onset_windows"] - result.get("onsets_before_offset", 0)
+        result["delivered"] = result["onsets_estimated"] / classifiable if classifiable > 0 else 0.0
         result["addresses"] = [a.address, b.address]
         result["veth_bytes"] = veth_bytes
         result["logs"] = {**logs, "monitor": out}

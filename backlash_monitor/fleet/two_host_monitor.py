@@ -1,5 +1,6 @@
 """The monitor on host A of the two-host run (fleet/netns.py): counts a drive's onset estimates
-coming back from host B and its windowing's onset windows (from /diagnostics); prints one JSON line.
+coming back from host B and its windowing's onset windows (from /diagnostics; and those published
+before the sensor offset was known, which are not classified); prints one JSON line.
 
     python -m backlash_monitor.fleet.two_host_monitor /line1/drive01 SECONDS
 """
@@ -32,13 +33,15 @@ def main(argv=None) -> int:
     last_change, last = started, (0, 0)
     while time.monotonic() - started < wall_limit_s:
         rclpy.spin_once(node, timeout_sec=0.1)
-        state = (len(onsets), int(windowing.get("onsets", 0)))
+        state = (len(onsets), int(windowing.get("onsets", 0))
+                 - int(windowing.get("onsets_before_offset", 0)))
         if state != last:
             last, last_change = state, time.monotonic()
         if state[1] and state[0] >= state[1] and time.monotonic() - last_change > 2.5:
             break
     print(json.dumps({"onsets_estimated": len(onsets),
                       "onset_windows": int(windowing.get("onsets", 0)),
+                      "onsets_before_offset": int(windowing.get("onsets_before_offset", 0)),
                       "chunks": int(windowing.get("chunks", 0)),
                       "discarded": int(windowing.get("discarded", 0))}), flush=True)
     node.destroy_node()

@@ -8,6 +8,12 @@ width over the last onset events) and keeps a ``diagnostic_msgs/DiagnosticArray`
 ``/diagnostics``: OK / WARN / ERROR by the fused width against ``warn_width_m`` and
 ``error_width_m`` (config/diagnostics.yaml), hardware_id = the drive's name.
 
+Every mode reads the window minus the sensor offsets it carries (``a1_offset_m_s2``,
+``a2_offset_m_s2``, estimated by the windowing node over whole load periods): a constant
+accelerometer offset cannot move the width. A window with ``offset_periods`` 0 (the stream's first
+onset window, before one whole load period; or a publisher that does not set them) is not
+classified; ``/diagnostics`` counts them (``windows_waiting_for_offset``), it is no fault.
+
 ERROR means one thing: the fused width is at or beyond ``error_width_m``. A window that cannot be
 classified (not denoised, a1/a2 of unequal or the wrong length, another sample period than the
 library's, non-finite samples, an unknown entry kind; DriveEstimator.check_window) is dropped and
@@ -123,8 +129,10 @@ class ClassifierNode(Node):
                                    "skipped", throttle_duration_sec=10.0)
             return
         # checked by the core (DriveEstimator.check_window): a bad window gives no estimate
+        offsets = ((msg.a1_offset_m_s2, msg.a2_offset_m_s2) if msg.offset_periods > 0
+                   else (math.nan, math.nan))
         estimates = self.estimator.estimate(from_float64_field(msg.a1), from_float64_field(msg.a2),
-                                            msg.entry_kind, msg.sample_period_s)
+                                            msg.entry_kind, msg.sample_period_s, sensor_offsets=offsets)
         for estimate in estimates:
             self.publisher.publish(self.to_message(msg, estimate))
         if estimates:
@@ -173,6 +181,9 @@ class ClassifierNode(Node):
         p = self.params
         input_level, problem = self.health.state(time.monotonic())
         width_level, message, values = self.width_state or ("OK", "no estimate yet", {})
+        if self.width_state is None and self.estimator.waiting_for_offset:
+            message += (f" ({self.estimator.waiting_for_offset} onset window(s) before the sensor "
+                        "offset was known: it needs one whole load period)")
         if width_level == "ERROR":
             level = "ERROR"
         elif input_level == "STALE":
@@ -189,6 +200,7 @@ class ClassifierNode(Node):
         self.diagnostics.set(
             level, message, publish_now=publish_now, **values,
             windows_classified=self.classified, windows_rejected=rejected,
+            windows_waiting_for_offset=self.estimator.waiting_for_offset,
             input_faults=", ".join(f for f in (self.faults.summary(), self.estimator.faults.summary())
                                    if f != "none") or "none",
             repeated_windows_skipped=self.repeated.repeats,

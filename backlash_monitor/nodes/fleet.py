@@ -239,7 +239,7 @@ class FleetMonitor:
         t = self.tally[hardware_id]
         w = t.windowing
         return (int(w.get("chunks", 0)) >= expected_chunks
-                and len(t.onsets_estimated) >= int(w.get("onsets", 0)))
+                and len(t.onsets_estimated) >= _classifiable_onsets(w))
 
     def summary(self, drives, expected_chunks: int) -> list[dict]:
         """Per drive; the lag counts from WARMUP_S after every drive's stream has started (while
@@ -254,6 +254,7 @@ class FleetMonitor:
             lags = sorted(lag for at, lag in t.lags_s if at >= steady_from)
             startup = [lag for at, lag in t.lags_s if at < steady_from]
             onsets = int(w.get("onsets", 0))
+            classifiable = _classifiable_onsets(w)
             row = {"drive": d.hardware_id, "true_width_m": t.true_width_m,
                    "fused_width_m": t.fused_width_m,
                    "fused_continuous_width_m": t.fused_continuous_width_m, "level": t.level,
@@ -262,6 +263,7 @@ class FleetMonitor:
                    "discarded": int(w.get("discarded", 0)),
                    "incomplete_chunks": int(w.get("incomplete_chunks", 0)),
                    "onset_windows": onsets, "onsets_estimated": len(t.onsets_estimated),
+                   "onsets_before_offset": onsets - classifiable,
                    "lag_ms_median": lags[len(lags) // 2] * 1e3 if lags else math.nan,
                    "lag_ms_max": lags[-1] * 1e3 if lags else math.nan,
                    "lag_ms_max_startup": max(startup) * 1e3 if startup else math.nan,
@@ -270,10 +272,16 @@ class FleetMonitor:
             row["realtime"] = bool(
                 row["chunks"] >= expected_chunks and row["discarded"] == 0
                 and row["incomplete_chunks"] == 0 and onsets > 0
-                and row["onsets_estimated"] >= onsets
+                and row["onsets_estimated"] >= classifiable
                 and (not lags or lags[-1] <= REALTIME_LAG_S))
             rows.append(row)
         return rows
+
+
+def _classifiable_onsets(windowing: dict) -> int:
+    """Onset windows the classifier can classify: those published with a sensor offset estimate
+    (the stream's first onset window has none: no whole load period behind it)."""
+    return int(windowing.get("onsets", 0)) - int(windowing.get("onsets_before_offset", 0))
 
 
 def format_summary(rows: list[dict]) -> str:

@@ -242,6 +242,7 @@ class LiveView:
         self.watch_status = ""            # its last /diagnostics status, "LEVEL: message"
         self.watch_level = ""
         self.watch_snapshot = ""
+        self.onsets_before_offset = 0     # onset windows published before the sensor offset was known
 
     def onset_gaps(self) -> list[tuple[float, float, int]]:
         """Gaps in the onset estimates of each stream: (t before, t after [s], onsets missing at
@@ -348,6 +349,7 @@ class LiveView:
                 self.watch_level, self.watch_snapshot = name, snapshot
             elif "windowing" in status.name:
                 self.windowing_joined_at = int(values.get("joined_at_sample") or 0)
+                self.onsets_before_offset = int(values.get("onsets_before_offset") or 0)
                 self.windowing = (f"{text} (incomplete chunk ranges "
                                   f"{values.get('incomplete_chunks', '0')}, last discard: "
                                   f"{values.get('last_discard') or 'none'})")
@@ -368,7 +370,9 @@ class LiveView:
         lines = ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows]
         lines.insert(1, "  ".join("-" * w for w in widths))
         head = (f"summary: true width {self.true_width_m * 1e3:.2f} mm, mode {self.mode or '-'}, "
-                f"{len(self.onset_entries)} onset windows classified")
+                f"{len(self.onset_entries)} onset windows classified"
+                + (f" ({self.onsets_before_offset} more before the sensor offset was known: one whole "
+                   "load period is needed)" if self.onsets_before_offset else ""))
         tail = [f"last diagnostics (sent once a second): classifier {self.diagnostic}"] \
             if self.diagnostic else []
         tail += [f"last diagnostics (sent once a second): windowing {self.windowing}"] \

@@ -12,6 +12,11 @@ Every chunk is checked by the cores it enters (ChunkJoiner, WindowingStage; docs
 "Input faults"): a bad one is dropped and counted with its reason, the stream resumes after it or
 re-synchronises (an index restart), and ``/diagnostics`` says WARN with the reason while faults
 come (``fault_hold_s``), STALE when no chunk arrived for ``stale_after_s``.
+
+Each window carries the accelerometers' constant offsets estimated over the last whole load
+periods (``a1_offset_m_s2``, ``a2_offset_m_s2``, ``offset_periods``; backlash_monitor.windowing.offset),
+which the classifier removes. ``/diagnostics`` shows the latest estimate and says WARN while one
+lies beyond +-``plausible_offset_m_s2`` (more than a MEMS sensor's offset: check the sensor).
 """
 from __future__ import annotations
 
@@ -31,6 +36,8 @@ from backlash_monitor.nodes.qos import LATCHED, WINDOW_QOS, chunk_qos
 from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor.chain import ChunkJoiner, WindowingStage
 from backlash_monitor.input_faults import FaultLog, InputHealth, is_period
+from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
+from backlash_monitor.windowing.offset import implausible_offsets
 from backlash_monitor_msgs.msg import BacklashWindow, SignalChunk
 
 PARAMETERS = (
@@ -53,6 +60,11 @@ PARAMETERS = (
                   "STALE (a drive streams chunks continuously)", 0.01, 3600.0),
     ParameterSpec("fault_hold_s", 10.0, "seconds /diagnostics stays WARN after the last bad "
                   "chunk (dropped, gap, restart)", 0.01, 3600.0),
+    ParameterSpec("plausible_offset_m_s2",
+                  float(WINDOWING_DEFAULTS["sensor_offset"]["plausible_abs_m_s2"]),
+                  "largest accelerometer offset [m/s^2] taken as a sensor's own (a MEMS zero-g offset "
+                  "reaches ~0.2 g); an estimate beyond it makes /diagnostics WARN (config/windowing.yaml "
+                  "sensor_offset.plausible_abs_m_s2)", 0.0, 1000.0),
 )
 
 
@@ -79,8 +91,12 @@ class WindowingNode(Node):
         self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "chunks")
         self.true_width_m = math.nan
         self.stream_start_s = None
-        self.counts = {"windows": 0, "onsets": 0, "discarded": 0, "chunks": 0}
+        # onsets_before_offset: onset windows published before the sensor offsets were known (the
+        # classifier does not classify them: one at a stream's start)
+        self.counts = {"windows": 0, "onsets": 0, "onsets_before_offset": 0, "discarded": 0,
+                       "chunks": 0}
         self.last_discard = ""
+        self.sensor_offsets: tuple[dict, int] = ({}, 0)   # the last window's estimate, periods
         qos = chunk_qos(p["qos"])
         for name in self.signals:
             self.create_subscription(SignalChunk, f"plant/{name}",
@@ -137,11 +153,27 @@ class WindowingNode(Node):
     def update_diagnostics(self, publish_now: bool = False):
         level, problem = self.health.state(time.monotonic())
         summary = f"{self.counts['windows']} windows, {self.counts['discarded']} discarded"
+        offsets, periods = self.sensor_offsets
+        values = {f"{name}_offset_m_s2": f"{value:.4f}" if math.isfinite(value) else ""
+                  for name, value in offsets.items()}
+        if periods:
+            summary += "; sensor offsets " + ", ".join(
+                f"{name} {value:+.2f}" for name, value in offsets.items()) + f" m/s^2 ({periods} periods)"
+        limit = self.params["plausible_offset_m_s2"]
+        wrong = implausible_offsets(offsets, limit)
+        if wrong:
+            problem = "; ".join(filter(None, [problem, (
+                "sensor offset " + ", ".join(f"{name} {value:+.2f} m/s^2" for name, value in wrong.items())
+                + f" beyond +-{limit:g} m/s^2, more than a MEMS sensor's own: check the sensor and its "
+                "mounting (the width stays offset-free)")]))
+            if level == "OK":
+                level = "WARN"
         self.diagnostics.set(level, f"{problem}; {summary}" if problem else summary,
                              publish_now=publish_now, last_discard=self.last_discard,
                              incomplete_chunks=self.joiner.dropped_ranges,
                              lost_samples=self.stage.lost_samples,
-                             input_faults=self.faults.summary(), **self.counts)
+                             input_faults=self.faults.summary(), offset_periods=periods,
+                             plausible_offset_m_s2=limit, **values, **self.counts)
 
     def publish_window(self, window, frame_id: str, range_stamp=None):
         msg = BacklashWindow()
@@ -162,9 +194,20 @@ class WindowingNode(Node):
         msg.a1 = to_float64_array(window.signals["a1"])
         msg.a2 = to_float64_array(window.signals["a2"])
         msg.true_width_m = self.true_width_m
+        msg.a1_offset_m_s2 = window.sensor_offsets.get("a1", math.nan)
+        msg.a2_offset_m_s2 = window.sensor_offsets.get("a2", math.nan)
+        msg.offset_periods = window.offset_periods
         self.publisher.publish(msg)
         self.counts["windows"] += 1
         self.counts["onsets"] += window.kind == "onset"
+        self.counts["onsets_before_offset"] += window.kind == "onset" and window.offset_periods == 0
+        previous = implausible_offsets(self.sensor_offsets[0], self.params["plausible_offset_m_s2"])
+        self.sensor_offsets = (dict(window.sensor_offsets), window.offset_periods)
+        if implausible_offsets(window.sensor_offsets, self.params["plausible_offset_m_s2"]) and not previous:
+            self.get_logger().warning(
+                "sensor offset beyond +-%g m/s^2: %s" % (self.params["plausible_offset_m_s2"], ", ".join(
+                    f"{k} {v:+.2f} m/s^2" for k, v in window.sensor_offsets.items())))
+            self.update_diagnostics(publish_now=True)
 
 
 def main(args=None):

@@ -6,8 +6,9 @@ from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 
-from .config import DEFAULTS
+from .config import DEFAULTS, KIND_ONSET
 from .detector import BacklashEntry, BacklashEntryDetector, _check_positive
+from .offset import SensorOffsetEstimator
 
 __all__ = ["BacklashWindow", "DiscardedWindow", "WindowCapture", "BacklashWindower", "extract_windows",
            "extract_windows_batch", "DISCARD_REASONS"]
@@ -40,10 +41,19 @@ class BacklashWindow:
     signals: dict = field(default_factory=dict)
     confirm_sample_index: int | None = None
     window_offset_samples: int = 0      # the signals start at entry_sample_index + this
+    # each captured signal's constant sensor offset [its unit] as estimated at the window's end
+    # (mean over the last whole load periods, offset.py); NaN before the first whole period
+    sensor_offsets: dict = field(default_factory=dict)
+    offset_periods: int = 0             # whole load periods behind sensor_offsets (0: none yet)
 
     @property
     def start_sample_index(self) -> int:
         return self.entry_sample_index + self.window_offset_samples
+
+    @property
+    def end_sample_index(self) -> int:
+        """One past the window's last sample."""
+        return self.start_sample_index + self.window_length
 
     @property
     def window_length(self) -> int:
@@ -66,13 +76,18 @@ class WindowCapture:
     Windows are returned in the call that completes them.  A dropped chunk (index jump), an
     out-of-order chunk or a sample-period change discards every open window with that reason (and
     the history: the stream restarts at the new chunk); an out-of-order chunk is otherwise ignored.
+
+    Every window carries each captured signal's constant sensor offset as estimated at its end
+    (``sensor_offsets``, ``offset_periods``): the mean over the last ``offset_periods`` whole load
+    periods, each from the end of one onset window to the end of the next (offset.py).
     """
 
     def __init__(self, window_length: int = DEFAULTS["capture"]["window_length"],
                  signals: Sequence[str] = tuple(DEFAULTS["capture"]["signals"]),
                  history_samples: int = DEFAULTS["capture"]["history_samples"],
                  sample_period_s: float = DEFAULTS["detector"]["sample_period_s"],
-                 window_offset_samples: int = 0):
+                 window_offset_samples: int = 0,
+                 offset_periods: int = DEFAULTS["sensor_offset"]["periods"]):
         self.window_length = _check_positive("window_length", window_length, integer=True)
         if (isinstance(window_offset_samples, bool) or not float(window_offset_samples).is_integer()
                 or not 0 <= int(window_offset_samples) <= 65536):
@@ -88,6 +103,7 @@ class WindowCapture:
         self._base = 0                  # absolute index of the first buffered sample
         self._next: int | None = None   # expected first_sample_index of the next chunk
         self._pending: list[BacklashEntry] = []
+        self.offsets = SensorOffsetEstimator(self.signals, periods=offset_periods)
 
     def _discard_all(self, reason: str) -> list[DiscardedWindow]:
         d = [DiscardedWindow(e.sample_index, reason, e.kind) for e in self._pending]
@@ -97,6 +113,7 @@ class WindowCapture:
     def _restart(self, first: int) -> None:
         self._buf = {s: np.zeros(0) for s in self.signals}
         self._base = first
+        self.offsets.restart(first)
 
     def feed(self, first_sample_index: int, signals: Mapping[str, np.ndarray],
              entries: Iterable[BacklashEntry] = (), sample_period_s: float | None = None):
@@ -141,6 +158,7 @@ class WindowCapture:
             return [], discarded
         for s, a in zip(self.signals, arrays):
             self._buf[s] = np.concatenate((self._buf[s], a))
+        self.offsets.feed(first, dict(zip(self.signals, arrays)))
         self._next = first + n
         for e in entries:
             if e.sample_index < self._base:
@@ -153,12 +171,17 @@ class WindowCapture:
         for e in self._pending:
             if e.sample_index + self.window_offset_samples + self.window_length <= end:
                 lo = e.sample_index + self.window_offset_samples - self._base
-                windows.append(BacklashWindow(
+                window = BacklashWindow(
                     entry_sample_index=e.sample_index, kind=e.kind, trigger=e.trigger,
                     sample_period_s=self.sample_period_s,
                     signals={s: self._buf[s][lo:lo + self.window_length].copy() for s in self.signals},
                     confirm_sample_index=e.confirm_sample_index,
-                    window_offset_samples=self.window_offset_samples))
+                    window_offset_samples=self.window_offset_samples)
+                if e.kind == KIND_ONSET:   # a whole load period ends with each onset window
+                    self.offsets.close_period(window.end_sample_index,
+                                              self._heads(window.end_sample_index))
+                window.sensor_offsets, window.offset_periods = self.offsets.estimate()
+                windows.append(window)
             else:
                 still.append(e)
         self._pending = still
@@ -171,6 +194,15 @@ class WindowCapture:
                 self._buf[s] = self._buf[s][cut:]
             self._base += cut
         return windows, discarded
+
+    def _heads(self, index: int) -> dict | None:
+        """Each signal's sum over [block start of ``index``, ``index``) from the kept history (one
+        contiguous slice: the same sum however the stream came in), or None when not all there."""
+        lo = self.offsets.block_start(index) - self._base
+        hi = index - self._base
+        if lo < 0 or hi > self._buf[self.signals[0]].size:
+            return None
+        return {s: float(np.sum(self._buf[s][lo:hi])) for s in self.signals}
 
     def flush(self) -> list[DiscardedWindow]:
         """End of stream: every open window is discarded ("end_of_stream")."""

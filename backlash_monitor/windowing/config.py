@@ -42,6 +42,12 @@ DEFAULTS: dict[str, Any] = {
         # samples from the detected entry to the window's first sample, per trigger
         "window_offset_samples": {"contact_loss": 200, "paper": 0},
     },
+    "sensor_offset": {
+        # whole load periods (onset window end to onset window end) averaged per offset estimate
+        "periods": 8,
+        # |offset| [m/s^2] beyond which the windowing diagnostics say WARN (MEMS zero-g offset ~0.2 g)
+        "plausible_abs_m_s2": 2.0,
+    },
 }
 
 DEFAULT_CONFIG_PATH = Path(__file__).resolve().parents[2] / "config" / "windowing.yaml"

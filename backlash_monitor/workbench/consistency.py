@@ -22,7 +22,7 @@ import numpy as np
 from scipy import stats
 
 from . import spectral
-from .events import denoise
+from .events import dc_block_deviations, denoise
 
 SUBSPACE_ENERGY = 0.99       # share of the candidates' reach the subspace keeps
 SUBSPACE_MAX_DIM = 12
@@ -78,11 +78,12 @@ def model_event_vectors(comp, problem) -> np.ndarray:
     base = problem.pred_of(comp.ensemble, 0)
     out = []
     for k, raw in enumerate(comp.ensemble.per_event):
-        dc = comp.ensemble.dc_samples(k)
         v = np.hstack([(denoise(raw) * comp.weights[None, :, None]).reshape(raw.shape[0], -1),
-                       comp.model_event_spec[k] * problem.ws[None],
-                       dc * problem.wdc[None]])
-        out.append(v - base[None])
+                       comp.model_event_spec[k] * problem.ws[None], np.zeros((raw.shape[0], problem.wdc.size))])
+        v = v - base[None]
+        # the record-mean coordinates: block means (events.dc_block_deviations), not single periods
+        v[:, problem.dc_slice] = dc_block_deviations(comp.ensemble.dc_samples(k)) * problem.wdc[None]
+        out.append(v)
     return np.vstack(out)
 
 
@@ -139,6 +140,25 @@ def complement_basis(z_all, problem) -> np.ndarray:
     _, sv, vt = np.linalg.svd(zc, full_matrices=False)
     p = min(COMPLEMENT_DIM, len(sv))
     return vt[:p].T / np.maximum(sv[:p] / np.sqrt(max(z.shape[0] - 1, 1)), 1e-300)[None]
+
+
+def fit_basis(problem) -> np.ndarray:
+    """(N, q + P): the fits' metric -- every view's whitened basis with its model-form tolerance folded in
+    (basis_b (I + Z_b Z_b' / c)^(-1/2): generalised least squares with the noise and the tolerance, so a fit does not
+    bend to explain what the tolerance allows) and the complement's directions."""
+    c = noise_scale(problem.n_events, problem.n_seeds)
+    cols = []
+    for _, sl in problem.blocks:
+        b = problem.basis[:, sl]
+        z = None if problem.tolerance_z is None else problem.tolerance_z[sl]
+        if z is None or not np.any(z):
+            cols.append(b)
+            continue
+        vals, vecs = np.linalg.eigh(np.eye(z.shape[0]) + z @ z.T / c)
+        cols.append(b @ (vecs / np.sqrt(vals)[None, :]) @ vecs.T)
+    outside = np.zeros((problem.basis.shape[0], problem.complement.shape[1]))
+    outside[problem.event_slice] = problem.complement
+    return np.hstack(cols + [outside])
 
 
 def noise_scale(n_events: int, n_seeds: int) -> float:

@@ -26,14 +26,16 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import analysis, consistency, fitting, pairs, plant_adapter, ripple, separation, spectral, tolerance
-from .decisions import DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EXPLAINED, confident, qualifies
+from .decisions import (DELTA_IC_STRONG, DELTA_IC_TIE, confident, identical_to, likelihood_part,
+                        qualifies)
 from .diagnosis import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOTHING_EXPLAINS, PARTIAL,
                         ROLE_DISCOVERY, ROLE_PARTIAL, ROLE_SECOND, Addition, Conditions, Diagnosis,
                         WidthMeasurement)
 from .events import SEGMENT_SIGNALS
 
 REFINE_TOP = 3               # singles refined first: the best 3 by explained share (model inconsistent)
-REFINE_EXTRA = 3             # more candidates refined when their linearised IC may tie with the winner
+REFINE_EXTRA = 4             # more candidates refined when they may tie with the winner (the rim-force twins of a wheel
+                             # friction are three: working resistance, a force on the mass, a viscous drag)
 LINEAR_IC_MARGIN = pairs.LINEAR_IC_MARGIN
 
 
@@ -86,7 +88,8 @@ def prepare(meas, model, seeds=None, effects=None, overrides=None) -> Run:
     """The comparison (conditions, the model's noise ensemble) and the fit problem; the candidate catalogue."""
     comp = analysis.build_comparison(meas, model, seeds)
     problem = fitting.Problem(model, comp.events, comp.seeds, meas.n_samples, meas.sample_period_s,
-                              comp.conditions, comp.weights, comp.spec_weights, comp.dc_weights, comp.segment_noise)
+                              comp.conditions, comp.weights, comp.spec_weights, comp.dc_weights, comp.segment_noise,
+                              comp.dc_names)
     base_pred = problem.pred_of(comp.ensemble, 0)
     catalogue = plant_adapter.catalogue(model)
     if effects:
@@ -106,7 +109,8 @@ def screen_step(run: Run, effects=None, progress=None) -> None:
     p = run.problem
     allowed = [c.name for c in run.catalogue if not effects or c.name in effects or c.effect in effects]
     # the requested candidates and those that carry a nominal tolerance (the null hypothesis needs them)
-    screened = [c for c in run.catalogue if c.name in allowed or np.any(tolerance.sigma_of(c) > 0)]
+    screened = [c for c in run.catalogue if c.name in allowed or (tolerance.SCALE > 0
+                                                                   and np.any(tolerance.sigma_of(c) > 0))]
     run.scr = fitting.screen(p, screened, run.base_pred, progress=progress)
     spans = []
     for n, info in run.scr.items():
@@ -115,11 +119,9 @@ def screen_step(run: Run, effects=None, progress=None) -> None:
     z_all = consistency.model_event_vectors(run.comp, p)
     p.basis, p.blocks = consistency.whiten(consistency.candidate_basis(spans, p), z_all)
     p.complement = consistency.complement_basis(z_all, p)
-    outside = np.zeros((p.basis.shape[0], p.complement.shape[1]))
-    outside[p.event_slice] = p.complement
-    p.fit_basis = np.hstack([p.basis, outside])
-    tol = tolerance.directions(run.scr, run.by_name)
+    tol = tolerance.directions(p, run.scr, run.by_name)
     p.tolerance_z = p.basis.T @ tol
+    p.fit_basis = consistency.fit_basis(p)
     run.base_ic = p.ic(run.base_pred, 0)
     run.before = consistency.test(p, p.residual(run.base_pred))
     # the linear estimates in the whitened views (generalised least squares), and their IC
@@ -131,7 +133,7 @@ def screen_step(run: Run, effects=None, progress=None) -> None:
         jg = p.project(info["J"])
         d = fitting.lsq_linear(jg, r0g, bounds=(lo - x0, hi - x0 + 1e-300)).x
         info["x_lin"] = x0 + d
-        info["explained_lin"] = 1.0 - float(np.sum((r0g - jg @ d) ** 2) / max(np.sum(r0g ** 2), 1e-300))
+        info["explained_lin"] = p.explained_share(r0g - jg @ d, r0g)
         info["delta_ic_lin"] = p.ic(run.base_pred + info["J"] @ d, len(x0)) - run.base_ic
     run.order = sorted(allowed, key=lambda k: -run.scr[k]["explained_lin"])
 
@@ -144,26 +146,74 @@ def refine_step(run: Run) -> list:
     first = run.order[:REFINE_TOP] if run.inconsistent else run.order[:1]
     fits = [fitting.refine(p, run.by_name[n], scr[n], run.base_pred, run.base_ic) for n in first]
     if run.inconsistent:
-        ok = [f.delta_ic for f in fits if qualifies(f, run.by_name[f.effect])]
-        reach = (min(ok) + DELTA_IC_TIE if ok else -DELTA_IC_STRONG) + LINEAR_IC_MARGIN
-        extra = sorted((n for n in run.order if n not in first and scr[n]["delta_ic_lin"] <= reach),
-                       key=lambda n: scr[n]["delta_ic_lin"])[:REFINE_EXTRA]
+        # in the recording's evidence (the IC without its parameter penalty): a two-parameter law may tie with a
+        # one-parameter one that fits as well (decisions.likelihood_part); with the best's misfit scale
+        lnE = np.log(max(p.n_events, 2))
+        ok = [f for f in fits if qualifies(f, run.by_name[f.effect])]
+        best = min(ok, key=lambda f: f.delta_ic) if ok else None
+        reach = ((likelihood_part(best, p.n_events) + DELTA_IC_TIE * misfit_scale(p, best)) if best is not None
+                 else -DELTA_IC_STRONG) + LINEAR_IC_MARGIN
+
+        def lin_part(n):
+            return scr[n]["delta_ic_lin"] - len(run.by_name[n].parameters) * lnE
+
+        def lin_distance(n):
+            x0 = run.by_name[n].default_vector()
+            pred = run.base_pred + scr[n]["J"] @ (scr[n]["x_lin"] - x0)
+            return prediction_distance(p, best.pred, pred) / misfit_scale(p, best) if best is not None else np.inf
+
+        near = {n for n in run.order if n not in first and lin_distance(n) < 4 * DELTA_IC_TIE}
+        extra = sorted((n for n in run.order if n not in first and (lin_part(n) <= reach or n in near)),
+                       key=lambda n: (n not in near, lin_part(n)))[:REFINE_EXTRA]
         fits += [fitting.refine(p, run.by_name[n], scr[n], run.base_pred, run.base_ic) for n in extra]
     fits.sort(key=lambda f: f.delta_ic)
     run.fits = fits
     return fits
 
 
+def misfit_scale(problem, fit) -> float:
+    """The a-posteriori variance factor of a fit: its T^2 per dimension over every view (>= 1). Where the drive's
+    law differs from the catalogue's the fit leaves more than noise, and the recording's evidence between two
+    candidates is overstated by this factor (generalised least squares with an unknown scale)."""
+    c = consistency.test(problem, problem.residual(fit.pred))
+    t2 = sum(v.t2 for v in c.views.values())
+    dims = sum(v.dimension for v in c.views.values())
+    return max(1.0, t2 / max(dims, 1))
+
+
+def prediction_distance(problem, pred_a, pred_b) -> float:
+    """How far two fitted models' predictions lie apart, in units of the measured mean's noise over every view (the
+    fits' metric): the IC difference a recording would show between them on average were one of them right. Two
+    candidates closer than DELTA_IC_TIE x the misfit scale cannot be told apart by this recording, whatever their
+    ICs on it (measured on a foreign 12 N force on the mass: the four rim-force twins' fits within 5.3 of each
+    other, their ICs 9.5 apart: under a misfit the events' IC magnifies tiny differences)."""
+    d = problem.project(pred_a - pred_b)
+    return float(np.sum(d ** 2) / consistency.noise_scale(problem.n_events, problem.n_seeds))
+
+
+def _ties(problem, a, b, scale: float) -> bool:
+    e = problem.n_events
+    return (abs(likelihood_part(a, e) - likelihood_part(b, e)) / scale < DELTA_IC_TIE
+            or prediction_distance(problem, a.pred, b.pred) / scale < DELTA_IC_TIE)
+
+
 def decide_step(run: Run) -> Decision:
-    """The winner: the best qualifying candidate (only when the model is inconsistent); the qualifying ones
-    within DELTA_IC_TIE of it are not distinguishable from it."""
+    """The winner: the best qualifying candidate (only when the model is inconsistent); the qualifying ones that tie
+    with it -- their evidence (decisions.likelihood_part) or their fitted prediction (prediction_distance) within
+    DELTA_IC_TIE of it, both divided by the winner's misfit_scale -- are not distinguishable from it, and so is a
+    candidate that is the same term of the model as it or as one of those (decisions.IDENTICAL)."""
     qual = [f for f in run.fits if qualifies(f, run.by_name[f.effect])] if run.inconsistent else []
     winner = qual[0] if qual else None
     if winner is not None:
+        scale = misfit_scale(run.problem, winner)
         for f in qual[1:]:
-            if f.delta_ic - winner.delta_ic < DELTA_IC_TIE:
+            if _ties(run.problem, winner, f, scale) or f.effect in identical_to(winner.effect):
                 winner.indistinguishable_from.append(f.effect)
                 f.indistinguishable_from.append(winner.effect)
+        for name in [winner.effect] + list(winner.indistinguishable_from):
+            for twin in identical_to(name):
+                if twin in run.by_name and twin != winner.effect and twin not in winner.indistinguishable_from:
+                    winner.indistinguishable_from.append(twin)
     return Decision(winner, qual)
 
 
@@ -176,7 +226,7 @@ def second_effect_step(run: Run, decision: Decision, second: bool = True) -> Upd
     if not second:
         return up
     twins_of = {f.effect: [g.effect for g in decision.qualifying
-                           if g is not f and abs(g.delta_ic - f.delta_ic) < DELTA_IC_TIE]
+                           if g is not f and _ties(run.problem, f, g, misfit_scale(run.problem, f))]
                 for f in decision.qualifying}
     found = pairs.best_pair(run.problem, win, run.by_name, run.scr, run.order, run.base_pred, run.base_ic,
                             up.pairs_tried, twins_of, run.fits)
@@ -197,6 +247,11 @@ def second_effect_step(run: Run, decision: Decision, second: bool = True) -> Upd
                 "parameters": {f"{c}.{n}": float(v) for n, v in zip(f2.parameter_names[:nc], f2.values[:nc])}
                 | {f"{d}.{n}": float(v) for n, v in zip(f2.parameter_names[nc:], f2.values[nc:])},
                 "delta_ic": float(f2.delta_ic), "delta_ic_from_winner": float(f2.delta_ic - fit2.delta_ic)})
+        # a member's single-effect twins (and the same terms of the model) are not distinguishable from it in the pair
+        for member, fit in ((a, first), (b, sec)):
+            for t in twins_of.get(member, []) + [x for y in [member] + twins_of.get(member, []) for x in identical_to(y)]:
+                if t not in (a, b) and t in run.by_name and t not in fit.indistinguishable_from:
+                    fit.indistinguishable_from.append(t)
         up.first, up.second = first, sec
         up.after_mean, up.after_pred, up.after_raw = fit2.model_mean, fit2.pred, fit2.model_mean_raw
         return up
@@ -286,12 +341,13 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
     # the roles: the width is the measurand (reported, never added); the rest are model effects
     effects = [f for f in (discovery, second) if f is not None and not _is_measurand(f)]
     for role, f in zip((ROLE_DISCOVERY, ROLE_SECOND), effects):
-        additions.append(Addition(f.effect.split("[")[0], f.effect, dict(zip(f.parameter_names, map(float, f.values))),
+        additions.append(Addition(f.effect.split("[")[0], f.effect,
+                                  dict(zip(f.parameter_names, map(float, f.values))) | dict(f.fixed),
                                   dict(zip(f.parameter_names, map(float, f.uncertainty))), role))
     for f in partial:
         if not _is_measurand(f):
             additions.append(Addition(f.effect.split("[")[0], f.effect,
-                                      dict(zip(f.parameter_names, map(float, f.values))),
+                                      dict(zip(f.parameter_names, map(float, f.values))) | dict(f.fixed),
                                       dict(zip(f.parameter_names, map(float, f.uncertainty))), ROLE_PARTIAL))
     if ripple_entry is not None and not any(a.effect == ripple.EFFECT for a in additions):
         role = ROLE_DISCOVERY if not additions or all(a.role == ROLE_PARTIAL for a in additions) else ROLE_SECOND
@@ -345,7 +401,11 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
             if discovery.indistinguishable_from:
                 parts[-1] += ("; not distinguishable from this recording from "
                               + ", ".join(discovery.indistinguishable_from))
-                twins = [f for f in run.fits if f.effect in discovery.indistinguishable_from]
+                same = [t for t in discovery.indistinguishable_from if t in identical_to(discovery.effect)]
+                twins = [f for f in run.fits if f.effect in discovery.indistinguishable_from and f.effect not in same]
+                if same:
+                    parts[-1] += (f". {', '.join(same)} is the same term of the model as {discovery.effect} (no "
+                                  "recording and no sensor separates them)")
                 by_place: dict = {}
                 for t in twins:
                     by_place.setdefault(_where_acts(t), []).append(t.effect)
@@ -414,9 +474,10 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
                                "note": "the white noise the recording's sensor chain adds (read off above "
                                        f"{analysis.NOISE_BAND_HZ[0] / 1e3:.0f} kHz); a nuisance the spectral views "
                                        "allow for, not an effect"},
-        "record_mean": {"measured_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, p.events.dc.mean(axis=0)))),
-                        "model_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, comp.ensemble.dc_mean(0)))),
-                        "units": "m/s^2, mean over the events of each one's pulse-period mean"},
+        "record_mean": {"measured": dict(zip(comp.dc_names, map(float, p.events.dc.mean(axis=0)))),
+                        "model": dict(zip(comp.dc_names, map(float, comp.ensemble.dc_mean(0)))),
+                        "units": "a1, a2: m/s^2; omega1: rad/s; the mean over the events of each one's pulse-period "
+                                 "mean"},
         "where": wb,
         "where_after": where_after,
         "fit_percent": {"before": dict(zip(SEGMENT_SIGNALS, map(float, fit_before))),
@@ -460,8 +521,9 @@ def _ranked(run: Run, discovery) -> list:
         for n in run.order if n not in refined]
     for r in ranked:
         if discovery is not None and r["effect"] in discovery.indistinguishable_from:
-            r["separating_measurement"] = _separating_measurement(
-                discovery, next(f for f in run.fits if f.effect == r["effect"]))
+            twin = next((f for f in run.fits if f.effect == r["effect"]), None)
+            r["separating_measurement"] = (_separating_measurement(discovery, twin) if twin is not None else
+                                           "none: the same term of the model (decisions.IDENTICAL)")
     return ranked
 
 

@@ -27,7 +27,7 @@ def combined(a, b):
     """One candidate holding the parameters of two (they act on different keys, so values apply together)."""
     return plant_adapter.CandidateEffect(f"{a.name}+{b.name}", f"{a.effect}+{b.effect}", a.balance,
                                          f"{a.description}; {b.description}",
-                                         tuple(a.parameters) + tuple(b.parameters))
+                                         tuple(a.parameters) + tuple(b.parameters), fixed=a.fixed + b.fixed)
 
 
 def pair_key(a, b, order):
@@ -56,7 +56,7 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
         return None
     r0 = problem.project(problem.residual(base_pred))
     r1g = problem.project(r1)
-    single = 1 - float(np.sum(r1g ** 2) / max(np.sum(r0 ** 2), 1e-300))
+    single = problem.explained_share(r1g, r0)
     twins_of = twins_of or {}
     lin: dict = {}           # (a, b) -> (explained, x_lin, h, linearised IC)
 
@@ -85,7 +85,7 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
             shift = da + db
             rr = r0 - problem.project(shift)
             res = fitting.lsq_linear(J, rr, bounds=(lo - xe, hi - xe + 1e-300))
-            expl = 1 - float(np.sum((rr - J @ res.x) ** 2) / np.sum(r0 ** 2))
+            expl = problem.explained_share(rr - J @ res.x, r0)
             ic = problem.ic(base_pred + shift + Jf @ res.x, len(xe))
             lin[key] = (expl, xe + res.x, np.concatenate([scr[a]["h"], scr[b]["h"]]), ic)
         return key
@@ -107,7 +107,7 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
         pair = combined(by_name[a], by_name[b])
         fit = fitting.refine(problem, pair, {"x_lin": x_lin, "h": h, "explained_lin": expl}, base_pred, base_ic,
                              max_nfev=PAIR_MAX_NFEV)
-        left = 1 - float(np.sum(problem.fit_residual(fit.pred) ** 2) / max(np.sum(r1g ** 2), 1e-300))
+        left = problem.explained_share(problem.fit_residual(fit.pred), r1g)
         na = len(by_name[a].parameters)
         checks = {"beats_first_by_2": bool(fit.delta_ic <= first.delta_ic - DELTA_IC_STRONG),
                   "not_pinned": not fit.at_bound, "significant": significant(fit),
@@ -170,7 +170,7 @@ def greedy_second(problem, first, by_name, scr, order):
         eb = by_name[n]
         d = fitting.lsq_linear(J, r1g, bounds=(eb.bounds()[0] - eb.default_vector(),
                                               eb.bounds()[1] - eb.default_vector() + 1e-300)).x
-        cands.append((1 - float(np.sum((r1g - J @ d) ** 2) / max(np.sum(r1g ** 2), 1e-300)), n))
+        cands.append((problem.explained_share(r1g - J @ d, r1g), n))
     cands.sort(reverse=True)
     if not cands or cands[0][0] < MIN_EXPLAINED_SECOND:
         return None
@@ -195,5 +195,5 @@ def part(fit, effect, sl, base):
                           fit.nominal[sl], (fit.bounds[0][sl], fit.bounds[1][sl]), fit.explained_fraction,
                           fit.delta_ic, fit.ic, fit.model_mean, fit.screening_explained, fit.evaluations,
                           effect.balance, effect.description, fit.at_bound, [], list(base), fit.model_mean_raw,
-                          fit.pred)
+                          fit.pred, fixed=dict(effect.fixed_values))
     return f

@@ -33,6 +33,10 @@ from backlash_monitor.plant import PlantSimulator, Scenario
 from backlash_monitor.plant import effects as plant_effects
 
 SIGNALS = ("a1", "a2", "omega1", "omega2", "angle_difference")
+# a sensor effect's discrete form parameter: one candidate per value, held fixed in it while the rest is fitted (the
+# low-pass's order: a sensor's anti-alias filter has 1, 2 or 4 poles; measured on foreign drives: a 2nd-order Bessel and
+# a 4th-order Butterworth were 'partial' or 'nothing explains' with a first-order low-pass alone)
+DISCRETE_FORMS = {"accelerometer_lowpass": ("sections", (1.0, 2.0, 4.0))}
 NOT_EVENT_LOCKED = ("torque_ripple",)
 
 # practical search range of each parameter [unit of the parameter]; "width" = relative to the model's width.
@@ -44,7 +48,7 @@ FIT_RANGES = {
     "wheel_viscous_friction.damping_Nms_per_rad": (0.0, 0.05),  # 7.5 N*m at 151 rad/s (1.7 F0*r)
     "wheel_stribeck_friction.excess_torque_Nm": (0.0, 5.0),     # as the dry friction
     "wheel_stribeck_friction.stribeck_speed_rad_s": (0.5, 50.0),  # lubricated bearings to dry contacts
-    "motor_coulomb_friction.torque_Nm": (0.0, 5.0),             # a quarter of T_b: a failing motor bearing
+    "motor_coulomb_friction.torque_Nm": (0.0, 10.0),            # half of T_b: a failing motor bearing or brake
     "clutch_contact_stiffness.relative_change": (-0.6, 1.5),    # elastomer jaws: worn soft to aged hard
     "clutch_contact_damping.relative_change": (-0.8, 3.0),      # elastomer damping: temperature, ageing
     "shaft_compliance.compliance_rad_per_Nm": (0.0, 2e-3),      # a shaft up to 6x softer than the jaw contact
@@ -85,6 +89,12 @@ class CandidateEffect:
     description: str
     parameters: tuple          # the fitted EffectParameters
     signal: str | None = None
+    fixed: tuple = ()          # ("effect.param", value): parameters this candidate holds at a fixed value (a form)
+
+    @property
+    def fixed_values(self) -> dict:
+        """The fixed parameters by their names, e.g. {"a1_sections": 2.0}."""
+        return {k.split(".", 1)[1]: float(v) for k, v in self.fixed}
 
     def default_vector(self) -> np.ndarray:
         return np.array([p.default for p in self.parameters])
@@ -140,9 +150,21 @@ def catalogue(model, not_event_locked: bool = False) -> list[CandidateEffect]:
             lo, hi = _range(key, p, cfg, model.nominal["width_m"], cur)
             params.append(EffectParameter(p.name, p.unit, cur, lo, hi, key))
         if cls.kind == "sensor" and all(p.name.startswith(("a1_", "a2_")) for p in params):
+            variant = DISCRETE_FORMS.get(name)
             for sig in ("a1", "a2"):
-                sub = tuple(p for p in params if p.name.startswith(sig + "_"))
-                out.append(CandidateEffect(f"{name}[{sig}]", name, cls.balance, cls.description, sub, sig))
+                sub = tuple(p for p in params if p.name.startswith(sig + "_")
+                            and not (variant and p.name == f"{sig}_{variant[0]}"))
+                if not variant:
+                    out.append(CandidateEffect(f"{name}[{sig}]", name, cls.balance, cls.description, sub, sig))
+                    continue
+                key = f"{name}.{sig}_{variant[0]}"
+                current = _current(cfg, name, f"{sig}_{variant[0]}")
+                # a drive without the effect yet: one candidate per form; with it: its own form only
+                forms = variant[1] if all(p.default == 0.0 for p in sub) else (current,)
+                for v in forms:
+                    label = f"{name}[{sig}]" if v == variant[1][0] else f"{name}[{sig},{variant[0]}={v:g}]"
+                    out.append(CandidateEffect(label, name, cls.balance, cls.description, sub, sig,
+                                               ((key, float(v)),)))
         else:
             out.append(CandidateEffect(name, name, cls.balance, cls.description, tuple(params)))
     return out
@@ -156,8 +178,11 @@ def effect_by_name(model, name: str) -> CandidateEffect:
 
 
 def apply_values(effect: CandidateEffect, values) -> dict:
-    """The parameter set {"effect.param": value} that puts ``values`` (one per fitted parameter) in."""
-    return {p.key: float(v) for p, v in zip(effect.parameters, np.atleast_1d(values))}
+    """The parameter set {"effect.param": value} that puts ``values`` (one per fitted parameter) in, with the
+    candidate's fixed parameters."""
+    out = {p.key: float(v) for p, v in zip(effect.parameters, np.atleast_1d(values))}
+    out.update({k: float(v) for k, v in effect.fixed})
+    return out
 
 
 def config_overrides(parameter_set: Mapping) -> dict:

@@ -5,10 +5,13 @@ the diagnosis the version came from: never a worse monitor (docs/workbench.md, "
   training window wider than its label. Training labels are the simulated true widths, so the drift is switched
   off for training (``training_config``).
 - After training, the retrained monitor's width on the diagnosed recording (the version's ``provenance``, written
-  by add-effect) is checked against the width the diagnosis measured, and against the packaged library's width
-  on the same recording (``check_library``). A library that disagrees with the diagnosis, or that is further from
-  it than the packaged library, is *flagged*: the flag is written into the library (``training.check``) and
-  ``analyze --library`` and the classifier node say so when they load it (patterns.flagged_warning).
+  by add-effect) is checked against the width the diagnosis measured, and against the previous library's width
+  on the same recording (``check_library``; the packaged library unless `train --previous-library` names
+  another). A library that disagrees with the diagnosis is *flagged*: the flag is written into the library
+  (``training.check``) and ``analyze --library`` and the classifier node say so when they load it
+  (patterns.flagged_warning). A library that is further from the diagnosis than the previous one is not used
+  at all: `train` writes the previous library under the requested name (saying why) and the retrained
+  one beside it as ``NAME.rejected.npz`` (``--keep-worse`` writes it anyway): never a worse monitor.
 """
 from __future__ import annotations
 
@@ -56,9 +59,10 @@ def _published_width(meas, library) -> float:
     return float(np.median(vals)) if vals.size else float("nan")
 
 
-def check_library(library, models) -> dict:
-    """The retrained ``library`` (a PatternLibrary, or its path) against every model version's diagnosis.
-    -> {"checked": [...], "flagged": bool, "reasons": [...]}."""
+def check_library(library, models, previous=None) -> dict:
+    """The retrained ``library`` (a PatternLibrary, or its path) against every model version's diagnosis, beside the
+    ``previous`` library (a path; None: the packaged one). -> {"checked": [...], "flagged": bool, "worse": bool,
+    "reasons": [...]}."""
     from backlash_monitor.classifier.patterns import default_library_path
 
     from .measurement import MeasurementError, load_measurement
@@ -78,7 +82,7 @@ def check_library(library, models) -> dict:
         unc = prov.get("width_uncertainty_m")
         unc = float(unc) if unc is not None and math.isfinite(float(unc)) else 0.0
         new_w = _published_width(meas, library)
-        old_w = _published_width(meas, default_library_path())
+        old_w = _published_width(meas, previous or default_library_path())
         tol = AGREEMENT_M + 2.0 * unc
         err_new, err_old = abs(new_w - diag_w), abs(old_w - diag_w)
         why = []
@@ -87,15 +91,17 @@ def check_library(library, models) -> dict:
         elif err_new > tol:
             why.append(f"disagrees with the diagnosis: {new_w * 1e3:.3f} mm vs {diag_w * 1e3:.3f} mm "
                        f"(allowed {tol * 1e3:.2f} mm)")
-        if math.isfinite(new_w) and math.isfinite(old_w) and err_new > err_old + WORSE_MARGIN_M:
-            why.append(f"worse than the packaged library: {err_new * 1e3:.3f} mm from the diagnosis vs "
+        worse = bool(math.isfinite(new_w) and math.isfinite(old_w) and err_new > err_old + WORSE_MARGIN_M)
+        if worse:
+            why.append(f"worse than the previous library: {err_new * 1e3:.3f} mm from the diagnosis vs "
                        f"{err_old * 1e3:.3f} mm")
         entry.update({"diagnosed_width_m": diag_w, "diagnosed_width_uncertainty_m": unc,
                       "retrained_width_m": new_w, "packaged_width_m": old_w, "allowed_m": tol,
-                      "status": "flagged" if why else "ok", "reasons": why})
+                      "status": "flagged" if why else "ok", "reasons": why, "worse": worse})
         reasons += [f"{m.label()}: {w}" for w in why]
         checked.append(entry)
-    return {"checked": checked, "flagged": bool(reasons), "reasons": reasons}
+    return {"checked": checked, "flagged": bool(reasons), "worse": any(c.get("worse") for c in checked),
+            "reasons": reasons}
 
 
 def describe(check: dict) -> list:

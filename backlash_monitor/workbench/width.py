@@ -44,7 +44,7 @@ def monitor_widths(meas, library_path=None, signal: str = "a1+a2", mode: str = "
     if not wins:
         return WidthTrace(np.zeros(0), np.zeros(0), np.zeros(0, dtype=int), np.zeros(0))
     den = denoise_pairs([(w.signals["a1"], w.signals["a2"]) for w in wins])
-    results = est.estimate_many([(a1, a2, "onset") for a1, a2 in den])
+    results = est.estimate_many([(a1, a2, "onset", None, w.sensor_offsets) for w, (a1, a2) in zip(wins, den)])
     mine = [e for r in results for e in r if e.signal_name == signal]
     return WidthTrace(np.array([e.continuous_width_m for e in mine]), np.array([e.fused_width_m for e in mine]),
                       np.array([e.fused_events for e in mine], dtype=int),

@@ -188,18 +188,18 @@ def _chunk_keys(path, layout):
     """Per chunk of the intact layout: the (topic, log_time, sequence) of the messages in it
     (its records decompressed: chunks may share a boundary log time)."""
     from backlash_monitor.bag import BagReader
-    from backlash_monitor.bag.mcap_format import MESSAGE_HEAD, OP_CHUNK
-    from backlash_monitor.bag.reader import _message_bodies
+    from backlash_monitor.bag.records import MESSAGE_HEAD, chunk_records, message_bodies
 
+    data = Path(path).read_bytes()
     with BagReader(path) as bag:
-        bodies = {pos: body for op, pos, body in bag._layout if op == OP_CHUNK}
-        out = []
-        for off, *_ in layout:
-            keys = set()
-            for rbody in _message_bodies(bag._decompress(bodies[off])):
-                cid, seq, log_time, _pub = MESSAGE_HEAD.unpack_from(rbody, 0)
-                keys.add((bag.channels[cid][0], log_time, seq))
-            out.append(keys)
+        topics = {t.channel_id: t.name for t in bag.topics.values()}
+    out = []
+    for off, length, *_ in layout:
+        keys = set()
+        for rbody in message_bodies(chunk_records(memoryview(data)[off + 9:off + length])):
+            cid, seq, log_time, _pub = MESSAGE_HEAD.unpack_from(rbody, 0)
+            keys.add((topics[cid], log_time, seq))
+        out.append(keys)
     return out
 
 
@@ -345,7 +345,7 @@ def _killed_recorder(run, work: Path) -> tuple[str, str, int]:
     rec = subprocess.Popen([sys.executable, "-m", "backlash_monitor", "record", "--output", str(out),
                             "--topics", "plant/*", "--chunk-duration-s", "0.25"],
                            env=env, cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    pub = subprocess.Popen([sys.executable, str(REPO / "bench" / "mcap.py"), "--role", "publish",
+    pub = subprocess.Popen([sys.executable, str(REPO / "bench" / "bags.py"), "--role", "publish",
                             "--seconds", "6", "--factor", "1"], env=env, cwd=REPO,
                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
@@ -397,7 +397,7 @@ def _killed_recorder(run, work: Path) -> tuple[str, str, int]:
             pass
     with BagReader(out, recover=True) as bag:
         recovered = bag.recovery.complete_chunks
-        starts = sorted(c.start for c in bag._chunks.values())
+        starts = sorted(c.start for c in bag.chunks)
     lost = 0
     for chunk in complete:
         if chunk.message_start_time not in starts:

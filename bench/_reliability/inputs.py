@@ -266,7 +266,9 @@ def _message_cases():
         from backlash_monitor_msgs.msg import BacklashWindow
         msg = BacklashWindow(entry_sample_index=index, entry_kind=kind, trigger="contact_loss",
                              sample_period_s=period, true_width_m=float("nan"),
-                             denoising=denoising_label(6, (1, 2, 3, 4, 5, 6), "symmetric") if denoised else "")
+                             denoising=denoising_label(6, (1, 2, 3, 4, 5, 6), "symmetric") if denoised else "",
+                             # the windowing node's sensor offset estimate (none: not classified)
+                             a1_offset_m_s2=0.0, a2_offset_m_s2=0.0, offset_periods=8)
         msg.a1, msg.a2 = to_float64_array(a1), to_float64_array(a2)
         return msg
 

@@ -1,6 +1,8 @@
-"""MCAP record/replay benchmark. Prints ONE JSON object.
+"""Bag (MCAP) record/read/analyze benchmark. Prints ONE JSON object (progress on stderr).
 
-    python bench/mcap.py [--seconds 3] [--factor 10]
+    python bench/bags.py [--seconds 3] [--factor 10]
+
+(Named bags.py, not mcap.py: a bench/mcap.py would hide the `mcap` library from scripts here.)
 
 - lost_messages: a publisher process streams SignalChunk messages (1000 samples = 20 ms at 50 kHz)
   on plant/a1, a2, omega1, omega2, angle_difference at `factor` x the nominal rate (10x = 2500
@@ -9,10 +11,22 @@
 - bytes_per_sample: bag size / samples, against 8 bytes of a float64 (zstd chunks; plant-like
   signals: a smooth waveform plus noise; white float64 noise does not compress).
 - write_samples_per_s: BagWriter.write_raw of serialized chunks (the recorder's path);
-  write_encode_samples_per_s includes our CDR encoding.
+  write_encode_samples_per_s includes our CDR encoding; container_write_vs_mcap_library: its speed
+  over the `mcap` package's writer writing the same messages (zstd, 1 MiB chunks).
 - read_samples_per_s: BagReader, every message decoded to numpy and each topic concatenated
   (read_signal).
 - rosbags_read_samples_per_s: the same bag read and deserialized by rosbags (time_rosbags_read()).
+- analyze_vs_rosbags_read: the whole `analyze` of a simulated 10 s bag against rosbags merely
+  reading and deserializing the same three topics of the same file (5 interleaved rounds, the
+  fastest of each side); also on the bag rewritten by the `mcap` writer with rosbag2's writer
+  options noSummary and noChunking (``..._noSummary``, ``..._noChunking``), and whether the three
+  layouts gave the same estimates (``analyze_same_estimates_across_layouts``).
+- container_*_vs_mcap_library: the container layer alone on the same bag (the three topics' raw
+  payloads; the SignalChunk fields analyze reads), backlash_monitor.bag's speed over the `mcap`
+  package's reader (with our SignalChunk decoding on its payloads); > 1: ours is faster.
+  damaged_*_read_fraction[_mcap_*]: the messages read back from that bag with a byte flipped in its
+  middle chunk or cut in half, by our recovery and by the `mcap` package's readers. The measured
+  reason docs/bags.md gives for not standing on the `mcap` package.
 
 `time_rosbags_read(path)` and `time_project_read(path)` are importable for other benchmarks.
 With `--role publish` this file is the publisher process of the DDS part (prints its own JSON).
@@ -32,8 +46,9 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
-if str(REPO) not in sys.path:
-    sys.path.insert(0, str(REPO))
+for _extra in (REPO, REPO / "test"):   # test/: mcap_conformance's rewrite_with_mcap
+    if str(_extra) not in sys.path:
+        sys.path.insert(0, str(_extra))
 
 from backlash_monitor.signals import SIGNAL_UNITS as UNITS  # noqa: E402
 from backlash_monitor.signals import STREAM_SIGNALS as SIGNALS  # noqa: E402
@@ -82,6 +97,28 @@ def time_write(path: Path, chunks, encode: bool = False) -> float:
         else:
             for topic, t, data, _msg in chunks:
                 w.write_raw(topic, data, log_time_ns=t)
+    return time.perf_counter() - start
+
+
+def time_mcap_library_write(path: Path, chunks) -> float:
+    """The same serialized messages written by the `mcap` package's writer (profile ros2, zstd
+    chunks of 1 MiB as ours, its default indexes and summary; the schema text as ours)."""
+    from mcap.writer import CompressionType, Writer
+
+    from backlash_monitor.bag import full_definition
+
+    start = time.perf_counter()
+    with open(path, "wb") as f:
+        w = Writer(f, chunk_size=1 << 20, compression=CompressionType.ZSTD)
+        w.start("ros2", "bench")
+        sid = w.register_schema(SIGNAL_CHUNK, "ros2msg", full_definition(SIGNAL_CHUNK).encode())
+        cids = {f"/plant/{name}": w.register_channel(f"/plant/{name}", "cdr", sid)
+                for name in SIGNALS}
+        seq = dict.fromkeys(cids, 0)
+        for topic, t, data, _msg in chunks:
+            w.add_message(cids[topic], t, data, t, seq[topic])
+            seq[topic] += 1
+        w.finish()
     return time.perf_counter() - start
 
 
@@ -137,7 +174,7 @@ def publisher_main(argv) -> int:
     from backlash_monitor_msgs.msg import SignalChunk
 
     rclpy.init()
-    node = rclpy.create_node("bench_mcap_publisher")
+    node = rclpy.create_node("bench_bags_publisher")
     qos = QoSProfile(depth=a.depth, history=HistoryPolicy.KEEP_LAST,
                      reliability=ReliabilityPolicy.RELIABLE)
     pubs = {name: node.create_publisher(SignalChunk, f"plant/{name}", qos) for name in SIGNALS}
@@ -209,46 +246,168 @@ def dds_record(out: Path, seconds: float, factor: float, env: dict) -> dict:
 
 
 ROUNDS = 5   # analyze and rosbags timings, interleaved; the fastest of each is reported
+LAYOUTS = {"default": None, "noSummary": {"noSummary": True}, "noChunking": {"noChunking": True}}
+ANALYZE_TOPICS = [f"/plant/{n}" for n in ("a1", "a2", "angle_difference")]
+
+
+def _analyze(analyze, parser, bag: Path, out: Path) -> float:
+    """Seconds of one `analyze BAG --out OUT` as the CLI runs it (its printout to stderr)."""
+    import contextlib
+
+    args = parser.parse_args([str(bag), "--out", str(out)])
+    t0 = time.perf_counter()
+    with contextlib.redirect_stdout(sys.stderr):
+        analyze.run(args)
+    return time.perf_counter() - t0
 
 
 def time_analyze(tmp: Path, seconds: float = 10.0) -> dict:
     """The whole offline analysis (`analyze`: read, join, window, denoise, classify, write) of a
-    simulated bag against merely reading and decoding the same bag with rosbags, same run.
+    simulated bag against merely reading and decoding the same bag with rosbags, same run; on the
+    project's layout and on the same recording rewritten by the `mcap` writer without a summary
+    (rosbag2's noSummary) and without chunks (noChunking).
 
     `analyze.run` is what the CLI runs, settings included: it decompresses chunks in a worker
     thread and raises glibc's malloc thresholds for its process (commands/_memory.py). The
     rosbags read runs after it in this process, so under the same allocator setting (it takes
-    fewer page faults too)."""
+    fewer page faults too). Every analyze run writes its own output (the no-overwrite rule)."""
     import argparse as _argparse
-    import contextlib
-    import io
+
+    from mcap_conformance import rewrite_with_mcap
 
     from backlash_monitor.bag.simulated import write_simulation_bag
     from backlash_monitor.commands import analyze
     from backlash_monitor.plant import PlantSimulator, Scenario
 
-    bag = tmp / "analyze.mcap"
-    write_simulation_bag(bag, PlantSimulator([Scenario(width_m=0.0075, seed=11)],
-                                             outputs=SIGNALS), seconds)
+    bags = {"default": tmp / "analyze.mcap"}
+    write_simulation_bag(bags["default"], PlantSimulator([Scenario(width_m=0.0075, seed=11)],
+                                                         outputs=SIGNALS), seconds)
+    for name, options in LAYOUTS.items():
+        if options:
+            bags[name] = rewrite_with_mcap(bags["default"], tmp / f"analyze_{name}.mcap", **options)
     parser = _argparse.ArgumentParser()
     analyze.add_arguments(parser)
-    args = parser.parse_args([str(bag), "--out", str(tmp / "analyze_out")])
-    analyze.run(args)  # warm-up: imports, numba/pywt caches
-    topics = [f"/plant/{n}" for n in ("a1", "a2", "angle_difference")]
-    time_rosbags_read(bag, topics)  # warm-up: imports, type store
-    runs, rosbags_runs = [], []
-    for _ in range(ROUNDS):         # interleaved: a load change hits both sides alike
-        t0 = time.perf_counter()
-        with contextlib.redirect_stdout(io.StringIO()):
-            analyze.run(args)
-        runs.append(time.perf_counter() - t0)
-        rosbags_runs.append(time_rosbags_read(bag, topics))
-    t_analyze = min(runs)
-    n_rb, t_rb = min(rosbags_runs, key=lambda x: x[1])
-    return {"analyze_samples_per_s": n_rb / t_analyze,
-            "analyze_vs_rosbags_read": t_rb / t_analyze,
-            "analyze_bag_seconds": seconds, "analyze_samples": n_rb,
-            "analyze_wall_s": t_analyze, "rosbags_read_same_topics_wall_s": t_rb}
+    estimates = {}
+    for name, bag in bags.items():   # warm-up (imports, numba/pywt caches); the estimates
+        _analyze(analyze, parser, bag, tmp / f"{name}_warmup")
+        estimates[name] = (tmp / f"{name}_warmup.csv").read_text()
+        time_rosbags_read(bag, ANALYZE_TOPICS)
+    runs = {name: [] for name in bags}
+    rosbags_runs = {name: [] for name in bags}
+    for k in range(ROUNDS):         # interleaved: a load change hits every side alike
+        for name, bag in bags.items():
+            runs[name].append(_analyze(analyze, parser, bag, tmp / f"{name}_{k}"))
+            rosbags_runs[name].append(time_rosbags_read(bag, ANALYZE_TOPICS))
+    out = {"analyze_bag_seconds": seconds,
+           "analyze_same_estimates_across_layouts": len(set(estimates.values())) == 1,
+           "analyze_estimate_rows": estimates["default"].count("\n") - 1}
+    for name in bags:
+        t_analyze = min(runs[name])
+        n_rb, t_rb = min(rosbags_runs[name], key=lambda x: x[1])
+        suffix = "" if name == "default" else f"_{name}"
+        out[f"analyze_vs_rosbags_read{suffix}"] = t_rb / t_analyze
+        out[f"analyze_wall_s{suffix}"] = t_analyze
+        out[f"rosbags_read_same_topics_wall_s{suffix}"] = t_rb
+        if name == "default":
+            out["analyze_samples_per_s"] = n_rb / t_analyze
+            out["analyze_samples"] = n_rb
+    return out
+
+
+def time_container(path: Path, rounds: int = ROUNDS) -> dict:
+    """The container layer alone, on the bag analyze reads: the three topics' raw payloads, and
+    their SignalChunk fields (what analyze takes), by backlash_monitor.bag and by the `mcap`
+    package's reader (make_reader: the summary's chunk index, file order) with the same
+    SignalChunk decoding on its payloads. Interleaved rounds, the fastest of each."""
+    from mcap.reader import make_reader
+
+    from backlash_monitor.bag import BagReader, Codec
+
+    codec = Codec.for_type(SIGNAL_CHUNK)
+
+    def ours_raw():
+        with BagReader(path) as bag:
+            return sum(len(m.data) for m in bag.messages(ANALYZE_TOPICS, decode=False))
+
+    def ours_fields():
+        with BagReader(path) as bag:
+            return sum(r.samples.size for r in bag.signal_chunks(ANALYZE_TOPICS))
+
+    def mcap_raw():
+        with open(path, "rb") as f:
+            return sum(len(m.data) for _s, _c, m in
+                       make_reader(f).iter_messages(ANALYZE_TOPICS, log_time_order=False))
+
+    def mcap_fields():
+        strings = {}
+        n = 0
+        with open(path, "rb") as f:
+            for _s, channel, m in make_reader(f).iter_messages(ANALYZE_TOPICS,
+                                                               log_time_order=False):
+                fields = codec.signal_chunk_fields(memoryview(m.data), copy=False,
+                                                   strings=strings.setdefault(channel.id, [None]))
+                n += fields[-1].size
+        return n
+
+    sides = {"ours_raw": ours_raw, "mcap_raw": mcap_raw, "ours_fields": ours_fields,
+             "mcap_fields": mcap_fields}
+    best = {name: float("inf") for name in sides}
+    results = {}
+    for name, fn in sides.items():   # warm-up
+        results[name] = fn()
+    assert results["ours_raw"] == results["mcap_raw"], results
+    assert results["ours_fields"] == results["mcap_fields"], results
+    for _ in range(rounds):
+        for name, fn in sides.items():
+            t0 = time.perf_counter()
+            fn()
+            best[name] = min(best[name], time.perf_counter() - t0)
+    return {"container_payload_bytes": results["ours_raw"],
+            "container_raw_wall_s": best["ours_raw"],
+            "container_raw_mcap_library_wall_s": best["mcap_raw"],
+            "container_raw_vs_mcap_library": best["mcap_raw"] / best["ours_raw"],
+            "container_signal_fields_wall_s": best["ours_fields"],
+            "container_signal_fields_mcap_library_wall_s": best["mcap_fields"],
+            "container_signal_fields_vs_mcap_library": best["mcap_fields"] / best["ours_fields"]}
+
+
+def damaged_reads(path: Path, tmp: Path) -> dict:
+    """Messages read back from the bag damaged as disks and killed writers damage it (one byte
+    flipped in the middle chunk; the file cut in the middle), as a fraction of the intact bag's: by
+    backlash_monitor.bag with recovery, and by the `mcap` package (its indexed reader, and its
+    linear reader up to where it stops). The mcap package has no recovery: a reader raises at the
+    first damaged record."""
+    from mcap.reader import NonSeekingReader, make_reader
+
+    from backlash_monitor.bag import BagReader, faults
+
+    data = path.read_bytes()
+    with BagReader(path) as bag:
+        total = bag.message_count
+        middle = bag.chunks[len(bag.chunks) // 2]
+    cases = {"flipped_byte": faults.chunk_payload_byte(data, middle.offset, middle.length),
+             "cut_in_half": faults.truncate(data, len(data) // 2)}
+    out = {}
+    for name, damaged in cases.items():
+        bad = tmp / f"damaged_{name}.mcap"
+        bad.write_bytes(damaged)
+        with BagReader(bad, recover=True) as bag:
+            ours = sum(1 for _ in bag.messages(decode=False))
+        got = {}
+        for reader_name, make in (("mcap_indexed", lambda f: make_reader(f, validate_crcs=True)),
+                                  ("mcap_linear", lambda f: NonSeekingReader(f, validate_crcs=True))):
+            n = 0
+            try:
+                with open(bad, "rb") as f:
+                    for _ in make(f).iter_messages(log_time_order=False):
+                        n += 1
+            except Exception:  # noqa: BLE001 - where it stops is the figure
+                pass
+            got[reader_name] = n
+        out[f"damaged_{name}_read_fraction"] = ours / total
+        for reader_name, n in got.items():
+            out[f"damaged_{name}_read_fraction_{reader_name}"] = n / total
+    return out
 
 
 def main(argv=None) -> int:
@@ -268,13 +427,22 @@ def main(argv=None) -> int:
         tmp = Path(tmp)
         chunks = encoded_chunks(a.chunks)
         samples = len(chunks) * CHUNK
-        t_raw = min(time_write(tmp / "w.mcap", chunks) for _ in range(2))
+        t_raw = t_mcap_write = float("inf")
+        for _ in range(2):   # interleaved, the fastest of each
+            t_raw = min(t_raw, time_write(tmp / "w.mcap", chunks))
+            t_mcap_write = min(t_mcap_write, time_mcap_library_write(tmp / "wm.mcap", chunks))
         t_enc = time_write(tmp / "we.mcap", chunks, encode=True)
         size = (tmp / "w.mcap").stat().st_size
         n_read, t_read = min((time_project_read(tmp / "w.mcap") for _ in range(2)), key=lambda x: x[1])
         n_rb, t_rb = time_rosbags_read(tmp / "w.mcap")
         assert n_read == n_rb == samples, (n_read, n_rb, samples)
+        del chunks              # 2500 messages with their arrays: not scanned by the GC below
+        import gc
+
+        gc.collect()
         analysis = time_analyze(tmp)
+        container = time_container(tmp / "analyze.mcap")
+        container.update(damaged_reads(tmp / "analyze.mcap", tmp))
         try:
             dds = dds_record(tmp / "dds.mcap", a.seconds, a.factor, env)
         except Exception as exc:  # noqa: BLE001 - report, do not hide the I/O numbers
@@ -288,12 +456,14 @@ def main(argv=None) -> int:
         "bytes_per_sample": size / samples,
         "bytes_per_sample_float64": 8,
         "write_samples_per_s": samples / t_raw,
+        "container_write_vs_mcap_library": t_mcap_write / t_raw,
         "write_encode_samples_per_s": samples / t_enc,
         "read_samples_per_s": n_read / t_read,
         "rosbags_read_samples_per_s": n_rb / t_rb,
         "realtime_samples_per_s": FS * len(SIGNALS),
         "io_bench_samples": samples,
         **analysis,
+        **container,
     }
     if "error" in dds:
         result["dds_error"] = dds["error"]

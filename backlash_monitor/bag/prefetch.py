@@ -1,0 +1,94 @@
+"""Chunks decompressed ahead of the reader, in a worker thread.
+
+zstd/lz4 decompression and the CRC release the GIL (or are short): on a second core a chunk is
+decompressed and checked while the caller decodes and processes the messages of the one before.
+How far ahead is each reader's own setting: ``BagReader(path, chunks_ahead=N)`` makes its
+ChunkPrefetcher; 0 decompresses in the caller's thread (a process with no core to spare, e.g. one
+of a pool with a worker per core, where the thread would only take turns with it). Nothing here is
+set from outside.
+
+The worker thread is this process's one ``bag-decompress`` thread, started on first use and kept
+for the next reader: a new thread per reader would cost ~2 ms a bag here (its start, and fresh
+memory for its zstd context and its malloc arena, page-faulted at ~3 us per 4 KiB). A forked child
+starts its own (the parent's thread is not copied by fork).
+"""
+from __future__ import annotations
+
+import os
+import threading
+from collections import deque
+from functools import partial
+
+DEFAULT_CHUNKS_AHEAD = 6   # ~6 MiB of decompressed chunks at the default 1 MiB chunk size
+
+_POOL = None
+_POOL_LOCK = threading.Lock()
+
+
+def _forget_pool() -> None:
+    global _POOL, _POOL_LOCK
+    _POOL = None                      # the parent's thread does not exist in the child
+    _POOL_LOCK = threading.Lock()
+
+
+os.register_at_fork(after_in_child=_forget_pool)
+
+
+def _executor():
+    global _POOL
+    with _POOL_LOCK:
+        if _POOL is None:
+            from concurrent.futures import ThreadPoolExecutor
+
+            _POOL = ThreadPoolExecutor(max_workers=1, thread_name_prefix="bag-decompress")
+        return _POOL
+
+
+def default_chunks_ahead() -> int:
+    """DEFAULT_CHUNKS_AHEAD where this process may run on two CPUs or more, else 0."""
+    try:
+        cpus = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # pragma: no cover - not Linux
+        cpus = os.cpu_count() or 1
+    return DEFAULT_CHUNKS_AHEAD if cpus > 1 else 0
+
+
+class ChunkPrefetcher:
+    """``map(fn, items)`` yields, for each item in order, a callable returning ``fn(item)`` (or
+    raising its error), ``fn`` running up to ``chunks_ahead`` items ahead in the worker thread
+    (None: :func:`default_chunks_ahead`)."""
+
+    def __init__(self, chunks_ahead: int | None = None):
+        ahead = default_chunks_ahead() if chunks_ahead is None else int(chunks_ahead)
+        if ahead < 0:
+            raise ValueError(f"chunks_ahead = {chunks_ahead}; allowed: 0 (no thread) or more")
+        self.chunks_ahead = ahead
+        self.started = False          # this prefetcher has handed work to the thread
+
+    def map(self, fn, items):
+        """Same results and errors as calling ``fn`` item by item. Closing the generator (or
+        exhausting it) waits for the work still running: the items (views of the reader's map)
+        are not used after that."""
+        ahead = self.chunks_ahead
+        if ahead <= 0:
+            for item in items:
+                yield partial(fn, item)
+            return
+        pending = deque()
+        try:
+            for item in items:
+                self.started = True
+                pending.append(_executor().submit(fn, item))
+                if len(pending) > ahead:
+                    yield pending.popleft().result
+            while pending:
+                yield pending.popleft().result
+        finally:
+            for future in pending:
+                future.cancel()
+            for future in pending:
+                if not future.cancelled():
+                    try:
+                        future.result()
+                    except Exception:  # noqa: BLE001 - its chunk is not read any more
+                        pass
