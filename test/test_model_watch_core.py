@@ -131,7 +131,7 @@ def test_live_events_are_the_workbench_events_in_any_chunking(model):
     """Fed in chunks of 777 or 5000 samples, the live events are diagnose's events (events.event_set): the same
     entries and segments, and the period means to the few samples the period estimates differ by."""
     meas = synthetic.hidden_effect_recording(model, 3.0, seed=33)
-    ref_ev = event_set(meas.signals, meas.sample_period_s)
+    ref_ev = event_set(meas.signals, meas.sample_period_s, ("a1", "a2"))      # the live events: a1 and a2
     for chunk in (777, 5000):
         live = LiveEvents(meas.sample_period_s, 12500)
         got = []

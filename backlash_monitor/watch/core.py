@@ -91,7 +91,8 @@ class ModelWatch:
         if not psds:
             return self.views_noise
         psd = np.mean(psds, axis=0)
-        return self.reference.noise_floor(dict(zip(SEGMENT_SIGNALS, psd)), significant=True)
+        samples = {s: np.concatenate([e.raw[i] for e in self.events]) for i, s in enumerate(SEGMENT_SIGNALS)}
+        return self.reference.noise_floor(dict(zip(SEGMENT_SIGNALS, psd)), significant=True, signals=samples)
 
     def _views_noise(self) -> np.ndarray:
         """The noise floor the views are built for: the window's, once it moved by NOISE_REBUILD_FACTOR (a

@@ -107,12 +107,19 @@ def build_comparison(meas, model, seeds=None) -> Comparison:
     feats = np.vstack(model_event_spec)
     spec_floor = feats.std(axis=0) / np.sqrt(max(ev.n_events, 1))
     # the record-mean view's floor: the same for the events' period means (events.period_means)
-    dcs = np.vstack([dc_block_deviations(d) for d in ens.per_event_dc])
-    dc_floor = np.sqrt(np.sum(dcs ** 2, axis=0) / max(dcs.shape[0] - len(ens.per_event_dc) * DC_BLOCKS, 1)) \
-        / np.sqrt(max(ev.n_events, 1))
+    dc_floor = record_mean_floor(ens.per_event_dc, ev.n_events)
     return Comparison(model, meas, conditions, seeds, ev, ens, 1.0 / floor, floor,
                       1.0 / np.maximum(spec_floor, 1e-12), 1.0 / np.maximum(dc_floor, 1e-12), noise_psd,
                       record_spectra, model_event_spec, dc_names)
+
+
+def record_mean_floor(per_seed_dc, n_events: int) -> np.ndarray:
+    """The record-mean view's noise floor for an ``n_events`` recording: the spread of the model's events' block
+    deviations (events.dc_block_deviations, per seed; the blocks' means are the degrees of freedom lost) over the
+    square root of the number of events. ``per_seed_dc``: per seed (E_k, n_dc) period means."""
+    dcs = np.vstack([dc_block_deviations(d) for d in per_seed_dc])
+    return np.sqrt(np.sum(dcs ** 2, axis=0) / max(dcs.shape[0] - len(per_seed_dc) * DC_BLOCKS, 1)) \
+        / np.sqrt(max(n_events, 1))
 
 
 def fit_percent(target, model_mean) -> np.ndarray:

@@ -44,7 +44,7 @@ import numpy as np
 from . import analysis, consistency, spectral, tolerance
 from .events import PRE_SAMPLES, POST_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, denoise
 
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2                 # 2: the record mean of a1, a2 and omega1 (diagnose's record-mean view on wb)
 SUFFIX = ".watch.npz"              # LIB.npz -> LIB.watch.npz
 BUILD_DURATION_S = 4.0             # the model's own recording the views are built on: 16 onset events per seed, the
                                    # 4 s recordings the workbench is measured on (docs/model_watch.md)
@@ -79,6 +79,7 @@ class Evidence:
     spec: np.ndarray
     noise_psd: np.ndarray
     entries: np.ndarray
+    dc_names: tuple = SEGMENT_SIGNALS     # the record-mean view's signals (events.dc_signals of the recording)
 
     @property
     def n_events(self) -> int:
@@ -91,15 +92,18 @@ def evidence_from_measurement(meas, reference: "ModelReference", last_n: int | N
     floor from the whole record's Welch spectrum against the model's); ``last_n``: only the last n events (the
     watch's window at the end of the recording); ``significant_noise``: the noise floor as the watch takes it
     (ModelReference.noise_floor)."""
-    from .events import event_set
-    ev = event_set(meas.signals, meas.sample_period_s)
+    from .events import dc_signals, event_set
+    names = tuple(n for n in dc_signals(meas.signals) if n in reference.dc_names)
+    ev = event_set(meas.signals, meas.sample_period_s, names)
     if ev.n_events == 0:
         raise ValueError(f"measurement {meas.source}: no complete onset event")
     sel = slice(None) if last_n is None else slice(max(ev.n_events - int(last_n), 0), None)
     noise = reference.noise_floor({s: analysis.welch_psd(meas.signals[s], 1.0 / meas.sample_period_s)[1]
-                                   for s in SEGMENT_SIGNALS}, significant=significant_noise)
+                                   for s in SEGMENT_SIGNALS}, significant=significant_noise,
+                                  signals=meas.signals)
     raw = ev.raw[sel]
-    return Evidence(raw, ev.dc[sel], spectral.event_features(raw, meas.sample_period_s), noise, ev.entries[sel])
+    return Evidence(raw, ev.dc[sel], spectral.event_features(raw, meas.sample_period_s), noise, ev.entries[sel],
+                    names)
 
 
 # ------------------------------------------------------------------------------------------------ evaluation
@@ -145,15 +149,22 @@ class Views:
     weights, the views (basis, blocks, complement, tolerance) and the model's predictions at the width grid.
     Built by ModelReference.views with consistency.py's own functions."""
 
-    def __init__(self, ref: "ModelReference", noise_psd, n_events: int):
+    def __init__(self, ref: "ModelReference", noise_psd, n_events: int, dc_names=SEGMENT_SIGNALS):
         self.noise_psd = np.asarray(noise_psd, dtype=float)
+        self.dc_names = tuple(dc_names)                     # the record-mean view's signals (the evidence's)
+        try:
+            dc_idx = [ref.dc_names.index(n) for n in self.dc_names]
+        except ValueError:
+            raise ValueError(f"record-mean signals {self.dc_names}; this reference has "
+                             f"{', '.join(ref.dc_names)}") from None
+        seed_dc = [np.asarray(d)[:, dc_idx] for d in ref.seed_dc]
         self.n_events = int(n_events)
         self.n_seeds = len(ref.seeds)
         self.n_event_coords = int(ref.base_mean.size)
         ns = spectral.n_features(len(SEGMENT_SIGNALS))
         self.event_slice = slice(0, self.n_event_coords)
         self.spectral_slice = slice(self.n_event_coords, self.n_event_coords + ns)
-        self.dc_slice = slice(self.n_event_coords + ns, self.n_event_coords + ns + len(SEGMENT_SIGNALS))
+        self.dc_slice = slice(self.n_event_coords + ns, self.n_event_coords + ns + len(self.dc_names))
         dt = ref.sample_period_s
         scale = math.sqrt(self.n_events / ref.build_events)
         self.w = ref.weights * scale                            # 1 / the E-event noise floor of the event average
@@ -162,12 +173,13 @@ class Views:
                             for k, raw in enumerate(ref.seed_events)]
         feats = np.vstack(model_event_spec)
         self.ws = 1.0 / np.maximum(feats.std(axis=0) / math.sqrt(self.n_events), 1e-12)
-        dcs = np.vstack(ref.seed_dc)
-        self.wdc = 1.0 / np.maximum(dcs.std(axis=0) / math.sqrt(self.n_events), 1e-12)
+        self.wdc = 1.0 / np.maximum(analysis.record_mean_floor(seed_dc, self.n_events), 1e-12)   # diagnose's
         self.spec_noise = spectral.noise_power(self.noise_psd, PRE_SAMPLES + POST_SAMPLES, dt)
         # the model's prediction at the nominal width and at every width of the grid
-        self.base = self._pred(ref.base_mean, ref.base_bands, ref.base_dc)
-        self.grid = np.stack([self._pred(m, b, d) for m, b, d in zip(ref.grid_mean, ref.grid_bands, ref.grid_dc)])
+        self.base = self._pred(ref.base_mean, ref.base_bands, np.asarray(ref.base_dc)[dc_idx])
+        self.grid = np.stack([self._pred(m, b, d[dc_idx])
+                              for m, b, d in zip(ref.grid_mean, ref.grid_bands, ref.grid_dc)])
+        self.target_vec = np.zeros_like(self.base)        # (its size: what tolerance.directions reads of it)
         # the screening Jacobians in this weighting: event and record-mean parts scale, the spectral part is taken
         # from the stepped sets' band powers with this noise floor
         base_spec = spectral.features_from_bands(ref.base_bands, self.spec_noise).mean(axis=0)
@@ -176,7 +188,7 @@ class Views:
             spec = (spectral.features_from_bands(ref.jac_bands[j], self.spec_noise).mean(axis=0) - base_spec) \
                 / ref.jac_step[j]
             cols.append(np.concatenate([(ref.jac_event[j].reshape(self.w.size, -1) * self.w[:, None]).ravel(),
-                                        spec * self.ws, ref.jac_dc[j] * self.wdc]))
+                                        spec * self.ws, ref.jac_dc[j][dc_idx] * self.wdc]))
         jac = np.stack(cols, axis=1)
         scr, spans = {}, []
         for cand in ref.candidates:
@@ -184,7 +196,7 @@ class Views:
             scr[cand["name"]] = {"J": cj}
             spans.append(cj * (np.array(cand["upper"]) - np.array(cand["lower"]))[None, :])
         comp = SimpleNamespace(ensemble=SimpleNamespace(per_event=ref.seed_events,
-                                                        dc_samples=lambda k: ref.seed_dc[k]),
+                                                        dc_samples=lambda k: seed_dc[k]),
                                weights=self.w, model_event_spec=model_event_spec)
         self.basis = self.blocks = self.complement = self.tolerance_z = None
         z_all = consistency.model_event_vectors(comp, self)
@@ -195,10 +207,8 @@ class Views:
         if complement is None:
             complement = ref._complements[self.n_events] = consistency.complement_basis(z_all, self)
         self.complement = complement
-        self.tolerance_z = self.basis.T @ tolerance.directions(scr, ref.candidate_objects())
-        outside = np.zeros((self.basis.shape[0], self.complement.shape[1]))
-        outside[self.event_slice] = self.complement
-        self.fit_basis = np.hstack([self.basis, outside])      # the fits' metric (fitting.Problem.project)
+        self.tolerance_z = self.basis.T @ tolerance.directions(self, scr, ref.candidate_objects())
+        self.fit_basis = consistency.fit_basis(self)            # the fits' metric (fitting.Problem.project)
         self.grid_fit = self.grid @ self.fit_basis              # (G, q + P): the grid in that metric
 
     def _pred(self, mean_denoised, bands, dc) -> np.ndarray:
@@ -229,14 +239,14 @@ class ModelReference:
     build_events: int               # events per seed of the build recording (E_ref)
     weights: np.ndarray             # (2,) 1 / the event-average noise floor at build_events
     seed_events: list               # per seed: (E_k, 2, L) raw onset segments of the model's own runs
-    seed_dc: list                   # per seed: (E_k, 2) their period means [m/s^2]
+    seed_dc: list                   # per seed: (E_k, D) their period means of dc_names [m/s^2, rad/s]
     seed_means: np.ndarray          # (K, 2, L) raw event average per seed (noise floor, where)
     base_mean: np.ndarray           # (2, L) the model's denoised event average at the nominal width
     base_raw: np.ndarray            # (2, L) raw
     base_bands: np.ndarray          # (K*E, 2, n_bands) band powers of every model event (spectral.band_powers)
-    base_dc: np.ndarray             # (2,) mean period means [m/s^2]
+    base_dc: np.ndarray             # (D,) mean period means
     jac_event: np.ndarray           # (n_cols, 2*L) d(denoised event average)/d(parameter), unweighted
-    jac_dc: np.ndarray              # (n_cols, 2) d(record mean)/d(parameter)
+    jac_dc: np.ndarray              # (n_cols, D) d(record mean)/d(parameter)
     jac_bands: list                 # per column: (E_j, 2, n_bands) band powers at the stepped set
     jac_step: np.ndarray            # (n_cols,) the step [parameter unit]
     candidates: list                # [{name, effect, keys, lower, upper, default, columns}]
@@ -244,7 +254,7 @@ class ModelReference:
     grid_mean: np.ndarray           # (G, 2, L) denoised event average per width
     grid_raw: np.ndarray            # (G, 2, L) raw
     grid_bands: list                # per width: (E_g, 2, n_bands)
-    grid_dc: np.ndarray             # (G, 2)
+    grid_dc: np.ndarray             # (G, D)
     noise_band_psd: np.ndarray      # (2, F) the model's whole-record Welch PSD (mean over seeds)
     noise_band_f: np.ndarray        # (F,) its frequencies [Hz]
     path: Path | None = None
@@ -264,6 +274,12 @@ class ModelReference:
     def pulse_period_samples(self) -> int:
         return int(self.meta["pulse_period_samples"])
 
+    @property
+    def dc_names(self) -> tuple:
+        """The record-mean view's signals of the build recording (a1, a2 and omega1: the model records them all);
+        a window's evidence uses those of them it has (diagnose: events.dc_signals of the recording)."""
+        return tuple(self.meta.get("dc_names", SEGMENT_SIGNALS))
+
     def candidate_objects(self) -> dict:
         """The candidates as plant_adapter.CandidateEffect (what tolerance.py reads)."""
         from .plant_adapter import CandidateEffect, EffectParameter
@@ -275,7 +291,7 @@ class ModelReference:
         return out
 
     # -------------------------------------------------------------------------------------------- views
-    def noise_floor(self, measured_psd: dict, significant: bool = False) -> np.ndarray:
+    def noise_floor(self, measured_psd: dict, significant: bool = False, signals: dict | None = None) -> np.ndarray:
         """The sensor noise floor per signal from measured whole-record Welch PSDs ({signal: PSD on
         analysis.welch_psd's bins}) against the model's: analysis.sensor_noise_floor (diagnose's estimate). With
         ``significant`` (the watch) a signal's floor counts only where the measured level in the noise band is
@@ -285,20 +301,21 @@ class ModelReference:
         as a sensor's; a real sensor chain's floor is orders above: a 16-bit ADC over +-4 g alone 5e-12)."""
         spectra = {s: {"f": self.noise_band_f, "measured": np.asarray(measured_psd[s], dtype=float),
                        "ensemble": self.noise_band_psd[i][None]} for i, s in enumerate(SEGMENT_SIGNALS)}
-        floor = analysis.sensor_noise_floor(spectra)
+        # ``signals`` ({signal: samples}: the record, or the window's raw segments): an ADC's quantisation step
+        floor = analysis.sensor_noise_floor(spectra, signals, self.sample_period_s if signals is not None else None)
         if significant:
             sel = (self.noise_band_f >= analysis.NOISE_BAND_HZ[0]) & (self.noise_band_f <= analysis.NOISE_BAND_HZ[1])
             model = np.median(self.noise_band_psd[:, sel], axis=1)
             floor = np.where(floor > (NOISE_SIGNIFICANT - 1.0) * model, floor, 0.0)
         return floor
 
-    def views(self, noise_psd, n_events: int) -> Views:
-        key = (tuple(float(x) for x in np.asarray(noise_psd, dtype=float)), int(n_events))
+    def views(self, noise_psd, n_events: int, dc_names=SEGMENT_SIGNALS) -> Views:
+        key = (tuple(float(x) for x in np.asarray(noise_psd, dtype=float)), int(n_events), tuple(dc_names))
         v = self._views.get(key)
         if v is None:
             if len(self._views) >= 8:
                 self._views.clear()
-            v = self._views[key] = Views(self, noise_psd, n_events)
+            v = self._views[key] = Views(self, noise_psd, n_events, dc_names)
         return v
 
     # -------------------------------------------------------------------------------------------- evaluation
@@ -336,7 +353,7 @@ class ModelReference:
         ``profile_width`` at the width that fits best (the measurand), else at the model's nominal width."""
         if evidence.n_events < 1:
             raise ValueError("no onset event to evaluate")
-        views = self.views(evidence.noise_psd, evidence.n_events)
+        views = self.views(evidence.noise_psd, evidence.n_events, evidence.dc_names)
         target = views.target(evidence)
         if profile_width:
             width, pred, mean, raw = self.profile_width(views, target)
@@ -366,7 +383,7 @@ class ModelReference:
         for e in range(n):
             keep = np.arange(n) != e
             sub = Evidence(evidence.raw[keep], evidence.dc[keep], evidence.spec[keep], evidence.noise_psd,
-                           evidence.entries[keep])
+                           evidence.entries[keep], evidence.dc_names)
             out.append(self.evaluate(sub, profile_width=evaluation.position is not None, where=False).result)
         return out
 
@@ -584,7 +601,8 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
             "build_seconds": None, "format_version": FORMAT_VERSION,
             # diagnose's own consistency test on the build recording (screen_step's): provenance, and what a
             # reference built on a recording must reproduce on it (test_model_watch_core.py)
-            "build_consistency": run.before.to_json(), "build_events_measured": int(p.n_events)}
+            "build_consistency": run.before.to_json(), "build_events_measured": int(p.n_events),
+            "dc_names": list(p.dc_names)}
     ref = ModelReference(
         meta=meta, sample_period_s=float(meas.sample_period_s), seeds=list(comp.seeds),
         build_events=int(round(float(np.mean(comp.ensemble.n_events[0])))), weights=np.asarray(w, dtype=float),
