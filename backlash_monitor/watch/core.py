@@ -64,6 +64,7 @@ class ModelWatch:
         self.events: deque = deque(maxlen=window_events)
         self.live = LiveEvents(reference.sample_period_s, reference.pulse_period_samples)
         self.views_noise = np.zeros(len(SEGMENT_SIGNALS))
+        self.noise_checked = False
         self.noise_scale = self._noise_scale()
         self.evaluations = 0
         self.last: WatchUpdate | None = None
@@ -97,8 +98,10 @@ class ModelWatch:
     def _views_noise(self) -> np.ndarray:
         """The noise floor the views are built for: the window's, once it moved by NOISE_REBUILD_FACTOR (a
         rebuild costs ~0.1 s; the floor of a sensor does not change from event to event)."""
-        if not any(e.psd is not None for e in list(self.events)[-1:]):
+        newest = self.events[-1]
+        if self.noise_checked and newest.psd is None:
             return self.views_noise          # no new spectrum since the last look
+        self.noise_checked = True            # (the first evaluation always looks: its window has 4 spectra)
         est = self.noise_floor()
         floor = NOISE_NEGLIGIBLE * self.noise_scale
         new = np.where(est < floor, 0.0, est)

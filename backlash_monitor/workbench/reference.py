@@ -42,9 +42,12 @@ from types import SimpleNamespace
 import numpy as np
 
 from . import analysis, consistency, spectral, tolerance
-from .events import PRE_SAMPLES, POST_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, denoise
+from . import plant_adapter
+from .events import (PRE_SAMPLES, POST_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, denoise, ensemble_from_runs,
+                     event_set)
 
-FORMAT_VERSION = 2                 # 2: the record mean of a1, a2 and omega1 (diagnose's record-mean view on wb)
+FORMAT_VERSION = 3                 # 2: the record mean of a1, a2 and omega1 (diagnose's record-mean view on wb);
+                                   # 3: the model's own events at every grid width (width-local whitening)
 SUFFIX = ".watch.npz"              # LIB.npz -> LIB.watch.npz
 BUILD_DURATION_S = 4.0             # the model's own recording the views are built on: 16 onset events per seed, the
                                    # 4 s recordings the workbench is measured on (docs/model_watch.md)
@@ -200,16 +203,71 @@ class Views:
                                weights=self.w, model_event_spec=model_event_spec)
         self.basis = self.blocks = self.complement = self.tolerance_z = None
         z_all = consistency.model_event_vectors(comp, self)
-        self.basis, self.blocks = consistency.whiten(consistency.candidate_basis(spans, self), z_all)
+        self.raw_blocks = consistency.candidate_basis(spans, self)
+        self.basis, self.blocks = consistency.whiten(self.raw_blocks, z_all)
         # the noise directions outside the subspace come from the event average alone (not from the noise floor,
         # which only the spectral block sees): computed once per number of events (an SVD of K*E x 4596: ~0.5 s)
         complement = ref._complements.get(self.n_events)
         if complement is None:
             complement = ref._complements[self.n_events] = consistency.complement_basis(z_all, self)
         self.complement = complement
-        self.tolerance_z = self.basis.T @ tolerance.directions(self, scr, ref.candidate_objects())
+        self.tol = tolerance.directions(self, scr, ref.candidate_objects())
+        self.tolerance_z = self.basis.T @ self.tol
         self.fit_basis = consistency.fit_basis(self)            # the fits' metric (fitting.Problem.project)
+        # the noise realisation's effect on each model event's spectral features (noisy minus the noise's power
+        # only): added to the events of the other widths, whose raw segments the reference does not keep
+        f0 = spectral.features_from_bands(ref.base_bands, self.spec_noise) * self.ws - self.base[self.spectral_slice]
+        self.realisation = z_all[:, self.spectral_slice] - f0
+        self.ref = ref
+        self._local: dict = {}
         self.grid_fit = self.grid @ self.fit_basis              # (G, q + P): the grid in that metric
+
+    def local(self, g: int) -> SimpleNamespace:
+        """The views whitened by the model's own events at grid width ``g`` (the subspace and the complement's
+        directions stay the nominal width's): what consistency.test reads, for a drive whose width moved. The
+        whitening is consistency.whiten on the width's events projected on each block's directions (it is linear
+        in the basis: whitening the coordinates is whitening the basis)."""
+        out = self._local.get(g)
+        if out is not None:
+            return out
+        ref = self.ref
+        if ref.local_zev is None:
+            return self
+        scale = math.sqrt(self.n_events / ref.build_events)
+        n = self.basis.shape[0]
+        cols, blocks, q0 = [], [], 0
+        for name, b in self.raw_blocks:
+            q = b.shape[1]
+            if q == 0:
+                continue
+            if name == "event_average":
+                b = np.zeros((n, ref.local_event_basis.shape[1]))
+                b[self.event_slice] = ref.local_event_basis
+                q = b.shape[1]
+                z = ref.local_zev[g] * scale
+            elif name == "spectral_shape":
+                feats = spectral.features_from_bands(ref.grid_bands[g], self.spec_noise) * self.ws \
+                    - self.grid[g][self.spectral_slice]
+                feats = feats + self.realisation[np.arange(len(feats)) % len(self.realisation)]
+                z = feats @ b[self.spectral_slice]
+            else:           # the record mean: the width barely moves its noise; the nominal whitening
+                cols.append(self.basis[:, dict(self.blocks)[name]])
+                blocks.append((name, slice(q0, q0 + q)))
+                q0 += q
+                continue
+            t, _ = consistency.whiten([(name, np.eye(q))], z)
+            cols.append(b @ t)
+            blocks.append((name, slice(q0, q0 + q)))
+            q0 += q
+        basis = np.hstack(cols)
+        tc, _ = consistency.whiten([("outside", np.eye(ref.local_complement.shape[1]))], ref.local_zc[g] * scale)
+        out = SimpleNamespace(n_events=self.n_events, n_seeds=self.n_seeds, n_event_coords=self.n_event_coords,
+                              basis=basis, blocks=blocks, complement=ref.local_complement @ tc,
+                              tolerance_z=basis.T @ self.tol, event_part=self.event_part)
+        if len(self._local) >= 8:
+            self._local.pop(next(iter(self._local)))
+        self._local[g] = out
+        return out
 
     def _pred(self, mean_denoised, bands, dc) -> np.ndarray:
         return np.concatenate([(np.asarray(mean_denoised) * self.w[:, None]).ravel(),
@@ -257,6 +315,13 @@ class ModelReference:
     grid_dc: np.ndarray             # (G, D)
     noise_band_psd: np.ndarray      # (2, F) the model's whole-record Welch PSD (mean over seeds)
     noise_band_f: np.ndarray        # (F,) its frequencies [Hz]
+    # the model's own events at every grid width, projected on the nominal views' directions (width-local
+    # whitening, Views.local): the event-average block's directions (N_ev, q), the complement's unit directions
+    # (N_ev, P), per width the events' coordinates in them (weights of build_events)
+    local_event_basis: np.ndarray | None = None
+    local_complement: np.ndarray | None = None
+    local_zev: list | None = None
+    local_zc: list | None = None
     path: Path | None = None
     _views: dict = field(default_factory=dict, repr=False)
     _complements: dict = field(default_factory=dict, repr=False)
@@ -358,10 +423,12 @@ class ModelReference:
         if profile_width:
             width, pred, mean, raw = self.profile_width(views, target)
             position = self._last_position
+            tested = views.local(int(round(position)))     # whitened by the model's events at that width
         else:
             width, pred, mean, raw = self.nominal_width_m, views.base, self.base_mean, self.base_raw
             position = None
-        result = consistency.test(views, target - pred)
+            tested = views
+        result = consistency.test(tested, target - pred)
         measured = denoise(evidence.raw.mean(axis=0))
         ratio = np.sqrt(np.mean((measured - mean) ** 2, axis=-1)) / views.floor_rms
         out = Evaluation(result, width, dict(zip(SEGMENT_SIGNALS, map(float, ratio))), None, evidence.n_events,
@@ -409,8 +476,11 @@ class ModelReference:
                   "jac_dc": self.jac_dc, "jac_step": self.jac_step, "widths_m": self.widths_m,
                   "grid_mean": self.grid_mean, "grid_raw": self.grid_raw, "grid_dc": self.grid_dc,
                   "noise_band_psd": self.noise_band_psd, "noise_band_f": self.noise_band_f}
+        arrays["local_event_basis"] = self.local_event_basis
+        arrays["local_complement"] = self.local_complement
         for name, parts in (("seed_events", self.seed_events), ("seed_dc", self.seed_dc),
-                            ("jac_bands", self.jac_bands), ("grid_bands", self.grid_bands)):
+                            ("jac_bands", self.jac_bands), ("grid_bands", self.grid_bands),
+                            ("local_zev", self.local_zev), ("local_zc", self.local_zc)):
             arrays[name] = np.concatenate(parts, axis=0)
             arrays[name + "_counts"] = np.array([len(x) for x in parts])
         tmp = p.with_name(p.name + f".partial{os.getpid()}")
@@ -477,7 +547,9 @@ def load(path) -> ModelReference:
         jac_dc=d["jac_dc"], jac_bands=_split(d["jac_bands"], d["jac_bands_counts"]), jac_step=d["jac_step"],
         candidates=meta["candidates"], widths_m=d["widths_m"], grid_mean=d["grid_mean"], grid_raw=d["grid_raw"],
         grid_bands=_split(d["grid_bands"], d["grid_bands_counts"]), grid_dc=d["grid_dc"],
-        noise_band_psd=d["noise_band_psd"], noise_band_f=d["noise_band_f"], path=p)
+        noise_band_psd=d["noise_band_psd"], noise_band_f=d["noise_band_f"],
+        local_event_basis=d["local_event_basis"], local_complement=d["local_complement"],
+        local_zev=_split(d["local_zev"], d["local_zev_counts"]), local_zc=_split(d["local_zc"], d["local_zc_counts"]), path=p)
 
 
 # ------------------------------------------------------------------------------------------------ build
@@ -558,7 +630,14 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
     try:
         diagnose.screen_step(run, progress=progress)
         changes = _width_grid(float(model.nominal["width_m"]), width_step)
-        grid_ens = evaluate([{WIDTH_KEY: float(c)} for c in changes])
+        # the width grid: the ensemble (as Problem.evaluate makes it) and every run's own events
+        sets = [{WIDTH_KEY: float(c)} for c in changes]
+        runs = plant_adapter.simulate_sets(model, p._merge(sets), p.seeds, p.n_samples, conditions=p.conditions)
+        p.n_sets_simulated += len(sets)
+        grid_ens = ensemble_from_runs(runs, p.dt, dc_names=p.dc_names)
+        grid_events = [[event_set({name: runs[name][i, k] for name in runs}, p.dt) for k in range(len(p.seeds))]
+                       for i in range(len(sets))]
+        del runs
     finally:
         p.evaluate = evaluate
     comp = run.comp
@@ -618,5 +697,22 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
         grid_dc=np.stack([grid_ens.dc_mean(i) for i in range(len(changes))]),
         noise_band_psd=np.stack([spectra[s]["ensemble"].mean(axis=0) for s in SEGMENT_SIGNALS]),
         noise_band_f=np.asarray(spectra[SEGMENT_SIGNALS[0]]["f"]))
+    _add_local(ref, grid_events)
     ref.meta["build_seconds"] = time.perf_counter() - t0
     return ref
+
+
+def _add_local(ref: ModelReference, grid_events: list) -> None:
+    """The width-local whitening's data (Views.local): the model's own events at every grid width on the nominal
+    views' event-average and complement directions."""
+    v0 = Views(ref, np.zeros(len(SEGMENT_SIGNALS)), ref.build_events)
+    b_ev = dict(v0.raw_blocks)["event_average"][v0.event_slice]
+    comp = v0.complement / np.linalg.norm(v0.complement, axis=0)[None, :]
+    zev, zc = [], []
+    for g, per_seed in enumerate(grid_events):
+        raw = np.concatenate([ev.raw for ev in per_seed], axis=0)
+        vec = (denoise(raw) * v0.w[None, :, None]).reshape(raw.shape[0], -1) - v0.grid[g][v0.event_slice][None]
+        zev.append(vec @ b_ev)
+        zc.append(vec @ comp)
+    ref.local_event_basis, ref.local_complement = b_ev, comp
+    ref.local_zev, ref.local_zc = zev, zc
