@@ -26,6 +26,7 @@ measured on a busy machine is a lower bound.
     python bench/fleet.py [--quick] [--parts capacity diagnostics analyze two_host]
     python bench/fleet.py --parts analyze                         # only the analysis speed-up
     python bench/fleet.py --parts capacity --layouts process single --counts 8 10
+    python bench/fleet.py --parts capacity --layouts process --watch both     # with and without the model watch
 """
 import argparse
 import json
@@ -43,16 +44,21 @@ def log(*args):
     print(*args, file=sys.stderr, flush=True)
 
 
+NO_WATCH = "_no_watch"      # a capacity variant's suffix: the layout with `fleet --no-watch` (no model watch)
+
+
 def run_fleet(n, layout, duration_s, workdir):
     """The `fleet` command's summary, with ``command_cpu_s`` (CPU of the command and every process
     it started, start-up included: rusage of the waited-for children) and ``command_wall_s``."""
     import resource
     summary = os.path.join(workdir, f"fleet_{layout}_{n}.json")
+    watch = [] if not layout.endswith(NO_WATCH) else ["--no-watch"]
+    layout = layout[:-len(NO_WATCH)] if watch else layout
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     started = time.perf_counter()
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "fleet", "--drives", str(n),
                            "--duration", str(duration_s), "--layout", layout,
-                           "--view-period", "0", "--summary-json", summary],
+                           "--view-period", "0", "--summary-json", summary, *watch],
                           capture_output=True, text=True, timeout=duration_s * 4 + 300)
     wall = time.perf_counter() - started
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -245,6 +251,10 @@ def main():
     parser.add_argument("--counts", type=int, nargs="+", default=None, metavar="N",
                         help="drive counts of the capacity part, in order, until one fails "
                              "(default: 2 4 6 ... 16; --quick: 2 4 8)")
+    parser.add_argument("--watch", choices=("on", "off", "both"), default="on",
+                        help="the capacity part with every drive's model watch (on: fleet's default), without it "
+                             "(off: fleet --no-watch), or both alternated at each N (drives_realtime and "
+                             "drives_realtime_no_watch side by side)")
     parser.add_argument("--drives", type=int, default=0,
                         help="drives of the diagnostics part when capacity is not measured")
     parser.add_argument("--analyze-repeats", type=int, default=7,
@@ -263,14 +273,22 @@ def main():
         counts = args.counts or ((2, 4, 8) if args.quick else (2, 4, 6, 8, 10, 12, 14, 16))
         layout, best = "process", args.drives
         if "capacity" in args.parts:
-            per_layout = capacity_alternated(args.layouts, counts, duration, workdir)
+            variants = [v for name in args.layouts for v in
+                        {"on": [name], "off": [name + NO_WATCH], "both": [name, name + NO_WATCH]}[args.watch]]
+            per_layout = capacity_alternated(variants, counts, duration, workdir)
+            if args.watch == "both":
+                off = {k: v for k, v in per_layout.items() if k.endswith(NO_WATCH)}
+                per_layout = {k: v for k, v in per_layout.items() if not k.endswith(NO_WATCH)}
+                result["drives_realtime_no_watch"] = max(v["drives_realtime"] for v in off.values())
+                result["drives_realtime_no_watch_by_layout"] = off
             layout = max(per_layout, key=lambda k: per_layout[k]["drives_realtime"])
             best = per_layout[layout]["drives_realtime"]
             best_run = next((r for r in per_layout[layout]["runs"] if r["drives"] == best), None)
             result.update(drives_realtime=best, drives_realtime_layout=layout,
                           cpu_percent_per_drive=(best_run["cpu_percent_per_drive"] if best_run
                                                  else None),
-                          drives_realtime_by_layout=per_layout, capacity_run_s=duration)
+                          drives_realtime_by_layout=per_layout, capacity_run_s=duration,
+                          model_watch=args.watch)
         if "diagnostics" in args.parts:
             n_diag = max(best, 2)
             result["diagnostics_complete"] = diagnostics_complete(

@@ -41,7 +41,7 @@ def test_ok_on_its_model_then_warn_with_a_snapshot_when_friction_switches_on(ros
             Parameter("drive_name", value="line1/drive7"), Parameter("width_m", value=0.005),
             Parameter("rate_factor", value=0.0), Parameter("duration_s", value=9.0),
             Parameter("qos", value="reliable"), Parameter("seed", value=11),
-            Parameter("wait_for_subscribers", value=["model_watch:a1,a2,angle_difference"]),
+            Parameter("wait_for_subscribers", value=["model_watch:a1,a2,angle_difference,omega1"]),
             Parameter("plant_set_at", value=["5:effects.wheel_coulomb_friction=true;"
                                              "wheel_coulomb_friction.torque_Nm=2.5"])])
         probe = rclpy.create_node("probe", namespace=NS)
@@ -78,7 +78,8 @@ def test_ok_on_its_model_then_warn_with_a_snapshot_when_friction_switches_on(ros
     snaps = list(tmp_path.glob("line1_drive7_*.mcap"))
     assert len(snaps) == 1
     meas = load_measurement(snaps[0])                 # an ordinary bag: diagnose reads it
-    assert meas.duration_s >= 1.0 and set(meas.signals) == {"a1", "a2", "angle_difference"}
+    # the signals diagnose reads (omega1: the record-mean view's motor speed)
+    assert meas.duration_s >= 1.0 and set(meas.signals) == {"a1", "a2", "angle_difference", "omega1"}
 
 
 @pytest.mark.parametrize("override, named", [("window_events:=2", "window_events"),
@@ -106,3 +107,20 @@ def test_the_pipelines_watch_options_are_checked_before_anything_runs(ros_env, a
                           capture_output=True, text=True, timeout=60)
     assert proc.returncode == 2 and named in proc.stderr, proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+@pytest.mark.parametrize("args,named", [
+    (["--out", "ref.txt"], "--out ref.txt: a reference is an .npz file"),
+    (["--seeds", "3"], "--seeds 3: the cache holds references of 6 seeds"),
+    (["--width-m", "-1"], "width"),
+])
+def test_watch_reference_refuses_bad_input_before_building(tmp_path, args, named):
+    """`watch-reference` names the bad option and exits 2 before any simulation (no traceback)."""
+    import subprocess
+    import sys
+    p = subprocess.run([sys.executable, "-m", "backlash_monitor", "watch-reference", *args], cwd=tmp_path,
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 2, (p.returncode, p.stdout, p.stderr)
+    assert named in p.stderr + p.stdout
+    assert "Traceback" not in p.stderr
+    assert not any(tmp_path.iterdir())

@@ -4,7 +4,7 @@
         -p reference:=drive7_v3.watch.npz
 
 One per drive, in its namespace beside the classifier. Subscribes to the drive's ``plant/a1``, ``a2``,
-``angle_difference`` (``snapshot_signals``: ``omega1``, ``omega2`` too if asked) as serialized messages; the core
+``angle_difference`` and ``omega1`` (``snapshot_signals``; ``omega2`` too if asked) as serialized messages; the core
 (backlash_monitor/watch/: the live onset events, ModelWatch, the alarm rule) evaluates the model version's
 precomputed reference (workbench/reference.py: no simulation here) on the last ``window_events`` onset events after
 every event, and the node publishes:
@@ -72,9 +72,10 @@ def _parameters():
         ParameterSpec("snapshot_before_s", c["snapshot_before_s"], "snapshot: seconds of the stream before the "
                       "WARN [s]", 0.0, 60.0),
         ParameterSpec("snapshot_after_s", c["snapshot_after_s"], "snapshot: seconds after it [s]", 0.5, 120.0),
-        ParameterSpec("snapshot_signals", ["a1", "a2", "angle_difference"], "the plant signals a snapshot holds: "
-                      "diagnose reads a1, a2 and angle_difference; omega1 and omega2 may be added (two more "
-                      "subscriptions: ~1 % of a core more, docs/model_watch.md)"),
+        ParameterSpec("snapshot_signals", ["a1", "a2", "angle_difference", "omega1"], "the plant signals a "
+                      "snapshot holds: diagnose reads a1, a2, angle_difference and omega1 (its record-mean view has "
+                      "the motor's mean speed, the drive's load: without it diagnose on the snapshot sees less than "
+                      "on a full recording); omega2 may be added"),
         ParameterSpec("max_snapshots", 20, "snapshots this node writes at most (a drive that goes WARN again and "
                       "again does not fill the disk; later WARNs say so)", 0, 100000),
         ParameterSpec("qos", "sensor_data", "QoS of the chunk subscriptions", choices=CHUNK_QOS_CHOICES),

@@ -144,7 +144,7 @@ def set_at_entries(groups) -> list[str]:
     return out
 
 
-WATCH_READS = "model_watch:a1,a2,angle_difference"    # --watch: what the model watch reads
+WATCH_READS = "model_watch:a1,a2,angle_difference,omega1"    # --watch: what the model watch reads (omega1: snapshot)
 WINDOWING_READS = "windowing:a1,a2,angle_difference"   # the windowing node, measured angles
 RECORD_NODE = "record"                                 # --record: records every plant signal
 NODE_ORDER = ("classifier", "denoise", "windowing", "plant_simulator")   # readers first
