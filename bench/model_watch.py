@@ -17,7 +17,7 @@ snapshot_diagnose_agreement: the model_watch node in a pipeline with an effect s
 cpu_per_drive: the model_watch node's CPU share of one core while a 50 kHz drive streams (pipeline --watch,
   the node in its own process; /proc/PID/stat), beside the windowing node's in the same run.
 
-    python bench/model_watch.py [--parts clean detect snapshot cpu] [--quick]
+    python bench/model_watch.py [--parts clean detect snapshot cpu] [--quick | --long]
     python bench/model_watch.py --parts clean detect --traces-out traces.json    # the calibration's raw data
 
 The alarm rule is the packaged one (config/model_watch.yaml); --rule VIEW_P,RATIO,PERSISTENCE tries another on
@@ -378,7 +378,13 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--parts", nargs="+", default=["clean", "detect", "snapshot", "cpu"],
                     choices=["clean", "detect", "snapshot", "cpu"])
-    ap.add_argument("--quick", action="store_true", help="a few minutes instead of an hour of clean drives")
+    ap.add_argument("--quick", action="store_true", help="a smoke run: a few minutes of clean drives, one effect "
+                                                          "per family and seed, one snapshot")
+    ap.add_argument("--long", action="store_true", help="the goal's length: 2 h of clean own drives (8 grid points x "
+                                                         "450 s, with and without width wear) and 64 min of clean "
+                                                         "foreign drives, two seeds per effect (~50 min on this "
+                                                         "machine under load; the default: 32 + 16 min, one seed, "
+                                                         "~20 min)")
     ap.add_argument("--traces-out", default="", help="write the per-evaluation traces (JSON)")
     ap.add_argument("--traces-in", default="", help="traces written by --traces-out: re-scored, and the parts they "
                                                     "hold are not simulated again")
@@ -407,9 +413,13 @@ def main() -> int:
         if args.traces_out:
             with open(args.traces_out, "w") as f:
                 json.dump(data, f)
-    runs = {"clean_own": lambda: clean_own(60.0 if args.quick else 450.0),
-            "clean_foreign": lambda: clean_foreign(1 if args.quick else 8, 30.0 if args.quick else 60.0),
-            "detect_own": lambda: detect_own(seeds=(0,) if args.quick else (0, 1)),
+    size = "quick" if args.quick else "long" if args.long else "default"
+    own_s, foreign_n, foreign_s, seeds = {"quick": (20.0, 1, 20.0, (0,)), "default": (120.0, 2, 60.0, (0,)),
+                                          "long": (450.0, 8, 60.0, (0, 1))}[size]
+    result["size"] = size
+    runs = {"clean_own": lambda: clean_own(own_s),
+            "clean_foreign": lambda: clean_foreign(foreign_n, foreign_s),
+            "detect_own": lambda: detect_own(seeds=seeds),
             "detect_foreign": detect_foreign}
     for part, fn in runs.items():
         kind, source = part.split("_")

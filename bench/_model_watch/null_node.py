@@ -1,0 +1,36 @@
+"""A node with the model_watch node's subscriptions and no work: the side-by-side baseline of cpu_per_drive.
+
+The same runtime (nodes/runtime.run_node: the lean executor), the same four plant topics taken serialized
+(``raw=True``) with the same QoS; the callback only counts the bytes. What model_watch costs beyond this is the
+watch's own work (events, the test, the ring); this is what any node that reads a 50 kHz drive pays in DDS and
+the executor.
+
+    python bench/_model_watch/null_node.py        # in the pipeline's ROS domain; ends on SIGINT/SIGTERM
+"""
+from __future__ import annotations
+
+import sys
+
+from rclpy.node import Node
+
+from backlash_monitor.nodes.qos import chunk_qos
+from backlash_monitor.nodes.runtime import run_node
+from backlash_monitor_msgs.msg import SignalChunk
+
+SIGNALS = ("a1", "a2", "angle_difference", "omega1")    # model_watch's (its snapshot_signals default)
+
+
+class NullWatch(Node):
+    def __init__(self):
+        super().__init__("null_watch")
+        self.bytes = 0
+        qos = chunk_qos("sensor_data")
+        for name in SIGNALS:
+            self.create_subscription(SignalChunk, f"plant/{name}", self.on_chunk, qos, raw=True)
+
+    def on_chunk(self, data) -> None:
+        self.bytes += len(data)
+
+
+if __name__ == "__main__":
+    sys.exit(run_node(NullWatch))
