@@ -256,3 +256,28 @@ def test_a_recordings_model_fit_as_analyze_shows_it(model, ref):
     bad = synthetic.hidden_effect_recording(model, 3.0, seed=35, config_overrides=plant_adapter.config_overrides(
         {"wheel_coulomb_friction.torque_Nm": 2.5}))
     assert evaluate_recording(bad, ref)["level"] == "WARN"
+
+
+def test_the_live_noise_floor_has_the_adcs_quantisation_as_diagnose_reads_it(model, ref):
+    """A drive behind an ADC (a1, a2 rounded to 0.02 m/s^2): the live watch's sensor noise floor is at least the
+    quantisation noise step^2/12 over the band (analysis.sensor_noise_floor's), and it is what the reference gives
+    with the window's own samples -- the step found once on the first window."""
+    from backlash_monitor.workbench.analysis import quantisation_step
+    step = 0.02
+    meas = synthetic.hidden_effect_recording(model, 4.6, seed=44)
+    sig = {s: np.round(meas.signals[s] / step) * step if s in ("a1", "a2") else meas.signals[s]
+           for s in ("a1", "a2", "angle_difference")}
+    watch = ModelWatch(ref)
+    for k in range(0, meas.n_samples, 5000):
+        watch.feed(k, *(sig[s][k:k + 5000] for s in ("a1", "a2", "angle_difference")))
+    assert len(watch.events) == watch.window_events
+    live = watch.noise_floor()
+    quant = step ** 2 / 12.0 * 2.0 * meas.sample_period_s
+    window = {s: np.concatenate([e.raw[i] for e in watch.events]) for i, s in enumerate(("a1", "a2"))}
+    assert all(quantisation_step(x) == pytest.approx(step, rel=1e-6) for x in window.values())
+    psd = dict(zip(("a1", "a2"), np.mean([e.psd for e in watch.events if e.psd is not None], axis=0)))
+    assert np.all(ref.noise_floor(psd, signals=window) >= quant * (1 - 1e-9))      # diagnose's estimate
+    # the watch's: the same, with a floor under NOISE_SIGNIFICANT x the model's own level taken as none (a1's level
+    # is above this ADC's noise; a2's is not)
+    assert np.allclose(live, ref.noise_floor(psd, significant=True, signals=window), rtol=1e-12)
+    assert live[1] >= quant * (1 - 1e-9)

@@ -65,6 +65,7 @@ class ModelWatch:
         self.live = LiveEvents(reference.sample_period_s, reference.pulse_period_samples)
         self.views_noise = np.zeros(len(SEGMENT_SIGNALS))
         self.noise_checked = False
+        self.quant_probe: dict | None = None
         self.noise_scale = self._noise_scale()
         self.evaluations = 0
         self.last: WatchUpdate | None = None
@@ -92,8 +93,21 @@ class ModelWatch:
         if not psds:
             return self.views_noise
         psd = np.mean(psds, axis=0)
-        samples = {s: np.concatenate([e.raw[i] for e in self.events]) for i, s in enumerate(SEGMENT_SIGNALS)}
-        return self.reference.noise_floor(dict(zip(SEGMENT_SIGNALS, psd)), significant=True, signals=samples)
+        return self.reference.noise_floor(dict(zip(SEGMENT_SIGNALS, psd)), significant=True,
+                                          signals=self._quantisation_probe())
+
+    def _quantisation_probe(self) -> dict:
+        """The ADC's quantisation (analysis.sensor_noise_floor reads it off the samples: analysis.quantisation_step)
+        is a property of the sensor chain: found once, on the first full window's raw segments (~36,000 samples per
+        signal; np.unique of them cost ~4 ms, a third of the watch's work when repeated), then handed on as three
+        levels of that step (the same function finds the same step on them; no step: one level)."""
+        if self.quant_probe is None:
+            from backlash_monitor.workbench.analysis import quantisation_step
+            self.quant_probe = {}
+            for i, s in enumerate(SEGMENT_SIGNALS):
+                step = quantisation_step(np.concatenate([e.raw[i] for e in self.events]))
+                self.quant_probe[s] = np.repeat(np.arange(3.0) * step, 2) if step > 0 else np.zeros(6)
+        return self.quant_probe
 
     def _views_noise(self) -> np.ndarray:
         """The noise floor the views are built for: the window's, once it moved by NOISE_REBUILD_FACTOR (a
