@@ -3,7 +3,10 @@
 
 - a candidate *qualifies* when its BIC on the events beats the model's by DELTA_IC_STRONG, it explains at least
   MIN_EXPLAINED of the residual, it is not pinned at a bound of its fit range, and its change exceeds the
-  model-form tolerance of the parameter it moves (tolerance.py);
+  model-form tolerance of the parameter it moves (tolerance.py); the width, which has no nominal tolerance (it is
+  the measurand), must also differ from the nominal by SIGNIFICANCE of its own uncertainty: a width within its
+  uncertainty of the nominal is no measurement of another width (measured: a clean foreign 8.3 mm drive, just
+  outside the event average's band, "measured" 8.44 +- 0.11 mm);
 - a second effect's values must be *significant*: more than SIGNIFICANCE uncertainties from the model's;
 - an update is *confident* when the model with it is consistent in every view (consistency.py, with the
   tolerance), or, for a strong effect fitted to >= CONFIDENT_EXPLAINED of the residual, consistent outside the
@@ -15,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import consistency, tolerance
+from .diagnosis import MEASURAND_EFFECTS
 
 DELTA_IC_STRONG = 2.0        # "positive" evidence (Kass & Raftery) on E events
 DELTA_IC_TIE = 2.0           # two candidates closer than this are not distinguishable from the recording
@@ -42,8 +46,10 @@ def qualifies(fit, candidate, min_explained: float = MIN_EXPLAINED) -> bool:
     """(No significance test for a single effect: its test is the IC, and the jackknife through the final
     Jacobian can be far off for a strongly nonlinear parameter -- measured: a quadratic wheel drag fitted
     0.064 +- 0.040 at delta_ic -250.)"""
+    measurand = fit.effect.split("[")[0] in MEASURAND_EFFECTS
     return (fit.delta_ic <= -DELTA_IC_STRONG and fit.explained_fraction >= min_explained and not fit.at_bound
-            and tolerance.beyond_tolerance(fit, candidate, TOLERANCE_FACTOR))
+            and tolerance.beyond_tolerance(fit, candidate, TOLERANCE_FACTOR)
+            and (not measurand or significant(fit)))
 
 
 def views_not_worse(problem, before_pred, after_pred) -> tuple[bool, list]:
