@@ -25,7 +25,7 @@ from functools import lru_cache
 import numpy as np
 from hypothesis import strategies as st
 
-from backlash_monitor.chain import ChunkJoiner, JoinedRange, WindowingStage, denoise_checked
+from backlash_monitor.chain import ChunkJoiner, WindowingStage, denoise_checked
 from backlash_monitor.input_faults import REASONS
 
 INPUTS: Counter = Counter()

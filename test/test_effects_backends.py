@@ -34,16 +34,23 @@ def independent_form(name, values, cfg):
     p = {k.split(".", 1)[1]: v for k, v in values.items() if k.startswith(name + ".")}
 
     def wheel(torque):
-        d = np.zeros(11); d[8] = torque / J2; return d
+        d = np.zeros(11)
+        d[8] = torque / J2
+        return d
 
     def motor(load_pu):
-        d = np.zeros(11); d[4] = -load_pu / T_m; return d
+        d = np.zeros(11)
+        d[4] = -load_pu / T_m
+        return d
 
     def clutch(kc2, dc2):
         def f(y):
             rel = y[4] * omb - y[8]
             dT = clutch_torque(y[5], rel, beta, kc2, dc2) - clutch_torque(y[5], rel, beta, kc, dc)
-            d = np.zeros(11); d[4] = -dT / T_b / T_m; d[8] = dT / J2; return d
+            d = np.zeros(11)
+            d[4] = -dT / T_b / T_m
+            d[8] = dT / J2
+            return d
         return f
 
     forms = {

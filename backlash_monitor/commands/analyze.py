@@ -24,7 +24,6 @@ import csv
 import json
 import math
 import pathlib
-import sys
 import time
 
 NAME = "analyze"
@@ -136,7 +135,7 @@ def analyze_bag(args, library=None, chunks_ahead: int | None = None) -> dict:
     anything wrong with the bag or the options."""
     from backlash_monitor.commands import UsageError
     from backlash_monitor.commands._memory import reuse_freed_memory
-    from backlash_monitor.bag import BagError, BagReader, BagWriter
+    from backlash_monitor.bag import BagError, BagReader
     from backlash_monitor.chain import BlockFeeder, ChunkJoiner, WindowingStage, denoise_pairs
     from backlash_monitor.classifier.patterns import PatternLibraryError
     from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator

@@ -15,10 +15,8 @@ than the configured rate, before it reaches the limit), with a plot per drive an
 from __future__ import annotations
 
 import argparse
-import contextlib
 import csv
 import glob
-import io
 import json
 import math
 import os
