@@ -14,7 +14,6 @@ than the configured rate, before it reaches the limit), with a plot per drive an
 """
 from __future__ import annotations
 
-import argparse
 import csv
 import glob
 import json
@@ -70,7 +69,7 @@ def expand_bags(spec: str) -> list[Path]:
 _WORKER: dict = {}   # this process's worker state: the options' pattern library, loaded once
 
 
-def init_worker(options: dict, library=None) -> None:
+def init_worker(options, library=None) -> None:
     """A worker's start (ProcessPoolExecutor/Dask initializer, and the --jobs 1 loop): one core's
     worth of threads (BLAS, OpenMP and numba pools of one thread: the pool already has a worker
     per core; no bag decompression thread in a pool worker or on one CPU) and the pattern library
@@ -79,28 +78,27 @@ def init_worker(options: dict, library=None) -> None:
     for var in THREAD_VARIABLES:
         os.environ[var] = "1"
     import multiprocessing
-    from backlash_monitor.commands.analyze import load_bag_library
+    from backlash_monitor.offline.analyze import load_library
     # a pool worker (a worker per core): no core for a bag reader's decompression thread, which
     # would only take turns with the worker; its readers get chunks_ahead=0 (None: the reader's
     # default, which is 0 on one CPU too)
     chunks_ahead = 0 if multiprocessing.parent_process() is not None else None
     _WORKER.update(pid=os.getpid(), options=options, chunks_ahead=chunks_ahead,
-                   library=library or load_bag_library(argparse.Namespace(**options)))
+                   library=library or load_library(options))
 
 
 def analyze_one(job: dict) -> dict:
-    """One bag through the single-bag `analyze` (a worker's task); returns its fleet-table row."""
-    from backlash_monitor.commands.analyze import analyze_bag
+    """One bag through the single-bag analysis (a worker's task: a job is its bag, its output prefix and
+    the AnalyzeOptions); returns its fleet-table row."""
+    from backlash_monitor.offline.analyze import analyze_bag
     if _WORKER.get("options") != job["options"] or _WORKER.get("pid") != os.getpid():
         init_worker(job["options"])      # a worker started without the initializer (Dask)
-    args = argparse.Namespace(**job["options"])
-    args.bag, args.out = job["bag"], job["out"]
     started = time.perf_counter()
     row = {"bag": job["bag"], "drive": "", "time_s": math.nan, "width_m": math.nan,
            "fused_width_m": math.nan, "true_width_m": math.nan, "onsets": 0, "discarded": 0,
            "error": ""}
     try:
-        result = analyze_bag(args, library=_WORKER["library"],
+        result = analyze_bag(job["bag"], job["out"], job["options"], library=_WORKER["library"],
                              chunks_ahead=_WORKER["chunks_ahead"])
     except UsageError as error:
         row["error"] = str(error)
@@ -125,12 +123,9 @@ def analyze_one(job: dict) -> dict:
     return row
 
 
-def _jobs(args, bags: list[Path], out_dir: Path) -> list[dict]:
-    from backlash_monitor.commands.analyze import add_arguments as single_arguments
-    probe = argparse.ArgumentParser()
-    single_arguments(probe)
-    names = [a.dest for a in probe._actions if a.dest not in ("help", "bag", "out")]
-    options = {n: getattr(args, n) for n in names if hasattr(args, n)}
+def _jobs(options, bags: list[Path], out_dir: Path) -> list[dict]:
+    """{"bag", "out", "options"} per bag: its path, its output prefix in ``out_dir`` and the
+    AnalyzeOptions every bag shares."""
     jobs, used = [], set()
     for b in bags:
         name = b.stem + ".estimates"      # analyze's own default name, in DIR
@@ -177,7 +172,7 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
     # numpy is imported (its OpenBLAS starts its threads then); where numpy was imported before
     # with more threads, a forkserver with the limits set in its environment starts the workers.
     modules = ["backlash_monitor.bag", "backlash_monitor.chain",
-               "backlash_monitor.commands.analyze", "backlash_monitor.estimation"]
+               "backlash_monitor.offline.analyze", "backlash_monitor.estimation"]
     if threads_limited and "fork" in multiprocessing.get_all_start_methods():
         import importlib
         for name in modules:
@@ -187,7 +182,7 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
         context = multiprocessing.get_context("forkserver")
         context.set_forkserver_preload(modules)
         library = None          # loaded by each worker
-    options = jobs[0]["options"] if jobs else {}
+    options = jobs[0]["options"] if jobs else None
     with ProcessPoolExecutor(max_workers=n_jobs, mp_context=context, initializer=init_worker,
                              initargs=(options, library)) as pool:
         # at most two bags per worker queued: a worker never waits for its next bag, and the
@@ -273,7 +268,9 @@ def format_rows(rows: list[dict]) -> list[tuple]:
     return out
 
 
-def run_many(args) -> int:
+def run_many(args, options) -> int:
+    """The many-bag `analyze`: ``args`` its parsed command line (BAG, --out and the options above),
+    ``options`` the AnalyzeOptions of every bag."""
     from backlash_monitor.fleet.trend import load_rule, plot_trends
     bags = expand_bags(args.bag)
     n_jobs = args.jobs or os.cpu_count() or 1
@@ -288,15 +285,15 @@ def run_many(args) -> int:
     except (OSError, KeyError, TypeError, ValueError) as error:
         raise UsageError(f"trend config {args.trend_config or 'config/trend.yaml'}: {error}; it "
                          "needs warn_growth_m_per_day, warn_width_m, error_width_m") from None
-    jobs = _jobs(args, bags, out_dir)
+    jobs = _jobs(options, bags, out_dir)
     started = time.perf_counter()
     if args.engine == "dask":
         rows = run_dask(jobs, n_jobs, args.scheduler)
     else:
         # the options checked and the library loaded once, here: a bad option is one error
         # before any worker starts, and forked workers inherit the library
-        from backlash_monitor.commands.analyze import load_bag_library
-        rows = run_local(jobs, n_jobs, library=load_bag_library(args),
+        from backlash_monitor.offline.analyze import load_library
+        rows = run_local(jobs, n_jobs, library=load_library(options),
                          threads_limited=threads_limited)
     wall = time.perf_counter() - started
     rows.sort(key=lambda r: (r["drive"], r["time_s"] if r["time_s"] == r["time_s"] else 0.0,

@@ -24,7 +24,7 @@ import time
 from dataclasses import dataclass, field
 
 from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
-from backlash_monitor.supervisor import RESTART_POLICIES, Supervisor
+from backlash_monitor.process.supervisor import RESTART_POLICIES, Supervisor
 
 DEFAULTS = dict(width_m=0.005, eta_k=0.025, n1=0.89, seed=0, duration=10.0, rate_factor=1.0)
 

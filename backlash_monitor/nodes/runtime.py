@@ -14,7 +14,7 @@ import rclpy.executors
 from backlash_monitor.nodes.fast_dds import configure_fast_dds
 from backlash_monitor.nodes.lean_executor import make_executor
 from backlash_monitor.nodes.parameters import ParameterValueError
-from backlash_monitor.parent_watch import start_watchdog
+from backlash_monitor.process.parent_watch import start_watchdog
 
 
 def freeze_startup_objects() -> None:
