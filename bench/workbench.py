@@ -31,6 +31,7 @@ from backlash_monitor.workbench import analysis                       # noqa: E4
 from backlash_monitor.workbench.diagnose import diagnose, public      # noqa: E402
 from backlash_monitor.workbench.model import load_model               # noqa: E402
 from backlash_monitor.workbench.synthetic import hidden_effect_recording  # noqa: E402
+from backlash_monitor.workbench.diagnosis import MEASURAND_EFFECTS  # noqa: E402
 from backlash_monitor.workbench.versions import EffectValues, add_effects  # noqa: E402
 
 DURATION_S = 4.0
@@ -117,7 +118,7 @@ def strict_top1(pub, truth) -> tuple:
         signals = {p.split("_", 1)[0] for p in params if p.startswith(("a1_", "a2_"))}
         if not signals:
             continue
-        right = [c for c in cands if c.endswith(tuple(f"[{sg}]" for sg in signals))]
+        right = [c for c in cands if "[" in c and c.split("[", 1)[1].rstrip("]").split(",")[0] in signals]
         if not right:
             return False, f"{effect}: named {', '.join(cands)}, the truth sets {', '.join(sorted(signals))}"
         fit = _fit_of(pub, right[0])
@@ -170,10 +171,8 @@ def run_suite(only=None):
                 if p in fit["parameters"]:
                     param_errs.append(abs(fit["parameters"][p] - v) / abs(v))
         row["param_rel_errors"] = param_errs
-        if pub["discovery"] is not None:
-            adds = [EffectValues(pub["discovery_parameters"]["effect"], pub["discovery_parameters"]["parameters"])]
-            if pub.get("second_effect"):
-                adds.append(EffectValues(pub["second_effect"]["effect"], pub["second_effect"]["parameters"]))
+        adds = [EffectValues(a["effect"], a["parameters"]) for a in pub["additions"] if a["role"] != "partial"]
+        if adds:
             m2 = add_effects(model, adds)
             comp = analysis.build_comparison(meas, m2)
             row["ratio_after"] = float(np.sqrt(np.mean(analysis.residual_ratio(comp) ** 2)))
@@ -207,7 +206,7 @@ def twins(pub) -> list:
     its own fitted values (from the ranked, refined candidates)."""
     out = []
     for name in pub["indistinguishable"]:
-        if name == pub["discovery"]:
+        if name == pub["discovery"] or name in MEASURAND_EFFECTS:     # the width is measured, never trained in
             continue
         fit = next((r for r in pub["ranked"] if r["effect"] == name and r.get("uncertainty")), None)
         if fit is not None:
@@ -238,11 +237,7 @@ def width_check():
             t1 = time.perf_counter()
             meas = hidden_effect_recording(model, DURATION_S, seed=9101 + 10 * i, config_overrides=hidden)
             pub = public(diagnose(meas, model))
-            adds = []
-            if pub["discovery"] is not None:
-                adds.append(EffectValues(pub["discovery_parameters"]["effect"], pub["discovery_parameters"]["parameters"]))
-                if pub.get("second_effect"):
-                    adds.append(EffectValues(pub["second_effect"]["effect"], pub["second_effect"]["parameters"]))
+            adds = [EffectValues(a["effect"], a["parameters"]) for a in pub["additions"] if a["role"] != "partial"]
             if adds:
                 # one model version per candidate the diagnosis cannot tell apart (fitted values of each),
                 # the library trained on all of them (train --model V2a --model V2b)
@@ -316,15 +311,20 @@ def parse_args(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--only", action="append", metavar="LABEL", choices=[s[0] for s in SUITE],
                     help="run only this suite row (repeatable; seeds as in the full run: 9001 + its index in "
-                         "SUITE) and skip the width check; the JSON then holds only those rows' figures")
+                         "SUITE) and skip the width check, the foreign suite and the sensor check; the JSON then holds "
+                         "only those rows' figures")
+    ap.add_argument("--parts", default="own,foreign,sensor", metavar="PART[,PART...]",
+                    help="what to run: own (this project's simulator: the suite and the width check), foreign (the "
+                         "foreign drives of foreign_drives/ through the README's loop: diagnose, add-effect, train, "
+                         "analyze), sensor (the monitor's width against sensor offsets and gains, own and foreign)")
     return ap.parse_args(argv)
 
 
 def main(argv=None):
     args = parse_args(argv)
     t0 = time.perf_counter()
-    rows = run_suite(args.only)
     if args.only:
+        rows = run_suite(args.only)
         pos = [r for r in rows if "top1" in r]
         print(json.dumps({"only": args.only,
                           "top1_rate": float(np.mean([r["top1"] for r in pos])) if pos else None,
@@ -333,6 +333,43 @@ def main(argv=None):
                           "discovery_cpu_seconds_max": float(np.max([r["cpu_seconds"] for r in rows])),
                           "per_recording": rows, "wall_seconds": time.perf_counter() - t0}))
         return
+    parts = {p.strip() for p in args.parts.split(",") if p.strip()}
+    unknown = parts - {"own", "foreign", "sensor"}
+    if unknown:
+        log(f"--parts: unknown part {sorted(unknown)[0]!r}; allowed: own, foreign, sensor")
+        sys.exit(2)
+    out = {}
+    if "foreign" in parts:
+        from _workbench import foreign
+        frows = foreign.run_suite("bench")
+        out.update(foreign.summary(frows))
+        out["foreign_per_recording"] = frows
+    if "sensor" in parts:
+        out.update(sensor_check())
+    if "own" in parts:
+        out.update(own_figures(rows_fn=lambda: run_suite(None)))
+    out["wall_seconds"] = time.perf_counter() - t0
+    print(json.dumps(out, default=float))
+
+
+def sensor_check() -> dict:
+    """The monitor's width against constant sensor offsets (goal) and gains (reported), own and foreign drives."""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    from _workbench import sensor_offset
+    from foreign_drives.drive import make_recording
+    from foreign_drives.suites import suite
+    extra = []
+    for spec in suite("bench"):
+        if spec.kind == "clean" and not spec.sensor.any:
+            rec = make_recording(spec)
+            extra.append({"signals": rec.signals, "sample_period_s": rec.sample_period_s,
+                          "true_width_m": rec.truth.true_width_m, "name": "foreign " + spec.label})
+    res = sensor_offset.measure(own=True, extra_recordings=extra)
+    return {k: v for k, v in res.items()}
+
+
+def own_figures(rows_fn) -> dict:
+    rows = rows_fn()
     width = width_check()
     clean = [r for r in rows if r["kind"] == "clean"]
     pos = [r for r in rows if r["kind"] in ("one", "two")]
@@ -374,9 +411,8 @@ def main(argv=None):
         "discovery_cpu_seconds_max": float(np.max([r["cpu_seconds"] for r in rows])),
         "numba_threads": int(os.environ.get("NUMBA_NUM_THREADS", "0")),
         "per_recording": rows,
-        "wall_seconds": time.perf_counter() - t0,
     }
-    print(json.dumps(out))
+    return out
 
 
 if __name__ == "__main__":

@@ -70,8 +70,10 @@ BENCH_ROWS = [
     ("wheel_stribeck_exp1_1.0Nm", "one", 0.008, 0.02, 0.93,
      [E("wheel_friction_stribeck_power", {"coulomb_torque_Nm": 0.6, "excess_torque_Nm": 1.4,
                                           "stribeck_speed_rad_s": 120.0, "exponent": 1.0})]),
-    ("motor_friction_tanh_1.8Nm", "one", 0.005, 0.025, 0.89,
-     [E("motor_friction_tanh", {"torque_Nm": 1.8, "smoothing_speed_rad_s": 20.0})]),
+    # motor-side torques show in the motor's mean speed (its slip), not in the accelerations: at 1.8-2 N*m they were
+    # inside the speed's model-form tolerance (0.3 rad/s); 5 N*m (0.25 p.u.) is a failing bearing or a fan's load
+    ("motor_friction_tanh_5Nm", "one", 0.005, 0.025, 0.89,
+     [E("motor_friction_tanh", {"torque_Nm": 5.0, "smoothing_speed_rad_s": 20.0})]),
     ("clutch_hertz_softer_-0.3", "one", 0.005, 0.025, 0.89,
      [E("clutch_contact_hertz", {"stiffness": ClutchContactHertz.stiffness_for(-0.3, 1.5), "exponent": 1.5})]),
     ("clutch_hunt_crossley_+0.6", "one", 0.0075, 0.025, 0.89,
@@ -80,8 +82,8 @@ BENCH_ROWS = [
      [E("shaft_with_hub", {"stiffness_Nm_per_rad": 9000.0, "damping_Nms_per_rad": 40.0, "hub_inertia_kgm2": 0.03})]),
     ("mass_rail_friction_12N", "one", 0.0075, 0.025, 0.89,
      [E("mass_rail_friction", {"force_N": 12.0, "smoothing_speed_m_s": 0.05})]),
-    ("motor_fan_load_0.1pu", "one", 0.004, 0.025, 0.93,
-     [E("motor_fan_load", {"torque_Nm": 2.0, "reference_speed_rad_s": 151.4})]),
+    ("motor_fan_load_0.25pu", "one", 0.004, 0.025, 0.93,
+     [E("motor_fan_load", {"torque_Nm": 5.0, "reference_speed_rad_s": 151.4})]),
     ("ripple_cogging_6_12_18", "one", 0.0075, 0.025, 0.89,
      [E("ripple_motor_harmonics", {"orders": [6, 12, 18], "amplitudes_pu": [0.3, 0.12, 0.05],
                                    "phases_rad": [0.3, -1.1, 2.0]})]),
@@ -124,12 +126,19 @@ BENCH_ROWS = [
      [E("structural_vibration", {"amplitude_pu": 0.4, "frequency_hz": 107.0, "phase_rad": 0.0})]),
     ("outside_rotor_resistance_+0.6", "outside", 0.0075, 0.025, 0.91,
      [E("motor_rotor_resistance", {"relative_change": 0.6})]),
-    ("outside_hardening_spring", "outside", 0.0045, 0.03, 0.89, [E("spring_hardening", {"z0_m": 0.4})]),
+    # a non-linear law of the spring family (was labelled 'outside': around its operating extension it is a stiffer
+    # spring, and the model with one is consistent with the recording in every view -- docs/foreign_drives.md)
+    ("spring_hardening_z0_0.4", "one", 0.0045, 0.03, 0.89, [E("spring_hardening", {"z0_m": 0.4})]),
     ("outside_second_mode_120Hz", "outside", 0.0075, 0.025, 0.89,
      [E("second_torsional_mode", {"rim_fraction": 0.4,
                                   "stiffness_Nm_per_rad": (2 * 3.141592653589793 * 120.0) ** 2
                                   / (1 / (0.4 * 0.2) + 1 / (0.6 * 0.2 + 0.10950)),
                                   "damping_Nms_per_rad": 0.5})]),
+    # appended (the rows above keep their seeds): two more effects outside the catalogue
+    ("outside_supply_voltage_-0.15", "outside", 0.006, 0.03, 0.91, [E("supply_voltage", {"relative_change": -0.15})]),
+    # a vibration at a fixed frequency next to an integer order of the rotation (6 x 24.1 Hz = 144.6 Hz): not a ripple
+    ("outside_vibration_147Hz", "outside", 0.0075, 0.025, 0.89,
+     [E("structural_vibration", {"amplitude_pu": 0.3, "frequency_hz": 147.0, "phase_rad": 0.7})]),
 ]
 
 WIDTH_LOOP_ROWS = [

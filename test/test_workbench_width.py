@@ -96,3 +96,21 @@ def test_train_several_models_needs_as_many_seeds(tmp_path, capsys):
     assert main(["train", "--model", str(tmp_path / "a.yaml"), "--model", str(tmp_path / "b.yaml"),
                  "--seeds", "1000", "--out", str(tmp_path / "x.npz"), "--no-progress"]) == 2
     assert "2 --model files need at least 2 --seeds" in capsys.readouterr().err
+
+
+def _width_fit(change_m: float, uncertainty_m: float):
+    from backlash_monitor.workbench.fitting import FitResult
+    return FitResult("backlash_width_drift", ["change"], ["m"], np.array([change_m]), np.array([uncertainty_m]),
+                     np.zeros(1), (np.array([-0.003]), np.array([0.003])), 0.9, -30.0, 0.0, np.zeros((2, 3)), 0.9, 1)
+
+
+def test_a_width_within_two_of_its_uncertainties_of_the_nominal_is_not_measured_as_another_width():
+    """The width has no nominal tolerance (it is the measurand), so its own fit uncertainty decides: 8.44 +- 0.11 mm
+    on an 8.30 mm model (a clean foreign drive just outside the event average's band) is no other width."""
+    from backlash_monitor.workbench import plant_adapter
+    from backlash_monitor.workbench.decisions import qualifies
+    width = next(c for c in plant_adapter.catalogue(load_model(None)) if c.name == "backlash_width_drift")
+    assert not qualifies(_width_fit(0.14e-3, 0.11e-3), width)
+    assert qualifies(_width_fit(0.5e-3, 0.11e-3), width)
+    assert not qualifies(_width_fit(-0.2e-3, 0.11e-3), width)
+    assert qualifies(_width_fit(-0.3e-3, 0.11e-3), width)

@@ -196,3 +196,14 @@ def load_library(path=None, **expected) -> PatternLibrary:
                           training=meta.get("training", {}), shape_meta=meta.get("shape_meta", {}),
                           created_utc=meta.get("created_utc", ""), path=str(path),
                           signals=tuple(meta.get("signals") or SIGNALS))
+
+
+def flagged_warning(library) -> str | None:
+    """One line for whoever loads a library that `train --model` flagged (its check against the diagnosis the
+    model version came from failed: workbench/retrain.py); None when it is not flagged or was never checked."""
+    check = (library.training or {}).get("check") or {}
+    if not check.get("flagged"):
+        return None
+    return (f"pattern library {library.path} is FLAGGED by `train`'s check against the diagnosis it was retrained "
+            "for: " + "; ".join(check.get("reasons", [])) + "; its widths may be biased")
+

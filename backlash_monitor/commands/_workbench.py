@@ -27,6 +27,22 @@ def add_model_arguments(parser, measurement: bool = True) -> None:
                         help="noise seeds of the model's ensemble (>= 3; the band and the fits use them)")
 
 
+def model_overrides(args) -> dict:
+    """The overrides given on the command line (--set, --width-m, --eta-k, --n1, --effects-file), as recorded in
+    a diagnosis's conditions."""
+    out = {}
+    for text in getattr(args, "set", []) or []:
+        key, _, value = text.partition("=")
+        out[key.strip()] = value.strip()
+    for key in ("width_m", "eta_k", "n1"):
+        v = getattr(args, key, None)
+        if v is not None:
+            out[f"nominal.{key}"] = v
+    for f in getattr(args, "effects_file", []) or []:
+        out.setdefault("effects_file", []).append(str(f))
+    return out
+
+
 REPORT_FILES = ("index.html", "event_average.png", "where.png", "ranked.png", "spectra.png")
 COMPARE_FILES = ("compare.json", "event_average.png", "spectra.png")
 

@@ -1,10 +1,15 @@
-"""`python -m backlash_monitor add-effect DIAGNOSIS_OR_EFFECT --model M -o M2`: the next model version.
+"""`python -m backlash_monitor add-effect DIAGNOSIS_OR_EFFECT -o M2`: the next model version.
 
-DIAGNOSIS_OR_EFFECT is a `diagnose --json` file (its discovery, its second effect if any, and a torque ripple
-found in the raw spectrum (`spectral_discovery`, when confident) are added
-with their fitted values) or a catalogue effect's name with its values given by --value NAME=VALUE.
-The new version records the effect, its values and uncertainties and its source, and the model's
-history (workbench_history.jsonl beside -o) gets a line for it.
+DIAGNOSIS_OR_EFFECT is a `diagnose --json` file or a catalogue effect's name with its values given by --value NAME=VALUE.
+
+From a diagnosis, the new version is built on the model the diagnosis was made against -- its file, nominal width,
+eta_k and n1, --set overrides and effect files, all recorded in the diagnosis's `conditions` -- and takes its
+`additions`: the discovered effect (and a second effect, or a torque ripple found in the raw spectrum) with their
+fitted values. A backlash width that differs from the model's nominal is the monitor's measurand, never an effect:
+the new version's nominal width is set to the measured width instead. A partial explanation (an effect that leaves
+part of the residual unexplained) is added only with --accept-partial. The new version records where it came from
+(`provenance`), so that `train --model` can check the retrained monitor against the diagnosis. The model's history
+(workbench_history.jsonl beside -o) gets a line for it.
 """
 from __future__ import annotations
 
@@ -25,40 +30,109 @@ def add_arguments(parser) -> None:
     parser.add_argument("--value", action="append", default=[], metavar="PARAM=VALUE",
                         help="with an effect name: a parameter's value, e.g. --value mass_kg=12.5 (default: its "
                              "current value); repeatable")
+    parser.add_argument("--accept-partial", action="store_true",
+                        help="with a diagnosis whose verdict is 'partial': add its effect(s) anyway. They explain "
+                             "only part of the residual (the rest is outside the catalogue, or a catalogue effect in "
+                             "another form): the new version is a better approximation, not the drive's physics, "
+                             "and the monitor retrained on it may still be biased")
     parser.add_argument("--name", default=None, help="model name (default: the input model's)")
     from backlash_monitor.commands._workbench import add_overwrite_argument
     add_overwrite_argument(parser)
 
 
+def _model_difference(a, b) -> str | None:
+    """How model ``a`` differs from ``b`` in what a diagnosis depends on (nominal values, plant, effect files)."""
+    import json as _json
+    for key in ("width_m", "eta_k", "n1"):
+        if abs(float(a.nominal[key]) - float(b.nominal[key])) > 1e-12 * max(abs(float(b.nominal[key])), 1.0):
+            return f"nominal {key} {a.nominal[key]:g} (the diagnosis: {b.nominal[key]:g})"
+    if _json.dumps(a.plant, sort_keys=True, default=repr) != _json.dumps(b.plant, sort_keys=True, default=repr):
+        return "other plant values or effects"
+    if {str(Path(f).resolve()) for f in a.effect_files} != {str(Path(f).resolve()) for f in b.effect_files}:
+        return "other effect files"
+    return None
+
+
+def _base_from_diagnosis(args, conditions, src):
+    """The model the diagnosis was made against (its recorded effective model). Options that name a model
+    (--model, --set, --width-m, --eta-k, --n1, --effects-file) must give that same model: the fitted values are
+    relative to it."""
+    from backlash_monitor.commands import UsageError
+    from backlash_monitor.workbench.model import ModelError, load_model, model_from_dict
+    try:
+        recorded = load_model(None, base=model_from_dict(conditions.model, base_dir=Path(src).resolve().parent))
+    except ModelError as exc:
+        raise UsageError(f"the model recorded in {src}: {exc}") from None
+    if conditions.model_file and Path(conditions.model_file).is_file():
+        recorded.path = Path(conditions.model_file)
+    given = (args.model or args.set or args.effects_file
+             or any(v is not None for v in (args.width_m, args.eta_k, args.n1)))
+    if not given:
+        return recorded
+    try:
+        explicit = load_model(args.model, args.set, args.width_m, args.eta_k, args.n1, effect_files=args.effects_file)
+    except ModelError as exc:
+        raise UsageError(str(exc)) from None
+    diff = _model_difference(explicit, recorded)
+    if diff:
+        raise UsageError(f"the model given here has {diff}: the diagnosis {src} was made against "
+                         f"{conditions.model_file or conditions.model_label}, and its fitted values are relative to "
+                         "that model; omit the model options (add-effect then builds on the diagnosed model), or "
+                         "diagnose again against this one")
+    return explicit
+
+
 def run(args) -> int:
     from backlash_monitor.commands import UsageError
     from backlash_monitor.commands._workbench import check_outputs, load, print_table
+    from backlash_monitor.workbench.diagnosis import ROLE_PARTIAL, read_handoff
     from backlash_monitor.workbench.model import append_history
     from backlash_monitor.workbench.versions import EffectValues, add_effects
     check_outputs(args, [args.output], "-o")
-    model, _ = load(args, measurement=False)
     src = Path(args.source)
-    additions = []
+    additions, nominal, provenance, notes = [], {}, {}, []
     if src.suffix == ".json" or src.is_file():
         if not src.is_file():
             raise UsageError(f"diagnosis {src} does not exist")
         try:
             diag = json.loads(src.read_text())
+            conditions, adds, verdict = read_handoff(diag, str(src))
         except json.JSONDecodeError as exc:
             raise UsageError(f"diagnosis {src} is not JSON: {exc}") from None
-        if not isinstance(diag, dict) or "discovery" not in diag:
-            raise UsageError(f"{src} is not a diagnose --json file (no 'discovery')")
-        spectral_fit = diag.get("spectral_discovery")
-        spectral_fit = spectral_fit if isinstance(spectral_fit, dict) and spectral_fit.get("confident") else None
-        if diag["discovery"] is None and spectral_fit is None:
-            raise UsageError(f"diagnosis {src} names no discovery ({diag.get('message', '')}); nothing to add")
-        # the event-average discovery (and its second effect) and a ripple found in the raw spectrum
-        for entry in (diag.get("discovery_parameters"), diag.get("second_effect"), spectral_fit):
-            # a confident ripple is also the discovery or the second effect (diagnose names it there): once
-            if entry and all(a.effect != entry["effect"] for a in additions):
-                additions.append(EffectValues(entry["effect"], entry["parameters"], entry.get("uncertainty") or {},
-                                              str(src)))
+        except (ValueError, KeyError, TypeError) as exc:
+            raise UsageError(f"diagnosis {src}: {exc}") from None
+        model = _base_from_diagnosis(args, conditions, src) if conditions else load(args, measurement=False)[0]
+        partial = [a for a in adds if a.role == ROLE_PARTIAL]
+        confident = [a for a in adds if a.role != ROLE_PARTIAL]
+        width = diag.get("measured_width") or {}
+        if partial and not args.accept_partial:
+            if not confident and not width.get("differs_from_nominal"):
+                raise UsageError(
+                    f"diagnosis {src} is partial: {', '.join(a.candidate for a in partial)} explains only part of the "
+                    f"residual ({diag.get('message', '')}). Pass --accept-partial to add it anyway: the new version "
+                    "is then a better approximation, not the drive's physics")
+            notes.append(f"not added: {', '.join(a.candidate for a in partial)} explains only part of the residual "
+                         "(--accept-partial adds it)")
+            adds = confident
+        elif partial:
+            notes.append(f"partial explanation added on request (--accept-partial): {', '.join(a.candidate for a in partial)} "
+                         "explains only part of the residual; the monitor retrained on it may still be biased")
+        additions = [EffectValues(a.effect, a.parameters, a.uncertainty, str(src)) for a in adds]
+        if width.get("differs_from_nominal"):
+            nominal["width_m"] = float(width["width_m"])
+            notes.append(f"the backlash width measured {width['width_m'] * 1e3:.3f} mm (nominal "
+                         f"{width['nominal_width_m'] * 1e3:.3f} mm): the monitor's measurand, set as the new "
+                         "version's nominal width, not added as an effect")
+        if not additions and not nominal:
+            raise UsageError(f"diagnosis {src} names no effect to add (verdict {verdict or diag.get('discovery')}: "
+                             f"{diag.get('message', '')}); nothing to add")
+        provenance = {"diagnosis": str(src.resolve()), "measurement": str(Path(conditions.measurement).resolve())
+                      if conditions and Path(conditions.measurement).exists() else
+                      (conditions.measurement if conditions else diag.get("measurement")),
+                      "width_m": float(width.get("width_m", model.nominal["width_m"])),
+                      "width_uncertainty_m": width.get("uncertainty_m"), "verdict": verdict}
     else:
+        model, _ = load(args, measurement=False)
         values = {}
         for text in args.value:
             if "=" not in text:
@@ -70,7 +144,7 @@ def run(args) -> int:
                 raise UsageError(f"--value {text!r}: {v!r} is not a number") from None
         additions.append(EffectValues(args.source, values, {}, "command line"))
     try:
-        new = add_effects(model, additions, name=args.name)
+        new = add_effects(model, additions, name=args.name, nominal=nominal, provenance=provenance)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
     out = Path(args.output)
@@ -78,8 +152,13 @@ def run(args) -> int:
         raise UsageError(f"-o {out}: directory {out.parent} does not exist")
     new.save(out)
     append_history(out, {"type": "version", "model": out.name, "name": new.name, "version": new.version,
-                         "parent": new.parent, "added": [a.__dict__ for a in additions]})
-    print_table([(a.effect, ", ".join(f"{k}={v:.4g}" for k, v in a.parameters.items()), a.source)
-                 for a in additions], ("effect", "values", "from"))
-    print(f"wrote {out}: {new.label()} (parent {new.parent})")
+                         "parent": new.parent, "added": [a.__dict__ for a in additions],
+                         "nominal_changed": nominal or None})
+    if additions:
+        print_table([(a.effect, ", ".join(f"{k}={v:.4g}" for k, v in a.parameters.items()), a.source)
+                     for a in additions], ("effect", "values", "from"))
+    for n in notes:
+        print(f"note: {n}")
+    print(f"wrote {out}: {new.label()} (parent {new.parent}; nominal width {new.nominal['width_m'] * 1e3:.3f} mm, "
+          f"eta_k {new.nominal['eta_k']:g}, n1 {new.nominal['n1']:g})")
     return 0

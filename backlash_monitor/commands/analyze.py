@@ -40,7 +40,8 @@ def add_arguments(parser) -> None:
                         help="output prefix (default: the bag's path without .mcap, plus "
                              "'.estimates'): writes PREFIX.csv, PREFIX.json, PREFIX.mcap")
     parser.add_argument("--namespace", default="",
-                        help="namespace of the drive's topics in the bag (e.g. /line1/drive7)")
+                        help="namespace of the drive's topics in the bag (e.g. /line1/drive7; default: the one drive "
+                             "the bag holds, found by its plant/a1 topic)")
     parser.add_argument("--trigger", choices=("contact_loss", "paper"), default="contact_loss",
                         help="entry trigger (the library must be trained with it)")
     parser.add_argument("--width-m", type=float, default=0.0,

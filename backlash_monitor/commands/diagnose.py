@@ -39,7 +39,8 @@ def run(args) -> int:
                                                       write_text_staged)
     from backlash_monitor.workbench import plant_adapter, report
     from backlash_monitor.workbench.analysis import ConditionsError
-    from backlash_monitor.workbench.diagnose import diagnose, public
+    from backlash_monitor.commands._workbench import model_overrides
+    from backlash_monitor.workbench.diagnose import diagnose
     from backlash_monitor.workbench.model import record_check
     json_path = Path(args.json) if args.json else (Path(args.report) / "diagnosis.json" if args.report
                                                    else Path("diagnosis.json"))
@@ -52,11 +53,11 @@ def run(args) -> int:
     with tqdm(total=n, desc="screening candidate effects", unit="effect", disable=None) as bar:
         try:
             result = diagnose(meas, model, seeds=list(range(args.seeds)), effects=effects, progress=bar.update,
-                              second=not args.no_second)
+                              second=not args.no_second, overrides=model_overrides(args))
         except (ConditionsError, ValueError) as exc:
             raise UsageError(str(exc)) from None
     json_path.parent.mkdir(parents=True, exist_ok=True)
-    pub = public(result)
+    pub = result.to_json()
     write_text_staged(json_path, json.dumps(pub, indent=1, default=float))
     if args.report:
         page = report.write_report(result, args.report)
@@ -74,6 +75,9 @@ def run(args) -> int:
     fp = pub["fit_percent"]
     print("fit %: " + ", ".join(f"{s} {fp['before'][s]:.1f} -> {fp['after'][s]:.1f} (band {fp['noise_band_median'][s]:.1f})"
                                 for s in ("a1", "a2")))
-    print(pub["message"])
+    print(f"verdict: {pub['verdict']}: {pub['message']}")
+    if pub["additions"]:
+        print("for the next model version (add-effect " + str(json_path) + "): " + ", ".join(
+            f"{a['candidate']} ({a['role']})" for a in pub["additions"]))
     print(f"wrote {json_path} ({pub['seconds']:.1f} s)")
     return 0

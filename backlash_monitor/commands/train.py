@@ -64,6 +64,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "add-effect) instead of config/plant.yaml; needs --out. Repeat it to train on "
                              "several versions at once (the seeds dealt out round-robin, the windows pooled): "
                              "when diagnose names indistinguishable effects, one version per candidate")
+    parser.add_argument("--previous-library", default=None, metavar="LIB.npz",
+                        help="with --model: the library the monitor uses now (default: the packaged one); the "
+                             "retrained library is checked against it on the diagnosed recording")
+    parser.add_argument("--keep-worse", action="store_true",
+                        help="with --model: write the retrained library even when it puts the monitor further from "
+                             "the diagnosis than the previous library (default: the previous library is written under "
+                             "--out, saying why, and the retrained one as NAME.rejected.npz)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -90,7 +97,10 @@ def _check(args) -> None:
     if args.out is not None:   # before the minutes of training, not after
         from backlash_monitor.output_files import OutputError, check_outputs
         try:
-            check_outputs([args.out], overwrite=args.overwrite, option="--out")
+            outs = [args.out]
+            if getattr(args, "model", None) and not getattr(args, "keep_worse", False):
+                outs.append(str(args.out)[:-len(".npz")] + ".rejected.npz")   # written if the check rejects it
+            check_outputs(outs, overwrite=args.overwrite, option="--out")
         except OutputError as error:
             raise UsageError(str(error)) from None
 
@@ -103,10 +113,18 @@ def run(args) -> int:
     from backlash_monitor.classifier.training import build_library
     out = args.out or default_library_path(args.trigger)
     config = None
+    models = []
     if args.model:
         from backlash_monitor.workbench.model import ModelError, load_model
+        from backlash_monitor.workbench.retrain import training_config
+        configs = []
         try:
-            configs = [load_model(m).plant_config() for m in args.model]
+            for m in args.model:
+                models.append(load_model(m))
+                cfg, note = training_config(models[-1])
+                configs.append(cfg)
+                if note:
+                    print(f"note: {note}")
         except ModelError as exc:
             raise UsageError(str(exc)) from None
         config = configs[0] if len(configs) == 1 else configs
@@ -116,6 +134,22 @@ def run(args) -> int:
         lib = build_library(args.trigger, args.seeds, epochs=args.epochs, l1=args.l1, l2=args.l2,
                             ridge=args.ridge, duration_s=args.duration, progress=bar.update,
                             window_offset=args.window_offset, config=config)
+    check = None
+    rejected = None
+    if models and any(m.provenance.get("measurement") for m in models):
+        from backlash_monitor.workbench.retrain import check_library
+        check = check_library(lib, models, args.previous_library)
+        lib.training["check"] = check
+        if check["worse"] and not args.keep_worse:
+            # never a worse monitor: the previous library goes under the requested name, the retrained one beside it
+            from backlash_monitor.classifier.patterns import load_library
+            rejected = lib.save(str(out)[:-len(".npz")] + ".rejected.npz")
+            lib = load_library(args.previous_library or default_library_path(args.trigger))
+            # (not flagged: it is the library the monitor had; the check says why it was kept)
+            lib.training = {**lib.training, "check": {**check, "flagged": False,
+                                                      "kept_previous": str(args.previous_library
+                                                                           or default_library_path(args.trigger)),
+                                                      "rejected": str(rejected)}}
     path = lib.save(out)
     fit = lib.training["shape"]["fit"]
     print(f"pattern library written: {path}")
@@ -126,4 +160,15 @@ def run(args) -> int:
         f"{s} {v['training_residual_std_m'] * 1e3:.3f} mm" for s, v in fit.items()))
     print(f"  modes: {', '.join(lib.modes)}; plant config {lib.settings['plant_config_hash']}; "
           f"{time.time() - t0:.0f} s")
+    if check is not None:
+        from backlash_monitor.workbench.retrain import describe
+        for line in describe(check):
+            print("  " + line)
+        if rejected is not None:
+            print(f"WARNING: the retrained library puts the monitor further from the diagnosis than the previous one: "
+                  f"{path} holds the previous library (its training.check says why); the retrained one is {rejected} "
+                  "(--keep-worse writes it as --out)", file=sys.stderr)
+        elif check["flagged"]:
+            print(f"WARNING: the library {path} is FLAGGED (written into it; analyze and the classifier warn when "
+                  "they load it): " + "; ".join(check["reasons"]), file=sys.stderr)
     return 0

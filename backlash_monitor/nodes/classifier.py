@@ -28,7 +28,7 @@ import time
 
 from rclpy.node import Node
 
-from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
+from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_warning, load_library
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator
 from backlash_monitor.input_faults import FaultLog, InputHealth
 from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
@@ -84,6 +84,7 @@ class ClassifierNode(Node):
             offset = (default_window_offset(p["trigger"]) if p["window_offset_samples"] < 0
                       else p["window_offset_samples"])
             library = load_library(p["library"] or None, trigger=p["trigger"], window_offset_samples=offset)
+            self.library_flag = flagged_warning(library)
             self.estimator = DriveEstimator(library, mode=p["mode"], n1=p["n1"], signals=signals,
                                             fusion_events=p["fusion_events"])
         except (PatternLibraryError, ValueError) as error:
@@ -99,6 +100,8 @@ class ClassifierNode(Node):
                                             refresh=self.update_diagnostics)
         self.get_logger().info(f"mode {p['mode']}, signals {', '.join(self.estimator.signals)}, "
                                f"library {library.path}")
+        if self.library_flag:
+            self.get_logger().warning(self.library_flag)
 
     def on_window(self, msg: BacklashWindow):
         now = time.monotonic()
@@ -185,12 +188,14 @@ class ClassifierNode(Node):
             level = "ERROR"
         elif input_level == "STALE":
             level = "STALE"
-        elif "WARN" in (width_level, input_level):
+        elif "WARN" in (width_level, input_level) or self.library_flag:
             level = "WARN"
         else:
             level = "OK"
         if problem:
             message = f"{message}; {problem}"
+        if self.library_flag:
+            message = f"{message}; {self.library_flag}"
         rejected = self.faults.total + self.estimator.faults.total
         self.diagnostics.set(
             level, message, publish_now=publish_now, **values,

@@ -21,6 +21,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import sys
 import pathlib
 import time
 from dataclasses import dataclass
@@ -76,17 +77,20 @@ class AnalyzeOptions:
 def load_library(options: AnalyzeOptions):
     """(pattern library, window offset [samples]) for these options; UsageError for a bad option or
     file. The fleet's workers load it once and pass it to every :func:`analyze_bag`."""
-    from backlash_monitor.classifier.patterns import PatternLibraryError, load_library as load
+    from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_warning, load_library as load
     from backlash_monitor.windowing import default_window_offset
     offset = (default_window_offset(options.trigger) if options.window_offset_samples is None
               else options.window_offset_samples)
     if not 0 <= offset <= 65536:
         raise UsageError(f"--window-offset = {offset}; allowed: 0 <= SAMPLES <= 65536")
     try:
-        return load(options.library or None, trigger=options.trigger,
-                    window_offset_samples=offset), offset
+        library = load(options.library or None, trigger=options.trigger, window_offset_samples=offset)
     except (PatternLibraryError, ValueError) as error:
         raise UsageError(str(error)) from None
+    warning = flagged_warning(library)     # a library train --model flagged (it disagrees with the one before)
+    if warning:
+        print(f"WARNING: {warning}", file=sys.stderr)
+    return library, offset
 
 
 def default_out_prefix(bag_path) -> pathlib.Path:
@@ -105,6 +109,17 @@ def output_paths(out_prefix) -> dict[str, pathlib.Path]:
 def topic_name(namespace: str, name: str) -> str:
     ns = namespace.strip("/")
     return f"/{ns}/plant/{name}" if ns else f"/plant/{name}"
+
+
+def drive_namespace(available, bag_path) -> str:
+    """The namespace of the one drive whose plant topics the bag holds (``<ns>/plant/a1``), as the workbench
+    finds it; several drives: refused, naming them (``--namespace`` chooses)."""
+    found = sorted({t[:-len("/plant/a1")].strip("/") for t in available if t.endswith("plant/a1")
+                    and (t == "/plant/a1" or t == "plant/a1" or t.endswith("/plant/a1"))})
+    if len(found) > 1:
+        raise UsageError(f"bag {bag_path} holds several drives' plant topics ({', '.join('/' + f for f in found)}); "
+                         "choose one with --namespace")
+    return found[0] if found else ""
 
 
 def find_topic(available, namespace, name):
@@ -216,15 +231,16 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
     try:
         with BagReader(bag_path, recover=options.recover, chunks_ahead=chunks_ahead) as reader:
             available = set(reader.topics)
+            namespace = options.namespace or drive_namespace(available, bag_path)
             topics = {}
             for name in stage.input_signals:
-                topic = find_topic(available, options.namespace, name)
+                topic = find_topic(available, namespace, name)
                 if topic is None:
                     raise UsageError(
-                        f"bag {bag_path} has no topic {topic_name(options.namespace, name)}; it has: "
+                        f"bag {bag_path} has no topic {topic_name(namespace, name)}; it has: "
                         f"{', '.join(sorted(available))}")
                 topics[topic] = name
-            width_topic = find_topic(available, options.namespace, "true_width_m")
+            width_topic = find_topic(available, namespace, "true_width_m")
             true_width = math.nan
             if width_topic:
                 for m in reader.messages([width_topic]):

@@ -351,10 +351,13 @@ class AccelerometerLowpass(Effect):
     name = "accelerometer_lowpass"
     balance = SENSOR_BALANCE
     kind = "sensor"
-    description = ("first-order sensor low-pass tau*y' = a - y, exact for a held over each sample: "
+    description = ("sensor low-pass of n identical first-order sections tau*y' = a - y (n = 1: first order; a sensor's "
+                   "anti-alias filter rolls off at n x 20 dB/decade), each exact for a held over each sample: "
                    "y_k = y_{k-1} + (1 - exp(-h/tau))*(a_k - y_{k-1}); tau = 0: no filter")
     parameters = (Parameter("a1_time_constant_s", "s", 0.0, (0.0, 1.0), "tau of a1"),
-                  Parameter("a2_time_constant_s", "s", 0.0, (0.0, 1.0), "tau of a2"))
+                  Parameter("a2_time_constant_s", "s", 0.0, (0.0, 1.0), "tau of a2"),
+                  Parameter("a1_sections", "-", 1.0, (1.0, 4.0), "number n of a1's first-order sections (rounded)"),
+                  Parameter("a2_sections", "-", 1.0, (1.0, 4.0), "number n of a2's first-order sections (rounded)"))
     order = 0
 
 

@@ -310,11 +310,14 @@ class PlantSimulator:
             for cls in sensors:
                 if cls.name == "accelerometer_lowpass":
                     tau = self._values[f"accelerometer_lowpass.{name}_time_constant_s"]
-                    prev = self._sensor_state.setdefault(name, a[:, 0].copy())   # starts settled on sample 0
+                    sections = np.clip(np.rint(self._values[f"accelerometer_lowpass.{name}_sections"]), 1, 4)
+                    # one state per section, each starting settled on sample 0
+                    prev = [self._sensor_state.setdefault(f"{name}#{k}", a[:, 0].copy()) for k in range(4)]
                     for i in np.flatnonzero(tau > 0.0):
                         alpha = -np.expm1(-h / tau[i])
-                        a[i], zf = lfilter([alpha], [1.0, alpha - 1.0], a[i], zi=[(1.0 - alpha) * prev[i]])
-                    prev[:] = a[:, -1]
+                        for k in range(int(sections[i])):
+                            a[i], _ = lfilter([alpha], [1.0, alpha - 1.0], a[i], zi=[(1.0 - alpha) * prev[k][i]])
+                            prev[k][i] = a[i, -1]
                 elif cls.name == "accelerometer_gain":
                     a *= 1.0 + self._values[f"accelerometer_gain.{name}_relative_change"][:, None]
                 elif cls.name == "accelerometer_bias":

@@ -52,9 +52,11 @@ def denoise(x: np.ndarray) -> np.ndarray:
 
 @dataclass
 class EventSet:
-    """The onset segments of one record: raw (n_events, 2, L); ``entries`` their entry indices."""
+    """The onset segments of one record: raw (n_events, 2, L); ``entries`` their entry indices; ``dc``
+    (n_events, 2) each event's *period mean* of a1, a2 (period_means: the record-mean view's units)."""
     raw: np.ndarray
     entries: np.ndarray
+    dc: np.ndarray | None = None
 
     @property
     def n_events(self) -> int:
@@ -67,12 +69,63 @@ class EventSet:
         return denoise(self.mean_raw())
 
 
-def event_set(signals: dict, sample_period_s: float) -> EventSet:
+DC_SIGNALS = ("a1", "a2", "omega1")   # the record-mean view's signals (omega1 when the recording has it)
+
+
+DC_BLOCKS = 4     # the record-mean view's noise: the spread of the means of this many consecutive blocks of events
+
+
+def dc_block_deviations(per_event_dc: np.ndarray, blocks: int = DC_BLOCKS) -> np.ndarray:
+    """(n_events, n_dc): each event's period means replaced by its block's mean minus the record's mean, times
+    sqrt(n_events / blocks): events as the units, but with the covariance of the record mean's noise x n_events.
+    A record's period means are not independent -- the motor speed wanders over several pulse periods (its mechanical
+    time constant is 0.86 s), and an acceleration's period means telescope -- so the event-to-event spread misstates
+    the noise of their mean (measured: the mean motor speed of a 4 s recording scattered ~0.1 rad/s between noise
+    seeds, 3x what 16 independent periods would give); the means of blocks of consecutive events are ~independent."""
+    x = np.asarray(per_event_dc, dtype=float)
+    e = x.shape[0]
+    if e < 2 * blocks:
+        return (x - x.mean(axis=0)) * 1.0
+    idx = np.array_split(np.arange(e), blocks)
+    out = np.empty_like(x)
+    mean = x.mean(axis=0)
+    for sel in idx:
+        out[sel] = x[sel].mean(axis=0) - mean
+    return out * np.sqrt(e / blocks)
+
+
+def dc_signals(signals: dict) -> tuple:
+    """The record-mean view's signals a recording has: a1, a2, and the motor speed omega1 when recorded."""
+    return tuple(s for s in DC_SIGNALS if s in signals)
+
+
+def period_means(signals: dict, entries: np.ndarray, all_entries: np.ndarray, names=None) -> np.ndarray:
+    """(n_events, len(names)): per onset event, the mean of each signal (default dc_signals: a1, a2 and omega1)
+    over one pulse period starting PRE_SAMPLES before its entry (the period: the median spacing of the record's
+    onset entries; clipped to the record -- the model's runs have the measurement's length and pulse phase, so a
+    clipped last period is clipped alike there).
+    An acceleration averages to zero over a stretch whose speed returns to its value: over a period of the
+    periodic steady state the physics' mean is ~0, a sensor's constant offset is not. The motor's mean speed is
+    its load: an induction motor slips in proportion to its load torque (0.1 p.u. more load: ~0.9 rad/s slower),
+    which the accelerations alone do not show (docs/workbench.md "Views")."""
+    names = dc_signals(signals) if names is None else tuple(names)
+    n = len(signals["a1"])
+    period = int(np.median(np.diff(all_entries))) if len(all_entries) > 1 else n
+    out = np.empty((len(entries), len(names)))
+    for i, k in enumerate(entries):
+        lo = max(int(k) - PRE_SAMPLES, 0)
+        hi = min(lo + period, n)
+        for j, s in enumerate(names):
+            out[i, j] = float(np.mean(signals[s][lo:hi]))
+    return out
+
+
+def event_set(signals: dict, sample_period_s: float, dc_names=None) -> EventSet:
     entries = onset_entries(signals, sample_period_s)
     seg = segments(signals, entries)
     n = len(signals["a1"])
     kept = np.array([k for k in entries if k - PRE_SAMPLES >= 0 and k + POST_SAMPLES <= n], dtype=np.int64)
-    return EventSet(seg, kept)
+    return EventSet(seg, kept, period_means(signals, kept, entries, dc_names))
 
 
 @dataclass
@@ -85,7 +138,9 @@ class Ensemble:
     per_event: list               # per seed of set 0: (n_events, 2, L)
     raw_records: dict | None = None
     per_event_entries: list | None = None   # per seed of set 0: the entry indices of per_event
-    seed_spec: np.ndarray | None = None     # (n_sets, n_seeds, F) event-mean spectral shape (workbench/spectral.py)
+    seed_bands: list | None = None          # [set][seed]: (n_events, 2, n_bands) raw band powers (spectral.py)
+    seed_dc: np.ndarray | None = None       # (n_sets, n_seeds, 2) event-mean period means of a1, a2
+    per_event_dc: list | None = None        # per seed of set 0: (n_events, 2)
 
     def mean_raw(self, s: int = 0) -> np.ndarray:
         w = self.n_events[s].astype(float)
@@ -94,10 +149,23 @@ class Ensemble:
     def mean_denoised(self, s: int = 0) -> np.ndarray:
         return denoise(self.mean_raw(s))
 
-    def spec_mean(self, s: int = 0) -> np.ndarray:
-        """The spectral-shape features averaged over all events of set s (every seed's events)."""
+    def spec_mean(self, s: int = 0, noise=None) -> np.ndarray:
+        """The spectral-shape features averaged over all events of set s (every seed's events); ``noise``: a
+        sensor noise floor per signal added to the band powers first (spectral.features_from_bands)."""
+        return spectral.features_from_bands(np.concatenate(self.seed_bands[s], axis=0), noise).mean(axis=0)
+
+    def event_bands(self, k: int) -> np.ndarray:
+        """Band powers of seed k's events of set 0: (n_events, 2, n_bands)."""
+        return self.seed_bands[0][k]
+
+    def dc_mean(self, s: int = 0) -> np.ndarray:
+        """The period means of a1, a2 averaged over all events of set s (every seed's events)."""
         w = self.n_events[s].astype(float)
-        return np.tensordot(w / w.sum(), self.seed_spec[s], axes=(0, 0))
+        return np.tensordot(w / w.sum(), self.seed_dc[s], axes=(0, 0))
+
+    def dc_samples(self, k: int) -> np.ndarray:
+        """The period means of seed k's events of set 0: (n_events, 2)."""
+        return self.per_event_dc[k]
 
     def seed_denoised(self, s: int = 0) -> np.ndarray:
         return denoise(self.seed_means[s])
@@ -111,27 +179,32 @@ class Ensemble:
         return x - (total - x) / (k - 1)
 
 
-def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = False) -> Ensemble:
-    """``runs``: {signal: (n_sets, n_seeds, n)} from plant_adapter.simulate_sets."""
+def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = False, dc_names=None) -> Ensemble:
+    """``runs``: {signal: (n_sets, n_seeds, n)} from plant_adapter.simulate_sets; ``dc_names``: the record-mean
+    view's signals (the measurement's: dc_signals)."""
+    dc_names = tuple(dc_names) if dc_names is not None else dc_signals(runs)
     n_sets, n_seeds, n = runs["a1"].shape
     L = PRE_SAMPLES + POST_SAMPLES
     means = np.zeros((n_sets, n_seeds, len(SEGMENT_SIGNALS), L))
     counts = np.zeros((n_sets, n_seeds), dtype=np.int64)
-    spec = np.zeros((n_sets, n_seeds, spectral.n_features(len(SEGMENT_SIGNALS))))
-    per_event, per_entries = [], []
+    bands = [[None] * n_seeds for _ in range(n_sets)]
+    dc = np.zeros((n_sets, n_seeds, len(dc_names)))
+    per_event, per_entries, per_dc = [], [], []
     for i in range(n_sets):
         for j in range(n_seeds):
             sig = {s: runs[s][i, j] for s in runs}
-            ev = event_set(sig, sample_period_s)
+            ev = event_set(sig, sample_period_s, dc_names)
             counts[i, j] = ev.n_events
             if ev.n_events:
                 means[i, j] = ev.mean_raw()
-                spec[i, j] = spectral.event_features(ev.raw, sample_period_s).mean(axis=0)
+                bands[i][j] = spectral.band_powers(ev.raw, sample_period_s)
+                dc[i, j] = ev.dc.mean(axis=0)
             if i == 0:
                 per_event.append(ev.raw)
                 per_entries.append(ev.entries)
+                per_dc.append(ev.dc)
     if (counts == 0).any():
         raise ValueError("a simulated run of the model gave no complete onset window; the model does not cross "
                          "its backlash under these conditions")
     records = {s: runs[s][0] for s in runs} if keep_records else None
-    return Ensemble(means, counts, per_event, records, per_entries, spec)
+    return Ensemble(means, counts, per_event, records, per_entries, bands, dc, per_dc)

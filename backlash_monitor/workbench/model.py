@@ -50,6 +50,8 @@ class WorkbenchModel:
     effects_added: list = field(default_factory=list)
     path: Path | None = None
     effect_files: list = field(default_factory=list)  # absolute paths of the user's plug-in effect files
+    provenance: dict = field(default_factory=dict)    # the diagnosis this version came from (add-effect): its file,
+                                                      # measurement and measured width, for train's check
 
     def plant_config(self, extra: Mapping | None = None):
         """The validated PlantConfig of this model (``extra``: flat overrides on top, e.g. conditions)."""
@@ -71,6 +73,8 @@ class WorkbenchModel:
             import os
             out["effect_files"] = [os.path.relpath(f, directory) if directory else str(f)
                                    for f in self.effect_files]
+        if self.provenance:
+            out["provenance"] = copy.deepcopy(self.provenance)
         return out
 
     def label(self) -> str:
@@ -117,13 +121,49 @@ def _load_effect_files(paths) -> list:
     return out
 
 
+MODEL_KEYS = ("workbench_model", "name", "version", "parent", "nominal", "plant", "effects_added", "effect_files",
+              "provenance")
+
+
+def model_from_dict(data, path=None, base_dir=None) -> WorkbenchModel:
+    """A model from a model file's content (or a diagnosis's recorded effective model); ``path``: the file it
+    was read from (effect files are relative to it, or to ``base_dir``). Not yet validated (load_model does)."""
+    where = f"model file {path}" if path is not None else "model"
+    if not isinstance(data, dict) or data.get("workbench_model") != FORMAT_VERSION:
+        raise ModelError(f"{where}: not a workbench model (needs 'workbench_model: {FORMAT_VERSION}'; "
+                         "see docs/workbench.md)")
+    unknown = sorted(set(data) - set(MODEL_KEYS))
+    if unknown:
+        raise ModelError(f"{where}: unknown key {unknown[0]!r}; allowed: {', '.join(MODEL_KEYS[1:])}")
+    files = data.get("effect_files") or []
+    if not isinstance(files, list) or not all(isinstance(f, str) for f in files):
+        raise ModelError(f"{where}: effect_files must be a list of Python file paths (relative to the model file)")
+    root = Path(path).resolve().parent if path is not None else Path(base_dir or ".").resolve()
+    files = [root / f for f in files]
+    nominal = dict(DEFAULT_NOMINAL)
+    nominal.update(data.get("nominal") or {})
+    provenance = data.get("provenance") or {}
+    if not isinstance(provenance, dict):
+        raise ModelError(f"{where}: provenance must be a mapping (written by add-effect)")
+    return WorkbenchModel(name=str(data.get("name", Path(path).stem if path else "default")),
+                          version=int(data.get("version", 1)), parent=data.get("parent"), nominal=nominal,
+                          plant=copy.deepcopy(data.get("plant") or {}),
+                          effects_added=list(data.get("effects_added") or []),
+                          path=Path(path) if path is not None else None,
+                          effect_files=_load_effect_files(files), provenance=dict(provenance))
+
+
 def load_model(path=None, sets: Sequence[str] = (), width_m: float | None = None, eta_k: float | None = None,
-               n1: float | None = None, effect_files: Sequence = ()) -> WorkbenchModel:
+               n1: float | None = None, effect_files: Sequence = (), base: WorkbenchModel | None = None
+               ) -> WorkbenchModel:
     """The model of ``path`` (None: the default model = config/plant.yaml at the default nominal
-    conditions), with ``--set`` overrides and the nominal conditions' overrides; validated.
+    conditions; ``base``: this model instead of a file, e.g. the one a diagnosis recorded), with ``--set``
+    overrides and the nominal conditions' overrides; validated.
     ``effect_files``: the user's plug-in effect files (``--effects-file``), registered before the
     plant config is validated and kept in the model (with those the file names)."""
-    if path is None:
+    if base is not None:
+        model = base
+    elif path is None:
         model = WorkbenchModel()
     else:
         p = Path(path)
@@ -134,25 +174,7 @@ def load_model(path=None, sets: Sequence[str] = (), width_m: float | None = None
             data = yaml.safe_load(p.read_text()) or {}
         except yaml.YAMLError as exc:
             raise ModelError(f"model file {p} is not valid YAML: {exc}") from None
-        if not isinstance(data, dict) or data.get("workbench_model") != FORMAT_VERSION:
-            raise ModelError(f"model file {p}: not a workbench model (needs 'workbench_model: {FORMAT_VERSION}'; "
-                             "see docs/workbench.md)")
-        unknown = sorted(set(data) - {"workbench_model", "name", "version", "parent", "nominal", "plant",
-                                      "effects_added", "effect_files"})
-        if unknown:
-            raise ModelError(f"model file {p}: unknown key {unknown[0]!r}; allowed: name, version, parent, "
-                             "nominal, plant, effects_added, effect_files")
-        files = data.get("effect_files") or []
-        if not isinstance(files, list) or not all(isinstance(f, str) for f in files):
-            raise ModelError(f"model file {p}: effect_files must be a list of Python file paths "
-                             "(relative to the model file)")
-        files = [p.resolve().parent / f for f in files]
-        nominal = dict(DEFAULT_NOMINAL)
-        nominal.update(data.get("nominal") or {})
-        model = WorkbenchModel(name=str(data.get("name", p.stem)), version=int(data.get("version", 1)),
-                               parent=data.get("parent"), nominal=nominal, plant=data.get("plant") or {},
-                               effects_added=list(data.get("effects_added") or []), path=p,
-                               effect_files=_load_effect_files(files))
+        model = model_from_dict(data, p)
     for f in _load_effect_files(effect_files):
         if f not in model.effect_files:
             model.effect_files.append(f)

@@ -33,34 +33,41 @@ from backlash_monitor.plant import PlantSimulator, Scenario
 from backlash_monitor.plant import effects as plant_effects
 
 SIGNALS = ("a1", "a2", "omega1", "omega2", "angle_difference")
+# a sensor effect's discrete form parameter: one candidate per value, held fixed in it while the rest is fitted (the
+# low-pass's order: a sensor's anti-alias filter has 1, 2 or 4 poles; measured on foreign drives: a 2nd-order Bessel and
+# a 4th-order Butterworth were 'partial' or 'nothing explains' with a first-order low-pass alone)
+DISCRETE_FORMS = {"accelerometer_lowpass": ("sections", (1.0, 2.0, 4.0))}
 NOT_EVENT_LOCKED = ("torque_ripple",)
 
-# practical search range of each parameter [unit of the parameter]; "width" = relative to the model's width
+# practical search range of each parameter [unit of the parameter]; "width" = relative to the model's width.
+# Every range is the size of the error real drives and sensors show (docs/workbench.md "Fit ranges" has the
+# reasons; F0*r = 4.5 N*m is the working resistance's torque at the rim, T_b = 20 N*m the motor's base torque,
+# the wheel turns at ~151 rad/s):
 FIT_RANGES = {
-    "wheel_coulomb_friction.torque_Nm": (0.0, 5.0),
-    "wheel_viscous_friction.damping_Nms_per_rad": (0.0, 0.2),
-    "wheel_stribeck_friction.excess_torque_Nm": (0.0, 5.0),
-    "wheel_stribeck_friction.stribeck_speed_rad_s": (0.5, 50.0),
-    "motor_coulomb_friction.torque_Nm": (0.0, 5.0),
-    "clutch_contact_stiffness.relative_change": (-0.6, 1.5),
-    "clutch_contact_damping.relative_change": (-0.8, 3.0),
-    "shaft_compliance.compliance_rad_per_Nm": (0.0, 2e-3),
-    "mass_force_offset.force_N": (-60.0, 60.0),
-    "motor_load_offset.load_pu": (-0.4, 0.4),
-    "accelerometer_bias.a1_m_s2": (-20.0, 20.0),
-    "accelerometer_bias.a2_m_s2": (-0.5, 0.5),
-    "accelerometer_gain.a1_relative_change": (-0.5, 0.5),
+    "wheel_coulomb_friction.torque_Nm": (0.0, 5.0),            # up to F0*r: more would stall the load
+    "wheel_viscous_friction.damping_Nms_per_rad": (0.0, 0.05),  # 7.5 N*m at 151 rad/s (1.7 F0*r)
+    "wheel_stribeck_friction.excess_torque_Nm": (0.0, 5.0),     # as the dry friction
+    "wheel_stribeck_friction.stribeck_speed_rad_s": (0.5, 50.0),  # lubricated bearings to dry contacts
+    "motor_coulomb_friction.torque_Nm": (0.0, 10.0),            # half of T_b: a failing motor bearing or brake
+    "clutch_contact_stiffness.relative_change": (-0.6, 1.5),    # elastomer jaws: worn soft to aged hard
+    "clutch_contact_damping.relative_change": (-0.8, 3.0),      # elastomer damping: temperature, ageing
+    "shaft_compliance.compliance_rad_per_Nm": (0.0, 2e-3),      # a shaft up to 6x softer than the jaw contact
+    "mass_force_offset.force_N": (-60.0, 60.0),                 # 2 F0: an incline up to ~37 deg, a preload
+    "motor_load_offset.load_pu": (-0.4, 0.4),                   # 40 % of T_b: a constant extra load or drag
+    "accelerometer_bias.a1_m_s2": (-10.0, 10.0),                # MEMS offset (+-0.2 g) + gravity on a tilted axis
+    "accelerometer_bias.a2_m_s2": (-10.0, 10.0),                # (up to 1 g)
+    "accelerometer_gain.a1_relative_change": (-0.5, 0.5),       # sensitivity error to a range set x2 / x0.5
     "accelerometer_gain.a2_relative_change": (-0.5, 0.5),
-    "accelerometer_lowpass.a1_time_constant_s": (0.0, 2e-3),
+    "accelerometer_lowpass.a1_time_constant_s": (0.0, 2e-3),    # sensor bandwidths down to 80 Hz
     "accelerometer_lowpass.a2_time_constant_s": (0.0, 2e-3),
-    "backlash_width_drift.change": ("width", -0.4, 0.4),
-    "absorber_consistency_drift.relative_change": (-0.6, 1.5),
-    "absorber_flow_index_drift.change": (-0.1, 0.1),
-    "spring_stiffness_drift.relative_change": (-0.75, 3.0),
-    "load_mass_drift.relative_change": (-0.5, 1.0),
-    "wheel_inertia_drift.relative_change": (-0.5, 1.0),
-    "working_resistance_drift.relative_change": (-1.0, 2.0),
-    "pulse_amplitude_drift.relative_change": (-0.3, 0.3),
+    "backlash_width_drift.change": ("width", -0.4, 0.4),        # wear: a clutch is serviced long before +40 %
+    "absorber_consistency_drift.relative_change": (-0.6, 1.5),  # fluid viscosity: ~-2 %/K over +-30 K
+    "absorber_flow_index_drift.change": (-0.1, 0.1),            # shear-thinning index: temperature, ageing
+    "spring_stiffness_drift.relative_change": (-0.75, 3.0),     # a spring of another grade, or a cracked one
+    "load_mass_drift.relative_change": (-0.5, 1.0),             # the product carried: half to double
+    "wheel_inertia_drift.relative_change": (-0.5, 1.0),         # another wheel or hub mounted
+    "working_resistance_drift.relative_change": (-1.0, 2.0),    # the process force: gone to tripled
+    "pulse_amplitude_drift.relative_change": (-0.3, 0.3),       # the machine's duty cycle load +-30 %
 }
 
 
@@ -82,6 +89,12 @@ class CandidateEffect:
     description: str
     parameters: tuple          # the fitted EffectParameters
     signal: str | None = None
+    fixed: tuple = ()          # ("effect.param", value): parameters this candidate holds at a fixed value (a form)
+
+    @property
+    def fixed_values(self) -> dict:
+        """The fixed parameters by their names, e.g. {"a1_sections": 2.0}."""
+        return {k.split(".", 1)[1]: float(v) for k, v in self.fixed}
 
     def default_vector(self) -> np.ndarray:
         return np.array([p.default for p in self.parameters])
@@ -137,9 +150,21 @@ def catalogue(model, not_event_locked: bool = False) -> list[CandidateEffect]:
             lo, hi = _range(key, p, cfg, model.nominal["width_m"], cur)
             params.append(EffectParameter(p.name, p.unit, cur, lo, hi, key))
         if cls.kind == "sensor" and all(p.name.startswith(("a1_", "a2_")) for p in params):
+            variant = DISCRETE_FORMS.get(name)
             for sig in ("a1", "a2"):
-                sub = tuple(p for p in params if p.name.startswith(sig + "_"))
-                out.append(CandidateEffect(f"{name}[{sig}]", name, cls.balance, cls.description, sub, sig))
+                sub = tuple(p for p in params if p.name.startswith(sig + "_")
+                            and not (variant and p.name == f"{sig}_{variant[0]}"))
+                if not variant:
+                    out.append(CandidateEffect(f"{name}[{sig}]", name, cls.balance, cls.description, sub, sig))
+                    continue
+                key = f"{name}.{sig}_{variant[0]}"
+                current = _current(cfg, name, f"{sig}_{variant[0]}")
+                # a drive without the effect yet: one candidate per form; with it: its own form only
+                forms = variant[1] if all(p.default == 0.0 for p in sub) else (current,)
+                for v in forms:
+                    label = f"{name}[{sig}]" if v == variant[1][0] else f"{name}[{sig},{variant[0]}={v:g}]"
+                    out.append(CandidateEffect(label, name, cls.balance, cls.description, sub, sig,
+                                               ((key, float(v)),)))
         else:
             out.append(CandidateEffect(name, name, cls.balance, cls.description, tuple(params)))
     return out
@@ -153,8 +178,11 @@ def effect_by_name(model, name: str) -> CandidateEffect:
 
 
 def apply_values(effect: CandidateEffect, values) -> dict:
-    """The parameter set {"effect.param": value} that puts ``values`` (one per fitted parameter) in."""
-    return {p.key: float(v) for p, v in zip(effect.parameters, np.atleast_1d(values))}
+    """The parameter set {"effect.param": value} that puts ``values`` (one per fitted parameter) in, with the
+    candidate's fixed parameters."""
+    out = {p.key: float(v) for p, v in zip(effect.parameters, np.atleast_1d(values))}
+    out.update({k: float(v) for k, v in effect.fixed})
+    return out
 
 
 def config_overrides(parameter_set: Mapping) -> dict:

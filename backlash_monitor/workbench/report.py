@@ -112,12 +112,14 @@ def _table(rows, header) -> str:
     return "\n".join(out + ["</table>"])
 
 
-def write_report(result: dict, directory) -> Path:
-    """index.html + PNGs in ``directory`` (created). ``result``: diagnose() output (with _arrays)."""
+def write_report(diagnosis, directory) -> Path:
+    """index.html + PNGs in ``directory`` (created). ``diagnosis``: a diagnosis.Diagnosis (its comparison and the
+    model mean after the update draw the figures; its JSON the tables)."""
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
-    comp = result["_arrays"]["comparison"]
-    after = result["_arrays"]["after_mean"] if result.get("discovery") else None
+    result = diagnosis.to_json()
+    comp = diagnosis.comparison
+    after = diagnosis.model_mean_after
     spec = analysis.spectra(comp)
     imgs = [("Measurement vs model per signal (before/after)",
              plot_event_average(comp, d / "event_average.png", after)),
@@ -137,15 +139,30 @@ def write_report(result: dict, directory) -> Path:
         rank_rows.append((r["effect"], vals, "-" if r["delta_ic"] is None else f"{r['delta_ic']:.1f}",
                           f"{r['explained_fraction']:.0%}", ", ".join(r.get("indistinguishable_from", [])) or "-"))
     body = [f"<h1>Diagnosis: {html.escape(result['model'])} against {html.escape(str(result['measurement']))}</h1>",
-            f"<p class='msg'>{html.escape(result['message'])}</p>",
+            f"<p class='msg'><b>{html.escape(result['verdict'].replace('_', ' '))}</b>: "
+            f"{html.escape(result['message'])}</p>",
             f"<p>{result['events']} onset events; ensemble of {len(result['seeds'])} noise seeds; "
             f"{result['simulated_parameter_sets']} simulated parameter sets in {result['seconds']:.1f} s.</p>",
             "<h2>Fit</h2>", _table(fit_rows, ("signal", "fit % before", "fit % after", "fit % noise band",
                                                "residual/noise before", "residual/noise after")),
             "<h2>Candidates</h2>", _table(rank_rows, ("effect", "fitted values", "delta IC", "explained",
                                                       "indistinguishable from"))]
+    views = result["consistency"]["before"]["views"]
+    after_views = result["consistency"]["after"]["views"]
+    body += ["<h2>Consistency per view (T² with the model-form tolerance, against its 1 % limit)</h2>",
+             _table([(n.replace("_", " "), v["dimension"], f"{v['T2']:.1f}", f"{after_views[n]['T2']:.1f}",
+                      f"{v['T2_limit_p01']:.1f}", f"{v['T2_without_tolerance']:.1f}")
+                     for n, v in views.items()],
+                    ("view", "dimension", "T² before", "T² after", "limit", "T² before, no tolerance"))]
+    if result["additions"]:
+        body += ["<h2>For the next model version (add-effect)</h2>",
+                 _table([(a["candidate"], a["role"], ", ".join(f"{k} = {v:.4g}" for k, v in a["parameters"].items()),
+                          a["evidence"]) for a in result["additions"]], ("effect", "role", "values", "evidence"))]
+    mw = result["measured_width"]
+    body.append(f"<p>Backlash width shown by the recording: {mw['width_m'] * 1e3:.3f} ± "
+                f"{mw['uncertainty_m'] * 1e3:.3f} mm (model nominal {mw['nominal_width_m'] * 1e3:.3f} mm).</p>")
     sd = result.get("spectral_discovery")
-    if sd:
+    if sd and sd.get("parameters"):
         p, u = sd["parameters"], sd["uncertainty"]
         body += ["<h2>From the raw spectrum</h2>",
                  f"<p>{html.escape(sd['effect'])}: amplitude_pu = {p['amplitude_pu']:.3g} ± {u['amplitude_pu']:.2g}, "

@@ -17,6 +17,13 @@ line into the raw a1 spectrum at order x the motor's rotation frequency. This mo
    (the line counts only when its excess is ``MIN_Z`` of their spreads above the ensemble mean), and
    ``BLOCKS`` time blocks of the record for the measured line power's own uncertainty.
 
+5. locked to the motor angle (`locking`): only a line that is an integer order of the rotation, within its
+   uncertainty, and that follows the rotation speed through the record is a torque ripple. The record is resampled
+   at equal steps of the motor angle (alpha1 = the integral of omega1: computed order tracking); in that angle
+   domain a locked line is one sharp line at an integer order, while a line at a fixed frequency (a structural
+   vibration, another machine) lands at a non-integer order and is smeared by the speed's variation; the
+   concentration of the line's excess power in the angle domain is compared with the time domain's.
+
 The phase is not identifiable from a power spectrum (reported as such). Docs: docs/workbench.md
 "Torque ripple: the spectral fit".
 """
@@ -35,6 +42,11 @@ MIN_Z = 5.0                    # the line's excess over the band's spread across
 ORDER_RANGE = (0.5, 50.0)      # the effect's orders (bounds 0..50; below 0.5 the line is at DC)
 REF_SEEDS = 3                  # seeds of the reference and check simulations (common random numbers)
 BLOCKS = 4                     # time blocks of the record for the measured line power's uncertainty
+SAMPLES_PER_REV = 2048         # the angle domain's resampling (about the samples of one revolution at 50 kHz)
+ORDER_TOLERANCE = 0.02         # an integer order within max(this, 3 uncertainties) (measured on own ripples of
+                               # orders 1-15: within 0.003 of the integer; fixed lines 107/148/250 Hz: 0.15-0.44 off)
+LINE_BAND = 0.03               # the line's band for the concentration: +-3 % of its order (the speed's spread +-1 %)
+CONCENTRATION_MARGIN = 0.05    # locked: the angle domain's concentration >= the time domain's - this
 
 
 def _band_power(f, psd, lo_hz, hi_hz) -> np.ndarray:
@@ -83,6 +95,14 @@ def fit_torque_ripple(comp, spec: dict | None = None) -> dict | None:
     z = excess / max(noise, 1e-300)
     if z < MIN_Z:
         return None
+    lock = locking(comp, line_hz, f_rot)
+    line = {"line_hz": line_hz, "rotation_hz": f_rot, "band_hz": [lo, hi],
+            "line_over_model": float(excess / max(base, 1e-300)) + 1.0, "line_z": z, "locking": lock,
+            "locked": bool(lock["locked"])}
+    if not lock["locked"]:
+        return {"effect": EFFECT, "parameters": None, "uncertainty": None, "confident": False,
+                "explained_fraction": 0.0, "order_time_domain": order, **line}
+    order = float(lock["integer_order"])
     fs = 1.0 / comp.meas.sample_period_s
     seeds = list(comp.seeds)[:REF_SEEDS]
     switch = {**comp.conditions, f"effects.{EFFECT}": True}
@@ -116,17 +136,91 @@ def fit_torque_ripple(comp, spec: dict | None = None) -> dict | None:
     confident = bool(abs(excess - float(check.mean())) <= tolerance and amplitude < 2.0)
     return {"effect": EFFECT,
             "parameters": {"amplitude_pu": amplitude, "order": order},
-            "uncertainty": {"amplitude_pu": amplitude * rel,
-                            "order": 0.5 * df / f_rot},          # half a frequency bin of the line
-            "not_identifiable": ["phase_rad"],
-            "line_hz": line_hz, "rotation_hz": f_rot, "band_hz": [lo, hi],
-            "line_over_model": float(excess / max(base, 1e-300)) + 1.0, "line_z": z,
+            "uncertainty": {"amplitude_pu": amplitude * rel, "order": float(lock["order_uncertainty"])},
+            "not_identifiable": ["phase_rad"], **line,
             "explained_fraction": float(explained), "confident": confident,
             "method": "raw a1 spectrum (Welch), the line's excess power over the model ensemble; amplitude "
                       "from its A^2 scaling (a reference simulation and one correction, common random "
-                      "numbers), order = line frequency (excess centroid) / rotation frequency; independent "
-                      "units: the model's seeds for the band's noise, 4 time blocks of the record for the "
-                      "line's own power"}
+                      "numbers), order = the integer order of the line in the angle domain (computed order "
+                      "tracking on omega1); independent units: the model's seeds for the band's noise, 4 time "
+                      "blocks of the record for the line's own power and its order"}
+
+
+def _angle_spectrum(a1, omega1, fs):
+    """Order spectrum of a1 resampled at equal steps of the motor angle: (orders, power, revolutions)."""
+    om = np.asarray(omega1, dtype=float)
+    alpha = np.concatenate([[0.0], np.cumsum(0.5 * (om[1:] + om[:-1]) / fs)])
+    if not np.all(np.diff(alpha) > 0):
+        return None
+    grid = np.arange(0.0, alpha[-1], 2.0 * math.pi / SAMPLES_PER_REV)
+    y = np.interp(grid, alpha, np.asarray(a1, dtype=float))
+    y = y - y.mean()
+    p = np.abs(np.fft.rfft(y * np.hanning(len(y)))) ** 2
+    return np.fft.rfftfreq(len(y), 1.0 / SAMPLES_PER_REV), p, alpha[-1] / (2.0 * math.pi)
+
+
+def _time_spectrum(a1, fs):
+    x = np.asarray(a1, dtype=float)
+    x = x - x.mean()
+    return np.fft.rfftfreq(len(x), 1.0 / fs), np.abs(np.fft.rfft(x * np.hanning(len(x)))) ** 2
+
+
+def _concentration(xx, p, p_model, centre):
+    """Share of the line's excess power (over the model's) in +-LINE_BAND of ``centre`` that lies within 2 bins
+    of its largest bin; and the excess centroid."""
+    sel = (xx > centre * (1 - LINE_BAND)) & (xx < centre * (1 + LINE_BAND))
+    ex = np.maximum(p[sel] - p_model[sel], 0.0)
+    if not np.any(ex > 0):
+        return 0.0, float(centre)
+    k = int(np.argmax(ex))
+    return float(ex[max(k - 2, 0):k + 3].sum() / ex.sum()), float(np.sum(xx[sel] * ex) / ex.sum())
+
+
+def locking(comp, line_hz: float, f_rot: float) -> dict:
+    """Is the line at ``line_hz`` locked to the motor angle? Its order in the angle domain (the excess centroid
+    over the model's runs, resampled alike) and that order's uncertainty from BLOCKS time blocks; its
+    concentration in the angle and in the time domain. Locked: an integer order within max(ORDER_TOLERANCE,
+    3 uncertainties), and the angle domain at least as concentrated as the time domain (a line that follows the
+    speed is sharp in the angle domain; one at a fixed frequency is sharp in time)."""
+    fs = 1.0 / comp.meas.sample_period_s
+    sig = comp.meas.signals
+    if "omega1" not in sig:
+        return {"locked": False, "why": "the recording has no motor speed (omega1): the line's locking to the motor "
+                                        "angle cannot be checked"}
+    rec = comp.ensemble.raw_records
+    meas_a = _angle_spectrum(sig["a1"], sig["omega1"], fs)
+    if meas_a is None:
+        return {"locked": False, "why": "the motor angle does not increase through the record"}
+    o, pa, revs = meas_a
+    model_a = [_angle_spectrum(a, w, fs) for a, w in zip(rec["a1"], rec["omega1"])]
+    pa_m = np.mean([np.interp(o, m[0], m[1]) for m in model_a if m is not None], axis=0)
+    f, pt = _time_spectrum(sig["a1"], fs)
+    pt_m = np.mean([np.interp(f, *_time_spectrum(a, fs)) for a in rec["a1"]], axis=0)
+    conc_a, order = _concentration(o, pa, pa_m, line_hz / f_rot)
+    conc_t, _ = _concentration(f, pt, pt_m, line_hz)
+    # the order's uncertainty: its spread over the record's time blocks (each resampled alike)
+    n = len(sig["a1"]) // BLOCKS
+    blocks = []
+    for b in range(BLOCKS):
+        sl = slice(b * n, (b + 1) * n)
+        mb = _angle_spectrum(sig["a1"][sl], sig["omega1"][sl], fs)
+        mm = [_angle_spectrum(a[sl], w[sl], fs) for a, w in zip(rec["a1"], rec["omega1"])]
+        if mb is None or any(m is None for m in mm):
+            continue
+        pm = np.mean([np.interp(mb[0], m[0], m[1]) for m in mm], axis=0)
+        blocks.append(_concentration(mb[0], mb[1], pm, order)[1])
+    unc = float(np.std(blocks, ddof=1) / math.sqrt(len(blocks))) if len(blocks) > 1 else float("nan")
+    k = int(round(order))
+    tol = max(ORDER_TOLERANCE, 3.0 * unc) if math.isfinite(unc) else ORDER_TOLERANCE
+    integer = k >= 1 and abs(order - k) <= tol
+    follows = conc_a >= conc_t - CONCENTRATION_MARGIN
+    why = ("locked: integer order" if integer and follows else
+           f"order {order:.3f} is not an integer within {tol:.3f}" if not integer else
+           f"the line does not follow the rotation speed (its power is more concentrated in time, {conc_t:.2f}, "
+           f"than in the motor angle, {conc_a:.2f})")
+    return {"locked": bool(integer and follows), "order_angle_domain": order, "order_uncertainty": unc,
+            "integer_order": k, "order_tolerance": tol, "concentration_angle_domain": conc_a,
+            "concentration_time_domain": conc_t, "revolutions": float(revs), "why": why}
 
 
 def as_discovery(fit: dict) -> dict:
@@ -145,6 +239,14 @@ def as_discovery(fit: dict) -> dict:
             "at_bound": False, "not_identifiable": list(fit["not_identifiable"]),
             "evidence": "raw a1 spectrum", "line_hz": fit["line_hz"], "line_z": fit["line_z"],
             "description": effect.description}
+
+
+def describe_not_locked(fit: dict) -> str:
+    """A line in the raw a1 spectrum that is not a torque ripple: why, and what it may be."""
+    lock = fit.get("locking") or {}
+    return (f"the raw a1 spectrum has a line at {fit['line_hz']:.0f} Hz ({fit['line_over_model']:.1f} x the model's "
+            f"power there) that is not locked to the motor angle ({lock.get('why', 'not checked')}): not a torque "
+            "ripple -- an effect outside the catalogue (a vibration at a fixed frequency?)")
 
 
 def describe(fit: dict) -> str:

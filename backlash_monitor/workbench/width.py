@@ -32,9 +32,11 @@ class WidthTrace:
 
 def monitor_widths(meas, library_path=None, signal: str = "a1+a2", mode: str = "shape",
                    fusion_events: int = DEFAULT_FUSION_EVENTS) -> WidthTrace:
-    """What the monitor publishes for every onset window of the measurement with that library."""
+    """What the monitor publishes for every onset window of the measurement with that library (a path, None for
+    the packaged one, or a PatternLibrary object)."""
     offset = default_window_offset("contact_loss")
-    lib = load_library(library_path, trigger="contact_loss", window_offset_samples=offset)
+    lib = (library_path if hasattr(library_path, "shape_arrays") else
+           load_library(library_path, trigger="contact_loss", window_offset_samples=offset))
     est = DriveEstimator(lib, mode=mode, fusion_events=fusion_events)
     wins = extract_windows({k: meas.signals[k] for k in ("a1", "a2", "angle_difference")}, trigger="contact_loss",
                            sample_period_s=meas.sample_period_s, window_offset_samples=offset)
