@@ -15,7 +15,7 @@ export ROS_AUTOMATIC_DISCOVERY_RANGE := LOCALHOST
 export ROS_DOMAIN_ID ?= $(shell shuf -i 1-101 -n 1)
 ACTIVATE := source ./env.sh
 
-.PHONY: help setup run test bench patterns evaluate clean chromium
+.PHONY: help setup run lint test bench patterns evaluate clean chromium
 help:  ## list the targets
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  make %-10s %s\n", $$1, $$2}'
 
@@ -53,7 +53,10 @@ chromium:  ## install Debian's chromium (headless browser of the workbench repor
 	  if [ "$$(id -u)" = 0 ]; then SUDO=; else SUDO=sudo; fi; \
 	  $$SUDO apt-get update && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y chromium; }
 
-test: setup chromium  ## run the whole test suite
+lint: setup  ## the architecture's contracts (import-linter: .importlinter) and ruff (ruff.toml)
+	$(ACTIVATE) && lint-imports --no-cache && ruff check --no-cache .
+
+test: setup chromium lint  ## the contracts and ruff, then the whole test suite
 	$(ACTIVATE) && python -m pytest test -q
 
 bench: setup  ## run every bench/*.py into bench/results.json

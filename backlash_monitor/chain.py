@@ -24,6 +24,8 @@ import numpy as np
 
 from backlash_monitor.denoise import DEFAULT_MODE, denoise_sym5, max_level
 from backlash_monitor.input_faults import FaultLog, is_index, is_period
+from backlash_monitor.signals import SIGNAL_UNITS
+from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture, default_window_offset
 
 MAX_PENDING_RANGES = 16
@@ -31,6 +33,10 @@ MAX_PENDING_RANGES = 16
 # drive restarted, its index counts from 0 again), not a late chunk: 1 s at 50 kHz, far more than
 # any reordering of best-effort chunks (MAX_PENDING_RANGES ranges of 1000 samples at most).
 RESYNC_SAMPLES = 50_000
+# After a restart, ranges continuing the stream before it are late chunks of the old stream (dropped,
+# out_of_order) -- until this many in a row continue it: then the restart was the stray, and the
+# stage goes back to the old stream (stream_restart). Either way the stream resumes.
+RESTART_CONFIRM_RANGES = 2
 DENOISE_DEFAULTS = dict(level=6, details_removed=(1, 2, 3, 4, 5, 6), mode=DEFAULT_MODE)
 
 
@@ -141,15 +147,25 @@ class WindowingStage:
     is a restart of the stream (at index 0, or at least ``resync_samples`` behind): then detector
     and capture start afresh at it (``stream_restart``). A restart that does not start at 0 and
     is less than ``resync_samples`` behind is dropped as out of order until it passes the old
-    index: at most ``resync_samples`` samples lost, and counted.
+    index: at most ``resync_samples`` samples lost, and counted. Ranges that continue the stream
+    of before a restart (late chunks of it) are dropped as ``out_of_order``; when
+    ``RESTART_CONFIRM_RANGES`` of them come in a row, that stream goes on and the stage returns to it
+    (``stream_restart``): neither stream can stall the stage.
+
+    An accelerometer signal (unit m/s^2: a1, a2) with a sample beyond ``accelerometer_range_m_s2``
+    (config/windowing.yaml sensors: the sensor's declared measurement range) makes the range
+    bad as a non-finite sample does (``out_of_range_samples``). ``fed_samples``: the samples that
+    reached the detector.
     """
 
     def __init__(self, trigger: str = "contact_loss", width_m: float | None = None,
                  angle_source: str = "measured", window_length: int = 2048,
                  signals=("a1", "a2"), window_offset_samples: int | None = None,
-                 faults: FaultLog | None = None, resync_samples: int = RESYNC_SAMPLES):
+                 faults: FaultLog | None = None, resync_samples: int = RESYNC_SAMPLES,
+                 accelerometer_range_m_s2: float | None = None):
         """``window_offset_samples``: window start after the entry; None = the trigger's configured
-        value (config/windowing.yaml capture.window_offset_samples)."""
+        value (config/windowing.yaml capture.window_offset_samples). ``accelerometer_range_m_s2``:
+        None = the configured one (sensors.accelerometer_range_m_s2)."""
         if window_offset_samples is None:
             window_offset_samples = default_window_offset(trigger)
         self.detector = BacklashEntryDetector(trigger=trigger, width_m=width_m,
@@ -162,7 +178,18 @@ class WindowingStage:
         self.faults = faults if faults is not None else FaultLog()
         self.resync_samples = int(resync_samples)
         self.lost_samples = 0          # samples never fed: gaps and dropped bad ranges
+        self.fed_samples = 0           # samples fed to the detector
         self._next: int | None = None  # the index the next range should start at
+        self._other_next: int | None = None   # where the stream of before the last restart goes on
+        self._other_ranges = 0                # ranges in a row that continued it
+        if accelerometer_range_m_s2 is None:
+            accelerometer_range_m_s2 = WINDOWING_DEFAULTS["sensors"]["accelerometer_range_m_s2"]
+        limit = float(accelerometer_range_m_s2)
+        if not limit > 0:
+            raise ValueError(f"accelerometer_range_m_s2 = {accelerometer_range_m_s2!r}; allowed: a number > 0")
+        # (signal, limit or None): the accelerometers are checked against their range, the rest for finiteness
+        self._sample_checks = tuple((s, limit if SIGNAL_UNITS.get(s) == "m/s^2" else None)
+                                    for s in self.input_signals)
 
     def check(self, joined: JoinedRange) -> tuple[str | None, int]:
         """(reason the range is bad or None, its length or -1)."""
@@ -181,9 +208,21 @@ class WindowingStage:
             return "length_mismatch", max(np.asarray(joined.arrays[s]).size for s in self.input_signals)
         if not is_period(joined.sample_period_s):
             return "bad_sample_period", n
-        for s in self.input_signals:
-            if not np.isfinite(joined.arrays[s]).all():
-                return "non_finite_samples", n
+        out_of_range = False
+        arrays = joined.arrays
+        for s, limit in self._sample_checks:
+            x = arrays[s]
+            if limit is None:
+                if not np.isfinite(x).all():
+                    return "non_finite_samples", n
+                continue
+            low, high = x.min(), x.max()          # NaN propagates into both
+            if not (-limit <= low and high <= limit):
+                if not (math.isfinite(low) and math.isfinite(high)):
+                    return "non_finite_samples", n
+                out_of_range = True
+        if out_of_range:
+            return "out_of_range_samples", n
         return None, n
 
     def feed(self, joined: JoinedRange, checked: bool = False):
@@ -200,7 +239,7 @@ class WindowingStage:
             # a bad range that starts a new stream: re-synchronise, then drop it in its place
             self.faults.add("stream_restart", f"index {first} after {self._next}")
             discarded = self._break("stream_restart", None)
-            self._next = None
+            self._restarted()
         if reason is not None:
             self.faults.add(reason, f"range at sample {first}" + (f", {n} samples" if n >= 0 else ""))
             if n > 0 and is_index(first) and (self._next is None or first >= self._next):
@@ -211,21 +250,44 @@ class WindowingStage:
                 self._next = first + n
             return [], discarded
         first = int(first)
+        if self._other_next is not None:
+            if first == self._other_next and first != self._next:
+                # continues the stream of before the restart: a late chunk of it, or that stream goes on
+                self._other_next = first + n
+                self._other_ranges += 1
+                if self._other_ranges < RESTART_CONFIRM_RANGES:
+                    self.faults.add("out_of_order", f"range at sample {first} continues the stream "
+                                                    f"before the restart (expected {self._next})")
+                    return [], []
+                self.faults.add("stream_restart", f"index {first} after {self._next}: the stream of "
+                                                  "before the restart goes on")
+                discarded = self._break("stream_restart", None)
+                self._restarted()
+            elif self._next is not None and first == self._next:
+                self._other_ranges = 0
+                if self._next >= self._other_next:
+                    self._other_next = None     # the new stream passed the old one's place
         if self._next is not None and first < self._next:
             if self._is_restart(first, n):
                 self.faults.add("stream_restart", f"index {first} after {self._next}")
                 discarded = self._break("stream_restart", None)
-                self._next = None
+                self._restarted()
             else:
                 # late or repeated: dropped; the open windows keep their (complete) samples
                 self.faults.add("out_of_order", f"range at sample {first}, expected {self._next}")
                 return [], []
         self._note_gap(first)
         self._next = first + n
+        self.fed_samples += n
         entries = self.detector.feed(first, joined.arrays, joined.sample_period_s)
         windows, more = self.capture.feed(first, joined.arrays, entries=entries,
                                           sample_period_s=joined.sample_period_s)
         return windows, discarded + more
+
+    def _restarted(self) -> None:
+        """The stream restarted: remember where the old one would go on."""
+        self._other_next, self._other_ranges = self._next, 0
+        self._next = None
 
     def _is_restart(self, first: int, n: int) -> bool:
         """A stream starts at index 0: a range at 0 behind the stream, or one at least

@@ -26,6 +26,9 @@ REASONS = {
     "bad_shape": "samples not a 1-D array, or empty",
     "length_mismatch": "the signals of one sample range (or a window's a1 and a2) differ in length",
     "non_finite_samples": "NaN or infinite samples",
+    "out_of_range_samples": "an accelerometer sample outside the sensor's declared measurement range "
+                            "(config/windowing.yaml sensors.accelerometer_range_m_s2)",
+    "wrong_signal": "a recorded chunk whose signal name or unit is not its topic's (offline)",
     "incomplete_range": "not every signal's chunk of a sample range arrived",
     "gap": "samples missing between two ranges (lost chunks)",
     "out_of_order": "a range behind the stream (late or repeated)",

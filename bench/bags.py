@@ -268,7 +268,7 @@ def time_analyze(tmp: Path, seconds: float = 10.0) -> dict:
     (rosbag2's noSummary) and without chunks (noChunking).
 
     `analyze.run` is what the CLI runs, settings included: it decompresses chunks in a worker
-    thread and raises glibc's malloc thresholds for its process (commands/_memory.py). The
+    thread and raises glibc's malloc thresholds for its process (process/memory.py). The
     rosbags read runs after it in this process, so under the same allocator setting (it takes
     fewer page faults too). Every analyze run writes its own output (the no-overwrite rule)."""
     import argparse as _argparse

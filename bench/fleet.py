@@ -302,7 +302,7 @@ def main():
                           fleet_analyze_bags=n_bags, fleet_analyze_bag_s=3.0,
                           fleet_analyze_cores=cores)
         if "two_host" in args.parts:
-            from backlash_monitor.fleet.netns import can_make_namespaces, run_two_hosts
+            from backlash_monitor.nodes.netns import can_make_namespaces, run_two_hosts
             reason = can_make_namespaces()
             if reason:
                 result["two_host_estimates_delivered"] = None

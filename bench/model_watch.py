@@ -126,7 +126,6 @@ def clean_own(seconds_per_point: float, widen: bool = True) -> list:
     """Own simulator, one batch: every CLEAN_GRID point on its own seed for ``seconds_per_point``; with
     ``widen`` a second batch whose backlash width grows by 10 % over the run (wear: the measurand)."""
     from backlash_monitor.plant import PlantSimulator, Scenario
-    from backlash_monitor.watch.core import ModelWatch
     from backlash_monitor.workbench import plant_adapter
     from backlash_monitor.workbench.model import load_model
     traces = []
@@ -171,7 +170,6 @@ def clean_foreign(recordings_per_point: int, seconds: float) -> list:
     """Foreign drives: per CLEAN_GRID point ``recordings_per_point`` clean recordings of ``seconds`` (the sensor
     nuisance varies: white noise + 16-bit ADC, 14-bit encoders, ADC only, none)."""
     from foreign_drives.drive import make_recording
-    from backlash_monitor.watch.core import ModelWatch
     traces = []
     for gi, g in enumerate(CLEAN_GRID):
         ref = reference_for(*g)
@@ -192,7 +190,6 @@ def detect_own(seeds=(0, 1)) -> list:
     neutral defaults, as the workbench runs them); per DETECT_GRID point and seed. Also the offline check: the
     consistency test at diagnose's 1 % level on a 4 s recording with the effect (the same nominal, another seed)."""
     from backlash_monitor.plant import PlantSimulator, Scenario
-    from backlash_monitor.watch.core import ModelWatch
     from backlash_monitor.workbench import plant_adapter, reference, synthetic
     from backlash_monitor.workbench.model import load_model
     out = []
@@ -252,7 +249,6 @@ def detect_foreign() -> list:
     offline check on the effect recording's first 4 s."""
     from foreign_drives import suites
     from foreign_drives.drive import make_recording
-    from backlash_monitor.watch.core import ModelWatch
     from backlash_monitor.workbench import reference
     from backlash_monitor.workbench.measurement import Measurement
     out = []

@@ -90,7 +90,9 @@ def fuzz(examples: int, nodes: bool = True) -> tuple[dict, int, dict]:
             details[name] = {"seconds": round(time.perf_counter() - started, 1)}
         except Exception as error:  # noqa: BLE001 - a falsified property
             failures += 1
-            details[name] = {"failure": "".join(traceback.format_exception_only(type(error), error))[-2000:]}
+            details[name] = {"failure": "".join(traceback.format_exception_only(type(error), error))[-2000:],
+                             # hypothesis's "Failing test case" note: the input to keep as a regression test
+                             "falsifying_example": "\n".join(getattr(error, "__notes__", []))[:8000]}
         counts[name] = counter["n"]
         print(f"fuzz {name}: {counter['n']} inputs, {details[name]}", file=sys.stderr)
     if nodes:

@@ -25,7 +25,7 @@ from functools import lru_cache
 import numpy as np
 from hypothesis import strategies as st
 
-from backlash_monitor.chain import ChunkJoiner, JoinedRange, WindowingStage, denoise_checked
+from backlash_monitor.chain import ChunkJoiner, WindowingStage, denoise_checked
 from backlash_monitor.input_faults import REASONS
 
 INPUTS: Counter = Counter()
@@ -45,8 +45,8 @@ def synthetic_stream():
     delta, w, _, entries = tile_record(p, 6)
     rng = np.random.default_rng(7)
     accel = np.gradient(w, PERIOD_S)
-    a1 = 0.15 * accel + rng.normal(0, 0.05, delta.size)
-    a2 = -0.15 * accel + rng.normal(0, 0.05, delta.size)
+    a1 = 0.01 * accel + rng.normal(0, 0.05, delta.size)   # |a1| <= ~1050 m/s^2: inside the sensors' range
+    a2 = -0.01 * accel + rng.normal(0, 0.05, delta.size)
     return {"a1": a1, "a2": a2, "angle_difference": delta}, p.delta.size
 
 

@@ -1,5 +1,5 @@
 """analyze keeps freed memory in the process (glibc mallopt): a freed and reallocated large array
-no longer costs a page fault per 4 KiB page (commands/_memory.py)."""
+no longer costs a page fault per 4 KiB page (process/memory.py)."""
 import platform
 import resource
 import sys
@@ -7,7 +7,7 @@ import sys
 import numpy as np
 import pytest
 
-from backlash_monitor.commands._memory import reuse_freed_memory
+from backlash_monitor.process.memory import reuse_freed_memory
 
 glibc = sys.platform.startswith("linux") and platform.libc_ver()[0] == "glibc"
 
@@ -27,7 +27,7 @@ def test_reallocated_blocks_do_not_fault_again():
 
 
 def test_other_c_libraries_are_left_alone(monkeypatch):
-    import backlash_monitor.commands._memory as memory
+    import backlash_monitor.process.memory as memory
 
     monkeypatch.setattr(memory, "_done", False)
     monkeypatch.setattr(memory.sys, "platform", "darwin")

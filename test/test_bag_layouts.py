@@ -14,7 +14,6 @@
 """
 from __future__ import annotations
 
-import argparse
 import json
 from pathlib import Path
 
@@ -190,11 +189,9 @@ def simulated_bag(tmp_path_factory):
 
 
 def _analyze(bag: Path, out: Path) -> str:
-    from backlash_monitor.commands import analyze
+    from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag
 
-    parser = argparse.ArgumentParser()
-    analyze.add_arguments(parser)
-    analyze.analyze_bag(parser.parse_args([str(bag), "--out", str(out)]))
+    analyze_bag(bag, out, AnalyzeOptions())
     return out.with_suffix(".csv").read_text()
 
 

@@ -34,16 +34,23 @@ def independent_form(name, values, cfg):
     p = {k.split(".", 1)[1]: v for k, v in values.items() if k.startswith(name + ".")}
 
     def wheel(torque):
-        d = np.zeros(11); d[8] = torque / J2; return d
+        d = np.zeros(11)
+        d[8] = torque / J2
+        return d
 
     def motor(load_pu):
-        d = np.zeros(11); d[4] = -load_pu / T_m; return d
+        d = np.zeros(11)
+        d[4] = -load_pu / T_m
+        return d
 
     def clutch(kc2, dc2):
         def f(y):
             rel = y[4] * omb - y[8]
             dT = clutch_torque(y[5], rel, beta, kc2, dc2) - clutch_torque(y[5], rel, beta, kc, dc)
-            d = np.zeros(11); d[4] = -dT / T_b / T_m; d[8] = dT / J2; return d
+            d = np.zeros(11)
+            d[4] = -dT / T_b / T_m
+            d[8] = dT / J2
+            return d
         return f
 
     forms = {
@@ -152,9 +159,10 @@ def test_drift_with_a_random_change_equals_the_changed_model_on_every_backend(dr
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_sensor_stages_with_random_parameters_follow_their_equations(seed):
-    """Random bias, gain and low-pass time constant per signal: the published a1/a2 equal the equation applied
-    here to the nominal run's signals (the low-pass as the exact solution of tau*y' = a - y for a held over
-    each step, y_k = e^(-h/tau)*y_(k-1) + (1 - e^(-h/tau))*a_k, by a plain loop here), on every backend."""
+    """Random bias, gain, low-pass time constant and number of sections per signal: the published a1/a2 equal the
+    equation applied here to the nominal run's signals (each of the n (rounded) low-pass sections the exact solution
+    of tau*y' = a - y for a held over each step, y_k = e^(-h/tau)*y_(k-1) + (1 - e^(-h/tau))*a_k, by a plain loop
+    here, the sections in series), on every backend."""
     rng = np.random.default_rng(seed)
     names = ("accelerometer_bias", "accelerometer_gain", "accelerometer_lowpass")
     params = {}
@@ -168,12 +176,15 @@ def test_sensor_stages_with_random_parameters_follow_their_equations(seed):
         for sig in ("a1", "a2"):
             a = base.__dict__[sig][0]
             tau = params[f"accelerometer_lowpass.{sig}_time_constant_s"]
+            sections = int(np.clip(np.rint(params[f"accelerometer_lowpass.{sig}_sections"]), 1, 4))
             decay = np.exp(-2e-5 / tau)
-            y = np.empty_like(a)
-            prev = a[0]
-            for k, ak in enumerate(a):
-                prev = decay * prev + (1.0 - decay) * ak
-                y[k] = prev
+            y = a
+            for _ in range(sections):           # n identical first-order sections in series
+                x, y = y, np.empty_like(a)
+                prev = x[0]
+                for k, xk in enumerate(x):
+                    prev = decay * prev + (1.0 - decay) * xk
+                    y[k] = prev
             expected = y * (1.0 + params[f"accelerometer_gain.{sig}_relative_change"]) \
                 + params[f"accelerometer_bias.{sig}_m_s2"]
             assert np.allclose(ch.__dict__[sig][0], expected, rtol=1e-12, atol=1e-9), (backend, sig)

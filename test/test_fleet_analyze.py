@@ -103,6 +103,26 @@ def test_the_model_fit_column_holds_each_bag_against_the_drives_model(tmp_path):
     assert "does not explain friction_" in proc.stdout and "run diagnose on it" in proc.stdout
 
 
+def test_the_model_fit_reference_is_the_one_given_else_the_librarys_else_the_default_models_nearest_width(tmp_path):
+    """--watch-reference wins; without it a --library with a LIB.watch.npz beside it (train --model) gives that;
+    else the default model's cache entry at the pattern width nearest the measured width, with analyze's n1."""
+    from backlash_monitor.fleet.analyze import WatchOptions, default_model, reference_for_bag
+    from backlash_monitor.offline.analyze import AnalyzeOptions
+    from backlash_monitor.plant.scenarios import K2_WIDTHS_M
+    from backlash_monitor.workbench import reference
+    library = tmp_path / "drive7_v3.npz"
+    beside = reference.reference_path_for_library(library)
+    given = str(tmp_path / "other.watch.npz")
+    options = AnalyzeOptions(library=str(library), n1=0.95)
+    assert reference_for_bag(options, WatchOptions(reference=given), 0.005) == given
+    nearest = min(K2_WIDTHS_M, key=lambda k: abs(k - 0.0051))
+    cache = str(reference.cache_path(default_model(0.95, nearest)))
+    assert reference_for_bag(options, WatchOptions(), 0.0051) == cache      # no LIB.watch.npz yet
+    beside.write_bytes(b"")
+    assert reference_for_bag(options, WatchOptions(), 0.0051) == str(beside)
+    assert default_model(0.95, 0.0051).nominal == {"width_m": nearest, "eta_k": 0.025, "n1": 0.95}
+
+
 def test_a_glob_without_bags_is_one_clear_error(tmp_path):
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze",
                            str(tmp_path / "*.mcap")], capture_output=True, text=True, timeout=60)

@@ -2,7 +2,6 @@
 its width, and receives what the drive publishes (the CDR bytes decode to the same estimate)."""
 import asyncio
 import json
-import os
 import re
 import struct
 import subprocess

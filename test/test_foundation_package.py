@@ -9,7 +9,6 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
-import pytest
 from ament_index_python.packages import get_package_prefix, get_package_share_directory
 
 

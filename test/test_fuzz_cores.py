@@ -121,3 +121,52 @@ def test_a_restart_does_not_join_new_chunks_to_an_old_incomplete_range():
                                         fc.SIGNALS)
     assert stage.faults.counts["stream_restart"] == 1
     assert stage.faults.counts["incomplete_range"] == 1 and not stage.faults.counts["out_of_order"]
+
+
+# ---- found by bench/reliability.py (hypothesis), kept as regressions ----
+@pytest.mark.parametrize("order", [fc.SIGNALS, tuple(reversed(fc.SIGNALS))])
+def test_a_late_chunk_of_the_old_stream_after_a_restart_does_not_stall_the_stage(order):
+    """The stream issue 19 quotes: an index jump at chunk 0, chunks 9 and 10 swapped, a restart at 10.
+    Chunk 9 (the old stream's) arrives right after the restart; it used to be taken as a forward
+    gap of the new stream, whose every following chunk was then 'out of order': no window again."""
+    sizes = [200] * 8 + [2500, 4000] + [200] * 6 + [1000] + [4000] * 4 + [3700]
+    windows, stage = fc.check_windowing(sizes, {0: "jump", 9: "swap", 10: "restart"}, order)
+    assert stage.faults.counts["stream_restart"] == 1 and stage.faults.counts["out_of_order"] == 1
+
+
+def test_the_old_stream_going_on_after_a_stray_restart_chunk_resumes():
+    """A stray chunk at index 0 in the middle of a stream (a restart that was none): the stream
+    going on is taken back after RESTART_CONFIRM_RANGES ranges, and its windows resume."""
+    from backlash_monitor.chain import RESTART_CONFIRM_RANGES
+    data, _ = fc.synthetic_stream()
+    stage = WindowingStage(window_length=fc.WINDOW_LENGTH)
+    windows = []
+    chunks = [(lo, lo) for lo in range(0, 12_000, 1000)] + [(0, 0)] + [(lo, lo) for lo in range(12_000, 30_000, 1000)]
+    for index, lo in chunks:
+        arrays = {s: data[s][lo:lo + 1000].copy() for s in fc.SIGNALS}
+        w, _ = stage.feed(JoinedRange(index, fc.PERIOD_S, arrays))
+        windows += [(x, index) for x in w]
+    assert stage.faults.counts["stream_restart"] == 2          # to the stray, and back
+    assert stage.faults.counts["out_of_order"] == RESTART_CONFIRM_RANGES - 1
+    assert [w for w, index in windows if w.start_sample_index > 12_000 + RESTART_CONFIRM_RANGES * 1000]
+
+
+def test_an_accelerometer_sample_beyond_its_declared_range_is_a_counted_fault():
+    """A finite sample beyond sensors.accelerometer_range_m_s2 (config/windowing.yaml) in a1 is
+    dropped and counted as a NaN is (out_of_range_samples); the windows resume after it. The same
+    stage runs in the live windowing node and in analyze."""
+    data, _ = fc.synthetic_stream()
+    stage = WindowingStage(window_length=fc.WINDOW_LENGTH)
+    windows = []
+    for lo in range(0, 30_000, 1000):
+        arrays = {s: data[s][lo:lo + 1000].copy() for s in fc.SIGNALS}
+        if lo == 3000:
+            arrays["a1"][17] = 1e300
+        w, _ = stage.feed(JoinedRange(lo, fc.PERIOD_S, arrays))
+        windows += w
+    assert stage.faults.counts == {"out_of_range_samples": 1}
+    assert stage.lost_samples == 1000 and stage.fed_samples == 29_000
+    assert all(np.abs(w.signals["a1"]).max() < 1960 for w in windows)
+    assert [w for w in windows if w.start_sample_index > 4000]
+    assert WindowingStage(accelerometer_range_m_s2=1e301).check(
+        JoinedRange(3000, fc.PERIOD_S, {s: np.full(10, 1e300) for s in fc.SIGNALS}))[0] is None

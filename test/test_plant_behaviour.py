@@ -1,7 +1,6 @@
 """SPEC section 3 behaviour: 8 entries/s (4 onset + 4 return), no re-trigger inside a window,
 noise-free far-side impact times after the onset entry."""
 import numpy as np
-import pytest
 
 from backlash_monitor.plant import K2_WIDTHS_M, PlantSimulator, Scenario, load_plant_config
 from backlash_monitor.plant.analysis import impact_times_ms

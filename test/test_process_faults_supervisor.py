@@ -10,9 +10,9 @@ import time
 
 import pytest
 
-from backlash_monitor.parent_watch import PARENT_PID_ENV
-from backlash_monitor.subscriber_wait import TopicState, missing, parse_wanted
-from backlash_monitor.supervisor import Supervisor, describe_exit
+from backlash_monitor.process.parent_watch import PARENT_PID_ENV
+from backlash_monitor.process.subscriber_wait import TopicState, missing, parse_wanted
+from backlash_monitor.process.supervisor import Supervisor, describe_exit
 
 SLEEPER = [sys.executable, "-c", "import time; time.sleep(60)"]
 
@@ -103,8 +103,8 @@ def test_bad_policies_are_refused():
 # A parent that starts two children, prints their pids and waits to be killed.
 _PARENT = textwrap.dedent("""
     import os, subprocess, sys, time
-    from backlash_monitor.supervisor import Supervisor
-    from backlash_monitor.parent_watch import PARENT_PID_ENV
+    from backlash_monitor.process.supervisor import Supervisor
+    from backlash_monitor.process.parent_watch import PARENT_PID_ENV
     child = [sys.executable, "-c", sys.argv[2]]
     if sys.argv[1] == "supervisor":         # prctl death signal (and the watchdog variable)
         sup = Supervisor({"a": child, "b": child})
@@ -120,7 +120,7 @@ _PARENT = textwrap.dedent("""
 # A child that ignores SIGTERM: only the watchdog's hard exit ends it after its parent died.
 _STUBBORN_CHILD = textwrap.dedent("""
     import signal, time
-    from backlash_monitor.parent_watch import start_watchdog
+    from backlash_monitor.process.parent_watch import start_watchdog
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
     assert start_watchdog(grace_s=1.0, period_s=0.1) is not None
     time.sleep(60)
@@ -151,7 +151,7 @@ def test_children_die_when_their_parent_is_killed_with_sigkill(how, child):
 
 
 def test_the_watchdog_ignores_a_variable_that_names_another_process():
-    code = ("import os; from backlash_monitor.parent_watch import start_watchdog, PARENT_PID_ENV; "
+    code = ("import os; from backlash_monitor.process.parent_watch import start_watchdog, PARENT_PID_ENV; "
             "print(start_watchdog() is None, PARENT_PID_ENV in os.environ)")
     env = dict(os.environ, **{PARENT_PID_ENV: "1"})
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,

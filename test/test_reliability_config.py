@@ -1,6 +1,5 @@
 """Config files: an unknown key is an error naming it and the nearest valid one; broken YAML is
 one line with the file and line (windowing.yaml and the nodes' --params-file files)."""
-import os
 import subprocess
 import sys
 

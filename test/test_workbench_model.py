@@ -1,5 +1,4 @@
 """Workbench model files, overrides, versions, history and measurement loading (fast, no simulation)."""
-import json
 
 import numpy as np
 import pytest

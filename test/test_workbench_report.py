@@ -3,7 +3,6 @@ the screenshot is not blank and every <img> loaded (naturalWidth > 0)."""
 import shutil
 import subprocess
 
-import numpy as np
 import pytest
 
 from backlash_monitor.workbench import report

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from . import schema as schema_mod
+import backlash_monitor.bag.schema as schema_mod
 from .cdr import Codec
 from .errors import BagError, MissingTopicError
 from .records import (MAGIC, MESSAGE_HEAD, OP_CHANNEL, OP_CHUNK_INDEX, OP_MESSAGE,

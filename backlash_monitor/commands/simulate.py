@@ -5,7 +5,6 @@ The NPZ layout is documented in docs/model.md ("NPZ layout of `simulate`").
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import time
 from pathlib import Path

@@ -14,16 +14,14 @@ than the configured rate, before it reaches the limit), with a plot per drive an
 """
 from __future__ import annotations
 
-import argparse
-import contextlib
 import csv
 import glob
-import io
 import json
 import math
 import os
 import statistics
 import time
+from dataclasses import dataclass
 from datetime import datetime, timezone
 from pathlib import Path
 
@@ -60,6 +58,23 @@ def add_arguments(parser) -> None:
                        help="no model-fit column (the model watch's test on each bag's last onset events)")
 
 
+@dataclass(frozen=True)
+class WatchOptions:
+    """The model-fit column's options (the model watch's test on each bag's last onset events,
+    docs/model_watch.md), carried beside the AnalyzeOptions every bag shares.
+
+    enabled: False for --no-model-fit (no column); reference: the model version's reference file
+    (REF.watch.npz) every bag is held against ("" = --library's LIB.watch.npz where it exists, else
+    the default model's at the pattern width nearest the drive's measured width, from the cache)."""
+    enabled: bool = True
+    reference: str = ""
+
+
+def watch_options_from_args(args) -> WatchOptions:
+    """The model-fit options of a parsed `analyze FOLDER` command line."""
+    return WatchOptions(enabled=not args.no_model_fit, reference=args.watch_reference)
+
+
 def is_many(bag: str) -> bool:
     return os.path.isdir(bag) or any(c in bag for c in "*?[")
 
@@ -79,7 +94,7 @@ def expand_bags(spec: str) -> list[Path]:
 _WORKER: dict = {}   # this process's worker state: the options' pattern library, loaded once
 
 
-def init_worker(options: dict, library=None) -> None:
+def init_worker(options, library=None) -> None:
     """A worker's start (ProcessPoolExecutor/Dask initializer, and the --jobs 1 loop): one core's
     worth of threads (BLAS, OpenMP and numba pools of one thread: the pool already has a worker
     per core; no bag decompression thread in a pool worker or on one CPU) and the pattern library
@@ -88,28 +103,27 @@ def init_worker(options: dict, library=None) -> None:
     for var in THREAD_VARIABLES:
         os.environ[var] = "1"
     import multiprocessing
-    from backlash_monitor.commands.analyze import load_bag_library
+    from backlash_monitor.offline.analyze import load_library
     # a pool worker (a worker per core): no core for a bag reader's decompression thread, which
     # would only take turns with the worker; its readers get chunks_ahead=0 (None: the reader's
     # default, which is 0 on one CPU too)
     chunks_ahead = 0 if multiprocessing.parent_process() is not None else None
     _WORKER.update(pid=os.getpid(), options=options, chunks_ahead=chunks_ahead,
-                   library=library or load_bag_library(argparse.Namespace(**options)))
+                   library=library or load_library(options))
 
 
 def analyze_one(job: dict) -> dict:
-    """One bag through the single-bag `analyze` (a worker's task); returns its fleet-table row."""
-    from backlash_monitor.commands.analyze import analyze_bag
+    """One bag through the single-bag analysis (a worker's task: a job is its bag, its output prefix,
+    the AnalyzeOptions and the WatchOptions of its model fit); returns its fleet-table row."""
+    from backlash_monitor.offline.analyze import analyze_bag
     if _WORKER.get("options") != job["options"] or _WORKER.get("pid") != os.getpid():
         init_worker(job["options"])      # a worker started without the initializer (Dask)
-    args = argparse.Namespace(**job["options"])
-    args.bag, args.out = job["bag"], job["out"]
     started = time.perf_counter()
     row = {"bag": job["bag"], "drive": "", "time_s": math.nan, "width_m": math.nan,
            "fused_width_m": math.nan, "true_width_m": math.nan, "onsets": 0, "discarded": 0,
            "error": ""}
     try:
-        result = analyze_bag(args, library=_WORKER["library"],
+        result = analyze_bag(job["bag"], job["out"], job["options"], library=_WORKER["library"],
                              chunks_ahead=_WORKER["chunks_ahead"])
     except UsageError as error:
         row["error"] = str(error)
@@ -127,8 +141,9 @@ def analyze_one(job: dict) -> dict:
                onsets=len({r["entry_sample_index"] for r in mine}),
                discarded=len(result["discarded"]),
                seconds=time.perf_counter() - started, signal=primary)
-    if not job["options"].get("no_model_fit"):
-        row.update(model_fit(job["bag"], job["options"], row))
+    watch = job.get("watch") or WatchOptions()
+    if watch.enabled:
+        row.update(model_fit(job["bag"], job["options"], watch, row))
     offsets = result.get("sensor_offsets", {})      # the drive's latest sensor offset estimate
     row.update(a1_offset_m_s2=offsets.get("a1_m_s2", math.nan),
                a2_offset_m_s2=offsets.get("a2_m_s2", math.nan),
@@ -138,38 +153,38 @@ def analyze_one(job: dict) -> dict:
 
 # ------------------------------------------------------------------------------------------- model fit
 
-def reference_for_bag(options: dict, width_m: float) -> str:
+def reference_for_bag(options, watch: WatchOptions, width_m: float) -> str:
     """The reference a bag's model fit takes (see --watch-reference): a path (may not exist yet: the default
-    model's cache entry, built by the parent)."""
+    model's cache entry, built by the parent). ``options``: the bag's AnalyzeOptions (its library and n1)."""
     from backlash_monitor.workbench import reference
-    if options.get("watch_reference"):
-        return options["watch_reference"]
-    if options.get("library"):
-        beside = reference.reference_path_for_library(options["library"])
+    if watch.reference:
+        return watch.reference
+    if options.library:
+        beside = reference.reference_path_for_library(options.library)
         if beside.is_file():
             return str(beside)
-    return str(reference.cache_path(default_model(options, width_m)))
+    return str(reference.cache_path(default_model(options.n1, width_m)))
 
 
-def default_model(options: dict, width_m: float):
+def default_model(n1: float, width_m: float):
     """The default model at the pattern width nearest ``width_m`` (the drive's measured width), eta_k 0.025 and
     the drive's n1 (analyze's --n1): its reference covers +-40 % of that width (the width is profiled)."""
     from backlash_monitor.plant.scenarios import K2_WIDTHS_M
     from backlash_monitor.workbench.model import load_model
     w = width_m if width_m == width_m else 0.005
     nearest = min(K2_WIDTHS_M, key=lambda k: abs(k - w))
-    return load_model(None, width_m=nearest, eta_k=0.025, n1=float(options.get("n1") or 0.89))
+    return load_model(None, width_m=nearest, eta_k=0.025, n1=float(n1 or 0.89))
 
 
-def model_fit(bag: str, options: dict, row: dict) -> dict:
+def model_fit(bag: str, options, watch: WatchOptions, row: dict) -> dict:
     """The bag's model fit (watch/core.evaluate_recording) against its reference; a missing reference or a bag
-    that cannot be evaluated gives the reason instead."""
+    that cannot be evaluated gives the reason instead. ``options``: the bag's AnalyzeOptions."""
     from backlash_monitor.watch.alarm import load_rule
     from backlash_monitor.watch.core import evaluate_recording
     from backlash_monitor.workbench import reference
     from backlash_monitor.workbench.measurement import MeasurementError, load_measurement
     width = row["width_m"] if row["width_m"] == row["width_m"] else row["fused_width_m"]
-    path = reference_for_bag(options, width)
+    path = reference_for_bag(options, watch, width)
     out = {"model_fit_reference": path, "model_fit": "", "model_fit_level": "", "model_fit_ratio": math.nan}
     refs = _WORKER.setdefault("references", {})
     try:
@@ -178,7 +193,7 @@ def model_fit(bag: str, options: dict, row: dict) -> dict:
         out["model_fit"] = "no reference" if not Path(path).exists() else str(error)
         return out
     try:
-        meas = load_measurement(bag, options.get("namespace") or None)
+        meas = load_measurement(bag, options.namespace or None)
         fit = evaluate_recording(meas, ref, load_rule())
     except (MeasurementError, ValueError) as error:
         out["model_fit"] = f"not evaluated: {error}"
@@ -200,15 +215,15 @@ def model_fit_text(r: dict) -> str:
     return text
 
 
-def missing_references(rows: list[dict], options: dict, log=print) -> list[dict]:
+def missing_references(rows: list[dict], options, watch: WatchOptions, log=print) -> list[dict]:
     """Build the default model's references the workers did not find (once, into the cache); the rows they
-    concern, to evaluate again."""
+    concern, to evaluate again. ``options``: the AnalyzeOptions (their n1)."""
     from backlash_monitor.workbench import reference
     again, built = [], set()
     for r in rows:
-        if r.get("model_fit") == "no reference" and not options.get("watch_reference"):
+        if r.get("model_fit") == "no reference" and not watch.reference:
             width = r["width_m"] if r["width_m"] == r["width_m"] else r["fused_width_m"]
-            model = default_model(options, width)
+            model = default_model(options.n1, width)
             path = str(reference.cache_path(model))
             if path not in built:
                 reference.cached(model, log=lambda text: log(f"analyze: {text}"))
@@ -217,19 +232,17 @@ def missing_references(rows: list[dict], options: dict, log=print) -> list[dict]
     return again
 
 
-def _jobs(args, bags: list[Path], out_dir: Path) -> list[dict]:
-    from backlash_monitor.commands.analyze import add_arguments as single_arguments
-    probe = argparse.ArgumentParser()
-    single_arguments(probe)
-    names = [a.dest for a in probe._actions if a.dest not in ("help", "bag", "out")]
-    options = {n: getattr(args, n) for n in names if hasattr(args, n)}
+def _jobs(options, bags: list[Path], out_dir: Path, watch: WatchOptions | None = None) -> list[dict]:
+    """{"bag", "out", "options", "watch"} per bag: its path, its output prefix in ``out_dir``, the
+    AnalyzeOptions and the WatchOptions (model fit) every bag shares."""
     jobs, used = [], set()
     for b in bags:
         name = b.stem + ".estimates"      # analyze's own default name, in DIR
         while name in used:
             name += "_"
         used.add(name)
-        jobs.append({"bag": str(b), "out": str(out_dir / name), "options": options})
+        jobs.append({"bag": str(b), "out": str(out_dir / name), "options": options,
+                     "watch": watch or WatchOptions()})
     return jobs
 
 
@@ -269,7 +282,7 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
     # numpy is imported (its OpenBLAS starts its threads then); where numpy was imported before
     # with more threads, a forkserver with the limits set in its environment starts the workers.
     modules = ["backlash_monitor.bag", "backlash_monitor.chain",
-               "backlash_monitor.commands.analyze", "backlash_monitor.estimation"]
+               "backlash_monitor.offline.analyze", "backlash_monitor.estimation"]
     if threads_limited and "fork" in multiprocessing.get_all_start_methods():
         import importlib
         for name in modules:
@@ -279,7 +292,7 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
         context = multiprocessing.get_context("forkserver")
         context.set_forkserver_preload(modules)
         library = None          # loaded by each worker
-    options = jobs[0]["options"] if jobs else {}
+    options = jobs[0]["options"] if jobs else None
     with ProcessPoolExecutor(max_workers=n_jobs, mp_context=context, initializer=init_worker,
                              initargs=(options, library)) as pool:
         # at most two bags per worker queued: a worker never waits for its next bag, and the
@@ -365,7 +378,9 @@ def format_rows(rows: list[dict]) -> list[tuple]:
     return out
 
 
-def run_many(args) -> int:
+def run_many(args, options) -> int:
+    """The many-bag `analyze`: ``args`` its parsed command line (BAG, --out and the options above,
+    the model fit's WatchOptions among them), ``options`` the AnalyzeOptions of every bag."""
     from backlash_monitor.fleet.trend import load_rule, plot_trends
     bags = expand_bags(args.bag)
     n_jobs = args.jobs or os.cpu_count() or 1
@@ -380,20 +395,20 @@ def run_many(args) -> int:
     except (OSError, KeyError, TypeError, ValueError) as error:
         raise UsageError(f"trend config {args.trend_config or 'config/trend.yaml'}: {error}; it "
                          "needs warn_growth_m_per_day, warn_width_m, error_width_m") from None
-    jobs = _jobs(args, bags, out_dir)
+    watch = watch_options_from_args(args)
+    jobs = _jobs(options, bags, out_dir, watch)
     started = time.perf_counter()
     if args.engine == "dask":
         rows = run_dask(jobs, n_jobs, args.scheduler)
     else:
         # the options checked and the library loaded once, here: a bad option is one error
         # before any worker starts, and forked workers inherit the library
-        from backlash_monitor.commands.analyze import load_bag_library
-        rows = run_local(jobs, n_jobs, library=load_bag_library(args),
+        from backlash_monitor.offline.analyze import load_library
+        rows = run_local(jobs, n_jobs, library=load_library(options),
                          threads_limited=threads_limited)
-    if not args.no_model_fit:
-        options = jobs[0]["options"] if jobs else {}
-        for r in missing_references(rows, options):
-            r.update(model_fit(r["bag"], options, r))
+    if watch.enabled:
+        for r in missing_references(rows, options, watch):
+            r.update(model_fit(r["bag"], options, watch, r))
     wall = time.perf_counter() - started
     rows.sort(key=lambda r: (r["drive"], r["time_s"] if r["time_s"] == r["time_s"] else 0.0,
                              r["bag"]))

@@ -122,7 +122,6 @@ def plant_factories():
 def run_managed(name: str, factories, args=None) -> int:
     """Spin one ManagedNodes until shut down; ``--activate`` (before --ros-args) configures and
     activates it at start."""
-    import rclpy
     from rclpy.utilities import remove_ros_args
     from backlash_monitor.nodes.runtime import run_nodes
     argv = sys.argv if args is None else args

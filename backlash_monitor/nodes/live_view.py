@@ -17,7 +17,6 @@ at start with one line saying so.
 """
 from __future__ import annotations
 
-import json
 import sys
 import time
 

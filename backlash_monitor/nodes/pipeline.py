@@ -24,7 +24,7 @@ import time
 from dataclasses import dataclass, field
 
 from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
-from backlash_monitor.supervisor import RESTART_POLICIES, Supervisor
+from backlash_monitor.process.supervisor import RESTART_POLICIES, Supervisor
 
 DEFAULTS = dict(width_m=0.005, eta_k=0.025, n1=0.89, seed=0, duration=10.0, rate_factor=1.0)
 
@@ -407,7 +407,7 @@ def run(args) -> int:
     from backlash_monitor_msgs.msg import BacklashEstimate
     from backlash_monitor.nodes.qos import ESTIMATE_QOS
     from backlash_monitor.nodes.parameters import ParameterValueError
-    from backlash_monitor.nodes.runtime import freeze_startup_objects, release_nodes
+    from backlash_monitor.nodes.runtime import begin_shutdown, freeze_startup_objects, release_nodes
 
     from backlash_monitor.estimation import DEFAULT_MODE, default_signals
     from backlash_monitor.nodes.fast_dds import configure_fast_dds
@@ -508,6 +508,7 @@ def run(args) -> int:
         print("pipeline: interrupted", file=sys.stderr)
         interrupted = True     # Ctrl-C reaches the node processes too: not their fault
     finally:
+        begin_shutdown()   # from here a second Ctrl-C/SIGTERM is noted, not an interruption
         if supervisor is not None:
             for fault in ([] if interrupted else supervisor.poll(restart=False)):
                 view.on_fault(fault.describe())     # one that ended as the run did

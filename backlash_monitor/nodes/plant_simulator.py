@@ -23,7 +23,7 @@ from backlash_monitor.nodes.qos import LATCHED, chunk_qos
 from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor.plant import Scenario, PlantSimulator, load_plant_config
 from backlash_monitor.plant.integrator import BACKENDS
-from backlash_monitor.subscriber_wait import TopicState, fully_qualified, missing, parse_wanted
+from backlash_monitor.process.subscriber_wait import TopicState, fully_qualified, missing, parse_wanted
 from backlash_monitor_msgs.msg import SignalChunk
 
 TICK_PERIOD_S = 0.01      # the publishing timer; each tick publishes every chunk that is due

@@ -29,13 +29,10 @@ from pathlib import Path
 
 import numpy as np
 
-from . import effects as _effects
-from . import outputs as _outputs
-from ._numba import HAVE_NUMBA, numba
-
-STATE_NAMES = ("psi_sa", "psi_sb", "psi_ra", "psi_rb", "w1", "delta", "alpha1", "alpha2", "omega2", "z", "xdot")
-N_STATES = len(STATE_NAMES)
-GLOBAL_NAMES = ("g_rs", "g_rr", "g_xs", "g_xr", "g_xm", "g_w", "g_omega_b", "g_T_m", "g_omega_mb", "g_T_b", "g_r")
+import backlash_monitor.plant.effects as _effects
+import backlash_monitor.plant.outputs as _outputs
+from backlash_monitor.plant._numba import HAVE_NUMBA, numba
+from backlash_monitor.plant.state import GLOBAL_NAMES, N_STATES, STATE_NAMES  # noqa: F401 (the kernels' layout)
 BASE_ROWS = ("beta", "wheel_inertia_kgm2", "mass_kg")     # per-scenario model values every kernel reads
 GENERATOR_VERSION = "5"
 
@@ -349,7 +346,7 @@ def _simd_output_select() -> str:
     for j, o in enumerate(_outputs.OUTPUTS):
         kw = "if" if j == 0 else ("else" if j == len(_outputs.OUTPUTS) - 1 else "elif")
         lines.append(f"                {kw}:" if kw == "else" else f"                {kw} o == {j}:")
-        lines.append(f"                    for s in range(Sp): buf[j, b, s] = "
+        lines.append("                    for s in range(Sp): buf[j, b, s] = "
                      + _outputs.render(o.expression, "Y[{i}, s]", "K1[{i}, s]", "TC[s]"))
     return "\n".join(lines)
 
@@ -416,7 +413,7 @@ def generate_source(effect_classes) -> str:
 def generate_numpy(effect_classes):
     """The right-hand side on arrays (numpy backend, solve_ivp reference): f(y_list, ua, ub, load_pu, P, G,
     mode) -> (11 derivatives, (te, tc, f)); the same block, run in mathlib's numpy namespace."""
-    from .mathlib import NUMPY_NAMESPACE
+    from backlash_monitor.plant.mathlib import NUMPY_NAMESPACE
     terms = "\n\n".join(_effects.term_source(c) for c in effect_classes)
     src = (terms + "\n\n\ndef rhs(y, ua, ub, load_pu, P, G, mode=0):\n" + _globals("    ") + "\n"
            + _binds(effect_classes, "y[{i}]", "P[{i}]", "    ") + "\n" + _body(effect_classes, "    ") + "\n"
@@ -435,7 +432,7 @@ def cache_dir() -> Path:
 
 
 def _cache_key(source: str) -> str:
-    from . import mathlib
+    import backlash_monitor.plant.mathlib as mathlib
     h = hashlib.sha256()
     h.update(source.encode())
     h.update(Path(mathlib.__file__).read_bytes())

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .codegen import N_STATES, STATE_NAMES
+from .state import N_STATES, STATE_NAMES  # noqa: F401 (re-exported: the layout beside the S_* indices)
 
 (S_PSA, S_PSB, S_PRA, S_PRB, S_W1, S_DELTA, S_ALPHA1, S_ALPHA2, S_OMEGA2, S_Z, S_XDOT) = range(N_STATES)
 

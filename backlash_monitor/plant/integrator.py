@@ -25,12 +25,12 @@ import contextlib
 import numpy as np
 
 from ._numba import HAVE_NUMBA
-from .codegen import N_STATES, STATE_NAMES
+from .state import N_STATES, STATE_NAMES  # noqa: F401 (re-exported: the layout beside the S_* indices)
 
 S_PSA, S_PSB, S_PRA, S_PRB, S_W1, S_DELTA, S_ALPHA1, S_ALPHA2, S_OMEGA2, S_Z, S_XDOT = range(N_STATES)
 
 # recorded outputs, first axis of the output block: defined once in outputs.py
-from .outputs import N_OUTPUTS, OUTPUT_NAMES, numpy_outputs  # noqa: E402
+from .outputs import N_OUTPUTS, OUTPUT_NAMES, numpy_outputs  # noqa: E402, F401 (OUTPUT_NAMES re-exported)
 
 
 def _rk4_numpy(kernel, x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states):

@@ -18,6 +18,8 @@ from __future__ import annotations
 import ast
 from dataclasses import dataclass
 
+from backlash_monitor.plant.state import GLOBAL_NAMES, STATE_NAMES
+
 
 @dataclass(frozen=True)
 class Output:
@@ -44,7 +46,6 @@ N_OUTPUTS = len(OUTPUTS)
 
 def _variables() -> dict:
     """{variable name: its kind and index}: ("state", i), ("derivative", i), ("tc", 0), ("global", i)."""
-    from .codegen import GLOBAL_NAMES, STATE_NAMES
     v = {n: ("state", i) for i, n in enumerate(STATE_NAMES)}
     v.update({f"d_{n}": ("derivative", i) for i, n in enumerate(STATE_NAMES)})
     v["tc"] = ("tc", 0)
@@ -80,7 +81,6 @@ def numpy_outputs(y, d, tc, G) -> tuple:
     like STATE_NAMES, of arrays or floats), ``tc`` and the global vector ``G``."""
     global _NUMPY_FN
     if _NUMPY_FN is None:
-        from .codegen import GLOBAL_NAMES
         body = "\n".join(f"    {n} = G[{i}]" for i, n in enumerate(GLOBAL_NAMES))
         exprs = ", ".join(render(o.expression, "y[{i}]", "d[{i}]", "tc") for o in OUTPUTS)
         src = f"def outputs(y, d, tc, G):\n{body}\n    return ({exprs},)\n"

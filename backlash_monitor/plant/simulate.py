@@ -10,8 +10,9 @@ import numpy as np
 from .config import PlantConfig, load_plant_config
 from .disturbances import MotorLoadInput, motor_load_batch, pulse_load_pu
 from .drivetrain import absorber_coefficient
-from . import effects as _effects
-from .codegen import STATE_NAMES, global_vector, kernel_for
+import backlash_monitor.plant.effects as _effects
+from .codegen import global_vector, kernel_for
+from .state import STATE_NAMES
 from .integrator import OUTPUT_NAMES, rk4_advance, resolve_backend
 from .motor import supply_phase, supply_voltage
 from .scenarios import Scenario

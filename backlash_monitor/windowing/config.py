@@ -48,6 +48,10 @@ DEFAULTS: dict[str, Any] = {
         # |offset| [m/s^2] beyond which the windowing diagnostics say WARN (MEMS zero-g offset ~0.2 g)
         "plausible_abs_m_s2": 2.0,
     },
+    "sensors": {
+        # |a1|, |a2| [m/s^2] an accelerometer can report (its full scale); beyond: a corrupted sample
+        "accelerometer_range_m_s2": 1960.0,
+    },
 }
 
 DEFAULT_CONFIG_PATH = Path(__file__).resolve().parents[2] / "config" / "windowing.yaml"

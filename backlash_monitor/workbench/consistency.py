@@ -21,7 +21,6 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
-from . import spectral
 from .events import dc_block_deviations, denoise
 
 SUBSPACE_ENERGY = 0.99       # share of the candidates' reach the subspace keeps

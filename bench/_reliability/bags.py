@@ -268,7 +268,7 @@ def _try_bag(run, name, path, kind, work: Path, replay: bool) -> list[tuple[str,
         result = _analysis(prefix)
         if kind in ("damaged", "refused"):
             escape = "analysed without --recover / a refused input analysed"
-        elif kind == "counted" and not (result and result["discarded_chunks"]["count"]
+        elif kind == "counted" and not (result and sum(result["input_faults"].values())
                                         + len(result["discarded_windows"]) > 0
                                         or "discard" in out):
             escape = "bad chunks neither refused nor counted"

@@ -364,7 +364,7 @@ def _run_cli(argv, env, timeout=240):
         raise Escape("traceback", text.strip().splitlines()[-1])
     if proc.returncode not in (0, 2):
         raise Escape("crash", f"exit {proc.returncode}")
-    if proc.returncode == 2 and len([l for l in proc.stderr.splitlines() if l.strip()]) != 1:
+    if proc.returncode == 2 and len([line for line in proc.stderr.splitlines() if line.strip()]) != 1:
         raise Escape("crash", f"exit 2 without one clear line: {proc.stderr!r}")
     return proc
 

@@ -1,8 +1,8 @@
-"""The monitor on host A of the two-host run (fleet/netns.py): counts a drive's onset estimates
+"""The monitor on host A of the two-host run (nodes/netns.py): counts a drive's onset estimates
 coming back from host B and its windowing's onset windows (from /diagnostics; and those published
 before the sensor offset was known, which are not classified); prints one JSON line.
 
-    python -m backlash_monitor.fleet.two_host_monitor /line1/drive01 SECONDS
+    python -m backlash_monitor.nodes.two_host_monitor /line1/drive01 SECONDS
 """
 from __future__ import annotations
 

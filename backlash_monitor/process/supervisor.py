@@ -6,7 +6,7 @@ how (exit code or signal), and restarts it when the policy says so. The pipeline
 
 Children die with their parent, also when the parent is killed with SIGKILL (which no handler of
 the parent can see): each child is started with ``prctl(PR_SET_PDEATHSIG, SIGTERM)`` (Linux; see
-:mod:`backlash_monitor.parent_watch`) and with the parent's pid in its environment, from which a
+:mod:`backlash_monitor.process.parent_watch`) and with the parent's pid in its environment, from which a
 watchdog thread in a node process notices the parent's death on systems without the prctl.
 
 Policies (``--restart`` of the pipeline):
@@ -29,7 +29,7 @@ import subprocess
 import time
 from dataclasses import dataclass, field
 
-from backlash_monitor import parent_watch
+from backlash_monitor.process import parent_watch
 
 RESTART_POLICIES = ("no", "on-failure")
 NOT_RESTARTED = (2,)    # the nodes' exit code for a refused parameter (nodes/parameters.py)

@@ -179,7 +179,7 @@ def run_two_hosts(workdir: str, base_env: dict, domain_id: int, duration_s: floa
         procs = {}
         try:
             procs["monitor"] = subprocess.Popen(
-                a.command([sys.executable, "-m", "backlash_monitor.fleet.two_host_monitor",
+                a.command([sys.executable, "-m", "backlash_monitor.nodes.two_host_monitor",
                            namespace, str(timeout_s - 10.0)]), env=env_a,
                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
             procs["chain"] = subprocess.Popen(
