@@ -49,6 +49,8 @@ MAX_INDEX = 2 ** 53        # sample indices stay exact as float64 and in numpy i
 
 def is_index(value) -> bool:
     """A usable first_sample_index: an int (not bool), 0 <= index < 2**53."""
+    if type(value) is int:     # the common case, once per chunk: no isinstance chain
+        return 0 <= value < MAX_INDEX
     try:
         import numpy as np
         integer = isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))

@@ -131,3 +131,43 @@ def test_block_feeder_equals_one_by_one_on_irregular_streams(records, i):
 def test_integrated_angles_are_fed_one_by_one(records):
     stage = WindowingStage(angle_source="integrated")
     assert BlockFeeder(stage).block_samples == 0
+
+
+def with_bad_values(ranges, entries):
+    """Ranges whose sample values the stage must refuse, inside what would be one block: a NaN in
+    a1, an a2 sample beyond the accelerometer's range, an inf angle, a bad range behind the
+    stream (a repeat) and one right before a restart of the stream (index 0 again)."""
+    r = list(ranges)
+    at = sorted({e // CHUNK + 1 for e in entries})
+
+    def spoil(x, name, value, where=17):
+        arrays = {k: v.copy() for k, v in x.arrays.items()}
+        arrays[name][where] = value
+        return JoinedRange(x.first_sample_index, x.sample_period_s, arrays, x.stamp, x.frame_id)
+
+    out = list(r)
+    out[at[1]] = spoil(r[at[1]], "a1", np.nan)
+    out[at[3]] = spoil(r[at[3]], "a2", 1e300)
+    out[at[5]] = spoil(r[at[5]], "angle_difference", np.inf)
+    out[at[6]:at[6]] = [spoil(r[at[6] - 3], "a1", -1e5)]    # bad and behind the stream
+    half = len(out) // 2
+    return out[:half] + [spoil(out[half], "a1", np.nan)] + r[:half]   # then a restart at 0
+
+
+@pytest.mark.parametrize("i", range(len(WIDTHS)))
+def test_block_feeder_checks_values_per_block_with_the_same_result_as_one_by_one(records, i):
+    # BlockFeeder tests a block's values at once and re-checks range by range only a block that
+    # fails: windows, discards and every counted fault must equal the live stage's, range by range
+    regular = ranges_of(records[i], [CHUNK])
+    entries = [w.entry_sample_index for w, _ in one_by_one(regular)[0]]
+    ranges = with_bad_values(regular, entries)
+    ref, ref_d, ref_stage = one_by_one(ranges)
+    assert ref_stage.faults.counts["non_finite_samples"] >= 2
+    assert ref_stage.faults.counts["out_of_range_samples"] >= 1
+    assert ref_stage.faults.counts["stream_restart"] >= 1
+    for block in (5_000, 50_000, 65_536, 10**9):
+        got, got_d, stage = blocked(ranges, block)
+        assert key(got) == key(ref), block
+        assert disc_key(got_d) == disc_key(ref_d)
+        assert stage.faults.counts == ref_stage.faults.counts
+        assert (stage.lost_samples, stage.fed_samples) == (ref_stage.lost_samples, ref_stage.fed_samples)
