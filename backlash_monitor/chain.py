@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from backlash_monitor.denoise import DEFAULT_MODE, denoise_sym5, max_level
-from backlash_monitor.input_faults import FaultLog, is_index, is_period
+from backlash_monitor.windowing.faults import FaultLog, is_index, is_period
 from backlash_monitor.signals import SIGNAL_UNITS
 from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture, default_window_offset

@@ -7,7 +7,7 @@ import sys
 import pytest
 
 from backlash_monitor.bag import BagReader
-from backlash_monitor.output_files import OutputError, check_outputs, partial_path, staged_outputs
+from backlash_monitor.files.outputs import OutputError, check_outputs, partial_path, staged_outputs
 
 
 def _digest(path) -> str:

@@ -55,7 +55,7 @@ def stream_time_at(run, wall_s: float) -> float:
 
 # The windowing node re-synchronises on a stream whose index restarts at 0 with the input checks
 # of issue 9 (backlash_monitor/input_faults.py, branch inputs; with it merged this case passed).
-_RESYNC = importlib.util.find_spec("backlash_monitor.input_faults") is not None
+_RESYNC = importlib.util.find_spec("backlash_monitor.windowing.faults") is not None
 
 
 @pytest.mark.parametrize("node", ["windowing", "denoise", "classifier", pytest.param(

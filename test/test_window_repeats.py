@@ -1,7 +1,7 @@
 """A window delivered twice is recognised; a new run of the same drive is not a repeat."""
 import pytest
 
-from backlash_monitor.window_repeats import RepeatedWindows
+from backlash_monitor.classifier.repeats import RepeatedWindows
 
 
 def test_the_same_window_twice_is_a_repeat():

@@ -111,7 +111,7 @@ def run(args) -> int:
         return _error(f"--output {args.output!r}: directory {str(out_path.parent)!r} does not exist")
     if out_path.is_dir():
         return _error(f"--output {args.output!r} is a directory; allowed: a file path ending in .npz")
-    from backlash_monitor.output_files import OutputError, check_outputs   # never over existing data
+    from backlash_monitor.files.outputs import OutputError, check_outputs   # never over existing data
     try:
         check_outputs([] if args.no_npz else [_npz_path(out_path)], overwrite=args.overwrite,
                       option="--output")
@@ -200,7 +200,7 @@ def _npz_path(out_path: Path) -> Path:
 
 def _staged_savez(path: Path, **arrays) -> None:
     """np.savez into PATH.partial, renamed onto PATH when complete (never a half-written NPZ)."""
-    from backlash_monitor.output_files import staged_outputs
+    from backlash_monitor.files.outputs import staged_outputs
     with staged_outputs([path]) as (tmp,), open(tmp, "wb") as f:
         np.savez(f, **arrays)
 
@@ -215,7 +215,7 @@ def _write_bags(directory: Path, scenarios, data, sample_period_s: float, quiet:
     directory.mkdir(parents=True, exist_ok=True)
     paths = []
     n_total = data["a1"].shape[1]
-    from backlash_monitor.output_files import staged_outputs
+    from backlash_monitor.files.outputs import staged_outputs
     for i, scenario in enumerate(scenarios):
         path = directory / bag_name(scenario)
         with staged_outputs([path]) as (tmp,), SimulationBagWriter(tmp, true_width_m=scenario.width_m) as bag:

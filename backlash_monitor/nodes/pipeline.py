@@ -91,7 +91,7 @@ def validate(args) -> None:
         raise UsageError(f"--restart {args.restart} needs --processes (one process has no node "
                          "process to restart); allowed: --restart no, or add --processes")
     if args.record:
-        from backlash_monitor.output_files import OutputError, check_outputs
+        from backlash_monitor.files.outputs import OutputError, check_outputs
         try:
             check_outputs([args.record], overwrite=args.overwrite, option="--record")
         except OutputError as error:

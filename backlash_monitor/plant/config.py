@@ -17,7 +17,10 @@ from typing import Any, Mapping
 
 import yaml
 
-DEFAULT_CONFIG_PATH = Path(__file__).resolve().parents[2] / "config" / "plant.yaml"
+from backlash_monitor.files.config import config_file
+
+# the packaged config/plant.yaml (files.config: the source tree's, else the installed one)
+DEFAULT_CONFIG_PATH = config_file("plant.yaml")
 
 
 @dataclass(frozen=True)
