@@ -114,7 +114,7 @@ def test_users_effect_from_a_file_runs_like_the_same_built_in_term(tmp_path):
         noise=True).run(3000)
     assert np.array_equal(builtin.a1, plugin.a1) and np.array_equal(builtin.a2, plugin.a2)
     out = tmp_path / "d.npz"
-    assert main(["simulate", "--effects", str(EXAMPLE), "--set", "effects.wheel_drag=true",
+    assert main(["simulate", "--effects-file", str(EXAMPLE), "--set", "effects.wheel_drag=true",
                  "--set", "wheel_drag.coefficient_Nms2_per_rad2=1e-4", "--widths", "0.005", "--eta-k", "0.025",
                  "--n1", "0.89", "--duration", "0.01", "--no-noise", "--quiet", "--set", "simulation.run_in_s=0",
                  "-o", str(out)]) == 0

@@ -358,7 +358,7 @@ def _build_switches(data: Any) -> EffectSwitches:
         if key not in reg:
             raise ValueError(f"plant config: unknown key effects.{key}{_nearest('effects.' + str(key), ['effects.' + n for n in reg])}; "
                              "allowed: the registered effects (backlash_monitor.plant.effects.catalogue(); "
-                             "plug-ins with --effects FILE)")
+                             "plug-ins with --effects-file FILE)")
         if not isinstance(value, bool):
             raise ValueError(f"plant config: effects.{key} = {value!r} is not allowed; allowed: true or false")
     return EffectSwitches(dict(data))
