@@ -40,18 +40,18 @@ class ChunkListener(Node):
 
 
 def main(args=None):
-    rclpy.init(args=args)
-    node = ChunkListener()
-    try:
+    from backlash_monitor.nodes.runtime import run_node
+    built = []
+
+    def build():
+        built.append(ChunkListener())
+        return built[0]
+
+    def spin(node, executor):
         while rclpy.ok() and not node.done:
-            rclpy.spin_once(node, timeout_sec=0.1)
-    except KeyboardInterrupt:
-        pass
-    finally:
-        gaps = node.gaps
-        node.destroy_node()
-        rclpy.try_shutdown()
-    return 1 if gaps else 0
+            executor.spin_once(timeout_sec=0.1)
+    code = run_node(build, args=args, spin=spin)
+    return code or (1 if built and built[0].gaps else 0)
 
 
 if __name__ == "__main__":

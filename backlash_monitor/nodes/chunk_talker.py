@@ -55,21 +55,16 @@ class ChunkTalker(Node):
 
 
 def main(args=None):
-    rclpy.init(args=args)
-    node = ChunkTalker()
-    try:
+    from backlash_monitor.nodes.runtime import run_node
+
+    def spin(node, executor):
         while rclpy.ok() and not node.done:
-            rclpy.spin_once(node, timeout_sec=0.1)
+            executor.spin_once(timeout_sec=0.1)
         # Give the last message time to leave before the publisher disappears.
         for _ in range(5):
-            rclpy.spin_once(node, timeout_sec=0.05)
+            executor.spin_once(timeout_sec=0.05)
         node.get_logger().info(f"published {node.sent} chunks")
-    except KeyboardInterrupt:
-        pass
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
-    return 0
+    return run_node(ChunkTalker, args=args, spin=spin)
 
 
 if __name__ == "__main__":

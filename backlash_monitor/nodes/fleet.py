@@ -337,8 +337,8 @@ def run(args) -> int:
     from backlash_monitor.nodes.fast_dds import configure_fast_dds
     from backlash_monitor.nodes.lean_executor import make_executor
     from backlash_monitor.nodes.parameters import ParameterValueError
-    from backlash_monitor.nodes.runtime import (freeze_startup_objects, is_shutdown_error,
-                                               release_nodes)
+    from backlash_monitor.nodes.runtime import (begin_shutdown, freeze_startup_objects,
+                                               is_shutdown_error, release_nodes)
     configure_fast_dds()   # before rclpy.init; the drives' processes inherit it
     expected_chunks = int(round(args.duration / CHUNK_S))
     children: dict[str, subprocess.Popen] = {}
@@ -415,6 +415,7 @@ def run(args) -> int:
             raise
         print("fleet: interrupted", file=sys.stderr)
     finally:
+        begin_shutdown()   # from here a second Ctrl-C/SIGTERM is noted, not an interruption
         for child in children.values():
             if child.poll() is None:
                 child.send_signal(signal.SIGINT)

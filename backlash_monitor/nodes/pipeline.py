@@ -312,7 +312,7 @@ def run(args) -> int:
     from backlash_monitor_msgs.msg import BacklashEstimate
     from backlash_monitor.nodes.qos import ESTIMATE_QOS
     from backlash_monitor.nodes.parameters import ParameterValueError
-    from backlash_monitor.nodes.runtime import freeze_startup_objects, release_nodes
+    from backlash_monitor.nodes.runtime import begin_shutdown, freeze_startup_objects, release_nodes
 
     from backlash_monitor.estimation import DEFAULT_MODE, default_signals
     from backlash_monitor.nodes.fast_dds import configure_fast_dds
@@ -398,6 +398,7 @@ def run(args) -> int:
         print("pipeline: interrupted", file=sys.stderr)
         interrupted = True     # Ctrl-C reaches the node processes too: not their fault
     finally:
+        begin_shutdown()   # from here a second Ctrl-C/SIGTERM is noted, not an interruption
         if supervisor is not None:
             for fault in ([] if interrupted else supervisor.poll(restart=False)):
                 view.on_fault(fault.describe())     # one that ended as the run did

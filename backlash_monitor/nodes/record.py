@@ -35,7 +35,7 @@ from backlash_monitor.bag.writer import INFINITE
 from backlash_monitor.files.outputs import partial_path
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
-from backlash_monitor.nodes.runtime import run_node
+from backlash_monitor.nodes.runtime import begin_shutdown, run_node
 
 DEFAULT_EXCLUDE = r"^/(rosout|parameter_events)$"
 
@@ -229,6 +229,7 @@ def _spin(node: RecordNode, executor) -> None:
     except SystemExit:
         pass
     finally:
+        begin_shutdown()   # a second SIGINT/SIGTERM is noted, it does not interrupt the close
         node.close()
 
 

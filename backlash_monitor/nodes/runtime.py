@@ -6,10 +6,14 @@ imported by every node module) so that neither that module nor the executor impo
 from __future__ import annotations
 
 import gc
+import os
+import signal
 import sys
+import threading
 
 import rclpy
 import rclpy.executors
+import rclpy.signals
 
 from backlash_monitor.nodes.fast_dds import configure_fast_dds
 from backlash_monitor.nodes.lean_executor import make_executor
@@ -54,19 +58,57 @@ def command_main(prog: str, description: str, add_arguments, run, argv=None) -> 
         return 2
 
 
+SHUTDOWN_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+def _note_shutdown_signal(signum, frame) -> None:
+    """SIGINT/SIGTERM while the process shuts down: one line on stderr, the clean shutdown goes on."""
+    os.write(2, f"[WARN] {signal.Signals(signum).name} while shutting down: the clean shutdown "
+                "(files closed, nodes destroyed) goes on\n".encode())
+
+
+def begin_shutdown() -> None:
+    """Call first when a process's ROS life ends (after Ctrl-C/SIGTERM or not; idempotent): stops
+    rclpy's signal thread and keeps SIGINT/SIGTERM from interrupting the tidy-up.
+
+    rclpy (Jazzy) handles SIGINT/SIGTERM in a thread of its own: the C signal handler wakes it, and
+    it triggers the guard condition of every executor (a list it reads without a lock) and shuts
+    the contexts down. ``Executor.shutdown()`` destroys that guard condition and frees the list.
+    When the thread is preempted while it walks the list -- after it woke the executor, whose
+    thread then closes files and destroys the executor -- it resumes on freed memory and the
+    process dies with SIGSEGV after a clean close (how often: docs/graph.md "Shutdown").
+    ``rclpy.signals.uninstall_signal_handlers()`` joins that thread: after it returns nothing
+    but this thread touches the guard conditions. Python handlers are put in first, so that a
+    second signal during the tidy-up neither kills the process (SIGTERM's default action once
+    rclpy's handler is gone) nor raises KeyboardInterrupt in the middle of a file's close: it is
+    noted (one line on stderr) and the shutdown goes on.
+    """
+    if threading.current_thread() is threading.main_thread():
+        for signum in SHUTDOWN_SIGNALS:
+            if signal.getsignal(signum) is not _note_shutdown_signal:
+                signal.signal(signum, _note_shutdown_signal)
+    rclpy.signals.uninstall_signal_handlers()
+
+
 def release_nodes(executor, nodes) -> None:
-    """The end of a process's ROS life: the executor stopped, every node destroyed, rclpy shut down
-    (safe after a signal already did it)."""
+    """The end of a process's ROS life: :func:`begin_shutdown`, the executor stopped, every node
+    destroyed (a node's destroy_node closes its files), rclpy shut down (safe after a signal
+    already did it). Every step runs even if one before failed; the first unexpected error is
+    raised at the end."""
+    begin_shutdown()
     steps = ([executor.shutdown] if executor is not None else []) \
         + [node.destroy_node for node in nodes] + [rclpy.try_shutdown]
+    error_seen = None
     for step in steps:
         try:
             step()
         except KeyboardInterrupt:
-            pass            # a second Ctrl-C while it tidies up: go on tidying
+            pass            # not with begin_shutdown's handler in place; should one come: go on
         except Exception as error:
-            if not is_shutdown_error(error):
-                raise
+            if not is_shutdown_error(error) and error_seen is None:
+                error_seen = error
+    if error_seen is not None:
+        raise error_seen
 
 
 def run_node(node_factory, args=None, spin=None) -> int:
