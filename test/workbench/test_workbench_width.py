@@ -114,3 +114,21 @@ def test_a_width_within_two_of_its_uncertainties_of_the_nominal_is_not_measured_
     assert qualifies(_width_fit(0.5e-3, 0.11e-3), width)
     assert not qualifies(_width_fit(-0.2e-3, 0.11e-3), width)
     assert qualifies(_width_fit(-0.3e-3, 0.11e-3), width)
+
+
+def test_a_weakly_evidenced_effect_within_two_of_its_uncertainties_does_not_qualify():
+    """Below decisive evidence (delta_ic -10) a single effect must also stand out from its own uncertainty: a clean
+    foreign drive took a shaft compliance of 2.3e-5 +- 2.3e-5 rad/(N*m) at delta_ic -3.9; with decisive evidence the IC
+    alone decides (a nonlinear parameter's jackknife can be far off)."""
+    from backlash_monitor.workbench import plant_adapter
+    from backlash_monitor.workbench.decisions import qualifies
+    from backlash_monitor.workbench.fitting import FitResult
+    shaft = next(c for c in plant_adapter.catalogue(load_model(None)) if c.name == "shaft_compliance")
+
+    def fit(value, unc, delta_ic):
+        return FitResult("shaft_compliance", ["compliance_rad_per_Nm"], ["rad/(N*m)"], np.array([value]),
+                         np.array([unc]), np.zeros(1), (np.zeros(1), np.array([1e-3])), 0.9, delta_ic, 0.0,
+                         np.zeros((2, 3)), 0.9, 1)
+    assert not qualifies(fit(2.3e-5, 2.3e-5, -3.9), shaft)
+    assert qualifies(fit(2.3e-5, 0.5e-5, -3.9), shaft)
+    assert qualifies(fit(2.3e-5, 2.3e-5, -40.0), shaft)
