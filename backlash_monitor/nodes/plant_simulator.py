@@ -40,7 +40,7 @@ PARAMETERS = (
     ParameterSpec("plant_set", "", "plant config overrides 'SECTION.KEY=VALUE' separated by ';', as simulate's "
                   "--set (e.g. 'effects.wheel_coulomb_friction=true;wheel_coulomb_friction.torque_Nm=1.5')"),
     ParameterSpec("effects_files", "", "Python files with your own Effect classes, separated by ';' "
-                  "(docs/effects.md; as simulate's --effects)"),
+                  "(docs/effects.md; as --effects-file of simulate and pipeline)"),
     ParameterSpec("chunk_samples", 1000, "samples per chunk (1000 = 20 ms at 50 kHz)", 64, 50000),
     ParameterSpec("rate_factor", 1.0, "simulated seconds per wall second (1 = real time; "
                   "0 = as fast as the simulation runs)", 0.0, 1000.0),
