@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from backlash_monitor.denoise import DEFAULT_MODE, denoise_sym5, max_level
-from backlash_monitor.input_faults import FaultLog, is_index, is_period
+from backlash_monitor.windowing.faults import FaultLog, is_index, is_period
 from backlash_monitor.signals import SIGNAL_UNITS
 from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture, default_window_offset
@@ -191,8 +191,10 @@ class WindowingStage:
         self._sample_checks = tuple((s, limit if SIGNAL_UNITS.get(s) == "m/s^2" else None)
                                     for s in self.input_signals)
 
-    def check(self, joined: JoinedRange) -> tuple[str | None, int]:
-        """(reason the range is bad or None, its length or -1)."""
+    def check(self, joined: JoinedRange, samples: bool = True) -> tuple[str | None, int]:
+        """(reason the range is bad or None, its length or -1). ``samples=False``: the range's
+        place and shape only, not its sample values (BlockFeeder tests those per block with
+        :meth:`samples_good` and checks range by range only a block that fails it)."""
         if not is_index(joined.first_sample_index):
             return "bad_index", -1
         if getattr(joined, "period_mismatch", False):
@@ -208,6 +210,8 @@ class WindowingStage:
             return "length_mismatch", max(np.asarray(joined.arrays[s]).size for s in self.input_signals)
         if not is_period(joined.sample_period_s):
             return "bad_sample_period", n
+        if not samples:
+            return None, n
         out_of_range = False
         arrays = joined.arrays
         for s, limit in self._sample_checks:
@@ -224,6 +228,20 @@ class WindowingStage:
         if out_of_range:
             return "out_of_range_samples", n
         return None, n
+
+    def samples_good(self, arrays) -> bool:
+        """True when every input signal in ``arrays`` is finite and every accelerometer sample lies
+        within ``accelerometer_range_m_s2``: what :meth:`check` finds about the values of each
+        range these arrays join. False means at least one range of them is bad (or the test could
+        not tell): check them range by range."""
+        for s, limit in self._sample_checks:
+            x = arrays[s]
+            if limit is None:
+                if not math.isfinite(x.sum()):    # NaN or inf gives a non-finite sum (so does overflow)
+                    return False
+            elif not (-limit <= x.min() and x.max() <= limit):   # NaN fails both comparisons
+                return False
+        return True
 
     def feed(self, joined: JoinedRange, checked: bool = False):
         """(windows, discarded) completed by this range. ``checked``: :meth:`check` found the range
@@ -352,8 +370,15 @@ class BlockFeeder:
         self._n = 0
 
     def add(self, joined: JoinedRange):
+        """(list of (window, range), discarded) completed by ``joined``. The sample values of a
+        block are tested once, when the block is fed (:meth:`WindowingStage.samples_good`); a block
+        that fails it is added again range by range with the full check, as if its bad range had
+        been seen when it came: the same windows, discards and faults."""
+        return self._add(joined, exact=False)
+
+    def _add(self, joined: JoinedRange, exact: bool):
         windows, discarded = [], []
-        reason, n = self.stage.check(joined)
+        reason, n = self.stage.check(joined, samples=exact)
         period = joined.sample_period_s
         regular = self.block_samples > 0 and reason is None
         if self._pending:
@@ -361,17 +386,18 @@ class BlockFeeder:
             if not (regular and joined.first_sample_index == last.first_sample_index + self._last_n
                     and period == last.sample_period_s
                     and joined.arrays.keys() == last.arrays.keys()):
-                windows, discarded = self.flush()
+                windows, discarded = self._flush(exact, whole=True)
         if regular and not self._pending and not self._accepts(joined):
             regular = False     # dropped one by one (behind the stream): followers must not merge
         if not regular:
-            w, d = self._feed([joined], checked=reason is None)
+            # its values are known good only after the full check (exact)
+            w, d = self._feed([joined], checked=exact and reason is None)
             return windows + w, discarded + d
         self._pending.append(joined)
         self._last_n = n
         self._n += n
         if self._n >= self.block_samples:
-            w, d = self.flush()
+            w, d = self._flush(exact, whole=False)
             windows += w
             discarded += d
         return windows, discarded
@@ -382,17 +408,41 @@ class BlockFeeder:
         return nxt is None or joined.first_sample_index >= nxt
 
     def flush(self):
-        ranges, self._pending, self._n = self._pending, [], 0
-        return self._feed(ranges, checked=True) if ranges else ([], [])
+        return self._flush(exact=False, whole=True)
 
-    def _feed(self, ranges: list[JoinedRange], checked: bool):
+    def _flush(self, exact: bool, whole: bool):
+        """Feed the pending block. Not ``exact``: its values are tested first; when they fail,
+        its ranges are added again with the full check (range by range, as they came), and the
+        ranges left pending after that are fed too when ``whole``."""
+        ranges, self._pending, self._n = self._pending, [], 0
+        if not ranges:
+            return [], []
+        block = self._join(ranges)
+        if exact or self.stage.samples_good(block.arrays):
+            return self._feed(ranges, checked=True, block=block)
+        windows, discarded = [], []
+        for r in ranges:
+            w, d = self._add(r, exact=True)
+            windows += w
+            discarded += d
+        if whole:
+            w, d = self._flush(exact=True, whole=True)
+            windows += w
+            discarded += d
+        return windows, discarded
+
+    @staticmethod
+    def _join(ranges: list[JoinedRange]) -> JoinedRange:
         if len(ranges) == 1:
-            block = ranges[0]
-        else:
-            first = ranges[0]
-            block = JoinedRange(first.first_sample_index, first.sample_period_s,
-                                {k: np.concatenate([r.arrays[k] for r in ranges])
-                                 for k in first.arrays}, first.stamp, first.frame_id)
+            return ranges[0]
+        first = ranges[0]
+        return JoinedRange(first.first_sample_index, first.sample_period_s,
+                           {k: np.concatenate([r.arrays[k] for r in ranges]) for k in first.arrays},
+                           first.stamp, first.frame_id)
+
+    def _feed(self, ranges: list[JoinedRange], checked: bool, block: JoinedRange | None = None):
+        if block is None:
+            block = self._join(ranges)
         windows, discarded = self.stage.feed(block, checked=checked)
         if len(ranges) == 1:
             return [(w, block) for w in windows], discarded

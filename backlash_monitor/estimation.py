@@ -39,7 +39,7 @@ from backlash_monitor.classifier.fusion import WidthFusion, default_fusion_rule
 from backlash_monitor.classifier.patterns import PatternLibrary
 from backlash_monitor.classifier.shape import (SHAPE, SHAPE_SIGNALS, ShapeModel, _expand,
                                               a1_features, a2_features)
-from backlash_monitor.input_faults import FaultLog, is_period
+from backlash_monitor.windowing.faults import FaultLog, is_period
 from backlash_monitor.windowing.offset import offset_removal_label, remove_offset
 
 ENTRY_KINDS = ("onset", "return")

@@ -2,10 +2,16 @@
 import itertools
 import os
 import pathlib
+import sys
 
 import pytest
 
 REPO_ROOT = pathlib.Path(__file__).resolve().parent.parent
+# The tests live in folders mirroring the packages (test/bag/, test/plant/, ...); their shared helpers
+# (bag_helpers, fuzz_cores, mcap_conformance, ...) stay here in test/, importable from every folder.
+_TEST_DIR = str(pathlib.Path(__file__).resolve().parent)
+if _TEST_DIR not in sys.path:
+    sys.path.insert(0, _TEST_DIR)
 
 # Set before any test imports rclpy: loopback discovery and a domain of this pytest run's own.
 os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"

@@ -26,7 +26,7 @@ import numpy as np
 from hypothesis import strategies as st
 
 from backlash_monitor.chain import ChunkJoiner, WindowingStage, denoise_checked
-from backlash_monitor.input_faults import REASONS
+from backlash_monitor.windowing.faults import REASONS
 
 INPUTS: Counter = Counter()
 

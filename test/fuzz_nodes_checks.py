@@ -1,4 +1,4 @@
-"""Fuzz properties of the nodes' message handling, shared by test/test_fuzz_nodes.py and
+"""Fuzz properties of the nodes' message handling, shared by test/nodes/test_fuzz_nodes.py and
 bench/reliability.py: the windowing, denoise and classifier callbacks are called with generated
 messages (no DDS traffic: the publishers are replaced by lists). No exception escapes a
 callback; what a node publishes is valid; a bad input never turns the status to ERROR; after a

@@ -6,7 +6,7 @@
 TREE is a repository's root (e.g. this worktree and a `git archive` of an older commit); its code
 is what runs. Scenarios, N runs per tree:
 
-- ``record``: test/test_bag_record_replay.py::test_signal_closes_the_bag_properly:
+- ``record``: test/bag/test_bag_record_replay.py::test_signal_closes_the_bag_properly:
   ``python -m backlash_monitor.nodes.record`` started in TREE, 1 s of the five plant topics at x2
   from bench/bags.py, 0.3 s, then the signal; also counts the bags that are complete with every
   published message;

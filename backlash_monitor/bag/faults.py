@@ -1,5 +1,5 @@
 """Damage injected into MCAP files, as disks, copies and killed writers damage them: used by the
-tests (test/test_bag_damage.py) and the reliability bench (bench/_reliability/bags.py).
+tests (test/bag/test_bag_damage.py) and the reliability bench (bench/_reliability/bags.py).
 
 Each function takes the file's bytes (and the layout of the intact file, `chunk_layout`) and returns
 damaged bytes; none changes the file it was read from.

@@ -14,7 +14,7 @@ For every tested window the network starts afresh from the pattern weights (W1 f
 is processed for ``epochs`` epochs on that one window; W4 (eq. 28) is the result. Patterns W5 are
 the W4 of the six pattern windows (eta_k = 0.025, same n1); B(i) = sum_j |W6(j) - W5(i, j)| (eq. 31).
 
-Consequence measured in ``docs/classifier.md`` and proved in ``test/test_classifier_mean_only.py``:
+Consequence measured in ``docs/classifier.md`` and proved in ``test/classifier/test_classifier_mean_only.py``:
 every E1(i) is a function of (m2, M3) times the common factor 1/sum(x^2) (paper) resp. of
 (m2 / rms, M3) (corrected), so the winner sequence, and with it W2, W4 and B, depend on the window
 only through its mean m2 (paper) -- ``paper_w4_from_mean`` computes them from m2 alone.

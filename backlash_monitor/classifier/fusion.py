@@ -138,9 +138,13 @@ class WidthFusion:
 
 def fused_continuous_width(continuous_m) -> float:
     """Median [m] of the finite continuous widths of the fused events; NaN when there is none."""
-    c = np.asarray(continuous_m, dtype=float)
-    c = c[np.isfinite(c)]
-    return float(np.median(c)) if c.size else math.nan
+    # np.median's value (the middle one, or the mean of the two middle ones), without its
+    # overhead: it is taken once per estimate of a few dozen events
+    c = sorted(x for x in map(float, continuous_m) if math.isfinite(x))
+    n = len(c)
+    if not n:
+        return math.nan
+    return c[n // 2] if n % 2 else (c[n // 2 - 1] + c[n // 2]) / 2
 
 
 def fused_indices(b_sequence, window_events: int = DEFAULT_WINDOW_EVENTS, rule: str = "sum_normalised_b",

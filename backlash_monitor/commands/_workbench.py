@@ -54,9 +54,9 @@ def add_overwrite_argument(parser) -> None:
 
 def check_outputs(args, outputs, option: str) -> None:
     """Before any work: no output may be one of the command's inputs (the measurement, the model
-    file), nor an existing file unless --overwrite (backlash_monitor.output_files)."""
+    file), nor an existing file unless --overwrite (backlash_monitor.files.outputs)."""
     from backlash_monitor.commands import UsageError
-    from backlash_monitor.output_files import OutputError, check_outputs as check
+    from backlash_monitor.files.outputs import OutputError, check_outputs as check
     inputs = [p for p in (getattr(args, "measurement", None), args.model, getattr(args, "source", None)) if p]
     try:
         check(outputs, inputs=inputs, overwrite=args.overwrite, option=option)
@@ -66,7 +66,7 @@ def check_outputs(args, outputs, option: str) -> None:
 
 def write_text_staged(path, text: str) -> None:
     """Write ``text`` to ``path`` under its .partial name, renamed once complete."""
-    from backlash_monitor.output_files import staged_outputs
+    from backlash_monitor.files.outputs import staged_outputs
     with staged_outputs([path]) as (tmp,):
         tmp.write_text(text)
 

@@ -9,6 +9,7 @@ top. docs/workbench.md has the method and the decision rules.
 """
 from __future__ import annotations
 
+import argparse
 import json
 from pathlib import Path
 
@@ -24,8 +25,12 @@ def add_arguments(parser) -> None:
                         "(default: diagnosis.json in --report, or ./diagnosis.json)")
     parser.add_argument("--report", default=None, metavar="DIR",
                         help="write the HTML report (index.html) and its PNGs into DIR")
-    parser.add_argument("--effects", default=None, metavar="NAME[,NAME...]",
-                        help="fit only these catalogue effects (default: the whole catalogue)")
+    parser.add_argument("--candidates", default=None, metavar="NAME[,NAME...]",
+                        help="fit only these catalogue effects as candidates (default: the whole catalogue; "
+                             "your own effects from a file: --effects-file)")
+    from backlash_monitor.errors import DeprecatedSpelling
+    parser.add_argument("--effects", dest="candidates", action=DeprecatedSpelling, new="--candidates",
+                        metavar="NAME[,NAME...]", help=argparse.SUPPRESS)
     parser.add_argument("--no-second", action="store_true", help="do not try a second effect on top")
     parser.add_argument("--no-record", action="store_true", help="do not add this check to the model's history")
     from backlash_monitor.commands._workbench import add_overwrite_argument
@@ -42,13 +47,17 @@ def run(args) -> int:
     from backlash_monitor.commands._workbench import model_overrides
     from backlash_monitor.workbench.diagnose import diagnose
     from backlash_monitor.workbench.model import record_check
+    effects = [e.strip() for e in args.candidates.split(",") if e.strip()] if args.candidates else None
+    files = [e for e in effects or [] if e.endswith(".py")]
+    if files:
+        raise UsageError(f"--candidates {','.join(files)}: names catalogue effects; a Python file of "
+                         f"your own effects is given with --effects-file {files[0]}")
     json_path = Path(args.json) if args.json else (Path(args.report) / "diagnosis.json" if args.report
                                                    else Path("diagnosis.json"))
     check_outputs(args, [json_path], "--json")
     if args.report:
         check_outputs(args, [Path(args.report) / f for f in REPORT_FILES], "--report")
     model, meas = load(args)
-    effects = [e.strip() for e in args.effects.split(",") if e.strip()] if args.effects else None
     n = len(effects) if effects else len(plant_adapter.catalogue(model))
     with tqdm(total=n, desc="screening candidate effects", unit="effect", disable=None) as bar:
         try:

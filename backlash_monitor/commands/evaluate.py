@@ -96,7 +96,7 @@ def run(args) -> int:
         if clash:
             raise UsageError(f"--seeds {','.join(map(str, args.seeds))}: seed(s) {','.join(map(str, clash))} trained "
                              f"the {trig} library {path}; evaluate on other seeds")
-    from backlash_monitor.output_files import OutputError, check_outputs, staged_outputs
+    from backlash_monitor.files.outputs import OutputError, check_outputs, staged_outputs
     out_dir = Path(args.out_dir)
     outputs = [out_dir / "evaluation.json"] + ([] if args.no_plots else [
         out_dir / f"{kind}_{trig}.png" for trig in libs

@@ -54,9 +54,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="override one config value, e.g. --set load.mass_kg=12 or --set effects.spring=false; "
                              "switch on and parameterise a catalogue effect: --set effects.wheel_coulomb_friction=true "
                              "--set wheel_coulomb_friction.torque_Nm=1.5 (docs/effects.md lists them); repeatable")
-    parser.add_argument("--effects", action="append", default=[], metavar="FILE.py",
+    parser.add_argument("--effects-file", action="append", default=[], metavar="FILE.py",
                         help="a Python file defining your own Effect classes (docs/effects.md); they are registered "
                              "and can then be switched on with --set effects.NAME=true; repeatable")
+    from backlash_monitor.errors import DeprecatedSpelling
+    parser.add_argument("--effects", dest="effects_file", action=DeprecatedSpelling, new="--effects-file",
+                        append=True, metavar="FILE.py", help=argparse.SUPPRESS)
     parser.add_argument("--noise-seed", type=int, default=None, metavar="INT",
                         help="common random numbers: every scenario on the same noise realisation drawn from this "
                              "seed (default: each scenario's own noise from its seed, width, eta_k and n1)")
@@ -90,7 +93,7 @@ def run(args) -> int:
     from backlash_monitor.plant.analysis import impact_times_ms
 
     try:
-        for path in args.effects:
+        for path in args.effects_file:
             load_effects_file(path)
         if args.noise_seed is not None and args.noise_seed < 0:
             raise ValueError(f"--noise-seed {args.noise_seed}: allowed: an integer >= 0")
@@ -111,7 +114,7 @@ def run(args) -> int:
         return _error(f"--output {args.output!r}: directory {str(out_path.parent)!r} does not exist")
     if out_path.is_dir():
         return _error(f"--output {args.output!r} is a directory; allowed: a file path ending in .npz")
-    from backlash_monitor.output_files import OutputError, check_outputs   # never over existing data
+    from backlash_monitor.files.outputs import OutputError, check_outputs   # never over existing data
     try:
         check_outputs([] if args.no_npz else [_npz_path(out_path)], overwrite=args.overwrite,
                       option="--output")
@@ -200,7 +203,7 @@ def _npz_path(out_path: Path) -> Path:
 
 def _staged_savez(path: Path, **arrays) -> None:
     """np.savez into PATH.partial, renamed onto PATH when complete (never a half-written NPZ)."""
-    from backlash_monitor.output_files import staged_outputs
+    from backlash_monitor.files.outputs import staged_outputs
     with staged_outputs([path]) as (tmp,), open(tmp, "wb") as f:
         np.savez(f, **arrays)
 
@@ -215,7 +218,7 @@ def _write_bags(directory: Path, scenarios, data, sample_period_s: float, quiet:
     directory.mkdir(parents=True, exist_ok=True)
     paths = []
     n_total = data["a1"].shape[1]
-    from backlash_monitor.output_files import staged_outputs
+    from backlash_monitor.files.outputs import staged_outputs
     for i, scenario in enumerate(scenarios):
         path = directory / bag_name(scenario)
         with staged_outputs([path]) as (tmp,), SimulationBagWriter(tmp, true_width_m=scenario.width_m) as bag:

@@ -97,7 +97,7 @@ def _check(args) -> None:
     if args.out is not None and not str(args.out).endswith(".npz"):
         raise UsageError(f"--out {args.out}: the library is an .npz file; give a name ending in .npz")
     if args.out is not None:   # before the minutes of training, not after
-        from backlash_monitor.output_files import OutputError, check_outputs
+        from backlash_monitor.files.outputs import OutputError, check_outputs
         from backlash_monitor.workbench.reference import reference_path_for_library
         outs = [args.out] + ([str(reference_path_for_library(args.out))] if getattr(args, "model", None) else [])
         try:

@@ -64,11 +64,9 @@ def load_rule(path: str | None = None) -> TrendRule:
 
 
 def _default_path() -> str:
-    here = os.path.join(os.path.dirname(__file__), "..", "..", "config", "trend.yaml")
-    if os.path.isfile(here):
-        return os.path.normpath(here)
-    from ament_index_python.packages import get_package_share_directory
-    return os.path.join(get_package_share_directory("backlash_monitor"), "config", "trend.yaml")
+    """The packaged config/trend.yaml (files.config: the source tree's, else the installed one)."""
+    from backlash_monitor.files.config import config_file
+    return str(config_file("trend.yaml"))
 
 
 @dataclass(frozen=True)

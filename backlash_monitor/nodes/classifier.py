@@ -30,14 +30,14 @@ from rclpy.node import Node
 
 from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_warning, load_library
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator
-from backlash_monitor.input_faults import FaultLog, InputHealth
+from backlash_monitor.windowing.faults import FaultLog, InputHealth
 from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
 from backlash_monitor.nodes.qos import ESTIMATE_QOS, WINDOW_QOS
 from backlash_monitor.nodes.runtime import run_node
-from backlash_monitor.window_repeats import RepeatedWindows
+from backlash_monitor.classifier.repeats import RepeatedWindows
 from backlash_monitor.windowing import default_window_offset
 from backlash_monitor_msgs.msg import BacklashEstimate, BacklashWindow
 

@@ -17,7 +17,7 @@ import time
 from rclpy.node import Node
 
 from backlash_monitor.chain import denoise_checked, denoising_label
-from backlash_monitor.input_faults import FaultLog, InputHealth
+from backlash_monitor.windowing.faults import FaultLog, InputHealth
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.denoise import DEFAULT_MODE
 from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array

@@ -31,7 +31,7 @@ import time
 from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 
-from backlash_monitor.input_faults import FaultLog, InputHealth
+from backlash_monitor.windowing.faults import FaultLog, InputHealth
 from backlash_monitor.nodes.conversions import to_float64_array
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.nodes.parameters import ParameterSpec, ParameterValueError, declare_and_validate

@@ -21,7 +21,7 @@ import importlib
 import sys
 from pathlib import Path
 
-from backlash_monitor.config_errors import nearest, yaml_error_line
+from backlash_monitor.files.config import nearest, yaml_error_line
 from backlash_monitor.nodes.parameters import ParameterValueError
 
 # node name -> module whose PARAMETERS (ParameterSpec tuple) the node declares

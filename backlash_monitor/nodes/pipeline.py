@@ -69,7 +69,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--set", dest="plant_set", action="append", default=[], metavar="SECTION.KEY=VALUE",
                         help="plant config override as in `simulate --set`, e.g. --set effects.wheel_coulomb_friction=true "
                              "--set wheel_coulomb_friction.torque_Nm=1.5 (docs/effects.md); repeatable")
-    parser.add_argument("--effects", dest="effects_files", action="append", default=[], metavar="FILE.py",
+    parser.add_argument("--effects-file", dest="effects_files", action="append", default=[], metavar="FILE.py",
                         help="a Python file with your own Effect classes for the plant (docs/effects.md); repeatable")
     parser.add_argument("--set-at", dest="set_at", action="append", nargs="+", default=[],
                         metavar=("TIME", "SECTION.KEY=VALUE"),
@@ -89,6 +89,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "there once, ~30 s)")
     parser.add_argument("--snapshot-dir", default=".", metavar="DIR",
                         help="with --watch: where the snapshot bags go")
+    from backlash_monitor.errors import DeprecatedSpelling
+    parser.add_argument("--effects", dest="effects_files", action=DeprecatedSpelling, new="--effects-file",
+                        append=True, metavar="FILE.py", help=argparse.SUPPRESS)
 
 
 def validate(args) -> None:
@@ -114,7 +117,7 @@ def validate(args) -> None:
     if args.library and not os.path.isfile(args.library):
         raise UsageError(f"--library {args.library}: no such file; give a pattern library (train --out LIB.npz)")
     if args.record:
-        from backlash_monitor.output_files import OutputError, check_outputs
+        from backlash_monitor.files.outputs import OutputError, check_outputs
         try:
             check_outputs([args.record], overwrite=args.overwrite, option="--record")
         except OutputError as error:

@@ -44,7 +44,7 @@ PARAMETERS = (
                   "second T_S on, the plant runs with these overrides too (an effect switched on then is on from "
                   "the start at its neutral default); [''] = none"),
     ParameterSpec("effects_files", "", "Python files with your own Effect classes, separated by ';' "
-                  "(docs/effects.md; as simulate's --effects)"),
+                  "(docs/effects.md; as --effects-file of simulate and pipeline)"),
     ParameterSpec("chunk_samples", 1000, "samples per chunk (1000 = 20 ms at 50 kHz)", 64, 50000),
     ParameterSpec("rate_factor", 1.0, "simulated seconds per wall second (1 = real time; "
                   "0 = as fast as the simulation runs)", 0.0, 1000.0),

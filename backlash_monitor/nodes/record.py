@@ -32,7 +32,7 @@ from rclpy.qos import (DurabilityPolicy, HistoryPolicy, LivelinessPolicy, QoSPro
 from backlash_monitor.bag import BagWriter
 from backlash_monitor.bag.errors import BagError
 from backlash_monitor.bag.writer import INFINITE
-from backlash_monitor.output_files import partial_path
+from backlash_monitor.files.outputs import partial_path
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
 from backlash_monitor.nodes.runtime import begin_shutdown, run_node

@@ -35,7 +35,7 @@ from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueErro
 from backlash_monitor.nodes.qos import LATCHED, WINDOW_QOS, chunk_qos
 from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor.chain import ChunkJoiner, WindowingStage
-from backlash_monitor.input_faults import FaultLog, InputHealth, is_period
+from backlash_monitor.windowing.faults import FaultLog, InputHealth, is_period
 from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing.offset import implausible_offsets
 from backlash_monitor_msgs.msg import BacklashWindow, SignalChunk

@@ -154,7 +154,7 @@ class SourceCheck:
         return self._check(m, name, key)
 
     def _check(self, m, name, key) -> bool:
-        from backlash_monitor.input_faults import is_period
+        from backlash_monitor.windowing.faults import is_period
         period = m.sample_period_s
         wrong_rate = is_period(period) and not math.isclose(float(period), self.period_s, rel_tol=1e-6)
         if wrong_rate and not self.accepted:
@@ -195,7 +195,7 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
     from backlash_monitor.chain import BlockFeeder, ChunkJoiner, WindowingStage, denoise_pairs
     from backlash_monitor.classifier.patterns import PatternLibraryError
     from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator
-    from backlash_monitor.output_files import OutputError, check_outputs, staged_outputs
+    from backlash_monitor.files.outputs import OutputError, check_outputs, staged_outputs
     from backlash_monitor.process.memory import reuse_freed_memory
 
     options.check()

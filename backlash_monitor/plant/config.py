@@ -17,7 +17,10 @@ from typing import Any, Mapping
 
 import yaml
 
-DEFAULT_CONFIG_PATH = Path(__file__).resolve().parents[2] / "config" / "plant.yaml"
+from backlash_monitor.files.config import config_file
+
+# the packaged config/plant.yaml (files.config: the source tree's, else the installed one)
+DEFAULT_CONFIG_PATH = config_file("plant.yaml")
 
 
 @dataclass(frozen=True)
@@ -355,7 +358,7 @@ def _build_switches(data: Any) -> EffectSwitches:
         if key not in reg:
             raise ValueError(f"plant config: unknown key effects.{key}{_nearest('effects.' + str(key), ['effects.' + n for n in reg])}; "
                              "allowed: the registered effects (backlash_monitor.plant.effects.catalogue(); "
-                             "plug-ins with --effects FILE)")
+                             "plug-ins with --effects-file FILE)")
         if not isinstance(value, bool):
             raise ValueError(f"plant config: effects.{key} = {value!r} is not allowed; allowed: true or false")
     return EffectSwitches(dict(data))

@@ -16,7 +16,7 @@ one-line physical description, and, depending on its kind:
 - ``kind = "sensor"``: a stage on the published a1/a2 (``apply``), the same in batch and live
   (both go through :meth:`PlantSimulator.run`).
 
-Plug-ins: :func:`load_effects_file` (a user's Python file by path, ``--effects my_effects.py``) and
+Plug-ins: :func:`load_effects_file` (a user's Python file by path, ``--effects-file my_effects.py``) and
 the entry-point group ``backlash_monitor.effects``. :func:`catalogue` lists all registered effects.
 """
 from __future__ import annotations

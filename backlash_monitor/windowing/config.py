@@ -2,10 +2,9 @@
 from __future__ import annotations
 
 import os
-from pathlib import Path
 from typing import Any, Mapping
 
-from backlash_monitor.config_errors import nearest, yaml_error_line
+from backlash_monitor.files.config import config_file, nearest, yaml_error_line
 
 __all__ = ["DEFAULTS", "DEFAULT_CONFIG_PATH", "load_windowing_config", "TRIGGERS", "ANGLE_SOURCES",
            "INTEGRATION_RULES", "KIND_ONSET", "KIND_RETURN", "default_window_offset"]
@@ -54,16 +53,8 @@ DEFAULTS: dict[str, Any] = {
     },
 }
 
-DEFAULT_CONFIG_PATH = Path(__file__).resolve().parents[2] / "config" / "windowing.yaml"
-
-
-def _share_path() -> Path | None:
-    try:  # installed package: share/backlash_monitor/config/windowing.yaml
-        from ament_index_python.packages import get_package_share_directory  # type: ignore
-
-        return Path(get_package_share_directory("backlash_monitor")) / "config" / "windowing.yaml"
-    except Exception:  # noqa: BLE001 - no ROS, or package not installed
-        return None
+# the packaged config/windowing.yaml (files.config: the source tree's, else the installed one)
+DEFAULT_CONFIG_PATH = config_file("windowing.yaml")
 
 
 def load_windowing_config(path: str | os.PathLike | None = None) -> dict[str, Any]:
@@ -75,8 +66,7 @@ def load_windowing_config(path: str | os.PathLike | None = None) -> dict[str, An
     import yaml
 
     if path is None:
-        candidates = [DEFAULT_CONFIG_PATH, _share_path()]
-        path = next((p for p in candidates if p is not None and Path(p).is_file()), None)
+        path = DEFAULT_CONFIG_PATH if DEFAULT_CONFIG_PATH.is_file() else None
     cfg = {sec: dict(vals) for sec, vals in DEFAULTS.items()}
     if path is None:
         return cfg

@@ -6,7 +6,7 @@ detector used once each: importing scipy.signal and scipy.ndimage cost about 0.7
 40 MB per process, paid by every chain process of a fleet and by every `analyze` run before its
 first bag (docs/fleet.md). ``window_range`` gives exactly the values of the scipy filters (a
 maximum and a minimum are exact); ``exponential_average`` computes the same recurrence in blocks
-and agrees with ``lfilter`` to rounding (a few 1e-16 relative; test/test_windowing_filters.py).
+and agrees with ``lfilter`` to rounding (a few 1e-16 relative; test/windowing/test_windowing_filters.py).
 """
 from __future__ import annotations
 

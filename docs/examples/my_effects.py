@@ -1,6 +1,6 @@
 """A user's own effects (docs/effects.md, "Writing an effect"): loaded with
 
-    python -m backlash_monitor simulate --effects docs/examples/my_effects.py \
+    python -m backlash_monitor simulate --effects-file docs/examples/my_effects.py \
         --set effects.wheel_drag=true --set wheel_drag.coefficient_Nms2_per_rad2=1e-4
 
 Each class is one physical effect: its balance, parameters (unit, default, bounds), a one-line

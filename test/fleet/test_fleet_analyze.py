@@ -1,0 +1,149 @@
+"""`analyze FOLDER`: many recordings in parallel into one fleet table, with each drive's trend."""
+import json
+import math
+import subprocess
+import sys
+
+import pytest
+
+from backlash_monitor.fleet.trend import SECONDS_PER_DAY, TrendRule, drive_trend, slope_per_day
+from backlash_monitor.fleet.recordings import write_fleet_bags
+
+RULE = TrendRule(warn_growth_m_per_day=5e-5, warn_width_m=0.0075, error_width_m=0.009)
+
+
+def test_the_slope_is_the_least_squares_growth_per_day():
+    days = [0, 10, 20, 30]
+    assert slope_per_day([d * SECONDS_PER_DAY for d in days],
+                         [0.005 + 1e-5 * d for d in days]) == pytest.approx(1e-5)
+    # alternating +-1 um around the line: symmetric residuals of the 4 points change the fit by
+    # sum((x - 15) * e) / sum((x - 15)^2) = (15 - 5 - 5 + 15) * 1e-6 / 500 per day
+    noisy = [0.005 + 1e-5 * d + (1e-6 if i % 2 else -1e-6) for i, d in enumerate(days)]
+    assert slope_per_day([d * SECONDS_PER_DAY for d in days], noisy) == pytest.approx(
+        1e-5 + 20e-6 / 500)
+    assert math.isnan(slope_per_day([0.0], [0.005]))
+    assert math.isnan(slope_per_day([5.0, 5.0], [0.004, 0.005]))   # no time span: no slope
+
+
+def test_a_fast_growing_narrow_drive_is_warned_before_the_limit_with_the_days_left():
+    pts = [(d * SECONDS_PER_DAY, 0.004 + 1e-4 * d) for d in (0, 5, 10)]   # 0.1 mm/day, 5 mm now
+    t = drive_trend(pts, RULE)
+    assert t.level == "WARN" and t.last_width_m < RULE.warn_width_m
+    assert t.days_to_limit == pytest.approx((0.009 - 0.005) / 1e-4)       # 40 days
+    slow = drive_trend([(d * SECONDS_PER_DAY, 0.005 + 1e-6 * d) for d in (0, 5, 10)], RULE)
+    assert slow.level == "OK"
+    wide = drive_trend([(0.0, 0.0075), (SECONDS_PER_DAY, 0.0075)], RULE)
+    assert wide.level == "WARN" and "7.50 mm" in wide.reason             # the width alone
+    assert drive_trend([(0.0, 0.0095)], RULE).level == "ERROR"
+
+
+@pytest.fixture(scope="module")
+def fleet_bags(tmp_path_factory):
+    # drive A wears fast (5 -> 7.5 mm in 20 days: 0.125 mm/day), drive B stays at 5 mm.
+    return write_fleet_bags(tmp_path_factory.mktemp("bags"), [
+        ("line1/driveA", 0, 0.005, 1), ("line1/driveA", 10, 0.005, 2),
+        ("line1/driveA", 20, 0.0075, 3), ("line1/driveB", 0, 0.005, 4),
+        ("line1/driveB", 20, 0.005, 5)], duration_s=1.2)
+
+
+@pytest.mark.process
+@pytest.mark.parametrize("engine_args", [["--jobs", "2"], ["--jobs", "1"]])
+def test_a_folder_of_bags_becomes_one_fleet_table_with_trends(fleet_bags, tmp_path, engine_args):
+    out = tmp_path / "out"
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze",
+                           str(fleet_bags[0].parent), "--out", str(out), "--no-model-fit", *engine_args],
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    result = json.loads((out / "fleet.json").read_text())
+    rows = result["rows"]
+    assert len(rows) == 5 and all(not r["error"] for r in rows)
+    by_bag = {r["bag"].rsplit("/", 1)[1]: r for r in rows}
+    for name, r in by_bag.items():
+        assert r["fused_width_m"] == r["true_width_m"], r            # 1.2 s: 4-5 onsets fused
+        assert r["time_s"] == pytest.approx(1_760_000_000 + 86400 * int(name[-8:-5]), abs=1e-3)
+    assert result["trends"]["line1/driveA"]["level"] == "WARN"
+    # the trend follows each recording's continuous width (median over its windows), not the
+    # candidate grid: its slope over the three recordings, near the true 0.125 mm/day
+    driveA = sorted((r for r in rows if r["drive"] == "line1/driveA"), key=lambda r: r["time_s"])
+    assert all(abs(r["width_m"] - r["true_width_m"]) < 3e-4 for r in rows)
+    assert result["trends"]["line1/driveA"]["rate_m_per_day"] == pytest.approx(
+        slope_per_day([r["time_s"] for r in driveA], [r["width_m"] for r in driveA]), rel=1e-9)
+    assert result["trends"]["line1/driveA"]["rate_m_per_day"] == pytest.approx(1.25e-4, abs=2e-5)
+    assert result["trends"]["line1/driveB"]["level"] == "OK"
+    assert (out / "trend_fleet.png").stat().st_size > 0
+    assert (out / "trend_line1_driveA.png").is_file()
+    assert "line1/driveA: WARN: grows 0.1" in proc.stdout
+
+
+@pytest.mark.process
+def test_the_model_fit_column_holds_each_bag_against_the_drives_model(tmp_path):
+    """Two 2 s recordings of a 5 mm drive, one on its model and one with 2.5 N*m of wheel friction the model
+    lacks: the fleet table's model-fit column says OK for the first and WARN (with where the residual sits) for
+    the second, and the command names the bag to run diagnose on. The reference is the default model's at the
+    pattern width nearest the measured width (5 mm: the cache)."""
+    from backlash_monitor.workbench import reference
+    from backlash_monitor.workbench.model import load_model
+    reference.cached(load_model(None, width_m=0.005))
+    bags = tmp_path / "bags"
+    for name, sets in (("clean", []), ("friction", ["effects.wheel_coulomb_friction=true",
+                                                     "wheel_coulomb_friction.torque_Nm=2.5"])):
+        subprocess.run([sys.executable, "-m", "backlash_monitor", "simulate", "--widths", "0.005", "--eta-k", "0.025",
+                        "--n1", "0.89", "--seeds", "21", "--duration", "2", "--no-npz", "--mcap", str(bags / name),
+                        *[x for s_ in sets for x in ("--set", s_)]], check=True, capture_output=True, timeout=300)
+    for d in ("clean", "friction"):
+        for f in (bags / d).glob("*.mcap"):
+            f.rename(bags / f"{d}_{f.name}")
+    out = tmp_path / "out"
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(bags), "--out", str(out),
+                           "--jobs", "1", "--no-plots"], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    rows = {r["bag"].rsplit("/", 1)[1].split("_")[0]: r for r in json.loads((out / "fleet.json").read_text())["rows"]}
+    assert rows["clean"]["model_fit"]["level"] == "OK"
+    assert rows["friction"]["model_fit"]["level"] == "WARN"
+    assert rows["friction"]["model_fit"]["model"] == "default v1"
+    assert "model fit" in proc.stdout.splitlines()[0]
+    assert "does not explain friction_" in proc.stdout and "run diagnose on it" in proc.stdout
+
+
+def test_the_model_fit_reference_is_the_one_given_else_the_librarys_else_the_default_models_nearest_width(tmp_path):
+    """--watch-reference wins; without it a --library with a LIB.watch.npz beside it (train --model) gives that;
+    else the default model's cache entry at the pattern width nearest the measured width, with analyze's n1."""
+    from backlash_monitor.fleet.analyze import WatchOptions, default_model, reference_for_bag
+    from backlash_monitor.offline.analyze import AnalyzeOptions
+    from backlash_monitor.plant.scenarios import K2_WIDTHS_M
+    from backlash_monitor.workbench import reference
+    library = tmp_path / "drive7_v3.npz"
+    beside = reference.reference_path_for_library(library)
+    given = str(tmp_path / "other.watch.npz")
+    options = AnalyzeOptions(library=str(library), n1=0.95)
+    assert reference_for_bag(options, WatchOptions(reference=given), 0.005) == given
+    nearest = min(K2_WIDTHS_M, key=lambda k: abs(k - 0.0051))
+    cache = str(reference.cache_path(default_model(0.95, nearest)))
+    assert reference_for_bag(options, WatchOptions(), 0.0051) == cache      # no LIB.watch.npz yet
+    beside.write_bytes(b"")
+    assert reference_for_bag(options, WatchOptions(), 0.0051) == str(beside)
+    assert default_model(0.95, 0.0051).nominal == {"width_m": nearest, "eta_k": 0.025, "n1": 0.95}
+
+
+@pytest.mark.process
+def test_a_glob_without_bags_is_one_clear_error(tmp_path):
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze",
+                           str(tmp_path / "*.mcap")], capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2
+    assert "no .mcap bags" in proc.stderr and "Traceback" not in proc.stderr
+
+
+@pytest.mark.process
+def test_the_dask_engine_gives_the_same_table_on_a_local_cluster(fleet_bags, tmp_path):
+    pytest.importorskip("dask.distributed", reason="dask is an optional extra (pip install dask "
+                                                   "distributed)")
+    out = tmp_path / "dask"
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze",
+                           str(fleet_bags[0].parent / "*.mcap"), "--out", str(out),
+                           "--engine", "dask", "--jobs", "2", "--no-plots", "--no-model-fit"],
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    rows = json.loads((out / "fleet.json").read_text())["rows"]
+    assert len(rows) == 5
+    assert {r["drive"] for r in rows} == {"line1/driveA", "line1/driveB"}
+    assert all(r["fused_width_m"] == r["true_width_m"] for r in rows)

@@ -1,0 +1,125 @@
+"""Managed drives: a supervisor brings one drive's chain down and up over the lifecycle services
+(lifecycle_msgs ChangeState / GetState) while another drive keeps running."""
+import os
+import subprocess
+import time
+
+import pytest
+from ament_index_python.packages import get_package_prefix
+
+PREFIX = os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor")
+
+
+def start(executable, drive, *params, activate=False):
+    return subprocess.Popen(
+        [os.path.join(PREFIX, executable)] + (["--activate"] if activate else [])
+        + ["--ros-args", "-r", f"__ns:=/line1/{drive}", "-p", f"drive_name:=line1/{drive}",
+           "-p", "qos:=reliable", *params],
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+
+
+@pytest.fixture
+def ros(ros_env, monkeypatch):
+    for key in ("ROS_DOMAIN_ID", "ROS_AUTOMATIC_DISCOVERY_RANGE"):
+        monkeypatch.setenv(key, ros_env[key])
+    import rclpy
+    from backlash_monitor.nodes.fast_dds import configure_fast_dds
+    configure_fast_dds()
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    node = rclpy.create_node("supervisor", context=context)
+    from rclpy.executors import SingleThreadedExecutor
+    executor = SingleThreadedExecutor(context=context)
+    executor.add_node(node)
+    yield node, executor
+    node.destroy_node()
+    rclpy.shutdown(context=context)
+
+
+def call(node, executor, srv_type, name, request, timeout=30.0):
+    client = node.create_client(srv_type, name)
+    assert client.wait_for_service(timeout_sec=timeout), f"no service {name}"
+    future = client.call_async(request)
+    executor.spin_until_future_complete(future, timeout_sec=timeout)
+    node.destroy_client(client)
+    assert future.done(), f"{name}: no answer"
+    return future.result()
+
+
+@pytest.mark.process
+@pytest.mark.ros
+def test_a_supervisor_takes_one_drive_down_and_up_without_touching_the_other(ros):
+    from lifecycle_msgs.msg import State, Transition
+    from lifecycle_msgs.srv import ChangeState, GetState
+    from backlash_monitor.nodes.qos import ESTIMATE_QOS
+    from backlash_monitor_msgs.msg import BacklashEstimate
+    node, executor = ros
+    arrivals = {"drive01": [], "drive02": []}
+    for drive in arrivals:
+        node.create_subscription(BacklashEstimate, f"/line1/{drive}/estimate",
+                                 lambda m, d=drive: arrivals[d].append(time.monotonic()),
+                                 ESTIMATE_QOS)
+    procs = [start("managed_chain", "drive01"), start("managed_chain", "drive02", activate=True),
+             start("managed_plant", "drive01", "-p", "duration_s:=60.0",
+                   "-p", "wait_for_subscriptions:=3", activate=True),
+             start("managed_plant", "drive02", "-p", "duration_s:=60.0",
+                   "-p", "wait_for_subscriptions:=3", activate=True)]
+    try:
+        def state():
+            return call(node, executor, GetState, "/line1/drive01/chain/get_state",
+                        GetState.Request()).current_state.id
+
+        def change(transition_id):
+            return call(node, executor, ChangeState, "/line1/drive01/chain/change_state",
+                        ChangeState.Request(transition=Transition(id=transition_id))).success
+
+        def spin_for(seconds):
+            end = time.monotonic() + seconds
+            while time.monotonic() < end:
+                executor.spin_once(timeout_sec=0.05)
+
+        assert state() == State.PRIMARY_STATE_UNCONFIGURED
+        spin_for(3.0)
+        assert arrivals["drive01"] == []              # unconfigured: no chain, no estimate
+        assert change(Transition.TRANSITION_CONFIGURE) and state() == State.PRIMARY_STATE_INACTIVE
+        assert change(Transition.TRANSITION_ACTIVATE) and state() == State.PRIMARY_STATE_ACTIVE
+        spin_for(4.0)
+        assert len(arrivals["drive01"]) >= 6          # active: onsets every 0.25 s, 3 signals
+        assert change(Transition.TRANSITION_DEACTIVATE) and state() == State.PRIMARY_STATE_INACTIVE
+        spin_for(0.5)
+        down_at, before = time.monotonic(), len(arrivals["drive02"])
+        spin_for(3.0)
+        assert [t for t in arrivals["drive01"] if t > down_at] == []   # drive01 is down ...
+        assert len(arrivals["drive02"]) - before >= 9                  # ... drive02 is not
+        assert change(Transition.TRANSITION_ACTIVATE) and state() == State.PRIMARY_STATE_ACTIVE
+        up_at = time.monotonic()
+        spin_for(4.0)
+        assert len([t for t in arrivals["drive01"] if t > up_at]) >= 6   # and up again
+        assert change(Transition.TRANSITION_DEACTIVATE)
+        assert change(Transition.TRANSITION_CLEANUP) and state() == State.PRIMARY_STATE_UNCONFIGURED
+    finally:
+        for p in procs:
+            p.terminate()
+        outputs = [p.communicate(timeout=20)[0] for p in procs]
+    assert all("Traceback" not in out for out in outputs), outputs
+
+
+@pytest.mark.process
+@pytest.mark.ros
+def test_a_bad_parameter_fails_the_configure_transition_with_one_clear_line(ros):
+    from lifecycle_msgs.msg import State, Transition
+    from lifecycle_msgs.srv import ChangeState, GetState
+    node, executor = ros
+    proc = start("managed_chain", "drive09", "-p", "n1:=7.0")
+    try:
+        result = call(node, executor, ChangeState, "/line1/drive09/chain/change_state",
+                      ChangeState.Request(transition=Transition(
+                          id=Transition.TRANSITION_CONFIGURE)))
+        assert not result.success
+        assert call(node, executor, GetState, "/line1/drive09/chain/get_state",
+                    GetState.Request()).current_state.id == State.PRIMARY_STATE_UNCONFIGURED
+    finally:
+        proc.terminate()
+        out = proc.communicate(timeout=20)[0]
+    assert "configure failed: parameter 'n1'" in out and "allowed: 0.5 <= n1 <= 1.5" in out, out
+    assert "Traceback" not in out
