@@ -23,7 +23,7 @@ def gone(pid: int) -> bool:
         return True
 
 
-def wait_until(predicate, timeout_s: float) -> bool:
+def wait_until(predicate, timeout_s: float = 15.0) -> bool:
     deadline = time.monotonic() + timeout_s
     while time.monotonic() < deadline:
         if predicate():

@@ -238,7 +238,7 @@ def second_effect_step(run: Run, decision: Decision, second: bool = True) -> Upd
                 for f in decision.qualifying}
     found = pairs.best_pair(run.problem, win, run.by_name, run.scr, run.order, run.base_pred, run.base_ic,
                             up.pairs_tried, twins_of, run.fits)
-    if found is not None and anchor_only and fit2_explained(run, found[0]) < MIN_EXPLAINED:
+    if found is not None and anchor_only and found[0].explained_fraction < MIN_EXPLAINED:
         found = None
     if found is None and anchor_only:
         return Update(None, pairs_tried=up.pairs_tried)
@@ -272,12 +272,6 @@ def second_effect_step(run: Run, decision: Decision, second: bool = True) -> Upd
         up.second = sec
         up.after_mean, up.after_pred, up.after_raw = sec.model_mean, sec.pred, sec.model_mean_raw
     return up
-
-
-def fit2_explained(run: Run, fit) -> float:
-    """The share of the residual's excess over the noise a (pair) fit removes, in the fits' whole metric."""
-    p = run.problem
-    return p.explained_share(p.fit_residual(fit.pred), p.fit_residual(run.base_pred))
 
 
 def confidence_step(run: Run, up: Update) -> Update:

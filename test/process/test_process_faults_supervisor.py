@@ -13,26 +13,9 @@ import pytest
 from backlash_monitor.process.parent_watch import PARENT_PID_ENV
 from backlash_monitor.process.subscriber_wait import TopicState, missing, parse_wanted
 from backlash_monitor.process.supervisor import Supervisor, describe_exit
+from process_fault_helpers import gone, wait_until
 
 SLEEPER = [sys.executable, "-c", "import time; time.sleep(60)"]
-
-
-def gone(pid: int) -> bool:
-    """The process has ended (absent, or a zombie nobody reaped yet)."""
-    try:
-        with open(f"/proc/{pid}/stat") as f:
-            return f.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
-    except FileNotFoundError:
-        return True
-
-
-def wait_until(predicate, timeout_s: float = 15.0) -> bool:
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        if predicate():
-            return True
-        time.sleep(0.1)
-    return predicate()
 
 
 @pytest.fixture
