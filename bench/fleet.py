@@ -26,7 +26,7 @@ measured on a busy machine is a lower bound.
     python bench/fleet.py [--quick] [--parts capacity diagnostics analyze two_host]
     python bench/fleet.py --parts analyze                         # only the analysis speed-up
     python bench/fleet.py --parts capacity --layouts process single --counts 8 10
-    python bench/fleet.py --parts capacity --layouts process --watch both     # with and without the model watch
+    python bench/fleet.py --parts capacity --layouts process --watch both     # without and with the model watch
 """
 import argparse
 import json
@@ -44,7 +44,7 @@ def log(*args):
     print(*args, file=sys.stderr, flush=True)
 
 
-NO_WATCH = "_no_watch"      # a capacity variant's suffix: the layout with `fleet --no-watch` (no model watch)
+WITH_WATCH = "_watch"      # a capacity variant's suffix: the layout with `fleet --model-watch` (a model watch per drive)
 
 
 def run_fleet(n, layout, duration_s, workdir):
@@ -52,8 +52,8 @@ def run_fleet(n, layout, duration_s, workdir):
     it started, start-up included: rusage of the waited-for children) and ``command_wall_s``."""
     import resource
     summary = os.path.join(workdir, f"fleet_{layout}_{n}.json")
-    watch = [] if not layout.endswith(NO_WATCH) else ["--no-watch"]
-    layout = layout[:-len(NO_WATCH)] if watch else layout
+    watch = ["--model-watch"] if layout.endswith(WITH_WATCH) else []
+    layout = layout[:-len(WITH_WATCH)] if watch else layout
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     started = time.perf_counter()
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "fleet", "--drives", str(n),
@@ -251,10 +251,10 @@ def main():
     parser.add_argument("--counts", type=int, nargs="+", default=None, metavar="N",
                         help="drive counts of the capacity part, in order, until one fails "
                              "(default: 2 4 6 ... 16; --quick: 2 4 8)")
-    parser.add_argument("--watch", choices=("on", "off", "both"), default="on",
-                        help="the capacity part with every drive's model watch (on: fleet's default), without it "
-                             "(off: fleet --no-watch), or both alternated at each N (drives_realtime and "
-                             "drives_realtime_no_watch side by side)")
+    parser.add_argument("--watch", choices=("on", "off", "both"), default="off",
+                        help="the capacity part without the model watch (off: fleet's default), with every "
+                             "drive's model watch (on: fleet --model-watch), or both alternated at each N "
+                             "(drives_realtime and drives_realtime_watch side by side)")
     parser.add_argument("--drives", type=int, default=0,
                         help="drives of the diagnostics part when capacity is not measured")
     parser.add_argument("--analyze-repeats", type=int, default=7,
@@ -274,13 +274,13 @@ def main():
         layout, best = "process", args.drives
         if "capacity" in args.parts:
             variants = [v for name in args.layouts for v in
-                        {"on": [name], "off": [name + NO_WATCH], "both": [name, name + NO_WATCH]}[args.watch]]
+                        {"off": [name], "on": [name + WITH_WATCH], "both": [name, name + WITH_WATCH]}[args.watch]]
             per_layout = capacity_alternated(variants, counts, duration, workdir)
             if args.watch == "both":
-                off = {k: v for k, v in per_layout.items() if k.endswith(NO_WATCH)}
-                per_layout = {k: v for k, v in per_layout.items() if not k.endswith(NO_WATCH)}
-                result["drives_realtime_no_watch"] = max(v["drives_realtime"] for v in off.values())
-                result["drives_realtime_no_watch_by_layout"] = off
+                on = {k: v for k, v in per_layout.items() if k.endswith(WITH_WATCH)}
+                per_layout = {k: v for k, v in per_layout.items() if not k.endswith(WITH_WATCH)}
+                result["drives_realtime_watch"] = max(v["drives_realtime"] for v in on.values())
+                result["drives_realtime_watch_by_layout"] = on
             layout = max(per_layout, key=lambda k: per_layout[k]["drives_realtime"])
             best = per_layout[layout]["drives_realtime"]
             best_run = next((r for r in per_layout[layout]["runs"] if r["drives"] == best), None)

@@ -26,9 +26,10 @@ PLANT_KEYS = ("width_m", "eta_k", "n1", "seed", "noise")
 CLASSIFIER_KEYS = ("mode", "n1", "trigger", "fusion_events", "warn_width_m", "error_width_m")
 WINDOWING_KEYS = ("trigger",)
 TREND_KEYS = ("trend_state_file",)       # width_trend's state_file: the live trend over restarts
-WATCH_KEYS = ("watch", "watch_reference", "snapshot_dir")   # the model watch: on/off, its model version's
-                                                            # reference (default: the default model's at the
-                                                            # drive's width_m, eta_k, n1), its snapshot folder
+WATCH_KEYS = ("watch", "watch_reference", "snapshot_dir")   # the model watch: on/off (default off; fleet
+                                                            # --model-watch: on), its model version's reference
+                                                            # (default: the default model's at the drive's
+                                                            # width_m, eta_k, n1), its snapshot folder
 DRIVE_KEYS = tuple(sorted(set(PLANT_KEYS + CLASSIFIER_KEYS + WINDOWING_KEYS + TREND_KEYS + WATCH_KEYS)))
 
 NAME_PATTERN = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")   # a ROS name token: namespaces, node names
@@ -54,8 +55,10 @@ class Drive:
 
     @property
     def watched(self) -> bool:
-        """The drive runs a model watch (the fleet's default; ``watch: false`` in the fleet file turns it off)."""
-        return bool(self.parameters.get("watch", True))
+        """The drive runs a model watch: ``watch: true`` in the fleet file, or ``fleet --model-watch`` (which sets
+        it on every drive whose file does not say ``watch: false``). Off by default: a watch costs CPU per drive
+        (docs/model_watch.md, Cost) and the fleet's real-time capacity is measured without it."""
+        return bool(self.parameters.get("watch", False))
 
     def nominal(self) -> tuple[float, float, float]:
         """The drive's nominal width [m], eta_k [Pa*s^n], n1 [-] (its simulated plant's; the plant_simulator
@@ -115,6 +118,8 @@ def _check_keys(where: str, params) -> dict:
     if unknown:
         raise UsageError(f"{where}: unknown key(s) {', '.join(map(str, unknown))}; allowed: "
                          + ", ".join(DRIVE_KEYS))
+    if "watch" in params and not isinstance(params["watch"], bool):
+        raise UsageError(f"{where}: watch = {params['watch']!r}; allowed: true or false")
     return dict(params)
 
 

@@ -74,11 +74,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="keep each drive's live width trend in DIR/<line>_<drive>.json, so that "
                              "a restarted fleet goes on with the drives' history (a drive's own "
                              "trend_state_file in the fleet YAML wins); default: the trend starts anew")
-    parser.add_argument("--no-watch", action="store_true",
-                        help="run no model watch (by default every drive has one: its onset events against its "
-                             "model version, the model-fit column; docs/model_watch.md)")
+    parser.add_argument("--model-watch", action="store_true",
+                        help="run a model watch beside every drive's classifier (its onset events against its "
+                             "model version: the model-fit column and a snapshot bag on a WARN; "
+                             "docs/model_watch.md). Off by default: it costs CPU per drive; a drive's own "
+                             "'watch: true/false' in the fleet YAML wins")
     parser.add_argument("--snapshot-dir", default="", metavar="DIR",
-                        help="where the drives' model watches write their snapshot bags on a WARN (a drive's own "
+                        help="with --model-watch: where the drives' model watches write their snapshot bags on a WARN (a drive's own "
                              "snapshot_dir in the fleet YAML wins); default: the current folder")
     parser.add_argument("--drive-json", default="", help=argparse.SUPPRESS)   # a drive's process
 
@@ -108,9 +110,10 @@ def validate(args):
             **d.parameters, "trend_state_file": os.path.join(
                 os.path.abspath(args.trend_state_dir), f"{d.line}_{d.name}.json")}) for d in drives]
     from backlash_monitor.fleet.drives import Drive
-    if args.no_watch:
-        drives = [Drive(d.line, d.name, {**d.parameters, "watch": False}) for d in drives]
-    elif args.snapshot_dir:
+    if args.model_watch:
+        drives = [d if "watch" in d.parameters else Drive(d.line, d.name, {**d.parameters, "watch": True})
+                  for d in drives]
+    if args.snapshot_dir:
         drives = [d if d.parameters.get("snapshot_dir") else Drive(d.line, d.name, {
             **d.parameters, "snapshot_dir": os.path.abspath(args.snapshot_dir)}) for d in drives]
     return drives

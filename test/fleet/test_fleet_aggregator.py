@@ -114,11 +114,9 @@ def test_the_view_marks_a_silent_drive_stale_and_a_half_silent_one_error():
         status(view, drives[0], "classifier", WARN, t)
         status(view, drives[0], "windowing", OK, t)
         status(view, drives[0], "width_trend", OK, t)
-        status(view, drives[0], "model_watch", OK, t)
     status(view, drives[1], "classifier", OK, 1.0)   # drive02: only its classifier, then silence
     status(view, drives[1], "windowing", OK, 5.0)
     status(view, drives[1], "width_trend", OK, 5.0)
-    status(view, drives[1], "model_watch", OK, 5.0)
     levels = {row["path"].rsplit("/", 1)[1]: row["level"] for row in view.report(5.5)}
     assert levels["drive01"] == WARN           # the highest of its items
     assert levels["drive02"] == ERROR          # one item stale (4.5 s > 3 s), one not
@@ -132,7 +130,7 @@ def test_the_view_marks_a_silent_drive_stale_and_a_half_silent_one_error():
 
 
 def test_the_table_has_a_model_fit_column_per_drive_and_a_drive_without_a_watch_expects_none():
-    drives = drives_from_config({"lines": {"line1": {"drive01": {}, "drive02": {"watch": False}}}})
+    drives = drives_from_config({"lines": {"line1": {"drive01": {"watch": True}, "drive02": {}}}})
     assert [n.rsplit(": ", 1)[1] for n in drive_status_names(drives[0])][-1] == "model fit"
     assert not any("model_watch" in n for n in drive_status_names(drives[1]))
     assert "model_watch" in drives[0].node_parameters() and drives[0].node_parameters()["model_watch"]["width_m"] \
@@ -159,6 +157,24 @@ def test_a_fleet_file_with_an_unknown_key_or_a_bad_name_is_refused_with_the_allo
         drives_from_config({"lines": {"line1": {"7drive": {}}}})
     with pytest.raises(UsageError, match="--drives = 0"):
         drives_from_count(0)
+    with pytest.raises(UsageError, match="line1/drive01: watch = 'yes'; allowed: true or false"):
+        drives_from_config({"lines": {"line1": {"drive01": {"watch": "yes"}}}})
+
+
+def test_the_model_watch_is_opt_in_and_a_drives_own_watch_key_wins_over_the_flag(tmp_path):
+    import argparse
+    from backlash_monitor.nodes.fleet import add_arguments, validate
+    parser = argparse.ArgumentParser()
+    add_arguments(parser)
+    assert not any(d.watched for d in validate(parser.parse_args(["--drives", "2"])))
+    assert all(d.watched for d in validate(parser.parse_args(["--drives", "2", "--model-watch"])))
+    assert "model_watch" not in " ".join(drive_status_names(drives_from_count(1)[0]))
+    fleet_file = tmp_path / "fleet.yaml"
+    fleet_file.write_text(yaml.safe_dump(
+        {"lines": {"line1": {"drive01": {"watch": False}, "drive02": {}, "drive03": {"watch": True}}}}))
+    assert [d.watched for d in validate(parser.parse_args(["--config", str(fleet_file)]))] == [False, False, True]
+    assert [d.watched for d in validate(parser.parse_args(["--config", str(fleet_file), "--model-watch"]))] \
+        == [False, True, True]
 
 
 def test_drive_namespaces_and_hardware_ids_are_unique_and_reach_every_node():
