@@ -98,12 +98,19 @@ def reference_for(width_m, eta_k, n1):
 def trace_of(updates, switch_index=None) -> dict:
     """What the rule is applied to: per evaluation its entry, smallest alarm-view p-value and residual ratio, and
     for a window that exceeds the loose TRACE_RULE the same of each leave-one-out window (the robust rule)."""
+    from backlash_monitor.watch.alarm import ALARM_VIEWS
     return {"entry": [int(u.entry_sample_index) for u in updates], "p_min": [float(u.p_min) for u in updates],
             "ratio": [float(u.evaluation.result.residual_over_noise) for u in updates],
             "loo": [[[float(p), float(r)] for p, r in u.loo] for u in updates],
             "views": [{n: round(v.t2, 2) for n, v in u.evaluation.result.views.items()} if u.exceeding else None
                       for u in updates],
-            "width_m": [float(u.evaluation.width_m) for u in updates], "switch": switch_index}
+            "width_m": [float(u.evaluation.width_m) for u in updates], "switch": switch_index,
+            # every evaluation's T^2 per alarm view and the views' dimensions: the statistic's series (the rule's
+            # calibration reads its distribution and its run lengths from these)
+            "t2": {n: [float(u.evaluation.result.views[n].t2) for u in updates] for n in ALARM_VIEWS
+                   if updates and n in updates[0].evaluation.result.views},
+            "dims": {n: [int(u.evaluation.result.views[n].dimension) for u in updates] for n in ALARM_VIEWS
+                     if updates and n in updates[0].evaluation.result.views}}
 
 
 def tracing_watch(ref):
@@ -384,22 +391,31 @@ def main() -> int:
     ap.add_argument("--traces-out", default="", help="write the per-evaluation traces (JSON)")
     ap.add_argument("--traces-in", default="", help="traces written by --traces-out: re-scored, and the parts they "
                                                     "hold are not simulated again")
-    ap.add_argument("--rule", default="", metavar="VIEW_P,RATIO,PERSISTENCE[,ROBUST]",
+    ap.add_argument("--rule", default="", metavar="VIEW_P,RATIO,PERSISTENCE[,ROBUST[,CLIP_P[,PREDICTIVE]]]",
                     help="score another alarm rule on the same evaluations (view_p >= 1e-3 and ratio >= 2.5: the "
-                         "traces hold the leave-one-out windows of what exceeds those)")
+                         "traces hold the leave-one-out windows of what exceeds those). CLIP_P ('none': no "
+                         "clipping) and PREDICTIVE (0: chi^2 p-values) change the evaluations themselves: not with "
+                         "--traces-in of other ones")
     args = ap.parse_args()
     from backlash_monitor.watch.alarm import AlarmRule, load_rule
     global TRACE_RULE
-    TRACE_RULE = AlarmRule(view_p=1e-3, residual_ratio=2.5, persistence=10 ** 9, clear_after=1)
     rule = load_rule()
     if args.rule:
         parts = args.rule.split(",")
         rule = replace(rule, view_p=float(parts[0]), residual_ratio=float(parts[1]), persistence=int(parts[2]),
                        robust=(parts[3].lower() not in ("0", "false", "no")) if len(parts) > 3 else rule.robust
                        ).check()
+        if len(parts) > 4:
+            rule = replace(rule, event_clip_p=None if parts[4].lower() == "none" else float(parts[4])).check()
+        if len(parts) > 5:
+            rule = replace(rule, predictive=parts[5].lower() not in ("0", "false", "no")).check()
+    # the traced evaluations: the rule's clipping and law, loose enough that every window a rule to be scored could
+    # call exceeding has its leave-one-out windows, and never WARN (a WARN stops them)
+    TRACE_RULE = replace(rule, view_p=1e-3, residual_ratio=2.5, persistence=10 ** 9, clear_after=1, robust=True)
     t0 = time.perf_counter()
     result = {"rule": {"view_p": rule.view_p, "residual_ratio": rule.residual_ratio,
-                       "persistence": rule.persistence, "clear_after": rule.clear_after, "robust": rule.robust}}
+                       "persistence": rule.persistence, "clear_after": rule.clear_after, "robust": rule.robust,
+                       "event_clip_p": rule.event_clip_p, "predictive": rule.predictive}}
     data = {"clean": [], "detect": []}
     if args.traces_in:
         with open(args.traces_in) as f:
