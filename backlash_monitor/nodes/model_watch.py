@@ -68,6 +68,11 @@ def _parameters():
                       "that do not exceed", 1, 100000),
         ParameterSpec("robust", c["robust"], "alarm: an evaluation exceeds only if it also does with any one of its "
                       "events left out"),
+        ParameterSpec("event_clip_p", c["event_clip_p"] or 0.0, "alarm: an event's whitened deviation counts at most "
+                      "at the length the model's own events exceed with this chance (bounded influence; 0: none)",
+                      0.0, 0.1),
+        ParameterSpec("predictive", c["predictive"], "alarm: the views' p-values from Hotelling's predictive law (the "
+                      "whitening is estimated from the model's own events); false: chi^2"),
         ParameterSpec("snapshot_dir", ".", "where the snapshot bags go (created if missing; empty: no snapshots)"),
         ParameterSpec("snapshot_before_s", c["snapshot_before_s"], "snapshot: seconds of the stream before the "
                       "WARN [s]", 0.0, 60.0),
@@ -128,7 +133,7 @@ class ModelWatchNode(Node):
         self.reference = _load_reference(p)
         try:
             rule = AlarmRule(p["view_p"], p["residual_ratio"], p["persistence"], p["clear_after"],
-                             p["robust"]).check()
+                             p["robust"], p["event_clip_p"] or None, p["predictive"]).check()
             self.watch = ModelWatch(self.reference, p["window_events"], rule)
         except ValueError as error:
             raise ParameterValueError(str(error)) from None

@@ -24,6 +24,8 @@ from functools import lru_cache
 import numpy as np
 from scipy import stats
 
+from backlash_monitor.workbench.consistency import predictive_p, predictive_t2_isf
+
 ALARM_VIEWS = ("event_average", "spectral_shape", "record_mean")     # consistency.ConsistencyResult.consistent's
 
 
@@ -34,10 +36,16 @@ class AlarmRule:
     persistence: int = 3
     clear_after: int = 16
     robust: bool = True
+    event_clip_p: float | None = 1e-3     # None: every event counts as it is (the plain mean)
+    predictive: bool = True               # the views' p-values from Hotelling's predictive law (the whitening is
+                                          # estimated from the model's own events); False: chi^2 (diagnose's)
 
     def check(self) -> "AlarmRule":
         if not (0.0 < self.view_p < 0.5):
             raise ValueError(f"alarm view_p = {self.view_p!r}; allowed: 0 < view_p < 0.5")
+        if self.event_clip_p is not None and not (0.0 < self.event_clip_p < 0.5):
+            raise ValueError(f"alarm event_clip_p = {self.event_clip_p!r}; allowed: 0 < event_clip_p < 0.5, or "
+                             "none (no clipping)")
         if not (self.residual_ratio > 0):
             raise ValueError(f"alarm residual_ratio = {self.residual_ratio!r}; allowed: > 0")
         for name in ("persistence", "clear_after"):
@@ -46,24 +54,38 @@ class AlarmRule:
                 raise ValueError(f"alarm {name} = {v!r}; allowed: an integer >= 1")
         return self
 
-    def exceeds(self, evaluation) -> tuple[bool, list]:
-        """(the evaluation exceeds the rule, [the views / 'residual' that do]) -- the window as it is."""
-        return self.result_exceeds(evaluation.result)
+    def exceeds(self, evaluation, dof: dict | None = None) -> tuple[bool, list]:
+        """(the evaluation exceeds the rule, [the views / 'residual' that do]) -- the window as it is. ``dof``: per
+        view, the degrees of freedom of its whitening (reference.ModelReference.view_dof)."""
+        return self.result_exceeds(evaluation.result, dof)
 
-    def result_exceeds(self, result) -> tuple[bool, list]:
+    def result_exceeds(self, result, dof: dict | None = None) -> tuple[bool, list]:
         """The same for a consistency.ConsistencyResult."""
         names = []
         for name in ALARM_VIEWS:
             v = result.views.get(name)
-            if v is not None and v.t2 > _isf(self.view_p, v.dimension):     # p < view_p
+            if v is not None and v.t2 > self.limit(name, v.dimension, dof):     # p < view_p
                 names.append(name)
         if result.residual_over_noise > self.residual_ratio:
             names.append("residual")
         return bool(names), names
 
-    def limits(self, evaluation) -> dict:
-        """Per alarm view: the T^2 at which it exceeds (the chi^2 point of view_p)."""
-        return {n: _isf(self.view_p, v.dimension) for n, v in evaluation.result.views.items() if n in ALARM_VIEWS}
+    def limit(self, name: str, dimension: int, dof: dict | None = None) -> float:
+        """The T^2 at which a view exceeds: its p-value is view_p."""
+        if self.predictive and dof and name in dof:
+            return _predictive_isf(self.view_p, dimension, dof[name])
+        return _isf(self.view_p, dimension)
+
+    def p_value(self, name: str, t2: float, dimension: int, dof: dict | None = None) -> float:
+        """A view's p-value under the rule's law (the one ``view_p`` is compared with)."""
+        if self.predictive and dof and name in dof:
+            return predictive_p(t2, dimension, dof[name])
+        from scipy.special import chdtrc          # chi^2 survival function (stats.chi2.sf without its overhead)
+        return float(chdtrc(dimension, t2))
+
+    def limits(self, evaluation, dof: dict | None = None) -> dict:
+        """Per alarm view: the T^2 at which it exceeds."""
+        return {n: self.limit(n, v.dimension, dof) for n, v in evaluation.result.views.items() if n in ALARM_VIEWS}
 
 
 class AlarmState:
@@ -116,12 +138,16 @@ def load_config(path: str | None = None) -> dict:
     with open(path, encoding="utf-8") as f:
         cfg = yaml.safe_load(f) or {}
     want = {"window_events": int, "view_p": float, "residual_ratio": float, "persistence": int, "clear_after": int,
-            "robust": bool, "snapshot_before_s": float, "snapshot_after_s": float}
+            "robust": bool, "event_clip_p": float, "predictive": bool, "snapshot_before_s": float,
+            "snapshot_after_s": float}
     out = {}
     for key, kind in want.items():
         if key not in cfg:
             raise ValueError(f"{path}: missing key {key!r}; allowed keys: {', '.join(want)}")
         v = cfg[key]
+        if key == "event_clip_p" and v is None:
+            out[key] = None
+            continue
         if kind is bool:
             if not isinstance(v, bool):
                 raise ValueError(f"{path}: {key} = {v!r}; allowed: true or false")
@@ -133,7 +159,8 @@ def load_config(path: str | None = None) -> dict:
 
 
 def load_rule_from(c: dict) -> AlarmRule:
-    return AlarmRule(c["view_p"], c["residual_ratio"], c["persistence"], c["clear_after"], c["robust"]).check()
+    return AlarmRule(c["view_p"], c["residual_ratio"], c["persistence"], c["clear_after"], c["robust"],
+                     c.get("event_clip_p"), c.get("predictive", True)).check()
 
 
 def load_rule(path: str | None = None) -> AlarmRule:
@@ -145,12 +172,17 @@ def _isf(p: float, dimension: int) -> float:
     return float(stats.chi2.isf(p, dimension))
 
 
-def p_min(evaluation) -> float:
-    """The smallest p-value of the alarm views (what ``view_p`` is compared with)."""
-    return result_p_min(evaluation.result)
+@lru_cache(maxsize=64)
+def _predictive_isf(p: float, dimension: int, dof: int) -> float:
+    return predictive_t2_isf(p, dimension, dof)
 
 
-def result_p_min(result) -> float:
-    from scipy.special import chdtrc          # chi^2 survival function (stats.chi2.sf without its overhead)
-    ps = [chdtrc(v.dimension, v.t2) for n, v in result.views.items() if n in ALARM_VIEWS]
+def p_min(evaluation, rule: AlarmRule | None = None, dof: dict | None = None) -> float:
+    """The smallest p-value of the alarm views (what ``view_p`` is compared with), under ``rule``'s law."""
+    return result_p_min(evaluation.result, rule, dof)
+
+
+def result_p_min(result, rule: AlarmRule | None = None, dof: dict | None = None) -> float:
+    rule = rule or AlarmRule(predictive=False)
+    ps = [rule.p_value(n, v.t2, v.dimension, dof) for n, v in result.views.items() if n in ALARM_VIEWS]
     return float(np.min(ps)) if ps else 1.0

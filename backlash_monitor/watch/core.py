@@ -68,6 +68,7 @@ class ModelWatch:
         self.quant_probe: dict | None = None
         self.noise_scale = self._noise_scale()
         self.evaluations = 0
+        self.dof = reference.view_dof()          # the views' whitening: degrees of freedom (the rule's p-values)
         self.last: WatchUpdate | None = None
         reference.views(self.views_noise, window_events)      # the views at zero noise, before the stream
 
@@ -127,28 +128,31 @@ class ModelWatch:
     def evidence(self) -> Evidence:
         ev = list(self.events)
         return Evidence(np.stack([e.raw for e in ev]), np.stack([e.dc for e in ev]), np.stack([e.spec for e in ev]),
-                        self._views_noise(), np.array([e.entry_sample_index for e in ev]))
+                        self._views_noise(), np.array([e.entry_sample_index for e in ev]),
+                        denoised=(np.stack([e.denoised for e in ev]) if all(e.denoised is not None for e in ev)
+                                  else None))
 
     def add_event(self, event: LiveEvent) -> WatchUpdate | None:
         self.events.append(event)
         if len(self.events) < self.window_events:
             return None
         evidence = self.evidence()
-        ev = self.reference.evaluate(evidence, where=False)
+        ev = self.reference.evaluate(evidence, where=False, clip_p=self.rule.event_clip_p)
         self.evaluations += 1
-        exceeding, names = self.rule.exceeds(ev)
+        exceeding, names = self.rule.exceeds(ev, self.dof)
         loo = []
         if exceeding and self.rule.robust and self.state.level == "OK":
             # a WARN must not hinge on one event: the window without each of its events must exceed too (~10 ms,
             # only for a window that exceeds; not needed to hold a WARN)
-            results = self.reference.leave_one_out(evidence, ev)
-            loo = [(result_p_min(r), r.residual_over_noise) for r in results]
-            exceeding = all(self.rule.result_exceeds(r)[0] for r in results)
+            results = self.reference.leave_one_out(evidence, ev, clip_p=self.rule.event_clip_p)
+            loo = [(result_p_min(r, self.rule, self.dof), r.residual_over_noise) for r in results]
+            exceeding = all(self.rule.result_exceeds(r, self.dof)[0] for r in results)
         if exceeding or self.state.level != "OK" or self.evaluations % self.window_events == 1:
             ev.where = self.reference.where(evidence, ev)       # ~3 ms: when it matters, and once per window
         changed = self.state.update(exceeding, event.entry_sample_index)
         self.last = WatchUpdate(event.entry_sample_index, self.state.level, changed, self.state.since, exceeding,
-                                names, ev, p_min(ev), len(self.events), self.rule.limits(ev), loo)
+                                names, ev, p_min(ev, self.rule, self.dof), len(self.events),
+                                self.rule.limits(ev, self.dof), loo)
         return self.last
 
 
@@ -163,12 +167,14 @@ def evaluate_recording(meas, reference: ModelReference, rule: AlarmRule | None =
     evidence = evidence_from_measurement(meas, reference, last_n=window_events, significant_noise=True)
     if evidence.n_events < 3:
         raise ValueError(f"{meas.source}: {evidence.n_events} complete onset events; the model fit needs >= 3")
-    ev = reference.evaluate(evidence)
-    exceeding, names = rule.exceeds(ev)
+    dof = reference.view_dof()
+    ev = reference.evaluate(evidence, clip_p=rule.event_clip_p)
+    exceeding, names = rule.exceeds(ev, dof)
     if exceeding and rule.robust:
-        exceeding = all(rule.result_exceeds(r)[0] for r in reference.leave_one_out(evidence, ev))
+        exceeding = all(rule.result_exceeds(r, dof)[0]
+                        for r in reference.leave_one_out(evidence, ev, clip_p=rule.event_clip_p))
     return {"level": "WARN" if exceeding else "OK", "residual_over_noise": ev.result.residual_over_noise,
             "consistent": ev.consistent, "exceeding": names, "width_m": ev.width_m,
             "phase": (ev.where or {}).get("dominant_phase", ""),
             "wavelet_level": (ev.where or {}).get("dominant_level", ""), "events": evidence.n_events,
-            "model": reference.model_label, "p_min": p_min(ev)}
+            "model": reference.model_label, "p_min": p_min(ev, rule, dof)}

@@ -19,7 +19,7 @@ import numpy as np
 
 from backlash_monitor.windowing import BacklashEntryDetector
 from backlash_monitor.workbench import analysis, spectral
-from backlash_monitor.workbench.events import POST_SAMPLES, PRE_SAMPLES, SEGMENT_SIGNALS
+from backlash_monitor.workbench.events import POST_SAMPLES, PRE_SAMPLES, SEGMENT_SIGNALS, denoise
 
 ENTRY_SPACINGS = 16          # onset spacings the period is the median of
 PSD_EVERY = 4                # the Welch spectrum of every 4th event's period (a sensor's noise floor is a slow
@@ -35,6 +35,8 @@ class LiveEvent:
     spec: np.ndarray             # (n_features,) spectral-shape features (spectral.event_features)
     psd: np.ndarray | None       # (2, F) Welch PSD of the event's period [(m/s^2)^2/Hz] (analysis.welch_psd);
                                  # every PSD_EVERY-th event
+    denoised: np.ndarray | None = None   # (2, PRE + POST) the raw segment sym5-denoised (events.denoise) [m/s^2]:
+                                         # once per event, not once per window it is in
 
 
 class SampleRing:
@@ -138,4 +140,5 @@ class LiveEvents:
         period = np.stack([self.ring.get(s, lo, lo + self.period) for s in SEGMENT_SIGNALS])
         psd = analysis.welch_psd(period, 1.0 / self.dt)[1] if self.completed % self.psd_every == 0 else None
         self.completed += 1
-        return LiveEvent(int(k), raw, period.mean(axis=1), spectral.event_features(raw[None], self.dt)[0], psd)
+        return LiveEvent(int(k), raw, period.mean(axis=1), spectral.event_features(raw[None], self.dt)[0], psd,
+                         denoise(raw))

@@ -16,6 +16,7 @@ INCONSISTENT_RATIO times the noise floor.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -160,6 +161,27 @@ def fit_basis(problem) -> np.ndarray:
     return np.hstack(cols + [outside])
 
 
+def predictive_t2_isf(p: float, dimension: int, dof: int) -> float:
+    """The T^2 a view exceeds with probability ``p`` when its whitening is *estimated* from the model's own events
+    (``dof`` degrees of freedom of that covariance) and the recording is the model's: Hotelling's predictive law,
+    T^2 ~ q dof / (dof - q + 1) F(q, dof - q + 1) -- not chi^2_q, whose far tail is 1e2-1e4 times too thin at
+    dof 95 (docs/model_watch.md). ``dof`` <= q: no such law (inf)."""
+    from scipy.special import fdtri
+    q, d2 = int(dimension), int(dof) - int(dimension) + 1
+    if d2 < 1:
+        return math.inf
+    return float(q * dof / d2 * fdtri(q, d2, 1.0 - p))
+
+
+def predictive_p(t2: float, dimension: int, dof: int) -> float:
+    """The chance of a T^2 at least this large under :func:`predictive_t2_isf`'s law."""
+    from scipy.special import fdtrc
+    q, d2 = int(dimension), int(dof) - int(dimension) + 1
+    if d2 < 1:
+        return 1.0
+    return float(fdtrc(q, d2, max(float(t2), 0.0) * d2 / (q * dof)))
+
+
 def noise_scale(n_events: int, n_seeds: int) -> float:
     """Variance, per whitened direction, of an E-event mean against a K-seed model mean (units: one event)."""
     return 1.0 / n_events + 1.0 / (n_events * n_seeds)
@@ -172,10 +194,34 @@ def _t2(z: np.ndarray, c: float, tol: np.ndarray | None) -> float:
     return float(z @ np.linalg.solve(cov, z))
 
 
-def test(problem, r: np.ndarray, with_tolerance: bool = True) -> ConsistencyResult:
-    """The consistency of the weighted residual ``r`` (prediction space) in every view."""
+def clipped_mean(u: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
+    """Huber's bounded-influence mean of per-event whitened deviations ``u`` (E, q): every event whose deviation
+    is longer than ``radius`` counts with its direction at that length. -> (the mean (q,), each event's weight
+    min(1, radius / |u_i|) (E,)). Events inside the radius count as they are (then it is the plain mean)."""
+    norms = np.sqrt(np.sum(u * u, axis=1))
+    weights = np.minimum(1.0, radius / np.maximum(norms, 1e-300))
+    return (weights[:, None] * u).mean(axis=0), weights
+
+
+def test(problem, r: np.ndarray, with_tolerance: bool = True, event_residuals: np.ndarray | None = None,
+         clip_radius: dict | None = None) -> ConsistencyResult:
+    """The consistency of the weighted residual ``r`` (prediction space) in every view.
+
+    ``event_residuals`` (E, N), whose mean is ``r``, with ``clip_radius`` {view: radius}: in those views the
+    residual is :func:`clipped_mean` of the events' whitened deviations instead of their mean (the live model
+    watch: one odd event must not decide a window; docs/model_watch.md), and the event-average residual ratio is
+    taken with the event-average view's weights. Without them (diagnose) the plain mean."""
     c = noise_scale(problem.n_events, problem.n_seeds)
     z = problem.basis.T @ r
+    event_weights = None
+    if event_residuals is not None and clip_radius:
+        for name, sl in problem.blocks:
+            if name in clip_radius:
+                z[sl], w = clipped_mean(event_residuals @ problem.basis[:, sl], clip_radius[name])
+                if name == "event_average":
+                    event_weights = w
+    if event_weights is not None and np.any(event_weights < 1.0):
+        r = (event_weights[:, None] * event_residuals).mean(axis=0)
     tol = problem.tolerance_z if with_tolerance else None
     views = {}
     for name, sl in problem.blocks:

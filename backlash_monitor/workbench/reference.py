@@ -43,8 +43,8 @@ import numpy as np
 
 from . import analysis, consistency, spectral, tolerance
 from . import plant_adapter
-from .events import (PRE_SAMPLES, POST_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, denoise, ensemble_from_runs,
-                     event_set)
+from .events import (DC_BLOCKS, PRE_SAMPLES, POST_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, denoise,
+                     ensemble_from_runs, event_set)
 
 FORMAT_VERSION = 3                 # 2: the record mean of a1, a2 and omega1 (diagnose's record-mean view on wb);
                                    # 3: the model's own events at every grid width (width-local whitening)
@@ -56,6 +56,11 @@ WIDTH_STEP = 0.025                 # the width grid's step, relative to the nomi
 WIDTH_RANGE = 0.4                  # +-, relative: the fit range of backlash_width_drift (plant_adapter.FIT_RANGES)
 WIDTH_EFFECT = "backlash_width_drift"
 WIDTH_KEY = "backlash_width_drift.change"
+CLIPPED_VIEWS = ("event_average",)     # evaluate(clip_p=...): the view whose odd single events decide windows of
+                                       # the model's own drives (docs/model_watch.md). Not the record mean (its
+                                       # units are blocks of events), nor the spectral shape: an effect there lies
+                                       # along the model-form tolerance, and a bound set in the noise's metric
+                                       # capped a 600 Hz a2 low-pass at T^2 14 (222 unclipped; never detected)
 NOISE_SIGNIFICANT = 10.0           # the watch's sensor noise floor: measured noise-band level / the model's own (noise_floor)
 
 
@@ -83,6 +88,8 @@ class Evidence:
     noise_psd: np.ndarray
     entries: np.ndarray
     dc_names: tuple = SEGMENT_SIGNALS     # the record-mean view's signals (events.dc_signals of the recording)
+    denoised: np.ndarray | None = None    # (E, 2, L) each raw segment sym5-denoised (events.denoise), when the caller
+                                          # has them (the live watch keeps each event's); else made when needed
 
     @property
     def n_events(self) -> int:
@@ -281,6 +288,18 @@ class Views:
     def event_part(self, r) -> np.ndarray:
         return r[:self.n_event_coords]
 
+    def denoised_events(self, evidence: Evidence) -> np.ndarray:
+        """(E, 2, L) every event's denoised segment (the evidence's own, else denoised here)."""
+        if evidence.denoised is not None:
+            return evidence.denoised
+        return denoise(evidence.raw)
+
+    def event_targets(self, evidence: Evidence) -> np.ndarray:
+        """(E, N): each event's own measured vector; their mean is :meth:`target` (the denoising is linear)."""
+        dens = self.denoised_events(evidence)
+        return np.hstack([(dens * self.w[None, :, None]).reshape(dens.shape[0], -1), evidence.spec * self.ws[None],
+                          evidence.dc * self.wdc[None]])
+
     def target(self, evidence: Evidence) -> np.ndarray:
         """The measured vector: the weighted denoised event average, the mean spectral shape and record mean."""
         return np.concatenate([(denoise(evidence.raw.mean(axis=0)) * self.w[:, None]).ravel(),
@@ -413,9 +432,32 @@ class ModelReference:
         return (float(w @ self.widths_m[idx]), w @ views.grid[idx], np.tensordot(w, self.grid_mean[idx], 1),
                 np.tensordot(w, self.grid_raw[idx], 1))
 
-    def evaluate(self, evidence: Evidence, profile_width: bool = True, where: bool = True) -> Evaluation:
+    def view_dof(self) -> dict:
+        """Per view: the degrees of freedom of the covariance its whitening is estimated from (the model's K x E
+        own events; the record mean's from its K x DC_BLOCKS block means less the seeds' means) -- what
+        consistency.predictive_t2_isf needs for the view's honest tail."""
+        n = len(self.seeds) * self.build_events
+        return {"event_average": n - 1, "spectral_shape": n - 1, "outside": n - 1,
+                "record_mean": len(self.seeds) * (DC_BLOCKS - 1)}
+
+    def clip_radius(self, views, clip_p: float) -> dict:
+        """Per clipped view: the length of one event's whitened deviation that the model's own events exceed with
+        probability ``clip_p`` (consistency.predictive_t2_isf of one event against the n-event model mean)."""
+        dof = self.view_dof()
+        n = len(self.seeds) * self.build_events
+        return {name: math.sqrt((1.0 + 1.0 / n) * consistency.predictive_t2_isf(clip_p, sl.stop - sl.start,
+                                                                                  dof[name]))
+                for name, sl in views.blocks if name in CLIPPED_VIEWS}
+
+    def evaluate(self, evidence: Evidence, profile_width: bool = True, where: bool = True,
+                 clip_p: float | None = None) -> Evaluation:
         """The consistency test (consistency.test: diagnose's) of ``evidence`` against the model; with
-        ``profile_width`` at the width that fits best (the measurand), else at the model's nominal width."""
+        ``profile_width`` at the width that fits best (the measurand), else at the model's nominal width.
+
+        ``clip_p`` (the live watch): in the event average (CLIPPED_VIEWS) each event's whitened deviation counts at
+        most at the length the model's own events exceed with that probability (consistency.clipped_mean:
+        Huber's bounded influence; docs/model_watch.md, "The alarm rule"); when that clips an event the width is
+        profiled again on the clipped evidence. None: the plain mean, diagnose's test to the last digit."""
         if evidence.n_events < 1:
             raise ValueError("no onset event to evaluate")
         views = self.views(evidence.noise_psd, evidence.n_events, evidence.dc_names)
@@ -428,8 +470,25 @@ class ModelReference:
             width, pred, mean, raw = self.nominal_width_m, views.base, self.base_mean, self.base_raw
             position = None
             tested = views
-        result = consistency.test(tested, target - pred)
-        measured = denoise(evidence.raw.mean(axis=0))
+        events, radius, weights = None, None, None
+        if clip_p is not None:
+            events = views.event_targets(evidence)
+            radius = self.clip_radius(tested, clip_p)
+            weights = _event_weights(tested, events - pred[None], radius)
+            if profile_width and np.any(weights < 1.0):
+                # the width the clipped evidence fits (an odd event pulls the plain mean's width too)
+                width, pred, mean, raw = self.profile_width(views, pred + (weights[:, None] * (events - pred)).mean(0))
+                position = self._last_position
+                tested = views.local(int(round(position)))
+                radius = self.clip_radius(tested, clip_p)
+                weights = _event_weights(tested, events - pred[None], radius)
+        result = consistency.test(tested, target - pred, event_residuals=None if events is None else events - pred,
+                                  clip_radius=radius)
+        if weights is not None and np.any(weights < 1.0):
+            dens = views.denoised_events(evidence)
+            measured = mean + (weights[:, None, None] * (dens - mean[None])).mean(axis=0)
+        else:
+            measured = denoise(evidence.raw.mean(axis=0))
         ratio = np.sqrt(np.mean((measured - mean) ** 2, axis=-1)) / views.floor_rms
         out = Evaluation(result, width, dict(zip(SEGMENT_SIGNALS, map(float, ratio))), None, evidence.n_events,
                          np.asarray(evidence.noise_psd, dtype=float), self.nominal_width_m, mean, raw, views.w,
@@ -438,7 +497,7 @@ class ModelReference:
             out.where = self.where(evidence, out)
         return out
 
-    def leave_one_out(self, evidence: Evidence, evaluation: Evaluation) -> list:
+    def leave_one_out(self, evidence: Evidence, evaluation: Evaluation, clip_p: float | None = None) -> list:
         """consistency.test of the window without each one of its events in turn (E - 1 events), each at the width
         that fits it (an odd event moves the width too): [ConsistencyResult] per left-out event. The watch's alarm
         asks that the evidence not hinge on one event (watch/alarm.py: one odd event stays in N consecutive
@@ -450,8 +509,10 @@ class ModelReference:
         for e in range(n):
             keep = np.arange(n) != e
             sub = Evidence(evidence.raw[keep], evidence.dc[keep], evidence.spec[keep], evidence.noise_psd,
-                           evidence.entries[keep], evidence.dc_names)
-            out.append(self.evaluate(sub, profile_width=evaluation.position is not None, where=False).result)
+                           evidence.entries[keep], evidence.dc_names,
+                           None if evidence.denoised is None else evidence.denoised[keep])
+            out.append(self.evaluate(sub, profile_width=evaluation.position is not None, where=False,
+                                     clip_p=clip_p).result)
         return out
 
     def where(self, evidence: Evidence, evaluation: Evaluation) -> dict:
@@ -489,6 +550,13 @@ class ModelReference:
         os.replace(tmp, p)
         self.path = p
         return p
+
+
+def _event_weights(problem, residuals: np.ndarray, radius: dict) -> np.ndarray:
+    """Each event's weight in the event-average view's clipped mean (consistency.clipped_mean): 1 inside the
+    radius."""
+    sl = dict(problem.blocks)["event_average"]
+    return consistency.clipped_mean(residuals @ problem.basis[:, sl], radius["event_average"])[1]
 
 
 def _lagrange(position: float, n: int) -> tuple[np.ndarray, np.ndarray]:
