@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from scipy import stats
@@ -182,6 +183,13 @@ def predictive_p(t2: float, dimension: int, dof: int) -> float:
     return float(fdtrc(q, d2, max(float(t2), 0.0) * d2 / (q * dof)))
 
 
+@lru_cache(maxsize=None)
+def chi2_limit(dimension: int) -> float:
+    """A view's limit: chi^2's LIMIT_P point at its dimension (cached: stats.chi2.ppf costs ~0.6 ms a call, four
+    per test -- 7 % of the live watch's work when computed every time)."""
+    return float(stats.chi2.ppf(LIMIT_P, dimension))
+
+
 def noise_scale(n_events: int, n_seeds: int) -> float:
     """Variance, per whitened direction, of an E-event mean against a K-seed model mean (units: one event)."""
     return 1.0 / n_events + 1.0 / (n_events * n_seeds)
@@ -226,11 +234,11 @@ def test(problem, r: np.ndarray, with_tolerance: bool = True, event_residuals: n
     views = {}
     for name, sl in problem.blocks:
         tb = None if tol is None else tol[sl]
-        views[name] = ViewResult(name, _t2(z[sl], c, tb), float(stats.chi2.ppf(LIMIT_P, sl.stop - sl.start)),
+        views[name] = ViewResult(name, _t2(z[sl], c, tb), chi2_limit(sl.stop - sl.start),
                                  sl.stop - sl.start, _t2(z[sl], c, None))
     # outside the candidates' subspace: no tolerance (the nominal parameters move the prediction inside it; what
     # lies outside is what no catalogue effect and no nominal error makes)
     zc = problem.complement.T @ problem.event_part(r)
     t2c = _t2(zc, c, None)
-    views[OUTSIDE] = ViewResult(OUTSIDE, t2c, float(stats.chi2.ppf(LIMIT_P, zc.size)), int(zc.size), t2c)
+    views[OUTSIDE] = ViewResult(OUTSIDE, t2c, chi2_limit(int(zc.size)), int(zc.size), t2c)
     return ConsistencyResult(views, float(np.sqrt(np.mean(problem.event_part(r) ** 2))))

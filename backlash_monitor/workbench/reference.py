@@ -302,7 +302,7 @@ class Views:
 
     def target(self, evidence: Evidence) -> np.ndarray:
         """The measured vector: the weighted denoised event average, the mean spectral shape and record mean."""
-        return np.concatenate([(denoise(evidence.raw.mean(axis=0)) * self.w[:, None]).ravel(),
+        return np.concatenate([(mean_denoised(evidence) * self.w[:, None]).ravel(),
                                evidence.spec.mean(axis=0) * self.ws, evidence.dc.mean(axis=0) * self.wdc])
 
 
@@ -488,7 +488,7 @@ class ModelReference:
             dens = views.denoised_events(evidence)
             measured = mean + (weights[:, None, None] * (dens - mean[None])).mean(axis=0)
         else:
-            measured = denoise(evidence.raw.mean(axis=0))
+            measured = mean_denoised(evidence)
         ratio = np.sqrt(np.mean((measured - mean) ** 2, axis=-1)) / views.floor_rms
         out = Evaluation(result, width, dict(zip(SEGMENT_SIGNALS, map(float, ratio))), None, evidence.n_events,
                          np.asarray(evidence.noise_psd, dtype=float), self.nominal_width_m, mean, raw, views.w,
@@ -550,6 +550,15 @@ class ModelReference:
         os.replace(tmp, p)
         self.path = p
         return p
+
+
+def mean_denoised(evidence: Evidence) -> np.ndarray:
+    """(2, L) the denoised event average: the mean of the events' own denoised segments where the evidence has them
+    (the live watch denoises each event once; the denoising is linear, so this is the denoised mean to rounding),
+    else the denoised mean of the raw segments (diagnose's)."""
+    if evidence.denoised is not None:
+        return evidence.denoised.mean(axis=0)
+    return denoise(evidence.raw.mean(axis=0))
 
 
 def _event_weights(problem, residuals: np.ndarray, radius: dict) -> np.ndarray:
