@@ -22,12 +22,23 @@ def _cpu_s(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
+def watch_qos() -> str:
+    """The QoS pipeline --watch gives the model_watch node's subscriptions (the null node takes the same)."""
+    import argparse
+    from backlash_monitor.nodes import pipeline
+    parser = argparse.ArgumentParser()
+    pipeline.add_arguments(parser)
+    return pipeline.node_parameters(parser.parse_args(["--watch"]))["model_watch"]["qos"]
+
+
 def cpu_per_drive(duration_s: float = 40.0, skip_s: float = 10.0, log=print) -> dict:
-    null = subprocess.Popen([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "null_node.py")],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    qos = watch_qos()
+    null = subprocess.Popen([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "null_node.py"),
+                             qos], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     time.sleep(2.0)
     try:
         out = _cpu_run(duration_s, skip_s, log, null.pid)
+        out["cpu_subscriptions_qos"] = qos
     finally:
         null.send_signal(2)
         try:
