@@ -11,13 +11,16 @@ detection_onsets_median: onset events from the moment an effect switches on to W
 false_alarms: WARNs over >= 1 hour of clean drives across the nominal grid, own simulator and foreign drives
   each (the watch's core on the stream; a clean drive's backlash width also wears: own runs with a width that
   grows 10 % over the run are part of it), with the evaluations' smallest p-values.
+null_*: the model's own statistics under the test, the reason for the alarm rule (_model_watch/null_stats.py): the
+  reference's events left out seed by seed against Hotelling's expectation, their autocorrelation, and the share of
+  a model stream's single events beyond chi^2's 1e-4 radius.
 snapshot_diagnose_agreement: the model_watch node in a pipeline with an effect switched on mid-run writes its
   snapshot; `diagnose` on the snapshot and on a full 4 s recording of the same drive with the effect must name the
   same effect (scored like bench/workbench.py: the discovery or a flagged twin).
 cpu_per_drive: the model_watch node's CPU share of one core while a 50 kHz drive streams (pipeline --watch,
   the node in its own process; /proc/PID/stat), beside the windowing node's in the same run.
 
-    python bench/model_watch.py [--parts clean detect snapshot cpu] [--quick | --long]
+    python bench/model_watch.py [--parts null clean detect snapshot cpu] [--quick | --long]
     python bench/model_watch.py --parts clean detect --traces-out traces.json    # the calibration's raw data
 
 The alarm rule is the packaged one (config/model_watch.yaml); --rule VIEW_P,RATIO,PERSISTENCE tries another on
@@ -379,8 +382,8 @@ def summarize(clean: list, detect: list, rule) -> dict:
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--parts", nargs="+", default=["clean", "detect", "snapshot", "cpu"],
-                    choices=["clean", "detect", "snapshot", "cpu"])
+    ap.add_argument("--parts", nargs="+", default=["null", "clean", "detect", "snapshot", "cpu"],
+                    choices=["null", "clean", "detect", "snapshot", "cpu"])
     ap.add_argument("--quick", action="store_true", help="a smoke run: a few minutes of clean drives, one effect "
                                                           "per family and seed, one snapshot")
     ap.add_argument("--long", action="store_true", help="the goal's length: 2 h of clean own drives (8 grid points x "
@@ -441,6 +444,9 @@ def main() -> int:
         save()
     clean, detect = data["clean"], data["detect"]
     result.update(summarize(clean, detect, rule))
+    if "null" in args.parts:
+        from _model_watch.null_stats import null_statistics
+        result.update(null_statistics(CLEAN_GRID, reference_for, stream_s=20.0 if args.quick else 60.0, log=log))
     if "snapshot" in args.parts:
         from _model_watch.snapshot import snapshot_agreement
         result.update(snapshot_agreement(quick=args.quick, log=log))
