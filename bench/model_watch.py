@@ -388,9 +388,9 @@ def main() -> int:
                                                           "per family and seed, one snapshot")
     ap.add_argument("--long", action="store_true", help="the goal's length: 2 h of clean own drives (8 grid points x "
                                                          "450 s, with and without width wear) and 64 min of clean "
-                                                         "foreign drives, two seeds per effect (~50 min on this "
-                                                         "machine under load; the default: 32 + 16 min, one seed, "
-                                                         "~20 min)")
+                                                         "foreign drives, two seeds per effect (its clean part: ~7 "
+                                                         "min at load ~1; the default: 32 + 16 min, one seed; "
+                                                         "clean + detect ~8 min, the three snapshots ~6 min)")
     ap.add_argument("--traces-out", default="", help="write the per-evaluation traces (JSON)")
     ap.add_argument("--traces-in", default="", help="traces written by --traces-out: re-scored, and the parts they "
                                                     "hold are not simulated again")
