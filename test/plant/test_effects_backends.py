@@ -153,15 +153,38 @@ DIRECT = {   # drift -> how the same change is made without it: (config key or s
 }
 
 
-@pytest.mark.parametrize("drift", [c for c in CATALOGUE if c.kind == "drift"], ids=lambda c: c.name)
-def test_drift_with_a_random_change_equals_the_changed_model_on_every_backend(drift):
+DRIFTS = [c for c in CATALOGUE if c.kind == "drift"]
+
+
+def _random_change(drift) -> float:
     """Random change inside the bounds (kept where the drive still runs: width > 0, n1 > 0)."""
     rng = np.random.default_rng(zlib.crc32(drift.name.encode()))
-    p = drift.parameters[0]
-    lo, hi = p.bounds
+    lo, hi = drift.parameters[0].bounds
     if drift.name == "backlash_width_drift":
         lo = -0.004
-    change = float(rng.uniform(lo, min(hi, 2.0)))
+    return float(rng.uniform(lo, min(hi, 2.0)))
+
+
+def _samples(backend: str) -> int:
+    return 4000 if backend != "numpy" else 600
+
+
+@pytest.fixture(scope="module")
+def drifted_runs():
+    """Every drift in one batch per backend: scenario i drifts by DRIFTS[i]'s random change, the others by 0 (their
+    neutral default); each scenario's run is the one it has alone (per-scenario run-time parameters)."""
+    n = len(DRIFTS)
+    params = {f"{d.name}.{d.parameters[0].name}": np.where(np.arange(n) == i, _random_change(d), 0.0)
+              for i, d in enumerate(DRIFTS)}
+    return {backend: PlantSimulator([Scenario(0.005, 0.025, 0.89)] * n, config=CFG, noise=False, backend=backend,
+                                    parameters=params).run(_samples(backend))
+            for backend in ("numba", "numba-scalar", "numpy")}
+
+
+@pytest.mark.parametrize("drift", DRIFTS, ids=lambda c: c.name)
+def test_drift_with_a_random_change_equals_the_changed_model_on_every_backend(drift, drifted_runs):
+    i = DRIFTS.index(drift)
+    change = _random_change(drift)
     key, nominal = DIRECT[drift.name]
     value = nominal * (1 + change) if drift.relative else nominal + change
     scen = dict(width_m=0.005, eta_k=0.025, n1=0.89)
@@ -171,12 +194,11 @@ def test_drift_with_a_random_change_equals_the_changed_model_on_every_backend(dr
     else:
         direct_cfg = CFG.with_overrides({key: value})
     for backend in ("numba", "numba-scalar", "numpy"):
-        n = 4000 if backend != "numpy" else 600
-        drifted = PlantSimulator([Scenario(0.005, 0.025, 0.89)], config=CFG, noise=False, backend=backend,
-                                 parameters={f"{drift.name}.{p.name}": change}).run(n)
-        direct = PlantSimulator([Scenario(**scen)], config=direct_cfg, noise=False, backend=backend).run(n)
+        drifted = drifted_runs[backend]
+        direct = PlantSimulator([Scenario(**scen)], config=direct_cfg, noise=False, backend=backend).run(
+            _samples(backend))
         for sig, floor in FLOORS:
-            a, b = getattr(drifted, sig), getattr(direct, sig)
+            a, b = getattr(drifted, sig)[i], getattr(direct, sig)[0]
             assert np.max(np.abs(a - b)) <= 1e-9 * max(np.max(np.abs(b)), floor), (backend, sig, change)
 
 
