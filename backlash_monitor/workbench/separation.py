@@ -101,6 +101,11 @@ MOTOR_TORQUE_DEFICIT = (
     "current, a low supply shows in the voltage itself")
 
 
-def motor_side_note(where: str) -> str:
-    """The caveat to a discovery that acts on the motor side ('' elsewhere)."""
-    return MOTOR_TORQUE_DEFICIT if where == "motor" else ""
+# the catalogue's constant torques on the motor shaft: what shifts the motor's mean slip as a weaker motor does (a
+# pulse-amplitude drift or a ripple acts on the motor side too, but changes the load's swing, not its mean)
+MOTOR_SLIP_EFFECTS = ("motor_coulomb_friction", "motor_load_offset")
+
+
+def motor_side_note(effect: str) -> str:
+    """The caveat to a discovery of a constant motor-shaft torque ('' for any other effect)."""
+    return MOTOR_TORQUE_DEFICIT if effect.split("[")[0] in MOTOR_SLIP_EFFECTS else ""
