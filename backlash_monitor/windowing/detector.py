@@ -71,6 +71,9 @@ def fit_departure(y: np.ndarray, direction: int, min_pre: int = 16, min_post: in
     sums (O(N) set-up, a batched 3x3 solve).  This is the physics of a contact loss: the relative
     speed is continuous (the ramp lets the contact wander slowly under the noise torques before it),
     the relative acceleration steps by (load pulse)/(inertia) at t0.
+
+    The candidates' arrays are held in reverse order (s = n - 1 - t: the order the reverse
+    cumulative sums come in), so nothing is reversed or copied but the final argmax's view.
     """
     y = np.asarray(y, dtype=np.float64)
     n = y.size
@@ -81,26 +84,42 @@ def fit_departure(y: np.ndarray, direction: int, min_pre: int = 16, min_post: in
     g = _departure_terms(n, lo, hi)
     k = g.k
     yk = y * k
-    rc = lambda v: np.cumsum(v[::-1])[::-1][lo:hi]  # noqa: E731  sum over k >= t, for the candidates
-    a0, a1, a2 = rc(y), rc(yk), rc(yk * k)
+    ykk = yk * k
+    # sum over k >= t for the candidates, in s order: the running sums from the end, from s = n - hi on
+    m = n - lo
+    a0 = np.cumsum(y[::-1][:m])[min_post:]
+    a1 = np.cumsum(yk[::-1][:m])[min_post:]
+    a2 = np.cumsum(ykk[::-1][:m])[min_post:]
     # regressors 1, k (fixed) and q = (k - t)^2 for k >= t.  Project 1, k out (Frisch-Waugh):
     # r_qq = q'q - (X'q)' G^-1 X'q, r_yq = y'q - (X'q)' G^-1 X'y, a = r_yq / r_qq, SSE = SSE_lin - r_yq^2/r_qq
     xy = np.array([y.sum(), np.dot(k, y)])
     gy = g.ginv @ xy
-    r_yq = (a2 - g.two_t * a1 + g.t_sq * a0) - (g.xq0 * gy[0] + g.xq1 * gy[1])
+    a1 *= g.two_t
+    a0 *= g.t_sq
+    np.subtract(a2, a1, out=a2)
+    a2 += a0                                    # a2 - 2t a1 + t^2 a0: q'y
+    np.multiply(g.xq0, gy[0], out=a0)
+    np.multiply(g.xq1, gy[1], out=a1)
+    a0 += a1
+    r_yq = np.subtract(a2, a0, out=a2)
     with np.errstate(all="ignore"):
-        acc = r_yq / g.r_qq
-        gain = r_yq * acc                       # SSE reduction over the straight-line fit
-    valid = np.isfinite(gain) & ((acc > 0) if direction > 0 else (acc < 0)) & g.r_qq_positive
-    if not valid.any():
-        return 0
-    return lo + int(np.argmax(np.where(valid, gain, -np.inf)))
+        acc = np.divide(r_yq, g.r_qq, out=a1)
+        gain = np.multiply(r_yq, acc, out=a0)   # SSE reduction over the straight-line fit
+    valid = np.isfinite(gain)
+    valid &= (acc > 0) if direction > 0 else (acc < 0)
+    valid &= g.r_qq_positive
+    gain[~valid] = -np.inf
+    j = int(np.argmax(gain[::-1]))             # the first maximum in t order
+    if not valid[hi - lo - 1 - j]:
+        return 0                               # no candidate valid
+    return lo + j
 
 
 @dataclass(frozen=True)
 class _DepartureTerms:
     """The parts of fit_departure's least squares that depend only on the length n (not on y);
-    all but k and ginv for the candidate departures t in [lo, hi) only."""
+    all but k and ginv for the candidate departures t in [lo, hi) only, in reverse order
+    (s = n - 1 - t from n - hi to n - 1 - lo)."""
     k: np.ndarray             # 0..n-1 (sample index)
     two_t: np.ndarray         # 2 t
     t_sq: np.ndarray          # t^2
@@ -112,34 +131,54 @@ class _DepartureTerms:
 
 
 _DEPARTURE_TERMS: dict[tuple[int, int, int], _DepartureTerms] = {}
+_GINV: dict[int, np.ndarray] = {}
+_POWER_SUMS: list[np.ndarray] = []       # [m, s2, s3, s4] for m = 0 .. len - 1
+
+
+def _power_sums(n: int) -> list[np.ndarray]:
+    """sum_{j=0..m} j^2, j^3, j^4 for m = 0 .. >= n - 1, by the inline formulas on the float m (each
+    value is an elementwise function of m alone, so the table's values are those of any length)."""
+    if not _POWER_SUMS or _POWER_SUMS[0].size < n:
+        m = np.arange(max(n, 2 * (_POWER_SUMS[0].size if _POWER_SUMS else 2048)), dtype=np.float64)
+        s2 = m * (m + 1) * (2 * m + 1) / 6.0
+        s3 = (m * (m + 1) / 2.0) ** 2
+        s4 = m * (m + 1) * (2 * m + 1) * (3 * m * m + 3 * m - 1) / 30.0
+        for a in (m, s2, s3, s4):
+            a.flags.writeable = False
+        _POWER_SUMS[:] = [m, s2, s3, s4]
+    return _POWER_SUMS
 
 
 def _departure_terms(n: int, lo: int, hi: int) -> _DepartureTerms:
-    """fit_departure's y-independent terms for length n, computed once per n (the detector always
-    fits fit_samples samples, a few other lengths near a segment start) -- by the same operations
-    as inline, so the fit is bit for bit the same (elementwise: the candidates' values do not
-    depend on the others)."""
+    """fit_departure's y-independent terms for length n, kept for the last 64 lengths (the detector
+    fits fit_samples samples, other lengths when the fit window starts at the arming window) -- by
+    the same operations as inline, so the fit is bit for bit the same (elementwise: the candidates'
+    values do not depend on the others).  The power sums of j = k - t (j = 0..m, m = n - 1 - t) come
+    from one table; the 2x2 inverse Gram matrix is kept per length."""
     key = (n, lo, hi)
     terms = _DEPARTURE_TERMS.get(key)
     if terms is not None:
         return terms
     k = np.arange(n, dtype=np.float64)
-    t = k
-    m = n - t - 1.0                          # j = k - t runs 0..m
-    s2 = m * (m + 1) * (2 * m + 1) / 6.0
-    s3 = (m * (m + 1) / 2.0) ** 2
-    s4 = m * (m + 1) * (2 * m + 1) * (3 * m * m + 3 * m - 1) / 30.0
-    sk, skk = k.sum(), (k * k).sum()
-    ginv = np.linalg.inv(np.array([[n, sk], [sk, skk]]))
-    xq0, xq1 = s2, s3 + t * s2                 # X'q = (sum q, sum k q)
-    r_qq = s4 - (ginv[0, 0] * xq0 * xq0 + 2 * ginv[0, 1] * xq0 * xq1 + ginv[1, 1] * xq1 * xq1)
-    c = slice(lo, hi)
-    arrays = [k, (2.0 * t)[c], (t * t)[c], xq0[c].copy(), xq1[c].copy(), ginv, r_qq[c].copy(),
-              (r_qq > 0)[c]]
+    ginv = _GINV.get(n)
+    if ginv is None:
+        sk, skk = k.sum(), (k * k).sum()
+        ginv = np.linalg.inv(np.array([[n, sk], [sk, skk]]))
+        if len(_GINV) >= 4096:
+            _GINV.clear()
+        _GINV[n] = ginv
+    # candidates in s order: s = m = n - 1 - t runs n - hi .. n - 1 - lo
+    table_m, table_s2, table_s3, table_s4 = _power_sums(n)
+    c = slice(n - hi, n - lo)
+    t = (n - 1) - table_m[c]                   # the candidates' t, exact (integers)
+    xq0 = table_s2[c]                          # X'q = (sum q, sum k q)
+    xq1 = table_s3[c] + t * xq0
+    r_qq = table_s4[c] - (ginv[0, 0] * xq0 * xq0 + 2 * ginv[0, 1] * xq0 * xq1 + ginv[1, 1] * xq1 * xq1)
+    arrays = [k, 2.0 * t, t * t, xq0, xq1, ginv, r_qq, r_qq > 0]
     for a in arrays:
         a.flags.writeable = False
     terms = _DepartureTerms(*arrays)
-    if len(_DEPARTURE_TERMS) >= 64:           # lengths other than fit_samples are rare: bound it
+    if len(_DEPARTURE_TERMS) >= 64:           # lengths other than fit_samples come and go: bound it
         _DEPARTURE_TERMS.clear()
     _DEPARTURE_TERMS[key] = terms
     return terms
