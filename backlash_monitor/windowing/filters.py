@@ -63,6 +63,109 @@ def exponential_average(x: np.ndarray, lam: float, y_before: float) -> np.ndarra
     return y.reshape(-1)[:n]
 
 
+def first_excursion(x: np.ndarray, lam: float, y_before: float, limit: float) -> tuple[int, int, float]:
+    """The first n with |x[n] - y[n-1]| > ``limit``, y = ``exponential_average(x, lam, y_before)``
+    (y[-1] = ``y_before``): (n, sign of x[n] - y[n-1], nan), or (-1, 0, y[-1]) if there is none.
+
+    The same values as exponential_average computes, bit for bit (its blocks, in the same
+    operations), taken block by block and only as far as needed: a block none of whose samples can
+    be the first excursion is passed with its zero-start sums alone (its start value and end need
+    them), the blocks after the excursion are not computed. A block cannot hold one when the span
+    of its samples, its start value and the average before it is <= limit: y[n-1] is a weighted
+    mean (weights >= 0 summing to 1) of those, so |x[n] - y[n-1]| <= that span. The margin
+    (1e-9 relative to the values' size) is far above the average's rounding (~1e-12 of it).
+    """
+    x = np.asarray(x, dtype=np.float64)
+    n = x.size
+    if n == 0:
+        return -1, 0, float(y_before)
+    r = 1.0 - lam
+    block = (max(1, min(EMA_BLOCK, n, int(math.log(EMA_MAX_GROWTH) / -math.log(r))))
+             if 0.0 < lam < 1.0 and r != 1.0 else 0)
+    if block < min(n, 64):           # short blocks (a time constant of a few samples): all at once
+        y = exponential_average(x, lam, y_before)
+        dev = np.empty_like(x)
+        dev[0] = x[0] - y_before
+        np.subtract(x[1:], y[:-1], out=dev[1:])
+        big = np.abs(dev) > limit
+        k = int(np.argmax(big))
+        if big[k]:
+            return k, (1 if dev[k] > 0 else -1), float("nan")
+        return -1, 0, float(y[-1])
+    down, lam_down, r_down, r_block = _ema_weights(lam, r, block)
+    start = np.float64(y_before)      # the block's start value (exponential_average's starts[b])
+    prev = start                      # y just before the block
+    first = 0
+    full = n // block
+    if full >= 2:
+        # the leading blocks no excursion can be in, found at once: y up to block b is a weighted
+        # mean of y_before and the samples up to it, so the span of those bounds |x[n] - y[n-1]|
+        rows = x[:full * block].reshape(full, block)
+        tops, bottoms = rows.max(axis=1).tolist(), rows.min(axis=1).tolist()
+        hi_v = lo_v = float(y_before)
+        quiet = 0
+        for top, bottom in zip(tops, bottoms):
+            hi_v, lo_v = max(hi_v, top), min(lo_v, bottom)
+            if not hi_v - lo_v <= limit - 1e-9 * (1.0 + max(abs(hi_v), abs(lo_v))):
+                break
+            quiet += 1
+        if quiet:
+            sums = _block_sums(rows[:quiet], down)
+            for b in range(quiet):
+                end = sums[b] * lam_down[-1]
+                prev = end + r_down[-1] * start
+                start = end + r_block * start
+            first = quiet * block
+    for lo in range(first, n, block):
+        xs = x[lo:lo + block]
+        m = xs.size
+        q = np.divide(xs, down[:m])
+        np.cumsum(q, out=q)           # the zero-start sums
+        hi_v, lo_v = xs.max(), xs.min()
+        hi_v = max(hi_v, start, prev)
+        lo_v = min(lo_v, start, prev)
+        if hi_v - lo_v <= limit - 1e-9 * (1.0 + max(abs(hi_v), abs(lo_v))):
+            last = q[m - 1] * lam_down[m - 1] + r_down[m - 1] * start
+            if m == block:
+                start = q[m - 1] * lam_down[m - 1] + r_block * start
+            prev = last
+            continue
+        q *= lam_down[:m]
+        end = q[m - 1]                # the block's end before its start value is added
+        q += r_down[:m] * start
+        dev = np.empty(m)
+        dev[0] = xs[0] - prev
+        np.subtract(xs[1:], q[:-1], out=dev[1:])
+        big = np.abs(dev) > limit
+        k = int(np.argmax(big))
+        if big[k]:
+            return lo + k, (1 if dev[k] > 0 else -1), float("nan")
+        start = end + r_block * start
+        prev = q[m - 1]
+    return -1, 0, float(prev)
+
+
+def _block_sums(rows: np.ndarray, down: np.ndarray) -> np.ndarray:
+    """cumsum(rows[b] / down)[-1] for every row b: two rows at a time, as the real and imaginary
+    parts of one complex running sum (complex addition adds the parts separately: the same sums)."""
+    k = rows.shape[0]
+    if k == 1:
+        return np.cumsum(rows[0] / down)[-1:]
+    pairs = (k + 1) // 2
+    w = np.empty((pairs, rows.shape[1]), dtype=np.complex128)
+    np.divide(rows[0::2], down, out=w.real)
+    if k % 2:
+        np.divide(rows[1::2], down, out=w.imag[:-1])
+        w.imag[-1] = 0.0
+    else:
+        np.divide(rows[1::2], down, out=w.imag)
+    np.cumsum(w, axis=1, out=w)
+    sums = np.empty(k)
+    sums[0::2] = w.real[:, -1]
+    sums[1::2] = w.imag[:k // 2, -1]
+    return sums
+
+
 _EMA_WEIGHTS: dict[tuple[float, int], tuple] = {}
 
 
@@ -96,6 +199,8 @@ def window_range(x: np.ndarray, width: int) -> np.ndarray:
         return np.empty(0)
     if width == 1:
         return np.zeros(n)
+    if n == width:               # one window
+        return np.array([x.max() - x.min()])
     hi = lo = x
     p = 1
     while 2 * p <= width:        # windows of 2p samples: n - 2p + 1 of them
