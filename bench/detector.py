@@ -14,6 +14,12 @@ interleaved rounds per side, old and new alternating which goes first):
 ``speedup_*`` = old time / new time (> 1: the new one is faster). ``identical``: every case gave
 the same entries (all fields) from both. The old version is bench/_detector/reference_detector.py;
 the full identity check over ~1150 scenarios is bench/_detector/identity.py.
+
+``analyze_*``: the whole ``analyze`` of bench/bags.py's simulated 10 s bag (7.5 mm, seed 11; the
+project's layout), run as the CLI runs it with the detector now and with the old one patched into
+the chain, and rosbags merely reading the same three topics (bags.py's yardstick for issue 17):
+``rounds`` interleaved rounds, the fastest of each; ``analyze_vs_rosbags_read_{old,new}_detector``
+and whether both gave the same CSV. ``--no-analyze`` leaves it out.
 """
 from __future__ import annotations
 
@@ -21,10 +27,12 @@ import argparse
 import json
 import os
 import sys
+import tempfile
 import time
+from pathlib import Path
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path[:0] = [os.path.join(HERE, "_detector"), os.path.join(HERE, "..")]
+sys.path[:0] = [os.path.join(HERE, "_detector"), HERE, os.path.join(HERE, "..")]
 
 import reference_detector  # noqa: E402
 import scenarios  # noqa: E402
@@ -63,9 +71,49 @@ def run_case(cls, kw, feeds_per_record, widths):
     return got
 
 
+def analyze_old_vs_new(rounds: int) -> dict:
+    """analyze of a 10 s bag with the new and the old detector, and rosbags reading it (see above)."""
+    import backlash_monitor.chain as chain
+    import bags
+    from backlash_monitor.bag.simulated import write_simulation_bag
+    from backlash_monitor.commands import analyze
+    from backlash_monitor.plant import PlantSimulator, Scenario
+
+    detectors = {"new": chain.BacklashEntryDetector, "old": reference_detector.BacklashEntryDetector}
+    parser = argparse.ArgumentParser()
+    analyze.add_arguments(parser)
+    best = {"new": float("inf"), "old": float("inf"), "rosbags": float("inf")}
+    csv = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        bag = Path(tmp) / "analyze.mcap"
+        write_simulation_bag(bag, PlantSimulator([Scenario(width_m=0.0075, seed=11)],
+                                                 outputs=bags.SIGNALS), 10.0)
+        try:
+            for k in range(-1, rounds):          # round -1: warm-up (imports, caches), not timed
+                for side in (("new", "old") if k % 2 == 0 else ("old", "new")):
+                    chain.BacklashEntryDetector = detectors[side]
+                    out = Path(tmp) / f"{side}_{k}"
+                    t = bags._analyze(analyze, parser, bag, out)
+                    csv[side] = (Path(tmp) / f"{side}_{k}.csv").read_text()
+                    if k >= 0:
+                        best[side] = min(best[side], t)
+                t = bags.time_rosbags_read(bag, bags.ANALYZE_TOPICS)[1]
+                if k >= 0:
+                    best["rosbags"] = min(best["rosbags"], t)
+        finally:
+            chain.BacklashEntryDetector = detectors["new"]
+    return {"analyze_new_detector_ms": round(best["new"] * 1e3, 1),
+            "analyze_old_detector_ms": round(best["old"] * 1e3, 1),
+            "rosbags_read_same_topics_ms": round(best["rosbags"] * 1e3, 1),
+            "analyze_vs_rosbags_read_new_detector": round(best["rosbags"] / best["new"], 3),
+            "analyze_vs_rosbags_read_old_detector": round(best["rosbags"] / best["old"], 3),
+            "analyze_same_csv_old_new_detector": csv["new"] == csv["old"]}
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("--rounds", type=int, default=7)
+    ap.add_argument("--no-analyze", action="store_true")
     a = ap.parse_args(argv)
     t0 = time.time()
     records = scenarios.plant_records(10.0, widths=WIDTHS, combos=((0.025, 0.93, 0),))
@@ -92,6 +140,8 @@ def main(argv=None):
         print(f"{name}: old {best['old'] / per * 1e3:.2f} ms, new {best['new'] / per * 1e3:.2f} ms per record, "
               f"{len(out['new'])} entries", file=sys.stderr)
     result["identical"] = identical
+    if not a.no_analyze:
+        result.update(analyze_old_vs_new(a.rounds))
     result["load_average"] = [round(x, 2) for x in os.getloadavg()]
     print(json.dumps(result))
     return 0
