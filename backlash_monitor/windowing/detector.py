@@ -93,10 +93,10 @@ def fit_departure(y: np.ndarray, direction: int, min_pre: int = 16, min_post: in
     both.real = y
     yk = np.multiply(y, k, out=both.imag)
     ykk = yk * k
-    a01 = np.cumsum(both[::-1][:m])
+    a01 = both[::-1][:m].cumsum()
     a0 = a01.real[min_post:]
     a1 = a01.imag[min_post:]
-    a2 = np.cumsum(ykk[::-1][:m])[min_post:]
+    a2 = ykk[::-1][:m].cumsum()[min_post:]
     # regressors 1, k (fixed) and q = (k - t)^2 for k >= t.  Project 1, k out (Frisch-Waugh):
     # r_qq = q'q - (X'q)' G^-1 X'q, r_yq = y'q - (X'q)' G^-1 X'y, a = r_yq / r_qq, SSE = SSE_lin - r_yq^2/r_qq
     xy = np.array([y.sum(), np.dot(k, y)])
@@ -116,7 +116,7 @@ def fit_departure(y: np.ndarray, direction: int, min_pre: int = 16, min_post: in
     valid &= (acc > 0) if direction > 0 else (acc < 0)
     valid &= g.r_qq_positive
     gain[~valid] = -np.inf
-    j = int(np.argmax(gain[::-1]))             # the first maximum in t order
+    j = int(gain[::-1].argmax())               # the first maximum in t order
     if not valid[hi - lo - 1 - j]:
         return 0                               # no candidate valid
     return lo + j
@@ -201,7 +201,7 @@ def _first_true(mask: np.ndarray) -> int:
     """Index of the first True of a 1-D boolean array, -1 if none (argmax stops at the first True)."""
     if mask.size == 0:
         return -1
-    i = int(np.argmax(mask))
+    i = int(mask.argmax())
     return i if mask[i] else -1
 
 

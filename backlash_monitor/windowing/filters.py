@@ -49,7 +49,7 @@ def exponential_average(x: np.ndarray, lam: float, y_before: float) -> np.ndarra
         rest = n - full * block
         np.divide(x[full * block:], down[:rest], out=y[full, :rest])
         y[full, rest:] = 0.0
-    np.cumsum(y, axis=1, out=y)
+    y = y.cumsum(axis=1)         # (the methods: np.cumsum/np.argmax add a Python wrapper's ~2 us)
     y *= lam_down                # the zero-start responses
     if n_blocks == 1:
         y += r_down * y_before
@@ -74,26 +74,26 @@ def first_excursion(x: np.ndarray, lam: float, y_before: float, limit: float) ->
     of its samples, its start value and the average before it is <= limit: y[n-1] is a weighted
     mean (weights >= 0 summing to 1) of those, so |x[n] - y[n-1]| <= that span. The margin
     (1e-9 relative to the values' size) is far above the average's rounding (~1e-12 of it).
+    Scalars are Python floats (the same IEEE double arithmetic as numpy's, with less overhead).
     """
     x = np.asarray(x, dtype=np.float64)
     n = x.size
     if n == 0:
         return -1, 0, float(y_before)
     r = 1.0 - lam
-    block = (max(1, min(EMA_BLOCK, n, int(math.log(EMA_MAX_GROWTH) / -math.log(r))))
-             if 0.0 < lam < 1.0 and r != 1.0 else 0)
+    block = min(n, _ema_block(lam)) if 0.0 < lam < 1.0 and r != 1.0 else 0
     if block < min(n, 64):           # short blocks (a time constant of a few samples): all at once
         y = exponential_average(x, lam, y_before)
         dev = np.empty_like(x)
         dev[0] = x[0] - y_before
         np.subtract(x[1:], y[:-1], out=dev[1:])
         big = np.abs(dev) > limit
-        k = int(np.argmax(big))
+        k = int(big.argmax())
         if big[k]:
             return k, (1 if dev[k] > 0 else -1), float("nan")
         return -1, 0, float(y[-1])
     down, lam_down, r_down, r_block = _ema_weights(lam, r, block)
-    start = np.float64(y_before)      # the block's start value (exponential_average's starts[b])
+    start = float(y_before)           # the block's start value (exponential_average's starts[b])
     prev = start                      # y just before the block
     first = 0
     full = n // block
@@ -102,7 +102,7 @@ def first_excursion(x: np.ndarray, lam: float, y_before: float, limit: float) ->
         # mean of y_before and the samples up to it, so the span of those bounds |x[n] - y[n-1]|
         rows = x[:full * block].reshape(full, block)
         tops, bottoms = rows.max(axis=1).tolist(), rows.min(axis=1).tolist()
-        hi_v = lo_v = float(y_before)
+        hi_v = lo_v = start
         quiet = 0
         for top, bottom in zip(tops, bottoms):
             hi_v, lo_v = max(hi_v, top), min(lo_v, bottom)
@@ -110,39 +110,53 @@ def first_excursion(x: np.ndarray, lam: float, y_before: float, limit: float) ->
                 break
             quiet += 1
         if quiet:
-            sums = _block_sums(rows[:quiet], down)
-            for b in range(quiet):
-                end = sums[b] * lam_down[-1]
-                prev = end + r_down[-1] * start
+            lam_last, r_last = lam_down.item(-1), r_down.item(-1)
+            for total in _block_sums(rows[:quiet], down).tolist():
+                end = total * lam_last
+                prev = end + r_last * start
                 start = end + r_block * start
             first = quiet * block
     for lo in range(first, n, block):
         xs = x[lo:lo + block]
         m = xs.size
-        q = np.divide(xs, down[:m])
-        np.cumsum(q, out=q)           # the zero-start sums
-        hi_v, lo_v = xs.max(), xs.min()
-        hi_v = max(hi_v, start, prev)
-        lo_v = min(lo_v, start, prev)
+        q = (xs / down if m == block else xs / down[:m]).cumsum()    # the zero-start sums
+        hi_v = max(_MAX(xs), start, prev)
+        lo_v = min(_MIN(xs), start, prev)
         if hi_v - lo_v <= limit - 1e-9 * (1.0 + max(abs(hi_v), abs(lo_v))):
-            last = q[m - 1] * lam_down[m - 1] + r_down[m - 1] * start
+            total = q.item(m - 1)
+            last = total * lam_down.item(m - 1) + r_down.item(m - 1) * start
             if m == block:
-                start = q[m - 1] * lam_down[m - 1] + r_block * start
+                start = total * lam_down.item(m - 1) + r_block * start
             prev = last
             continue
         q *= lam_down[:m]
-        end = q[m - 1]                # the block's end before its start value is added
+        end = q.item(m - 1)           # the block's end before its start value is added
         q += r_down[:m] * start
         dev = np.empty(m)
         dev[0] = xs[0] - prev
         np.subtract(xs[1:], q[:-1], out=dev[1:])
         big = np.abs(dev) > limit
-        k = int(np.argmax(big))
+        k = int(big.argmax())
         if big[k]:
             return lo + k, (1 if dev[k] > 0 else -1), float("nan")
         start = end + r_block * start
-        prev = q[m - 1]
-    return -1, 0, float(prev)
+        prev = q.item(m - 1)
+    return -1, 0, prev
+
+
+_MAX, _MIN = np.maximum.reduce, np.minimum.reduce
+_EMA_BLOCKS: dict[float, int] = {}
+
+
+def _ema_block(lam: float) -> int:
+    """exponential_average's block length before the min with n: min(EMA_BLOCK, log(growth)/-log r)."""
+    b = _EMA_BLOCKS.get(lam)
+    if b is None:
+        b = max(1, min(EMA_BLOCK, int(math.log(EMA_MAX_GROWTH) / -math.log(1.0 - lam))))
+        if len(_EMA_BLOCKS) >= 256:
+            _EMA_BLOCKS.clear()
+        _EMA_BLOCKS[lam] = b
+    return b
 
 
 def _block_sums(rows: np.ndarray, down: np.ndarray) -> np.ndarray:
@@ -150,7 +164,7 @@ def _block_sums(rows: np.ndarray, down: np.ndarray) -> np.ndarray:
     parts of one complex running sum (complex addition adds the parts separately: the same sums)."""
     k = rows.shape[0]
     if k == 1:
-        return np.cumsum(rows[0] / down)[-1:]
+        return (rows[0] / down).cumsum()[-1:]
     pairs = (k + 1) // 2
     w = np.empty((pairs, rows.shape[1]), dtype=np.complex128)
     np.divide(rows[0::2], down, out=w.real)
@@ -159,7 +173,7 @@ def _block_sums(rows: np.ndarray, down: np.ndarray) -> np.ndarray:
         w.imag[-1] = 0.0
     else:
         np.divide(rows[1::2], down, out=w.imag)
-    np.cumsum(w, axis=1, out=w)
+    w = w.cumsum(axis=1)
     sums = np.empty(k)
     sums[0::2] = w.real[:, -1]
     sums[1::2] = w.imag[:k // 2, -1]
