@@ -441,11 +441,11 @@ class BacklashEntryDetector:
 
     # ------------------------------------------------------------------ state machine
     def _alpha(self) -> float:
-        """The tracker's EMA weight per sample (kept per sample period)."""
+        """The tracker's EMA weight per sample (kept per sample period and time constant)."""
+        key = (self.sample_period_s, self.reference_tau_s)
         cached = self._alpha_cache
-        if cached is None or cached[0] != self.sample_period_s:
-            cached = self._alpha_cache = (self.sample_period_s,
-                                          1.0 - np.exp(-self.sample_period_s / self.reference_tau_s))
+        if cached is None or cached[0] != key:
+            cached = self._alpha_cache = (key, 1.0 - np.exp(-self.sample_period_s / self.reference_tau_s))
         return cached[1]
 
     def _find_settled(self, buf: np.ndarray, base: int, start: int, end: int) -> int:
