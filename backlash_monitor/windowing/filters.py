@@ -38,7 +38,7 @@ def exponential_average(x: np.ndarray, lam: float, y_before: float) -> np.ndarra
         return x.copy()
     if r == 1.0:     # lam below the float resolution of 1 (a time constant ~1e16 samples long)
         return np.full(n, float(y_before))
-    block = max(1, min(EMA_BLOCK, n, int(math.log(EMA_MAX_GROWTH) / -math.log(r))))
+    block = min(n, _ema_block(lam))
     down, lam_down, r_down, r_block = _ema_weights(lam, r, block)
     n_blocks = -(-n // block)
     full = n // block
@@ -84,14 +84,8 @@ def first_excursion(x: np.ndarray, lam: float, y_before: float, limit: float) ->
     block = min(n, _ema_block(lam)) if 0.0 < lam < 1.0 and r != 1.0 else 0
     if block < min(n, 64):           # short blocks (a time constant of a few samples): all at once
         y = exponential_average(x, lam, y_before)
-        dev = np.empty_like(x)
-        dev[0] = x[0] - y_before
-        np.subtract(x[1:], y[:-1], out=dev[1:])
-        big = np.abs(dev) > limit
-        k = int(big.argmax())
-        if big[k]:
-            return k, (1 if dev[k] > 0 else -1), float("nan")
-        return -1, 0, float(y[-1])
+        k, sign = _beyond(x, y_before, y, limit)
+        return (k, sign, float("nan")) if k >= 0 else (-1, 0, float(y[-1]))
     down, lam_down, r_down, r_block = _ema_weights(lam, r, block)
     start = float(y_before)           # the block's start value (exponential_average's starts[b])
     prev = start                      # y just before the block
@@ -106,7 +100,7 @@ def first_excursion(x: np.ndarray, lam: float, y_before: float, limit: float) ->
         quiet = 0
         for top, bottom in zip(tops, bottoms):
             hi_v, lo_v = max(hi_v, top), min(lo_v, bottom)
-            if not hi_v - lo_v <= limit - 1e-9 * (1.0 + max(abs(hi_v), abs(lo_v))):
+            if not _within(hi_v, lo_v, limit):
                 break
             quiet += 1
         if quiet:
@@ -122,7 +116,7 @@ def first_excursion(x: np.ndarray, lam: float, y_before: float, limit: float) ->
         q = (xs / down if m == block else xs / down[:m]).cumsum()    # the zero-start sums
         hi_v = max(_MAX(xs), start, prev)
         lo_v = min(_MIN(xs), start, prev)
-        if hi_v - lo_v <= limit - 1e-9 * (1.0 + max(abs(hi_v), abs(lo_v))):
+        if _within(hi_v, lo_v, limit):
             total = q.item(m - 1)
             last = total * lam_down.item(m - 1) + r_down.item(m - 1) * start
             if m == block:
@@ -132,16 +126,31 @@ def first_excursion(x: np.ndarray, lam: float, y_before: float, limit: float) ->
         q *= lam_down[:m]
         end = q.item(m - 1)           # the block's end before its start value is added
         q += r_down[:m] * start
-        dev = np.empty(m)
-        dev[0] = xs[0] - prev
-        np.subtract(xs[1:], q[:-1], out=dev[1:])
-        big = np.abs(dev) > limit
-        k = int(big.argmax())
-        if big[k]:
-            return lo + k, (1 if dev[k] > 0 else -1), float("nan")
+        k, sign = _beyond(xs, prev, q, limit)
+        if k >= 0:
+            return lo + k, sign, float("nan")
         start = end + r_block * start
         prev = q.item(m - 1)
     return -1, 0, prev
+
+
+def _beyond(x: np.ndarray, y_before: float, y: np.ndarray, limit: float) -> tuple[int, int]:
+    """The first n with |x[n] - y[n-1]| > ``limit`` (y[-1] = ``y_before``) and the sign of that
+    difference, or (-1, 0)."""
+    dev = np.empty(x.size)
+    dev[0] = x[0] - y_before
+    np.subtract(x[1:], y[:-1], out=dev[1:])
+    big = np.abs(dev) > limit
+    k = int(big.argmax())
+    if big[k]:
+        return k, (1 if dev[k] > 0 else -1)
+    return -1, 0
+
+
+def _within(hi: float, lo: float, limit: float) -> bool:
+    """No sample can depart from an average of values in [lo, hi] by more than ``limit`` (with a
+    margin of 1e-9 of their size, far above the average's rounding)."""
+    return hi - lo <= limit - 1e-9 * (1.0 + max(abs(hi), abs(lo)))
 
 
 _MAX, _MIN = np.maximum.reduce, np.minimum.reduce
