@@ -25,6 +25,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from backlash_monitor.plant import effects as plant_effects
+
 from . import analysis, consistency, fitting, pairs, plant_adapter, ripple, separation, spectral, tolerance
 from .decisions import (DELTA_IC_DECISIVE, DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EXPLAINED, confident, identical_to,
                         likelihood_part, qualifies, significant)
@@ -38,7 +40,8 @@ REFINE_EXTRA = 4             # more candidates refined when they may tie with th
                              # friction are three: working resistance, a force on the mass, a viscous drag)
 LINEAR_IC_MARGIN = pairs.LINEAR_IC_MARGIN
 # the balances whose candidates are laws of one torque or force (refine_step refines them beside the best one);
-# sensor effects and parameter drifts are told apart by their signal and their linearisation holds
+# sensor effects and parameter drifts are told apart by their signal and their linearisation holds. The rim balance
+# (spring, absorber) is not among them: the own and foreign suites were measured without it
 LAW_BALANCES = ("wheel_torque_Nm", "mass_force_N", "motor_load_moment_pu", "clutch_torque_Nm")
 
 
@@ -315,7 +318,6 @@ def width_measurement(run: Run, up: Update) -> WidthMeasurement:
 
 def _where_acts(fit) -> str:
     """Where a fitted candidate acts on the drive (separation.location), drifts by their target."""
-    from backlash_monitor.plant import effects as plant_effects
     cls = plant_effects.catalogue().get(fit.effect.split("[")[0])
     return separation.location(fit.effect, fit.balance, getattr(cls, "target", None))
 
@@ -412,7 +414,7 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
         if discovery is not None:
             vals = ", ".join(f"{n} = {v:.4g} ± {u:.2g} {unit}" for n, v, u, unit in
                              zip(discovery.parameter_names, discovery.values, discovery.uncertainty, discovery.units))
-            caveat = "" if _is_measurand(discovery) else separation.motor_side_note(discovery.effect)
+            caveat = separation.motor_side_note(discovery.effect)
             if _is_measurand(discovery):
                 parts.append(f"the backlash width is {width.width_m * 1e3:.3f} ± {width.uncertainty_m * 1e3:.2f} mm "
                              f"(model nominal {width.nominal_width_m * 1e3:.3f} mm): the width is what the monitor "
