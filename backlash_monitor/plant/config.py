@@ -6,6 +6,7 @@ or a dict of overrides), checks every key against its allowed range and returns 
 """
 from __future__ import annotations
 
+import copy
 import dataclasses
 import difflib
 import json
@@ -463,6 +464,22 @@ def _merge(base: dict, extra: Mapping) -> None:
             base[key] = value
 
 
+_PARSED: dict = {}          # a config file's text -> its parsed YAML (parsing plant.yaml costs ~7 ms; a
+_PARSED_MAX = 8             # workbench fit or a test session loads it hundreds of times); the few last texts
+
+
+def _parse_yaml(text: str):
+    """``yaml.safe_load(text)``, remembered by the text itself (so an edited file is parsed again); the caller
+    gets its own deep copy to change."""
+    parsed = _PARSED.get(text)
+    if parsed is None:
+        parsed = yaml.safe_load(text)
+        if len(_PARSED) >= _PARSED_MAX:
+            _PARSED.pop(next(iter(_PARSED)))
+        _PARSED[text] = parsed
+    return copy.deepcopy(parsed)
+
+
 def load_plant_config(path: str | os.PathLike | None = None,
                       overrides: Mapping[str, Any] | None = None) -> PlantConfig:
     """Load and validate the plant config (default: ``config/plant.yaml``).
@@ -474,7 +491,7 @@ def load_plant_config(path: str | os.PathLike | None = None,
     if not p.is_file():
         raise ValueError(f"plant config: file {str(p)!r} does not exist")
     try:
-        data = yaml.safe_load(p.read_text()) or {}
+        data = _parse_yaml(p.read_text()) or {}
     except yaml.YAMLError as exc:
         raise ValueError(f"plant config: {p} is not valid YAML: {exc}") from None
     if not isinstance(data, dict):

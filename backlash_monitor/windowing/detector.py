@@ -6,18 +6,20 @@ steps from event to event (8 entries per second), each step is a numpy search ov
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Mapping
 
 import numpy as np
 
-from .filters import exponential_average, window_range
+from .filters import first_excursion, window_range
 from .config import (ANGLE_SOURCES, DEFAULTS, INTEGRATION_RULES, KIND_ONSET, KIND_RETURN, TRIGGERS)
 
 __all__ = ["BacklashEntry", "BacklashEntryDetector", "fit_departure", "integrate_relative_speed"]
 
 _BLOCK = 4096          # samples searched per step of the state machine
-_FIRST_SETTLE_BLOCK = 256   # first block of the settle search (then x4 up to _BLOCK): same result
+_FIRST_SETTLE_BLOCK = 1     # first block of the settle search (then 256, x4 up to _BLOCK): same result
+_FIRST_APEX_BLOCK = 2048    # first block of the end-of-traverse search (then _BLOCK): same result
 _UNARMED, _ARMED, _TRAVERSE = 0, 1, 2
 _DRIFT_BASELINE_S = 10.0   # s between the offsets that give the drift rate of integrated angles
 _APEX_LAG = 50          # samples (1 ms): lag of the speed sign test that finds the end of a traverse
@@ -71,6 +73,9 @@ def fit_departure(y: np.ndarray, direction: int, min_pre: int = 16, min_post: in
     sums (O(N) set-up, a batched 3x3 solve).  This is the physics of a contact loss: the relative
     speed is continuous (the ramp lets the contact wander slowly under the noise torques before it),
     the relative acceleration steps by (load pulse)/(inertia) at t0.
+
+    The candidates' arrays are held in reverse order (s = n - 1 - t: the order the reverse
+    cumulative sums come in), so nothing is reversed or copied but the final argmax's view.
     """
     y = np.asarray(y, dtype=np.float64)
     n = y.size
@@ -80,27 +85,48 @@ def fit_departure(y: np.ndarray, direction: int, min_pre: int = 16, min_post: in
     lo, hi = min_pre, n - min_post             # candidate departures t in [lo, hi)
     g = _departure_terms(n, lo, hi)
     k = g.k
-    yk = y * k
-    rc = lambda v: np.cumsum(v[::-1])[::-1][lo:hi]  # noqa: E731  sum over k >= t, for the candidates
-    a0, a1, a2 = rc(y), rc(yk), rc(yk * k)
+    # sum over k >= t for the candidates, in s order: the running sums from the end, from s = n - hi
+    # on.  y and y*k run as the real and imaginary parts of one complex sum (complex addition adds
+    # the parts separately: the same sums, two at a time)
+    m = n - lo
+    both = np.empty(n, dtype=np.complex128)
+    both.real = y
+    yk = np.multiply(y, k, out=both.imag)
+    ykk = yk * k
+    a01 = both[::-1][:m].cumsum()
+    a0 = a01.real[min_post:]
+    a1 = a01.imag[min_post:]
+    a2 = ykk[::-1][:m].cumsum()[min_post:]
     # regressors 1, k (fixed) and q = (k - t)^2 for k >= t.  Project 1, k out (Frisch-Waugh):
     # r_qq = q'q - (X'q)' G^-1 X'q, r_yq = y'q - (X'q)' G^-1 X'y, a = r_yq / r_qq, SSE = SSE_lin - r_yq^2/r_qq
     xy = np.array([y.sum(), np.dot(k, y)])
     gy = g.ginv @ xy
-    r_yq = (a2 - g.two_t * a1 + g.t_sq * a0) - (g.xq0 * gy[0] + g.xq1 * gy[1])
+    a1 *= g.two_t
+    a0 *= g.t_sq
+    np.subtract(a2, a1, out=a2)
+    a2 += a0                                    # a2 - 2t a1 + t^2 a0: q'y
+    np.multiply(g.xq0, gy[0], out=a0)
+    np.multiply(g.xq1, gy[1], out=a1)
+    a0 += a1
+    r_yq = np.subtract(a2, a0, out=a2)
     with np.errstate(all="ignore"):
-        acc = r_yq / g.r_qq
-        gain = r_yq * acc                       # SSE reduction over the straight-line fit
-    valid = np.isfinite(gain) & ((acc > 0) if direction > 0 else (acc < 0)) & g.r_qq_positive
-    if not valid.any():
-        return 0
-    return lo + int(np.argmax(np.where(valid, gain, -np.inf)))
+        acc = np.divide(r_yq, g.r_qq, out=a1)
+        gain = np.multiply(r_yq, acc, out=a0)   # SSE reduction over the straight-line fit
+    valid = np.isfinite(gain)
+    valid &= (acc > 0) if direction > 0 else (acc < 0)
+    valid &= g.r_qq_positive
+    gain[~valid] = -np.inf
+    j = int(gain[::-1].argmax())               # the first maximum in t order
+    if not valid[hi - lo - 1 - j]:
+        return 0                               # no candidate valid
+    return lo + j
 
 
 @dataclass(frozen=True)
 class _DepartureTerms:
     """The parts of fit_departure's least squares that depend only on the length n (not on y);
-    all but k and ginv for the candidate departures t in [lo, hi) only."""
+    all but k and ginv for the candidate departures t in [lo, hi) only, in reverse order
+    (s = n - 1 - t from n - hi to n - 1 - lo)."""
     k: np.ndarray             # 0..n-1 (sample index)
     two_t: np.ndarray         # 2 t
     t_sq: np.ndarray          # t^2
@@ -112,44 +138,70 @@ class _DepartureTerms:
 
 
 _DEPARTURE_TERMS: dict[tuple[int, int, int], _DepartureTerms] = {}
+_GINV: dict[int, np.ndarray] = {}
+_POWER_SUMS: list[np.ndarray] = []       # [m, s2, s3, s4] for m = 0 .. len - 1
+
+
+def _power_sums(n: int) -> list[np.ndarray]:
+    """sum_{j=0..m} j^2, j^3, j^4 for m = 0 .. >= n - 1, by the inline formulas on the float m (each
+    value is an elementwise function of m alone, so the table's values are those of any length)."""
+    if not _POWER_SUMS or _POWER_SUMS[0].size < n:
+        m = np.arange(max(n, 2 * (_POWER_SUMS[0].size if _POWER_SUMS else 2048)), dtype=np.float64)
+        s2 = m * (m + 1) * (2 * m + 1) / 6.0
+        s3 = (m * (m + 1) / 2.0) ** 2
+        s4 = m * (m + 1) * (2 * m + 1) * (3 * m * m + 3 * m - 1) / 30.0
+        for a in (m, s2, s3, s4):
+            a.flags.writeable = False
+        _POWER_SUMS[:] = [m, s2, s3, s4]
+    return _POWER_SUMS
 
 
 def _departure_terms(n: int, lo: int, hi: int) -> _DepartureTerms:
-    """fit_departure's y-independent terms for length n, computed once per n (the detector always
-    fits fit_samples samples, a few other lengths near a segment start) -- by the same operations
-    as inline, so the fit is bit for bit the same (elementwise: the candidates' values do not
-    depend on the others)."""
+    """fit_departure's y-independent terms for length n, kept for the last 64 lengths (the detector
+    fits fit_samples samples, other lengths when the fit window starts at the arming window) -- by
+    the same operations as inline, so the fit is bit for bit the same (elementwise: the candidates'
+    values do not depend on the others).  The power sums of j = k - t (j = 0..m, m = n - 1 - t) come
+    from one table; the 2x2 inverse Gram matrix is kept per length."""
     key = (n, lo, hi)
     terms = _DEPARTURE_TERMS.get(key)
     if terms is not None:
         return terms
     k = np.arange(n, dtype=np.float64)
-    t = k
-    m = n - t - 1.0                          # j = k - t runs 0..m
-    s2 = m * (m + 1) * (2 * m + 1) / 6.0
-    s3 = (m * (m + 1) / 2.0) ** 2
-    s4 = m * (m + 1) * (2 * m + 1) * (3 * m * m + 3 * m - 1) / 30.0
-    sk, skk = k.sum(), (k * k).sum()
-    ginv = np.linalg.inv(np.array([[n, sk], [sk, skk]]))
-    xq0, xq1 = s2, s3 + t * s2                 # X'q = (sum q, sum k q)
-    r_qq = s4 - (ginv[0, 0] * xq0 * xq0 + 2 * ginv[0, 1] * xq0 * xq1 + ginv[1, 1] * xq1 * xq1)
-    c = slice(lo, hi)
-    arrays = [k, (2.0 * t)[c], (t * t)[c], xq0[c].copy(), xq1[c].copy(), ginv, r_qq[c].copy(),
-              (r_qq > 0)[c]]
+    ginv = _GINV.get(n)
+    if ginv is None:
+        sk, skk = k.sum(), (k * k).sum()
+        ginv = np.linalg.inv(np.array([[n, sk], [sk, skk]]))
+        if len(_GINV) >= 4096:
+            _GINV.clear()
+        _GINV[n] = ginv
+    # candidates in s order: s = m = n - 1 - t runs n - hi .. n - 1 - lo
+    table_m, table_s2, table_s3, table_s4 = _power_sums(n)
+    c = slice(n - hi, n - lo)
+    t = (n - 1) - table_m[c]                   # the candidates' t, exact (integers)
+    xq0 = table_s2[c]                          # X'q = (sum q, sum k q)
+    xq1 = table_s3[c] + t * xq0
+    r_qq = table_s4[c] - (ginv[0, 0] * xq0 * xq0 + 2 * ginv[0, 1] * xq0 * xq1 + ginv[1, 1] * xq1 * xq1)
+    arrays = [k, 2.0 * t, t * t, xq0, xq1, ginv, r_qq, r_qq > 0]
     for a in arrays:
         a.flags.writeable = False
     terms = _DepartureTerms(*arrays)
-    if len(_DEPARTURE_TERMS) >= 64:           # lengths other than fit_samples are rare: bound it
+    if len(_DEPARTURE_TERMS) >= 64:           # lengths other than fit_samples come and go: bound it
         _DEPARTURE_TERMS.clear()
     _DEPARTURE_TERMS[key] = terms
     return terms
+
+
+def _mean(x: np.ndarray) -> float:
+    """np.mean of a non-empty 1-D float64 array, as np.mean computes it (its pairwise sum / count),
+    without np.mean's Python-level argument handling."""
+    return float(np.add.reduce(x) / x.size)
 
 
 def _first_true(mask: np.ndarray) -> int:
     """Index of the first True of a 1-D boolean array, -1 if none (argmax stops at the first True)."""
     if mask.size == 0:
         return -1
-    i = int(np.argmax(mask))
+    i = int(mask.argmax())
     return i if mask[i] else -1
 
 
@@ -232,6 +284,9 @@ class BacklashEntryDetector:
         self.beta = None if width_m is None else width_m / self.radius_m
         self.events: list[tuple[int, str]] = []     # (sample index, "reset: ..." / "ignored: ...")
         self.n_rereferences = 0
+        self._alpha_cache = None
+        self._store: np.ndarray | None = None   # buffer of the history and the current chunk (_joined)
+        self._hist_at = 0                       # offset of _hist in _store
         self._reset(stream_start=True)
 
     @classmethod
@@ -300,7 +355,8 @@ class BacklashEntryDetector:
     def feed(self, first_sample_index: int, signals: Mapping[str, np.ndarray],
              sample_period_s: float | None = None) -> list[BacklashEntry]:
         first = int(first_sample_index)
-        if sample_period_s is not None:
+        if sample_period_s is not None and not (isinstance(sample_period_s, float)
+                                                and sample_period_s == self.sample_period_s):
             try:
                 sp = _check_positive("sample_period_s", sample_period_s)
             except ValueError:
@@ -336,7 +392,8 @@ class BacklashEntryDetector:
         if delta.ndim != 1:
             raise ValueError(f"signals: arrays must be 1-D (one drive); got shape {delta.shape}")
         n = delta.size
-        if not np.isfinite(delta).all():
+        # a finite sum says every sample is finite (NaN/inf propagate); an infinite one may be an overflow
+        if not math.isfinite(np.add.reduce(delta)) and not np.isfinite(delta).all():
             # NaN/inf would poison the contact tracker for good: drop the chunk, start again after it
             self.events.append((first, f"reset: non-finite samples in {first}..{first + n - 1}"))
             self._reset()
@@ -350,32 +407,46 @@ class BacklashEntryDetector:
         self._next_index = first + n
         if n == 0:
             return []
-        buf = np.concatenate((self._hist, delta))
+        buf, at = self._joined(delta)
         base = self._hist_base
         out = self._process(buf, base, first)
-        keep = max(self.fit_samples, self.settle_samples) + 1
-        self._hist = buf[-keep:].copy()
-        self._hist_base = base + buf.size - self._hist.size
+        keep = min(buf.size, max(self.fit_samples, self.settle_samples) + 1)
+        if at < 0:                                  # buf is the caller's array: keep a copy
+            self._hist = buf[-keep:].copy()
+        else:                                       # buf is in the store: keep a view
+            self._hist = buf[buf.size - keep:]
+            self._hist_at = at + buf.size - keep
+        self._hist_base = base + buf.size - keep
         return out
+
+    def _joined(self, delta: np.ndarray) -> tuple[np.ndarray, int]:
+        """(the kept history followed by ``delta`` as one array, its offset in the store or -1).
+        The store is a buffer of the detector's own that chunks are copied into behind the history,
+        so a chunk costs one copy of itself (the history moves to the front when the store is full)."""
+        hist = self._hist
+        h, n = hist.size, delta.size
+        if h == 0 and delta.flags.c_contiguous:
+            return delta, -1
+        store = self._store
+        if store is not None and h and hist.base is store:
+            at = self._hist_at
+            if at + h + n <= store.size:
+                store[at + h:at + h + n] = delta
+                return store[at:at + h + n], at
+        if store is None or store.size < h + n:
+            store = self._store = np.empty(max(2 * (h + n), 16384))
+        store[:h] = hist
+        store[h:h + n] = delta
+        return store[:h + n], 0
 
     # ------------------------------------------------------------------ state machine
     def _alpha(self) -> float:
-        return 1.0 - np.exp(-self.sample_period_s / self.reference_tau_s)
-
-    def _tracker_dev(self, seg: np.ndarray):
-        """Displacement of delta from the contact reference: dev[n] = delta[n] - ema[n-1].
-
-        ema is a causal exponential average (reference_tau_s) started at the settled contact level.
-        A constant relative speed v (drift, a relaxing contact) gives |dev| <= v*tau; a traverse of
-        the gap grows without bound until the far side.
-        """
-        lam = self._alpha()
-        e0 = self._trk[0]
-        ema = exponential_average(seg, lam, e0)
-        dev = np.empty_like(seg)
-        dev[:1] = seg[:1] - e0
-        np.subtract(seg[1:], ema[:-1], out=dev[1:])
-        return dev, (float(ema[-1]), 0.0)
+        """The tracker's EMA weight per sample (kept per sample period and time constant)."""
+        key = (self.sample_period_s, self.reference_tau_s)
+        cached = self._alpha_cache
+        if cached is None or cached[0] != key:
+            cached = self._alpha_cache = (key, 1.0 - np.exp(-self.sample_period_s / self.reference_tau_s))
+        return cached[1]
 
     def _find_settled(self, buf: np.ndarray, base: int, start: int, end: int) -> int:
         """First absolute index i in [start, end) whose last settle_samples samples (all inside the
@@ -391,7 +462,7 @@ class BacklashEntryDetector:
         block = _FIRST_SETTLE_BLOCK      # the contact usually settles soon: small blocks first
         while i < end:
             j = min(end, i + block)
-            block = min(4 * block, _BLOCK)
+            block = max(256, min(4 * block, _BLOCK))
             lo = i - w + 1 - base
             seg = buf[lo:j - base]
             ok = window_range(seg, w) <= self.settle_range_rad
@@ -411,7 +482,7 @@ class BacklashEntryDetector:
 
     def _rereference(self, buf: np.ndarray, base: int, idx: int) -> None:
         w = self.settle_samples
-        level = float(np.mean(buf[idx - w + 1 - base:idx + 1 - base]))
+        level = _mean(buf[idx - w + 1 - base:idx + 1 - base])
         self._trk = (level, 0.0)
         self._ema = level
         self._last_ref_index = idx
@@ -451,13 +522,13 @@ class BacklashEntryDetector:
         a = max(lo, t0 - _LEVEL_SAMPLES)
         if t0 - a < 16:
             return t0
-        level = float(np.mean(buf[a - base:t0 - base]))
-        y = (buf[t0 - base:conf + 1 - base] - level) * direction
+        level = _mean(buf[a - base:t0 - base])
+        y = buf[t0 - base:conf + 1 - base] - level     # times direction: (y > thr) = (y < -thr) going down
         thr = self.contact_deflection_rad
-        k = _first_true(y > thr)
+        k = _first_true(y > thr if direction > 0 else y < -thr)
         if k <= 0:
             return t0
-        y0, y1 = float(y[k - 1]), float(y[k])
+        y0, y1 = float(y[k - 1] * direction), float(y[k] * direction)
         x = (k - 1) + (thr - y0) / (y1 - y0)
         return t0 + int(np.floor(x + 0.5))
 
@@ -475,12 +546,19 @@ class BacklashEntryDetector:
         """First index >= start where delta stops moving in ``direction`` (the far-side impact or the
         turning point of a traverse): (delta[n] - delta[n - _APEX_LAG]) * direction <= 0."""
         start = max(start, self._seg_start + _APEX_LAG, base + _APEX_LAG)
-        for i in range(start, end, _BLOCK):     # block by block: the apex is usually in the first
-            j = min(end, i + _BLOCK)
-            d = buf[i - base:j - base] - buf[i - _APEX_LAG - base:j - _APEX_LAG - base]
-            k = _first_true(d * direction <= 0)
+        i = start
+        block = _FIRST_APEX_BLOCK              # the apex is usually within ~2100 samples
+        while i < end:
+            j = min(end, i + block)
+            block = _BLOCK
+            now = buf[i - base:j - base]
+            before = buf[i - _APEX_LAG - base:j - _APEX_LAG - base]
+            # (now - before) * direction <= 0, without the difference: for finite doubles the
+            # rounded difference has the sign of the exact one (and is 0 only when they are equal)
+            k = _first_true(now <= before if direction > 0 else now >= before)
             if k >= 0:
                 return i + k
+            i = j
         return -1
 
     def _process(self, buf: np.ndarray, base: int, first: int) -> list[BacklashEntry]:
@@ -508,14 +586,15 @@ class BacklashEntryDetector:
             j = min(end, pos + _BLOCK)
             seg = buf[pos - base:j - base]
             if self.trigger == "contact_loss" or (self._source == "integrated" and not self._offset_valid):
-                dev, state = self._tracker_dev(seg)
-                k = _first_true(np.abs(dev) > self.confirm_rad)
+                # contact reference: a causal EMA (reference_tau_s) from the settled contact level;
+                # dev[n] = delta[n] - ema[n-1].  A constant relative speed v (drift, a relaxing
+                # contact) gives |dev| <= v*tau; a traverse of the gap grows until the far side.
+                k, direction, last = first_excursion(seg, self._alpha(), self._trk[0], self.confirm_rad)
                 if k < 0:
-                    self._trk = state
+                    self._trk = (last, 0.0)
                     pos = j
                     continue
                 conf = pos + k
-                direction = 1 if dev[k] > 0 else -1
                 lo = max(conf - self.fit_samples + 1, self._seg_start, base,
                          self._last_ref_index - self.settle_samples + 1)
                 t0 = lo + fit_departure(buf[lo - base:conf + 1 - base], direction)
@@ -553,7 +632,7 @@ class BacklashEntryDetector:
                 lo = nxt - w4 + 1
                 if (self._side == 1 and lo >= max(base, self._seg_start)
                         and np.ptp(buf[lo - base:nxt + 1 - base]) <= self.settle_range_rad):
-                    level = float(np.mean(buf[nxt - self.settle_samples + 1 - base:nxt + 1 - base]))
+                    level = _mean(buf[nxt - self.settle_samples + 1 - base:nxt + 1 - base])
                     self._set_offset(level, nxt)
                     self.n_rereferences += 1
                 self._last_ref_index = nxt

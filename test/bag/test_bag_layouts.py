@@ -122,21 +122,39 @@ OPTION_SETS = {
 }
 
 
+@pytest.fixture(scope="module")
+def rewritten(tmp_path_factory, project_bag):
+    """The project bag written again under one of OPTION_SETS, once per name for the whole module (the tests
+    only read these files)."""
+    folder = tmp_path_factory.mktemp("rewritten")
+    paths = {}
+
+    def get(name: str) -> Path:
+        if name not in paths:
+            paths[name] = mc.rewrite_with_mcap(project_bag, folder / f"{len(paths)}.mcap", **OPTION_SETS[name])
+        return paths[name]
+    return get
+
+
+@pytest.fixture(scope="module")
+def original_content(project_bag):
+    return _content(project_bag)
+
+
 @pytest.mark.parametrize("name", sorted(OPTION_SETS))
-def test_rosbag2_writer_options_read_as_the_original(tmp_path, project_bag, name):
-    original = _content(project_bag)
-    path = mc.rewrite_with_mcap(project_bag, tmp_path / "re.mcap", **OPTION_SETS[name])
-    topics, messages, decoded, state = _content(path)
+def test_rosbag2_writer_options_read_as_the_original(original_content, rewritten, name):
+    original = original_content
+    topics, messages, decoded, state = _content(rewritten(name))
     assert state == (True, True, len(original[1]))      # complete and intact, every message
     assert messages == original[1]
     assert topics == original[0] and decoded == original[2]
 
 
-def test_the_presets_are_what_rosbag2_sets(tmp_path, project_bag):
+def test_the_presets_are_what_rosbag2_sets(rewritten):
     """fastwrite: no chunks, no summary CRC; zstd_fast: zstd chunks without CRCs; zstd_small:
     zstd in chunks of up to 4 MiB (rosbag2_storage_mcap's SetOptionsForPreset)."""
-    files = {n: mc.rewrite_with_mcap(project_bag, tmp_path / f"{n}.mcap", **o)
-             for n, o in mc.ROSBAG2_PRESETS.items()}
+    assert all(OPTION_SETS[f"preset {n}"] == o for n, o in mc.ROSBAG2_PRESETS.items())
+    files = {n: rewritten(f"preset {n}") for n in mc.ROSBAG2_PRESETS}
     from mcap.stream_reader import StreamReader
 
     def chunk_fields(path):
@@ -157,13 +175,11 @@ def test_the_presets_are_what_rosbag2_sets(tmp_path, project_bag):
     assert len(small) < len(chunk_fields(files["none"]))      # bigger chunks
 
 
-def test_bag_info_reads_every_option(tmp_path, project_bag, capsys):
+def test_bag_info_reads_every_option(rewritten, capsys):
     from backlash_monitor.commands import bag_info
 
-    for name, options in OPTION_SETS.items():
-        path = mc.rewrite_with_mcap(project_bag, tmp_path / f"{len(name)}_{abs(hash(name))}.mcap",
-                                    **options)
-        assert bag_info.main([str(path), "--json"]) == 0, name
+    for name in OPTION_SETS:
+        assert bag_info.main([str(rewritten(name)), "--json"]) == 0, name
         info = json.loads(capsys.readouterr().out)
         assert info["complete"] and info["intact"], (name, info["integrity"])
         assert {t["topic"]: t["count"] for t in info["topics"]} == {

@@ -9,6 +9,7 @@ against backlash_monitor.plant is in test_foreign_drives_crossval.py.
 """
 import ast
 import dataclasses
+import functools
 import json
 import math
 import subprocess
@@ -36,6 +37,18 @@ def spec(effects=(), kind=None, width=0.0075, eta=0.025, n1=0.89, seed=150, dura
         kind = ("outside" if any(f is None for f in fams) else {0: "clean", 1: "one", 2: "two"}[len(fams)])
     return RecordingSpec("t", kind, width, eta, n1, effects=tuple(effects), seed=seed, duration_s=duration,
                          noise=noise, **kw)
+
+
+@functools.lru_cache(maxsize=None)
+def nominal_drive(duration=1.0):
+    """make_recording(spec(duration=duration)), the clean nominal drive several tests compare against, made once
+    per duration (the generator is deterministic for a spec); its arrays read-only, so no test changes another's."""
+    rec = make_recording(spec(duration=duration))
+    for group in (rec.signals, rec.internal):
+        for value in group.values():
+            if isinstance(value, np.ndarray):
+                value.setflags(write=False)
+    return rec
 
 
 def whole_periods(x, fs=C.SAMPLE_RATE_HZ):
@@ -243,7 +256,7 @@ def test_noisy_drive_has_four_onsets_and_four_returns_per_second():
 # ------------------------------------------------------------------------------------------- physics forms
 def test_wheel_frictions_raise_the_mean_clutch_torque_by_their_torque():
     """Over whole pulse periods the wheel's and the mass's speeds return: mean T_c = r*F0 + mean friction."""
-    base = make_recording(spec())
+    base = nominal_drive()
     tc0 = np.mean(whole_periods(base.internal["clutch_torque_Nm"]))
     assert tc0 == pytest.approx(W * C.WORKING_RESISTANCE_N, rel=1e-3)
     cases = [(E("wheel_friction_tanh", {"torque_Nm": 2.5, "smoothing_speed_rad_s": 40.0}),
@@ -318,7 +331,7 @@ def test_contact_laws_are_the_stated_laws_and_a_softer_contact_is_compressed_dee
              lambda p, r: 8.0 * (1 - np.exp(-p / 2e-4)) + 3000 * p + 20 * r),
             (E("clutch_contact_asymmetric", {"drive_relative_change": 0.2, "far_relative_change": -0.4}),
              lambda p, r: 1800 * p + 20 * r)]
-    base = make_recording(spec())
+    base = nominal_drive()
     peak0 = base.internal["clutch_torque_Nm"].min()                   # far-side impacts: negative torque
     for eff, law in laws:
         rec = make_recording(spec([eff]))
@@ -341,7 +354,7 @@ def test_more_contact_damping_stops_an_impact_at_a_smaller_penetration():
     def deepest_and_dissipated(rec):
         idx, pen, rate, tc = _contact_samples(rec, -1)
         return pen.max(), np.sum((tc - 3000.0 * pen) * rate) * C.SAMPLE_PERIOD_S
-    p0, e0 = deepest_and_dissipated(make_recording(spec()))
+    p0, e0 = deepest_and_dissipated(nominal_drive())
     for eff in (E("clutch_damping_hunt_crossley", {"lambda_Nms_per_rad2": 1800.0}),
                 E("clutch_damping_value", {"relative_change": 0.6})):
         p, e = deepest_and_dissipated(make_recording(spec([eff])))
@@ -366,7 +379,7 @@ def _line_hz(a, b, fmin=20.0, fmax=3000.0):
 
 
 def test_ripples_put_lines_at_order_times_the_rotation_frequency():
-    base = make_recording(spec(duration=2.0))
+    base = nominal_drive(2.0)
     f_rot = np.mean(base.signals["omega1"]) / (2 * math.pi)
     for eff, order in [(E("ripple_motor_harmonics", {"orders": [7], "amplitudes_pu": [0.3], "phases_rad": [0.0]}), 7),
                        (E("ripple_electromagnetic", {"relative_amplitude": 0.4, "order": 19, "phase_rad": 0.2}), 19),
@@ -389,7 +402,7 @@ def test_a_fixed_frequency_vibration_stays_put_when_the_speed_changes_and_a_ripp
     lines = {}
     for volt in (0.0, -0.12):
         extra = [E("supply_voltage", {"relative_change": volt})] if volt else []
-        base = make_recording(spec(extra, kind="outside" if volt else "clean", duration=2.0))
+        base = make_recording(spec(extra, kind="outside", duration=2.0)) if volt else nominal_drive(2.0)
         vib = make_recording(spec(extra + [E("structural_vibration", {"amplitude_pu": 0.3, "frequency_hz": 107.0,
                                                                       "phase_rad": 0.0})], duration=2.0))
         rip = make_recording(spec(extra + [E("ripple_motor_harmonics", {"orders": [5], "amplitudes_pu": [0.3],
@@ -407,13 +420,13 @@ def test_second_torsional_mode_rings_at_its_frequency():
     k = 30_000.0
     rec = make_recording(spec([E("second_torsional_mode", {"rim_fraction": 0.4, "stiffness_Nm_per_rad": k,
                                                            "damping_Nms_per_rad": 0.3})], duration=2.0))
-    base = make_recording(spec(duration=2.0))
+    base = nominal_drive(2.0)
     f = _line_hz(rec.signals["a1"], base.signals["a1"], fmin=60.0)
     assert f == pytest.approx(F.SecondTorsionalMode.mode_hz(0.4, k), rel=0.1)
 
 
 def test_drifts_change_what_they_name():
-    base = make_recording(spec())
+    base = nominal_drive()
     # width: the far-side impact comes later; the truth's width is the drifted one (the measurand)
     wide = make_recording(spec([E("drift_width", {"change": 0.001})]))
     assert wide.truth.true_width_m == pytest.approx(0.0085) and wide.truth.width_is_measurand
@@ -448,7 +461,7 @@ def test_drifts_change_what_they_name():
 
 
 def test_outside_motor_changes_move_the_slip():
-    base = make_recording(spec())
+    base = nominal_drive()
     rr = make_recording(spec([E("motor_rotor_resistance", {"relative_change": 0.6})]))
     assert np.mean(rr.signals["omega1"]) < np.mean(base.signals["omega1"]) - 1.0     # slip ~ r_r at a given torque
 
@@ -552,7 +565,7 @@ def test_truth_equivalents():
 
 
 def test_operating_point_is_the_nominal_drives():
-    rec = make_recording(spec(duration=1.0))
+    rec = nominal_drive()
     assert np.mean(whole_periods(rec.signals["omega1"])) == pytest.approx(F.OPERATING_POINT["speed_rad_s"], rel=5e-4)
     assert np.mean(whole_periods(rec.internal["te_pu"])) == pytest.approx(F.OPERATING_POINT["mean_te_pu"], rel=1e-3)
     deepest = _contact_samples(rec, -1)[1].max()                     # the far-side impacts' elastic torque spans

@@ -76,36 +76,59 @@ def test_every_compiled_catalogue_effect_has_an_independent_form_here():
                                        "shaft_compliance"}
 
 
-@pytest.mark.parametrize("effect", TERMS, ids=lambda c: c.name)
-def test_backends_and_solve_ivp_agree_with_random_parameters(effect):
+def _random_parameters(effect) -> dict:
     rng = np.random.default_rng(zlib.crc32(effect.name.encode()))
-    params = {f"{effect.name}.{p.name}": float(rng.uniform(*p.bounds)) for p in effect.parameters}
-    scen = [Scenario(0.005, 0.025, 0.89)]
+    return {f"{effect.name}.{p.name}": float(rng.uniform(*p.bounds)) for p in effect.parameters}
+
+
+@pytest.fixture(scope="module")
+def runs():
+    """Every term effect in one batch per backend: scenario i holds TERMS[i]'s random parameters, every other
+    parameter at its neutral default. The parameters are per-scenario run-time values of the one kernel, so a
+    scenario's run is the one it has alone (checked: bit for bit, on every backend); one batch costs the numpy
+    backend, stepped in Python, what one scenario does."""
+    scen = [Scenario(0.005, 0.025, 0.89)] * len(TERMS)
+    neutral = PlantSimulator(scen[:1], config=CFG, noise=False)
+    params = {}
+    for i, effect in enumerate(TERMS):
+        for key, value in _random_parameters(effect).items():
+            params.setdefault(key, np.full(len(TERMS), neutral.parameter_values(key)[0]))[i] = value
     out = {}
     for backend in ("numba", "numba-scalar", "numpy"):
         sim = PlantSimulator(scen, config=CFG, noise=False, backend=backend, parameters=params)
-        x0 = sim.state[0].copy()
-        load = sim.motor_load_pu(0, N)[0]
+        x0 = sim.state.copy()
+        load = sim.motor_load_pu(0, N)
         out[backend] = sim.run(N)
+    base = PlantSimulator(scen[:1], config=CFG, noise=False).run(N)
+    return {"sim": sim, "x0": x0, "load": load, "out": out, "base": base}
+
+
+@pytest.mark.parametrize("effect", TERMS, ids=lambda c: c.name)
+def test_backends_and_solve_ivp_agree_with_random_parameters(effect, runs):
+    i = TERMS.index(effect)
+    params = _random_parameters(effect)
+    sim, out = runs["sim"], runs["out"]
+    for key, value in params.items():
+        assert sim.parameter_values(key)[i] == value          # this scenario runs this effect's parameters
     for backend in ("numba-scalar", "numpy"):
         for sig, floor in FLOORS:
-            a, b = getattr(out["numba"], sig), getattr(out[backend], sig)
+            a, b = getattr(out["numba"], sig)[i], getattr(out[backend], sig)[i]
             assert np.max(np.abs(a - b)) <= 1e-9 * max(np.max(np.abs(b)), floor), (backend, sig)
-        assert out["numba"].entries == out[backend].entries
-    values = {"beta": sim.beta[0], **{k: float(v) for k, v in params.items()}}
+        assert out["numba"].entries[i] == out[backend].entries[i]
+    values = {"beta": sim.beta[i], **{k: float(v) for k, v in params.items()}}
     nominal = kernel_for(tuple(c for c in NOMINAL if c.kind == "term"))
-    ref = reference_run(sim, 0, load, method="DOP853", rtol=1e-10, atol=1e-12, state0=x0, rhs=nominal,
-                        extra=lambda t, y, der: independent_form(effect.name, values, CFG)(y))
+    ref = reference_run(sim, i, runs["load"][i], method="DOP853", rtol=1e-10, atol=1e-12, state0=runs["x0"][i],
+                        rhs=nominal, extra=lambda t, y, der: independent_form(effect.name, values, CFG)(y))
     for sig, floor in FLOORS:     # the located zone crossing's accuracy (docs/model.md: <= 3e-5 of the peak)
-        r, s = ref[sig], getattr(out["numba"], sig)[0]
+        r, s = ref[sig], getattr(out["numba"], sig)[i]
         assert np.max(np.abs(s - r)) <= 2e-4 * max(np.max(np.abs(r)), floor), (sig, np.max(np.abs(s - r)))
     # the effect's own contribution (run minus nominal run) is matched to 2 % of its size: a wrong effect fails
     # even where it is small against the signal
-    base = PlantSimulator(scen, config=CFG, noise=False).run(N)
+    base = runs["base"]
     for sig in ("a1", "omega2"):
         size = np.max(np.abs(getattr(base, sig)[0] - ref[sig]))
         assert size > 1e-6, sig                                   # parameters away from neutral do something
-        assert np.max(np.abs(getattr(out["numba"], sig)[0] - ref[sig])) <= 0.02 * size, sig
+        assert np.max(np.abs(getattr(out["numba"], sig)[i] - ref[sig])) <= 0.02 * size, sig
 
 
 def test_whole_catalogue_at_neutral_defaults_is_the_nominal_model():
@@ -130,15 +153,38 @@ DIRECT = {   # drift -> how the same change is made without it: (config key or s
 }
 
 
-@pytest.mark.parametrize("drift", [c for c in CATALOGUE if c.kind == "drift"], ids=lambda c: c.name)
-def test_drift_with_a_random_change_equals_the_changed_model_on_every_backend(drift):
+DRIFTS = [c for c in CATALOGUE if c.kind == "drift"]
+
+
+def _random_change(drift) -> float:
     """Random change inside the bounds (kept where the drive still runs: width > 0, n1 > 0)."""
     rng = np.random.default_rng(zlib.crc32(drift.name.encode()))
-    p = drift.parameters[0]
-    lo, hi = p.bounds
+    lo, hi = drift.parameters[0].bounds
     if drift.name == "backlash_width_drift":
         lo = -0.004
-    change = float(rng.uniform(lo, min(hi, 2.0)))
+    return float(rng.uniform(lo, min(hi, 2.0)))
+
+
+def _samples(backend: str) -> int:
+    return 4000 if backend != "numpy" else 600
+
+
+@pytest.fixture(scope="module")
+def drifted_runs():
+    """Every drift in one batch per backend: scenario i drifts by DRIFTS[i]'s random change, the others by 0 (their
+    neutral default); each scenario's run is the one it has alone (per-scenario run-time parameters)."""
+    n = len(DRIFTS)
+    params = {f"{d.name}.{d.parameters[0].name}": np.where(np.arange(n) == i, _random_change(d), 0.0)
+              for i, d in enumerate(DRIFTS)}
+    return {backend: PlantSimulator([Scenario(0.005, 0.025, 0.89)] * n, config=CFG, noise=False, backend=backend,
+                                    parameters=params).run(_samples(backend))
+            for backend in ("numba", "numba-scalar", "numpy")}
+
+
+@pytest.mark.parametrize("drift", DRIFTS, ids=lambda c: c.name)
+def test_drift_with_a_random_change_equals_the_changed_model_on_every_backend(drift, drifted_runs):
+    i = DRIFTS.index(drift)
+    change = _random_change(drift)
     key, nominal = DIRECT[drift.name]
     value = nominal * (1 + change) if drift.relative else nominal + change
     scen = dict(width_m=0.005, eta_k=0.025, n1=0.89)
@@ -148,12 +194,11 @@ def test_drift_with_a_random_change_equals_the_changed_model_on_every_backend(dr
     else:
         direct_cfg = CFG.with_overrides({key: value})
     for backend in ("numba", "numba-scalar", "numpy"):
-        n = 4000 if backend != "numpy" else 600
-        drifted = PlantSimulator([Scenario(0.005, 0.025, 0.89)], config=CFG, noise=False, backend=backend,
-                                 parameters={f"{drift.name}.{p.name}": change}).run(n)
-        direct = PlantSimulator([Scenario(**scen)], config=direct_cfg, noise=False, backend=backend).run(n)
+        drifted = drifted_runs[backend]
+        direct = PlantSimulator([Scenario(**scen)], config=direct_cfg, noise=False, backend=backend).run(
+            _samples(backend))
         for sig, floor in FLOORS:
-            a, b = getattr(drifted, sig), getattr(direct, sig)
+            a, b = getattr(drifted, sig)[i], getattr(direct, sig)[0]
             assert np.max(np.abs(a - b)) <= 1e-9 * max(np.max(np.abs(b)), floor), (backend, sig, change)
 
 

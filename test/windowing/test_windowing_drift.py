@@ -48,6 +48,7 @@ def _compare(got, ref, tol):
     return off
 
 
+@pytest.mark.slow       # 2 h of 50 kHz samples (360 M) through the detector: ~6 s, its point is the 2 hours
 def test_paper_trigger_integrated_speeds_2h_with_bias():
     """No entry lost over 2 h; after the first 10 s (the drift-rate baseline) every entry is where the
     drift-free run puts it (the trapezoid rule alone gives -2..0 samples against the exact crossing);

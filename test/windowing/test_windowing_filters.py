@@ -4,7 +4,7 @@ import pytest
 from scipy.ndimage import maximum_filter1d, minimum_filter1d
 from scipy.signal import lfilter
 
-from backlash_monitor.windowing.filters import exponential_average, window_range
+from backlash_monitor.windowing.filters import exponential_average, first_excursion, window_range
 
 
 def _walk(n, seed=1):
@@ -59,3 +59,34 @@ def test_window_range_is_max_minus_min_of_each_full_window(n, w):
         org = (w - 1) // 2
         rng = maximum_filter1d(x, w, origin=org) - minimum_filter1d(x, w, origin=org)
         assert np.array_equal(out, rng[w - 1:])
+
+
+def _first_excursion_by_definition(x, lam, y_before, limit):
+    """The first n with |x[n] - y[n-1]| > limit over exponential_average's y (y[-1] = y_before)."""
+    y = exponential_average(x, lam, y_before)
+    dev = x - np.concatenate(([y_before], y[:-1]))
+    big = np.flatnonzero(np.abs(dev) > limit)
+    if big.size:
+        return int(big[0]), int(np.sign(dev[big[0]]))
+    return -1, float(y[-1])
+
+
+@pytest.mark.parametrize("lam", [1.0 - np.exp(-2e-5 / 0.02), 1.0 - np.exp(-2e-5 / 0.005), 0.05, 1e-5, 0.5, 1.0])
+@pytest.mark.parametrize("n", [1, 63, 1000, 1024, 2047, 4096, 5000])
+def test_first_excursion_is_the_first_sample_beyond_the_limit(lam, n):
+    """Its block-wise search (quiet blocks: zero-start sums only) gives the definition's answer, and
+    with no excursion the average's last value to the bit: a contact with noise and slow drift,
+    then a parabolic departure starting in any block, either way."""
+    rng = np.random.default_rng(n)
+    for start in [None, 0, n // 3, n - 1, 1500, 3100]:
+        for sign in (1, -1):
+            x = 0.04 + 1e-4 * rng.standard_normal(n) + 2e-7 * np.arange(n)
+            if start is not None and start < n:
+                x[start:] += sign * 3e-6 * np.arange(n - start) ** 2
+            y0 = 0.04 + 1e-3 * rng.standard_normal()
+            k, direction, last = first_excursion(x, lam, y0, 0.015)
+            want = _first_excursion_by_definition(x, lam, y0, 0.015)
+            if want[0] >= 0:
+                assert (k, direction) == want and np.isnan(last)
+            else:
+                assert k == -1 and direction == 0 and last == want[1]    # bit for bit

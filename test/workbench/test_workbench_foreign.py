@@ -38,6 +38,10 @@ SPECS = {
                              [E("structural_vibration", {"amplitude_pu": 0.4, "frequency_hz": 131.0,
                                                          "phase_rad": 0.2})]),
     "width_6_to_7": _spec("width_6_to_7", "one", 304, [E("drift_width", {"change": 0.001})], width=0.006),
+    "friction_tanh_strong": _spec("friction_tanh_strong", "one", 306,
+                                  [E("wheel_friction_tanh", {"torque_Nm": 2.5, "smoothing_speed_rad_s": 15.0})]),
+    "supply_sag": _spec("supply_sag", "outside", 307, [E("supply_voltage", {"relative_change": -0.15})],
+                        width=0.006, eta=0.03, n1=0.91),
     "offset_a2": _spec("offset_a2", "one", 305, [E("bias_constant", {"signal": "a2", "bias_m_s2": 2.0})], width=0.009),
 }
 _CACHE: dict = {}
@@ -83,6 +87,30 @@ def test_a_foreign_friction_law_is_named_in_its_family():
     assert d["verdict"] == "discovery", d["message"]
     assert set(truth.families) <= _named(d), (truth.families, d["message"])
     assert [a["role"] for a in d["additions"]][0] == "discovery"
+
+
+@pytest.mark.slow
+def test_a_strong_foreign_friction_is_named_although_its_linearisation_misses_it():
+    """2.5 N*m of smooth wheel friction: the other laws of the wheel's torque balance fit it as well (the wheel
+    never reverses), but at this strength the candidates' linearisation at the nominal model misses the Coulomb law
+    (screened, never refined, so never compared). Refining the best one's balance siblings names it: as the
+    discovery or flagged indistinguishable from it."""
+    d, truth = diagnosed("friction_tanh_strong")
+    assert d["verdict"] == "discovery", d["message"]
+    assert set(truth.families) <= _named(d), (truth.families, d["message"])
+    refined = {r["effect"] for r in d["ranked"] if not r.get("screening_only")}
+    assert "wheel_coulomb_friction" in refined
+
+
+@pytest.mark.slow
+def test_a_weaker_motor_is_never_called_a_motor_load_without_saying_it_may_be_the_motor():
+    """A supply voltage 15 % low (outside the catalogue: the motor's own physics) slows the motor like a load or a
+    friction on its shaft. If the diagnosis names a motor-side effect it must say that a weaker motor looks the
+    same on this recording, and what measurement separates them."""
+    d, _ = diagnosed("supply_sag")
+    if d["verdict"] == "discovery":
+        assert "supply voltage" in d["message"] and "stator current" in d["message"], d["message"]
+    assert d["verdict"] != "width", d["message"]
 
 
 @pytest.mark.slow

@@ -16,6 +16,7 @@ def _ripple(amplitude_pu, order):
             "torque_ripple.order": order}
 
 
+@pytest.mark.slow     # a 3 s recording, the model's comparison and three fit simulations: 4-6 s each
 @pytest.mark.parametrize("amplitude_pu, order, seed", [(0.4, 8.0, 71), (0.8, 20.0, 72)])
 def test_a_hidden_ripple_is_found_in_the_raw_spectrum_with_its_order_and_amplitude(amplitude_pu, order, seed):
     model = load_model(None)

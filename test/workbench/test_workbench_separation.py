@@ -44,3 +44,14 @@ def test_every_pair_of_places_has_a_sentence():
         for b in places:
             text = separation.separating_measurement("A", a, "B", b)
             assert "A" in text and "B" in text and len(text) > 40
+
+
+def test_a_constant_motor_shaft_torque_carries_the_weaker_motor_caveat_and_nothing_else_does():
+    """A load or friction on the motor shaft and a weaker motor (supply voltage, hot rotor) shift the motor's mean
+    slip alike: the caveat names the measurement that separates them. A drift of the pulse amplitude or a ripple
+    acts on the motor side too, but changes the load's swing, not its mean: no caveat."""
+    for name in ("motor_coulomb_friction", "motor_load_offset"):
+        note = separation.motor_side_note(name)
+        assert "supply voltage" in note and "stator current" in note
+    for name in ("pulse_amplitude_drift", "torque_ripple", "wheel_coulomb_friction", "accelerometer_gain[a1]"):
+        assert separation.motor_side_note(name) == ""

@@ -81,9 +81,12 @@ def test_versions_that_differ_only_in_an_effect_value_do_not_share_training_wind
             for v in (0.30, 0.45))
     assert config_hash(a) != config_hash(b)
     assert config_hash(model.plant_config()) == config_hash(dataset.load_plant_config())   # nominal: as before
-    wa = dataset.collect_windows((1000,), "contact_loss", duration_s=0.5, config=a)         # cached
-    wb = dataset.collect_windows((1000,), "contact_loss", duration_s=0.5, config=b)
-    fresh = dataset.collect_windows((1000,), "contact_loss", duration_s=0.5, config=b, cache=False)
+    # the six widths at one eta_k and n1 (one SIMD vector of drives, not the 120 of the whole grid): the cache's
+    # key is under test, and the grid is part of the key alike for both versions
+    grid = dict(eta_k_values=(0.025,), n1_values=(0.89,), duration_s=0.5)
+    wa = dataset.collect_windows((1000,), "contact_loss", config=a, **grid)         # cached
+    wb = dataset.collect_windows((1000,), "contact_loss", config=b, **grid)
+    fresh = dataset.collect_windows((1000,), "contact_loss", config=b, cache=False, **grid)
     assert wb.a1.shape == fresh.a1.shape and np.array_equal(wb.a1, fresh.a1)
     assert not (wa.a1.shape == wb.a1.shape and np.array_equal(wa.a1, wb.a1))
 
