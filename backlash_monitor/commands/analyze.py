@@ -24,8 +24,12 @@ This module parses and prints; the analysis is backlash_monitor/offline/analyze.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag
+
+if TYPE_CHECKING:
+    from backlash_monitor.fleet.analyze import FleetOptions
 
 NAME = "analyze"
 HELP = "run the chain offline on an MCAP bag: estimates to CSV, JSON and MCAP"
@@ -78,10 +82,21 @@ def options_from_args(args) -> AnalyzeOptions:
                           overwrite=args.overwrite)
 
 
+def fleet_options_from_args(args) -> FleetOptions:
+    """The many-bag options of a parsed `analyze FOLDER` command line (a FleetOptions, its model
+    fit's WatchOptions among them)."""
+    from backlash_monitor.fleet.analyze import FleetOptions, WatchOptions
+    return FleetOptions(bags=args.bag, out=args.out, jobs=args.jobs, engine=args.engine,
+                        scheduler=args.scheduler, trend_config=args.trend_config,
+                        plots=not args.no_plots,
+                        watch=WatchOptions(enabled=not args.no_model_fit,
+                                           reference=args.watch_reference))
+
+
 def run(args) -> int:
     from backlash_monitor.fleet.analyze import is_many, run_many
     if is_many(args.bag):
-        return run_many(args, options_from_args(args))
+        return run_many(fleet_options_from_args(args), options_from_args(args))
     result = analyze_bag(args.bag, args.out, options_from_args(args))
     _print_summary(result["summary"], result["rows"], result["discarded"], result["n_samples"],
                    result["seconds"], result["outputs"])
