@@ -38,30 +38,6 @@ THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"
 ESTIMATES_SUFFIX = ".estimates.mcap"   # what analyze writes: never an input
 
 
-def add_arguments(parser) -> None:
-    """The options of the many-bag path (added to `analyze`'s)."""
-    group = parser.add_argument_group("many recordings (BAG is a folder or a quoted glob)")
-    group.add_argument("--jobs", type=int, default=0,
-                       help="bags analysed at once (default: this machine's cores; 1: one after "
-                            "the other in this process)")
-    group.add_argument("--engine", choices=ENGINES, default="local",
-                       help="'local': a process pool on this machine; 'dask': a Dask cluster "
-                            "(optional extra: pip install dask distributed)")
-    group.add_argument("--scheduler", default="",
-                       help="address of an existing Dask scheduler (tcp://host:8786); default: a "
-                            "local cluster with --jobs workers")
-    group.add_argument("--trend-config", default="",
-                       help="trend rule file (default: the packaged config/trend.yaml)")
-    group.add_argument("--no-plots", action="store_true", help="write no trend plots")
-    group.add_argument("--watch-reference", default="", metavar="REF.watch.npz",
-                       help="the model version the model-fit column holds every bag against (default: "
-                            "--library's LIB.watch.npz where it exists, else the default model's at the pattern "
-                            "width nearest the drive's measured width, eta_k 0.025 and --n1: from the cache, "
-                            "built there once when missing; docs/model_watch.md)")
-    group.add_argument("--no-model-fit", action="store_true",
-                       help="no model-fit column (the model watch's test on each bag's last onset events)")
-
-
 @dataclass(frozen=True)
 class WatchOptions:
     """The model-fit column's options (the model watch's test on each bag's last onset events,
