@@ -24,8 +24,12 @@ This module parses and prints; the analysis is backlash_monitor/offline/analyze.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag
+
+if TYPE_CHECKING:
+    from backlash_monitor.fleet.analyze import FleetOptions
 
 NAME = "analyze"
 HELP = "run the chain offline on an MCAP bag: estimates to CSV, JSON and MCAP"
@@ -65,8 +69,32 @@ def add_arguments(parser) -> None:
     parser.add_argument("--overwrite", action="store_true",
                         help="replace existing output files (never the analysed bag itself); "
                              "without it an existing output is an error")
-    from backlash_monitor.fleet.analyze import add_arguments as add_many_arguments
-    add_many_arguments(parser)
+    _add_many_arguments(parser)
+
+
+def _add_many_arguments(parser) -> None:
+    """The options of the many-bag path (added to `analyze`'s; backlash_monitor/fleet/analyze.py)."""
+    from backlash_monitor.fleet.analyze import ENGINES
+    group = parser.add_argument_group("many recordings (BAG is a folder or a quoted glob)")
+    group.add_argument("--jobs", type=int, default=0,
+                       help="bags analysed at once (default: this machine's cores; 1: one after "
+                            "the other in this process)")
+    group.add_argument("--engine", choices=ENGINES, default="local",
+                       help="'local': a process pool on this machine; 'dask': a Dask cluster "
+                            "(optional extra: pip install dask distributed)")
+    group.add_argument("--scheduler", default="",
+                       help="address of an existing Dask scheduler (tcp://host:8786); default: a "
+                            "local cluster with --jobs workers")
+    group.add_argument("--trend-config", default="",
+                       help="trend rule file (default: the packaged config/trend.yaml)")
+    group.add_argument("--no-plots", action="store_true", help="write no trend plots")
+    group.add_argument("--watch-reference", default="", metavar="REF.watch.npz",
+                       help="the model version the model-fit column holds every bag against (default: "
+                            "--library's LIB.watch.npz where it exists, else the default model's at the pattern "
+                            "width nearest the drive's measured width, eta_k 0.025 and --n1: from the cache, "
+                            "built there once when missing; docs/model_watch.md)")
+    group.add_argument("--no-model-fit", action="store_true",
+                       help="no model-fit column (the model watch's test on each bag's last onset events)")
 
 
 def options_from_args(args) -> AnalyzeOptions:
@@ -78,10 +106,21 @@ def options_from_args(args) -> AnalyzeOptions:
                           overwrite=args.overwrite)
 
 
+def fleet_options_from_args(args) -> FleetOptions:
+    """The many-bag options of a parsed `analyze FOLDER` command line (a FleetOptions, its model
+    fit's WatchOptions among them)."""
+    from backlash_monitor.fleet.analyze import FleetOptions, WatchOptions
+    return FleetOptions(bags=args.bag, out=args.out, jobs=args.jobs, engine=args.engine,
+                        scheduler=args.scheduler, trend_config=args.trend_config,
+                        plots=not args.no_plots,
+                        watch=WatchOptions(enabled=not args.no_model_fit,
+                                           reference=args.watch_reference))
+
+
 def run(args) -> int:
     from backlash_monitor.fleet.analyze import is_many, run_many
     if is_many(args.bag):
-        return run_many(args, options_from_args(args))
+        return run_many(fleet_options_from_args(args), options_from_args(args))
     result = analyze_bag(args.bag, args.out, options_from_args(args))
     _print_summary(result["summary"], result["rows"], result["discarded"], result["n_samples"],
                    result["seconds"], result["outputs"])

@@ -24,38 +24,18 @@ import time
 from dataclasses import dataclass
 from datetime import datetime, timezone
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from backlash_monitor.errors import UsageError
 from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
+
+if TYPE_CHECKING:
+    from backlash_monitor.offline.analyze import AnalyzeOptions
 
 ENGINES = ("local", "dask")
 THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
                     "NUMBA_NUM_THREADS")   # thread pools a worker's libraries would start
 ESTIMATES_SUFFIX = ".estimates.mcap"   # what analyze writes: never an input
-
-
-def add_arguments(parser) -> None:
-    """The options of the many-bag path (added to `analyze`'s)."""
-    group = parser.add_argument_group("many recordings (BAG is a folder or a quoted glob)")
-    group.add_argument("--jobs", type=int, default=0,
-                       help="bags analysed at once (default: this machine's cores; 1: one after "
-                            "the other in this process)")
-    group.add_argument("--engine", choices=ENGINES, default="local",
-                       help="'local': a process pool on this machine; 'dask': a Dask cluster "
-                            "(optional extra: pip install dask distributed)")
-    group.add_argument("--scheduler", default="",
-                       help="address of an existing Dask scheduler (tcp://host:8786); default: a "
-                            "local cluster with --jobs workers")
-    group.add_argument("--trend-config", default="",
-                       help="trend rule file (default: the packaged config/trend.yaml)")
-    group.add_argument("--no-plots", action="store_true", help="write no trend plots")
-    group.add_argument("--watch-reference", default="", metavar="REF.watch.npz",
-                       help="the model version the model-fit column holds every bag against (default: "
-                            "--library's LIB.watch.npz where it exists, else the default model's at the pattern "
-                            "width nearest the drive's measured width, eta_k 0.025 and --n1: from the cache, "
-                            "built there once when missing; docs/model_watch.md)")
-    group.add_argument("--no-model-fit", action="store_true",
-                       help="no model-fit column (the model watch's test on each bag's last onset events)")
 
 
 @dataclass(frozen=True)
@@ -70,9 +50,36 @@ class WatchOptions:
     reference: str = ""
 
 
-def watch_options_from_args(args) -> WatchOptions:
-    """The model-fit options of a parsed `analyze FOLDER` command line."""
-    return WatchOptions(enabled=not args.no_model_fit, reference=args.watch_reference)
+@dataclass(frozen=True)
+class FleetOptions:
+    """How many recordings are analysed into one fleet table (the many-bag `analyze`'s options, docs
+    in its --help); a fleet job is (bag, out, AnalyzeOptions), these say which bags and where.
+
+    bags: a folder of bags or a glob of them; out: the output folder ("" = fleet_analysis beside the
+    first bag); jobs: bags analysed at once (0 = this machine's cores; 1: one after the other in
+    this process); engine: 'local' (a process pool) or 'dask'; scheduler: an existing Dask
+    scheduler's address ("" = a local cluster); trend_config: trend rule file ("" = the packaged
+    config/trend.yaml); plots: write the trend plots; watch: the model-fit column's WatchOptions."""
+    bags: str
+    out: str = ""
+    jobs: int = 0
+    engine: str = "local"
+    scheduler: str = ""
+    trend_config: str = ""
+    plots: bool = True
+    watch: WatchOptions = WatchOptions()
+
+    def workers(self) -> int:
+        """The bags analysed at once: ``jobs``, or this machine's cores for 0."""
+        return self.jobs or os.cpu_count() or 1
+
+    def check(self) -> None:
+        """UsageError naming the first bad option and its allowed values."""
+        if self.engine not in ENGINES:
+            raise UsageError(f"engine {self.engine!r}; allowed: {', '.join(ENGINES)}")
+        n_jobs = self.workers()
+        if n_jobs < 1 or n_jobs > 1024:
+            raise UsageError(f"--jobs = {self.jobs}; allowed: 1 .. 1024 (0: this machine's cores)")
 
 
 def is_many(bag: str) -> bool:
@@ -378,28 +385,27 @@ def format_rows(rows: list[dict]) -> list[tuple]:
     return out
 
 
-def run_many(args, options) -> int:
-    """The many-bag `analyze`: ``args`` its parsed command line (BAG, --out and the options above,
-    the model fit's WatchOptions among them), ``options`` the AnalyzeOptions of every bag."""
+def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
+    """The many-bag `analyze`: ``fleet`` its FleetOptions (the bags, the output folder, the engine,
+    the model fit's WatchOptions), ``options`` the AnalyzeOptions of every bag."""
     from backlash_monitor.fleet.trend import load_rule, plot_trends
-    bags = expand_bags(args.bag)
-    n_jobs = args.jobs or os.cpu_count() or 1
-    if n_jobs < 1 or n_jobs > 1024:
-        raise UsageError(f"--jobs = {args.jobs}; allowed: 1 .. 1024 (0: this machine's cores)")
+    bags = expand_bags(fleet.bags)
+    fleet.check()
+    n_jobs = fleet.workers()
     # before numpy is imported here: forked workers inherit this process's thread pools
-    threads_limited = limit_threads() if n_jobs > 1 and args.engine == "local" else None
-    out_dir = Path(args.out) if args.out else bags[0].parent / "fleet_analysis"
+    threads_limited = limit_threads() if n_jobs > 1 and fleet.engine == "local" else None
+    out_dir = Path(fleet.out) if fleet.out else bags[0].parent / "fleet_analysis"
     out_dir.mkdir(parents=True, exist_ok=True)
     try:
-        rule = load_rule(args.trend_config or None)
+        rule = load_rule(fleet.trend_config or None)
     except (OSError, KeyError, TypeError, ValueError) as error:
-        raise UsageError(f"trend config {args.trend_config or 'config/trend.yaml'}: {error}; it "
+        raise UsageError(f"trend config {fleet.trend_config or 'config/trend.yaml'}: {error}; it "
                          "needs warn_growth_m_per_day, warn_width_m, error_width_m") from None
-    watch = watch_options_from_args(args)
+    watch = fleet.watch
     jobs = _jobs(options, bags, out_dir, watch)
     started = time.perf_counter()
-    if args.engine == "dask":
-        rows = run_dask(jobs, n_jobs, args.scheduler)
+    if fleet.engine == "dask":
+        rows = run_dask(jobs, n_jobs, fleet.scheduler)
     else:
         # the options checked and the library loaded once, here: a bad option is one error
         # before any worker starts, and forked workers inherit the library
@@ -422,10 +428,10 @@ def run_many(args, options) -> int:
         for r in rows:
             writer.writerow([r.get(c, "") for c in columns])
     with open(out_dir / "fleet.json", "w", encoding="utf-8") as f:
-        f.write(json.dumps({"bags": len(bags), "engine": args.engine, "jobs": n_jobs,
+        f.write(json.dumps({"bags": len(bags), "engine": fleet.engine, "jobs": n_jobs,
                             "seconds": wall, "rows": rows,
                             "trends": {d: t.__dict__ for d, t in trends.items()}}))
-    plots = [] if args.no_plots or not points else plot_trends(points, trends, rule, out_dir)
+    plots = [] if not fleet.plots or not points else plot_trends(points, trends, rule, out_dir)
     table = [TABLE] + format_rows(rows)
     widths = [max(len(row[i]) for row in table) for i in range(len(TABLE))]
     for i, row in enumerate(table):
@@ -449,6 +455,6 @@ def run_many(args, options) -> int:
                   f"{r[signal + '_offset_m_s2']:+.2f} m/s^2 beyond what a MEMS sensor shows "
                   "(config/windowing.yaml sensor_offset): check the sensor (the widths are offset-free)")
     print(f"analysed {len(bags)} bags of {len(points)} drives in {wall:.1f} s on {n_jobs} "
-          f"{'worker' if n_jobs == 1 else 'workers'} ({args.engine}); wrote {out_dir / 'fleet.csv'}"
+          f"{'worker' if n_jobs == 1 else 'workers'} ({fleet.engine}); wrote {out_dir / 'fleet.csv'}"
           f", .json{', ' + str(len(plots)) + ' plots' if plots else ''}")
     return 1 if failed else 0

@@ -125,6 +125,29 @@ def test_the_model_fit_reference_is_the_one_given_else_the_librarys_else_the_def
     assert default_model(0.95, 0.0051).nominal == {"width_m": nearest, "eta_k": 0.025, "n1": 0.95}
 
 
+def test_the_command_line_becomes_typed_fleet_options_checked_with_the_allowed_ranges():
+    """`analyze FOLDER`'s flags become one FleetOptions (its WatchOptions among them); run_many reads no
+    command line. --jobs outside 1 .. 1024 is refused with the allowed range."""
+    from backlash_monitor.__main__ import build_parser
+    from backlash_monitor.commands.analyze import fleet_options_from_args
+    from backlash_monitor.errors import UsageError
+    from backlash_monitor.fleet.analyze import FleetOptions, WatchOptions
+    args = build_parser("analyze").parse_args(
+        ["analyze", "bags/*.mcap", "--out", "o", "--jobs", "3", "--engine", "dask", "--scheduler",
+         "tcp://h:8786", "--trend-config", "t.yaml", "--no-plots", "--watch-reference", "r.watch.npz"])
+    assert fleet_options_from_args(args) == FleetOptions(
+        bags="bags/*.mcap", out="o", jobs=3, engine="dask", scheduler="tcp://h:8786",
+        trend_config="t.yaml", plots=False, watch=WatchOptions(enabled=True, reference="r.watch.npz"))
+    defaults = fleet_options_from_args(build_parser("analyze").parse_args(["analyze", "d", "--no-model-fit"]))
+    assert defaults == FleetOptions(bags="d", watch=WatchOptions(enabled=False))
+    FleetOptions(bags="d", jobs=1024).check()
+    for jobs in (-1, 1025):
+        with pytest.raises(UsageError, match=rf"--jobs = {jobs}; allowed: 1 \.\. 1024 \(0: this machine's cores\)"):
+            FleetOptions(bags="d", jobs=jobs).check()
+    with pytest.raises(UsageError, match="engine 'spark'; allowed: local, dask"):
+        FleetOptions(bags="d", engine="spark").check()
+
+
 @pytest.mark.process
 def test_a_glob_without_bags_is_one_clear_error(tmp_path):
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze",
