@@ -26,6 +26,8 @@ LOCATION_OF_DRIFT_TARGET = {
     "wheel_inertia_kgm2": "wheel",
     "working_resistance.force_N": "mass",
     "pulse_load.amplitude_pu": "motor",
+    "rotor_resistance_pu": "motor",
+    "supply_voltage_pu": "motor",
 }
 PLACE = {"motor": "the motor side", "coupling": "the clutch (coupling)", "wheel": "the load wheel",
          "rim_mass": "the spring/absorber between rim and mass", "mass": "the mass",
