@@ -683,27 +683,38 @@ class BiasDrifting(_Sensor):
         return {f"{p['signal']}_m_s2": 0.5 * (p["start_m_s2"] + p["end_m_s2"])}
 
 
-# ============================================================ outside the catalogue (family None)
+# ============================================================ a weaker motor (drifts of the motor's own physics)
 class MotorRotorResistance(Form):
     name = "motor_rotor_resistance"
-    family = None
+    family = "rotor_resistance_drift"
     description = ("the rotor resistance changed (a hot or a cracked rotor bar): r_r -> r_r*(1+e): slip and "
                    "breakdown slip move")
     parameters = (Param("relative_change", "-", (-0.5, 5.0), "e"),)
+    note = "at one operating point the motor slips as it would under an extra load: a motor friction looks the same"
 
     def apply(self, b, p):
         b.P[P_RR] *= 1.0 + p["relative_change"]
 
+    def equivalent(self, p):
+        return {"relative_change": p["relative_change"]}
+
 
 class SupplyVoltage(Form):
     name = "supply_voltage"
-    family = None
+    family = "supply_voltage_drift"
     description = ("the supply voltage is not 1 p.u. (a weak grid, a sag): U -> U*(1+e); the breakdown torque "
                    "goes with U^2")
     parameters = (Param("relative_change", "-", (-0.3, 0.3), "e"),)
+    note = "at one operating point the motor slips as it would under an extra load: a motor friction looks the same"
 
     def apply(self, b, p):
         b.P[P_U] *= 1.0 + p["relative_change"]
+
+    def equivalent(self, p):
+        return {"relative_change": p["relative_change"]}
+
+
+# ============================================================ outside the catalogue (family None)
 
 
 class ClutchContactProgressive(Form):
@@ -803,7 +814,8 @@ CATALOGUE_FAMILIES = (
     "clutch_contact_stiffness", "clutch_contact_damping", "shaft_compliance", "mass_force_offset",
     "motor_load_offset", "torque_ripple", "accelerometer_bias", "accelerometer_gain", "accelerometer_lowpass",
     "backlash_width_drift", "absorber_consistency_drift", "absorber_flow_index_drift", "spring_stiffness_drift",
-    "load_mass_drift", "wheel_inertia_drift", "working_resistance_drift", "pulse_amplitude_drift")
+    "load_mass_drift", "wheel_inertia_drift", "working_resistance_drift", "pulse_amplitude_drift",
+    "rotor_resistance_drift", "supply_voltage_drift")
 
 
 def get(name: str) -> Form:
