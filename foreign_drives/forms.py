@@ -21,7 +21,7 @@ import numpy as np
 
 from . import constants as C
 from .kernel import (P_BETA, P_C, P_CEXP, P_CPRE, P_CPRS, P_CREF, P_DC, P_DS, P_DW, P_EME, P_EMN, P_EMP, P_F0, P_GMA,
-                      P_GMN, P_GMP, P_HCL, P_J2, P_JH, P_JR, P_K, P_KCD, P_KCF, P_KS, P_KW, P_M, P_MCF, P_MCT,
+                      P_GMN, P_GMP, P_HCL, P_J1, P_J2, P_JH, P_JR, P_K, P_KCD, P_KCF, P_KS, P_KW, P_M, P_MCF, P_MCT,
                       P_MDC, P_MFAN, P_MFANW, P_MFT, P_MFTW, P_MFV, P_N1, P_PROG, P_RAILF, P_RAILV, P_RA0, P_RN0,
                       P_RP0, P_RR, P_U, P_VIBA, P_VIBF, P_VIBP, P_WCT, P_WFDC, P_WFDP, P_WFL, P_WFT, P_WFTW, P_WSC,
                       P_WSD, P_WSE, P_WSW, P_Z0)
@@ -728,6 +728,17 @@ class ClutchContactProgressive(Form):
         b.P[P_PROG] = p["p0_rad"]
 
 
+class MotorRotorInertia(Form):
+    name = "motor_rotor_inertia"
+    family = None
+    description = ("more inertia on the motor shaft than the model's (a brake disc, a flywheel, a heavier fan): "
+                   "J1 -> J1*(1+e)")
+    parameters = (Param("relative_change", "-", (-0.5, 5.0), "e"),)
+
+    def apply(self, b, p):
+        b.P[P_J1] *= 1.0 + p["relative_change"]
+
+
 class ClutchContactPreload(Form):
     name = "clutch_contact_preload"
     family = None
@@ -803,7 +814,7 @@ FORM_CLASSES = (WheelFrictionTanh, WheelFrictionLoadDependent, WheelDragPower, W
                 RippleElectromagnetic, RippleWheelMesh, DriftWidth, DriftMass, DriftWheelInertia, DriftSpring,
                 DriftEtaK, DriftN1, DriftWorkingResistance, DriftPulseAmplitude, LowpassButterworth, LowpassBessel,
                 LowpassMovingAverage, LowpassFIR, GainConstant, GainDrifting, BiasConstant, BiasDrifting,
-                MotorRotorResistance, SupplyVoltage, ClutchContactProgressive, ClutchContactPreload, SpringHardening,
+                MotorRotorResistance, SupplyVoltage, MotorRotorInertia, ClutchContactProgressive, ClutchContactPreload, SpringHardening,
                 StructuralVibration, SecondTorsionalMode)
 FORMS = {cls.name: cls() for cls in FORM_CLASSES}
 

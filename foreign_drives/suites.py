@@ -140,6 +140,11 @@ BENCH_ROWS = [
     # a vibration at a fixed frequency next to an integer order of the rotation (6 x 24.1 Hz = 144.6 Hz): not a ripple
     ("outside_vibration_147Hz", "outside", 0.0075, 0.025, 0.89,
      [E("structural_vibration", {"amplitude_pu": 0.3, "frequency_hz": 147.0, "phase_rad": 0.7})]),
+    # appended when the weaker motor joined the catalogue (the two rows above it left 'outside'): a preloaded jaw
+    # insert, a contact law no catalogue effect has
+    ("outside_contact_preload_12Nm", "outside", 0.0065, 0.03, 0.93,
+     [E("clutch_contact_preload", {"preload_Nm": 12.0, "build_up_rad": 3e-4})]),
+    ("outside_motor_inertia_+0.5", "outside", 0.0085, 0.02, 0.95, [E("motor_rotor_inertia", {"relative_change": 0.5})]),
 ]
 
 WIDTH_LOOP_ROWS = [
