@@ -57,7 +57,7 @@ lint: setup  ## the architecture's contracts (import-linter: .importlinter) and 
 	$(ACTIVATE) && lint-imports --no-cache && ruff check --no-cache .
 
 test: setup chromium lint  ## the contracts and ruff, then the whole test suite
-	$(ACTIVATE) && python -m pytest test -q
+	$(ACTIVATE) && python -m pytest test -q --durations=25
 
 bench: setup  ## run every bench/*.py into bench/results.json
 	$(ACTIVATE) && python tools/run_benchmarks.py bench/results.json

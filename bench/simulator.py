@@ -62,6 +62,7 @@ CATALOGUE_PARAMETERS = {
     "absorber_flow_index_drift.change": 0.02, "spring_stiffness_drift.relative_change": 0.1,
     "load_mass_drift.relative_change": 0.05, "wheel_inertia_drift.relative_change": 0.05,
     "working_resistance_drift.relative_change": 0.05, "pulse_amplitude_drift.relative_change": -0.05,
+    "rotor_resistance_drift.relative_change": 0.1, "supply_voltage_drift.relative_change": -0.03,
 }
 
 

@@ -70,7 +70,10 @@ SUITE = [
      {}, {"load_mass_drift": {"relative_change": 0.3}, "accelerometer_gain": {"a1_relative_change": -0.2}}),
     ("friction+inertia", "two", {**on("wheel_coulomb_friction", torque_Nm=1.0), **on("wheel_inertia_drift", relative_change=0.3)},
      {}, {"wheel_coulomb_friction": {"torque_Nm": 1.0}, "wheel_inertia_drift": {"relative_change": 0.3}}),
-    ("outside_rotor_resistance", "outside", {"motor.r_r_pu": 0.12}, {}, {}),
+    # a hot rotor (200 K over its rated temperature); this row was 'outside' (r_r 2.5x) until the catalogue had the
+    # motor's drifts -- same index, same seed
+    ("rotor_resistance_+0.8", "one", on("rotor_resistance_drift", relative_change=0.8), {},
+     {"rotor_resistance_drift": {"relative_change": 0.8}}),
     ("clean_w9", "clean", {}, {"width_m": 0.009}, {}),
     # a torque ripple (not locked to the events: found in the raw a1 spectrum, workbench/ripple.py); its phase
     # is not identifiable from a spectrum and not scored
@@ -78,6 +81,9 @@ SUITE = [
      {"torque_ripple": {"amplitude_pu": 0.25, "order": 6.0}}),
     ("torque_ripple_0.5_x15", "one", on("torque_ripple", amplitude_pu=0.5, order=15.0), {},
      {"torque_ripple": {"amplitude_pu": 0.5, "order": 15.0}}),
+    # outside the catalogue: a motor whose rotor inertia is 40 % more than the model's (a brake disc or a flywheel
+    # on the motor shaft; no catalogue effect changes J1)
+    ("outside_rotor_inertia_+0.4", "outside", {"motor.mechanical_time_constant_s": 0.86 * 1.4}, {}, {}),
 ]
 
 

@@ -21,7 +21,7 @@ import numpy as np
 
 from . import constants as C
 from .kernel import (P_BETA, P_C, P_CEXP, P_CPRE, P_CPRS, P_CREF, P_DC, P_DS, P_DW, P_EME, P_EMN, P_EMP, P_F0, P_GMA,
-                      P_GMN, P_GMP, P_HCL, P_J2, P_JH, P_JR, P_K, P_KCD, P_KCF, P_KS, P_KW, P_M, P_MCF, P_MCT,
+                      P_GMN, P_GMP, P_HCL, P_J1, P_J2, P_JH, P_JR, P_K, P_KCD, P_KCF, P_KS, P_KW, P_M, P_MCF, P_MCT,
                       P_MDC, P_MFAN, P_MFANW, P_MFT, P_MFTW, P_MFV, P_N1, P_PROG, P_RAILF, P_RAILV, P_RA0, P_RN0,
                       P_RP0, P_RR, P_U, P_VIBA, P_VIBF, P_VIBP, P_WCT, P_WFDC, P_WFDP, P_WFL, P_WFT, P_WFTW, P_WSC,
                       P_WSD, P_WSE, P_WSW, P_Z0)
@@ -683,27 +683,38 @@ class BiasDrifting(_Sensor):
         return {f"{p['signal']}_m_s2": 0.5 * (p["start_m_s2"] + p["end_m_s2"])}
 
 
-# ============================================================ outside the catalogue (family None)
+# ============================================================ a weaker motor (drifts of the motor's own physics)
 class MotorRotorResistance(Form):
     name = "motor_rotor_resistance"
-    family = None
+    family = "rotor_resistance_drift"
     description = ("the rotor resistance changed (a hot or a cracked rotor bar): r_r -> r_r*(1+e): slip and "
                    "breakdown slip move")
     parameters = (Param("relative_change", "-", (-0.5, 5.0), "e"),)
+    note = "at one operating point the motor slips as it would under an extra load: a motor friction looks the same"
 
     def apply(self, b, p):
         b.P[P_RR] *= 1.0 + p["relative_change"]
 
+    def equivalent(self, p):
+        return {"relative_change": p["relative_change"]}
+
 
 class SupplyVoltage(Form):
     name = "supply_voltage"
-    family = None
+    family = "supply_voltage_drift"
     description = ("the supply voltage is not 1 p.u. (a weak grid, a sag): U -> U*(1+e); the breakdown torque "
                    "goes with U^2")
     parameters = (Param("relative_change", "-", (-0.3, 0.3), "e"),)
+    note = "at one operating point the motor slips as it would under an extra load: a motor friction looks the same"
 
     def apply(self, b, p):
         b.P[P_U] *= 1.0 + p["relative_change"]
+
+    def equivalent(self, p):
+        return {"relative_change": p["relative_change"]}
+
+
+# ============================================================ outside the catalogue (family None)
 
 
 class ClutchContactProgressive(Form):
@@ -715,6 +726,17 @@ class ClutchContactProgressive(Form):
 
     def apply(self, b, p):
         b.P[P_PROG] = p["p0_rad"]
+
+
+class MotorRotorInertia(Form):
+    name = "motor_rotor_inertia"
+    family = None
+    description = ("more inertia on the motor shaft than the model's (a brake disc, a flywheel, a heavier fan): "
+                   "J1 -> J1*(1+e)")
+    parameters = (Param("relative_change", "-", (-0.5, 5.0), "e"),)
+
+    def apply(self, b, p):
+        b.P[P_J1] *= 1.0 + p["relative_change"]
 
 
 class ClutchContactPreload(Form):
@@ -792,7 +814,7 @@ FORM_CLASSES = (WheelFrictionTanh, WheelFrictionLoadDependent, WheelDragPower, W
                 RippleElectromagnetic, RippleWheelMesh, DriftWidth, DriftMass, DriftWheelInertia, DriftSpring,
                 DriftEtaK, DriftN1, DriftWorkingResistance, DriftPulseAmplitude, LowpassButterworth, LowpassBessel,
                 LowpassMovingAverage, LowpassFIR, GainConstant, GainDrifting, BiasConstant, BiasDrifting,
-                MotorRotorResistance, SupplyVoltage, ClutchContactProgressive, ClutchContactPreload, SpringHardening,
+                MotorRotorResistance, SupplyVoltage, MotorRotorInertia, ClutchContactProgressive, ClutchContactPreload, SpringHardening,
                 StructuralVibration, SecondTorsionalMode)
 FORMS = {cls.name: cls() for cls in FORM_CLASSES}
 
@@ -803,7 +825,8 @@ CATALOGUE_FAMILIES = (
     "clutch_contact_stiffness", "clutch_contact_damping", "shaft_compliance", "mass_force_offset",
     "motor_load_offset", "torque_ripple", "accelerometer_bias", "accelerometer_gain", "accelerometer_lowpass",
     "backlash_width_drift", "absorber_consistency_drift", "absorber_flow_index_drift", "spring_stiffness_drift",
-    "load_mass_drift", "wheel_inertia_drift", "working_resistance_drift", "pulse_amplitude_drift")
+    "load_mass_drift", "wheel_inertia_drift", "working_resistance_drift", "pulse_amplitude_drift",
+    "rotor_resistance_drift", "supply_voltage_drift")
 
 
 def get(name: str) -> Form:

@@ -380,6 +380,11 @@ DRIFTS = (
     _drift("working_resistance_drift", "working_resistance.force_N", True, "-", (-1.0, 10.0),
            "the working resistance F0"),
     _drift("pulse_amplitude_drift", "pulse_load.amplitude_pu", True, "-", (-1.0, 10.0), "the pulse load amplitude"),
+    # a weaker (or stronger) motor: the rotor's resistance follows its temperature (copper/aluminium +0.4 %/K),
+    # the supply voltage the grid; both move the slip at a given torque as a load on the motor shaft does
+    _drift("rotor_resistance_drift", "rotor_resistance_pu", True, "-", (-0.9, 10.0),
+           "the motor's rotor resistance r_r (its temperature; broken bars)"),
+    _drift("supply_voltage_drift", "supply_voltage_pu", True, "-", (-0.9, 1.0), "the motor's supply voltage"),
 )
 
 NOMINAL = (BacklashClutch, Spring, AbsorberPowerLaw, WorkingResistance, PulseLoad, GaussianDisturbance,

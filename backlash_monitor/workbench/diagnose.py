@@ -414,7 +414,7 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
         if discovery is not None:
             vals = ", ".join(f"{n} = {v:.4g} ± {u:.2g} {unit}" for n, v, u, unit in
                              zip(discovery.parameter_names, discovery.values, discovery.uncertainty, discovery.units))
-            caveat = separation.motor_side_note(discovery.effect)
+            caveat = separation.motor_side_note(discovery.effect, discovery.indistinguishable_from)
             if _is_measurand(discovery):
                 parts.append(f"the backlash width is {width.width_m * 1e3:.3f} ± {width.uncertainty_m * 1e3:.2f} mm "
                              f"(model nominal {width.nominal_width_m * 1e3:.3f} mm): the width is what the monitor "

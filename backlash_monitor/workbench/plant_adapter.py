@@ -68,6 +68,9 @@ FIT_RANGES = {
     "wheel_inertia_drift.relative_change": (-0.5, 1.0),         # another wheel or hub mounted
     "working_resistance_drift.relative_change": (-1.0, 2.0),    # the process force: gone to tripled
     "pulse_amplitude_drift.relative_change": (-0.3, 0.3),       # the machine's duty cycle load +-30 %
+    "rotor_resistance_drift.relative_change": (-0.3, 1.5),      # r_r +0.4 %/K: a rotor 75 K colder than rated to
+                                                                # one 200 K hotter (+80 %), with broken bars more
+    "supply_voltage_drift.relative_change": (-0.2, 0.1),        # the grid's +-10 % (EN 50160) and a sag to -20 %
 }
 
 

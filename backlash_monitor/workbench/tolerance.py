@@ -22,6 +22,8 @@ NOMINAL_SIGMA = {
     "absorber_flow_index_drift.change": 0.005,         # its flow index: +-0.005
     "working_resistance_drift.relative_change": 0.05,  # the process force: +-5 %
     "pulse_amplitude_drift.relative_change": 0.02,     # the duty cycle's load: +-2 %
+    "rotor_resistance_drift.relative_change": 0.04,    # the rotor's resistance at its unknown temperature: +-10 K
+    "supply_voltage_drift.relative_change": 0.02,      # the supply voltage at the motor's terminals: +-2 %
     "clutch_contact_stiffness.relative_change": 0.05,  # an elastomer jaw's stiffness: +-5 %
     "clutch_contact_damping.relative_change": 0.10,    # its damping: +-10 %
     "accelerometer_gain.a1_relative_change": 0.02,     # a calibrated accelerometer's sensitivity: +-2 %

@@ -20,7 +20,7 @@ def test_catalogue_names_and_declarations():
              "motor_load_offset", "torque_ripple", "accelerometer_bias", "accelerometer_gain", "accelerometer_lowpass",
              "backlash_width_drift", "absorber_consistency_drift", "absorber_flow_index_drift",
              "spring_stiffness_drift", "load_mass_drift", "wheel_inertia_drift", "working_resistance_drift",
-             "pulse_amplitude_drift"}
+             "pulse_amplitude_drift", "rotor_resistance_drift", "supply_voltage_drift"}
     cat = catalogue()
     assert {c.name for c in CATALOGUE} == names and names <= set(cat)
     for name in names:

@@ -150,6 +150,7 @@ DIRECT = {   # drift -> how the same change is made without it: (config key or s
     "load_mass_drift": ("load.mass_kg", 10.0), "wheel_inertia_drift": ("load.wheel_inertia_kgm2", 0.2),
     "working_resistance_drift": ("load.working_resistance_N", 30.0),
     "pulse_amplitude_drift": ("pulse_load.amplitude_pu", 1.6),
+    "rotor_resistance_drift": ("motor.r_r_pu", 0.048), "supply_voltage_drift": ("motor.supply_voltage_pu", 1.0),
 }
 
 
@@ -162,6 +163,8 @@ def _random_change(drift) -> float:
     lo, hi = drift.parameters[0].bounds
     if drift.name == "backlash_width_drift":
         lo = -0.004
+    if drift.name == "supply_voltage_drift":
+        lo = -0.3                 # the breakdown torque goes with U^2: a deeper sag stalls the loaded motor
     return float(rng.uniform(lo, min(hi, 2.0)))
 
 

@@ -196,6 +196,8 @@ def test_accelerometer_lowpass_of_n_sections_attenuates_a_sine_by_the_nth_power(
     ("wheel_inertia_drift", 0.5, {"load.wheel_inertia_kgm2": 0.3}, None),
     ("working_resistance_drift", 0.1, {"load.working_resistance_N": 33.0}, None),
     ("pulse_amplitude_drift", -0.25, {"pulse_load.amplitude_pu": 1.2}, None),
+    ("rotor_resistance_drift", 0.5, {"motor.r_r_pu": 0.072}, None),
+    ("supply_voltage_drift", -0.1, {"motor.supply_voltage_pu": 0.9}, None),
 ])
 def test_drift_equals_the_changed_parameter(drift, change, direct, scenario):
     from backlash_monitor.plant.effects import get
@@ -207,3 +209,30 @@ def test_drift_equals_the_changed_parameter(drift, change, direct, scenario):
         assert np.max(np.abs(a - b)) <= 1e-9 * np.max(np.abs(b)), sig
     _, nominal = run({}, 4000)
     assert np.max(np.abs(nominal.a2 - drifted.a2)) > 1e-6          # and it does change the signals
+
+
+# ---------------------------------------------------------------- a weaker motor: the equivalent circuit's laws
+@pytest.mark.parametrize("drift, change", [("rotor_resistance_drift", 0.6), ("supply_voltage_drift", -0.15)])
+def test_a_weaker_motor_settles_where_the_equivalent_circuit_puts_it(drift, change):
+    """Without the pulses the motor carries the constant torque T0 = r*F0/T_b. The rotor branch is r_r/s + j*x_r, so
+    a rotor resistance k*r_r carries any torque at k times the slip; every current of the linear circuit goes with
+    the supply voltage U, so the torque at a slip goes with U^2 and U carries T0 where 1 p.u. carries T0/U^2. The ODE,
+    from the settled start and after 0.4 s, must sit there (and the settled start must already be that state)."""
+    import dataclasses
+
+    from backlash_monitor.plant.motor import steady_state_at_torque
+    steady = {"effects.pulse_load": False}
+    _, nominal = run(steady, 20000)
+    _, weaker = run({**steady, f"effects.{drift}": True, f"{drift}.relative_change": change}, 20000)
+    omb = CFG.motor.base_mechanical_speed_rad_s
+    t0 = R * CFG.load.working_resistance_N / CFG.motor.base_torque_Nm
+    s_nominal = steady_state_at_torque(t0, CFG.motor).slip
+    if drift == "rotor_resistance_drift":
+        expected = (1 + change) * s_nominal
+    else:
+        u = 1 + change
+        expected = steady_state_at_torque(t0 / u ** 2, dataclasses.replace(CFG.motor, supply_voltage_pu=1.0)).slip
+    assert abs((1 - nominal.omega1[0, -1] / omb) - s_nominal) < 1e-6 * s_nominal + 1e-9
+    for k in (0, -1):                                    # the settled start and 0.4 s later
+        assert abs((1 - weaker.omega1[0, k] / omb) - expected) < 1e-4 * expected, k
+    assert expected > 1.2 * s_nominal                    # and it is a weaker motor: it slips more

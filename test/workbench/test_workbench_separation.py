@@ -55,3 +55,19 @@ def test_a_constant_motor_shaft_torque_carries_the_weaker_motor_caveat_and_nothi
         assert "supply voltage" in note and "stator current" in note
     for name in ("pulse_amplitude_drift", "torque_ripple", "wheel_coulomb_friction", "accelerometer_gain[a1]"):
         assert separation.motor_side_note(name) == ""
+
+
+def test_a_weaker_motor_named_beside_a_motor_torque_replaces_the_caveat_with_its_separating_sentence():
+    """When the catalogue's weaker-motor drifts (rotor resistance, supply voltage) tie with a motor-side torque, the
+    separating sentence names the stator current and the supply voltage, and the caveat is not said twice; two
+    weaker-motor drifts are told apart by the supply voltage alone."""
+    assert separation.motor_side_note("motor_coulomb_friction", ["motor_load_offset", "rotor_resistance_drift"]) == ""
+    assert separation.motor_side_note("motor_load_offset", ["motor_coulomb_friction"]) != ""
+    text = separation.separating_measurement("motor_coulomb_friction", "motor", "supply_voltage_drift", "motor")
+    assert "stator current" in text and "supply voltage" in text
+    text = separation.separating_measurement("rotor_resistance_drift", "motor", "supply_voltage_drift", "motor")
+    assert "supply voltage" in text and "stator current" not in text
+    assert "terminals" in separation.motor_side_note("supply_voltage_drift", ["motor_coulomb_friction"])
+    assert separation.motor_side_note("supply_voltage_drift", ["rotor_resistance_drift"]) == ""
+    assert "operating point" in separation.separating_measurement("motor_coulomb_friction", "motor",
+                                                                  "motor_load_offset", "motor")
