@@ -384,7 +384,7 @@ DRIFTS = (
     # the supply voltage the grid; both move the slip at a given torque as a load on the motor shaft does
     _drift("rotor_resistance_drift", "rotor_resistance_pu", True, "-", (-0.9, 10.0),
            "the motor's rotor resistance r_r (its temperature; broken bars)"),
-    _drift("supply_voltage_drift", "supply_voltage_pu", True, "-", (-0.9, 1.0), "the motor's supply voltage"),
+    _drift("supply_voltage_drift", "supply_voltage_scale", True, "-", (-0.9, 1.0), "the motor's supply voltage"),
 )
 
 NOMINAL = (BacklashClutch, Spring, AbsorberPowerLaw, WorkingResistance, PulseLoad, GaussianDisturbance,

@@ -182,7 +182,7 @@ class PlantSimulator:
              "eta_k": np.array([s.eta_k for s in self.scenarios], dtype=np.float64),
              "n1": np.array([float(s.n1) for s in self.scenarios], dtype=np.float64),
              "mass_kg": full(cfg.load.mass_kg), "wheel_inertia_kgm2": full(cfg.load.wheel_inertia_kgm2),
-             "rotor_resistance_pu": full(cfg.motor.r_r_pu), "supply_voltage_pu": full(cfg.motor.supply_voltage_pu)}
+             "rotor_resistance_pu": full(cfg.motor.r_r_pu), "supply_voltage_scale": full(1.0)}
         reg = _effects.catalogue()
         known = {}
         for cls in list(reg.values()):

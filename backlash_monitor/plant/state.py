@@ -13,4 +13,4 @@ from __future__ import annotations
 
 STATE_NAMES = ("psi_sa", "psi_sb", "psi_ra", "psi_rb", "w1", "delta", "alpha1", "alpha2", "omega2", "z", "xdot")
 N_STATES = len(STATE_NAMES)
-GLOBAL_NAMES = ("g_rs", "g_rr", "g_xs", "g_xr", "g_xm", "g_w", "g_omega_b", "g_T_m", "g_omega_mb", "g_T_b", "g_r", "g_U")
+GLOBAL_NAMES = ("g_rs", "g_rr", "g_xs", "g_xr", "g_xm", "g_w", "g_omega_b", "g_T_m", "g_omega_mb", "g_T_b", "g_r")

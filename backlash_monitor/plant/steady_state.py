@@ -33,7 +33,7 @@ def settled_state(beta: np.ndarray, cfg, values: dict | None = None) -> tuple[np
     k_c = col("backlash_clutch.contact_stiffness_Nm_per_rad", cfg.clutch.contact_stiffness_Nm_per_rad)
     const = col("constant_motor_load.load_pu", cfg.constant_motor_load_pu)
     r_r = col("rotor_resistance_pu", cfg.motor.r_r_pu)               # after rotor_resistance_drift
-    u_s = col("supply_voltage_pu", cfg.motor.supply_voltage_pu)      # after supply_voltage_drift
+    u_s = cfg.motor.supply_voltage_pu * col("supply_voltage_scale", 1.0)   # after supply_voltage_drift
     # the motor carries the working resistance only through an engaged clutch
     clutch_torque_Nm = ld.wheel_radius_m * force_N if e.backlash_clutch else np.zeros(n)
     load_pu = clutch_torque_Nm / cfg.motor.base_torque_Nm

@@ -27,7 +27,7 @@ LOCATION_OF_DRIFT_TARGET = {
     "working_resistance.force_N": "mass",
     "pulse_load.amplitude_pu": "motor",
     "rotor_resistance_pu": "motor",
-    "supply_voltage_pu": "motor",
+    "supply_voltage_scale": "motor",
 }
 PLACE = {"motor": "the motor side", "coupling": "the clutch (coupling)", "wheel": "the load wheel",
          "rim_mass": "the spring/absorber between rim and mass", "mass": "the mass",

@@ -402,12 +402,12 @@ def test_a_fixed_frequency_vibration_stays_put_when_the_speed_changes_and_a_ripp
     lines = {}
     for volt in (0.0, -0.12):
         extra = [E("supply_voltage", {"relative_change": volt})] if volt else []
-        base = make_recording(spec(extra, kind="outside", duration=2.0)) if volt else nominal_drive(2.0)
+        base = make_recording(spec(extra, kind="one", duration=2.0)) if volt else nominal_drive(2.0)
         vib = make_recording(spec(extra + [E("structural_vibration", {"amplitude_pu": 0.3, "frequency_hz": 107.0,
                                                                       "phase_rad": 0.0})], duration=2.0))
         rip = make_recording(spec(extra + [E("ripple_motor_harmonics", {"orders": [5], "amplitudes_pu": [0.3],
                                                                         "phases_rad": [0.0]})],
-                                  kind="outside" if volt else "one", duration=2.0))
+                                  kind="two" if volt else "one", duration=2.0))
         lines[volt] = (_line_hz(vib.signals["a1"], base.signals["a1"]), _line_hz(rip.signals["a1"], base.signals["a1"]),
                        np.mean(base.signals["omega1"]))
     (v0, r0, w0), (v1, r1, w1) = lines[0.0], lines[-0.12]

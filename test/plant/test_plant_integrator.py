@@ -54,7 +54,7 @@ def test_simd_power_law_matches_numpy_power():
     kernel = kernel_for((AbsorberPowerLaw,))            # the absorber alone: m*x'' = F_a
     rows = {"beta": np.full(S, 0.01), "wheel_inertia_kgm2": np.full(S, 0.2), "mass_kg": np.full(S, cfg.load.mass_kg),
             "rotor_resistance_pu": np.full(S, cfg.motor.r_r_pu),
-            "supply_voltage_pu": np.full(S, cfg.motor.supply_voltage_pu),
+            "supply_voltage_scale": np.full(S, 1.0),
             "absorber_power_law.coefficient": c, "absorber_power_law.flow_index": n1}
     P = np.array([rows[r] for r in kernel.param_rows])
     Y = np.zeros((N_STATES, S))

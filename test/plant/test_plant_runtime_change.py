@@ -15,7 +15,9 @@ def _run(sim, chunks, n=2500):
 
 
 def test_a_switch_mid_run_continues_the_run_and_then_acts():
-    """Friction switched on at its neutral default from the start is the nominal plant to the last bit; set to
+    """Friction switched on at its neutral default from the start is the nominal plant to rounding (the two term sets
+    are two kernels compiled with fastmath: LLVM may contract them differently; in one process they agree to the last
+    bit, but after other kernels were compiled in the same test session they differed by ~1e-13); set to
     2 N*m after 0.1 s it leaves every sample before the switch as it was, and from the switch on the load wheel
     decelerates by T / J more than the nominal plant's (the dry torque acts at once; over the first millisecond
     the spring to the mass has not yet passed on a change: the wheel's own inertia J)."""
@@ -28,7 +30,8 @@ def test_a_switch_mid_run_continues_the_run_and_then_acts():
     after = _run(sim, 2)
     for a, b in zip(before, nominal[:2]):
         for s in OUT:
-            assert np.array_equal(getattr(a, s), getattr(b, s)), s
+            x, y = getattr(a, s), getattr(b, s)
+            assert np.max(np.abs(x - y)) <= 1e-12 * np.max(np.abs(y)), s
     assert after[0].first_sample_index == 5000             # the stream goes on where it was
     assert after[0].omega2[0, 0] == pytest.approx(nominal[2].omega2[0, 0], abs=1e-3)     # no jump at the switch
     k, dt = 50, sim.sample_period_s
