@@ -38,7 +38,7 @@ RESYNC_SAMPLES = 50_000
 # above) a range continuing the old stream, or one ahead of the new stream continuing neither (the
 # old stream's late chunk after a lost one, or the new stream after a lost chunk), is dropped
 # (out_of_order) until this many ranges continue it: then that stream goes on and the stage
-# switches to it. Either way the stream resumes, after at most this many - 1 of its ranges.
+# switches to it. Either way the stream resumes, after at most this many of its ranges dropped.
 RESTART_CONFIRM_RANGES = 2
 DENOISE_DEFAULTS = dict(level=6, details_removed=(1, 2, 3, 4, 5, 6), mode=DEFAULT_MODE)
 
@@ -161,8 +161,9 @@ class WindowingStage:
     is dropped until then (``out_of_order``, a bad range with its own reason), so that a stray late
     chunk cannot move the place the stage expects. The stage remembers the stream it left in turn.
     A range behind the stream is dropped as before. A clean stream after any cluster of swaps,
-    gaps, duplicates, index jumps and restarts is fed again after at most ``RESTART_CONFIRM_RANGES
-    - 1`` of its ranges are dropped (test/windowing/test_windowing_stream_resume.py).
+    gaps, duplicates, index jumps and restarts is fed again after at most ``RESTART_CONFIRM_RANGES``
+    of its ranges are dropped (one fewer unless a late chunk of it comes between them;
+    test/windowing/test_windowing_stream_resume.py).
 
     An accelerometer signal (unit m/s^2: a1, a2) with a sample beyond ``accelerometer_range_m_s2``
     (config/windowing.yaml sensors: the sensor's declared measurement range) makes the range
