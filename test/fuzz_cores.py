@@ -84,9 +84,9 @@ STREAM_FAULTS = ("swap", "swap", "restart", "restart", "lose_chunk", "lose_signa
 
 @st.composite
 def clustered_chunk_streams(draw, kinds=STREAM_FAULTS):
-    """Like :func:`chunk_streams`, with 1 to 4 faults of ``kinds`` within 5 consecutive chunks (the
-    cases that interact: a swap before or after a restart, a lost chunk between them, ...), then
-    a clean tail of two periods and a window."""
+    """Like :func:`chunk_streams`, with 1 to 4 faults of ``kinds`` within 4 consecutive chunks
+    (each chunk faulty or not) -- the cases that interact: a swap before or after a restart, a lost
+    chunk before them, ... -- then a clean tail of two periods and a window."""
     data, period = synthetic_stream()
     n = data["a1"].size
     clean_tail = 2 * period + WINDOW_LENGTH + 400
@@ -99,9 +99,9 @@ def clustered_chunk_streams(draw, kinds=STREAM_FAULTS):
     faults = {}
     if faultable:
         k = draw(st.sampled_from(faultable))
-        near = [i for i in faultable if k <= i < k + 5]
-        faults = draw(st.dictionaries(st.sampled_from(near), st.sampled_from(kinds),
-                                      min_size=1, max_size=4))
+        run = draw(st.lists(st.sampled_from(tuple(kinds) + ("none",) * 3), min_size=4, max_size=4)
+                   .filter(lambda r: any(f != "none" for f in r)))
+        faults = {k + j: f for j, f in enumerate(run) if f != "none" and k + j in faultable}
     return sizes, faults, tuple(draw(st.permutations(SIGNALS)))
 
 
