@@ -33,9 +33,14 @@ MAX_PENDING_RANGES = 16
 # drive restarted, its index counts from 0 again), not a late chunk: 1 s at 50 kHz, far more than
 # any reordering of best-effort chunks (MAX_PENDING_RANGES ranges of 1000 samples at most).
 RESYNC_SAMPLES = 50_000
-# After a restart, ranges continuing the stream before it are late chunks of the old stream (dropped,
-# out_of_order) -- until this many in a row continue it: then the restart was the stray, and the
-# stage goes back to the old stream (stream_restart). Either way the stream resumes.
+# After a restart the stage follows the new stream and remembers where the one before it would go
+# on. For the next resync_samples fed samples (late chunks of the old stream come far sooner, as
+# above) it is unsure: a range that continues neither the new stream nor the old one (the old
+# stream's late chunk after a lost one, the new stream after a lost chunk, ...) is dropped
+# (out_of_order) until this many ranges in a chain continue it, and one continuing the old stream
+# until this many in a row: then that stream goes on and the stage switches to it. A stray range
+# cannot move the place the stage expects; a clean stream is fed again after at most this many of
+# its ranges dropped.
 RESTART_CONFIRM_RANGES = 2
 DENOISE_DEFAULTS = dict(level=6, details_removed=(1, 2, 3, 4, 5, 6), mode=DEFAULT_MODE)
 
@@ -147,10 +152,27 @@ class WindowingStage:
     is a restart of the stream (at index 0, or at least ``resync_samples`` behind): then detector
     and capture start afresh at it (``stream_restart``). A restart that does not start at 0 and
     is less than ``resync_samples`` behind is dropped as out of order until it passes the old
-    index: at most ``resync_samples`` samples lost, and counted. Ranges that continue the stream
-    of before a restart (late chunks of it) are dropped as ``out_of_order``; when
-    ``RESTART_CONFIRM_RANGES`` of them come in a row, that stream goes on and the stage returns to it
-    (``stream_restart``): neither stream can stall the stage.
+    index: at most ``resync_samples`` samples lost, and counted.
+
+    After a restart two streams may be in play: the new one and late chunks of the one before it
+    (reordered best-effort chunks). For the next ``resync_samples`` fed samples the stage is unsure
+    which one goes on: it takes a range at once only if it continues the stream it follows
+    exactly (no gap); a range continuing the stream before the restart is
+    dropped (``out_of_order``) until ``RESTART_CONFIRM_RANGES`` come in a row (then the stage returns
+    to it, ``stream_restart``), and a range continuing neither stream, ahead or behind, is dropped
+    until ``RESTART_CONFIRM_RANGES`` ranges continue each other from it (then the stage follows
+    them: a ``gap`` ahead, a ``stream_restart`` behind) -- a chain behind is forgotten when the
+    stream followed goes on. Bad ranges take part with their own reason. The stage remembers the
+    stream it left in turn. A stream with only its first range is unsure the same way (that range
+    may be a restart whose old stream the stage never saw). Otherwise a range behind the stream is
+    dropped (``out_of_order``) and one ahead is a gap, as above.
+
+    So a stray chunk cannot move the place the stage expects for good: a clean stream after any
+    cluster of swaps, gaps, duplicates, index jumps and restarts is fed again after at most
+    ``RESTART_CONFIRM_RANGES`` of its ranges are dropped, all counted
+    (test/windowing/test_windowing_stream_resume.py) -- when the stage saw the restart or the stream
+    start; a stray ahead of a settled stream with no restart before it holds the stream up until it
+    passes that place or comes ``resync_samples`` behind it, as before.
 
     An accelerometer signal (unit m/s^2: a1, a2) with a sample beyond ``accelerometer_range_m_s2``
     (config/windowing.yaml sensors: the sensor's declared measurement range) makes the range
@@ -180,8 +202,12 @@ class WindowingStage:
         self.lost_samples = 0          # samples never fed: gaps and dropped bad ranges
         self.fed_samples = 0           # samples fed to the detector
         self._next: int | None = None  # the index the next range should start at
-        self._other_next: int | None = None   # where the stream of before the last restart goes on
+        # while two streams may be in play (after a switch, for resync_samples fed samples):
+        self._other_next: int | None = None   # where the stream of before the last switch goes on
         self._other_ranges = 0                # ranges in a row that continued it
+        self._strays: dict[int, int] = {}     # ranges ahead continuing neither: end -> ranges in the chain
+        self._switch_fed = 0                  # fed_samples at the last switch
+        self._fresh = True                    # the stream followed has had no two ranges in a row yet
         if accelerometer_range_m_s2 is None:
             accelerometer_range_m_s2 = WINDOWING_DEFAULTS["sensors"]["accelerometer_range_m_s2"]
         limit = float(accelerometer_range_m_s2)
@@ -251,61 +277,128 @@ class WindowingStage:
             reason, n = None, _common_length(joined.arrays, self.input_signals)
         else:
             reason, n = self.check(joined)
+        if not is_index(first):
+            self.faults.add(reason or "bad_index", f"range at sample {first!r}")
+            return [], []
+        first = int(first)
+        self._expire()
+        verdict = self._judge(first)
         discarded: list = []
-        if (reason is not None and is_index(first) and self._next is not None
-                and first < self._next and self._is_restart(int(first), n)):
-            # a bad range that starts a new stream: re-synchronise, then drop it in its place
+        if verdict == "restart":
             self.faults.add("stream_restart", f"index {first} after {self._next}")
             discarded = self._break("stream_restart", None)
-            self._restarted()
+            self._switch()
+        elif verdict in ("other", "stray") and n > 0:
+            # continues the stream of before the switch, or a range that continued neither stream
+            if verdict == "other":
+                self._other_next, self._other_ranges = first + n, self._other_ranges + 1
+                ranges, where = self._other_ranges, "continues the stream before the restart"
+            else:
+                ranges = self._strays.pop(first, 0) + 1     # (first == _next is 'next')
+                self._strays[first + n] = ranges
+                if len(self._strays) > MAX_PENDING_RANGES:
+                    del self._strays[next(iter(self._strays))]     # the oldest chain
+                where = "continues neither the stream nor the one before the restart"
+            if ranges < RESTART_CONFIRM_RANGES:
+                self.faults.add(reason or "out_of_order",
+                                f"range at sample {first} {where} (expected {self._next})")
+                return [], []
+            # that stream goes on: switch to it
+            if verdict == "stray" and first > self._next:
+                self._switch(keep_next=True)    # ahead of the stream: a gap, counted when placed
+                self._fresh = False
+            else:
+                which = "before the restart" if verdict == "other" else "there"
+                self.faults.add("stream_restart", f"index {first} after {self._next}: the stream "
+                                                  f"{which} goes on")
+                discarded = self._break("stream_restart", None)
+                self._switch()
+        elif verdict == "next":
+            # ranges continuing the stream before the switch must come in a row; a stray's followers
+            # need not (late chunks of the stream followed may come in between)
+            self._other_ranges = 0
+            if first == self._next:
+                self._fresh = False     # the stream followed has two ranges in a row
         if reason is not None:
             self.faults.add(reason, f"range at sample {first}" + (f", {n} samples" if n >= 0 else ""))
-            if n > 0 and is_index(first) and (self._next is None or first >= self._next):
+            if n > 0 and verdict != "behind":
                 # the range had its place in the stream: resume after it
                 discarded += self._break(reason, first + n)
                 self._note_gap(first)
                 self.lost_samples += n
-                self._next = first + n
+                self._place(first, n)
             return [], discarded
-        first = int(first)
-        if self._other_next is not None:
-            if first == self._other_next and first != self._next:
-                # continues the stream of before the restart: a late chunk of it, or that stream goes on
-                self._other_next = first + n
-                self._other_ranges += 1
-                if self._other_ranges < RESTART_CONFIRM_RANGES:
-                    self.faults.add("out_of_order", f"range at sample {first} continues the stream "
-                                                    f"before the restart (expected {self._next})")
-                    return [], []
-                self.faults.add("stream_restart", f"index {first} after {self._next}: the stream of "
-                                                  "before the restart goes on")
-                discarded = self._break("stream_restart", None)
-                self._restarted()
-            elif self._next is not None and first == self._next:
-                self._other_ranges = 0
-                if self._next >= self._other_next:
-                    self._other_next = None     # the new stream passed the old one's place
-        if self._next is not None and first < self._next:
-            if self._is_restart(first, n):
-                self.faults.add("stream_restart", f"index {first} after {self._next}")
-                discarded = self._break("stream_restart", None)
-                self._restarted()
-            else:
-                # late or repeated: dropped; the open windows keep their (complete) samples
-                self.faults.add("out_of_order", f"range at sample {first}, expected {self._next}")
-                return [], []
+        if verdict == "behind":
+            # late or repeated: dropped; the open windows keep their (complete) samples
+            self.faults.add("out_of_order", f"range at sample {first}, expected {self._next}")
+            return [], []
         self._note_gap(first)
-        self._next = first + n
+        self._place(first, n)
         self.fed_samples += n
         entries = self.detector.feed(first, joined.arrays, joined.sample_period_s)
         windows, more = self.capture.feed(first, joined.arrays, entries=entries,
                                           sample_period_s=joined.sample_period_s)
         return windows, discarded + more
 
-    def _restarted(self) -> None:
-        """The stream restarted: remember where the old one would go on."""
+    def takes_block(self, first_sample_index: int) -> bool:
+        """True when a good range at ``first_sample_index`` continues (or comes after a gap in) a
+        settled stream: fed now, and ranges continuing it in one block leave the stage as one by one
+        would. Not while the stream is in its first range or two streams may be in play (BlockFeeder
+        feeds ranges one by one then), nor for a range the stage drops or that switches streams."""
+        if not is_index(first_sample_index) or self._fresh or self._two_streams():
+            return False
+        return self._judge(int(first_sample_index), two_streams=False) == "next"
+
+    def _two_streams(self) -> bool:
+        """Ranges of the stream before the last switch may still come (resync_samples fed since)."""
+        return (self._other_next is not None
+                and self.fed_samples - self._switch_fed < self.resync_samples)
+
+    def _expire(self) -> None:
+        if self._other_next is not None and not self._two_streams():
+            self._other_next, self._other_ranges = None, 0
+        if self._strays and self._other_next is None and not self._fresh:
+            self._strays.clear()
+
+    def _judge(self, first: int, two_streams: bool | None = None) -> str:
+        """Where a range at ``first`` belongs: 'next' (starts or continues the stream followed, or
+        comes after a gap in it), 'restart' (a new stream, see :meth:`_is_restart`), 'other'
+        (continues the stream before the last switch), 'stray' (continues neither while the stream
+        followed is unsure: two streams may be in play, or it has only its first range) or 'behind'
+        (late or repeated)."""
+        if two_streams is None:
+            two_streams = self._other_next is not None
+        unsure = two_streams or self._fresh
+        if self._next is None:
+            return "other" if two_streams and first == self._other_next else "next"
+        if first == self._next:
+            return "next"
+        if unsure and first in self._strays:
+            return "stray"          # (before 'other': a stray's chain may reach the old stream's place)
+        if two_streams and first == self._other_next:
+            return "other"
+        if first < self._next and self._is_restart(first, 0):
+            return "restart"
+        if unsure:
+            return "stray"
+        return "behind" if first < self._next else "next"
+
+    def _place(self, first: int, n: int) -> None:
+        """The stream goes on at first + n. A stray chain ending there or before is forgotten: the
+        stream followed goes on, what continues such a chain is a late or repeated range (and
+        BlockFeeder's blocks leave the same chains as the ranges one by one)."""
+        self._next = first + n
+        if self._strays:
+            for end in [e for e in self._strays if e <= first + n]:
+                del self._strays[end]
+
+    def _switch(self, keep_next: bool = False) -> None:
+        """The stage follows another stream: remember where the one it followed would go on."""
         self._other_next, self._other_ranges = self._next, 0
-        self._next = None
+        self._switch_fed = self.fed_samples     # (the strays stay: a stray may be the stream switched to)
+        if not keep_next:
+            self._next = None
+            self._fresh = True
 
     def _is_restart(self, first: int, n: int) -> bool:
         """A stream starts at index 0: a range at 0 behind the stream, or one at least
@@ -356,7 +449,8 @@ class BlockFeeder:
     test_analyze_chunk_invariance.py checks it on plant data). Integrated angles (a running sum,
     whose rounding depends on the chunking) and irregular ranges (a gap, an out-of-order or
     repeated range, another sample period, unequal lengths) are fed one by one, after the block
-    before them.
+    before them, and so are the ranges while the stage is unsure which stream to follow
+    (:meth:`WindowingStage.takes_block`).
 
     ``add(joined)`` / ``flush()`` -> (list of (window, range), discarded): ``range`` is the
     joined range whose feed completes the window when fed one by one (its stamp/frame_id).
@@ -388,7 +482,7 @@ class BlockFeeder:
                     and joined.arrays.keys() == last.arrays.keys()):
                 windows, discarded = self._flush(exact, whole=True)
         if regular and not self._pending and not self._accepts(joined):
-            regular = False     # dropped one by one (behind the stream): followers must not merge
+            regular = False     # dropped, switching or unsure: one by one, followers must not merge
         if not regular:
             # its values are known good only after the full check (exact)
             w, d = self._feed([joined], checked=exact and reason is None)
@@ -403,9 +497,8 @@ class BlockFeeder:
         return windows, discarded
 
     def _accepts(self, joined: JoinedRange) -> bool:
-        """The stage takes the range in (not behind the stream): it may head a block."""
-        nxt = self.stage._next
-        return nxt is None or joined.first_sample_index >= nxt
+        """The range may head a block (WindowingStage.takes_block); else it is fed alone."""
+        return self.stage.takes_block(joined.first_sample_index)
 
     def flush(self):
         return self._flush(exact=False, whole=True)

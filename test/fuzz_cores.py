@@ -76,10 +76,40 @@ def chunk_streams(draw):
     return sizes, faults, tuple(order)
 
 
-def run_stream(sizes, faults, order, resync_samples=50_000):
+# the faults that move or lose ranges (swaps, gaps, duplicates, index jumps, restarts) and a bad
+# range; swaps and restarts twice as often (late chunks around a restart are what interacts)
+STREAM_FAULTS = ("swap", "swap", "restart", "restart", "lose_chunk", "lose_signal", "repeat", "jump",
+                 "far_jump", "nan")
+
+
+@st.composite
+def clustered_chunk_streams(draw, kinds=STREAM_FAULTS):
+    """Like :func:`chunk_streams`, with 1 to 4 faults of ``kinds`` within 4 consecutive chunks
+    (each chunk faulty or not) -- the cases that interact: a swap before or after a restart, a lost
+    chunk before them, ... -- then a clean tail of two periods and a window."""
+    data, period = synthetic_stream()
+    n = data["a1"].size
+    clean_tail = 2 * period + WINDOW_LENGTH + 400
+    sizes, total = [], 0
+    while total < n:
+        size = draw(st.sampled_from([200, 500, 1000, 1000, 1000, 2500, 4000]))
+        sizes.append(min(size, n - total))
+        total += sizes[-1]
+    faultable = [i for i in range(len(sizes)) if sum(sizes[:i + 1]) < n - clean_tail]
+    faults = {}
+    if faultable:
+        k = draw(st.sampled_from(faultable))
+        run = draw(st.lists(st.sampled_from(tuple(kinds) + ("none",) * 3), min_size=4, max_size=4)
+                   .filter(lambda r: any(f != "none" for f in r)))
+        faults = {k + j: f for j, f in enumerate(run) if f != "none" and k + j in faultable}
+    return sizes, faults, tuple(draw(st.permutations(SIGNALS)))
+
+
+def run_stream(sizes, faults, order, resync_samples=50_000, trace=None):
     """Feeds the stream with its faults through ChunkJoiner + WindowingStage (as the node and
     analyze do); returns (windows, stage, joiner, clean_from: the sample index from which the
-    stream was clean for good)."""
+    stream was clean for good). ``trace``: a list to which (the range's place in the data, the
+    JoinedRange, whether the stage fed it to the detector) is appended for every joined range."""
     data, _ = synthetic_stream()
     stage = WindowingStage(window_length=WINDOW_LENGTH, resync_samples=resync_samples)
     joiner = ChunkJoiner(stage.input_signals, faults=stage.faults)
@@ -131,7 +161,7 @@ def run_stream(sizes, faults, order, resync_samples=50_000):
             first = 2 ** 64 - 1
         if fault != "none":
             last_fault_end = lo + size
-        out = [(first, arrays, periods, send)]
+        out = [(first, arrays, periods, send, lo)]
         if fault == "repeat":
             out = out + out
         if fault == "swap":
@@ -139,11 +169,14 @@ def run_stream(sizes, faults, order, resync_samples=50_000):
             continue
         if pending_swap is not None:
             out, pending_swap = out + pending_swap, None
-        for first_, arrays_, periods_, send_ in out:
+        for first_, arrays_, periods_, send_, lo_ in out:
             for name in send_:
                 joined = joiner.add(name, first_, periods_[name], arrays_[name])
                 if joined is not None:
+                    fed = stage.fed_samples
                     w, _ = stage.feed(joined)
+                    if trace is not None:
+                        trace.append((lo_, joined, stage.fed_samples > fed))
                     windows += [(x, lo) for x in w]
     return windows, stage, joiner, last_fault_end
 

@@ -134,6 +134,22 @@ def test_a_late_chunk_of_the_old_stream_after_a_restart_does_not_stall_the_stage
     assert stage.faults.counts["stream_restart"] == 1 and stage.faults.counts["out_of_order"] == 1
 
 
+@pytest.mark.parametrize("order", [fc.SIGNALS, tuple(reversed(fc.SIGNALS))])
+def test_a_stray_chunk_of_the_old_stream_after_a_restart_does_not_move_the_new_one(order):
+    """bench/reliability.py on main (bench/results.json): chunks 10 and 11 swapped (the swap holds
+    one chunk: 10 is lost, 11 comes late), a restart at 12. The old stream's chunk 11 came right
+    after the restart chunk; it did not continue the old stream (10 lost), so it was taken as a gap
+    of the new stream, whose every later chunk was then 'out of order' (8): no window again. The
+    stray is dropped now (out_of_order), the new stream goes on from the restart chunk."""
+    sizes = [200] * 9 + [2500, 4000, 4000] + [200] * 5 + [1000, 4000, 4000, 4000, 3700]
+    windows, stage = fc.check_windowing(sizes, {10: "swap", 11: "swap", 12: "restart"}, order)
+    assert stage.faults.counts == {"stream_restart": 1, "out_of_order": 1}
+    assert stage.lost_samples == 0
+    # the stream from 0 again: windows at the same offsets as the first time
+    entries = [w.entry_sample_index for w, lo in windows if lo >= 12_500]
+    assert entries and min(entries) < 5000
+
+
 def test_the_old_stream_going_on_after_a_stray_restart_chunk_resumes():
     """A stray chunk at index 0 in the middle of a stream (a restart that was none): the stream
     going on is taken back after RESTART_CONFIRM_RANGES ranges, and its windows resume."""
