@@ -57,10 +57,9 @@ FAULTS = ("none", "nan", "inf", "lose_chunk", "lose_signal", "short_signal", "pe
 LOSSY = set(FAULTS) - {"none"}
 
 
-@st.composite
-def chunk_streams(draw):
-    """(chunk sizes, {chunk number: fault}, signal order) of a stream whose last two periods
-    (and a window) are clean."""
+def _draw_chunks(draw):
+    """(chunk sizes covering the synthetic stream, the chunk numbers that may carry a fault: those
+    before its clean tail of two periods and a window)."""
     data, period = synthetic_stream()
     n = data["a1"].size
     clean_tail = 2 * period + WINDOW_LENGTH + 400
@@ -69,7 +68,14 @@ def chunk_streams(draw):
         size = draw(st.sampled_from([200, 500, 1000, 1000, 1000, 2500, 4000]))
         sizes.append(min(size, n - total))
         total += sizes[-1]
-    faultable = [i for i in range(len(sizes)) if sum(sizes[:i + 1]) < n - clean_tail]
+    return sizes, [i for i in range(len(sizes)) if sum(sizes[:i + 1]) < n - clean_tail]
+
+
+@st.composite
+def chunk_streams(draw):
+    """(chunk sizes, {chunk number: fault}, signal order) of a stream whose last two periods
+    (and a window) are clean."""
+    sizes, faultable = _draw_chunks(draw)
     faults = draw(st.dictionaries(st.sampled_from(faultable), st.sampled_from(FAULTS),
                                   max_size=4)) if faultable else {}
     order = draw(st.permutations(SIGNALS))
@@ -87,15 +93,7 @@ def clustered_chunk_streams(draw, kinds=STREAM_FAULTS):
     """Like :func:`chunk_streams`, with 1 to 4 faults of ``kinds`` within 4 consecutive chunks
     (each chunk faulty or not) -- the cases that interact: a swap before or after a restart, a lost
     chunk before them, ... -- then a clean tail of two periods and a window."""
-    data, period = synthetic_stream()
-    n = data["a1"].size
-    clean_tail = 2 * period + WINDOW_LENGTH + 400
-    sizes, total = [], 0
-    while total < n:
-        size = draw(st.sampled_from([200, 500, 1000, 1000, 1000, 2500, 4000]))
-        sizes.append(min(size, n - total))
-        total += sizes[-1]
-    faultable = [i for i in range(len(sizes)) if sum(sizes[:i + 1]) < n - clean_tail]
+    sizes, faultable = _draw_chunks(draw)
     faults = {}
     if faultable:
         k = draw(st.sampled_from(faultable))
