@@ -56,8 +56,16 @@ chromium:  ## install Debian's chromium (headless browser of the workbench repor
 lint: setup  ## the architecture's contracts (import-linter: .importlinter) and ruff (ruff.toml)
 	$(ACTIVATE) && lint-imports --no-cache && ruff check --no-cache .
 
-test: setup chromium lint  ## the contracts and ruff, then the whole test suite
-	$(ACTIVATE) && python -m pytest test -q --durations=25
+# The tests not marked ros (the cores, the CLI, the workbench) on TEST_WORKERS pytest-xdist workers, each
+# test file on one worker (its module fixtures built once); then the ros tests (nodes, DDS, the process
+# faults, whose deadlines assume the cores are not shared with a simulation) one at a time. Both parts
+# run; the target fails if either fails.
+TEST_WORKERS ?= 2
+test: setup chromium lint  ## the contracts and ruff, then the whole test suite (non-ros tests on TEST_WORKERS=2 workers, then the ros tests)
+	@$(ACTIVATE) && rc=0 \
+	  && { python -m pytest test -q -m "not ros" -n $(TEST_WORKERS) --dist loadfile --durations=15 || rc=$$?; } \
+	  && { python -m pytest test -q -m ros --durations=10 || rc=$$?; } \
+	  && exit $$rc
 
 bench: setup  ## run every bench/*.py into bench/results.json
 	$(ACTIVATE) && python tools/run_benchmarks.py bench/results.json

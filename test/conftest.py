@@ -16,6 +16,11 @@ if _TEST_DIR not in sys.path:
 # Set before any test imports rclpy: loopback discovery and a domain of this pytest run's own.
 os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
 os.environ.setdefault("ROS_DOMAIN_ID", str(os.getpid() % 100 + 1))
+# pytest-xdist's workers (make test: `-n 2` over the tests not marked ros) inherit one ROS_DOMAIN_ID; each
+# worker gwN moves to a domain block of its own, so two workers' tests never meet on a topic.
+_WORKER = os.environ.get("PYTEST_XDIST_WORKER", "")
+if _WORKER.startswith("gw") and _WORKER[2:].isdigit():
+    os.environ["ROS_DOMAIN_ID"] = str((int(os.environ["ROS_DOMAIN_ID"]) - 1 + 25 * int(_WORKER[2:])) % 101 + 1)
 
 _domain_ids = itertools.count(int(os.environ["ROS_DOMAIN_ID"]))
 
@@ -52,3 +57,18 @@ def _effects_registry_isolated():
     if effects is not None and saved is not None:
         effects._REGISTRY.clear()
         effects._REGISTRY.update(saved)
+
+
+def pytest_collection_modifyitems(config, items):
+    """Files with the most ``slow`` tests first, each file's own order kept. pytest-xdist (make test) hands
+    whole files to its workers in this order, so the long workbench files start early and do not end the
+    run on one worker while the other idles; a run on one process only changes its order of files."""
+    slow_per_file: dict = {}
+    for item in items:
+        slow_per_file.setdefault(item.path, 0)
+        if item.get_closest_marker("slow") is not None:
+            slow_per_file[item.path] += 1
+    first_index = {}
+    for i, item in enumerate(items):
+        first_index.setdefault(item.path, i)
+    items.sort(key=lambda item: (-slow_per_file[item.path], first_index[item.path]))

@@ -169,7 +169,7 @@ def collect_windows(seeds: Iterable[int], trigger: str | Sequence[str] = "paper"
                 ws = _windows_from_batch(res, scen, t, int(seed), window_length, offsets[t])
                 if cache:
                     files[t].parent.mkdir(parents=True, exist_ok=True)
-                    tmp = files[t].with_name(files[t].name + ".tmp.npz")
+                    tmp = files[t].with_name(files[t].name + f".tmp{os.getpid()}.npz")
                     np.savez(tmp, a1=ws.a1, a2=ws.a2, meta=ws.meta, raw_a1=ws.raw_a1, raw_a2=ws.raw_a2,
                              sample_period_s=ws.sample_period_s, sensor_offsets=ws.sensor_offsets)
                     os.replace(tmp, files[t])

@@ -150,7 +150,7 @@ class PatternLibrary:
             "created_utc": self.created_utc or _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
         }
         # written beside it, renamed onto it when complete: never a half-written library
-        tmp = path.with_name(path.name + ".tmp.npz")
+        tmp = path.with_name(path.name + f".tmp{os.getpid()}.npz")
         try:
             np.savez_compressed(tmp, meta=np.array(json.dumps(meta, sort_keys=True)), **self.arrays)
         except BaseException:
