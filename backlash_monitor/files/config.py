@@ -48,7 +48,13 @@ def yaml_error_line(path, error) -> str:
     return f"{path}{where}: broken YAML: {problem}"
 
 
+def closest(name, allowed, cutoff: float = 0.5) -> str | None:
+    """The closest of ``allowed`` to ``name`` (difflib's ratio at least ``cutoff``; 0: always one), or None."""
+    match = difflib.get_close_matches(str(name), sorted(str(a) for a in allowed), n=1, cutoff=cutoff)
+    return match[0] if match else None
+
+
 def nearest(name, allowed) -> str:
     """``; did you mean 'x'?`` for the closest of ``allowed`` (difflib), or ``""``."""
-    match = difflib.get_close_matches(str(name), sorted(str(a) for a in allowed), n=1, cutoff=0.5)
-    return f"; did you mean '{match[0]}'?" if match else ""
+    match = closest(name, allowed)
+    return f"; did you mean '{match}'?" if match else ""

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import copy
 import dataclasses
-import difflib
 import json
 import math
 import os
@@ -18,7 +17,7 @@ from typing import Any, Mapping
 
 import yaml
 
-from backlash_monitor.files.config import config_file
+from backlash_monitor.files.config import closest, config_file
 
 # the packaged config/plant.yaml (files.config: the source tree's, else the installed one)
 DEFAULT_CONFIG_PATH = config_file("plant.yaml")
@@ -333,8 +332,9 @@ def _build_section(name: str, cls, data: Any):
 
 
 def _nearest(key: str, candidates) -> str:
-    near = difflib.get_close_matches(key, list(candidates), n=1, cutoff=0.0)
-    return f" (nearest valid key: {near[0]})" if near else ""
+    """`` (nearest valid key: x)``: a plant config always names its closest key (files.config.closest)."""
+    near = closest(key, candidates, cutoff=0.0)
+    return f" (nearest valid key: {near})" if near else ""
 
 
 def _valid_keys() -> list:
