@@ -28,6 +28,7 @@ import mmap
 import os
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
+from itertools import compress
 from pathlib import Path
 from typing import NamedTuple
 
@@ -466,8 +467,13 @@ class BagReader:
         the ``wanted`` channels (log time within the range), in file order. Chunks are
         decompressed ahead by the reader's prefetcher (prefetch.py)."""
         idx = self._index
+        layout = idx.layout
+        # unchunked messages on other channels are passed over at once (index.py), chunks kept
+        channels = idx.message_channels(self._buf)
+        keep = (channels < 0) | np.isin(channels, np.fromiter(wanted, dtype=np.int32,
+                                                               count=len(wanted)))
         records = []   # (op, offset, body) of the records to read, in file order
-        for op, pos, body in idx.layout:
+        for op, pos, body in (layout if keep.all() else compress(layout, keep.tolist())):
             if op == OP_CHUNK:
                 if pos in idx.corrupt:
                     continue
@@ -491,7 +497,7 @@ class BagReader:
                         if pos not in idx.corrupt:
                             self._integrity.chunk_failed(pos, body, str(error))   # raises unless recovering
                         continue
-                else:
+                else:   # (a message on a wanted channel, or too short: unpack names it)
                     bodies = (body,)
                 for rbody in bodies:
                     cid, seq, log_time, pub = unpack(rbody, 0)
