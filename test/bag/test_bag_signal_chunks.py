@@ -2,6 +2,7 @@
 BagReader.messages decodes into SignalChunk messages: the same values (samples a read-only view
 of the decompressed chunk, or a copy of an uncompressed one); big-endian payloads go through the
 generic decoder, malformed ones raise."""
+import mmap
 import struct
 
 import numpy as np
@@ -10,6 +11,7 @@ import pytest
 from backlash_monitor.bag import SIGNAL_CHUNK, BagError, BagReader, BagWriter, CdrError, Codec
 
 from bag_helpers import write_sample_bag
+from mcap_conformance import rewrite_with_mcap
 
 SIGNALS = ("/plant/a1", "/plant/a2", "/plant/angle_difference")
 
@@ -44,6 +46,24 @@ def test_same_fields_as_decoded_messages(tmp_path, compression):
             next(bag.signal_chunks(["/estimate"]))
         with pytest.raises(BagError):
             next(bag.signal_chunks(["/no/such/topic"]))
+
+
+@pytest.mark.parametrize("layout", ["zstd", "uncompressed chunks", "no chunks"])
+def test_without_copies_the_samples_are_read_in_place(tmp_path, layout):
+    """copy=False (analyze): samples in the file's map are read-only views of it, with the values
+    of the copies; they stay readable after the reader is closed (the map goes with the last)."""
+    path = tmp_path / "b.mcap"
+    write_sample_bag(path, n_chunks=30, compression="" if layout != "zstd" else "zstd")
+    if layout == "no chunks":
+        path = rewrite_with_mcap(path, tmp_path / "unchunked.mcap", noChunking=True)
+    with BagReader(path) as bag:
+        want = [fields_of_record(r) for r in bag.signal_chunks(SIGNALS)]
+        views = list(bag.signal_chunks(SIGNALS, copy=False))
+        assert [fields_of_record(r) for r in views] == want and len(want) == 90
+        for r in views:
+            assert not r.samples.flags.writeable
+            assert isinstance(r.samples.base.obj, bytes if layout == "zstd" else mmap.mmap)
+    assert [fields_of_record(r) for r in views] == want
 
 
 def big_endian_chunk(first: int) -> bytes:
