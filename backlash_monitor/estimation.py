@@ -201,6 +201,7 @@ class DriveEstimator:
                 for k, r in enumerate(rows):
                     shape_b[r] = {s: (b[k], float(w[k]), int(index[k]), float(margin[k]))
                                   for s, (b, w, index, margin) in per_signal.items()}
+        accepted = []   # (window, its per-signal results) of the windows that give estimates
         for r, i in enumerate(onsets):
             results = []
             for signal in self.signals:
@@ -217,15 +218,21 @@ class DriveEstimator:
                 self.faults.add("non_finite_estimate", f"window {i} of {len(windows)}")
                 self.last_reasons[i] = "non_finite_estimate"
                 continue
+            accepted.append((i, results))
+        # each signal's fusion takes its events in window order, as one window after the other
+        fused = {signal: self.fusion[signal].add_many([res[k][1] for _, res in accepted],
+                                                      [res[k][2] for _, res in accepted])
+                 for k, signal in enumerate(self.signals)}
+        for j, (i, results) in enumerate(accepted):
             for signal, b, continuous, index, margin in results:
-                fused = self.fusion[signal].add(b, kind="onset", continuous_width_m=continuous)
+                f = fused[signal][j]
                 out[i].append(WidthEstimate(
                     signal_name=signal, mode=self.mode, candidate_widths_m=self.widths_m,
                     b_vector=b, width_index=index,
                     width_m=float(self.widths_m[index]), b_margin=margin,
-                    continuous_width_m=continuous, fused_width_m=fused.width_m,
-                    fused_events=fused.events,
-                    fused_continuous_width_m=fused.continuous_width_m))
+                    continuous_width_m=continuous, fused_width_m=f.width_m,
+                    fused_events=f.events,
+                    fused_continuous_width_m=f.continuous_width_m))
         return out
 
 

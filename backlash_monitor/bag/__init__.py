@@ -8,7 +8,8 @@ Layered as the `mcap` package is (docs/bags.md):
   uses; integrity.py: the checks, the scan of a damaged file and the RecoveryReport;
   prefetch.py: chunks decompressed ahead in each reader's own worker thread;
 - `BagWriter` / `BagReader` (writer.py, reader.py): the files;
-- `Codec` (cdr.py): CDR (de)serialisation with numpy arrays; `schema.full_definition` /
+- `Codec` (cdr.py): CDR (de)serialisation with numpy arrays; signal_table.py: the fields of a
+  topic's many SignalChunk payloads in a file without chunks, at once; `schema.full_definition` /
   `schema.parse_schema`: ros2msg schema text;
 - errors.py: `BagError` and its subclasses.
 """

@@ -28,6 +28,8 @@ import mmap
 import os
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
+from itertools import compress
+from operator import itemgetter
 from pathlib import Path
 from typing import NamedTuple
 
@@ -39,9 +41,10 @@ from .errors import BagError, CorruptBagError, MissingTopicError, NotABagError, 
 from .index import BagIndex, ChunkInfo, walk_data
 from .integrity import DamagedChunk, Integrity, RecoveryReport, raise_for
 from .prefetch import ChunkPrefetcher
-from .records import (MAGIC, MALFORMED, MESSAGE_HEAD, OP_CHUNK, OP_HEADER,
+from .records import (MAGIC, MALFORMED, MESSAGE_HEAD, OP_CHUNK, OP_HEADER, OP_MESSAGE,
                       RECORD_HEADER, WRITER_METADATA, chunk_compression_name, chunk_records, crc32,
                       message_bodies, parse_header)
+from .signal_table import gather, signal_chunk_table
 from .summary import FooterState, Summary, read_footer, read_summary
 
 __all__ = ["BagMessage", "BagReader", "ChunkInfo", "DamagedChunk", "RecoveryReport",
@@ -421,15 +424,20 @@ class BagReader:
             yield BagMessage(names[cid], log_time, pub, seq, data,
                              codec.decode(data) if codec is not None else None)
 
-    def signal_chunks(self, topics: Iterable[str] | str) -> Iterator[SignalChunkRecord]:
+    def signal_chunks(self, topics: Iterable[str] | str, *,
+                      copy: bool = True) -> Iterator[SignalChunkRecord]:
         """The SignalChunk messages of ``topics`` in file order, as flat :class:`SignalChunkRecord`
         tuples: the fields ``messages`` decodes (the same values), without building message
         objects -- the offline analysis reads its millions of samples this way. ``samples`` of a
         message in a compressed chunk is a read-only view of the decompressed chunk (no
         allocation per message: fresh memory costs a page fault per 4 KiB); elsewhere (an
-        uncompressed chunk, a message outside chunks: views of the file's map) it is a copy.
-        A payload the SignalChunk fast path does not take (big endian) goes through the generic
-        decoder; a malformed one raises its CdrError."""
+        uncompressed chunk, a message outside chunks: views of the file's map) it is a copy, or
+        with ``copy=False`` a read-only view of the map as well: for a caller that copies what it
+        keeps (analyze joins the chunks into blocks), it saves a copy of every sample (on a file
+        without chunks, 1500 copies of 8 KB in analyze's 10 s bag: ~2 ms). Such a view keeps the
+        map alive after ``close`` until it is dropped, and reads the file: it must not be
+        truncated meanwhile. A payload the SignalChunk fast path does not take (big endian) goes
+        through the generic decoder (a copy); a malformed one raises its CdrError."""
         wanted = self._channel_ids(topics)
         infos = {t.channel_id: t for t in self.topics.values()}
         codecs = {}
@@ -439,35 +447,83 @@ class BagReader:
                                "not SignalChunk")
             codecs[cid] = self.codec(infos[cid].name)
         names = {cid: ch.topic for cid, ch in self.channels.items()}
-        # per topic: (fast field parser or None, its last string section)
-        fast = {cid: (codecs[cid].signal_chunk_fields if codecs[cid].is_signal_chunk else None,
-                      [None]) for cid in wanted}
+        # per topic: (its codec, its last string section)
+        fast = {cid: (codecs[cid], [None]) for cid in wanted}
+        records = self._records_to_read(wanted, None, None)
+        if records and all(op == OP_MESSAGE and len(body) >= MESSAGE_HEAD.size
+                           for op, _pos, body in records):
+            # a file without chunks: each topic's fields taken from the file at once
+            yield from self._unchunked_signal_chunks(records, fast, names, copy)
+            return
         head = MESSAGE_HEAD.size
-        for cid, _seq, log_time, _pub, body in self._wanted_messages(wanted, None, None):
-            parse, strings = fast[cid]
-            fields = None
-            if parse is not None:
-                try:
-                    fields = parse(body[head:], copy=type(body.obj) is not bytes, strings=strings)
-                except Exception:  # noqa: BLE001 - malformed: the generic decoder names it
-                    fields = None
-            if fields is None:
-                codec = codecs[cid]
-                msg = codec.decode(bytes(body[head:]))
-                stamp = msg.header.stamp
-                fields = (stamp.sec, stamp.nanosec, msg.header.frame_id, msg.signal_name,
-                          msg.unit, msg.sample_period_s, msg.first_sample_index, msg.samples)
-            sec, nanosec, frame_id, signal_name, unit, period, first, samples = fields
+        for cid, _seq, log_time, _pub, body in self._messages_in(records, wanted, None, None):
+            sec, nanosec, frame_id, signal_name, unit, period, first, samples = _signal_fields(
+                *fast[cid], body[head:], copy and type(body.obj) is not bytes)
             yield SignalChunkRecord(names[cid], log_time, first, period, samples,
+                                    Stamp(sec, nanosec), frame_id, signal_name, unit)
+
+    def _unchunked_signal_chunks(self, records: list, fast: dict, names: dict,
+                                 copy: bool) -> Iterator[SignalChunkRecord]:
+        """signal_chunks of ``records``, all unchunked Message records of the wanted channels (a
+        file written without chunks): each topic's SignalChunk fields from the file at once
+        (signal_table.py), the samples then a view of the map (or its copy) per message; a
+        payload laid out otherwise than its topic's first one, one by one as in a chunk."""
+        head = MESSAGE_HEAD.size
+        n = len(records)
+        starts = np.fromiter(map(itemgetter(1), records), dtype=np.int64, count=n) + 9
+        sizes = np.fromiter(map(len, map(itemgetter(2), records)), dtype=np.int64, count=n)
+        data = np.frombuffer(self._buf, dtype=np.uint8)
+        heads = gather(data, starts, head).view(_MESSAGE_HEAD)[:, 0]
+        channels = heads["channel"]
+        table: list = [None] * n      # per record: its fields from a topic's table, or None
+        for cid, (codec, strings) in fast.items():
+            rows = np.flatnonzero(channels == cid)
+            found = (signal_chunk_table(codec, data, starts[rows] + head, sizes[rows] - head,
+                                        strings) if codec.is_signal_chunk and rows.size else None)
+            if found is None:
+                continue
+            texts = (found.frame_id, found.signal_name, found.unit)
+            for row, *fields in zip(rows[found.rows].tolist(), found.sec, found.nanosec,
+                                    found.sample_period_s, found.first_sample_index,
+                                    found.samples, found.samples_at):
+                table[row] = (*fields, texts)
+        del data   # no export of the map left behind but the samples' views
+        buf = self._buf
+        for (_op, _pos, body), cid, log_time, fields in zip(records, channels.tolist(),
+                                                            heads["log_time"].tolist(), table):
+            if fields is None:   # as in a chunk (the same parse, or the error it names)
+                sec, nanosec, frame_id, signal_name, unit, period, first, samples = _signal_fields(
+                    *fast[cid], body[head:], copy)
+                yield SignalChunkRecord(names[cid], log_time, first, period, samples,
+                                        Stamp(sec, nanosec), frame_id, signal_name, unit)
+                continue
+            sec, nanosec, period, first, count, at, (frame_id, signal_name, unit) = fields
+            samples = (np.frombuffer(buf[at:at + 8 * count], dtype=_F64_LE) if count
+                       else np.zeros(0, dtype=_F64_LE))
+            yield SignalChunkRecord(names[cid], log_time, first, period,
+                                    samples.copy() if copy and count else samples,
                                     Stamp(sec, nanosec), frame_id, signal_name, unit)
 
     def _wanted_messages(self, wanted: set[int], start_ns: int | None, end_ns: int | None):
         """(channel_id, sequence, log_time_ns, publish_time_ns, record body) of the messages on
         the ``wanted`` channels (log time within the range), in file order. Chunks are
         decompressed ahead by the reader's prefetcher (prefetch.py)."""
+        return self._messages_in(self._records_to_read(wanted, start_ns, end_ns), wanted,
+                                 start_ns, end_ns)
+
+    def _records_to_read(self, wanted: set[int], start_ns: int | None,
+                         end_ns: int | None) -> list:
+        """(opcode, offset, body) of the layout's records that may hold messages on the
+        ``wanted`` channels in the log-time range, in file order: the chunks (their index says
+        what is in them, when it does) and the unchunked messages on those channels."""
         idx = self._index
+        layout = idx.layout
+        # unchunked messages on other channels are passed over at once (index.py), chunks kept
+        channels = idx.message_channels(self._buf)
+        keep = (channels < 0) | np.isin(channels, np.fromiter(wanted, dtype=np.int32,
+                                                               count=len(wanted)))
         records = []   # (op, offset, body) of the records to read, in file order
-        for op, pos, body in idx.layout:
+        for op, pos, body in (layout if keep.all() else compress(layout, keep.tolist())):
             if op == OP_CHUNK:
                 if pos in idx.corrupt:
                     continue
@@ -479,6 +535,12 @@ class BagReader:
                             end_ns is not None and info.start > end_ns):
                         continue
             records.append((op, pos, body))
+        return records
+
+    def _messages_in(self, records: list, wanted: set[int], start_ns: int | None,
+                     end_ns: int | None):
+        """_wanted_messages of ``records`` (from _records_to_read)."""
+        idx = self._index
         chunks = [(pos, body) for op, pos, body in records if op == OP_CHUNK]
         decompressed = self._prefetcher.map(self._chunk_records, chunks)
         unpack = MESSAGE_HEAD.unpack_from
@@ -491,7 +553,7 @@ class BagReader:
                         if pos not in idx.corrupt:
                             self._integrity.chunk_failed(pos, body, str(error))   # raises unless recovering
                         continue
-                else:
+                else:   # (a message on a wanted channel, or too short: unpack names it)
                     bodies = (body,)
                 for rbody in bodies:
                     cid, seq, log_time, pub = unpack(rbody, 0)
@@ -538,6 +600,29 @@ class BagReader:
             for m in self.messages(topics):
                 per[m.topic].append((m.message, m.log_time_ns))
         return {t: _series(t, msgs) for t, msgs in per.items()}
+
+
+_MESSAGE_HEAD = np.dtype([("channel", "<u2"), ("sequence", "<u4"), ("log_time", "<u8"),
+                          ("publish_time", "<u8")])   # records.MESSAGE_HEAD's fields, as numpy's
+_F64_LE = np.dtype("<f8")
+
+
+def _signal_fields(codec: Codec, strings: list, payload, copy: bool) -> tuple:
+    """(sec, nanosec, frame_id, signal_name, unit, sample_period_s, first_sample_index, samples)
+    of one SignalChunk payload: its codec's fast path (``strings``: its string cache), or the
+    generic decoder for one the fast path does not take (big endian), which names a malformed
+    one (CdrError)."""
+    if codec.is_signal_chunk:
+        try:
+            fields = codec.signal_chunk_fields(payload, copy=copy, strings=strings)
+        except Exception:  # noqa: BLE001 - malformed: the generic decoder names it
+            fields = None
+        if fields is not None:
+            return fields
+    msg = codec.decode(bytes(payload))
+    stamp = msg.header.stamp
+    return (stamp.sec, stamp.nanosec, msg.header.frame_id, msg.signal_name, msg.unit,
+            msg.sample_period_s, msg.first_sample_index, msg.samples)
 
 
 def _series(topic: str, msgs: list) -> SignalSeries:

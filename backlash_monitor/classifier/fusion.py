@@ -60,7 +60,12 @@ def fuse_b_vectors(bs, rule: str = "sum_normalised_b") -> tuple[int, np.ndarray]
     bs = np.atleast_2d(np.asarray(bs, dtype=float))
     if bs.shape[0] == 0:
         raise ValueError("no events to fuse")
-    nb = normalise_b(bs)
+    return _fuse_normalised(bs, normalise_b(bs), rule)
+
+
+def _fuse_normalised(bs: np.ndarray, nb: np.ndarray, rule: str) -> tuple[int, np.ndarray]:
+    """fuse_b_vectors of the events ``bs`` (n_events, n_widths) whose normalised vectors ``nb``
+    are at hand."""
     if rule == "trimmed_normalised_b" and nb.shape[0] >= 3:
         score = np.sort(nb, axis=0)[1:-1].sum(axis=0)
     else:
@@ -124,16 +129,68 @@ class WidthFusion:
             self._continuous.append(c if math.isfinite(c) else math.nan)
         return self.estimate()
 
+    def add_many(self, bs, continuous_widths_m=None, kind: str = "onset") -> list[FusedEstimate | None]:
+        """``add`` of each event's B vector in turn (and its continuous width [m]; None: NaN for
+        all): the fused estimate after each, the same numbers as one by one. Each event's B vector
+        is normalised once here, not again in each of the ``window_events`` fusions it takes part
+        in (normalise_b works row by row: a row's values do not depend on the rows beside it;
+        test_classifier_fusion.py checks the whole against ``add``, bit for bit). analyze's
+        estimates come this way, a batch of windows at a time (estimation.py)."""
+        n = len(bs)
+        bs = [np.asarray(b, dtype=float) for b in bs]
+        given = [math.nan] * n if continuous_widths_m is None else list(continuous_widths_m)
+        if len(given) != n:
+            raise ValueError(f"{n} B vectors, {len(given)} continuous widths")
+        try:
+            widths = [float(c) for c in given]
+        except (TypeError, ValueError):
+            widths = None
+        if kind != "onset" or widths is None or any(b.shape != self.widths_m.shape for b in bs):
+            # one by one: not fused, or add raises where it raises (after the events before it)
+            return [self.add(b, kind=kind, continuous_width_m=c) for b, c in zip(bs, given)]
+        if not n:
+            return []
+        new = np.stack(bs)
+        good = (np.isfinite(new).all(axis=1) & (new >= 0).all(axis=1)).tolist()
+        widths = [c if math.isfinite(c) else math.nan for c in widths]
+        held = len(self._bs)
+        rows = np.concatenate((np.array(self._bs) if held else np.empty((0, self.widths_m.size)),
+                               new[good]))
+        normalised = normalise_b(rows)
+        continuous = list(self._continuous) + [c for c, g in zip(widths, good) if g]
+        out = []
+        last = held - 1                     # the row of the latest fused event
+        for accepted in good:
+            if accepted:
+                last += 1
+            else:
+                self.rejected += 1
+            if last < 0:
+                out.append(None)
+                continue
+            lo = max(0, last + 1 - self.window_events)
+            out.append(self._fused(rows[lo:last + 1], normalised[lo:last + 1],
+                                   continuous[lo:last + 1]))
+        self._bs.extend(b for b, g in zip(bs, good) if g)
+        self._continuous.extend(c for c, g in zip(widths, good) if g)
+        return out
+
     def estimate(self) -> FusedEstimate | None:
         if not self._bs:
             return None
-        idx, score = fuse_b_vectors(np.array(self._bs), self.rule)
+        bs = np.array(self._bs)
+        return self._fused(bs, normalise_b(bs), self._continuous)
+
+    def _fused(self, bs: np.ndarray, normalised: np.ndarray, continuous) -> FusedEstimate:
+        """The estimate from the fused events' B vectors, their normalised vectors and their
+        continuous widths."""
+        idx, score = _fuse_normalised(bs, normalised, self.rule)
         s = np.sort(score)
         with np.errstate(over="ignore"):   # s[0] subnormal: the ratio is +inf, as for s[0] == 0
             margin = float(s[1] / s[0]) if s[0] > 0 else (1.0 if s[1] == s[0] else float("inf"))
-        return FusedEstimate(index=idx, width_m=float(self.widths_m[idx]), events=len(self._bs),
+        return FusedEstimate(index=idx, width_m=float(self.widths_m[idx]), events=len(bs),
                              score=score, margin=margin,
-                             continuous_width_m=fused_continuous_width(self._continuous))
+                             continuous_width_m=fused_continuous_width(continuous))
 
 
 def fused_continuous_width(continuous_m) -> float:

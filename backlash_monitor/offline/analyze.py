@@ -254,7 +254,9 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
             first_a1 = ("", math.nan)   # the drive's name and the first sample's time
             a1_topics = {t for t, n in topics.items() if n == "a1"}
             source_ok = source.ok
-            for m in _then_none(reader.signal_chunks(list(topics))):
+            # copy=False: samples in the file's map (a bag without chunks, or uncompressed ones)
+            # are read in place: the feeder joins them into blocks, the stage copies what it keeps
+            for m in _then_none(reader.signal_chunks(list(topics), copy=False)):
                 if m is None:
                     joiner.flush()      # ranges never completed: counted, not silently lost
                     windows, dropped = feeder.flush()

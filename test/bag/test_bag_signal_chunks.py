@@ -2,6 +2,7 @@
 BagReader.messages decodes into SignalChunk messages: the same values (samples a read-only view
 of the decompressed chunk, or a copy of an uncompressed one); big-endian payloads go through the
 generic decoder, malformed ones raise."""
+import mmap
 import struct
 
 import numpy as np
@@ -10,6 +11,7 @@ import pytest
 from backlash_monitor.bag import SIGNAL_CHUNK, BagError, BagReader, BagWriter, CdrError, Codec
 
 from bag_helpers import write_sample_bag
+from mcap_conformance import rewrite_with_mcap
 
 SIGNALS = ("/plant/a1", "/plant/a2", "/plant/angle_difference")
 
@@ -25,10 +27,12 @@ def fields_of_record(r):
             (r.stamp.sec, r.stamp.nanosec), r.frame_id, r.signal_name, r.unit)
 
 
-@pytest.mark.parametrize("compression", ["zstd", "lz4", ""])
+@pytest.mark.parametrize("compression", ["zstd", "lz4", "", "no chunks"])
 def test_same_fields_as_decoded_messages(tmp_path, compression):
     path = tmp_path / "b.mcap"
-    write_sample_bag(path, n_chunks=30, compression=compression)
+    write_sample_bag(path, n_chunks=30, compression=compression if compression != "no chunks" else "")
+    if compression == "no chunks":   # each topic's fields from the file at once (signal_table.py)
+        path, compression = rewrite_with_mcap(path, tmp_path / "unchunked.mcap", noChunking=True), ""
     with BagReader(path) as bag:
         records = list(bag.signal_chunks(SIGNALS))
         assert [fields_of_record(r) for r in records] == [fields_of(m) for m in bag.messages(SIGNALS)]
@@ -37,13 +41,31 @@ def test_same_fields_as_decoded_messages(tmp_path, compression):
             assert r.samples.dtype == np.float64
             if compression:    # a view of the decompressed chunk (bytes), never of the file's map
                 assert not r.samples.flags.writeable and isinstance(r.samples.base.obj, bytes)
-            else:              # an uncompressed chunk is a view of the map: copied
+            else:              # an uncompressed chunk or no chunk is a view of the map: copied
                 assert r.samples.flags.writeable and r.samples.flags.owndata
             assert type(r.first_sample_index) is int and type(r.sample_period_s) is float
         with pytest.raises(BagError):
             next(bag.signal_chunks(["/estimate"]))
         with pytest.raises(BagError):
             next(bag.signal_chunks(["/no/such/topic"]))
+
+
+@pytest.mark.parametrize("layout", ["zstd", "uncompressed chunks", "no chunks"])
+def test_without_copies_the_samples_are_read_in_place(tmp_path, layout):
+    """copy=False (analyze): samples in the file's map are read-only views of it, with the values
+    of the copies; they stay readable after the reader is closed (the map goes with the last)."""
+    path = tmp_path / "b.mcap"
+    write_sample_bag(path, n_chunks=30, compression="" if layout != "zstd" else "zstd")
+    if layout == "no chunks":
+        path = rewrite_with_mcap(path, tmp_path / "unchunked.mcap", noChunking=True)
+    with BagReader(path) as bag:
+        want = [fields_of_record(r) for r in bag.signal_chunks(SIGNALS)]
+        views = list(bag.signal_chunks(SIGNALS, copy=False))
+        assert [fields_of_record(r) for r in views] == want and len(want) == 90
+        for r in views:
+            assert not r.samples.flags.writeable
+            assert isinstance(r.samples.base.obj, bytes if layout == "zstd" else mmap.mmap)
+    assert [fields_of_record(r) for r in views] == want
 
 
 def big_endian_chunk(first: int) -> bytes:
@@ -56,7 +78,10 @@ def big_endian_chunk(first: int) -> bytes:
     return bytes(be)
 
 
-def test_big_endian_and_malformed_payloads(tmp_path):
+@pytest.mark.parametrize("chunks", [True, False], ids=["chunked", "no chunks"])
+def test_big_endian_and_malformed_payloads(tmp_path, chunks):
+    """(Without chunks the fields of a topic are taken from the file at once, signal_table.py: a
+    payload laid out otherwise than the topic's first goes one by one, as in a chunk.)"""
     path = tmp_path / "be.mcap"
     codec = Codec.for_type(SIGNAL_CHUNK)
     good = codec.encode(codec.new(signal_name="a1", unit="u", sample_period_s=2e-5,
@@ -66,6 +91,8 @@ def test_big_endian_and_malformed_payloads(tmp_path):
         w.write_raw("/plant/a1", good, log_time_ns=1)
         w.write_raw("/plant/a1", big_endian_chunk(3), log_time_ns=2)
         w.write_raw("/plant/a1", good[:30], log_time_ns=3)
+    if not chunks:
+        path = rewrite_with_mcap(path, tmp_path / "unchunked.mcap", noChunking=True)
     with BagReader(path) as bag:
         it = bag.signal_chunks("/plant/a1")
         first, second = next(it), next(it)
@@ -77,8 +104,10 @@ def test_big_endian_and_malformed_payloads(tmp_path):
             next(it)
 
 
-def test_strings_changing_within_a_topic(tmp_path):
-    """The per-topic string cache is only a shortcut: changed strings are parsed again."""
+@pytest.mark.parametrize("chunks", [True, False], ids=["chunked", "no chunks"])
+def test_strings_changing_within_a_topic(tmp_path, chunks):
+    """The per-topic string cache is only a shortcut: changed strings are parsed again (without
+    chunks, a payload whose strings differ from the topic's first one's is read one by one)."""
     path = tmp_path / "s.mcap"
     codec = Codec.for_type(SIGNAL_CHUNK)
     names = [("drive", "a1", "m/s^2"), ("drive", "a1", "m/s^2"), ("drivf", "a1", "m/s^2"),
@@ -91,6 +120,8 @@ def test_strings_changing_within_a_topic(tmp_path):
             msg.header.frame_id = frame_id
             msg.header.stamp.sec = i
             w.write("/plant/a1", msg, log_time_ns=i + 1)
+    if not chunks:
+        path = rewrite_with_mcap(path, tmp_path / "unchunked.mcap", noChunking=True)
     with BagReader(path) as bag:
         got = [fields_of_record(r) for r in bag.signal_chunks(["/plant/a1"])]
         assert got == [fields_of(m) for m in bag.messages(["/plant/a1"])]

@@ -119,3 +119,49 @@ def test_fused_continuous_width_shrinks_the_window_scatter():
         fused.append(est.continuous_width_m)
     assert 0.35 * sigma < np.std(fused) < 0.5 * sigma
     assert abs(np.mean(fused) - truth) < 0.05 * sigma
+
+
+def _same(a, b):
+    """Two add results equal bit for bit (None, or every field of the FusedEstimate)."""
+    if a is None or b is None:
+        return a is None and b is None
+    return (a.index == b.index and a.width_m == b.width_m and a.events == b.events
+            and a.score.tobytes() == b.score.tobytes()
+            and np.float64(a.margin).tobytes() == np.float64(b.margin).tobytes()
+            and np.float64(a.continuous_width_m).tobytes() == np.float64(b.continuous_width_m).tobytes())
+
+
+@pytest.mark.parametrize("rule", ["trimmed_normalised_b", "sum_normalised_b", "vote"])
+@pytest.mark.parametrize("window_events", [1, 2, 3, 8])
+def test_add_many_gives_what_add_gives_one_by_one(rule, window_events):
+    """The batch (analyze's, estimation.py) and one event after the other (the live node): the
+    same estimates, bit for bit, rejected B vectors included, from any history, and the same
+    state after (the next add agrees too)."""
+    rng = np.random.default_rng(window_events)
+    for trial in range(40):
+        one, many = (WidthFusion(WIDTHS, window_events=window_events, rule=rule) for _ in range(2))
+        for _ in range(2):   # a history, then another batch on top of it
+            n = int(rng.integers(0, 20))
+            bs = rng.gamma(0.5, 10.0 ** rng.uniform(-3, 3), size=(n, WIDTHS.size))
+            bs[rng.uniform(size=n) < 0.1, int(rng.integers(WIDTHS.size))] = np.nan
+            bs[rng.uniform(size=n) < 0.1, int(rng.integers(WIDTHS.size))] = -1.0
+            bs[rng.uniform(size=n) < 0.1] = 0.0
+            continuous = rng.uniform(0.002, 0.012, size=n)
+            continuous[rng.uniform(size=n) < 0.2] = np.nan
+            want = [one.add(b, continuous_width_m=c) for b, c in zip(bs, continuous)]
+            got = many.add_many(list(bs), list(continuous))
+            assert len(got) == n and all(_same(g, w) for g, w in zip(got, want)), trial
+            assert many.rejected == one.rejected and len(many) == len(one)
+        b = rng.uniform(size=WIDTHS.size)
+        assert _same(many.add(b, continuous_width_m=0.005), one.add(b, continuous_width_m=0.005))
+
+
+def test_add_many_falls_back_to_add_where_add_is_special():
+    f = WidthFusion(WIDTHS, window_events=3)
+    assert f.add_many([]) == []
+    assert f.add_many([np.ones(6)], kind="return") == [None] and len(f) == 0   # not an onset
+    with pytest.raises(ValueError, match="expected 6"):
+        f.add_many([np.ones(6), np.ones(5)])
+    assert len(f) == 1                                  # the one before it was added, as by add
+    with pytest.raises(ValueError, match="2 B vectors, 1 continuous"):
+        f.add_many([np.ones(6), np.ones(6)], [0.005])
