@@ -11,6 +11,11 @@ import threading
 import time
 
 ONSET = re.compile(r"^t=\s*([0-9.]+) s\s+onset")
+# The plant's log line when its stream's clock starts (wall-clock stamp): its subscribers are there, or it
+# stopped waiting for them. Not the "waiting for subscribers before streaming" line before it: under load
+# the subscribers' discovery takes seconds, and a clock started there puts every stream time that long late.
+STREAM_START = re.compile(r"^\[(?:INFO|WARN)\] \[([0-9.]+)\] \[plant_simulator\]: "
+                          r"(?:subscribers there after [0-9.]+ s: streaming|streaming without them)")
 PIDS = re.compile(r"^pipeline: node processes: (.*); restart policy")
 
 

@@ -41,14 +41,13 @@ import time
 REPO = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "test"))
 
-from process_fault_helpers import ONSET, PipelineRun, gone, wait_until  # noqa: E402
+from process_fault_helpers import ONSET, STREAM_START, PipelineRun, gone, wait_until  # noqa: E402
 
 RATE = 2.0
 ONSET_PERIOD_S = 0.25
 SAMPLE_RATE_HZ = 50_000
 SIGNALS_WINDOWED = 3
 NODES = ("windowing", "denoise", "classifier", "plant_simulator")
-STREAMING = re.compile(r"^\[INFO\] \[([0-9.]+)\] \[plant_simulator\]: .*streaming")
 MISSING = re.compile(r"^onset estimates missing: t=[0-9.]+\.\.[0-9.]+ s \((\d+) onsets")
 
 
@@ -81,7 +80,7 @@ def kill_node(node: str, offset: int) -> dict:
     before = [t for i, t in run.onsets() if i < at]
     after = [t for i, t in run.onsets() if i > at]
     starts = [float(m.group(1)) for line in run.stderr.splitlines()
-              if (m := STREAMING.match(line))]
+              if (m := STREAM_START.match(line))]
     killed_at_s = (killed_wall_s - starts[0]) * RATE if starts else float("nan")
     if node == "plant_simulator":
         # the new stream's onsets (from sample 0 again; the old stream's come in order)
@@ -152,7 +151,7 @@ def kill_recorder(offset: int) -> dict:
                 line = plant.stderr.readline()
                 if not line:
                     break
-                m = re.match(r"^\[INFO\] \[([0-9.]+)\] \[plant_simulator\]: .*streaming", line)
+                m = STREAM_START.match(line)
                 if m:
                     start = float(m.group(1))
             if start is None:

@@ -17,7 +17,7 @@ import time
 
 import pytest
 
-from process_fault_helpers import ONSET, PipelineRun, gone, wait_until
+from process_fault_helpers import ONSET, STREAM_START, PipelineRun, gone, wait_until
 
 ONSET_PERIOD_S = 0.25      # the simulated drive's onsets: 0.054 s + k * 0.25 s
 FIRST_ONSET_S = 0.054
@@ -42,13 +42,12 @@ def event_index(t_s: float) -> int:
 
 
 RATE = 2.0                 # simulated seconds per wall second
-STREAMING = re.compile(r"^\[INFO\] \[([0-9.]+)\] \[plant_simulator\]: .*streaming")
 
 
 def stream_time_at(run, wall_s: float) -> float:
     """Stream time [s] of the first stream at the wall-clock time ``wall_s`` (the plant logs,
     stamped with the wall clock, when it starts streaming)."""
-    starts = [float(m.group(1)) for line in run.stderr.splitlines() if (m := STREAMING.match(line))]
+    starts = [float(m.group(1)) for line in run.stderr.splitlines() if (m := STREAM_START.match(line))]
     assert starts, run.output
     return (wall_s - starts[0]) * RATE
 
