@@ -368,8 +368,12 @@ def summarize(clean: list, detect: list, rule) -> dict:
                     not_counted[lab] = "not detected offline on a 4 s recording at this strength"
                 else:
                     counted += [o if o is not None else math.inf for o in ons]
-            out[f"detection_onsets_median_{src}"] = float(np.median(counted)) if counted else None
-            out[f"detection_onsets_max_{src}"] = float(np.max(counted)) if counted else None
+            median = float(np.median(counted)) if counted else None
+            out[f"detection_onsets_median_{src}"] = median if median is not None and math.isfinite(median) else None
+            # the slowest detection among the runs that warned (a missed run is counted in detection_missed_*; an
+            # infinity is not JSON)
+            warned = [c for c in counted if c != math.inf]
+            out[f"detection_onsets_max_{src}"] = float(np.max(warned)) if warned else None
             out[f"detection_missed_{src}"] = int(sum(1 for c in counted if c == math.inf))
             out[f"detection_runs_counted_{src}"] = len(counted)
             out[f"detection_per_effect_{src}"] = per_family
