@@ -84,6 +84,9 @@ def _parameters():
         ParameterSpec("max_snapshots", 20, "snapshots this node writes at most (a drive that goes WARN again and "
                       "again does not fill the disk; later WARNs say so)", 0, 100000),
         ParameterSpec("qos", "sensor_data", "QoS of the chunk subscriptions", choices=CHUNK_QOS_CHOICES),
+        ParameterSpec("batch_s", 0.1, "run as its own process (ros2 run): seconds the chunks may collect before "
+                      "they are taken, all at once (fewer wake-ups: the watch needs no millisecond latency; "
+                      "adaptive below it when a queue fills; 0: each chunk at once)", 0.0, 0.5),
         ParameterSpec("stale_after_s", 2.0, "seconds without a chunk after which /diagnostics says STALE",
                       0.01, 3600.0),
         ParameterSpec("fault_hold_s", 10.0, "seconds /diagnostics says WARN after the last bad chunk", 0.01, 3600.0),
@@ -124,6 +127,7 @@ class ModelWatchNode(Node):
             raise ParameterValueError(f"parameter 'snapshot_signals' = {list(p['snapshot_signals'])!r}; allowed: "
                                       f"a1, a2, angle_difference and any of omega1, omega2")
         self.params = p
+        self.executor_batch_s = p["batch_s"]          # run_node's executor batches the wake-ups (lean_executor)
         self.signals = tuple(n for n in PLANT_SIGNALS if n in p["snapshot_signals"])
         from backlash_monitor.bag.cdr import Codec
         from backlash_monitor.chain import ChunkJoiner

@@ -114,7 +114,8 @@ def release_nodes(executor, nodes) -> None:
 def run_node(node_factory, args=None, spin=None) -> int:
     """``main()`` body shared by the nodes: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
 
-    The node spins on a :func:`~backlash_monitor.nodes.lean_executor.make_executor` executor;
+    The node spins on a :func:`~backlash_monitor.nodes.lean_executor.make_executor` executor
+    (batching, when the node has an attribute ``executor_batch_s`` > 0: see LeanExecutor);
     ``spin(node, executor)`` replaces the plain ``executor.spin()``. A
     :class:`ParameterValueError` while building the node is logged as one clear line and gives
     exit code 2 (the node does not start).
@@ -124,7 +125,8 @@ def run_node(node_factory, args=None, spin=None) -> int:
 
 
 def run_nodes(node_factories, args=None, spin=None) -> int:
-    """:func:`run_node` for several nodes in one process on one executor (built in order)."""
+    """:func:`run_node` for several nodes in one process on one executor (built in order; it
+    batches only if every node asks for it: the smallest ``executor_batch_s``)."""
     start_watchdog()    # started by a supervisor (pipeline --processes): end with it
     configure_fast_dds()
     from backlash_monitor.nodes.params_file import check_params_files
@@ -139,7 +141,7 @@ def run_nodes(node_factories, args=None, spin=None) -> int:
     try:
         for factory in node_factories:
             nodes.append(factory())
-        executor = make_executor()
+        executor = make_executor(batch_s=min(getattr(n, "executor_batch_s", 0.0) for n in nodes))
         for node in nodes:
             executor.add_node(node)
         freeze_startup_objects()
