@@ -128,6 +128,7 @@ class ModelWatchNode(Node):
                                       f"a1, a2, angle_difference and any of omega1, omega2")
         self.params = p
         self.executor_batch_s = p["batch_s"]          # run_node's executor batches the wake-ups (lean_executor)
+        self.blas_threads = 1                          # run_node: its small products on one thread (process/blas)
         self.signals = tuple(n for n in PLANT_SIGNALS if n in p["snapshot_signals"])
         from backlash_monitor.bag.cdr import Codec
         from backlash_monitor.chain import ChunkJoiner
