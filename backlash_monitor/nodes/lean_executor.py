@@ -20,8 +20,8 @@ Batching (``batch_s`` > 0; opt-in per process: a node asks for it with an attrib
 collect for up to ``batch_s`` after a wake-up that took some, then takes everything waiting, in
 rounds of one message per subscription (the chunks of one range stay together). Every message
 is still handed to its callback, one by one, in its subscription's order; what is saved is the
-wake-ups: with four 50 Hz topics ~10 a second instead of ~75, each costing the wait set, the
-rmw wait and a thread switch (measured for model_watch: docs/model_watch.md "Cost"). A
+wake-ups: with four 50 Hz topics about 1/batch_s a second instead of ~75, each costing the wait
+set, the rmw wait and a thread switch (measured for model_watch: docs/model_watch.md "Cost"). A
 subscription's queue must not overflow meanwhile (KEEP_LAST drops the oldest): the pause adapts,
 halved when a drain took more than half a queue's depth (e.g. best effort at depth 5 in a fast
 replay), grown back towards ``batch_s`` while every queue stays under a quarter; a wake-up that

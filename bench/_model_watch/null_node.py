@@ -7,7 +7,7 @@ whose acknowledgements cost more than best effort); the callback only counts the
 watch's own work (events, the test, the ring); this is what any node that reads a 50 kHz drive pays in DDS and
 the executor.
 
-    python bench/_model_watch/null_node.py reliable 0.1   # in the pipeline's ROS domain; ends on SIGINT/SIGTERM
+    python bench/_model_watch/null_node.py reliable 0.25  # in the pipeline's ROS domain; ends on SIGINT/SIGTERM
 """
 from __future__ import annotations
 
