@@ -244,7 +244,8 @@ class ModelWatchNode(Node):
                     self.snapshot_problem = ""
             self.get_logger().warning(self.message(u))
         self.publisher.publish(self.to_message(u))
-        self.update_diagnostics(publish_now=u.changed)
+        if u.changed:      # else the periodic publication's refresh (update_diagnostics) takes it up
+            self.update_diagnostics(publish_now=True)
 
     def snapshot_text(self) -> str:
         if self.recorder is None or self.recorder.last is None:
