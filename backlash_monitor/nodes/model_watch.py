@@ -84,6 +84,10 @@ def _parameters():
         ParameterSpec("max_snapshots", 20, "snapshots this node writes at most (a drive that goes WARN again and "
                       "again does not fill the disk; later WARNs say so)", 0, 100000),
         ParameterSpec("qos", "sensor_data", "QoS of the chunk subscriptions", choices=CHUNK_QOS_CHOICES),
+        ParameterSpec("batch_s", 0.25, "run as its own process (ros2 run): seconds the chunks may collect before "
+                      "they are taken, all at once (fewer wake-ups; a result comes at most this much later, about "
+                      "one onset period; shorter when a queue fills; 0: each chunk at once; <= stale_after_s / 2)",
+                      0.0, 0.5),
         ParameterSpec("stale_after_s", 2.0, "seconds without a chunk after which /diagnostics says STALE",
                       0.01, 3600.0),
         ParameterSpec("fault_hold_s", 10.0, "seconds /diagnostics says WARN after the last bad chunk", 0.01, 3600.0),
@@ -119,11 +123,17 @@ class ModelWatchNode(Node):
             raise ParameterValueError(f"snapshot_before_s + snapshot_after_s = "
                                       f"{p['snapshot_before_s'] + p['snapshot_after_s']:g} s; allowed: <= 180 s "
                                       "(the ring is held in memory: ~2 MB/s of stream)")
+        if p["batch_s"] > p["stale_after_s"] / 2:
+            raise ParameterValueError(f"batch_s = {p['batch_s']:g} s with stale_after_s = {p['stale_after_s']:g} s; "
+                                      "allowed: batch_s <= stale_after_s / 2 (chunks held for a batch must not look "
+                                      "like a stopped stream)")
         bad = [x for x in p["snapshot_signals"] if x not in PLANT_SIGNALS]
         if bad or not set(WATCHED) <= set(p["snapshot_signals"]):
             raise ParameterValueError(f"parameter 'snapshot_signals' = {list(p['snapshot_signals'])!r}; allowed: "
                                       f"a1, a2, angle_difference and any of omega1, omega2")
         self.params = p
+        self.executor_batch_s = p["batch_s"]          # run_node's executor batches the wake-ups (lean_executor)
+        self.blas_threads = 1                          # run_node: its small products on one thread (process/blas)
         self.signals = tuple(n for n in PLANT_SIGNALS if n in p["snapshot_signals"])
         from backlash_monitor.bag.cdr import Codec
         from backlash_monitor.chain import ChunkJoiner
@@ -234,7 +244,8 @@ class ModelWatchNode(Node):
                     self.snapshot_problem = ""
             self.get_logger().warning(self.message(u))
         self.publisher.publish(self.to_message(u))
-        self.update_diagnostics(publish_now=u.changed)
+        if u.changed:      # else the periodic publication's refresh (update_diagnostics) takes it up
+            self.update_diagnostics(publish_now=True)
 
     def snapshot_text(self) -> str:
         if self.recorder is None or self.recorder.last is None:

@@ -18,6 +18,7 @@ import rclpy.signals
 from backlash_monitor.nodes.fast_dds import configure_fast_dds
 from backlash_monitor.nodes.lean_executor import make_executor
 from backlash_monitor.nodes.parameters import ParameterValueError
+from backlash_monitor.process.blas import limit_blas_threads
 from backlash_monitor.process.parent_watch import start_watchdog
 
 
@@ -114,7 +115,9 @@ def release_nodes(executor, nodes) -> None:
 def run_node(node_factory, args=None, spin=None) -> int:
     """``main()`` body shared by the nodes: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
 
-    The node spins on a :func:`~backlash_monitor.nodes.lean_executor.make_executor` executor;
+    The node spins on a :func:`~backlash_monitor.nodes.lean_executor.make_executor` executor
+    (batching, when the node has an attribute ``executor_batch_s`` > 0: see LeanExecutor; and
+    with ``blas_threads`` > 0 the process's BLAS uses that many threads: process/blas.py);
     ``spin(node, executor)`` replaces the plain ``executor.spin()``. A
     :class:`ParameterValueError` while building the node is logged as one clear line and gives
     exit code 2 (the node does not start).
@@ -124,7 +127,9 @@ def run_node(node_factory, args=None, spin=None) -> int:
 
 
 def run_nodes(node_factories, args=None, spin=None) -> int:
-    """:func:`run_node` for several nodes in one process on one executor (built in order)."""
+    """:func:`run_node` for several nodes in one process on one executor (built in order; it
+    batches only if every node asks for it: the smallest ``executor_batch_s``; likewise
+    ``blas_threads``)."""
     start_watchdog()    # started by a supervisor (pipeline --processes): end with it
     configure_fast_dds()
     from backlash_monitor.nodes.params_file import check_params_files
@@ -139,7 +144,10 @@ def run_nodes(node_factories, args=None, spin=None) -> int:
     try:
         for factory in node_factories:
             nodes.append(factory())
-        executor = make_executor()
+        executor = make_executor(batch_s=min(getattr(n, "executor_batch_s", 0.0) for n in nodes))
+        blas_threads = min(getattr(n, "blas_threads", 0) for n in nodes)
+        if blas_threads > 0:
+            limit_blas_threads(blas_threads)
         for node in nodes:
             executor.add_node(node)
         freeze_startup_objects()

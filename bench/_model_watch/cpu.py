@@ -4,8 +4,9 @@
 system, /proc/PID/stat) is read at two moments inside the stream (after its start-up: the reference loaded, the
 views built) and divided by the wall time between them. The windowing node's process is read in the same run, side
 by side: it takes the same three plant topics and runs the same onset detector. And a node with model_watch's
-subscriptions and no work (null_node.py, its own process in the same ROS domain, started before the pipeline): what
-any node reading a 50 kHz drive pays in DDS and the executor; the watch's own work is the difference.
+subscriptions, QoS and batched executor and no work (null_node.py, its own process in the same ROS domain, started
+before the pipeline): what any node reading a 50 kHz drive pays in DDS and the executor; the watch's own work is the
+difference.
 """
 from __future__ import annotations
 
@@ -22,23 +23,28 @@ def _cpu_s(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def watch_qos() -> str:
-    """The QoS pipeline --watch gives the model_watch node's subscriptions (the null node takes the same)."""
+def watch_settings() -> tuple[str, float]:
+    """The QoS pipeline --watch gives the model_watch node's subscriptions and the node's batching (batch_s: its
+    executor's wake-ups); the null node takes the same."""
     import argparse
     from backlash_monitor.nodes import pipeline
+    from backlash_monitor.nodes.model_watch import _parameters
     parser = argparse.ArgumentParser()
     pipeline.add_arguments(parser)
-    return pipeline.node_parameters(parser.parse_args(["--watch"]))["model_watch"]["qos"]
+    params = pipeline.node_parameters(parser.parse_args(["--watch"]))["model_watch"]
+    batch_s = params.get("batch_s", next(s.default for s in _parameters() if s.name == "batch_s"))
+    return params["qos"], float(batch_s)
 
 
 def cpu_per_drive(duration_s: float = 40.0, skip_s: float = 10.0, log=print) -> dict:
-    qos = watch_qos()
+    qos, batch_s = watch_settings()
     null = subprocess.Popen([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "null_node.py"),
-                             qos], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                             qos, str(batch_s)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     time.sleep(2.0)
     try:
         out = _cpu_run(duration_s, skip_s, log, null.pid)
         out["cpu_subscriptions_qos"] = qos
+        out["cpu_batch_s"] = batch_s
     finally:
         null.send_signal(2)
         try:

@@ -1,13 +1,13 @@
 """A node with the model_watch node's subscriptions and no work: the side-by-side baseline of cpu_per_drive.
 
-The same runtime (nodes/runtime.run_node: the lean executor), the same four plant topics taken serialized
-(``raw=True``) with the same QoS (the first argument: the model_watch node's ``qos`` in the run measured;
-pipeline --watch gives it 'reliable', whose acknowledgements cost more than best effort); the callback only counts
-the bytes. What model_watch costs beyond this is the
+The same runtime (nodes/runtime.run_node: the lean executor, batching the wake-ups as model_watch's does: the
+second argument, its ``batch_s``), the same four plant topics taken serialized (``raw=True``) with the same QoS
+(the first argument: the model_watch node's ``qos`` in the run measured; pipeline --watch gives it 'reliable',
+whose acknowledgements cost more than best effort); the callback only counts the bytes. What model_watch costs beyond this is the
 watch's own work (events, the test, the ring); this is what any node that reads a 50 kHz drive pays in DDS and
 the executor.
 
-    python bench/_model_watch/null_node.py reliable   # in the pipeline's ROS domain; ends on SIGINT/SIGTERM
+    python bench/_model_watch/null_node.py reliable 0.25  # in the pipeline's ROS domain; ends on SIGINT/SIGTERM
 """
 from __future__ import annotations
 
@@ -23,12 +23,14 @@ SIGNALS = ("a1", "a2", "angle_difference", "omega1")    # model_watch's (its sna
 
 
 QOS = sys.argv[1] if len(sys.argv) > 1 else "sensor_data"
+BATCH_S = float(sys.argv[2]) if len(sys.argv) > 2 else 0.0
 
 
 class NullWatch(Node):
     def __init__(self):
         super().__init__("null_watch")
         self.bytes = 0
+        self.executor_batch_s = BATCH_S
         qos = chunk_qos(QOS)
         for name in SIGNALS:
             self.create_subscription(SignalChunk, f"plant/{name}", self.on_chunk, qos, raw=True)

@@ -128,3 +128,59 @@ def test_the_environment_variable_chooses_the_executor(monkeypatch, context):
     monkeypatch.setenv("BACKLASH_MONITOR_EXECUTOR", "fast")
     with pytest.raises(ParameterValueError, match="allowed: lean, rclpy"):
         make_executor(context)
+
+
+@pytest.mark.ros
+def test_batching_takes_every_waiting_message_one_subscription_after_the_other(context, client):
+    """batch_s: the messages collect, then every waiting one is taken, the subscriptions in turn (a joiner's
+    chunks of one range stay together), none lost, each topic in its order."""
+    node = rclpy.create_node("batched", context=context)
+    got = []
+    for topic in ("lean/a", "lean/b"):
+        node.create_subscription(Float64, topic, lambda m, t=topic: got.append((t, m.data)),
+                                 QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE))
+    executor = LeanExecutor(context=context, batch_s=0.2)
+    executor.add_node(node)
+    thread = threading.Thread(target=executor.spin, daemon=True)
+    thread.start()
+    try:
+        client_node, client_executor = client
+        pubs = [client_node.create_publisher(Float64, t, QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE))
+                for t in ("lean/a", "lean/b")]
+        assert _spin_until(client_executor, lambda: all(p.get_subscription_count() == 1 for p in pubs))
+        for i in range(30):
+            for p in pubs:
+                p.publish(Float64(data=float(i)))
+        assert _spin_until(client_executor, lambda: len(got) == 60)
+        time.sleep(0.3)
+    finally:
+        executor.shutdown()
+        thread.join(timeout=10)
+        node.destroy_node()
+    assert len(got) == 60
+    for topic in ("lean/a", "lean/b"):
+        assert [v for t, v in got if t == topic] == [float(i) for i in range(30)]
+    runs, run = [], 1
+    for (t0, _), (t1, _) in zip(got, got[1:]):
+        run = run + 1 if t1 == t0 else 1
+        runs.append(run)
+    assert max(runs) <= 3          # in turn, not one topic's 30 and then the other's
+
+
+@pytest.mark.ros
+def test_batching_pauses_adapt_to_the_fullest_queue(context):
+    executor = LeanExecutor(context=context, batch_s=0.1)
+    assert executor._took_at is None and executor._pause_s == pytest.approx(0.1 / 16)
+    executor._adapt(1.0, took=4, fullest=0.004)       # queues nearly empty: the pause grows to batch_s
+    assert executor._took_at == 1.0 and executor._pause_s == pytest.approx(0.1 / 8)
+    for k in range(6):
+        executor._adapt(1.0 + k, took=4, fullest=0.004)
+    assert executor._pause_s == pytest.approx(0.1)
+    executor._adapt(7.0, took=8, fullest=0.6)         # a queue more than half full (best effort, depth 5): halved
+    assert executor._pause_s == pytest.approx(0.05)
+    executor._adapt(8.0, took=3, fullest=0.4)         # between: kept
+    assert executor._pause_s == pytest.approx(0.05)
+    executor._adapt(9.0, took=0, fullest=0.0)         # nothing was waiting: no pause before the next wake-up
+    assert executor._took_at is None
+    with pytest.raises(ValueError, match="batch_s"):
+        LeanExecutor(context=context, batch_s=2.0)

@@ -90,6 +90,8 @@ def test_ok_on_its_model_then_warn_with_a_snapshot_when_friction_switches_on(ros
 @pytest.mark.parametrize("override, named", [("window_events:=2", "window_events"),
                                              ("reference:=/nonexistent.watch.npz", "does not exist"),
                                              ("view_p:=0.5", "view_p"),
+                                             ("batch_s:=0.9", "batch_s"),
+                                             ("stale_after_s:=0.1", "batch_s <= stale_after_s / 2"),
                                              ("width_m:=0.0123", "watch-reference --width-m 0.0123")])
 def test_bad_parameters_stop_the_node_with_a_clear_line(ros_env, override, named):
     proc = subprocess.run([EXECUTABLE, "--ros-args", "-p", override], env=ros_env, capture_output=True, text=True,
