@@ -78,13 +78,21 @@ def test_a_supervisor_takes_one_drive_down_and_up_without_touching_the_other(ros
             while time.monotonic() < end:
                 executor.spin_once(timeout_sec=0.05)
 
+        def spin_until(condition, timeout_s=20.0):
+            """Spin until ``condition()`` holds: after an activation the plant first discovers the chain's
+            subscriptions (it waits for 3), which takes DDS discovery's time (seconds at times)."""
+            end = time.monotonic() + timeout_s
+            while not condition() and time.monotonic() < end:
+                executor.spin_once(timeout_sec=0.05)
+            return condition()
+
         assert state() == State.PRIMARY_STATE_UNCONFIGURED
         spin_for(3.0)
         assert arrivals["drive01"] == []              # unconfigured: no chain, no estimate
         assert change(Transition.TRANSITION_CONFIGURE) and state() == State.PRIMARY_STATE_INACTIVE
         assert change(Transition.TRANSITION_ACTIVATE) and state() == State.PRIMARY_STATE_ACTIVE
-        spin_for(4.0)
-        assert len(arrivals["drive01"]) >= 6          # active: onsets every 0.25 s, 3 signals
+        assert spin_until(lambda: len(arrivals["drive01"]) >= 6), arrivals["drive01"]   # active: onsets every
+        # 0.25 s, 3 signals
         assert change(Transition.TRANSITION_DEACTIVATE) and state() == State.PRIMARY_STATE_INACTIVE
         spin_for(0.5)
         down_at, before = time.monotonic(), len(arrivals["drive02"])
@@ -93,8 +101,7 @@ def test_a_supervisor_takes_one_drive_down_and_up_without_touching_the_other(ros
         assert len(arrivals["drive02"]) - before >= 9                  # ... drive02 is not
         assert change(Transition.TRANSITION_ACTIVATE) and state() == State.PRIMARY_STATE_ACTIVE
         up_at = time.monotonic()
-        spin_for(4.0)
-        assert len([t for t in arrivals["drive01"] if t > up_at]) >= 6   # and up again
+        assert spin_until(lambda: len([t for t in arrivals["drive01"] if t > up_at]) >= 6)   # and up again
         assert change(Transition.TRANSITION_DEACTIVATE)
         assert change(Transition.TRANSITION_CLEANUP) and state() == State.PRIMARY_STATE_UNCONFIGURED
     finally:
