@@ -120,7 +120,7 @@ class WidthFusion:
         b = np.asarray(b, dtype=float)
         if b.shape != self.widths_m.shape:
             raise ValueError(f"B vector has {b.size} entries, expected {self.widths_m.size}")
-        if not (np.isfinite(b).all() and (b >= 0).all()):
+        if not fusable(b[None])[0]:
             # a B vector of a bad window must not steer the fused width for the next N events
             self.rejected += 1
         elif kind == "onset":
@@ -151,7 +151,7 @@ class WidthFusion:
         if not n:
             return []
         new = np.stack(bs)
-        good = (np.isfinite(new).all(axis=1) & (new >= 0).all(axis=1)).tolist()
+        good = fusable(new).tolist()
         widths = [c if math.isfinite(c) else math.nan for c in widths]
         held = len(self._bs)
         rows = np.concatenate((np.array(self._bs) if held else np.empty((0, self.widths_m.size)),
@@ -191,6 +191,12 @@ class WidthFusion:
         return FusedEstimate(index=idx, width_m=float(self.widths_m[idx]), events=len(bs),
                              score=score, margin=margin,
                              continuous_width_m=fused_continuous_width(continuous))
+
+
+def fusable(bs: np.ndarray) -> np.ndarray:
+    """Per row of ``bs`` (n_events, n_widths): whether WidthFusion takes that event's B vector (every entry
+    finite and >= 0; another is a bad window's and counted as rejected)."""
+    return np.isfinite(bs).all(axis=1) & (bs >= 0).all(axis=1)
 
 
 def fused_continuous_width(continuous_m) -> float:
