@@ -1,7 +1,7 @@
 """Compile probe (run in a fresh process by bench/simulator.py): generate and compile the kernels of one
 effect set in the kernel cache named by BACKLASH_MONITOR_KERNEL_CACHE, run one short step on both compiled
 backends, and print one JSON line: seconds to compile (or load from numba's cache) and the vector width
-found in the SIMD stage's LLVM IR (only when it was compiled, not loaded)."""
+found in the SIMD loop's LLVM IR (its stages are inlined there) (only when it was compiled, not loaded)."""
 import json
 import os
 import re
@@ -28,7 +28,7 @@ def main():
     t0 = time.perf_counter()
     PlantSimulator([Scenario(0.005)], config=cfg, noise=False, backend="numba-scalar").run(2)
     t_scalar = time.perf_counter() - t0
-    stage = sim.kernel.module.stage
+    stage = sim.kernel.module.rk4_simd
     widths = {}
     import warnings
     with warnings.catch_warnings():

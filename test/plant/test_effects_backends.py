@@ -240,9 +240,11 @@ def test_sensor_stages_with_random_parameters_follow_their_equations(seed):
 
 @pytest.mark.process
 def test_generated_simd_stage_vectorises_with_every_catalogue_term(tmp_path):
-    """The stage of the whole catalogue (sin, exp, power, smooth_sign, where ...) compiled afresh (new cache dir,
-    new process: numba's inspection needs a compilation, not a cache load) holds vector double operations and
-    no libm call: a helper that calls libm or branches would turn the loop back into scalar code."""
+    """The SIMD loop of the whole catalogue (sin, exp, power, smooth_sign, where ...) compiled afresh (new cache dir,
+    new process: numba's inspection needs a compilation, not a cache load) holds the four stages' right-hand sides
+    as vector double operations (a vector division is only in a stage) and no libm call: a helper that calls libm
+    or branches would turn the loop back into scalar code. Two scenarios, one tile: the vector code is the only
+    code the stages have (no scalar remainder, no minimum scenario count)."""
     import json
     import os
     import subprocess
@@ -255,17 +257,20 @@ def test_generated_simd_stage_vectorises_with_every_catalogue_term(tmp_path):
         "from backlash_monitor.plant.effects import CATALOGUE\n"
         "cfg = load_plant_config(overrides={f'effects.{c.name}': True for c in CATALOGUE})\n"
         "k = kernel_for(tuple(enabled_effects(cfg, 'term')))\n"
-        "S = 16; P = np.ones((len(k.param_rows), S))\n"
-        "k.module.stage(np.ones((N_STATES, S)), np.zeros((N_STATES, S)), np.zeros(S), 1.0, 0.0, np.zeros(S), P,"
-        " global_vector(cfg), 0)\n"
-        "ir = k.module.stage.inspect_llvm(k.module.stage.signatures[0])\n"
+        "S, n = 2, 3; P = np.ones((len(k.param_rows), S))\n"
+        "k.module.rk4_simd(np.ones((S, N_STATES)), np.zeros((S, n)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n),"
+        " 1.0, P, global_vector(cfg), 2e-5, np.zeros((1, S, n)), np.zeros((N_STATES, 0, 0)), False, True,"
+        " np.zeros(1, dtype=np.int64))\n"
+        "ir = k.module.rk4_simd.inspect_llvm(k.module.rk4_simd.signatures[0])\n"
         "calls = sorted(set(re.findall(r'call [^@]*@(llvm\\.[\\w.]+|[a-z]\\w*)\\(', ir)))\n"
-        "print(json.dumps({'vec': len(re.findall(r'<[248] x double>', ir)), 'calls': calls}))\n")
+        "print(json.dumps({'vec': len(re.findall(r'<[248] x double>', ir)),"
+        " 'vdiv': len(re.findall(r'fdiv [^<]*<[248] x double>', ir)), 'calls': calls}))\n")
     env = dict(os.environ, BACKLASH_MONITOR_KERNEL_CACHE=str(tmp_path))
     r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr[-2000:]
     found = json.loads(r.stdout.strip().splitlines()[-1])
     assert found["vec"] > 100, found
+    assert found["vdiv"] >= 4, found
     libm = [c for c in found["calls"] if c.split(".")[-1] in ("exp", "log", "pow", "sin", "cos") or
             c in ("exp", "log", "pow", "sin", "cos")]
     assert not libm, found["calls"]
