@@ -19,7 +19,7 @@
   max|x - y| / max|y|.
 - compile_seconds_*: generating and compiling the kernels (SIMD + scalar) of an effect set in a fresh
   process and a fresh cache (cold), and loading them again from numba's cache (warm);
-  simd_stage_vector_ops: <8 x double> / <4 x double> operations in the compiled stage's LLVM IR.
+  simd_stage_vector_ops: <8 x double> / <4 x double> operations in the compiled SIMD loop's LLVM IR (its stages inlined).
 Goal: realtime_factor >= 200, speedup_vs_solve_ivp >= 50, max_rel_error <= 0.005, numba_vs_numpy >= 20,
 plugin_vs_builtin_speed >= 0.5, catalogue_backend_max_rel_diff <= 1e-6.
 """

@@ -4,8 +4,8 @@ For one set of enabled term effects, one Python source is generated: the right-h
 block of straight-line code (the motor, then each balance as the sum of its terms, each term a small
 function inlined by numba), placed
 
-- inside the SIMD stage: a loop over the scenarios around the block (LLVM vectorises it; the terms
-  use :mod:`mathlib`, which has no libm calls and no branches),
+- inside the SIMD stage: a loop over one tile of W scenarios around the block (LLVM vectorises it; the
+  terms use :mod:`mathlib`, which has no libm calls and no branches),
 - inside the scalar right-hand side ``f_scalar`` (the ``numba-scalar`` backend and the zone-crossing
   step),
 
@@ -138,7 +138,7 @@ def stage(WS, ry, rk, ua, ub, G):
     """One RK4 stage for one tile of W scenarios: K = f(Y) with Y the N_STATES rows of the workspace from row
     ``ry``, K those from row ``rk``, T_c into row R_TC; inlined where it is called, so the rows are constants
     and every access is the workspace's base plus a constant plus s: LLVM vectorises the loop over the tile
-    with no run-time alias check (docs/model.md, "The SIMD loop")."""
+    with no run-time alias check (docs/effects.md, "Backends": the tiles)."""
 {globals}
     mode = 0                    # the zone test decides (a located crossing is the scalar step's)
     for s in range(W):
