@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from backlash_monitor.denoise import DEFAULT_MODE, denoise_sym5, max_level
-from backlash_monitor.windowing.faults import FaultLog, is_index, is_period
+from backlash_monitor.windowing.faults import MAX_INDEX, FaultLog, is_index, is_period
 from backlash_monitor.signals import SIGNAL_UNITS
 from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture, default_window_offset
@@ -117,6 +117,54 @@ class ChunkJoiner:
             joined.sample_period_s = math.nan      # the stage drops it: sample_period_mismatch
             joined.period_mismatch = True
         return joined
+
+    def add_rows(self, names, first_sample_index, sample_period_s, samples,
+                 meta) -> list[JoinedRange] | None:
+        """What :meth:`add` returns, chunk by chunk, for chunks that come as whole ranges one after
+        the other -- each signal's chunk of a range, in any order, then the next range's, at an
+        index at or past the end of the one before (the way a recorder writes a drive's topics):
+        the complete ranges, the joiner left as those adds leave it. None when they do not come
+        that way, or a chunk is irregular (an index that is not usable, a range whose chunks'
+        periods or lengths differ, no samples), or ranges are waiting already: then nothing is
+        done (add them one by one, which counts what is wrong).
+
+        ``names``: each chunk's signal (a sequence of str); ``first_sample_index`` and
+        ``sample_period_s``: numpy arrays of theirs (unsigned ints, floats); ``samples``: their
+        float64 arrays; ``meta(i)``: (stamp, frame_id) of chunk i, asked for each range's first
+        signal (``signals[0]``), whose stamp a range keeps as with ``add``."""
+        width = len(self.signals)
+        n = len(names)
+        if self.pending or self._end is not None or n == 0 or n % width:
+            return None
+        code = {name: k for k, name in enumerate(self.signals)}
+        try:
+            codes = np.array([code[name] for name in names]).reshape(-1, width)
+        except KeyError:
+            return None
+        firsts = np.asarray(first_sample_index)
+        periods = np.asarray(sample_period_s, dtype=np.float64).reshape(-1, width)
+        sizes = np.array([a.size for a in samples]).reshape(-1, width)
+        if firsts.dtype.kind not in "ui":
+            return None
+        firsts = firsts.reshape(-1, width)
+        starts = firsts[:, 0]
+        if not ((np.sort(codes, axis=1) == np.arange(width)).all()
+                and (firsts == starts[:, None]).all() and (starts >= 0).all()
+                and (starts < MAX_INDEX).all() and (periods == periods[:, :1]).all()
+                and (sizes == sizes[:, :1]).all() and (sizes > 0).all()):
+            return None
+        starts = starts.astype(np.int64)
+        if (starts[1:] < starts[:-1] + sizes[:-1, 0]).any():
+            return None       # a range behind the end of the one before: a restart or a repeat
+        ranges = []
+        for r, (first, row, period) in enumerate(zip(starts.tolist(), codes.tolist(),
+                                                     periods[:, 0].tolist())):
+            at = r * width
+            group = {self.signals[k]: samples[at + j] for j, k in enumerate(row)}
+            stamp, frame_id = meta(at + row.index(0))
+            ranges.append(JoinedRange(first, period, group, stamp, frame_id))
+        self._end = int(starts[-1]) + int(sizes[-1, 0])
+        return ranges
 
     def flush(self) -> int:
         """End of the stream: the ranges still incomplete are dropped and counted
