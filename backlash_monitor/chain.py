@@ -157,10 +157,12 @@ class ChunkJoiner:
         if (starts[1:] < starts[:-1] + sizes[:-1, 0]).any():
             return None       # a range behind the end of the one before: a restart or a repeat
         ranges = []
+        signals = self.signals
         for r, (first, row, period) in enumerate(zip(starts.tolist(), codes.tolist(),
                                                      periods[:, 0].tolist())):
             at = r * width
-            group = {self.signals[k]: samples[at + j] for j, k in enumerate(row)}
+            # the signals as they came (the dict's order, as add's)
+            group = dict(zip([signals[k] for k in row], samples[at:at + width]))
             stamp, frame_id = meta(at + row.index(0))
             ranges.append(JoinedRange(first, period, group, stamp, frame_id))
         self._end = int(starts[-1]) + int(sizes[-1, 0])

@@ -378,10 +378,10 @@ def _ranges_at_once(reader, topics: dict, source: SourceCheck, joiner, first_a1:
     signal_of = [topics[t] for t in columns.topics]
     names = [signal_of[k] for k in columns.topic.tolist()]
     frame_ids = [texts[0] for texts in columns.texts]
-    sec, nanosec, topic = columns.sec, columns.nanosec, columns.topic
+    sec, nanosec, topic = columns.sec.tolist(), columns.nanosec.tolist(), columns.topic.tolist()
 
     def meta(i):
-        return Stamp(int(sec[i]), int(nanosec[i])), frame_ids[topic[i]]
+        return Stamp(sec[i], nanosec[i]), frame_ids[topic[i]]
     ranges = joiner.add_rows(names, columns.first_sample_index, columns.sample_period_s,
                              columns.samples, meta)
     if ranges is not None:
