@@ -490,15 +490,20 @@ class BagReader:
                                "not SignalChunk")
             codecs[cid] = self.codec(infos[cid].name)
         head = MESSAGE_HEAD.size
-        records = self._records_to_read(wanted, None, None)
-        if not records or not all(op == OP_MESSAGE and len(body) >= head
-                                  for op, _pos, body in records):
+        # a file of unchunked messages only (no chunk; each message holds its head): the records
+        # of the wanted channels, in file order, are what _records_to_read gives
+        channels, offsets, sizes = self._index.record_columns(self._buf)
+        if not channels.size or (channels < 0).any():
             return None
-        n = len(records)
-        starts = np.fromiter(map(itemgetter(1), records), dtype=np.int64, count=n) + 9
-        sizes = np.fromiter(map(len, map(itemgetter(2), records)), dtype=np.int64, count=n)
+        rows = np.flatnonzero(np.isin(channels, np.fromiter(wanted, dtype=np.int32,
+                                                            count=len(wanted))))
+        if not rows.size:
+            return None
+        n = rows.size
+        starts = offsets[rows] + 9
+        sizes = sizes[rows]
+        channels = channels[rows]
         data = np.frombuffer(self._buf, dtype=np.uint8)
-        channels = gather(data, starts, head).view(_MESSAGE_HEAD)[:, 0]["channel"]
         first_rows = {int(c): int(np.argmax(channels == c)) for c in np.unique(channels)}
         order = sorted(first_rows, key=first_rows.get)       # topics by their first message
         topic = np.empty(n, dtype=np.int64)
