@@ -156,15 +156,21 @@ class ChunkJoiner:
         starts = starts.astype(np.int64)
         if (starts[1:] < starts[:-1] + sizes[:-1, 0]).any():
             return None       # a range behind the end of the one before: a restart or a repeat
-        ranges = []
         signals = self.signals
-        for r, (first, row, period) in enumerate(zip(starts.tolist(), codes.tolist(),
-                                                     periods[:, 0].tolist())):
-            at = r * width
-            # the signals as they came (the dict's order, as add's)
-            group = dict(zip([signals[k] for k in row], samples[at:at + width]))
-            stamp, frame_id = meta(at + row.index(0))
-            ranges.append(JoinedRange(first, period, group, stamp, frame_id))
+        firsts, period_list = starts.tolist(), periods[:, 0].tolist()
+        if (codes == codes[0]).all():    # every range's signals come in one order (a recorder's)
+            row = codes[0].tolist()
+            order, head = [signals[k] for k in row], row.index(0)
+            ranges = [JoinedRange(first, period, dict(zip(order, samples[at:at + width])),
+                                  *meta(at + head))
+                      for first, period, at in zip(firsts, period_list, range(0, n, width))]
+        else:
+            ranges = []
+            for r, (first, row, period) in enumerate(zip(firsts, codes.tolist(), period_list)):
+                at = r * width
+                # the signals as they came (the dict's order, as add's)
+                group = dict(zip([signals[k] for k in row], samples[at:at + width]))
+                ranges.append(JoinedRange(first, period, group, *meta(at + row.index(0))))
         self._end = int(starts[-1]) + int(sizes[-1, 0])
         return ranges
 
