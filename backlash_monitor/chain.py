@@ -253,6 +253,7 @@ class WindowingStage:
         self.window_offset_samples = self.capture.window_offset_samples
         angle = ("angle_difference",) if angle_source == "measured" else ("omega1", "omega2")
         self.input_signals = tuple(signals) + angle
+        self._input_set = frozenset(self.input_signals)
         self.faults = faults if faults is not None else FaultLog()
         self.resync_samples = int(resync_samples)
         self.lost_samples = 0          # samples never fed: gaps and dropped bad ranges
@@ -282,8 +283,7 @@ class WindowingStage:
         if getattr(joined, "period_mismatch", False):
             n = _common_length(joined.arrays, self.input_signals)
             return "sample_period_mismatch", n
-        missing = [s for s in self.input_signals if s not in joined.arrays]
-        if missing:
+        if not joined.arrays.keys() >= self._input_set:     # a signal missing
             return "incomplete_range", -1
         n = _common_length(joined.arrays, self.input_signals)
         if n == -2:
