@@ -118,7 +118,7 @@ class ChunkJoiner:
             joined.period_mismatch = True
         return joined
 
-    def add_rows(self, names, first_sample_index, sample_period_s, samples,
+    def add_rows(self, signal, first_sample_index, sample_period_s, samples,
                  meta) -> list[JoinedRange] | None:
         """What :meth:`add` returns, chunk by chunk, for chunks that come as whole ranges one after
         the other -- each signal's chunk of a range, in any order, then the next range's, at an
@@ -128,19 +128,18 @@ class ChunkJoiner:
         periods or lengths differ, no samples), or ranges are waiting already: then nothing is
         done (add them one by one, which counts what is wrong).
 
-        ``names``: each chunk's signal (a sequence of str); ``first_sample_index`` and
-        ``sample_period_s``: numpy arrays of theirs (unsigned ints, floats); ``samples``: their
-        float64 arrays; ``meta(i)``: (stamp, frame_id) of chunk i, asked for each range's first
-        signal (``signals[0]``), whose stamp a range keeps as with ``add``."""
+        ``signal``: each chunk's signal, as its index in ``signals`` (an int array);
+        ``first_sample_index`` and ``sample_period_s``: numpy arrays of theirs (unsigned ints,
+        floats); ``samples``: their float64 arrays; ``meta(i)``: (stamp, frame_id) of chunk i,
+        asked for each range's first signal (``signals[0]``), whose stamp a range keeps as with
+        ``add``."""
         width = len(self.signals)
-        n = len(names)
-        if self.pending or self._end is not None or n == 0 or n % width:
+        codes = np.asarray(signal)
+        n = codes.size
+        if (self.pending or self._end is not None or n == 0 or n % width or len(samples) != n
+                or codes.dtype.kind not in "ui"):
             return None
-        code = {name: k for k, name in enumerate(self.signals)}
-        try:
-            codes = np.array([code[name] for name in names]).reshape(-1, width)
-        except KeyError:
-            return None
+        codes = codes.reshape(-1, width)
         firsts = np.asarray(first_sample_index)
         periods = np.asarray(sample_period_s, dtype=np.float64).reshape(-1, width)
         sizes = np.array([a.size for a in samples]).reshape(-1, width)

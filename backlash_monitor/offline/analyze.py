@@ -375,15 +375,16 @@ def _ranges_at_once(reader, topics: dict, source: SourceCheck, joiner, first_a1:
         if not source.ok(m, topics[m.topic]):     # (not wrong: it does not refuse)
             return None   # pragma: no cover
         first_chunks.append(m)
-    signal_of = [topics[t] for t in columns.topics]
-    names = [signal_of[k] for k in columns.topic.tolist()]
+    # each chunk's signal as its index in the joiner's signals (topics of other signals: -1)
+    signal_of = np.array([joiner.signals.index(topics[t]) if topics[t] in joiner.signals else -1
+                          for t in columns.topics])
     frame_ids = [texts[0] for texts in columns.texts]
     sec, nanosec, topic = columns.sec.tolist(), columns.nanosec.tolist(), columns.topic.tolist()
 
     def meta(i):
         return Stamp(sec[i], nanosec[i]), frame_ids[topic[i]]
-    ranges = joiner.add_rows(names, columns.first_sample_index, columns.sample_period_s,
-                             columns.samples, meta)
+    ranges = joiner.add_rows(signal_of[columns.topic], columns.first_sample_index,
+                             columns.sample_period_s, columns.samples, meta)
     if ranges is not None:
         a1 = [m for m in first_chunks if topics[m.topic] == "a1"]
         if a1:

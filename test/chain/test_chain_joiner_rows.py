@@ -37,10 +37,10 @@ def one_by_one(items, joiner=None):
 
 def at_once(items, joiner=None):
     joiner = joiner or ChunkJoiner(SIGNALS)
-    names = [i[0] for i in items]
+    signal = np.array([SIGNALS.index(i[0]) if i[0] in SIGNALS else -1 for i in items], dtype=int)
     firsts = np.array([i[1] for i in items], dtype=np.uint64)
     periods = np.array([i[2] for i in items])
-    return joiner.add_rows(names, firsts, periods, [i[3] for i in items],
+    return joiner.add_rows(signal, firsts, periods, [i[3] for i in items],
                            lambda k: (items[k][4], items[k][5])), joiner
 
 
