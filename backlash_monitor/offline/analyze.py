@@ -420,12 +420,12 @@ def _row(window, est, true_width) -> dict:
         "width_index": est.width_index, "b_margin": est.b_margin,
         "continuous_width_m": est.continuous_width_m, "fused_width_m": est.fused_width_m,
         "fused_events": est.fused_events, "true_width_m": true_width,
-        "b_vector": [float(b) for b in est.b_vector],
+        "b_vector": np.asarray(est.b_vector, dtype=np.float64).tolist(),   # (Python floats)
         "fused_continuous_width_m": est.fused_continuous_width_m,
         "a1_offset_m_s2": window.sensor_offsets.get("a1", math.nan),
         "a2_offset_m_s2": window.sensor_offsets.get("a2", math.nan),
         "offset_periods": window.offset_periods,
-        "candidate_widths_m": [float(w) for w in est.candidate_widths_m],
+        "candidate_widths_m": np.asarray(est.candidate_widths_m, dtype=np.float64).tolist(),
         "entry_kind": window.kind,
     }
 
