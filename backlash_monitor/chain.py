@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from backlash_monitor.denoise import DEFAULT_MODE, denoise_sym5, max_level
-from backlash_monitor.windowing.faults import FaultLog, is_index, is_period
+from backlash_monitor.windowing.faults import MAX_INDEX, FaultLog, is_index, is_period
 from backlash_monitor.signals import SIGNAL_UNITS
 from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture, default_window_offset
@@ -118,6 +118,61 @@ class ChunkJoiner:
             joined.period_mismatch = True
         return joined
 
+    def add_rows(self, signal, first_sample_index, sample_period_s, samples,
+                 meta) -> list[JoinedRange] | None:
+        """What :meth:`add` returns, chunk by chunk, for chunks that come as whole ranges one after
+        the other -- each signal's chunk of a range, in any order, then the next range's, at an
+        index at or past the end of the one before (the way a recorder writes a drive's topics):
+        the complete ranges, the joiner left as those adds leave it. None when they do not come
+        that way, or a chunk is irregular (an index that is not usable, a range whose chunks'
+        periods or lengths differ, no samples), or ranges are waiting already: then nothing is
+        done (add them one by one, which counts what is wrong).
+
+        ``signal``: each chunk's signal, as its index in ``signals`` (an int array);
+        ``first_sample_index`` and ``sample_period_s``: numpy arrays of theirs (unsigned ints,
+        floats); ``samples``: their float64 arrays; ``meta(i)``: (stamp, frame_id) of chunk i,
+        asked for each range's first signal (``signals[0]``), whose stamp a range keeps as with
+        ``add``."""
+        width = len(self.signals)
+        codes = np.asarray(signal)
+        n = codes.size
+        if (self.pending or self._end is not None or n == 0 or n % width or len(samples) != n
+                or codes.dtype.kind not in "ui"):
+            return None
+        codes = codes.reshape(-1, width)
+        firsts = np.asarray(first_sample_index)
+        periods = np.asarray(sample_period_s, dtype=np.float64).reshape(-1, width)
+        sizes = np.array([a.size for a in samples]).reshape(-1, width)
+        if firsts.dtype.kind not in "ui":
+            return None
+        firsts = firsts.reshape(-1, width)
+        starts = firsts[:, 0]
+        if not ((np.sort(codes, axis=1) == np.arange(width)).all()
+                and (firsts == starts[:, None]).all() and (starts >= 0).all()
+                and (starts < MAX_INDEX).all() and (periods == periods[:, :1]).all()
+                and (sizes == sizes[:, :1]).all() and (sizes > 0).all()):
+            return None
+        starts = starts.astype(np.int64)
+        if (starts[1:] < starts[:-1] + sizes[:-1, 0]).any():
+            return None       # a range behind the end of the one before: a restart or a repeat
+        signals = self.signals
+        firsts, period_list = starts.tolist(), periods[:, 0].tolist()
+        if (codes == codes[0]).all():    # every range's signals come in one order (a recorder's)
+            row = codes[0].tolist()
+            order, head = [signals[k] for k in row], row.index(0)
+            ranges = [JoinedRange(first, period, dict(zip(order, samples[at:at + width])),
+                                  *meta(at + head))
+                      for first, period, at in zip(firsts, period_list, range(0, n, width))]
+        else:
+            ranges = []
+            for r, (first, row, period) in enumerate(zip(firsts, codes.tolist(), period_list)):
+                at = r * width
+                # the signals as they came (the dict's order, as add's)
+                group = dict(zip([signals[k] for k in row], samples[at:at + width]))
+                ranges.append(JoinedRange(first, period, group, *meta(at + row.index(0))))
+        self._end = int(starts[-1]) + int(sizes[-1, 0])
+        return ranges
+
     def flush(self) -> int:
         """End of the stream: the ranges still incomplete are dropped and counted
         (``incomplete_range``); returns how many."""
@@ -197,6 +252,7 @@ class WindowingStage:
         self.window_offset_samples = self.capture.window_offset_samples
         angle = ("angle_difference",) if angle_source == "measured" else ("omega1", "omega2")
         self.input_signals = tuple(signals) + angle
+        self._input_set = frozenset(self.input_signals)
         self.faults = faults if faults is not None else FaultLog()
         self.resync_samples = int(resync_samples)
         self.lost_samples = 0          # samples never fed: gaps and dropped bad ranges
@@ -226,8 +282,7 @@ class WindowingStage:
         if getattr(joined, "period_mismatch", False):
             n = _common_length(joined.arrays, self.input_signals)
             return "sample_period_mismatch", n
-        missing = [s for s in self.input_signals if s not in joined.arrays]
-        if missing:
+        if not joined.arrays.keys() >= self._input_set:     # a signal missing
             return "incomplete_range", -1
         n = _common_length(joined.arrays, self.input_signals)
         if n == -2:

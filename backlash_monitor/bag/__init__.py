@@ -17,7 +17,8 @@ from .cdr import Codec, RosMessage
 from .errors import (BagError, CdrError, CorruptBagError, DamagedBagError, MissingTopicError,
                      NotABagError, TruncatedBagError, UnknownSchemaError, UnsupportedBagError)
 from .integrity import DamagedChunk, RecoveryReport
-from .reader import BagMessage, BagReader, SignalSeries, TopicInfo
+from .reader import (BagMessage, BagReader, SignalChunkColumns, SignalChunkRecord, SignalSeries, Stamp,
+                     TopicInfo)
 from .schema import full_definition, parse_schema, type_hash
 from .writer import BagWriter, qos_profile
 
@@ -30,7 +31,7 @@ DIAGNOSTIC_ARRAY = "diagnostic_msgs/msg/DiagnosticArray"
 __all__ = [
     "BagError", "BagMessage", "BagReader", "BagWriter", "CdrError", "Codec", "CorruptBagError",
     "DamagedBagError", "DamagedChunk",
-    "MissingTopicError", "NotABagError", "RecoveryReport", "RosMessage", "SignalSeries",
+    "MissingTopicError", "NotABagError", "RecoveryReport", "RosMessage", "SignalChunkColumns", "SignalChunkRecord", "SignalSeries", "Stamp",
     "TopicInfo", "TruncatedBagError", "UnknownSchemaError", "UnsupportedBagError",
     "full_definition", "parse_schema", "qos_profile", "type_hash", "SIGNAL_CHUNK",
     "BACKLASH_WINDOW", "BACKLASH_ESTIMATE", "DIAGNOSTIC_ARRAY",

@@ -151,22 +151,28 @@ class BagIndex:
         message as a record of its own (2501 in bench/bags.py's 10 s bag; analyze reads 1500 of
         them and, before those, the one true-width message). Kept while ``layout`` is the same
         list (integrity.py replaces it when it drops a damaged chunk)."""
+        return self.record_columns(buf)[0]
+
+    def record_columns(self, buf) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(:meth:`message_channels`, each layout record's offset in the file (int64), its body's
+        size (int64)): the layout as columns, taken once per layout (as message_channels)."""
         layout = self.layout
         kept = self._message_channels
         if kept is not None and kept[0] is layout and kept[1].size == len(layout):
-            return kept[1]
+            return kept[1:]
         n = len(layout)
         ops = np.fromiter(map(itemgetter(0), layout), dtype=np.uint8, count=n)
         sizes = np.fromiter(map(len, map(itemgetter(2), layout)), dtype=np.int64, count=n)
+        offsets = np.fromiter(map(itemgetter(1), layout), dtype=np.int64, count=n)
         heads = (ops == OP_MESSAGE) & (sizes >= MESSAGE_HEAD.size)
         channels = np.full(n, -1, dtype=np.int32)
         if heads.any():
-            at = np.fromiter(map(itemgetter(1), layout), dtype=np.int64, count=n)[heads] + 9
+            at = offsets[heads] + 9
             file_bytes = np.frombuffer(buf, dtype=np.uint8)
             channels[heads] = file_bytes[at] | (file_bytes[at + 1].astype(np.int32) << 8)
             del file_bytes   # no export of the file's map is left behind (the reader unmaps it)
-        self._message_channels = (layout, channels)
-        return channels
+        self._message_channels = (layout, channels, offsets, sizes)
+        return channels, offsets, sizes
 
     # ------------------------------------------------------------------ channels
     def channels_incomplete(self) -> str:

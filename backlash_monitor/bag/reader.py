@@ -48,7 +48,7 @@ from .signal_table import gather, signal_chunk_table
 from .summary import FooterState, Summary, read_footer, read_summary
 
 __all__ = ["BagMessage", "BagReader", "ChunkInfo", "DamagedChunk", "RecoveryReport",
-           "SignalChunkRecord", "SignalSeries", "Stamp", "TopicInfo", "WRITER_METADATA"]
+           "SignalChunkColumns", "SignalChunkRecord", "SignalSeries", "Stamp", "TopicInfo", "WRITER_METADATA"]
 
 
 @dataclass
@@ -91,6 +91,19 @@ class SignalChunkRecord(NamedTuple):
     frame_id: str                    # header.frame_id
     signal_name: str
     unit: str
+
+
+class SignalChunkColumns(NamedTuple):
+    """The SignalChunk messages ``BagReader.signal_chunks(topics, copy=False)`` yields, as columns
+    (one entry per message, in file order): what a file without chunks gives at once."""
+    topics: tuple[str, ...]          # the topics, in the order of their first message
+    topic: np.ndarray                # per message: its topic's index in ``topics`` (int64)
+    first_sample_index: np.ndarray   # uint64
+    sample_period_s: np.ndarray      # float64
+    sec: np.ndarray                  # header.stamp.sec (int64)
+    nanosec: np.ndarray              # header.stamp.nanosec (int64)
+    samples: list[np.ndarray]        # read-only float64 views of the file's map
+    texts: tuple[tuple[str, str, str], ...]   # per topic: (frame_id, signal_name, unit), alike for all its messages
 
 
 @dataclass
@@ -461,6 +474,75 @@ class BagReader:
                 *fast[cid], body[head:], copy and type(body.obj) is not bytes)
             yield SignalChunkRecord(names[cid], log_time, first, period, samples,
                                     Stamp(sec, nanosec), frame_id, signal_name, unit)
+
+    def signal_chunk_columns(self, topics: Iterable[str] | str) -> SignalChunkColumns | None:
+        """``signal_chunks(topics, copy=False)`` at once, as columns, when the file holds those
+        messages outside chunks (rosbag2's noChunking) and each topic's payloads are laid out
+        alike (signal_table.py: the same string section, every field inside the payload, at
+        least one sample): the same values, with no Python step per message but making each
+        one's samples view. None otherwise: read them with :meth:`signal_chunks`."""
+        wanted = self._channel_ids(topics)
+        infos = {t.channel_id: t for t in self.topics.values()}
+        codecs = {}
+        for cid in wanted:     # (as signal_chunks checks them)
+            if not infos[cid].type.endswith("/SignalChunk"):
+                raise BagError(f"topic {infos[cid].name!r} has type {infos[cid].type}, "
+                               "not SignalChunk")
+            codecs[cid] = self.codec(infos[cid].name)
+        head = MESSAGE_HEAD.size
+        # a file of unchunked messages only (no chunk; each message holds its head): the records
+        # of the wanted channels, in file order, are what _records_to_read gives
+        channels, offsets, sizes = self._index.record_columns(self._buf)
+        if not channels.size or (channels < 0).any():
+            return None
+        rows = np.flatnonzero(np.isin(channels, np.fromiter(wanted, dtype=np.int32,
+                                                            count=len(wanted))))
+        if not rows.size:
+            return None
+        n = rows.size
+        starts = offsets[rows] + 9
+        sizes = sizes[rows]
+        channels = channels[rows]
+        data = np.frombuffer(self._buf, dtype=np.uint8)
+        first_rows = {int(c): int(np.argmax(channels == c)) for c in np.unique(channels)}
+        order = sorted(first_rows, key=first_rows.get)       # topics by their first message
+        topic = np.empty(n, dtype=np.int64)
+        first = np.empty(n, dtype=np.uint64)
+        period = np.empty(n, dtype=np.float64)
+        sec = np.empty(n, dtype=np.int64)
+        nanosec = np.empty(n, dtype=np.int64)
+        count = np.empty(n, dtype=np.int64)
+        at = np.empty(n, dtype=np.int64)
+        texts = []
+        for k, cid in enumerate(order):
+            codec = codecs[cid]
+            rows = np.flatnonzero(channels == cid)
+            found = (signal_chunk_table(codec, data, starts[rows] + head, sizes[rows] - head, [None])
+                     if codec.is_signal_chunk else None)
+            if found is None or len(found.rows) != rows.size or 0 in found.samples:
+                return None     # a payload laid out otherwise, or one without samples
+            topic[rows] = k
+            first[rows] = found.first_sample_index
+            period[rows] = found.sample_period_s
+            sec[rows] = found.sec
+            nanosec[rows] = found.nanosec
+            count[rows] = found.samples
+            at[rows] = found.samples_at
+            texts.append((found.frame_id, found.signal_name, found.unit))
+        del data
+        # each message's samples: a slice of one float64 view of the map per byte alignment
+        views = {}
+        samples = []
+        for offset, size in zip(at.tolist(), count.tolist()):
+            shift = offset & 7
+            base = views.get(shift)
+            if base is None:
+                base = views[shift] = np.frombuffer(self._buf, dtype=_F64_LE,
+                                                    count=(len(self._buf) - shift) // 8, offset=shift)
+            i = offset >> 3
+            samples.append(base[i:i + size])
+        return SignalChunkColumns(tuple(self.channels[cid].topic for cid in order), topic, first,
+                                  period, sec, nanosec, samples, tuple(texts))
 
     def _unchunked_signal_chunks(self, records: list, fast: dict, names: dict,
                                  copy: bool) -> Iterator[SignalChunkRecord]:

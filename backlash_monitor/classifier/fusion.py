@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 from collections import deque
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -83,8 +84,15 @@ class FusedEstimate:
     width_m: float
     events: int
     score: np.ndarray       # fused score per candidate width (smaller is better)
-    margin: float           # second-smallest over smallest score
     continuous_width_m: float = float("nan")  # median of the events' continuous widths (NaN: none)
+
+    @cached_property
+    def margin(self) -> float:
+        """Second-smallest over smallest score (taken when asked: analyze writes every event's
+        fused width, not its margin)."""
+        s = np.sort(self.score)
+        with np.errstate(over="ignore"):   # s[0] subnormal: the ratio is +inf, as for s[0] == 0
+            return float(s[1] / s[0]) if s[0] > 0 else (1.0 if s[1] == s[0] else float("inf"))
 
 
 class WidthFusion:
@@ -185,12 +193,8 @@ class WidthFusion:
         """The estimate from the fused events' B vectors, their normalised vectors and their
         continuous widths."""
         idx, score = _fuse_normalised(bs, normalised, self.rule)
-        s = np.sort(score)
-        with np.errstate(over="ignore"):   # s[0] subnormal: the ratio is +inf, as for s[0] == 0
-            margin = float(s[1] / s[0]) if s[0] > 0 else (1.0 if s[1] == s[0] else float("inf"))
         return FusedEstimate(index=idx, width_m=float(self.widths_m[idx]), events=len(bs),
-                             score=score, margin=margin,
-                             continuous_width_m=fused_continuous_width(continuous))
+                             score=score, continuous_width_m=fused_continuous_width(continuous))
 
 
 def fusable(bs: np.ndarray) -> np.ndarray:

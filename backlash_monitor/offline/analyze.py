@@ -26,6 +26,8 @@ import pathlib
 import time
 from dataclasses import dataclass
 
+import numpy as np
+
 from backlash_monitor.errors import UsageError
 
 ESTIMATE_BATCH = 64   # onset windows per batched denoise + DriveEstimator.estimate_many call
@@ -153,6 +155,17 @@ class SourceCheck:
             return True
         return self._check(m, name, key)
 
+    def wrong(self, topic: str, name: str, signal_name: str, unit: str) -> str | None:
+        """What is wrong with a chunk on ``topic`` (signal ``name``) that carries ``signal_name``
+        in ``unit`` (another signal, another unit), or None."""
+        if signal_name and signal_name != name:
+            return (f"topic {topic} carries signal {signal_name!r} ({unit}), not {name!r}; "
+                    f"allowed: {name} in {self.units.get(name, '?')} on this topic")
+        if unit and self.units.get(name) and unit != self.units[name]:
+            return (f"topic {topic} carries {name} in {unit!r}; the pattern library expects "
+                    f"{self.units[name]!r}")
+        return None
+
     def _check(self, m, name, key) -> bool:
         from backlash_monitor.windowing.faults import is_period
         period = m.sample_period_s
@@ -163,13 +176,7 @@ class SourceCheck:
                 f"{m.topic}); the pattern library {self.library.path} was trained at "
                 f"{1 / self.period_s:g} Hz ({self.period_s:g} s), its patterns do not fit; allowed: a bag "
                 f"sampled at {1 / self.period_s:g} Hz, or --library trained at the bag's rate")
-        wrong = None
-        if m.signal_name and m.signal_name != name:
-            wrong = (f"topic {m.topic} carries signal {m.signal_name!r} ({m.unit}), not {name!r}; "
-                     f"allowed: {name} in {self.units.get(name, '?')} on this topic")
-        elif m.unit and self.units.get(name) and m.unit != self.units[name]:
-            wrong = (f"topic {m.topic} carries {name} in {m.unit!r}; the pattern library expects "
-                     f"{self.units[name]!r}")
+        wrong = self.wrong(m.topic, name, m.signal_name, m.unit)
         if wrong:
             if not self.accepted:
                 raise UsageError(wrong)
@@ -246,32 +253,25 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
                 for m in reader.messages([width_topic]):
                     true_width = float(m.message.data)
             joiner = ChunkJoiner(stage.input_signals, faults=stage.faults)
-            join = joiner.add
             # contiguous ranges go to the stage in blocks: the same windows as range by range
             feeder = BlockFeeder(stage)
             batch = []   # onset windows, denoised and estimated together (same numbers as one by one)
             last_offsets = ({}, 0)   # the latest window's sensor offset estimate, periods
-            first_a1 = ("", math.nan)   # the drive's name and the first sample's time
-            a1_topics = {t for t, n in topics.items() if n == "a1"}
-            source_ok = source.ok
-            # copy=False: samples in the file's map (a bag without chunks, or uncompressed ones)
-            # are read in place: the feeder joins them into blocks, the stage copies what it keeps
-            for m in _then_none(reader.signal_chunks(list(topics), copy=False)):
-                if m is None:
+            # the drive's name and the first sample's time, from the first a1 chunk
+            first_a1 = [("", math.nan)]
+            # a file without chunks: its ranges joined at once when they come whole, one after the
+            # other (the same ranges as chunk by chunk); otherwise (or when they do not) chunk by
+            # chunk. copy=False: samples in the file's map (a bag without chunks, or uncompressed
+            # ones) are read in place: the feeder joins them into blocks, the stage copies what it keeps
+            ranges = _ranges_at_once(reader, topics, source, joiner, first_a1)
+            if ranges is None:
+                ranges = _ranges_one_by_one(reader.signal_chunks(list(topics), copy=False), topics,
+                                            source, joiner, first_a1)
+            for joined in _then_none(ranges):
+                if joined is None:
                     joiner.flush()      # ranges never completed: counted, not silently lost
                     windows, dropped = feeder.flush()
                 else:
-                    name = topics[m.topic]
-                    if not source_ok(m, name):
-                        continue
-                    if a1_topics and m.topic in a1_topics:
-                        first_a1 = (m.frame_id, m.stamp.sec + m.stamp.nanosec * 1e-9
-                                    - m.first_sample_index * m.sample_period_s)
-                        a1_topics = None
-                    joined = join(name, m.first_sample_index, m.sample_period_s, m.samples, m.stamp,
-                                  m.frame_id)
-                    if joined is None:
-                        continue
                     windows, dropped = feeder.add(joined)
                 if dropped:
                     discarded.extend(dropped)
@@ -280,7 +280,7 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
                     if not estimator.classifies(window.kind):
                         continue  # no estimate from it: skip denoising it (live: denoised, unused)
                     batch.append((completing, window))
-                if len(batch) >= ESTIMATE_BATCH or (m is None and batch):
+                if len(batch) >= ESTIMATE_BATCH or (joined is None and batch):
                     denoised = denoise_pairs([(w.signals["a1"], w.signals["a2"]) for _, w in batch])
                     results = estimator.estimate_many([(a1, a2, w.kind, w.sample_period_s, w.sensor_offsets)
                                                        for (_, w), (a1, a2) in zip(batch, denoised)])
@@ -326,7 +326,77 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
     return {"rows": rows, "summary": summary, "discarded": discarded, "n_samples": n_samples,
             "seconds": elapsed, "outputs": outputs, "integrity": integrity,
             "faults": (stage.faults, estimator.faults), "lost_samples": stage.lost_samples,
-            "drive": first_a1[0], "first_stamp_s": first_a1[1], "sensor_offsets": sensor_offsets}
+            "drive": first_a1[0][0], "first_stamp_s": first_a1[0][1], "sensor_offsets": sensor_offsets}
+
+
+def _ranges_one_by_one(chunks, topics: dict, source: SourceCheck, joiner, first_a1: list):
+    """The joined ranges of ``chunks`` (SignalChunkRecords of ``topics``: topic -> signal), chunk by
+    chunk: each checked (``source``), the first a1 chunk's (frame_id, time of its first sample)
+    put in ``first_a1[0]``."""
+    a1_topics = {t for t, n in topics.items() if n == "a1"}
+    source_ok = source.ok
+    join = joiner.add
+    for m in chunks:
+        name = topics[m.topic]
+        if not source_ok(m, name):
+            continue
+        if a1_topics and m.topic in a1_topics:
+            first_a1[0] = _first_sample_time(m.frame_id, m.stamp.sec, m.stamp.nanosec,
+                                             m.first_sample_index, m.sample_period_s)
+            a1_topics = None
+        joined = join(name, m.first_sample_index, m.sample_period_s, m.samples, m.stamp,
+                      m.frame_id)
+        if joined is not None:
+            yield joined
+
+
+def _ranges_at_once(reader, topics: dict, source: SourceCheck, joiner, first_a1: list):
+    """The joined ranges of a file without chunks, taken at once (BagReader.signal_chunk_columns,
+    ChunkJoiner.add_rows), when that gives what :func:`_ranges_one_by_one` gives: every topic's
+    chunks alike (one sample period, the right signal and unit: ``source`` checks each topic's
+    first chunk, as it would, and passes the others, as it would), whole ranges one after the
+    other. None otherwise (nothing done that chunk by chunk would not do alike)."""
+    from backlash_monitor.bag import SignalChunkRecord, Stamp
+    columns = reader.signal_chunk_columns(list(topics))
+    if columns is None:
+        return None
+    firsts = [int(np.argmax(columns.topic == k)) for k in range(len(columns.topics))]
+    for k, (topic, (frame_id, signal_name, unit)) in enumerate(zip(columns.topics, columns.texts)):
+        periods = columns.sample_period_s[columns.topic == k]
+        if not (periods == periods[0]).all() or source.wrong(topic, topics[topic], signal_name, unit):
+            return None      # (a period that is NaN, too)
+    first_chunks = []
+    for k, i in enumerate(firsts):     # in file order, as chunk by chunk
+        frame_id, signal_name, unit = columns.texts[k]
+        m = SignalChunkRecord(columns.topics[k], 0, int(columns.first_sample_index[i]),
+                              float(columns.sample_period_s[i]), columns.samples[i],
+                              Stamp(int(columns.sec[i]), int(columns.nanosec[i])), frame_id,
+                              signal_name, unit)
+        if not source.ok(m, topics[m.topic]):     # (not wrong: it does not refuse)
+            return None   # pragma: no cover
+        first_chunks.append(m)
+    # each chunk's signal as its index in the joiner's signals (topics of other signals: -1)
+    signal_of = np.array([joiner.signals.index(topics[t]) if topics[t] in joiner.signals else -1
+                          for t in columns.topics])
+    frame_ids = [texts[0] for texts in columns.texts]
+    sec, nanosec, topic = columns.sec.tolist(), columns.nanosec.tolist(), columns.topic.tolist()
+
+    def meta(i):
+        return Stamp(sec[i], nanosec[i]), frame_ids[topic[i]]
+    ranges = joiner.add_rows(signal_of[columns.topic], columns.first_sample_index,
+                             columns.sample_period_s, columns.samples, meta)
+    if ranges is not None:
+        a1 = [m for m in first_chunks if topics[m.topic] == "a1"]
+        if a1:
+            m = a1[0]
+            first_a1[0] = _first_sample_time(m.frame_id, m.stamp.sec, m.stamp.nanosec,
+                                             m.first_sample_index, m.sample_period_s)
+    return ranges
+
+
+def _first_sample_time(frame_id, sec, nanosec, first_sample_index, sample_period_s):
+    """(frame_id, time of the stream's first sample [s]) from a chunk's stamp."""
+    return frame_id, sec + nanosec * 1e-9 - first_sample_index * sample_period_s
 
 
 def _sensor_offsets(offsets: dict, periods: int, waiting: int) -> dict:
@@ -350,12 +420,12 @@ def _row(window, est, true_width) -> dict:
         "width_index": est.width_index, "b_margin": est.b_margin,
         "continuous_width_m": est.continuous_width_m, "fused_width_m": est.fused_width_m,
         "fused_events": est.fused_events, "true_width_m": true_width,
-        "b_vector": [float(b) for b in est.b_vector],
+        "b_vector": np.asarray(est.b_vector, dtype=np.float64).tolist(),   # (Python floats)
         "fused_continuous_width_m": est.fused_continuous_width_m,
         "a1_offset_m_s2": window.sensor_offsets.get("a1", math.nan),
         "a2_offset_m_s2": window.sensor_offsets.get("a2", math.nan),
         "offset_periods": window.offset_periods,
-        "candidate_widths_m": [float(w) for w in est.candidate_widths_m],
+        "candidate_widths_m": np.asarray(est.candidate_widths_m, dtype=np.float64).tolist(),
         "entry_kind": window.kind,
     }
 

@@ -1,6 +1,7 @@
 """Window capture: the ``window_length`` samples that follow each entry, across chunk boundaries."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Iterable, Mapping, Sequence
 
@@ -65,6 +66,12 @@ class DiscardedWindow:
     entry_sample_index: int
     reason: str
     kind: str | None = None
+
+
+def _all_finite(a: np.ndarray) -> bool:
+    """Every sample finite: a finite sum says so at once (NaN and inf propagate into it); a sum
+    that is not finite (those, or finite samples overflowing it) is decided sample by sample."""
+    return math.isfinite(np.add.reduce(a)) or bool(np.isfinite(a).all())
 
 
 class WindowCapture:
@@ -147,7 +154,7 @@ class WindowCapture:
         if any(a.ndim != 1 for a in arrays):
             raise ValueError("signals: every captured signal must be a 1-D array of the same length")
         bad = ("length_mismatch" if any(a.size != n for a in arrays) else
-               "non_finite_samples" if not all(np.isfinite(a).all() for a in arrays) else None)
+               "non_finite_samples" if not all(map(_all_finite, arrays)) else None)
         if bad is not None:
             # the windows open across this chunk would hold it: discard them, start again after it
             discarded += self._discard_all(bad)

@@ -94,12 +94,15 @@ def fit_departure(y: np.ndarray, direction: int, min_pre: int = 16, min_post: in
     yk = np.multiply(y, k, out=both.imag)
     ykk = yk * k
     a01 = both[::-1][:m].cumsum()
-    a0 = a01.real[min_post:]
-    a1 = a01.imag[min_post:]
+    # the two sums apart, each contiguous: the ten operations on them below run on contiguous
+    # arrays (on the complex array's real and imaginary views they stride: ~2x the time)
+    parts = a01.view(np.float64).reshape(m, 2)[min_post:].T
+    a0 = parts[0].copy()
+    a1 = parts[1].copy()
     a2 = ykk[::-1][:m].cumsum()[min_post:]
     # regressors 1, k (fixed) and q = (k - t)^2 for k >= t.  Project 1, k out (Frisch-Waugh):
     # r_qq = q'q - (X'q)' G^-1 X'q, r_yq = y'q - (X'q)' G^-1 X'y, a = r_yq / r_qq, SSE = SSE_lin - r_yq^2/r_qq
-    xy = np.array([y.sum(), np.dot(k, y)])
+    xy = np.array([np.add.reduce(y), np.dot(k, y)])     # (y.sum() is np.add.reduce(y))
     gy = g.ginv @ xy
     a1 *= g.two_t
     a0 *= g.t_sq

@@ -126,3 +126,62 @@ def test_strings_changing_within_a_topic(tmp_path, chunks):
         got = [fields_of_record(r) for r in bag.signal_chunks(["/plant/a1"])]
         assert got == [fields_of(m) for m in bag.messages(["/plant/a1"])]
     assert [(g[6], g[7], g[8]) for g in got] == names
+
+
+def fields_of_columns(columns, i):
+    k = int(columns.topic[i])
+    frame_id, signal_name, unit = columns.texts[k]
+    return (columns.topics[k], int(columns.first_sample_index[i]), float(columns.sample_period_s[i]),
+            columns.samples[i].tobytes(), (int(columns.sec[i]), int(columns.nanosec[i])), frame_id,
+            signal_name, unit)
+
+
+@pytest.mark.parametrize("layout", ["zstd", "uncompressed chunks", "no chunks"])
+def test_columns_of_a_file_without_chunks(tmp_path, layout):
+    """signal_chunk_columns: without chunks, what signal_chunks(copy=False) yields, as columns (the
+    same values; each message's samples a read-only view of the map); with chunks, None."""
+    path = tmp_path / "b.mcap"
+    write_sample_bag(path, n_chunks=30, compression="" if layout != "zstd" else "zstd")
+    if layout == "no chunks":
+        path = rewrite_with_mcap(path, tmp_path / "unchunked.mcap", noChunking=True)
+    with BagReader(path) as bag:
+        columns = bag.signal_chunk_columns(SIGNALS)
+        if layout != "no chunks":
+            assert columns is None
+            return
+        records = list(bag.signal_chunks(SIGNALS, copy=False))
+        assert len(records) == len(columns.samples) == 90
+        assert [fields_of_columns(columns, i) for i in range(90)] == [
+            tuple(f for k, f in enumerate(fields_of_record(r)) if k != 1) for r in records]
+        for view in columns.samples:
+            assert view.dtype == np.float64 and not view.flags.writeable
+            base = view.base
+            while isinstance(base, np.ndarray):
+                base = base.base
+            assert isinstance(base.obj, mmap.mmap)
+        with pytest.raises(BagError):
+            bag.signal_chunk_columns(["/estimate"])
+
+
+@pytest.mark.parametrize("case", ["big endian", "strings change", "no samples"])
+def test_columns_refuse_payloads_laid_out_otherwise(tmp_path, case):
+    """A payload laid out otherwise than its topic's first (read one by one by signal_chunks), or
+    one without samples: no columns (None)."""
+    path = tmp_path / "b.mcap"
+    codec = Codec.for_type(SIGNAL_CHUNK)
+
+    def payload(i, n=3, frame_id="drive"):
+        msg = codec.new(signal_name="a1", unit="u", sample_period_s=2e-5, first_sample_index=3 * i,
+                        samples=np.arange(float(n)))
+        msg.header.frame_id = frame_id
+        return codec.encode(msg)
+    odd = {"big endian": big_endian_chunk(3), "strings change": payload(1, frame_id="drive7"),
+           "no samples": payload(1, n=0)}[case]
+    with BagWriter(path) as w:
+        w.add_topic("/plant/a1", SIGNAL_CHUNK)
+        for i, data in enumerate((payload(0), odd, payload(2))):
+            w.write_raw("/plant/a1", data, log_time_ns=i + 1)
+    path = rewrite_with_mcap(path, tmp_path / "unchunked.mcap", noChunking=True)
+    with BagReader(path) as bag:
+        assert len(list(bag.signal_chunks("/plant/a1"))) == 3
+        assert bag.signal_chunk_columns("/plant/a1") is None

@@ -4,8 +4,9 @@ import json
 import numpy as np
 import pytest
 
-from backlash_monitor.classifier.patterns import (FORMAT_VERSION, PatternLibrary, PatternLibraryError,
-                                                  PatternLibraryMismatch, load_library)
+from backlash_monitor.classifier.patterns import (FORMAT_VERSION, TRIGGER_LIBRARY_PATHS, PatternLibrary,
+                                                  PatternLibraryError, PatternLibraryMismatch, load_library,
+                                                  read_npz)
 from backlash_monitor.classifier.shape import ShapeModel
 
 SETTINGS = {"trigger": "paper", "epochs": 30, "l1": 0.1, "l2": 0.09, "denoising": "sym5 level 6",
@@ -106,3 +107,39 @@ def test_packaged_libraries_carry_the_configured_offset():
     for trig in ("contact_loss", "paper"):
         lib = load_library(None, trigger=trig, window_offset_samples=default_window_offset(trig))
         assert lib.settings["window_offset_samples"] == default_window_offset(trig)
+
+
+def _same_as_np_load(path):
+    got = read_npz(path)
+    with np.load(path, allow_pickle=False) as z:
+        want = {k: z[k] for k in z.files}
+    assert list(got) == list(want)
+    for key, a in want.items():
+        b = got[key]
+        assert (b.dtype, b.shape, b.flags.f_contiguous) == (a.dtype, a.shape, a.flags.f_contiguous), key
+        assert b.tobytes(order="A") == a.tobytes(order="A"), key
+        assert b.flags.writeable, key
+
+
+def test_read_npz_gives_what_np_load_gives(tmp_path):
+    """read_npz parses numpy's plain headers itself: every array as np.load reads it (the packaged
+    libraries, and the header forms numpy writes: Fortran order, 0-d, empty, big endian, unicode,
+    bool, complex; a structured dtype goes through numpy's reader)."""
+    for path in TRIGGER_LIBRARY_PATHS.values():
+        _same_as_np_load(path)
+    forms = {"fortran": np.asfortranarray(np.arange(12.0).reshape(3, 4)), "scalar": np.array(3.5),
+             "empty": np.zeros((0, 3)), "one": np.arange(7.0), "big_endian": np.arange(4, dtype=">i8"),
+             "text": np.array("héllo"), "flags": np.array([True, False]), "complex": np.arange(3) * 1j,
+             "int8": np.arange(5, dtype=np.int8),
+             "record": np.zeros(3, dtype=[("a", "<i4"), ("b", "<f8")])}
+    for save in (np.savez, np.savez_compressed):
+        path = tmp_path / f"{save.__name__}.npz"
+        save(path, **forms)
+        _same_as_np_load(path)
+
+
+def test_unreadable_library_is_named(tmp_path):
+    path = tmp_path / "lib.npz"
+    path.write_bytes(b"PK not a zip file")
+    with pytest.raises(PatternLibraryError, match="unreadable"):
+        load_library(path)
