@@ -64,8 +64,9 @@ class ModelWatch:
         self.events: deque = deque(maxlen=window_events)
         self.live = LiveEvents(reference.sample_period_s, reference.pulse_period_samples)
         self.views_noise = np.zeros(len(SEGMENT_SIGNALS))
+        self.views_quant: np.ndarray | None = None     # per signal the ADC step the views quantise the model at
         self.noise_checked = False
-        self.quant_probe: dict | None = None
+        self.quant_step: np.ndarray | None = None      # per signal the window's ADC step (found once), 0: none
         self.noise_scale = self._noise_scale()
         self.evaluations = 0
         self.dof = reference.view_dof()          # the views' whitening: degrees of freedom (the rule's p-values)
@@ -89,36 +90,40 @@ class ModelWatch:
         return out
 
     def noise_floor(self) -> np.ndarray:
-        """The sensor noise floor of the window's events (their periods' mean Welch spectrum vs the model's)."""
+        """The sensor noise floor of the window's events (their periods' mean Welch spectrum vs the model's): the
+        white noise before the ADC's quantiser when the signal has one (analysis.sensor_noise_floor)."""
         psds = [e.psd for e in self.events if e.psd is not None]
         if not psds:
             return self.views_noise
         psd = np.mean(psds, axis=0)
         return self.reference.noise_floor(dict(zip(SEGMENT_SIGNALS, psd)), significant=True,
-                                          signals=self._quantisation_probe())
+                                          quant_step=self.quantisation())
 
-    def _quantisation_probe(self) -> dict:
-        """The ADC's quantisation (analysis.sensor_noise_floor reads it off the samples: analysis.quantisation_step)
-        is a property of the sensor chain: found once, on the first full window's raw segments (~36,000 samples per
-        signal; np.unique of them cost ~4 ms, a third of the watch's work when repeated), then handed on as three
-        levels of that step (the same function finds the same step on them; no step: one level)."""
-        if self.quant_probe is None:
+    def quantisation(self) -> np.ndarray:
+        """Per signal the ADC's step (analysis.quantisation_step reads it off the samples), 0: not quantised. A
+        property of the sensor chain: found once, on the first full window's raw segments (~36,000 samples per
+        signal; np.unique of them cost ~4 ms, a third of the watch's work when repeated)."""
+        if self.quant_step is None:
             from backlash_monitor.workbench.analysis import quantisation_step
-            self.quant_probe = {}
-            for i, s in enumerate(SEGMENT_SIGNALS):
-                step = quantisation_step(np.concatenate([e.raw[i] for e in self.events]))
-                self.quant_probe[s] = np.repeat(np.arange(3.0) * step, 2) if step > 0 else np.zeros(6)
-        return self.quant_probe
+            self.quant_step = np.array([quantisation_step(np.concatenate([e.raw[i] for e in self.events]))
+                                        for i in range(len(SEGMENT_SIGNALS))])
+        return self.quant_step
 
     def _views_noise(self) -> np.ndarray:
         """The noise floor the views are built for: the window's, once it moved by NOISE_REBUILD_FACTOR (a
-        rebuild costs ~0.1 s; the floor of a sensor does not change from event to event)."""
+        rebuild costs ~0.1 s; the floor of a sensor does not change from event to event). The ADC's quantiser
+        (quantisation) is fixed with the first window: a signal's counts when its step^2/12 is not negligible
+        (NOISE_NEGLIGIBLE, as a white floor's)."""
         newest = self.events[-1]
         if self.noise_checked and newest.psd is None:
             return self.views_noise          # no new spectrum since the last look
         self.noise_checked = True            # (the first evaluation always looks: its window has 4 spectra)
         est = self.noise_floor()
         floor = NOISE_NEGLIGIBLE * self.noise_scale
+        if self.views_quant is None:
+            from backlash_monitor.workbench.analysis import quantisation_psd
+            quant = self.quantisation()
+            self.views_quant = np.where(quantisation_psd(quant, self.reference.sample_period_s) < floor, 0.0, quant)
         new = np.where(est < floor, 0.0, est)
         a, b = np.maximum(new, floor), np.maximum(self.views_noise, floor)
         if np.any(np.abs(np.log(a / b)) > math.log(NOISE_REBUILD_FACTOR)):
@@ -127,10 +132,12 @@ class ModelWatch:
 
     def evidence(self) -> Evidence:
         ev = list(self.events)
+        noise = self._views_noise()
         return Evidence(np.stack([e.raw for e in ev]), np.stack([e.dc for e in ev]), np.stack([e.spec for e in ev]),
-                        self._views_noise(), np.array([e.entry_sample_index for e in ev]),
+                        noise, np.array([e.entry_sample_index for e in ev]),
                         denoised=(np.stack([e.denoised for e in ev]) if all(e.denoised is not None for e in ev)
-                                  else None))
+                                  else None),
+                        quant_step=self.views_quant if np.any(self.views_quant > 0) else None)
 
     def add_event(self, event: LiveEvent) -> WatchUpdate | None:
         self.events.append(event)

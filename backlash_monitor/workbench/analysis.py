@@ -67,14 +67,27 @@ class Comparison:
     spec_weights: np.ndarray | None = None   # per spectral-shape feature 1/its noise floor (workbench/spectral.py)
     dc_weights: np.ndarray | None = None     # per signal 1/the noise floor of the mean of its period means
     noise_psd: np.ndarray | None = None      # per signal: the recording's white sensor-noise floor [(m/s^2)^2/Hz]
+                                             # (beyond its ADC's quantiser, when it has one: sensor_noise_floor)
     record_spectra: dict | None = None       # spectra(): the whole-record Welch PSDs (measured, ensemble)
     model_event_spec: list | None = None     # per seed: the model's events' spectral features with the noise floor
     dc_names: tuple = ("a1", "a2")           # the record-mean view's signals (events.dc_signals)
+    quant_step: np.ndarray | None = None     # per signal: the recording's ADC step [m/s^2], 0 = not quantised
+    chain_power: np.ndarray | None = None    # the sensor chain's power per signal (S,) or per signal and band (S, B)
+                                             # in the spectral block's band-power units (spectral.sensor_chain)
 
     @property
     def segment_noise(self) -> np.ndarray:
-        """The sensor noise floor in the spectral block's band-power units (spectral.noise_power)."""
+        """The sensor chain's power in the spectral block's band-power units: the white floor's (spectral.noise_power)
+        or, with an ADC's quantiser, per band (spectral.sensor_chain)."""
+        if self.chain_power is not None:
+            return self.chain_power
         return spectral.noise_power(self.noise_psd, PRE_SAMPLES + POST_SAMPLES, self.meas.sample_period_s)
+
+    @property
+    def noise_psd_white_equivalent(self) -> np.ndarray:
+        """Per signal: the white floor plus the quantiser's step^2/12 as a white PSD (the whole-record spectra's
+        nuisance, analysis.spectra; what the recording's noise band reads)."""
+        return self.noise_psd + quantisation_psd(self.quant_step, self.meas.sample_period_s)
 
     @property
     def target(self):
@@ -98,19 +111,20 @@ def build_comparison(meas, model, seeds=None) -> Comparison:
     loo = ens.loo_deviation()
     floor = np.sqrt(np.mean(loo ** 2, axis=(0, 2)))
     record_spectra = _welch_all(meas, ens)
-    noise_psd = sensor_noise_floor(record_spectra, meas.signals, meas.sample_period_s)
-    # the spectral-shape features' floor: their event-to-event spread in the model's own events (with the
-    # recording's sensor noise floor) over the square root of the measurement's number of events (the noise of
-    # the measured events' mean)
-    model_event_spec = [spectral.noisy_event_features(raw, meas.sample_period_s, noise_psd, seed=k)
-                        for k, raw in enumerate(ens.per_event)]
+    quant = quantisation_steps(meas.signals)
+    noise_psd = sensor_noise_floor(record_spectra, meas.signals, meas.sample_period_s, quant)
+    # the spectral-shape features' floor: their event-to-event spread in the model's own events (recorded through
+    # the recording's sensor chain: its noise floor and its ADC's quantiser) over the square root of the
+    # measurement's number of events (the noise of the measured events' mean)
+    model_event_spec, chain = spectral.sensor_chain(ens.per_event, meas.sample_period_s, noise_psd, quant)
     feats = np.vstack(model_event_spec)
     spec_floor = feats.std(axis=0) / np.sqrt(max(ev.n_events, 1))
     # the record-mean view's floor: the same for the events' period means (events.period_means)
     dc_floor = record_mean_floor(ens.per_event_dc, ev.n_events)
     return Comparison(model, meas, conditions, seeds, ev, ens, 1.0 / floor, floor,
                       1.0 / np.maximum(spec_floor, 1e-12), 1.0 / np.maximum(dc_floor, 1e-12), noise_psd,
-                      record_spectra, model_event_spec, dc_names)
+                      record_spectra, model_event_spec, dc_names, quant,
+                      chain if np.any(quant > 0) else None)
 
 
 def record_mean_floor(per_seed_dc, n_events: int) -> np.ndarray:
@@ -222,33 +236,52 @@ def quantisation_step(x: np.ndarray) -> float:
     return step if np.all(np.abs(k - np.round(k)) < 1e-3 * np.maximum(k, 1.0)) else 0.0
 
 
+def quantisation_steps(signals: dict) -> np.ndarray:
+    """Per signal (SEGMENT_SIGNALS): the ADC step of the recording's samples [their unit], 0 = not quantised
+    (quantisation_step)."""
+    return np.array([quantisation_step(signals[s]) for s in SEGMENT_SIGNALS])
+
+
+def quantisation_psd(quant_step, sample_period_s: float) -> np.ndarray:
+    """Per signal: an ADC step's step^2/12 as a white one-sided PSD [(m/s^2)^2/Hz] (0 without a step)."""
+    q = np.zeros(len(SEGMENT_SIGNALS)) if quant_step is None else np.asarray(quant_step, dtype=float)
+    return q ** 2 / 12.0 * 2.0 * sample_period_s
+
+
 def sensor_noise_floor(record_spectra: dict, signals: dict | None = None,
-                       sample_period_s: float | None = None) -> np.ndarray:
+                       sample_period_s: float | None = None, quant_step=None) -> np.ndarray:
     """Per signal: the white noise floor the recording's sensor chain adds [(m/s^2)^2/Hz, one-sided]: the median
     of the measured PSD over NOISE_BAND_HZ minus the model's there, >= 0. A real accelerometer always has one (and
     an ADC its quantisation); the model has none. It is a nuisance, not an effect: the spectral views compare the
-    measurement with the model plus this floor (an effect must explain what is left). A quantised signal (an ADC)
-    has at least its quantisation noise, step^2/12 spread over the band (quantisation_step): the white estimate
-    above 12 kHz alone measured 2.3x less on a foreign drive with a 16-bit ADC on a2."""
+    measurement with the model recorded through the sensor chain (an effect must explain what is left).
+
+    A quantised signal (an ADC; its step from ``quant_step`` or read off ``signals``: quantisation_step) is
+    modelled as the white floor *then* the quantiser (spectral.sensor_chain quantises the model's events): the
+    floor returned is the white noise before it, the noise band's excess less the step^2/12 a dithered
+    quantiser leaves there, >= 0. An undithered ADC's error is not white (its level above 12 kHz measured 2.3x
+    under step^2/12 on a foreign drive with a 16-bit a2), so a drive with no other noise gets a floor of 0 and its
+    quantiser alone; a noisy one (noise >> step) its noise, the quantiser adding ~step^2/12 on top as it does."""
     out = []
-    for s in SEGMENT_SIGNALS:
+    if quant_step is None and signals is not None and sample_period_s is not None:
+        quant_step = quantisation_steps(signals)
+    quant = np.zeros(len(SEGMENT_SIGNALS)) if quant_step is None or sample_period_s is None \
+        else quantisation_psd(quant_step, sample_period_s)
+    for i, s in enumerate(SEGMENT_SIGNALS):
         d = record_spectra[s]
         sel = (d["f"] >= NOISE_BAND_HZ[0]) & (d["f"] <= NOISE_BAND_HZ[1])
         excess = float(np.median(d["measured"][sel]) - np.median(d["ensemble"].mean(axis=0)[sel]))
-        quant = 0.0
-        if signals is not None and sample_period_s is not None:
-            quant = quantisation_step(signals[s]) ** 2 / 12.0 * 2.0 * sample_period_s
-        out.append(max(excess, quant, 0.0))
+        out.append(max(excess - quant[i], 0.0))
     return np.array(out)
 
 
 def spectra(c: Comparison) -> dict:
     """Whole-record raw spectra (Welch) of the measurement and every ensemble run, the runs with the recording's
-    sensor noise floor added (sensor_noise_floor)."""
+    sensor noise floor added (sensor_noise_floor; an ADC's quantiser as its white step^2/12)."""
     out = {}
+    noise = c.noise_psd if c.quant_step is None else c.noise_psd_white_equivalent
     for i, s in enumerate(SEGMENT_SIGNALS):
         d = c.record_spectra[s]
-        out[s] = {"f": d["f"], "measured": d["measured"], "ensemble": d["ensemble"] + c.noise_psd[i]}
+        out[s] = {"f": d["f"], "measured": d["measured"], "ensemble": d["ensemble"] + noise[i]}
     return out
 
 

@@ -497,9 +497,12 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
         "sensor_noise_floor": {"rms_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, np.sqrt(
                                    comp.noise_psd * 0.5 / comp.meas.sample_period_s)))),
                                "psd_m2_s4_per_hz": dict(zip(SEGMENT_SIGNALS, map(float, comp.noise_psd))),
+                               "quantisation_step_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, (
+                                   comp.quant_step if comp.quant_step is not None else np.zeros(2))))),
                                "note": "the white noise the recording's sensor chain adds (read off above "
-                                       f"{analysis.NOISE_BAND_HZ[0] / 1e3:.0f} kHz); a nuisance the spectral views "
-                                       "allow for, not an effect"},
+                                       f"{analysis.NOISE_BAND_HZ[0] / 1e3:.0f} kHz), and its ADC's step when its "
+                                       "samples lie on a grid (the model's events are quantised at it); a nuisance "
+                                       "the spectral views allow for, not an effect"},
         "record_mean": {"measured": dict(zip(comp.dc_names, map(float, p.events.dc.mean(axis=0)))),
                         "model": dict(zip(comp.dc_names, map(float, comp.ensemble.dc_mean(0)))),
                         "units": "a1, a2: m/s^2; omega1: rad/s; the mean over the events of each one's pulse-period "

@@ -90,6 +90,8 @@ class Evidence:
     dc_names: tuple = SEGMENT_SIGNALS     # the record-mean view's signals (events.dc_signals of the recording)
     denoised: np.ndarray | None = None    # (E, 2, L) each raw segment sym5-denoised (events.denoise), when the caller
                                           # has them (the live watch keeps each event's); else made when needed
+    quant_step: np.ndarray | None = None  # per signal the recording's ADC step [m/s^2] (analysis.quantisation_step;
+                                          # 0 or None: not quantised): the model's events are quantised at it
 
     @property
     def n_events(self) -> int:
@@ -108,12 +110,12 @@ def evidence_from_measurement(meas, reference: "ModelReference", last_n: int | N
     if ev.n_events == 0:
         raise ValueError(f"measurement {meas.source}: no complete onset event")
     sel = slice(None) if last_n is None else slice(max(ev.n_events - int(last_n), 0), None)
+    quant = analysis.quantisation_steps(meas.signals)
     noise = reference.noise_floor({s: analysis.welch_psd(meas.signals[s], 1.0 / meas.sample_period_s)[1]
-                                   for s in SEGMENT_SIGNALS}, significant=significant_noise,
-                                  signals=meas.signals)
+                                   for s in SEGMENT_SIGNALS}, significant=significant_noise, quant_step=quant)
     raw = ev.raw[sel]
     return Evidence(raw, ev.dc[sel], spectral.event_features(raw, meas.sample_period_s), noise, ev.entries[sel],
-                    names)
+                    names, quant_step=quant if np.any(quant > 0) else None)
 
 
 # ------------------------------------------------------------------------------------------------ evaluation
@@ -159,8 +161,10 @@ class Views:
     weights, the views (basis, blocks, complement, tolerance) and the model's predictions at the width grid.
     Built by ModelReference.views with consistency.py's own functions."""
 
-    def __init__(self, ref: "ModelReference", noise_psd, n_events: int, dc_names=SEGMENT_SIGNALS):
+    def __init__(self, ref: "ModelReference", noise_psd, n_events: int, dc_names=SEGMENT_SIGNALS, quant_step=None):
         self.noise_psd = np.asarray(noise_psd, dtype=float)
+        self.quant_step = None if quant_step is None or not np.any(np.asarray(quant_step) > 0) \
+            else np.asarray(quant_step, dtype=float)
         self.dc_names = tuple(dc_names)                     # the record-mean view's signals (the evidence's)
         try:
             dc_idx = [ref.dc_names.index(n) for n in self.dc_names]
@@ -179,12 +183,14 @@ class Views:
         scale = math.sqrt(self.n_events / ref.build_events)
         self.w = ref.weights * scale                            # 1 / the E-event noise floor of the event average
         self.floor_rms = 1.0 / self.w
-        model_event_spec = [spectral.noisy_event_features(raw, dt, self.noise_psd, seed=k)
-                            for k, raw in enumerate(ref.seed_events)]
+        # the model's events through the recording's sensor chain (its white floor, its ADC's quantiser): diagnose's
+        # (analysis.build_comparison)
+        model_event_spec, chain = spectral.sensor_chain(ref.seed_events, dt, self.noise_psd, self.quant_step)
         feats = np.vstack(model_event_spec)
         self.ws = 1.0 / np.maximum(feats.std(axis=0) / math.sqrt(self.n_events), 1e-12)
         self.wdc = 1.0 / np.maximum(analysis.record_mean_floor(seed_dc, self.n_events), 1e-12)   # diagnose's
-        self.spec_noise = spectral.noise_power(self.noise_psd, PRE_SAMPLES + POST_SAMPLES, dt)
+        self.spec_noise = chain if self.quant_step is not None \
+            else spectral.noise_power(self.noise_psd, PRE_SAMPLES + POST_SAMPLES, dt)
         # the model's prediction at the nominal width and at every width of the grid
         self.base = self._pred(ref.base_mean, ref.base_bands, np.asarray(ref.base_dc)[dc_idx])
         self.grid = np.stack([self._pred(m, b, d[dc_idx])
@@ -375,7 +381,7 @@ class ModelReference:
         return out
 
     # -------------------------------------------------------------------------------------------- views
-    def noise_floor(self, measured_psd: dict, significant: bool = False, signals: dict | None = None) -> np.ndarray:
+    def noise_floor(self, measured_psd: dict, significant: bool = False, quant_step=None) -> np.ndarray:
         """The sensor noise floor per signal from measured whole-record Welch PSDs ({signal: PSD on
         analysis.welch_psd's bins}) against the model's: analysis.sensor_noise_floor (diagnose's estimate). With
         ``significant`` (the watch) a signal's floor counts only where the measured level in the noise band is
@@ -385,21 +391,24 @@ class ModelReference:
         as a sensor's; a real sensor chain's floor is orders above: a 16-bit ADC over +-4 g alone 5e-12)."""
         spectra = {s: {"f": self.noise_band_f, "measured": np.asarray(measured_psd[s], dtype=float),
                        "ensemble": self.noise_band_psd[i][None]} for i, s in enumerate(SEGMENT_SIGNALS)}
-        # ``signals`` ({signal: samples}: the record, or the window's raw segments): an ADC's quantisation step
-        floor = analysis.sensor_noise_floor(spectra, signals, self.sample_period_s if signals is not None else None)
+        # ``quant_step``: per signal the ADC's step (analysis.quantisation_steps): the floor is the white noise before
+        # the quantiser (analysis.sensor_noise_floor)
+        floor = analysis.sensor_noise_floor(spectra, None, self.sample_period_s, quant_step)
         if significant:
             sel = (self.noise_band_f >= analysis.NOISE_BAND_HZ[0]) & (self.noise_band_f <= analysis.NOISE_BAND_HZ[1])
             model = np.median(self.noise_band_psd[:, sel], axis=1)
             floor = np.where(floor > (NOISE_SIGNIFICANT - 1.0) * model, floor, 0.0)
         return floor
 
-    def views(self, noise_psd, n_events: int, dc_names=SEGMENT_SIGNALS) -> Views:
-        key = (tuple(float(x) for x in np.asarray(noise_psd, dtype=float)), int(n_events), tuple(dc_names))
+    def views(self, noise_psd, n_events: int, dc_names=SEGMENT_SIGNALS, quant_step=None) -> Views:
+        quant = () if quant_step is None or not np.any(np.asarray(quant_step) > 0) \
+            else tuple(float(x) for x in np.asarray(quant_step, dtype=float))
+        key = (tuple(float(x) for x in np.asarray(noise_psd, dtype=float)), int(n_events), tuple(dc_names), quant)
         v = self._views.get(key)
         if v is None:
             if len(self._views) >= 8:
                 self._views.clear()
-            v = self._views[key] = Views(self, noise_psd, n_events, dc_names)
+            v = self._views[key] = Views(self, noise_psd, n_events, dc_names, quant or None)
         return v
 
     # -------------------------------------------------------------------------------------------- evaluation
@@ -460,7 +469,7 @@ class ModelReference:
         profiled again on the clipped evidence. None: the plain mean, diagnose's test to the last digit."""
         if evidence.n_events < 1:
             raise ValueError("no onset event to evaluate")
-        views = self.views(evidence.noise_psd, evidence.n_events, evidence.dc_names)
+        views = self.views(evidence.noise_psd, evidence.n_events, evidence.dc_names, evidence.quant_step)
         target = views.target(evidence)
         if profile_width:
             width, pred, mean, raw = self.profile_width(views, target)
@@ -510,7 +519,7 @@ class ModelReference:
             keep = np.arange(n) != e
             sub = Evidence(evidence.raw[keep], evidence.dc[keep], evidence.spec[keep], evidence.noise_psd,
                            evidence.entries[keep], evidence.dc_names,
-                           None if evidence.denoised is None else evidence.denoised[keep])
+                           None if evidence.denoised is None else evidence.denoised[keep], evidence.quant_step)
             out.append(self.evaluate(sub, profile_width=evaluation.position is not None, where=False,
                                      clip_p=clip_p).result)
         return out

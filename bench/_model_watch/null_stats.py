@@ -25,9 +25,8 @@ def _event_vectors(ref, views):
     comp = SimpleNamespace(ensemble=SimpleNamespace(per_event=ref.seed_events,
                                                     dc_samples=lambda k: np.asarray(ref.seed_dc[k])[:, :2]),
                            weights=views.w,
-                           model_event_spec=[spectral.noisy_event_features(raw, ref.sample_period_s, views.noise_psd,
-                                                                           seed=k)
-                                             for k, raw in enumerate(ref.seed_events)])
+                           model_event_spec=spectral.sensor_chain(ref.seed_events, ref.sample_period_s,
+                                                                  views.noise_psd, views.quant_step)[0])
     return consistency.model_event_vectors(comp, views)
 
 

@@ -261,26 +261,41 @@ def test_a_recordings_model_fit_as_analyze_shows_it(model, ref):
     assert evaluate_recording(bad, ref)["level"] == "WARN"
 
 
-def test_the_live_noise_floor_has_the_adcs_quantisation_as_diagnose_reads_it(model, ref):
-    """A drive behind an ADC (a1, a2 rounded to 0.02 m/s^2): the live watch's sensor noise floor is at least the
-    quantisation noise step^2/12 over the band (analysis.sensor_noise_floor's), and it is what the reference gives
-    with the window's own samples -- the step found once on the first window."""
+def test_the_live_watch_quantises_the_model_at_the_adcs_step_as_diagnose_does(model, ref):
+    """A drive behind an ADC (a2 rounded to a 16-bit step over +-4 g, no other noise): the live watch finds the step
+    once on the first window, its noise floor is the white noise before the quantiser (analysis.sensor_noise_floor:
+    none here) and its views quantise the model's events at that step -- the evaluation is the reference's on the
+    same events with diagnose's estimate of the chain (evidence_from_measurement: the step read off the whole
+    record), to rounding; and the spectral shape stays inside its band, where a white step^2/12 floor put it far
+    out (docs/model_watch.md, Limits)."""
     from backlash_monitor.workbench.analysis import quantisation_step
-    step = 0.02
+    step = 2 * 4 * 9.81 / 2 ** 16
     meas = synthetic.hidden_effect_recording(model, 4.6, seed=44)
-    sig = {s: np.round(meas.signals[s] / step) * step if s in ("a1", "a2") else meas.signals[s]
-           for s in ("a1", "a2", "angle_difference")}
+    meas.signals["a2"] = np.round(meas.signals["a2"] / step) * step
+    sig = {s: meas.signals[s] for s in ("a1", "a2", "angle_difference")}
     watch = ModelWatch(ref)
+    updates = []
     for k in range(0, meas.n_samples, 5000):
-        watch.feed(k, *(sig[s][k:k + 5000] for s in ("a1", "a2", "angle_difference")))
-    assert len(watch.events) == watch.window_events
-    live = watch.noise_floor()
-    quant = step ** 2 / 12.0 * 2.0 * meas.sample_period_s
-    window = {s: np.concatenate([e.raw[i] for e in watch.events]) for i, s in enumerate(("a1", "a2"))}
-    assert all(quantisation_step(x) == pytest.approx(step, rel=1e-6) for x in window.values())
+        updates += watch.feed(k, *(sig[s][k:k + 5000] for s in ("a1", "a2", "angle_difference")))
+    assert len(watch.events) == watch.window_events and updates
+    window = np.concatenate([e.raw[1] for e in watch.events])
+    assert quantisation_step(window) == pytest.approx(step, rel=1e-6)
+    assert watch.quantisation()[1] == pytest.approx(step, rel=1e-6) and watch.quantisation()[0] == 0.0
+    ev = updates[-1].evaluation
+    assert np.all(ev.noise_psd == 0.0)
     psd = dict(zip(("a1", "a2"), np.mean([e.psd for e in watch.events if e.psd is not None], axis=0)))
-    assert np.all(ref.noise_floor(psd, signals=window) >= quant * (1 - 1e-9))      # diagnose's estimate
-    # the watch's: the same, with a floor under NOISE_SIGNIFICANT x the model's own level taken as none (a1's level
-    # is above this ADC's noise; a2's is not)
-    assert np.allclose(live, ref.noise_floor(psd, significant=True, signals=window), rtol=1e-12)
-    assert live[1] >= quant * (1 - 1e-9)
+    assert np.allclose(watch.noise_floor(), ref.noise_floor(psd, significant=True, quant_step=watch.quantisation()))
+    offline = reference.evidence_from_measurement(meas, ref, last_n=watch.window_events, significant_noise=True)
+    assert offline.quant_step[1] == pytest.approx(step, rel=1e-6)
+    live = watch.evidence()
+    assert np.array_equal(live.quant_step, offline.quant_step)
+    same = reference.Evidence(live.raw, live.dc, live.spec, offline.noise_psd, live.entries, live.dc_names,
+                              quant_step=offline.quant_step)
+    a = ref.evaluate(same, where=False, clip_p=watch.rule.event_clip_p).result.views
+    for name, v in ev.result.views.items():
+        assert v.t2 == pytest.approx(a[name].t2, rel=1e-9), name
+    spectral_view = ev.result.views["spectral_shape"]
+    assert not spectral_view.outside_band, spectral_view.t2
+    white = ref.evaluate(reference.Evidence(live.raw, live.dc, live.spec, np.array([0.0, step ** 2 / 6 * 2e-5]),
+                                            live.entries, live.dc_names), where=False)
+    assert white.result.views["spectral_shape"].t2 > 3 * spectral_view.limit, white.result.views["spectral_shape"].t2
