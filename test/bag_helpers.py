@@ -69,3 +69,14 @@ def write_sample_bag(path, n_chunks: int = 60, *, compression: str = "zstd",
                 w.write("/diagnostics", dm, log_time_ns=t + 7000)
                 written.setdefault("/diagnostics", []).append(diag.decode(diag.encode(dm)))
     return written
+
+
+def write_simulated_drive(path):
+    """A 2 s project recording of one simulated 7.5 mm drive (seed 3), every stream signal: what analyze and the
+    workbench read."""
+    from backlash_monitor.bag.simulated import write_simulation_bag
+    from backlash_monitor.plant import PlantSimulator, Scenario
+    from backlash_monitor.signals import STREAM_SIGNALS
+
+    write_simulation_bag(path, PlantSimulator([Scenario(width_m=0.0075, seed=3)], outputs=STREAM_SIGNALS), 2.0)
+    return path

@@ -23,7 +23,7 @@ from backlash_monitor.bag import BagReader, TruncatedBagError, UnsupportedBagErr
 from backlash_monitor.bag import records
 
 import mcap_conformance as mc
-from bag_helpers import write_sample_bag
+from bag_helpers import write_sample_bag, write_simulated_drive
 
 CORPUS = mc.load_corpus()
 
@@ -216,14 +216,7 @@ def test_bag_info_reads_every_option(rewritten, capsys):
 
 @pytest.fixture(scope="module")
 def simulated_bag(tmp_path_factory):
-    from backlash_monitor.bag.simulated import write_simulation_bag
-    from backlash_monitor.plant import PlantSimulator, Scenario
-    from backlash_monitor.signals import STREAM_SIGNALS
-
-    path = tmp_path_factory.mktemp("sim") / "drive.mcap"
-    write_simulation_bag(path, PlantSimulator([Scenario(width_m=0.0075, seed=3)],
-                                              outputs=STREAM_SIGNALS), 2.0)
-    return path
+    return write_simulated_drive(tmp_path_factory.mktemp("sim") / "drive.mcap")
 
 
 def _analyze(bag: Path, out: Path) -> str:

@@ -13,19 +13,13 @@ from backlash_monitor.bag import BagReader, BagWriter  # noqa: E402
 from backlash_monitor.errors import UsageError  # noqa: E402
 from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag  # noqa: E402
 
+from bag_helpers import write_simulated_drive  # noqa: E402
 from mcap_conformance import rewrite_with_mcap  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def recording(tmp_path_factory):
-    from backlash_monitor.bag.simulated import write_simulation_bag
-    from backlash_monitor.plant import PlantSimulator, Scenario
-    from backlash_monitor.signals import STREAM_SIGNALS
-
-    path = tmp_path_factory.mktemp("sim") / "drive.mcap"
-    write_simulation_bag(path, PlantSimulator([Scenario(width_m=0.0075, seed=3)],
-                                              outputs=STREAM_SIGNALS), 2.0)
-    return path
+    return write_simulated_drive(tmp_path_factory.mktemp("sim") / "drive.mcap")
 
 
 def rewritten(src, dst, drop=None, change=None):
