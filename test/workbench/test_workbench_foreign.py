@@ -23,9 +23,9 @@ DURATION_S = 3.0
 MEMS_ADC = SensorNuisance(a1_noise_rms_m_s2=0.05, a2_noise_rms_m_s2=0.01, a1_lsb_m_s2=0.015, a2_lsb_m_s2=0.0012)
 
 
-def _spec(label, kind, seed, effects=(), width=0.0075, eta=0.025, n1=0.89, sensor=SensorNuisance()):
+def _spec(label, kind, seed, effects=(), width=0.0075, eta=0.025, n1=0.89, sensor=SensorNuisance(), **more):
     return RecordingSpec(label=label, kind=kind, width_m=width, eta_k=eta, n1=n1, effects=tuple(effects),
-                         sensor=sensor, seed=seed, duration_s=DURATION_S).check()
+                         sensor=sensor, seed=seed, duration_s=DURATION_S, **more).check()
 
 
 SPECS = {
@@ -44,6 +44,9 @@ SPECS = {
                         width=0.006, eta=0.03, n1=0.91),
     "hot_rotor": _spec("hot_rotor", "one", 308, [E("motor_rotor_resistance", {"relative_change": 0.45})],
                        width=0.0085, eta=0.0175, n1=0.93),
+    # cut from a running drive 31 ms into a pulse (the pulse began before sample 0, as in a watch's snapshot)
+    "mass_in_pulse": _spec("mass_in_pulse", "one", 309, [E("drift_mass", {"relative_change": 0.3})],
+                           pulse_first_s=0.2192),
     "offset_a2": _spec("offset_a2", "one", 305, [E("bias_constant", {"signal": "a2", "bias_m_s2": 2.0})], width=0.009),
 }
 _CACHE: dict = {}
@@ -180,3 +183,18 @@ def test_an_accelerometer_offset_is_named_from_the_record_mean():
     d, _ = diagnosed("offset_a2")
     assert d["discovery_candidate"] == "accelerometer_bias[a2]", d["message"]
     assert d["discovery_parameters"]["parameters"]["a2_m_s2"] == pytest.approx(2.0, abs=0.2)
+
+
+@pytest.mark.slow
+def test_a_heavier_load_on_a_recording_cut_inside_a_pulse_is_a_discovery_that_names_the_mass():
+    """+30 % load mass; the recording starts 31 ms into a pulse. The model must run that pulse too
+    (plant_adapter.pulse_lead_samples), and the load mass and the a2 gain are twins the recording cannot tell apart
+    (both scale what a2 sees of the same motion); whichever the IC puts first, the diagnosis must end in a discovery
+    that names the mass, not in a partial (diagnose.confidence_step: among tied candidates the consistency check
+    decides)."""
+    d, truth = diagnosed("mass_in_pulse")
+    assert d["conditions"]["timing"]["pulse_load.first_s"] == pytest.approx(0.2192, abs=2e-3)
+    assert d["verdict"] == "discovery", d["message"]
+    assert "load_mass_drift" in _named(d), d["message"]
+    if d["discovery_parameters"]["effect"] == "load_mass_drift":
+        assert d["discovery_parameters"]["parameters"]["relative_change"] == pytest.approx(0.3, abs=0.06)
