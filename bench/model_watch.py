@@ -215,7 +215,8 @@ def detect_own(seeds=(0, 1)) -> list:
             offline[lab] = {"detected_offline": not ev.consistent,
                             "views_outside": [n for n, v in ev.result.views.items() if v.outside_band],
                             "residual_over_noise": ev.result.residual_over_noise}
-        switches = {f"effects.{n}": True for n in plant_adapter.candidate_effect_names(not_event_locked=True)}
+        switches = {f"effects.{n}": True for n in plant_adapter.candidate_effect_names(model.catalogue,
+                                                                                         not_event_locked=True)}
         cfg = model.plant_config(switches)
         scen = [Scenario(width_m=g[0], eta_k=g[1], n1=g[2], seed=900 + s) for s in seeds for _ in labels]
         sim = PlantSimulator(scen, config=cfg, outputs=("a1", "a2", "angle_difference"))

@@ -80,13 +80,15 @@ def _probe(names, cache_dir, files=()):
 def effects_figures(scenarios) -> dict:
     """The plug-in/effect figures (docs/effects.md)."""
     import tempfile
-    from backlash_monitor.plant.effects import CATALOGUE, load_effects_file
-    load_effects_file(EXAMPLE_EFFECTS)
+    from backlash_monitor.plant.catalogue import builtin_catalogue
+    from backlash_monitor.plant.effects import CATALOGUE
+    with_plugins = builtin_catalogue().with_files([EXAMPLE_EFFECTS])
     base = {"simulation.run_in_s": 0.0}
     cfgs = {"builtin": load_plant_config(overrides={**base, "effects.wheel_viscous_friction": True,
                                                     "wheel_viscous_friction.damping_Nms_per_rad": 0.002}),
             "plugin": load_plant_config(overrides={**base, "effects.my_viscous_wheel": True,
-                                                   "my_viscous_wheel.damping_Nms_per_rad": 0.002})}
+                                                   "my_viscous_wheel.damping_Nms_per_rad": 0.002},
+                                        catalogue=with_plugins)}
     sims = {k: PlantSimulator(scenarios, config=c, noise=True, backend="numba", outputs=PIPELINE_OUTPUTS)
             for k, c in cfgs.items()}
     for s_ in sims.values():

@@ -45,20 +45,6 @@ def repo_root():
     return REPO_ROOT
 
 
-@pytest.fixture(autouse=True)
-def _effects_registry_isolated():
-    """Effects a test registers (plug-in files, broken terms) stay with that test: the registry is
-    process-wide, and the workbench switches on every registered effect."""
-    import sys
-    effects = sys.modules.get("backlash_monitor.plant.effects")
-    saved = dict(effects._REGISTRY) if effects is not None else None
-    yield
-    effects = sys.modules.get("backlash_monitor.plant.effects")
-    if effects is not None and saved is not None:
-        effects._REGISTRY.clear()
-        effects._REGISTRY.update(saved)
-
-
 def pytest_collection_modifyitems(config, items):
     """Files with the most ``slow`` tests first, each file's own order kept. pytest-xdist (make test) hands
     whole files to its workers in this order, so the long workbench files start early and do not end the

@@ -89,16 +89,15 @@ def _error(message: str) -> int:
 
 
 def run(args) -> int:
-    from backlash_monitor.plant import PlantSimulator, Scenario, load_effects_file, load_plant_config
+    from backlash_monitor.plant import PlantSimulator, Scenario, builtin_catalogue, load_plant_config
     from backlash_monitor.plant.analysis import impact_times_ms
 
     try:
-        for path in args.effects_file:
-            load_effects_file(path)
+        catalogue = builtin_catalogue().with_files(args.effects_file)
         if args.noise_seed is not None and args.noise_seed < 0:
             raise ValueError(f"--noise-seed {args.noise_seed}: allowed: an integer >= 0")
         overrides = dict(_parse_override(t) for t in args.set)
-        cfg = load_plant_config(args.config, overrides=overrides or None)
+        cfg = load_plant_config(args.config, overrides=overrides or None, catalogue=catalogue)
         scenarios = [Scenario(width_m=w, eta_k=e, n1=n, seed=s)
                      for s in args.seeds for e in args.eta_k for n in args.n1 for w in args.widths]
     except ValueError as exc:

@@ -93,23 +93,24 @@ class PlantSimulatorNode(Node):
         p = declare_and_validate(self, PARAMETERS)
         self.params = p
         try:
-            from backlash_monitor.plant import load_effects_file
+            from backlash_monitor.plant import builtin_catalogue
             from backlash_monitor.plant.config import parse_override
-            for path in filter(None, (x.strip() for x in p["effects_files"].split(";"))):
-                load_effects_file(path)
+            catalogue = builtin_catalogue().with_files(
+                [x.strip() for x in p["effects_files"].split(";") if x.strip()])
             overrides = dict(parse_override(t) for t in p["plant_set"].split(";") if t.strip())
             self.set_at = parse_set_at(p["plant_set_at"])
             # an effect switched on later is on from the start, at its neutral default (one compiled kernel)
             switches = {k: v for _, changes in self.set_at for k, v in changes.items()
                         if k.startswith("effects.") and v is True}
-            config = load_plant_config(p["plant_config"] or None, overrides={**switches, **overrides} or None)
+            config = load_plant_config(p["plant_config"] or None, overrides={**switches, **overrides} or None,
+                                       catalogue=catalogue)
             # the configs of the changes, checked now (a bad one stops the node at start, not mid-run)
             self.set_at_configs = []
             applied = dict(switches)
             for t_s, changes in self.set_at:
                 applied.update(changes)
                 self.set_at_configs.append((t_s, changes, load_plant_config(
-                    p["plant_config"] or None, overrides={**applied, **overrides})))
+                    p["plant_config"] or None, overrides={**applied, **overrides}, catalogue=catalogue)))
             scenario = Scenario(width_m=p["width_m"], eta_k=p["eta_k"], n1=p["n1"], seed=p["seed"])
             self.simulator = PlantSimulator([scenario], config=config, noise=p["noise"],
                                             outputs=tuple(SIGNAL_UNITS),

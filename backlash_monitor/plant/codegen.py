@@ -467,7 +467,7 @@ def _cache_key(source: str) -> str:
 @dataclass
 class Kernel:
     """The backends of one effect set."""
-    effects: tuple            # effect classes (term kind), in registry order
+    effects: tuple            # effect classes (term kind), in catalogue order
     param_rows: tuple         # rows of P
     rhs_numpy: object         # numpy right-hand side
     module: object = None     # the generated numba module (None without numba)

@@ -105,30 +105,36 @@ class SimulationConfig:
 
 
 class EffectSwitches(dict):
-    """On/off switch of every registered effect (:func:`backlash_monitor.plant.effects.catalogue`): a
+    """On/off switch of every effect of the config's catalogue (``PlantConfig.catalogue``): a
     read-only dict name -> bool that also reads as attributes (``cfg.effects.spring``). It holds the
     nominal model's eight switches (as the former dataclass did, so a nominal config's
     ``dataclasses.asdict`` and hash are unchanged) and every other effect that is switched on; any other
-    registered effect reads as False."""
+    effect of the catalogue (``known``: its names; None: the built-in catalogue) reads as False."""
 
-    def __init__(self, switches=None):
+    def __init__(self, switches=None, known=None):
         from .effects import NOMINAL
         data = {c.name: bool(c.nominal) for c in NOMINAL}
         for key, value in dict(switches or {}).items():
             if key in data or value:
                 data[key] = bool(value)
         dict.update(self, data)
+        object.__setattr__(self, "_known", None if known is None else frozenset(known))
+
+    def _is_known(self, key) -> bool:
+        if self._known is not None:
+            return key in self._known
+        from .catalogue import builtin_catalogue
+        return key in builtin_catalogue()
 
     def __missing__(self, key):
-        from .effects import catalogue
-        if key in catalogue():
+        if self._is_known(key):
             return False
         raise KeyError(key)
 
     def get(self, key, default=None):
         if key in self:
             return dict.__getitem__(self, key)
-        return False if _is_registered(key) else default
+        return False if self._is_known(key) else default
 
     def __getattr__(self, key):
         if key.startswith("__"):
@@ -148,12 +154,7 @@ class EffectSwitches(dict):
         return hash(tuple(sorted(self.items())))
 
     def __reduce__(self):                 # copy, deepcopy and pickle rebuild through __init__
-        return (EffectSwitches, (dict(self),))
-
-
-def _is_registered(name) -> bool:
-    from .effects import catalogue
-    return name in catalogue()
+        return (EffectSwitches, (dict(self), self._known))
 
 
 EffectsConfig = EffectSwitches   # the former dataclass's name
@@ -177,8 +178,18 @@ class PlantConfig:
 
 
     @property
+    def catalogue(self):
+        """The EffectCatalogue this config's effect names were validated against (load_plant_config's
+        ``catalogue``; default: the built-in one, backlash_monitor.plant.catalogue.builtin_catalogue)."""
+        cat = self.__dict__.get("_catalogue")
+        if cat is None:
+            from .catalogue import builtin_catalogue
+            cat = builtin_catalogue()
+        return cat
+
+    @property
     def effect_parameters(self) -> dict:
-        """Parameters of the registered effects that have no key in the sections above:
+        """Parameters of the catalogue's effects that have no key in the sections above:
         {effect name: {parameter name: value}} (defaults from the effect class when absent). Not a dataclass
         field, so ``dataclasses.asdict`` (and the classifier's config hash) of a nominal config is unchanged."""
         return self.__dict__.get("_effect_parameters", {})
@@ -199,8 +210,7 @@ class PlantConfig:
 
     def effect_parameter(self, effect: str, name: str) -> float:
         """The configured value of one effect parameter (its config key, its section, or the default)."""
-        from .effects import get
-        cls = get(effect)
+        cls = self.catalogue.get(effect)
         p = cls.parameter(name)
         if p.config_key is not None:
             node = self
@@ -213,10 +223,10 @@ class PlantConfig:
         return json.dumps(self.to_dict(), sort_keys=True)
 
     def with_overrides(self, overrides: Mapping[str, Any]) -> "PlantConfig":
-        """A validated copy with ``{"section.key": value}`` or nested-dict overrides applied."""
+        """A validated copy with ``{"section.key": value}`` or nested-dict overrides applied (same catalogue)."""
         data = self.to_dict()
         _merge(data, _unflatten(overrides))
-        return config_from_dict(data)
+        return config_from_dict(data, catalogue=self.catalogue)
 
 
 _SECTIONS = {
@@ -337,42 +347,39 @@ def _nearest(key: str, candidates) -> str:
     return f" (nearest valid key: {near})" if near else ""
 
 
-def _valid_keys() -> list:
-    """Every valid dotted key (for the nearest-key hint)."""
-    from .effects import catalogue
+def _valid_keys(reg) -> list:
+    """Every valid dotted key (for the nearest-key hint); ``reg``: the EffectCatalogue."""
     keys = [f"{name}.{f.name}" for name, cls in _SECTIONS.items() for f in fields(cls)]
     keys += ["constant_motor_load_pu"]
-    for n, c in catalogue().items():
+    for n, c in reg.items():
         keys.append(f"effects.{n}")
         keys += [f"{n}.{p.name}" for p in c.parameters if p.config_key is None and p.source == "config"]
     return keys
 
 
-def _build_switches(data: Any) -> EffectSwitches:
-    from .effects import catalogue
+def _build_switches(data: Any, reg) -> EffectSwitches:
     if data is None:
         data = {}
     if not isinstance(data, Mapping):
         raise ValueError("plant config: section 'effects' must be a mapping of effect names to true/false")
-    reg = catalogue()
     for key, value in data.items():
         if key not in reg:
             raise ValueError(f"plant config: unknown key effects.{key}{_nearest('effects.' + str(key), ['effects.' + n for n in reg])}; "
-                             "allowed: the registered effects (backlash_monitor.plant.effects.catalogue(); "
+                             "allowed: the effects of the catalogue (backlash_monitor.plant.catalogue; "
                              "plug-ins with --effects-file FILE)")
         if not isinstance(value, bool):
             raise ValueError(f"plant config: effects.{key} = {value!r} is not allowed; allowed: true or false")
-    return EffectSwitches(dict(data))
+    return EffectSwitches(dict(data), known=reg.names)
 
 
-def _build_effect_parameters(name: str, cls, data: Any) -> dict:
+def _build_effect_parameters(name: str, cls, data: Any, reg) -> dict:
     if not isinstance(data, Mapping):
         raise ValueError(f"plant config: section {name!r} must be a mapping of parameter names to values")
     own = {p.name: p for p in cls.parameters if p.config_key is None and p.source == "config"}
     out = {}
     for key, value in data.items():
         if key not in own:
-            raise ValueError(f"plant config: unknown key {name}.{key}{_nearest(f'{name}.{key}', [f'{name}.{k}' for k in own] or _valid_keys())}; "
+            raise ValueError(f"plant config: unknown key {name}.{key}{_nearest(f'{name}.{key}', [f'{name}.{k}' for k in own] or _valid_keys(reg))}; "
                              f"allowed keys in {name!r}: " + (", ".join(own) or "none"))
         if isinstance(value, str):
             try:
@@ -390,11 +397,15 @@ def _build_effect_parameters(name: str, cls, data: Any) -> dict:
     return out
 
 
-def config_from_dict(data: Mapping[str, Any] | None) -> PlantConfig:
-    """Validated :class:`PlantConfig` from a (possibly partial) nested dict; missing keys take defaults."""
-    from .effects import catalogue
+def config_from_dict(data: Mapping[str, Any] | None, catalogue=None) -> PlantConfig:
+    """Validated :class:`PlantConfig` from a (possibly partial) nested dict; missing keys take defaults.
+    ``catalogue``: the EffectCatalogue whose effects it may switch on and set (default: the built-in one);
+    the config carries it (``cfg.catalogue``)."""
+    if catalogue is None:
+        from .catalogue import builtin_catalogue
+        catalogue = builtin_catalogue()
     data = dict(data or {})
-    reg = catalogue()
+    reg = catalogue
     param_sections = {n: c for n, c in reg.items()
                       if any(p.config_key is None and p.source == "config" for p in c.parameters)}
     allowed_top = set(_SECTIONS) | {"constant_motor_load_pu", "effects"} | set(param_sections)
@@ -403,17 +414,19 @@ def config_from_dict(data: Mapping[str, Any] | None) -> PlantConfig:
         sub = data[unknown[0]]
         if isinstance(sub, Mapping) and sub:           # name the whole key and the nearest valid whole key
             key = f"{unknown[0]}.{next(iter(sub))}"
-            raise ValueError(f"plant config: unknown key {key}{_nearest(key, _valid_keys())}; allowed: "
-                             "SECTION.KEY of config/plant.yaml or EFFECT.PARAMETER of a registered effect")
+            raise ValueError(f"plant config: unknown key {key}{_nearest(key, _valid_keys(reg))}; allowed: "
+                             "SECTION.KEY of config/plant.yaml or EFFECT.PARAMETER of an effect of the catalogue")
         raise ValueError(f"plant config: unknown key {unknown[0]!r}{_nearest(unknown[0], sorted(allowed_top))}; "
                          "allowed top-level keys: " + ", ".join(sorted(allowed_top)))
     kwargs = {name: _build_section(name, cls, data.get(name)) for name, cls in _SECTIONS.items()}
-    kwargs["effects"] = _build_switches(data.get("effects"))
+    kwargs["effects"] = _build_switches(data.get("effects"), reg)
     if "constant_motor_load_pu" in data:
         kwargs["constant_motor_load_pu"] = _check_value("constant_motor_load_pu", data["constant_motor_load_pu"], float)
-    effect_parameters = {n: _build_effect_parameters(n, c, data[n]) for n, c in param_sections.items() if data.get(n)}
+    effect_parameters = {n: _build_effect_parameters(n, c, data[n], reg) for n, c in param_sections.items()
+                         if data.get(n)}
     cfg = PlantConfig(**kwargs)
     object.__setattr__(cfg, "_effect_parameters", effect_parameters)
+    object.__setattr__(cfg, "_catalogue", catalogue)
     _check_cross_rules(cfg)
     return cfg
 
@@ -481,10 +494,12 @@ def _parse_yaml(text: str):
 
 
 def load_plant_config(path: str | os.PathLike | None = None,
-                      overrides: Mapping[str, Any] | None = None) -> PlantConfig:
+                      overrides: Mapping[str, Any] | None = None, catalogue=None) -> PlantConfig:
     """Load and validate the plant config (default: ``config/plant.yaml``).
 
     ``overrides``: ``{"load.mass_kg": 12.0}`` or nested dicts, applied on top of the file.
+    ``catalogue``: the EffectCatalogue of the effects it may name (default: the built-in one; with a user's
+    plug-ins: ``builtin_catalogue().with_files([...])``); the config carries it as ``cfg.catalogue``.
     Raises ``ValueError`` naming the key and its allowed range on bad input.
     """
     p = Path(path) if path is not None else DEFAULT_CONFIG_PATH
@@ -498,7 +513,7 @@ def load_plant_config(path: str | os.PathLike | None = None,
         raise ValueError(f"plant config: {p} must hold a mapping of sections")
     if overrides:
         _merge(data, _unflatten(overrides))
-    return config_from_dict(data)
+    return config_from_dict(data, catalogue=catalogue)
 
 
 def parse_override(text: str) -> tuple:

@@ -16,21 +16,19 @@ one-line physical description, and, depending on its kind:
 - ``kind = "sensor"``: a stage on the published a1/a2 (``apply``), the same in batch and live
   (both go through :meth:`PlantSimulator.run`).
 
-Plug-ins: :func:`load_effects_file` (a user's Python file by path, ``--effects-file my_effects.py``) and
-the entry-point group ``backlash_monitor.effects``. :func:`catalogue` lists all registered effects.
+Which effects a config may switch on is an :class:`~backlash_monitor.plant.catalogue.EffectCatalogue`,
+passed as an object: the built-in one (``NOMINAL`` + ``CATALOGUE`` + installed entry points of the
+group ``backlash_monitor.effects``) or a copy with a user's plug-in files (``--effects-file
+my_effects.py``), see :mod:`backlash_monitor.plant.catalogue`.
 """
 from __future__ import annotations
 
 import ast
 import difflib
-import hashlib
-import importlib.util
 import inspect
 import math
-import sys
 import textwrap
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
@@ -393,10 +391,6 @@ CATALOGUE = (WheelCoulombFriction, WheelViscousFriction, WheelStribeckFriction, 
              ClutchContactStiffness, ClutchContactDamping, ShaftCompliance, MassForceOffset, MotorLoadOffset,
              TorqueRipple, AccelerometerBias, AccelerometerGain, AccelerometerLowpass) + DRIFTS
 
-_REGISTRY: dict[str, type] = {}
-_ENTRY_POINTS_LOADED = False
-
-
 def term_source(cls) -> str:
     """The source of an effect's term function, renamed ``_t_<name>``, decorators dropped (the text the
     generated kernels inline, and part of their cache key)."""
@@ -422,7 +416,8 @@ def term_arguments(cls) -> tuple:
     return tuple(a.arg for a in fn.args.args)
 
 
-def _validate(cls) -> None:
+def validate_effect(cls) -> None:
+    """ValueError naming the problem and the allowed values when ``cls`` is not a valid effect class."""
     name = getattr(cls, "name", "")
     if not isinstance(name, str) or not name.isidentifier() or name.startswith("_"):
         raise ValueError(f"effect class {cls.__name__}: name = {name!r}; allowed: a Python identifier "
@@ -454,18 +449,6 @@ def _validate(cls) -> None:
                                  + "; allowed: its parameters and backlash_monitor.plant.effects.MODEL_VARIABLES")
 
 
-def register(cls, replace: bool = False):
-    """Add an effect class to the registry (validated); returns the class (usable as a decorator)."""
-    _validate(cls)
-    old = _REGISTRY.get(cls.name)
-    if old is not None and old is not cls and not replace:
-        if term_source_or_none(old) == term_source_or_none(cls) and old.parameters == cls.parameters:
-            return old           # the same file loaded twice
-        raise ValueError(f"effect {cls.name!r} is already registered (by {old.__module__}); allowed: a new name")
-    _REGISTRY[cls.name] = cls
-    return cls
-
-
 def term_source_or_none(cls):
     try:
         return term_source(cls) if cls.kind == "term" else None
@@ -473,88 +456,4 @@ def term_source_or_none(cls):
         return None
 
 
-for _cls in NOMINAL + CATALOGUE:
-    register(_cls)
 CATALOGUE_NAMES = tuple(c.name for c in CATALOGUE)
-
-
-def _classes_in(namespace) -> list:
-    out = []
-    for obj in list(vars(namespace).values()) if not isinstance(namespace, dict) else list(namespace.values()):
-        if isinstance(obj, type) and issubclass(obj, Effect) and obj is not Effect and getattr(obj, "name", ""):
-            if obj.__module__ == getattr(namespace, "__name__", obj.__module__):
-                out.append(obj)
-    return out
-
-
-def load_effects_file(path) -> list:
-    """Import a user's Python file and register every Effect subclass defined in it; returns their names.
-
-    The term sources are read from the file (they become part of the generated kernels' cache key)."""
-    p = Path(path)
-    if not p.is_file():
-        raise ValueError(f"effects file {str(p)!r} does not exist; allowed: a Python file defining Effect subclasses")
-    digest = hashlib.sha256(str(p.resolve()).encode()).hexdigest()[:12]
-    mod_name = f"_backlash_monitor_user_effects_{digest}"
-    spec = importlib.util.spec_from_file_location(mod_name, p)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[mod_name] = module
-    try:
-        spec.loader.exec_module(module)
-    except Exception as exc:  # noqa: BLE001 - a user's file: report, do not trace back
-        raise ValueError(f"effects file {str(p)!r} failed to import: {type(exc).__name__}: {exc}") from None
-    classes = _classes_in(module)
-    if not classes:
-        raise ValueError(f"effects file {str(p)!r} defines no Effect subclass with a name; allowed: "
-                         "classes deriving from backlash_monitor.plant.effects.Effect")
-    for c in classes:
-        register(c)
-    return [c.name for c in classes]
-
-
-def load_entry_points() -> list:
-    """Register the effects of installed packages (entry-point group ``backlash_monitor.effects``; each
-    entry point names an Effect subclass or a module holding them)."""
-    global _ENTRY_POINTS_LOADED
-    _ENTRY_POINTS_LOADED = True
-    from importlib.metadata import entry_points
-    names = []
-    for ep in entry_points(group=ENTRY_POINT_GROUP):
-        obj = ep.load()
-        classes = [obj] if isinstance(obj, type) else _classes_in(obj)
-        for c in classes:
-            register(c)
-            names.append(c.name)
-    return names
-
-
-def catalogue() -> dict:
-    """{name: EffectClass} of every registered effect: the nominal model's, the catalogue, plug-ins."""
-    if not _ENTRY_POINTS_LOADED:
-        load_entry_points()
-    return dict(_REGISTRY)
-
-
-def get(name: str):
-    reg = catalogue()
-    if name not in reg:
-        near = difflib.get_close_matches(name, list(reg), n=1)
-        raise ValueError(f"unknown effect {name!r}" + (f" (nearest: {near[0]!r})" if near else "")
-                         + "; allowed: " + ", ".join(reg))
-    return reg[name]
-
-
-def enabled_effects(cfg, kind: str | None = None) -> list:
-    """The switched-on effect classes of a config (registry order), optionally of one kind."""
-    reg = catalogue()
-    return [c for n, c in reg.items() if cfg.effects.get(n, False) and (kind is None or c.kind == kind)]
-
-
-def kernel_effect_set(cfg) -> tuple:
-    """Names of the compiled (term) effects of a config: what one generated kernel is built for."""
-    return tuple(c.name for c in enabled_effects(cfg, "term"))
-
-
-def enabled_terms(effects_config) -> list:
-    """Names of the switched-on effects of an effects mapping (compatibility helper)."""
-    return [n for n in catalogue() if effects_config.get(n, False)]

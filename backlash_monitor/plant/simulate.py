@@ -10,7 +10,6 @@ import numpy as np
 from .config import PlantConfig, load_plant_config
 from .disturbances import MotorLoadInput, motor_load_batch, pulse_load_pu
 from .drivetrain import absorber_coefficient
-import backlash_monitor.plant.effects as _effects
 from .codegen import global_vector, kernel_for
 from .state import STATE_NAMES
 from .integrator import OUTPUT_NAMES, rk4_advance, resolve_backend
@@ -116,7 +115,7 @@ class PlantSimulator:
         self.noise_seed = _check_noise_seed(noise_seed, len(self.scenarios))
         cfg = self.config
         self.sample_period_s = cfg.simulation.sample_period_s
-        self.effects = _effects.enabled_effects(cfg)
+        self.effects = cfg.catalogue.enabled(cfg)
         self.kernel = kernel_for(tuple(c for c in self.effects if c.kind == "term"))
         self._overrides = dict(parameters or {})
         self._derive_parameters()
@@ -183,7 +182,7 @@ class PlantSimulator:
              "n1": np.array([float(s.n1) for s in self.scenarios], dtype=np.float64),
              "mass_kg": full(cfg.load.mass_kg), "wheel_inertia_kgm2": full(cfg.load.wheel_inertia_kgm2),
              "rotor_resistance_pu": full(cfg.motor.r_r_pu), "supply_voltage_scale": full(1.0)}
-        reg = _effects.catalogue()
+        reg = cfg.catalogue
         known = {}
         for cls in list(reg.values()):
             for p in cls.parameters:
@@ -193,7 +192,7 @@ class PlantSimulator:
             if key not in known:
                 near = difflib.get_close_matches(str(key), list(known), n=1)
                 raise ValueError(f"PlantSimulator: unknown parameter {key!r}" + (f" (nearest: {near[0]!r})" if near else "")
-                                 + "; allowed: 'effect.param' of a registered effect")
+                                 + "; allowed: 'effect.param' of an effect of the config's catalogue")
             if known[key][0].name not in enabled and known[key][0].name != "absorber_power_law":
                 raise ValueError(f"PlantSimulator: parameter {key!r} belongs to effect {known[key][0].name!r}, which "
                                  f"is switched off; allowed: switch it on (effects.{known[key][0].name}: true)")
@@ -365,8 +364,13 @@ class PlantSimulator:
 def check_runtime_change(old: PlantConfig, new: PlantConfig) -> None:
     """ValueError (naming what) when ``new`` cannot replace ``old`` in a running simulator (set_config): another
     set of switched-on effects, or another simulation, motor, pulse train or disturbance section."""
-    names = [c.name for c in _effects.enabled_effects(new)]
-    have = [c.name for c in _effects.enabled_effects(old)]
+    new_classes, old_classes = new.catalogue.enabled(new), old.catalogue.enabled(old)
+    names = [c.name for c in new_classes]
+    have = [c.name for c in old_classes]
+    if names == have and new_classes != old_classes:
+        other = [c.name for c, o in zip(new_classes, old_classes) if c is not o]
+        raise ValueError(f"plant change at run time: effect {other[0]!r} is another class in the new config's "
+                         "catalogue (another plug-in file); allowed: the running config's catalogue (cfg.catalogue)")
     if names != have:
         on = sorted(set(names) - set(have))
         off = sorted(set(have) - set(names))

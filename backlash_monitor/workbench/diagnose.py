@@ -25,8 +25,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from backlash_monitor.plant import effects as plant_effects
-
 from . import analysis, consistency, fitting, pairs, plant_adapter, ripple, separation, spectral, tolerance
 from .decisions import (DELTA_IC_DECISIVE, DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EXPLAINED, confident, identical_to,
                         likelihood_part, qualifies, significant)
@@ -352,14 +350,16 @@ def width_measurement(run: Run, up: Update) -> WidthMeasurement:
 
 # -------------------------------------------------------------------------------------------------- verdict
 
-def _where_acts(fit) -> str:
-    """Where a fitted candidate acts on the drive (separation.location), drifts by their target."""
-    cls = plant_effects.catalogue().get(fit.effect.split("[")[0])
+def _where_acts(fit, catalogue) -> str:
+    """Where a fitted candidate acts on the drive (separation.location), drifts by their target; ``catalogue``:
+    the model's EffectCatalogue."""
+    name = fit.effect.split("[")[0]
+    cls = catalogue[name] if name in catalogue else None
     return separation.location(fit.effect, fit.balance, getattr(cls, "target", None))
 
 
-def _separating_measurement(a, b) -> str:
-    return separation.separating_measurement(a.effect, _where_acts(a), b.effect, _where_acts(b))
+def _separating_measurement(a, b, catalogue) -> str:
+    return separation.separating_measurement(a.effect, _where_acts(a, catalogue), b.effect, _where_acts(b, catalogue))
 
 
 def _is_measurand(fit) -> bool:
@@ -468,10 +468,10 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
                                   "recording and no sensor separates them)")
                 by_place: dict = {}
                 for t in twins:
-                    by_place.setdefault(_where_acts(t), []).append(t.effect)
+                    by_place.setdefault(_where_acts(t, run.model.catalogue), []).append(t.effect)
                 parts[-1] += "".join(
                     ". To tell them apart: " + separation.separating_measurement(
-                        discovery.effect, _where_acts(discovery), " and ".join(names), place)
+                        discovery.effect, _where_acts(discovery, run.model.catalogue), " and ".join(names), place)
                     for place, names in by_place.items())
             if caveat:
                 parts[-1] += ". Or " + caveat
@@ -587,7 +587,8 @@ def _ranked(run: Run, discovery) -> list:
     for r in ranked:
         if discovery is not None and r["effect"] in discovery.indistinguishable_from:
             twin = next((f for f in run.fits if f.effect == r["effect"]), None)
-            r["separating_measurement"] = (_separating_measurement(discovery, twin) if twin is not None else
+            r["separating_measurement"] = (_separating_measurement(discovery, twin, run.model.catalogue)
+                                           if twin is not None else
                                            "none: the same term of the model (decisions.IDENTICAL)")
     return ranked
 

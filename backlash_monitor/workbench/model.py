@@ -28,7 +28,7 @@ from typing import Mapping, Sequence
 
 import yaml
 
-from backlash_monitor.plant import PATTERN_ETA_K, load_plant_config
+from backlash_monitor.plant import PATTERN_ETA_K, builtin_catalogue, load_plant_config
 
 FORMAT_VERSION = 1
 HISTORY_FILE = "workbench_history.jsonl"
@@ -53,14 +53,29 @@ class WorkbenchModel:
     provenance: dict = field(default_factory=dict)    # the diagnosis this version came from (add-effect): its file,
                                                       # measurement and measured width, for train's check
 
+    @property
+    def catalogue(self):
+        """The EffectCatalogue of this model: the built-in effects plus its plug-in files (``effect_files``),
+        built once per list of files and then frozen (its configs carry it)."""
+        key = tuple(self.effect_files)
+        cached = self.__dict__.get("_catalogue")
+        if cached is None or cached[0] != key:
+            try:
+                cat = builtin_catalogue().with_files(key).freeze()
+            except ValueError as exc:
+                raise ModelError(str(exc)) from None
+            cached = self.__dict__["_catalogue"] = (key, cat)
+        return cached[1]
+
     def plant_config(self, extra: Mapping | None = None):
-        """The validated PlantConfig of this model (``extra``: flat overrides on top, e.g. conditions)."""
+        """The validated PlantConfig of this model (``extra``: flat overrides on top, e.g. conditions); it
+        carries the model's catalogue."""
         from backlash_monitor.plant.config import _merge, _unflatten
         data = copy.deepcopy(self.plant)
         if extra:
             _merge(data, _unflatten(dict(extra)))
         try:
-            return load_plant_config(overrides=data or None)
+            return load_plant_config(overrides=data or None, catalogue=self.catalogue)
         except ValueError as exc:
             raise ModelError(str(exc)) from None
 
@@ -106,18 +121,17 @@ def parse_set(text: str) -> tuple[str, object]:
 
 
 def _load_effect_files(paths) -> list:
-    """Register the user's plug-in effects of ``paths`` (plant.effects.load_effects_file); their
-    absolute paths."""
-    from backlash_monitor.plant import load_effects_file
+    """The absolute paths of the user's plug-in effect files ``paths``, checked: they load together into a
+    catalogue with the built-in effects (ModelError naming the problem otherwise)."""
     out = []
     for f in paths:
         f = Path(f).resolve()
-        try:
-            load_effects_file(f)
-        except ValueError as exc:
-            raise ModelError(str(exc)) from None
         if f not in out:
             out.append(f)
+    try:
+        builtin_catalogue().with_files(out)
+    except ValueError as exc:
+        raise ModelError(str(exc)) from None
     return out
 
 
@@ -159,8 +173,9 @@ def load_model(path=None, sets: Sequence[str] = (), width_m: float | None = None
     """The model of ``path`` (None: the default model = config/plant.yaml at the default nominal
     conditions; ``base``: this model instead of a file, e.g. the one a diagnosis recorded), with ``--set``
     overrides and the nominal conditions' overrides; validated.
-    ``effect_files``: the user's plug-in effect files (``--effects-file``), registered before the
-    plant config is validated and kept in the model (with those the file names)."""
+    ``effect_files``: the user's plug-in effect files (``--effects-file``), added to the model's
+    catalogue (``model.catalogue``) that its plant config is validated against, and kept in the model
+    (with those the file names)."""
     if base is not None:
         model = base
     elif path is None:

@@ -1,6 +1,7 @@
 """The workbench's one door to the plant simulator: the candidate catalogue and batched, shared-noise runs.
 
-Built on the plug-in effects API (docs/effects.md): ``plant.effects.catalogue()`` gives every effect with
+Built on the plug-in effects API (docs/effects.md): the model's catalogue (``model.catalogue``, an
+EffectCatalogue: the built-in effects plus the model's plug-in files) gives every effect with
 its parameters (unit, default, bounds); ``PlantSimulator(parameters={name: per-scenario array},
 noise_seed=k)`` runs many candidate parameter sets as one batch on one noise realisation.
 
@@ -124,12 +125,12 @@ def _range(key, p, cfg, width_m, current):
     return min(lo, current), max(hi, current)
 
 
-def candidate_effect_names(not_event_locked: bool = False) -> list[str]:
-    """The effects the workbench fits from the event average: the catalogue's (event-locked ones) and the
-    user's plug-ins registered in this process (not nominal, not built-in catalogue); with
-    ``not_event_locked`` also the ones fitted elsewhere (a torque ripple, from the raw spectrum: ripple.py),
-    which a model version may hold as well."""
-    reg = plant_effects.catalogue()
+def candidate_effect_names(catalogue, not_event_locked: bool = False) -> list[str]:
+    """The effects the workbench fits from the event average, of an EffectCatalogue (a model's:
+    ``model.catalogue``): the built-in catalogue's (event-locked ones) and the user's plug-ins in it (not
+    nominal, not built-in catalogue); with ``not_event_locked`` also the ones fitted elsewhere (a torque
+    ripple, from the raw spectrum: ripple.py), which a model version may hold as well."""
+    reg = catalogue
     skip = () if not_event_locked else NOT_EVENT_LOCKED
     names = [n for n in plant_effects.CATALOGUE_NAMES if n in reg and n not in skip]
     names += [n for n, c in reg.items() if n not in names and n not in skip and not c.nominal
@@ -141,8 +142,8 @@ def catalogue(model, not_event_locked: bool = False) -> list[CandidateEffect]:
     """The candidate effects the workbench fits on ``model`` (a WorkbenchModel), defaults = its values;
     ``not_event_locked``: also the effects fitted outside the event average (candidate_effect_names)."""
     cfg = model.plant_config()
-    reg = plant_effects.catalogue()
-    names = candidate_effect_names(not_event_locked)
+    reg = model.catalogue
+    names = candidate_effect_names(reg, not_event_locked)
     out = []
     for name in names:
         cls = reg[name]
@@ -198,10 +199,10 @@ def config_overrides(parameter_set: Mapping) -> dict:
     return out
 
 
-def _catalogue_switches() -> dict:
-    """Every candidate effect switched on (at its defaults, which an effect's author makes neutral:
-    docs/effects.md)."""
-    return {f"effects.{n}": True for n in candidate_effect_names()}
+def _catalogue_switches(catalogue) -> dict:
+    """Every candidate effect of ``catalogue`` switched on (at its defaults, which an effect's author makes
+    neutral: docs/effects.md)."""
+    return {f"effects.{n}": True for n in candidate_effect_names(catalogue)}
 
 
 _CONFIG_CACHE: dict = {}
@@ -231,8 +232,9 @@ def simulate_sets(model, sets: Sequence[Mapping], seeds: Sequence[int], n_sample
     seeds = [int(s) for s in seeds]
     extra = dict(conditions or {})
     # the model's own effect switches stay as they are; every other catalogue effect on at its neutral default
-    switches = _catalogue_switches()
-    enabled = {c.name for c in plant_effects.enabled_effects(_plant_config(model))}
+    switches = _catalogue_switches(model.catalogue)
+    own = _plant_config(model)
+    enabled = {c.name for c in own.catalogue.enabled(own)}
     switches = {k: v for k, v in switches.items() if k.split(".", 1)[1] not in enabled}
     extra.update(switches)
     cfg = _plant_config(model, extra)

@@ -4,8 +4,6 @@ from __future__ import annotations
 import copy
 from dataclasses import dataclass, field
 
-from backlash_monitor.plant import effects as plant_effects
-
 from . import plant_adapter
 from .diagnosis import MEASURAND_EFFECTS
 from .model import WorkbenchModel, _set_nested
@@ -42,7 +40,7 @@ def add_effects(model: WorkbenchModel, additions, name: str | None = None, nomin
                              + ", ".join(sorted({c.effect for c in cands})))
         params = {p.name: (p.key, p.unit, p.lower, p.upper) for c in mine for p in c.parameters}
         # a candidate's fixed form parameters (the low-pass's sections): within the effect's own bounds
-        cls = plant_effects.catalogue()[mine[0].effect]
+        cls = model.catalogue[mine[0].effect]
         for c in mine:
             for key, _ in c.fixed:
                 q = cls.parameter(key.split(".", 1)[1])

@@ -16,11 +16,11 @@ import numpy as np  # noqa: E402, F401 (imported: the probe times numpy's import
 
 def main():
     names = [n for n in sys.argv[1].split(",") if n]
-    from backlash_monitor.plant import PlantSimulator, Scenario, load_plant_config
-    from backlash_monitor.plant.effects import load_effects_file
-    for f in filter(None, os.environ.get("PROBE_EFFECTS_FILES", "").split(";")):
-        load_effects_file(f)
-    cfg = load_plant_config(overrides={"simulation.run_in_s": 0.0, **{f"effects.{n}": True for n in names}})
+    from backlash_monitor.plant import PlantSimulator, Scenario, builtin_catalogue, load_plant_config
+    catalogue = builtin_catalogue().with_files(
+        list(filter(None, os.environ.get("PROBE_EFFECTS_FILES", "").split(";"))))
+    cfg = load_plant_config(overrides={"simulation.run_in_s": 0.0, **{f"effects.{n}": True for n in names}},
+                            catalogue=catalogue)
     t0 = time.perf_counter()
     sim = PlantSimulator([Scenario(0.005)], config=cfg, noise=False, backend="numba")
     sim.run(2)

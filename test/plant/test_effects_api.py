@@ -7,7 +7,8 @@ import pytest
 
 from backlash_monitor.__main__ import main
 from backlash_monitor.plant import PlantSimulator, Scenario, load_plant_config
-from backlash_monitor.plant.effects import CATALOGUE, Effect, Parameter, catalogue, load_effects_file
+from backlash_monitor.plant.catalogue import builtin_catalogue
+from backlash_monitor.plant.effects import CATALOGUE, Effect, Parameter
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "docs" / "examples" / "my_effects.py"
 ALL_ON = {f"effects.{c.name}": True for c in CATALOGUE}
@@ -21,7 +22,7 @@ def test_catalogue_names_and_declarations():
              "backlash_width_drift", "absorber_consistency_drift", "absorber_flow_index_drift",
              "spring_stiffness_drift", "load_mass_drift", "wheel_inertia_drift", "working_resistance_drift",
              "pulse_amplitude_drift", "rotor_resistance_drift", "supply_voltage_drift"}
-    cat = catalogue()
+    cat = builtin_catalogue()
     assert {c.name for c in CATALOGUE} == names and names <= set(cat)
     for name in names:
         cls = cat[name]
@@ -103,14 +104,15 @@ def test_simulate_set_switches_a_catalogue_effect(tmp_path):
 def test_users_effect_from_a_file_runs_like_the_same_built_in_term(tmp_path):
     """docs/examples/my_effects.py via --effects: its copy of wheel_viscous_friction gives the built-in's
     signals bit for bit, and its own wheel_drag works from the command line."""
-    assert set(load_effects_file(EXAMPLE)) == {"wheel_drag", "my_viscous_wheel"}
+    mine = builtin_catalogue().copy()
+    assert set(mine.load_effects_file(EXAMPLE)) == {"wheel_drag", "my_viscous_wheel"}
     scen = [Scenario(0.005, seed=2)]
     base = {"simulation.run_in_s": 0.0}
     builtin = PlantSimulator(scen, config=load_plant_config(overrides={
         **base, "effects.wheel_viscous_friction": True, "wheel_viscous_friction.damping_Nms_per_rad": 0.01}),
         noise=True).run(3000)
     plugin = PlantSimulator(scen, config=load_plant_config(overrides={
-        **base, "effects.my_viscous_wheel": True, "my_viscous_wheel.damping_Nms_per_rad": 0.01}),
+        **base, "effects.my_viscous_wheel": True, "my_viscous_wheel.damping_Nms_per_rad": 0.01}, catalogue=mine),
         noise=True).run(3000)
     assert np.array_equal(builtin.a1, plugin.a1) and np.array_equal(builtin.a2, plugin.a2)
     out = tmp_path / "d.npz"
@@ -140,9 +142,10 @@ def test_entry_point_plugin_and_bad_terms(monkeypatch):
         def load(self):
             return EpEffect
 
+    mine = builtin_catalogue().copy()      # built before the fake entry point exists: it stays without it
     monkeypatch.setattr(md, "entry_points", lambda group=None: [FakeEP()] if group == E.ENTRY_POINT_GROUP else [])
-    assert E.load_entry_points() == ["ep_test_effect"]
-    assert "ep_test_effect" in catalogue()
+    assert mine.load_entry_points() == ["ep_test_effect"]
+    assert "ep_test_effect" in mine and "ep_test_effect" not in builtin_catalogue()
 
     class Bad(Effect):
         name = "bad_effect"
@@ -155,7 +158,7 @@ def test_entry_point_plugin_and_bad_terms(monkeypatch):
             return -omega_2
 
     with pytest.raises(ValueError, match="nearest: 'omega2'"):
-        E.register(Bad)
+        mine.register(Bad)
 
 
 @pytest.mark.process
@@ -196,7 +199,8 @@ def test_live_node_publishes_the_same_effects_as_a_batch_run(ros_env):
     finally:
         rclpy.try_shutdown()
     from backlash_monitor.plant.config import parse_override
-    cfg = load_plant_config(overrides=dict(parse_override(t) for t in sets.split(";")))
+    cfg = load_plant_config(overrides=dict(parse_override(t) for t in sets.split(";")),
+                            catalogue=builtin_catalogue().with_files([EXAMPLE]))
     batch = PlantSimulator([Scenario(0.005, 0.025, 0.89, seed=0)], config=cfg, noise=True).run(2000)
     for name in received:
         live = np.concatenate([from_float64_field(m.samples) for m in received[name]])
@@ -216,8 +220,8 @@ def test_a_term_that_does_not_compile_is_one_line_error(tmp_path):
                  "    @staticmethod\n"
                  "    def term(omega2, k):\n"
                  "        return k * omega2 + {}\n")
-    load_effects_file(f)
-    cfg = load_plant_config(overrides={"simulation.run_in_s": 0.0, "effects.bad_term_effect": True})
+    cfg = load_plant_config(overrides={"simulation.run_in_s": 0.0, "effects.bad_term_effect": True},
+                            catalogue=builtin_catalogue().with_files([f]))
     with pytest.raises(ValueError, match="does not compile.*allowed in a term"):
         PlantSimulator([Scenario(0.005)], config=cfg, backend="numba-scalar").run(2)
 
@@ -240,9 +244,10 @@ def test_sensor_plugin_stage_acts_on_the_published_signal():
             lim = values[f"{signal}_limit_m_s2"][:, None]
             return np.clip(a, -lim, lim)
 
-    E.register(AccelerometerRange)
+    mine = builtin_catalogue().copy()
+    mine.register(AccelerometerRange)
     cfg = load_plant_config(overrides={"simulation.run_in_s": 0.0, "effects.test_accelerometer_range": True,
-                                       "test_accelerometer_range.a1_limit_m_s2": 5.0})
+                                       "test_accelerometer_range.a1_limit_m_s2": 5.0}, catalogue=mine)
     base = PlantSimulator([Scenario(0.005)], config=load_plant_config(overrides={"simulation.run_in_s": 0.0}),
                           noise=True).run(4000)
     ch = PlantSimulator([Scenario(0.005)], config=cfg, noise=True).run(4000)

@@ -10,7 +10,8 @@ import pytest
 from backlash_monitor.plant import PlantSimulator, Scenario, load_plant_config
 from backlash_monitor.plant.codegen import kernel_for
 from backlash_monitor.plant.drivetrain import clutch_torque
-from backlash_monitor.plant.effects import CATALOGUE, NOMINAL, catalogue
+from backlash_monitor.plant.catalogue import builtin_catalogue
+from backlash_monitor.plant.effects import CATALOGUE, NOMINAL
 from backlash_monitor.plant.reference import reference_run
 
 TERMS = [c for c in CATALOGUE if c.kind == "term"]
@@ -141,7 +142,7 @@ def test_whole_catalogue_at_neutral_defaults_is_the_nominal_model():
         x, y = getattr(a, sig), getattr(b, sig)
         assert np.max(np.abs(x - y)) <= 1e-9 * np.max(np.abs(x)), sig
     assert a.entries == b.entries
-    assert set(catalogue()) >= {c.name for c in CATALOGUE}
+    assert set(builtin_catalogue()) >= {c.name for c in CATALOGUE}
 
 
 DIRECT = {   # drift -> how the same change is made without it: (config key or scenario field, nominal value)
@@ -215,7 +216,7 @@ def test_sensor_stages_with_random_parameters_follow_their_equations(seed):
     names = ("accelerometer_bias", "accelerometer_gain", "accelerometer_lowpass")
     params = {}
     for n in names:
-        for p in catalogue()[n].parameters:
+        for p in builtin_catalogue()[n].parameters:
             hi = min(p.bounds[1], 1e-3 if "time_constant" in p.name else p.bounds[1])
             params[f"{n}.{p.name}"] = float(rng.uniform(p.bounds[0], hi))
     for backend in ("numba", "numba-scalar"):
@@ -253,10 +254,9 @@ def test_generated_simd_stage_vectorises_with_every_catalogue_term(tmp_path):
         "import json, re, warnings, numpy as np\n"
         "from backlash_monitor.plant import load_plant_config\n"
         "from backlash_monitor.plant.codegen import kernel_for, global_vector, N_STATES\n"
-        "from backlash_monitor.plant.effects import enabled_effects\n"
         "from backlash_monitor.plant.effects import CATALOGUE\n"
         "cfg = load_plant_config(overrides={f'effects.{c.name}': True for c in CATALOGUE})\n"
-        "k = kernel_for(tuple(enabled_effects(cfg, 'term')))\n"
+        "k = kernel_for(tuple(cfg.catalogue.enabled(cfg, 'term')))\n"
         "S, n = 2, 3; P = np.ones((len(k.param_rows), S))\n"
         "k.module.rk4_simd(np.ones((S, N_STATES)), np.zeros((S, n)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n),"
         " 1.0, P, global_vector(cfg), 2e-5, np.zeros((1, S, n)), np.zeros((N_STATES, 0, 0)), False, True,"

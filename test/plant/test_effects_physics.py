@@ -200,8 +200,8 @@ def test_accelerometer_lowpass_of_n_sections_attenuates_a_sine_by_the_nth_power(
     ("supply_voltage_drift", -0.1, {"motor.supply_voltage_pu": 0.9}, None),
 ])
 def test_drift_equals_the_changed_parameter(drift, change, direct, scenario):
-    from backlash_monitor.plant.effects import get
-    pname = get(drift).parameters[0].name
+    from backlash_monitor.plant.catalogue import builtin_catalogue
+    pname = builtin_catalogue().get(drift).parameters[0].name
     _, drifted = run({f"effects.{drift}": True, f"{drift}.{pname}": change}, 4000)
     _, changed = run(direct, 4000, scen=[scenario] if scenario else SCEN)
     for sig in ("a1", "a2", "angle_difference"):

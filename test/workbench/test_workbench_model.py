@@ -97,12 +97,12 @@ def test_candidate_sets_share_noise_and_seeds_do_not():
 
 
 def test_catalogue_has_the_issue_names_with_ranges_inside_bounds():
-    from backlash_monitor.plant import effects as pe
     from backlash_monitor.workbench import plant_adapter
-    cands = plant_adapter.catalogue(load_model(None))
+    model = load_model(None)
+    cands = plant_adapter.catalogue(model)
     names = {c.effect for c in cands}
     assert {"wheel_coulomb_friction", "accelerometer_lowpass", "load_mass_drift"} <= names
-    reg = pe.catalogue()
+    reg = model.catalogue
     for c in cands:
         for p in c.parameters:
             lo, hi = reg[c.effect].parameter(p.name).bounds

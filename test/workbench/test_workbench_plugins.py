@@ -7,7 +7,6 @@ import pytest
 import yaml
 
 from backlash_monitor.__main__ import main
-from backlash_monitor.plant import effects as plant_effects
 from backlash_monitor.workbench import plant_adapter
 from backlash_monitor.workbench.diagnose import diagnose, public
 from backlash_monitor.workbench.model import load_model
@@ -26,13 +25,14 @@ def test_plugin_is_a_candidate_and_its_version_loads_again(tmp_path, capsys):
     assert "not in the catalogue" in capsys.readouterr().err
     model = load_model(None, effect_files=[MY_EFFECTS])
     assert "wheel_drag" in {c.effect for c in plant_adapter.catalogue(model)}
+    assert "wheel_drag" not in {c.effect for c in plant_adapter.catalogue(load_model(None))}   # the model's own
     assert main(base + ["--effects-file", str(MY_EFFECTS)]) == 0
     saved = yaml.safe_load(v2.read_text())
     assert not Path(saved["effect_files"][0]).is_absolute()  # relative to the model file: moves with it
-    plant_effects._REGISTRY.pop("wheel_drag")                # a fresh process: the file loads it again
-    again = load_model(v2)
+    again = load_model(v2)                                   # the version's own file gives its catalogue
     cfg = again.plant_config()
     assert cfg.effects["wheel_drag"] and cfg.effect_parameter("wheel_drag", "coefficient_Nms2_per_rad2") == 0.02
+    assert cfg.catalogue is again.catalogue and "wheel_drag" in again.catalogue
 
 
 @pytest.mark.slow

@@ -65,9 +65,8 @@ def test_diagnose_names_the_ripple_and_add_effect_puts_it_into_the_next_version(
     assert main(["add-effect", str(diag), "--model", str(v1), "-o", str(v2)]) == 0
     new = load_model(str(v2))
     assert [a["effect"] for a in new.effects_added] == ["torque_ripple"]      # once, not twice
-    from backlash_monitor.plant import effects as plant_effects
     cfg = new.plant_config()
-    assert "torque_ripple" in {c.name for c in plant_effects.enabled_effects(cfg)}
+    assert "torque_ripple" in {c.name for c in cfg.catalogue.enabled(cfg)}
     assert cfg.effect_parameter("torque_ripple", "amplitude_pu") == pytest.approx(fit["parameters"]["amplitude_pu"])
     assert cfg.effect_parameter("torque_ripple", "order") == pytest.approx(fit["parameters"]["order"])
     after = analysis.spectral_peaks(analysis.spectra(analysis.build_comparison(meas, new)))["a1"]["peaks_hz"]

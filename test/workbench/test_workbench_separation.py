@@ -1,10 +1,11 @@
 """diagnose names what would separate two indistinguishable candidates, from where each acts."""
 from backlash_monitor.plant import effects as plant_effects
+from backlash_monitor.plant.catalogue import builtin_catalogue
 from backlash_monitor.workbench import separation
 
 
 def _where(name):
-    cls = plant_effects.catalogue()[name]
+    cls = builtin_catalogue()[name]
     return separation.location(name, cls.balance, getattr(cls, "target", None))
 
 
