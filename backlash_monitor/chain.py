@@ -390,9 +390,11 @@ class WindowingStage:
         self._note_gap(first)
         self._place(first, n)
         self.fed_samples += n
-        entries = self.detector.feed(first, joined.arrays, joined.sample_period_s)
+        # the range's samples are known finite here (check, or the block's samples_good): the
+        # detector and the capture need not test them again
+        entries = self.detector.feed(first, joined.arrays, joined.sample_period_s, finite=True)
         windows, more = self.capture.feed(first, joined.arrays, entries=entries,
-                                          sample_period_s=joined.sample_period_s)
+                                          sample_period_s=joined.sample_period_s, finite=True)
         return windows, discarded + more
 
     def takes_block(self, first_sample_index: int) -> bool:
@@ -485,7 +487,8 @@ def _common_length(arrays, names) -> int:
         a = arrays.get(name)
         if a is None:
             continue
-        a = np.asarray(a)
+        if type(a) is not np.ndarray:    # (an array as is: no np.asarray call per range)
+            a = np.asarray(a)
         if a.ndim != 1 or a.size == 0:
             return -2
         if n >= 0 and a.size != n:

@@ -17,10 +17,15 @@
   (read_signal).
 - rosbags_read_samples_per_s: the same bag read and deserialized by rosbags (time_rosbags_read()).
 - analyze_vs_rosbags_read: the whole `analyze` of a simulated 10 s bag against rosbags merely
-  reading and deserializing the same three topics of the same file (5 interleaved rounds, the
-  fastest of each side); also on the bag rewritten by the `mcap` writer with rosbag2's writer
-  options noSummary and noChunking (``..._noSummary``, ``..._noChunking``), and whether the three
-  layouts gave the same estimates (``analyze_same_estimates_across_layouts``).
+  reading and deserializing the same three topics of the same file: 15 rounds (ROUNDS), each an
+  analyze run and a rosbags read of each layout back to back, which of the two goes first
+  alternating from round to round, the garbage collector run before every timed run (either
+  side's garbage is not collected inside the other's time); the figure is the median over the
+  rounds of each pair's ratio (a load change hits both of a pair alike), ``..._fastest`` the
+  ratio of each side's fastest run (the figure before: on a loaded machine the two fastest come
+  from different moments, 0.53-2.4 in runs whose pair medians were 1.07-1.61); ``timing`` says so. Also on the bag rewritten by the `mcap` writer
+  with rosbag2's writer options noSummary and noChunking (``..._noSummary``, ``..._noChunking``),
+  and whether the three layouts gave the same estimates (``analyze_same_estimates_across_layouts``).
 - container_*_vs_mcap_library: the container layer alone on the same bag (the three topics' raw
   payloads; the SignalChunk fields analyze reads), backlash_monitor.bag's speed over the `mcap`
   package's reader (with our SignalChunk decoding on its payloads); > 1: ours is faster.
@@ -245,7 +250,12 @@ def dds_record(out: Path, seconds: float, factor: float, env: dict) -> dict:
             "lost": lost, "publish_elapsed_s": result["elapsed_s"], "acked": result["acked"]}
 
 
-ROUNDS = 5   # analyze and rosbags timings, interleaved; the fastest of each is reported
+ROUNDS = 15  # analyze and rosbags timings, in alternated pairs; the fastest of each is reported
+TIMING = (f"{ROUNDS} rounds; in each, per layout, one analyze run and one rosbags read back to back, "
+          "which goes first alternating from round to round; gc.collect() before every timed run "
+          "(outside its time); analyze_vs_rosbags_read = median over the rounds of rosbags read / "
+          "analyze of the same round; _fastest = fastest rosbags read / fastest analyze; the wall "
+          "times are each side's fastest")
 LAYOUTS = {"default": None, "noSummary": {"noSummary": True}, "noChunking": {"noChunking": True}}
 ANALYZE_TOPICS = [f"/plant/{n}" for n in ("a1", "a2", "angle_difference")]
 
@@ -292,20 +302,37 @@ def time_analyze(tmp: Path, seconds: float = 10.0) -> dict:
         _analyze(analyze, parser, bag, tmp / f"{name}_warmup")
         estimates[name] = (tmp / f"{name}_warmup.csv").read_text()
         time_rosbags_read(bag, ANALYZE_TOPICS)
+    import gc
+    import statistics
+
+    def timed_analyze(name, bag, k):
+        gc.collect()
+        return _analyze(analyze, parser, bag, tmp / f"{name}_{k}")
+
+    def timed_rosbags(bag):
+        gc.collect()
+        return time_rosbags_read(bag, ANALYZE_TOPICS)
+
     runs = {name: [] for name in bags}
     rosbags_runs = {name: [] for name in bags}
-    for k in range(ROUNDS):         # interleaved: a load change hits every side alike
+    for k in range(ROUNDS):         # alternated pairs: a load change hits both sides alike
         for name, bag in bags.items():
-            runs[name].append(_analyze(analyze, parser, bag, tmp / f"{name}_{k}"))
-            rosbags_runs[name].append(time_rosbags_read(bag, ANALYZE_TOPICS))
-    out = {"analyze_bag_seconds": seconds,
+            if k % 2:
+                rosbags_runs[name].append(timed_rosbags(bag))
+                runs[name].append(timed_analyze(name, bag, k))
+            else:
+                runs[name].append(timed_analyze(name, bag, k))
+                rosbags_runs[name].append(timed_rosbags(bag))
+    out = {"analyze_bag_seconds": seconds, "timing": TIMING,
            "analyze_same_estimates_across_layouts": len(set(estimates.values())) == 1,
            "analyze_estimate_rows": estimates["default"].count("\n") - 1}
     for name in bags:
         t_analyze = min(runs[name])
         n_rb, t_rb = min(rosbags_runs[name], key=lambda x: x[1])
         suffix = "" if name == "default" else f"_{name}"
-        out[f"analyze_vs_rosbags_read{suffix}"] = t_rb / t_analyze
+        out[f"analyze_vs_rosbags_read{suffix}"] = statistics.median(
+            rb[1] / a for a, rb in zip(runs[name], rosbags_runs[name]))
+        out[f"analyze_vs_rosbags_read{suffix}_fastest"] = t_rb / t_analyze
         out[f"analyze_wall_s{suffix}"] = t_analyze
         out[f"rosbags_read_same_topics_wall_s{suffix}"] = t_rb
         if name == "default":

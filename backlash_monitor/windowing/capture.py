@@ -123,7 +123,10 @@ class WindowCapture:
         self.offsets.restart(first)
 
     def feed(self, first_sample_index: int, signals: Mapping[str, np.ndarray],
-             entries: Iterable[BacklashEntry] = (), sample_period_s: float | None = None):
+             entries: Iterable[BacklashEntry] = (), sample_period_s: float | None = None,
+             finite: bool = False):
+        """(windows, discarded) this chunk completes. ``finite``: the caller has checked that
+        every sample in ``signals`` is finite (WindowingStage does): not tested again."""
         first = int(first_sample_index)
         discarded: list[DiscardedWindow] = []
         if sample_period_s is not None:
@@ -154,7 +157,7 @@ class WindowCapture:
         if any(a.ndim != 1 for a in arrays):
             raise ValueError("signals: every captured signal must be a 1-D array of the same length")
         bad = ("length_mismatch" if any(a.size != n for a in arrays) else
-               "non_finite_samples" if not all(map(_all_finite, arrays)) else None)
+               "non_finite_samples" if not finite and not all(map(_all_finite, arrays)) else None)
         if bad is not None:
             # the windows open across this chunk would hold it: discard them, start again after it
             discarded += self._discard_all(bad)

@@ -356,7 +356,11 @@ class BacklashEntryDetector:
 
     # ------------------------------------------------------------------ feed
     def feed(self, first_sample_index: int, signals: Mapping[str, np.ndarray],
-             sample_period_s: float | None = None) -> list[BacklashEntry]:
+             sample_period_s: float | None = None, finite: bool = False) -> list[BacklashEntry]:
+        """The entries this chunk completes. ``finite``: the caller has checked that every sample
+        in ``signals`` is finite (WindowingStage does): a measured angle difference given as a
+        float64 array is then not tested again (a difference or an integral of the signals
+        still is: it can overflow)."""
         first = int(first_sample_index)
         if sample_period_s is not None and not (isinstance(sample_period_s, float)
                                                 and sample_period_s == self.sample_period_s):
@@ -396,7 +400,8 @@ class BacklashEntryDetector:
             raise ValueError(f"signals: arrays must be 1-D (one drive); got shape {delta.shape}")
         n = delta.size
         # a finite sum says every sample is finite (NaN/inf propagate); an infinite one may be an overflow
-        if not math.isfinite(np.add.reduce(delta)) and not np.isfinite(delta).all():
+        known = finite and delta is signals.get("angle_difference")
+        if not known and not math.isfinite(np.add.reduce(delta)) and not np.isfinite(delta).all():
             # NaN/inf would poison the contact tracker for good: drop the chunk, start again after it
             self.events.append((first, f"reset: non-finite samples in {first}..{first + n - 1}"))
             self._reset()

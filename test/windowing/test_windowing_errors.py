@@ -47,3 +47,17 @@ def test_missing_angle_signals():
 def test_extract_windows_needs_1d():
     with pytest.raises(ValueError, match="extract_windows_batch"):
         extract_windows({"a1": np.zeros((2, 10)), "a2": np.zeros((2, 10)), "angle_difference": np.zeros((2, 10))})
+
+
+def test_finite_inputs_whose_integral_overflows_still_reset_the_detector():
+    """``finite=True`` (the caller checked the samples, as WindowingStage does) skips only the test
+    of a measured angle difference given as is: speeds that are finite but whose difference
+    overflows to inf still reset the integrated detector instead of poisoning its tracker."""
+    speeds = {"omega1": np.full(1000, 1.5e308), "omega2": np.full(1000, -1.5e308)}
+    det = BacklashEntryDetector(angle_source="integrated")
+    with np.errstate(over="ignore"):
+        assert det.feed(0, speeds, finite=True) == []
+    assert any("non-finite" in event for _, event in det.events)
+    measured = BacklashEntryDetector()
+    measured.feed(0, {"angle_difference": np.zeros(1000)}, finite=True)
+    assert measured.events == []
