@@ -489,23 +489,6 @@ class Kernel:
 
 
 _KERNELS: dict = {}
-_LLVM_OPTION_SET = False
-
-
-def _allow_vectoriser_memory_checks() -> None:
-    """The generated stage reads ~25 rows (state, parameters, load) and writes 12 (derivatives, T_c) of
-    arrays that LLVM cannot prove disjoint; it then needs one run-time overlap check per pair of row
-    groups and, above its default limit, refuses to vectorise ("loop not vectorized: too many memory
-    checks needed", measured: no vector instruction in the stage, 150 vs 91 ns per scenario-step).
-    Raising the limit (a process-wide LLVM option, set once before the first compilation) lets it
-    vectorise; the checks run once per stage call, not per scenario."""
-    global _LLVM_OPTION_SET
-    if _LLVM_OPTION_SET or not HAVE_NUMBA:
-        return
-    import llvmlite.binding as llvm
-    llvm.set_option("backlash_monitor", "-vectorize-memory-check-threshold=1024")
-    _LLVM_OPTION_SET = True
-
 
 def kernel_for(effect_classes) -> Kernel:
     """The (memoised) backends for a tuple of term effect classes: generated, written, imported."""
@@ -516,7 +499,6 @@ def kernel_for(effect_classes) -> Kernel:
     rhs_np = generate_numpy(effect_classes)
     module = path = None
     if HAVE_NUMBA:
-        _allow_vectoriser_memory_checks()
         source = generate_source(effect_classes)
         digest = _cache_key(source)
         d = cache_dir()
