@@ -4,7 +4,7 @@ For one set of enabled term effects, one Python source is generated: the right-h
 block of straight-line code (the motor, then each balance as the sum of its terms, each term a small
 function inlined by numba), placed
 
-- inside the SIMD stage: a loop over one tile of W scenarios around the block (LLVM vectorises it; the
+- inside the SIMD stage: a loop over one tile of up to WR scenarios around the block (LLVM vectorises it; the
   terms use :mod:`mathlib`, which has no libm calls and no branches),
 - inside the scalar right-hand side ``f_scalar`` (the ``numba-scalar`` backend and the zone-crossing
   step),
@@ -35,7 +35,7 @@ from backlash_monitor.plant._numba import HAVE_NUMBA, numba
 from backlash_monitor.plant.state import GLOBAL_NAMES, N_STATES, STATE_NAMES  # noqa: F401 (the kernels' layout)
 BASE_ROWS = ("beta", "wheel_inertia_kgm2", "mass_kg",   # per-scenario model values every kernel reads (the motor's
              "rotor_resistance_pu", "supply_voltage_scale")  # two that drift with temperature and the grid among them)
-GENERATOR_VERSION = "7"
+GENERATOR_VERSION = "8"
 
 
 def global_vector(cfg) -> np.ndarray:
@@ -134,22 +134,25 @@ def _globals(indent: str) -> str:
 
 _KERNEL_TEMPLATE = '''
 @numba.njit(**_TJIT)
-def stage(WS, ry, rk, ua, ub, G):
-    """One RK4 stage for one tile of W scenarios: K = f(Y) with Y the N_STATES rows of the workspace from row
-    ``ry``, K those from row ``rk``, T_c into row R_TC; inlined where it is called, so the rows are constants
-    and every access is the workspace's base plus a constant plus s: LLVM vectorises the loop over the tile
-    with no run-time alias check (docs/effects.md, "Backends": the tiles)."""
+def stage(WS, ry, rk, ua, ub, G, nl):
+    """One RK4 stage for the nl scenarios of a tile (nl a multiple of W): K = f(Y) with Y the N_STATES rows of
+    the workspace from row ``ry``, K those from row ``rk``, T_c into row R_TC; inlined where it is called, so
+    the rows are constants and every access is the workspace's base plus a constant plus s. The inner loop
+    over one block of W scenarios becomes one vector per operation (no run-time alias check, no scalar
+    remainder); the outer loop runs the nl / W blocks (docs/effects.md, "Backends": the tiles)."""
 {globals}
     mode = 0                    # the zone test decides (a located crossing is the scalar step's)
-    for s in range(W):
-        load_pu = WS[R_LD * W + s]
+    for blk in range(nl // W):
+        for lane in range(W):
+            s = blk * W + lane
+            load_pu = WS[R_LD * WR + s]
 {binds_simd}
 {body_simd}
-        WS[(rk + 0) * W + s] = d0; WS[(rk + 1) * W + s] = d1; WS[(rk + 2) * W + s] = d2
-        WS[(rk + 3) * W + s] = d3; WS[(rk + 4) * W + s] = d4; WS[(rk + 5) * W + s] = d5
-        WS[(rk + 6) * W + s] = d6; WS[(rk + 7) * W + s] = d7; WS[(rk + 8) * W + s] = d8
-        WS[(rk + 9) * W + s] = d9; WS[(rk + 10) * W + s] = d10
-        WS[R_TC * W + s] = tc
+            WS[(rk + 0) * WR + s] = d0; WS[(rk + 1) * WR + s] = d1; WS[(rk + 2) * WR + s] = d2
+            WS[(rk + 3) * WR + s] = d3; WS[(rk + 4) * WR + s] = d4; WS[(rk + 5) * WR + s] = d5
+            WS[(rk + 6) * WR + s] = d6; WS[(rk + 7) * WR + s] = d7; WS[(rk + 8) * WR + s] = d8
+            WS[(rk + 9) * WR + s] = d9; WS[(rk + 10) * WR + s] = d10
+            WS[R_TC * WR + s] = tc
 
 
 @numba.njit(**_JIT)
@@ -238,41 +241,45 @@ def crossing_step(y0, y1, h, phase, u_amp, ld, ps, G):
 
 @numba.njit(**_JIT)
 def rk4_simd(x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states, record_outputs, sel):
-    """Scenarios in tiles of W (a compile-time width), samples inner per tile; each tile's state, stages,
-    parameters and load in one workspace. The last tile is padded with copies of the last scenario (never
-    written out, never take the crossing step)."""
+    """Scenarios in tiles of nl = up to WR (a multiple of W, a run-time count), samples inner per tile; each
+    tile's state, stages, parameters and load in one workspace whose rows are WR apart. The loops over a
+    tile's scenarios run to the run-time nl: LLVM keeps them loops of whole vectors (loops of a constant 8
+    were unrolled into mostly scalar code, measured: ~1.6x slower, docs/effects.md). The last tile is padded
+    to a multiple of W with copies of the last scenario (never written out, never take the crossing step)."""
     S = x.shape[0]
     n = load.shape[1]
 {GLOBALS}
     hh = 0.5 * h; h6 = h / 6.0
-    WS = np.empty(WS_ROWS * W)
+    WS = np.empty(WS_ROWS * WR)
     y0 = np.empty(N_STATES); y1 = np.empty(N_STATES); ps = np.empty(N_PARAMS)
     nsel = sel.shape[0]
-    buf = np.empty((nsel, OUT_BLOCK, W))
-    for t0 in range(0, S, W):
-        live = min(W, S - t0)
-        for s in range(W):
+    buf = np.empty((nsel, OUT_BLOCK, WR))
+    t0 = 0
+    while t0 < S:
+        nl = min(WR, (S - t0 + W - 1) // W * W)
+        live = min(nl, S - t0)
+        for s in range(nl):
             sc = min(t0 + s, S - 1)
             for i in range(N_STATES):
-                WS[(R_Y + i) * W + s] = x[sc, i]
+                WS[(R_Y + i) * WR + s] = x[sc, i]
             for j in range(N_PARAMS):
-                WS[(R_P + j) * W + s] = P[j, sc]
+                WS[(R_P + j) * WR + s] = P[j, sc]
         for k in range(n):
-            for s in range(W):
-                WS[R_LD * W + s] = load[min(t0 + s, S - 1), k]
+            for s in range(nl):
+                WS[R_LD * WR + s] = load[min(t0 + s, S - 1), k]
             if record_states:
                 for i in range(N_STATES):
                     for s in range(live):
-                        states[i, t0 + s, k] = WS[(R_Y + i) * W + s]
+                        states[i, t0 + s, k] = WS[(R_Y + i) * WR + s]
             for i in range(N_STATES):
-                for s in range(W):
-                    WS[(R_T + i) * W + s] = WS[(R_Y + i) * W + s]
-                    WS[(R_A + i) * W + s] = 0.0
+                for s in range(nl):
+                    WS[(R_T + i) * WR + s] = WS[(R_Y + i) * WR + s]
+                    WS[(R_A + i) * WR + s] = 0.0
             for st in range(4):
                 # the right-hand side at the trial state T, into K; the stage's weight into the sum A; the
                 # next trial state. One inlined stage in a loop (not four): a quarter of the compile time
                 c = (st + 1) // 2
-                stage(WS, R_T, R_K, ua[k, c], ub[k, c], G)
+                stage(WS, R_T, R_K, ua[k, c], ub[k, c], G, nl)
                 if st == 0 and record_outputs:
                     b = k % OUT_BLOCK
                     for j in range(nsel):
@@ -287,29 +294,30 @@ def rk4_simd(x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states,
                 wt = 1.0 if st == 0 or st == 3 else 2.0
                 ht = h if st == 2 else hh
                 for i in range(N_STATES):
-                    for s in range(W):
-                        WS[(R_A + i) * W + s] += wt * WS[(R_K + i) * W + s]
-                        WS[(R_T + i) * W + s] = WS[(R_Y + i) * W + s] + ht * WS[(R_K + i) * W + s]
+                    for s in range(nl):
+                        WS[(R_A + i) * WR + s] += wt * WS[(R_K + i) * WR + s]
+                        WS[(R_T + i) * WR + s] = WS[(R_Y + i) * WR + s] + ht * WS[(R_K + i) * WR + s]
             for i in range(N_STATES):
-                for s in range(W):
-                    WS[(R_T + i) * W + s] = WS[(R_Y + i) * W + s] + h6 * WS[(R_A + i) * W + s]
+                for s in range(nl):
+                    WS[(R_T + i) * WR + s] = WS[(R_Y + i) * WR + s] + h6 * WS[(R_A + i) * WR + s]
             if CLUTCH:
                 for s in range(live):
-                    bs = WS[R_P * W + s]
-                    if (abs(WS[(R_Y + 5) * W + s]) < bs) != (abs(WS[(R_T + 5) * W + s]) < bs):
+                    bs = WS[R_P * WR + s]
+                    if (abs(WS[(R_Y + 5) * WR + s]) < bs) != (abs(WS[(R_T + 5) * WR + s]) < bs):
                         for i in range(N_STATES):
-                            y0[i] = WS[(R_Y + i) * W + s]; y1[i] = WS[(R_T + i) * W + s]
+                            y0[i] = WS[(R_Y + i) * WR + s]; y1[i] = WS[(R_T + i) * WR + s]
                         for j in range(N_PARAMS):
-                            ps[j] = WS[(R_P + j) * W + s]
-                        crossing_step(y0, y1, h, phase[k], u_amp, WS[R_LD * W + s], ps, G)
+                            ps[j] = WS[(R_P + j) * WR + s]
+                        crossing_step(y0, y1, h, phase[k], u_amp, WS[R_LD * WR + s], ps, G)
                         for i in range(N_STATES):
-                            WS[(R_T + i) * W + s] = y1[i]
+                            WS[(R_T + i) * WR + s] = y1[i]
             for i in range(N_STATES):
-                for s in range(W):
-                    WS[(R_Y + i) * W + s] = WS[(R_T + i) * W + s]
+                for s in range(nl):
+                    WS[(R_Y + i) * WR + s] = WS[(R_T + i) * WR + s]
         for s in range(live):
             for i in range(N_STATES):
-                x[t0 + s, i] = WS[(R_Y + i) * W + s]
+                x[t0 + s, i] = WS[(R_Y + i) * WR + s]
+        t0 += nl
 '''
 
 _HEADER = '''# Generated by backlash_monitor.plant.codegen (generator {version}) -- do not edit.
@@ -323,9 +331,11 @@ from backlash_monitor.plant.mathlib import (where, fabs, fmax, fmin, sign, smoot
 _JIT = dict(cache=True, nogil=True, fastmath=True, error_model="numpy")
 _TJIT = dict(inline="always", fastmath=True, error_model="numpy")
 N_STATES = {n_states}
-W = 8                       # scenarios per tile: one AVX-512 vector, two AVX2 ones
+W = 8                       # a tile holds a multiple of W scenarios: one AVX-512 vector, two AVX2 ones
+WR = 32                     # the most scenarios in a tile (the workspace's rows are WR apart): 16-32 measured
+                            # equal at <= 12 scenarios, 32 ~5 % faster at >= 48; 64 slower at 6
 N_PARAMS = {n_params}
-R_Y = 0                     # the workspace's rows (each W wide): state, RK4 trial state, a stage's
+R_Y = 0                     # the workspace's rows (each WR wide): state, RK4 trial state, a stage's
 R_T = N_STATES              # derivatives, their weighted sum, T_c, the load, the parameters
 R_K = 2 * N_STATES
 R_A = 3 * N_STATES
@@ -368,9 +378,9 @@ def _simd_output_select() -> str:
     for j, o in enumerate(_outputs.OUTPUTS):
         kw = "if" if j == 0 else ("else" if j == len(_outputs.OUTPUTS) - 1 else "elif")
         lines.append(f"                        {kw}:" if kw == "else" else f"                        {kw} o == {j}:")
-        lines.append("                            for s in range(W): buf[j, b, s] = "
-                     + _outputs.render(o.expression, "WS[(R_T + {i}) * W + s]", "WS[(R_K + {i}) * W + s]",
-                                       "WS[R_TC * W + s]"))
+        lines.append("                            for s in range(nl): buf[j, b, s] = "
+                     + _outputs.render(o.expression, "WS[(R_T + {i}) * WR + s]", "WS[(R_K + {i}) * WR + s]",
+                                       "WS[R_TC * WR + s]"))
     return "\n".join(lines)
 
 
@@ -425,8 +435,8 @@ def generate_source(effect_classes) -> str:
                           clutch="backlash_clutch" in names, effect_names=names, rows=param_rows(effect_classes))
     kern = _KERNEL_TEMPLATE.format(
         globals=_globals("    "), globals_1=_globals("    "),
-        binds_simd=_binds(effect_classes, "WS[(ry + {i}) * W + s]", "WS[(R_P + {i}) * W + s]", "        "),
-        body_simd=_body(effect_classes, "        "),
+        binds_simd=_binds(effect_classes, "WS[(ry + {i}) * WR + s]", "WS[(R_P + {i}) * WR + s]", "            "),
+        body_simd=_body(effect_classes, "            "),
         binds_scalar=_binds(effect_classes, "y[{i}]", "ps[{i}]", "    "),
         binds_tuple=_binds(effect_classes, "y{i}", "ps[{i}]", "    "),
         body_scalar=_body(effect_classes, "    ", "_ts_"))
@@ -479,23 +489,6 @@ class Kernel:
 
 
 _KERNELS: dict = {}
-_LLVM_OPTION_SET = False
-
-
-def _allow_vectoriser_memory_checks() -> None:
-    """The generated stage reads ~25 rows (state, parameters, load) and writes 12 (derivatives, T_c) of
-    arrays that LLVM cannot prove disjoint; it then needs one run-time overlap check per pair of row
-    groups and, above its default limit, refuses to vectorise ("loop not vectorized: too many memory
-    checks needed", measured: no vector instruction in the stage, 150 vs 91 ns per scenario-step).
-    Raising the limit (a process-wide LLVM option, set once before the first compilation) lets it
-    vectorise; the checks run once per stage call, not per scenario."""
-    global _LLVM_OPTION_SET
-    if _LLVM_OPTION_SET or not HAVE_NUMBA:
-        return
-    import llvmlite.binding as llvm
-    llvm.set_option("backlash_monitor", "-vectorize-memory-check-threshold=1024")
-    _LLVM_OPTION_SET = True
-
 
 def kernel_for(effect_classes) -> Kernel:
     """The (memoised) backends for a tuple of term effect classes: generated, written, imported."""
@@ -506,7 +499,6 @@ def kernel_for(effect_classes) -> Kernel:
     rhs_np = generate_numpy(effect_classes)
     module = path = None
     if HAVE_NUMBA:
-        _allow_vectoriser_memory_checks()
         source = generate_source(effect_classes)
         digest = _cache_key(source)
         d = cache_dir()

@@ -42,19 +42,21 @@ def test_numba_and_numpy_backends_agree():
 
 
 def _stage(kernel, Y, P, G):
-    """One RK4 stage of the generated SIMD code, K = f(Y) (N_STATES, S), tile by tile through its workspace."""
+    """One RK4 stage of the generated SIMD code, K = f(Y) (N_STATES, S), tile by tile through its workspace
+    (tiles of up to WR scenarios, padded to a multiple of W as rk4_simd pads them)."""
     from backlash_monitor.plant.codegen import N_STATES
     m = kernel.module
-    W, S = m.W, Y.shape[1]
+    W, WR, S = m.W, m.WR, Y.shape[1]
     K = np.empty_like(Y)
-    for t0 in range(0, S, W):
-        WS = np.zeros(m.WS_ROWS * W).reshape(m.WS_ROWS, W)
-        live = min(W, S - t0)
+    for t0 in range(0, S, WR):
+        nl = min(WR, (S - t0 + W - 1) // W * W)
+        WS = np.zeros(m.WS_ROWS * WR).reshape(m.WS_ROWS, WR)
+        live = min(nl, S - t0)
         WS[m.R_Y:m.R_Y + N_STATES, :live] = Y[:, t0:t0 + live]
         WS[m.R_P:m.R_P + P.shape[0], :live] = P[:, t0:t0 + live]
         WS[m.R_P:m.R_P + P.shape[0], live:] = P[:, t0 + live - 1:t0 + live]   # padded as rk4_simd pads
         flat = WS.reshape(-1)
-        m.stage(flat, m.R_Y, m.R_K, 1.0, 0.0, G)
+        m.stage(flat, m.R_Y, m.R_K, 1.0, 0.0, G, nl)
         K[:, t0:t0 + live] = WS[m.R_K:m.R_K + N_STATES, :live]
     return K
 
