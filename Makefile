@@ -63,8 +63,8 @@ lint: setup  ## the architecture's contracts (import-linter: .importlinter) and 
 TEST_WORKERS ?= 2
 test: setup chromium lint  ## the contracts and ruff, then the whole test suite (non-ros tests on TEST_WORKERS=2 workers, then the ros tests)
 	@$(ACTIVATE) && rc=0 \
-	  && { python -m pytest test -q -m "not ros" -n $(TEST_WORKERS) --dist loadfile --durations=15 || rc=$$?; } \
-	  && { python -m pytest test -q -m ros --durations=10 || rc=$$?; } \
+	  && { python -m pytest test -q --run-slow -m "not ros" -n $(TEST_WORKERS) --dist loadfile --durations=15 || rc=$$?; } \
+	  && { python -m pytest test -q --run-slow -m ros --durations=10 || rc=$$?; } \
 	  && exit $$rc
 
 bench: setup  ## run every bench/*.py into bench/results.json

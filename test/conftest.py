@@ -45,7 +45,35 @@ def repo_root():
     return REPO_ROOT
 
 
+def pytest_addoption(parser):
+    parser.addoption(
+        "--run-slow", action="store_true", default=False,
+        help="also run the tests marked slow (whole diagnoses, the watch's references, the handoff's training: "
+             "minutes of CPU). `make test` and CI pass it; without it they are skipped, so "
+             "`pytest -m \"not ros and not process\"` runs the cores' other tests alone in well under a minute.")
+
+
+def _slow_tests_wanted(config) -> bool:
+    """--run-slow, or a marker expression that names `slow` itself (`-m slow`, `-m "slow and not ros"`)."""
+    return bool(config.getoption("--run-slow")) or "slow" in (config.getoption("markexpr") or "").replace(
+        "not slow", "")
+
+
 def pytest_collection_modifyitems(config, items):
+    _skip_slow_unless_wanted(config, items)
+    _order_files_with_slow_tests_first(items)
+
+
+def _skip_slow_unless_wanted(config, items) -> None:
+    if _slow_tests_wanted(config):
+        return
+    skip = pytest.mark.skip(reason="marked slow: run with --run-slow (make test does)")
+    for item in items:
+        if item.get_closest_marker("slow") is not None:
+            item.add_marker(skip)
+
+
+def _order_files_with_slow_tests_first(items) -> None:
     """Files with the most ``slow`` tests first, each file's own order kept. pytest-xdist (make test) hands
     whole files to its workers in this order, so the long workbench files start early and do not end the
     run on one worker while the other idles; a run on one process only changes its order of files."""

@@ -11,7 +11,7 @@ from backlash_monitor.plant.outputs import OUTPUT_NAMES, render
 from backlash_monitor.plant.simulate import SimulationChunk
 
 
-@pytest.mark.parametrize("backend", ["numba", "numba-scalar", "numpy"])
+@pytest.mark.parametrize("backend", ["numba", "numba-scalar", pytest.param("numpy", marks=pytest.mark.slow)])
 def test_accelerations_are_the_derivatives_of_the_recorded_speeds(backend):
     cfg = load_plant_config(overrides={"simulation.run_in_s": 0.1})
     sim = PlantSimulator([Scenario(0.005, 0.025, 0.89, seed=1)], config=cfg, noise=False, backend=backend,

@@ -35,6 +35,7 @@ def _diagnose_before(meas, model, seeds=None):
     return run.before
 
 
+@pytest.mark.slow
 def test_a_reference_built_on_a_recording_is_diagnoses_test_on_it_to_the_last_digit(model, tmp_path):
     """Built on the recording itself (its conditions, its noise floor, its number of events), saved and loaded,
     the reference's evaluation at the nominal width is diagnose's consistency test on it (the one screen_step ran
@@ -54,6 +55,7 @@ def test_a_reference_built_on_a_recording_is_diagnoses_test_on_it_to_the_last_di
     assert ours.result.residual_over_noise == pytest.approx(theirs["residual_over_noise"], rel=1e-9)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("label,overrides,consistent", [("clean", {}, True), ("friction 2 N*m", FRICTION, False)])
 def test_the_models_own_reference_gives_diagnoses_verdict(model, ref, label, overrides, consistent):
     """Built on the model's own recording (the watch's reference), on another recording: the verdict and the views

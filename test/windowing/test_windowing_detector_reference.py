@@ -325,6 +325,7 @@ SETTINGS = settings(max_examples=30, deadline=None, database=None, derandomize=T
                     suppress_health_check=list(HealthCheck))
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(case=st.sampled_from(list(CASES)), seed=st.integers(0, 10_000),
        width=st.sampled_from([0.0025, 0.00375, 0.005, 0.0075, 0.01]),

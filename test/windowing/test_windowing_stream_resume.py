@@ -6,6 +6,7 @@ and the offline BlockFeeder gives the same windows and fault counts as the range
 
 (bench/reliability.py found two such clusters on main -- test/chain/test_fuzz_cores.py keeps
 them; this property generates the class.)"""
+import pytest
 from hypothesis import HealthCheck, given, settings
 
 import fuzz_cores as fc
@@ -22,6 +23,7 @@ def dropped_clean_ranges(sizes, faults, order, resync_samples=50_000):
     return clean.count(False), windows, clean_from, stage, trace
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(fc.clustered_chunk_streams())
 def test_a_clean_stream_after_clustered_faults_is_windowed_again(stream):

@@ -98,6 +98,7 @@ def test_the_model_quantised_at_the_recordings_step_predicts_its_spectral_shape(
     assert abs(z_white[-1]) > 10 and abs(z_white[-1]) > 5 * abs(z_chain[-1]), (z_white, z_chain)
 
 
+@pytest.mark.slow
 def test_diagnose_finds_a_clean_drive_behind_an_undithered_adc_consistent(adc_drive):
     """diagnose's consistency test (the one the model watch runs) on that drive: the spectral shape inside its band
     (with the white floor: T^2 ~90-120 against a limit of ~17)."""

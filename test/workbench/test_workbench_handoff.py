@@ -93,6 +93,7 @@ def test_training_switches_a_width_drift_off():
     assert training_config(load_model(None))[1] is None
 
 
+@pytest.mark.slow
 def test_train_never_hands_on_a_worse_library(tmp_path, capsys):
     """A version whose added effect is wrong for the drive (4 N*m of wheel friction on a clean 7.5 mm drive): its
     retrained monitor is further from the diagnosed width than the packaged library on the diagnosed recording, so
