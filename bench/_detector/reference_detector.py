@@ -362,7 +362,10 @@ class BacklashEntryDetector:
 
     # ------------------------------------------------------------------ feed
     def feed(self, first_sample_index: int, signals: Mapping[str, np.ndarray],
-             sample_period_s: float | None = None) -> list[BacklashEntry]:
+             sample_period_s: float | None = None, finite: bool = False) -> list[BacklashEntry]:
+        # ``finite`` is the current detector's hint that the caller checked every sample (the windowing
+        # stage passes it); this old detector takes it so it runs in the same chain, and checks anyway.
+        del finite
         first = int(first_sample_index)
         if sample_period_s is not None:
             try:
