@@ -371,6 +371,7 @@ def _run_cli(argv, env, timeout=240):
 
 def _write_bag(path: Path, mutate):
     from backlash_monitor.bag import SIGNAL_CHUNK, BagWriter, Codec
+    from backlash_monitor.signals import SIGNAL_UNITS
     codec = Codec.for_type(SIGNAL_CHUNK)
     data, _ = fc.synthetic_stream()
     t0 = 1_763_000_000_000_000_000
@@ -385,7 +386,7 @@ def _write_bag(path: Path, mutate):
                                                  stamp=codec.new("builtin_interfaces/msg/Time",
                                                                  sec=t // 10 ** 9, nanosec=t % 10 ** 9),
                                                  frame_id="drive"),
-                                signal_name=s, unit="-", sample_period_s=period,
+                                signal_name=s, unit=SIGNAL_UNITS[s], sample_period_s=period,
                                 first_sample_index=first, samples=x)
                 writer.write(f"/plant/{s}", msg, log_time_ns=t)
 
