@@ -182,6 +182,131 @@ def test_live_events_are_the_workbench_events_in_any_chunking(model):
             assert np.allclose(e.dc, ref_ev.dc[i], rtol=0, atol=0.03)
 
 
+def _live_event_fields(e):
+    return (e.entry_sample_index, e.raw, e.dc, e.spec, e.psd, e.denoised, e.completed_at)
+
+
+def _same(a, b):
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return a is not None and b is not None and np.array_equal(a, b)
+    return a == b
+
+
+def test_live_events_of_joined_ranges_are_those_of_the_ranges_one_by_one(model):
+    """The node joins the ranges of an executor batch (up to max_joined_samples) and feeds them at once with their
+    ends: the events are those of the 1000-sample ranges fed one by one, bit for bit -- entries, raw and denoised
+    segments, features, spectra, and the period means (whose period is the one after the entries confirmed up to
+    the range that completes the event); also across a gap (a lost range) and when joining starts mid-stream."""
+    meas = synthetic.hidden_effect_recording(model, 7.0, seed=39)
+    sig = [meas.signals[s] for s in ("a1", "a2", "angle_difference")]
+    starts = [k for k in range(0, meas.n_samples - 999, 1000) if k != 150_000]        # a lost range at 3 s
+    one = LiveEvents(meas.sample_period_s, 12500)
+    by_range = [e for k in starts for e in one.feed(k, *(x[k:k + 1000] for x in sig))]
+    joined = LiveEvents(meas.sample_period_s, 12500)
+    unmarked = LiveEvents(meas.sample_period_s, 12500)     # the same joined chunks without their ranges' ends
+    got, plain, run = [], [], []
+
+    def flush():
+        if run:
+            lo, hi = run[0], run[-1] + 1000
+            got.extend(joined.feed(lo, *(x[lo:hi] for x in sig), range_ends=[k + 1000 for k in run]))
+            plain.extend(unmarked.feed(lo, *(x[lo:hi] for x in sig)))
+            run.clear()
+    for i, k in enumerate(starts):
+        if run and (k != run[-1] + 1000 or len(run) == 13 or (len(run) + 1) * 1000 > joined.max_joined_samples()):
+            flush()
+        run.append(k)
+        if i < 20:
+            flush()                  # one by one at first
+    flush()
+    assert len(by_range) >= 20 and one.dropped_events > 0
+    assert len(got) == len(by_range) and joined.dropped_events == one.dropped_events
+    for a, b in zip(by_range, got):
+        assert all(_same(x, y) for x, y in zip(_live_event_fields(a), _live_event_fields(b))), a.entry_sample_index
+    # the ends matter: without them an event's period mean is taken over the period after all the chunk's entries
+    assert [e.entry_sample_index for e in plain] == [e.entry_sample_index for e in got]
+    assert any(not np.array_equal(a.dc, b.dc) for a, b in zip(got, plain))
+
+
+def test_the_watch_of_joined_ranges_is_the_watch_of_the_ranges_one_by_one(model, ref):
+    """The whole watch (events, evaluations, the alarm rule) fed a drive whose wheel friction switches on at 6 s,
+    in 1000-sample ranges one by one and joined 12 at a time: the same updates, every T^2, p-value, residual
+    ratio, width, level and the stream index each event was completed at."""
+    cfg = model.plant_config({"effects.wheel_coulomb_friction": True})
+    sim = PlantSimulator([Scenario(width_m=WIDTH_M, seed=6)], config=cfg, outputs=("a1", "a2", "angle_difference"))
+    chunks = []
+    for k in range(0, 11 * 50_000, 1000):
+        if k == 6 * 50_000:
+            sim.set_parameters({"wheel_coulomb_friction.torque_Nm": 2.0})
+        ch = sim.run(1000)
+        chunks.append((ch.first_sample_index, ch.a1[0], ch.a2[0], ch.angle_difference[0]))
+    rule = AlarmRule(view_p=1e-6, residual_ratio=3.0, persistence=2)
+    one = ModelWatch(ref, window_events=12, rule=rule)
+    a = [u for c in chunks for u in one.feed(*c)]
+    joined = ModelWatch(ref, window_events=12, rule=rule)
+    b = []
+    for i in range(0, len(chunks), 12):
+        group = chunks[i:i + 12]
+        b += joined.feed(group[0][0], *(np.concatenate([c[j] for c in group]) for j in (1, 2, 3)),
+                         range_ends=[c[0] + 1000 for c in group])
+    assert len(a) == len(b) > 10 and any(u.level == "WARN" for u in a)
+    for u, v in zip(a, b):
+        assert (u.entry_sample_index, u.level, u.exceeding, u.completed_at, u.p_min, u.where) == \
+            (v.entry_sample_index, v.level, v.exceeding, v.completed_at, v.p_min, v.where)
+        assert u.completed_at % 1000 == 0 and u.completed_at > u.entry_sample_index
+        for name, view in u.evaluation.result.views.items():
+            assert view.t2 == v.evaluation.result.views[name].t2, name
+        assert u.evaluation.residual_over_noise == v.evaluation.residual_over_noise
+        assert u.evaluation.width_m == v.evaluation.width_m and u.loo == v.loo
+
+
+def test_the_window_evidence_stacks_its_raw_segments_only_when_read(model, ref):
+    """The watch's evidence reads the events' raw segments only when asked (where, leave-one-out): the same
+    segments, and the same evaluation as an Evidence holding them."""
+    events = _events(model, 5.0, 37)[:16]
+    watch = ModelWatch(ref, window_events=16)
+    for e in events:
+        watch.add_event(e)
+    ev = watch.evidence()
+    assert ev._raw is None and ev.n_events == 16
+    assert np.array_equal(ev.raw, np.stack([e.raw for e in events]))
+    plain = reference.Evidence(ev.raw, ev.dc, ev.spec, ev.noise_psd, ev.entries, ev.dc_names, ev.denoised,
+                               ev.quant_step)
+    x, y = ref.evaluate(ev, clip_p=1e-3), ref.evaluate(plain, clip_p=1e-3)
+    assert {n: v.t2 for n, v in x.result.views.items()} == {n: v.t2 for n, v in y.result.views.items()}
+    assert x.where == y.where
+
+
+def test_the_evaluations_shortcuts_compute_what_they_replace(model, ref):
+    """The events' measured vectors written in place are the weighted segments, features and means side by side;
+    consistency.test given the events' coordinates (evaluate projects them once, for the clipping weights) is the
+    test projecting them itself -- on a window with an odd event, so that the clipping acts."""
+    from backlash_monitor.workbench import consistency
+    events = _events(model, 5.0, 37)[:16]
+    events[7].raw = events[7].raw * 2.0
+    events[7].denoised = events[7].denoised * 2.0
+    watch = ModelWatch(ref, window_events=16)
+    for e in events:
+        watch.add_event(e)
+    ev = watch.evidence()
+    views = ref.views(ev.noise_psd, ev.n_events, ev.dc_names, ev.quant_step)
+    targets = views.event_targets(ev)
+    assert np.array_equal(targets, np.hstack([(ev.denoised * views.w[None, :, None]).reshape(16, -1),
+                                              ev.spec * views.ws[None], ev.dc * views.wdc[None]]))
+    assert np.allclose(targets.mean(axis=0), views.target(ev), rtol=1e-12, atol=1e-12)
+    residuals = targets - views.base[None]
+    radius = ref.clip_radius(views, 1e-3)
+    sl = dict(views.blocks)["event_average"]
+    coords = residuals @ views.basis[:, sl]
+    assert consistency.clipped_mean(coords, radius["event_average"])[1].min() < 1.0       # the odd event is clipped
+    r = views.target(ev) - views.base
+    own = consistency.test(views, r, event_residuals=residuals, clip_radius=radius)
+    given = consistency.test(views, r, event_residuals=residuals, clip_radius=radius,
+                             event_coords={"event_average": coords})
+    assert {n: v.t2 for n, v in own.views.items()} == {n: v.t2 for n, v in given.views.items()}
+    assert own.residual_over_noise == given.residual_over_noise
+
+
 def test_alarm_state_persistence_and_clearing():
     state = AlarmState(AlarmRule(view_p=1e-6, residual_ratio=3.0, persistence=3, clear_after=4))
     seq = [True, True, False, True, True, True, False, True, False, False, False, False]
