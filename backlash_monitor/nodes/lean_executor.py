@@ -25,9 +25,7 @@ set, the rmw wait and a thread switch (measured for model_watch: docs/model_watc
 subscription's queue must not overflow meanwhile (KEEP_LAST drops the oldest): the pause adapts,
 halved when a drain took more than half a queue's depth (e.g. best effort at depth 5 in a fast
 replay), grown back towards ``batch_s`` while every queue stays under a quarter; a wake-up that
-found no message (a timer, a service, a time-out) is followed by none. A node with a method
-``after_drain`` has it called after each batch has been handed over (model_watch joins a batch's
-ranges there and feeds its core once).
+found no message (a timer, a service, a time-out) is followed by none.
 
 Uses rclpy's internal handle API (the same calls rclpy's executors make, rclpy of ROS 2 Jazzy).
 """
@@ -81,7 +79,6 @@ class _Plan:
         self.timer_by_pointer = {t.handle.pointer: t for t in self.timers}
         self.service_by_pointer = {s.handle.pointer: s for s in self.services}
         self.guard_by_pointer = {g.handle.pointer: g for g in self.guards if g.callback is not None}
-        self.after_drain = [n.after_drain for n in nodes if callable(getattr(n, "after_drain", None))]
         count = NumberOfEntities(len(self.subscriptions), len(self.guards), len(self.timers), 0,
                                  len(self.services))
         for waitable in self.waitables:
@@ -212,8 +209,6 @@ class LeanExecutor(SingleThreadedExecutor):
             if self.batch_s and subs_ready:
                 took, fullest = self._drain(plan.subscriptions)
                 subs_ready = ()
-                for hook in plan.after_drain:
-                    self._run(hook())
             for pointer in subs_ready:
                 sub = plan.sub_by_pointer.get(pointer)
                 if sub is None:

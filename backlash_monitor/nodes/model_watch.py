@@ -18,10 +18,7 @@ every event, and the node publishes:
   ``snapshot_after_s`` after it, in ``snapshot_dir`` (watch/snapshot.py: never overwritten, written in a thread).
 
 Bad chunks (not SignalChunk, non-finite samples, gaps) are dropped and counted as the windowing does; the events they
-cut are not evaluated. When its executor batches (``batch_s``: the lean executor calls ``after_drain`` once it has
-handed a batch's messages over) the complete ranges of a batch are joined and fed to the watch together, the events
-and evaluations those of the ranges fed one by one (LiveEvents.feed ``range_ends``): one onset-detector call and one
-ring write per batch instead of one per 20 ms range. docs/model_watch.md.
+cut are not evaluated. docs/model_watch.md.
 """
 from __future__ import annotations
 
@@ -31,7 +28,6 @@ import os
 import sys
 import time
 
-import numpy as np
 from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 
@@ -157,9 +153,6 @@ class ModelWatchNode(Node):
         self.faults = FaultLog()
         self.joiner = ChunkJoiner(WATCHED, faults=self.faults)
         self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "chunks")
-        self.held: list = []             # complete ranges held until the executor's batch is handed over (after_drain)
-        self.held_samples = 0
-        self.joining = False             # the executor calls after_drain (it batches): hold the ranges until then
         self.stream_start_s = None       # wall time of sample 0 of the stream (from the chunks' stamps)
         self.recorder = None
         self.snapshot_problem = ""
@@ -207,71 +200,27 @@ class ModelWatchNode(Node):
             if name in WATCHED:
                 joined = self.joiner.add(name, first, period, samples, (sec, nanosec), frame_id)
                 if joined is not None:
-                    self.take(joined)
+                    self.process(joined)
         if self.health.update(now, self.faults):
             self.update_diagnostics(publish_now=True)
 
-    def take(self, joined) -> None:
-        """A complete range: to the watch now, or held until the executor's batch is handed over (after_drain), at
-        most as many samples as the watch takes at once (LiveEvents.max_joined_samples)."""
-        if not self.joining:
-            self.process([joined])
+    def process(self, joined) -> None:
+        arrays = joined.arrays
+        n = len(arrays["a1"])
+        if (abs(joined.sample_period_s - self.reference.sample_period_s) > 1e-9 * self.reference.sample_period_s
+                or any(len(arrays[s]) != n for s in WATCHED)
+                or not all(math.isfinite(float(arrays[s].sum())) for s in WATCHED)):
+            self.faults.add("bad_range", f"range at sample {joined.first_sample_index}: sample period "
+                            f"{joined.sample_period_s!r} (the model's {self.reference.sample_period_s:g} s), unequal "
+                            "lengths or non-finite samples")
+            self.watch.live.next_index = None       # the stream goes on after it: a gap for the events
             return
-        n = len(joined.arrays["a1"])
-        if self.held and self.held_samples + n > self.watch.live.max_joined_samples():
-            self.flush()
-        self.held.append(joined)
-        self.held_samples += n
-
-    def after_drain(self) -> None:
-        """Called by the lean executor when it has handed a batch of messages over (it batches: batch_s > 0)."""
-        self.joining = True
-        self.flush()
-
-    def flush(self) -> None:
-        held, self.held, self.held_samples = self.held, [], 0
-        if held:
-            self.process(held)
-
-    def process(self, ranges) -> None:
-        """Complete ranges in stream order: the bad ones dropped (a gap for the events), runs of consecutive good
-        ones fed to the watch joined."""
-        run: list = []
-        for joined in ranges:
-            arrays = joined.arrays
-            n = len(arrays["a1"])
-            if (abs(joined.sample_period_s - self.reference.sample_period_s) > 1e-9 * self.reference.sample_period_s
-                    or any(len(arrays[s]) != n for s in WATCHED)
-                    or not all(math.isfinite(float(arrays[s].sum())) for s in WATCHED)):
-                self.feed(run)
-                run = []
-                self.faults.add("bad_range", f"range at sample {joined.first_sample_index}: sample period "
-                                f"{joined.sample_period_s!r} (the model's {self.reference.sample_period_s:g} s), "
-                                "unequal lengths or non-finite samples")
-                self.watch.live.next_index = None       # the stream goes on after it: a gap for the events
-                continue
-            self.counts["chunks"] += 1
-            if self.stream_start_s is None and joined.stamp is not None:
-                sec, nanosec = joined.stamp
-                self.stream_start_s = sec + nanosec * 1e-9 - joined.first_sample_index * joined.sample_period_s
-            if run and joined.first_sample_index != run[-1].first_sample_index + len(run[-1].arrays["a1"]):
-                self.feed(run)
-                run = []
-            run.append(joined)
-        self.feed(run)
-
-    def feed(self, run) -> None:
-        """Consecutive good ranges to the watch: one as it is, several joined (LiveEvents.feed range_ends)."""
-        if not run:
-            return
-        if len(run) == 1:
-            a = run[0].arrays
-            updates = self.watch.feed(run[0].first_sample_index, a["a1"], a["a2"], a["angle_difference"])
-        else:
-            ends = [r.first_sample_index + len(r.arrays["a1"]) for r in run]
-            a1, a2, ad = (np.concatenate([r.arrays[s] for r in run]) for s in WATCHED)
-            updates = self.watch.feed(run[0].first_sample_index, a1, a2, ad, range_ends=ends)
-        for update in updates:
+        self.counts["chunks"] += 1
+        if self.stream_start_s is None and joined.stamp is not None:
+            sec, nanosec = joined.stamp
+            self.stream_start_s = sec + nanosec * 1e-9 - joined.first_sample_index * joined.sample_period_s
+        for update in self.watch.feed(joined.first_sample_index, arrays["a1"], arrays["a2"],
+                                      arrays["angle_difference"]):
             self.on_update(update)
 
     # ------------------------------------------------------------------------------------------ results
@@ -286,7 +235,7 @@ class ModelWatchNode(Node):
             self.counts["warnings"] += 1
             when = _dt.datetime.fromtimestamp(self.stream_time(u.since_sample_index), _dt.timezone.utc)
             if self.recorder is not None:
-                snap = self.recorder.trigger(u.completed_at, when)
+                snap = self.recorder.trigger(self.watch.live.ring.end, when)
                 if snap is None:
                     self.snapshot_problem = ("no snapshot: " + ("one is still being recorded"
                                                                 if self.recorder.pending is not None else

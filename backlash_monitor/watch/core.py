@@ -44,7 +44,6 @@ class WatchUpdate:
     limits: dict = field(default_factory=dict)
     loo: list = field(default_factory=list)   # the robust rule's leave-one-out windows: [(smallest p, residual
                                               # ratio)] per left-out event (computed for an exceeding window)
-    completed_at: int | None = None   # the stream's end when the event was completed (LiveEvent.completed_at)
 
     @property
     def where(self) -> tuple[str, str]:
@@ -111,10 +110,9 @@ class ModelWatch:
                                     self.reference.sample_period_s)
         return self.reference.base_bands.mean(axis=0).min(axis=-1) / unit
 
-    def feed(self, first_sample_index: int, a1, a2, angle_difference, range_ends=None) -> list[WatchUpdate]:
-        """The evaluations the chunk's events give (``range_ends``: consecutive ranges joined, LiveEvents.feed)."""
+    def feed(self, first_sample_index: int, a1, a2, angle_difference) -> list[WatchUpdate]:
         out = []
-        for ev in self.live.feed(first_sample_index, a1, a2, angle_difference, range_ends):
+        for ev in self.live.feed(first_sample_index, a1, a2, angle_difference):
             u = self.add_event(ev)
             if u is not None:
                 out.append(u)
@@ -186,7 +184,7 @@ class ModelWatch:
         changed = self.state.update(exceeding, event.entry_sample_index)
         self.last = WatchUpdate(event.entry_sample_index, self.state.level, changed, self.state.since, exceeding,
                                 names, ev, p_min(ev, self.rule, self.dof), len(self.events),
-                                self.rule.limits(ev, self.dof), loo, event.completed_at)
+                                self.rule.limits(ev, self.dof), loo)
         return self.last
 
 

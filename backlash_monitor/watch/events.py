@@ -37,8 +37,6 @@ class LiveEvent:
                                  # every PSD_EVERY-th event
     denoised: np.ndarray | None = None   # (2, PRE + POST) the raw segment sym5-denoised (events.denoise) [m/s^2]:
                                          # once per event, not once per window it is in
-    completed_at: int | None = None      # the stream's end (sample index) when the event was completed: the end of
-                                         # the chunk (or of the range, ``feed(range_ends=...)``) that completed it
 
 
 class SampleRing:
@@ -103,63 +101,38 @@ class LiveEvents:
         self.dropped_events = 0          # cut by a gap in the stream
         self.gaps = 0
 
-    def max_joined_samples(self) -> int:
-        """The most samples ``feed(range_ends=...)`` takes at once: an event completed at any of the ranges' ends
-        still has its samples in the ring after the whole chunk is appended (0: one range at a time)."""
-        return max(self.ring.capacity - 2 * max(self.period, PRE_SAMPLES + POST_SAMPLES) - PRE_SAMPLES, 0)
-
-    def feed(self, first_sample_index: int, a1, a2, angle_difference, range_ends=None) -> list[LiveEvent]:
-        """The events the chunk completes. ``range_ends``: the chunk is consecutive ranges joined (each one's end
-        index, ascending, the last the chunk's end; at most max_joined_samples() in all): the events are those the
-        ranges fed one by one give, bit for bit -- the onset detector runs once on the whole chunk (it reports an
-        entry in the chunk holding its confirm sample, whatever the chunking), and the entries and completions are
-        taken range by range (the period an event's means are taken over is the one after the entries confirmed
-        up to its range's end)."""
+    def feed(self, first_sample_index: int, a1, a2, angle_difference) -> list[LiveEvent]:
         first = int(first_sample_index)
         if self.next_index is not None and first != self.next_index:
             self.gaps += 1
             self.dropped_events += len(self.pending)
             self.pending.clear()
             self.last_entry = None
-        # where the held samples begin at each range's end: the ring's start had the ranges come one by one
-        held_from = first if self.ring.end != first else self.ring.start
         self.ring.append(first, {"a1": a1, "a2": a2})
         self.next_index = first + len(a1)
-        entries = [e for e in self.detector.feed(first, {"angle_difference": np.asarray(angle_difference,
-                                                                                          dtype=np.float64)}, self.dt)
-                   if e.kind == "onset"]
-        ends = (self.next_index,) if range_ends is None else range_ends
+        for e in self.detector.feed(first, {"angle_difference": np.asarray(angle_difference, dtype=np.float64)},
+                                    self.dt):
+            if e.kind != "onset":
+                continue
+            if self.last_entry is not None:
+                self.spacings.append(e.sample_index - self.last_entry)
+                if len(self.spacings) >= 2:      # one spacing may be a restart's: the model's period until two
+                    self.period = int(np.median(self.spacings))
+            self.last_entry = e.sample_index
+            self.pending.append(e.sample_index)
         out = []
-        i = 0
-        for end in ends:
-            while i < len(entries) and (range_ends is None or entries[i].confirm_sample_index < end):
-                self._entry(entries[i].sample_index)
-                i += 1
-            start = max(held_from, end - self.ring.capacity)
-            while self.pending:
-                k = self.pending[0]
-                lo = k - PRE_SAMPLES
-                hi = lo + max(self.period, PRE_SAMPLES + POST_SAMPLES)
-                if hi > end:
-                    break
-                self.pending.popleft()
-                if lo < start:
-                    self.dropped_events += 1         # its samples came before a gap or before the stream
-                    continue
-                event = self._event(k, lo, hi)
-                event.completed_at = int(end)
-                out.append(event)
-        for e in entries[i:]:        # (none: the last end is the chunk's)
-            self._entry(e.sample_index)
+        while self.pending:
+            k = self.pending[0]
+            lo = k - PRE_SAMPLES
+            hi = lo + max(self.period, PRE_SAMPLES + POST_SAMPLES)
+            if hi > self.ring.end:
+                break
+            self.pending.popleft()
+            if lo < self.ring.start:
+                self.dropped_events += 1         # its samples came before a gap or before the stream
+                continue
+            out.append(self._event(k, lo, hi))
         return out
-
-    def _entry(self, sample_index: int) -> None:
-        if self.last_entry is not None:
-            self.spacings.append(sample_index - self.last_entry)
-            if len(self.spacings) >= 2:      # one spacing may be a restart's: the model's period until two
-                self.period = int(np.median(self.spacings))
-        self.last_entry = sample_index
-        self.pending.append(sample_index)
 
     def _event(self, k: int, lo: int, hi: int) -> LiveEvent:
         seg_hi = k + POST_SAMPLES
