@@ -234,6 +234,7 @@ class Views:
         self.ref = ref
         self._local: dict = {}
         self.grid_fit = self.grid @ self.fit_basis              # (G, q + P): the grid in that metric
+        self.profile_curves: dict = {}     # profile_width: per grid width g the cubic's points around it (81, q + P)
 
     def local(self, g: int) -> SimpleNamespace:
         """The views whitened by the model's own events at grid width ``g`` (the subspace and the complement's
@@ -439,7 +440,10 @@ class ModelReference:
             xs = np.linspace(max(g - 1, 0), min(g + 1, n - 1), 81)
             points = self._profile_points[(g, n)] = (xs, *_lagrange_many(xs, n))    # (81, 4) each
         xs, idx, w = points
-        r = t[None, :] - np.einsum("xk,xkq->xq", w, grid[idx])
+        curve = views.profile_curves.get(g)
+        if curve is None:           # the grid's predictions at those points: per views and g, not per target
+            curve = views.profile_curves[g] = np.einsum("xk,xkq->xq", w, grid[idx])
+        r = t[None, :] - curve
         costs = np.einsum("xq,xq->x", r, r)
         i = int(np.argmin(costs))
         best = float(xs[i])
