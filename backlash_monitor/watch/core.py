@@ -51,6 +51,35 @@ class WatchUpdate:
         return w.get("dominant_phase", ""), w.get("dominant_level", "")
 
 
+class WindowEvidence(Evidence):
+    """The window's Evidence whose raw segments are stacked only when read: an evaluation reads the events'
+    denoised segments, spectral features and period means; the raw ones (E x 2 x L, ~0.6 MB a window) only
+    ``where`` (once a window, or while WARN), the leave-one-out windows and the ADC step do."""
+
+    _events: tuple = ()
+    _raw = None
+
+    @property
+    def raw(self) -> np.ndarray:
+        if self._raw is None:
+            self._raw = np.stack([e.raw for e in self._events])
+        return self._raw
+
+    @raw.setter
+    def raw(self, value) -> None:
+        self._raw = value
+
+    @classmethod
+    def of(cls, events, noise_psd, quant_step) -> "WindowEvidence":
+        out = cls(None, np.stack([e.dc for e in events]), np.stack([e.spec for e in events]), noise_psd,
+                  np.array([e.entry_sample_index for e in events]),
+                  denoised=(np.stack([e.denoised for e in events]) if all(e.denoised is not None for e in events)
+                            else None),
+                  quant_step=quant_step)
+        out._events = tuple(events)
+        return out
+
+
 class ModelWatch:
     def __init__(self, reference: ModelReference, window_events: int = DEFAULT_WINDOW_EVENTS,
                  rule: AlarmRule | None = None):
@@ -131,13 +160,9 @@ class ModelWatch:
         return self.views_noise
 
     def evidence(self) -> Evidence:
-        ev = list(self.events)
         noise = self._views_noise()
-        return Evidence(np.stack([e.raw for e in ev]), np.stack([e.dc for e in ev]), np.stack([e.spec for e in ev]),
-                        noise, np.array([e.entry_sample_index for e in ev]),
-                        denoised=(np.stack([e.denoised for e in ev]) if all(e.denoised is not None for e in ev)
-                                  else None),
-                        quant_step=self.views_quant if np.any(self.views_quant > 0) else None)
+        return WindowEvidence.of(list(self.events), noise,
+                                 self.views_quant if np.any(self.views_quant > 0) else None)
 
     def add_event(self, event: LiveEvent) -> WatchUpdate | None:
         self.events.append(event)

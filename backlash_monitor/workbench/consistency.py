@@ -212,20 +212,25 @@ def clipped_mean(u: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def test(problem, r: np.ndarray, with_tolerance: bool = True, event_residuals: np.ndarray | None = None,
-         clip_radius: dict | None = None) -> ConsistencyResult:
+         clip_radius: dict | None = None, event_coords: dict | None = None) -> ConsistencyResult:
     """The consistency of the weighted residual ``r`` (prediction space) in every view.
 
     ``event_residuals`` (E, N), whose mean is ``r``, with ``clip_radius`` {view: radius}: in those views the
     residual is :func:`clipped_mean` of the events' whitened deviations instead of their mean (the live model
     watch: one odd event must not decide a window; docs/model_watch.md), and the event-average residual ratio is
-    taken with the event-average view's weights. Without them (diagnose) the plain mean."""
+    taken with the event-average view's weights. Without them (diagnose) the plain mean. ``event_coords``: {view:
+    (E, q) event_residuals @ that view's basis columns} when the caller has projected them already (the same
+    product, not made twice)."""
     c = noise_scale(problem.n_events, problem.n_seeds)
     z = problem.basis.T @ r
     event_weights = None
     if event_residuals is not None and clip_radius:
         for name, sl in problem.blocks:
             if name in clip_radius:
-                z[sl], w = clipped_mean(event_residuals @ problem.basis[:, sl], clip_radius[name])
+                u = event_coords.get(name) if event_coords else None
+                if u is None:
+                    u = event_residuals @ problem.basis[:, sl]
+                z[sl], w = clipped_mean(u, clip_radius[name])
                 if name == "event_average":
                     event_weights = w
     if event_weights is not None and np.any(event_weights < 1.0):

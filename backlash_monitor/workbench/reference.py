@@ -95,7 +95,7 @@ class Evidence:
 
     @property
     def n_events(self) -> int:
-        return int(self.raw.shape[0])
+        return int(len(self.entries))
 
 
 def evidence_from_measurement(meas, reference: "ModelReference", last_n: int | None = None,
@@ -234,6 +234,7 @@ class Views:
         self.ref = ref
         self._local: dict = {}
         self.grid_fit = self.grid @ self.fit_basis              # (G, q + P): the grid in that metric
+        self.profile_curves: dict = {}     # profile_width: per grid width g the cubic's points around it (81, q + P)
 
     def local(self, g: int) -> SimpleNamespace:
         """The views whitened by the model's own events at grid width ``g`` (the subspace and the complement's
@@ -301,14 +302,22 @@ class Views:
         return denoise(evidence.raw)
 
     def event_targets(self, evidence: Evidence) -> np.ndarray:
-        """(E, N): each event's own measured vector; their mean is :meth:`target` (the denoising is linear)."""
+        """(E, N): each event's own measured vector; their mean is :meth:`target` (the denoising is linear). The
+        weighted segments are written into the result (the same products, no (E, 2, L) temporary)."""
         dens = self.denoised_events(evidence)
-        return np.hstack([(dens * self.w[None, :, None]).reshape(dens.shape[0], -1), evidence.spec * self.ws[None],
-                          evidence.dc * self.wdc[None]])
+        e, n = dens.shape[0], self.n_event_coords
+        out = np.empty((e, self.dc_slice.stop))
+        np.multiply(dens, self.w[None, :, None], out=np.reshape(out[:, :n], dens.shape, copy=False))
+        np.multiply(evidence.spec, self.ws[None], out=out[:, self.spectral_slice])
+        np.multiply(evidence.dc, self.wdc[None], out=out[:, self.dc_slice])
+        return out
 
-    def target(self, evidence: Evidence) -> np.ndarray:
-        """The measured vector: the weighted denoised event average, the mean spectral shape and record mean."""
-        return np.concatenate([(mean_denoised(evidence) * self.w[:, None]).ravel(),
+    def target(self, evidence: Evidence, denoised_mean: np.ndarray | None = None) -> np.ndarray:
+        """The measured vector: the weighted denoised event average (``denoised_mean``: mean_denoised(evidence) when
+        the caller has it), the mean spectral shape and record mean."""
+        if denoised_mean is None:
+            denoised_mean = mean_denoised(evidence)
+        return np.concatenate([(denoised_mean * self.w[:, None]).ravel(),
                                evidence.spec.mean(axis=0) * self.ws, evidence.dc.mean(axis=0) * self.wdc])
 
 
@@ -350,6 +359,7 @@ class ModelReference:
     path: Path | None = None
     _views: dict = field(default_factory=dict, repr=False)
     _complements: dict = field(default_factory=dict, repr=False)
+    _profile_points: dict = field(default_factory=dict, repr=False)   # profile_width's positions per grid width
 
     # -------------------------------------------------------------------------------------------- identity
     @property
@@ -425,9 +435,15 @@ class ModelReference:
         g = int(np.argmin(cost))
         # the cubic between the neighbours of the best grid width, on 1/40 of a step (0.06 % of the nominal
         # width), then a parabola through the best three of those
-        xs = np.linspace(max(g - 1, 0), min(g + 1, n - 1), 81)
-        idx, w = _lagrange_many(xs, n)                         # (81, 4) each
-        r = t[None, :] - np.einsum("xk,xkq->xq", w, grid[idx])
+        points = self._profile_points.get((g, n))
+        if points is None:          # depend on g and the grid only: made once per grid width
+            xs = np.linspace(max(g - 1, 0), min(g + 1, n - 1), 81)
+            points = self._profile_points[(g, n)] = (xs, *_lagrange_many(xs, n))    # (81, 4) each
+        xs, idx, w = points
+        curve = views.profile_curves.get(g)
+        if curve is None:           # the grid's predictions at those points: per views and g, not per target
+            curve = views.profile_curves[g] = np.einsum("xk,xkq->xq", w, grid[idx])
+        r = t[None, :] - curve
         costs = np.einsum("xq,xq->x", r, r)
         i = int(np.argmin(costs))
         best = float(xs[i])
@@ -470,7 +486,8 @@ class ModelReference:
         if evidence.n_events < 1:
             raise ValueError("no onset event to evaluate")
         views = self.views(evidence.noise_psd, evidence.n_events, evidence.dc_names, evidence.quant_step)
-        target = views.target(evidence)
+        plain_mean = mean_denoised(evidence)          # the target's, and the residual ratio's when nothing is clipped
+        target = views.target(evidence, plain_mean)
         if profile_width:
             width, pred, mean, raw = self.profile_width(views, target)
             position = self._last_position
@@ -479,25 +496,28 @@ class ModelReference:
             width, pred, mean, raw = self.nominal_width_m, views.base, self.base_mean, self.base_raw
             position = None
             tested = views
-        events, radius, weights = None, None, None
+        residuals, radius, weights, coords = None, None, None, None
         if clip_p is not None:
             events = views.event_targets(evidence)
             radius = self.clip_radius(tested, clip_p)
-            weights = _event_weights(tested, events - pred[None], radius)
+            residuals = events - pred[None]
+            weights, coords = _event_weights(tested, residuals, radius)
             if profile_width and np.any(weights < 1.0):
                 # the width the clipped evidence fits (an odd event pulls the plain mean's width too)
-                width, pred, mean, raw = self.profile_width(views, pred + (weights[:, None] * (events - pred)).mean(0))
+                width, pred, mean, raw = self.profile_width(views, pred + (weights[:, None] * residuals).mean(0))
                 position = self._last_position
                 tested = views.local(int(round(position)))
                 radius = self.clip_radius(tested, clip_p)
-                weights = _event_weights(tested, events - pred[None], radius)
-        result = consistency.test(tested, target - pred, event_residuals=None if events is None else events - pred,
-                                  clip_radius=radius)
+                residuals = events - pred[None]
+                weights, coords = _event_weights(tested, residuals, radius)
+        # the events' event-average coordinates _event_weights projected are the test's (same residuals, same basis)
+        result = consistency.test(tested, target - pred, event_residuals=residuals, clip_radius=radius,
+                                  event_coords=coords)
         if weights is not None and np.any(weights < 1.0):
             dens = views.denoised_events(evidence)
             measured = mean + (weights[:, None, None] * (dens - mean[None])).mean(axis=0)
         else:
-            measured = mean_denoised(evidence)
+            measured = plain_mean
         ratio = np.sqrt(np.mean((measured - mean) ** 2, axis=-1)) / views.floor_rms
         out = Evaluation(result, width, dict(zip(SEGMENT_SIGNALS, map(float, ratio))), None, evidence.n_events,
                          np.asarray(evidence.noise_psd, dtype=float), self.nominal_width_m, mean, raw, views.w,
@@ -570,11 +590,13 @@ def mean_denoised(evidence: Evidence) -> np.ndarray:
     return denoise(evidence.raw.mean(axis=0))
 
 
-def _event_weights(problem, residuals: np.ndarray, radius: dict) -> np.ndarray:
+def _event_weights(problem, residuals: np.ndarray, radius: dict) -> tuple[np.ndarray, dict]:
     """Each event's weight in the event-average view's clipped mean (consistency.clipped_mean): 1 inside the
-    radius."""
+    radius; and the events' coordinates it is computed from ({"event_average": (E, q)}: consistency.test's
+    ``event_coords``)."""
     sl = dict(problem.blocks)["event_average"]
-    return consistency.clipped_mean(residuals @ problem.basis[:, sl], radius["event_average"])[1]
+    u = residuals @ problem.basis[:, sl]
+    return consistency.clipped_mean(u, radius["event_average"])[1], {"event_average": u}
 
 
 def _lagrange(position: float, n: int) -> tuple[np.ndarray, np.ndarray]:

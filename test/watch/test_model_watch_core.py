@@ -184,6 +184,53 @@ def test_live_events_are_the_workbench_events_in_any_chunking(model):
             assert np.allclose(e.dc, ref_ev.dc[i], rtol=0, atol=0.03)
 
 
+def test_the_window_evidence_stacks_its_raw_segments_only_when_read(model, ref):
+    """The watch's evidence reads the events' raw segments only when asked (where, leave-one-out): the same
+    segments, and the same evaluation as an Evidence holding them."""
+    events = _events(model, 5.0, 37)[:16]
+    watch = ModelWatch(ref, window_events=16)
+    for e in events:
+        watch.add_event(e)
+    ev = watch.evidence()
+    assert ev._raw is None and ev.n_events == 16
+    assert np.array_equal(ev.raw, np.stack([e.raw for e in events]))
+    plain = reference.Evidence(ev.raw, ev.dc, ev.spec, ev.noise_psd, ev.entries, ev.dc_names, ev.denoised,
+                               ev.quant_step)
+    x, y = ref.evaluate(ev, clip_p=1e-3), ref.evaluate(plain, clip_p=1e-3)
+    assert {n: v.t2 for n, v in x.result.views.items()} == {n: v.t2 for n, v in y.result.views.items()}
+    assert x.where == y.where
+
+
+def test_the_evaluations_shortcuts_compute_what_they_replace(model, ref):
+    """The events' measured vectors written in place are the weighted segments, features and means side by side;
+    consistency.test given the events' coordinates (evaluate projects them once, for the clipping weights) is the
+    test projecting them itself -- on a window with an odd event, so that the clipping acts."""
+    from backlash_monitor.workbench import consistency
+    events = _events(model, 5.0, 37)[:16]
+    events[7].raw = events[7].raw * 2.0
+    events[7].denoised = events[7].denoised * 2.0
+    watch = ModelWatch(ref, window_events=16)
+    for e in events:
+        watch.add_event(e)
+    ev = watch.evidence()
+    views = ref.views(ev.noise_psd, ev.n_events, ev.dc_names, ev.quant_step)
+    targets = views.event_targets(ev)
+    assert np.array_equal(targets, np.hstack([(ev.denoised * views.w[None, :, None]).reshape(16, -1),
+                                              ev.spec * views.ws[None], ev.dc * views.wdc[None]]))
+    assert np.allclose(targets.mean(axis=0), views.target(ev), rtol=1e-12, atol=1e-12)
+    residuals = targets - views.base[None]
+    radius = ref.clip_radius(views, 1e-3)
+    sl = dict(views.blocks)["event_average"]
+    coords = residuals @ views.basis[:, sl]
+    assert consistency.clipped_mean(coords, radius["event_average"])[1].min() < 1.0       # the odd event is clipped
+    r = views.target(ev) - views.base
+    own = consistency.test(views, r, event_residuals=residuals, clip_radius=radius)
+    given = consistency.test(views, r, event_residuals=residuals, clip_radius=radius,
+                             event_coords={"event_average": coords})
+    assert {n: v.t2 for n, v in own.views.items()} == {n: v.t2 for n, v in given.views.items()}
+    assert own.residual_over_noise == given.residual_over_noise
+
+
 def test_alarm_state_persistence_and_clearing():
     state = AlarmState(AlarmRule(view_p=1e-6, residual_ratio=3.0, persistence=3, clear_after=4))
     seq = [True, True, False, True, True, True, False, True, False, False, False, False]
