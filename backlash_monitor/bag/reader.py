@@ -164,6 +164,7 @@ class BagReader:
         self._index = BagIndex(data_end=self.file_size)
         self._integrity: Integrity | None = None
         self._codecs: dict[int, Codec] = {}
+        self._schema_codecs: dict[tuple, Codec] = {}   # (type, encoding, text) -> its codec
         self._last_chunk = None          # (offset, records) of the last chunk decompressed
         self.recovery: RecoveryReport | None = None
         try:
@@ -405,10 +406,15 @@ class BagReader:
                                          f"{info.message_encoding!r}; only 'cdr' is supported")
             if not info.type:
                 raise UnknownSchemaError(f"topic {topic!r} has no schema in the bag")
-            try:
-                codec = Codec.from_schema(info.type, info.schema_text, info.schema_encoding)
-            except UnknownSchemaError as exc:
-                raise UnknownSchemaError(f"topic {topic!r} ({info.type}): {exc}") from None
+            # channels of one schema (a drive's SignalChunk topics) share its codec: parsed once
+            key = (info.type, info.schema_encoding, info.schema_text)
+            codec = self._schema_codecs.get(key)
+            if codec is None:
+                try:
+                    codec = Codec.from_schema(info.type, info.schema_text, info.schema_encoding)
+                except UnknownSchemaError as exc:
+                    raise UnknownSchemaError(f"topic {topic!r} ({info.type}): {exc}") from None
+                self._schema_codecs[key] = codec
             self._codecs[info.channel_id] = codec
         return codec
 
