@@ -21,14 +21,14 @@ from collections import deque
 from functools import partial
 
 DEFAULT_CHUNKS_AHEAD = 6   # ~6 MiB of decompressed chunks at the default 1 MiB chunk size
-# The thread pays only on a core nothing else wants: with the cores busy it takes turns with
-# the caller and the other processes, and the caller waits for the GIL whenever the thread is
-# descheduled holding it. analyze of bench/bags.py's 10 s bag on 2 cores, two other processes
-# busy (load average ~3): the median of 15 rosbags/analyze pairs 0.99 with the thread, 1.07
-# without; on a quiet machine the thread saves most of the ~15 ms of decompression. So the default
-# is no thread when the load average (1 min, counting this process while it runs) is within
-# FREE_CORE_MARGIN of the machine's CPU count: no core is free.
-FREE_CORE_MARGIN = 0.5      # [processes]
+# The thread pays only with a core to run on: with every core busy it takes turns with the caller
+# and the other processes, and the caller waits for the GIL whenever the thread is descheduled
+# holding it. analyze of bench/bags.py's 10 s bag on this 2-core machine (medians of 12-20
+# alternated rosbags/analyze pairs, the ratio with the thread against without): load average ~1.1
+# 1.22 against 1.03; ~1.7 (one other busy process) 1.12 against 0.98; ~3 (two) 0.99 against 1.07
+# and 1.05 against 1.07. So the default is no thread when the load average (1 min; it counts this
+# process while it runs) has reached the machine's CPU count: no core is free.
+BUSY_LOAD_PER_CPU = 1.0     # [runnable processes per CPU]
 
 _POOL = None
 _POOL_LOCK = threading.Lock()
@@ -55,7 +55,7 @@ def _executor():
 
 def default_chunks_ahead() -> int:
     """DEFAULT_CHUNKS_AHEAD where this process may run on two CPUs or more and the machine's
-    load average (1 min) leaves a core free (below its CPUs less FREE_CORE_MARGIN), else 0."""
+    load average (1 min) is below BUSY_LOAD_PER_CPU x its CPUs, else 0."""
     try:
         cpus = len(os.sched_getaffinity(0))
     except (AttributeError, OSError):  # pragma: no cover - not Linux
@@ -66,7 +66,7 @@ def default_chunks_ahead() -> int:
         load = os.getloadavg()[0]
     except (AttributeError, OSError):  # pragma: no cover - no load average
         return DEFAULT_CHUNKS_AHEAD
-    return DEFAULT_CHUNKS_AHEAD if load < (os.cpu_count() or cpus) - FREE_CORE_MARGIN else 0
+    return DEFAULT_CHUNKS_AHEAD if load < BUSY_LOAD_PER_CPU * (os.cpu_count() or cpus) else 0
 
 
 class ChunkPrefetcher:

@@ -72,8 +72,8 @@ def test_each_reader_its_own_setting(small_chunk_bag):
 @pytest.mark.parametrize("cpus, load, ahead", [
     (1, 0.0, 0),                          # one CPU: nothing to run the thread on
     (2, 0.3, prefetch.DEFAULT_CHUNKS_AHEAD),   # a quiet machine: a core is free
-    (2, 1.2, prefetch.DEFAULT_CHUNKS_AHEAD),   # this process and a little more
-    (2, 1.6, 0),                          # within FREE_CORE_MARGIN of the CPUs: none free
+    (2, 1.7, prefetch.DEFAULT_CHUNKS_AHEAD),   # this process and one more, mostly busy
+    (2, 2.0, 0),                          # the CPUs' count: no core free
     (2, 3.0, 0),                          # two other busy processes and this one
     (8, 3.0, prefetch.DEFAULT_CHUNKS_AHEAD),
 ])
