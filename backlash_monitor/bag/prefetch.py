@@ -25,9 +25,9 @@ DEFAULT_CHUNKS_AHEAD = 6   # ~6 MiB of decompressed chunks at the default 1 MiB 
 # and the other processes, and the caller waits for the GIL whenever the thread is descheduled
 # holding it. analyze of bench/bags.py's 10 s bag on this 2-core machine (medians of 12-20
 # alternated rosbags/analyze pairs, the ratio with the thread against without): load average ~1.1
-# 1.22 against 1.03; ~1.7 (one other busy process) 1.12 against 0.98; ~2.2 0.96 against 0.95; ~3
-# (two) 0.99 against 1.07 and 1.05 against 1.07. So the default is no thread when the load average (1 min; it counts this
-# process while it runs) has reached the machine's CPU count: no core is free.
+# 1.22 against 1.03; ~1.7 (one other busy process) 1.12 against 0.98; ~2.2 0.96 against 0.95;
+# ~3 (two) 0.99 against 1.07 and 1.05 against 1.07. So the default is no thread when the load
+# average (1 min; it counts this process while it runs) has reached the machine's CPU count.
 BUSY_LOAD_PER_CPU = 1.0     # [runnable processes per CPU]
 
 _POOL = None
