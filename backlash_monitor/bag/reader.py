@@ -459,7 +459,8 @@ class BagReader:
                       copy: bool = True) -> Iterator[SignalChunkRecord]:
         """The SignalChunk messages of ``topics`` in file order, as flat :class:`SignalChunkRecord`
         tuples: the fields ``messages`` decodes (the same values), without building message
-        objects -- the offline analysis reads its millions of samples this way. ``samples`` of a
+        objects -- the offline analysis reads its millions of samples this way (a chunk at a time:
+        :meth:`signal_chunk_batches`). ``samples`` of a
         message in a compressed chunk is a read-only view of the decompressed chunk (no
         allocation per message: fresh memory costs a page fault per 4 KiB); elsewhere (an
         uncompressed chunk, a message outside chunks: views of the file's map) it is a copy, or
