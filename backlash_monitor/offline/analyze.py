@@ -155,6 +155,11 @@ class SourceCheck:
             return True
         return self._check(m, name, key)
 
+    def passes(self, topic: str, period, signal_name: str, unit: str) -> bool:
+        """True when :meth:`ok` passes a chunk on ``topic`` with these fields without a look (they
+        are the ones last found good there): nothing to check, nothing to count."""
+        return self._known.get(topic) == (period, signal_name, unit)
+
     def wrong(self, topic: str, name: str, signal_name: str, unit: str) -> str | None:
         """What is wrong with a chunk on ``topic`` (signal ``name``) that carries ``signal_name``
         in ``unit`` (another signal, another unit), or None."""
@@ -365,7 +370,6 @@ def _ranges_by_batch(batches, topics: dict, source: SourceCheck, joiner, first_a
     whole ranges one after the other goes one by one (the joiner counts what is wrong)."""
     from backlash_monitor.bag import Stamp
     state = {"a1_topics": {t for t, n in topics.items() if n == "a1"}}
-    known = source._known
     signals = joiner.signals
     width = len(signals)
     join = joiner.add
@@ -374,14 +378,14 @@ def _ranges_by_batch(batches, topics: dict, source: SourceCheck, joiner, first_a
             yield from _ranges_one_by_one(batch if type(batch) is list else batch.records(),
                                           topics, source, joiner, first_a1, state)
             continue
-        keys = []
+        passed = True
         for k, (topic, (_frame_id, signal_name, unit)) in enumerate(zip(batch.topics, batch.texts)):
             periods = batch.sample_period_s[batch.topic == k]
-            keys.append((topic, (float(periods[0]), signal_name, unit)))
-            if not (periods == periods[0]).all() or known.get(topic) != keys[-1][1]:
-                keys = None
+            if not ((periods == periods[0]).all()
+                    and source.passes(topic, float(periods[0]), signal_name, unit)):
+                passed = False
                 break
-        if keys is None:
+        if not passed:
             yield from _ranges_one_by_one(batch.records(), topics, source, joiner, first_a1, state)
             continue
         # each row's signal as its index in the joiner's signals
