@@ -26,9 +26,12 @@ DEFAULT_CHUNKS_AHEAD = 6   # ~6 MiB of decompressed chunks at the default 1 MiB 
 # holding it. analyze of bench/bags.py's 10 s bag on this 2-core machine (medians of 12-20
 # alternated rosbags/analyze pairs, the ratio with the thread against without): load average ~1.1
 # 1.22 against 1.03; ~1.7 (one other busy process) 1.12 against 0.98; ~2.2 0.96 against 0.95;
-# ~3 (two) 0.99 against 1.07 and 1.05 against 1.07. So the default is no thread when the load
-# average (1 min; it counts this process while it runs) has reached the machine's CPU count.
-BUSY_LOAD_PER_CPU = 1.0     # [runnable processes per CPU]
+# ~3 (two) 0.99 against 1.07 and 1.05 against 1.07. bench/bags.py at load 1.4-2.0 with the
+# thread: 1.09-1.27 in one series, 0.995-0.998 in another; without it at 1.9-2.8: 1.007-1.055 in 7
+# of 7. Between ~1.5 and 2 it depends on what the other processes do; without the thread the
+# figure is steadier. So the default is no thread when the load average (1 min; it counts this
+# process while it runs) is within FREE_CORE_MARGIN of the machine's CPU count.
+FREE_CORE_MARGIN = 0.5      # [runnable processes]
 
 _POOL = None
 _POOL_LOCK = threading.Lock()
@@ -55,7 +58,7 @@ def _executor():
 
 def default_chunks_ahead() -> int:
     """DEFAULT_CHUNKS_AHEAD where this process may run on two CPUs or more and the machine's
-    load average (1 min) is below BUSY_LOAD_PER_CPU x its CPUs, else 0."""
+    load average (1 min) is below its CPU count less FREE_CORE_MARGIN, else 0."""
     try:
         cpus = len(os.sched_getaffinity(0))
     except (AttributeError, OSError):  # pragma: no cover - not Linux
@@ -66,7 +69,7 @@ def default_chunks_ahead() -> int:
         load = os.getloadavg()[0]
     except (AttributeError, OSError):  # pragma: no cover - no load average
         return DEFAULT_CHUNKS_AHEAD
-    return DEFAULT_CHUNKS_AHEAD if load < BUSY_LOAD_PER_CPU * (os.cpu_count() or cpus) else 0
+    return DEFAULT_CHUNKS_AHEAD if load < (os.cpu_count() or cpus) - FREE_CORE_MARGIN else 0
 
 
 class ChunkPrefetcher:

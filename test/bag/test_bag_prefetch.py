@@ -72,10 +72,11 @@ def test_each_reader_its_own_setting(small_chunk_bag):
 @pytest.mark.parametrize("cpus, load, ahead", [
     (1, 0.0, 0),                          # one CPU: nothing to run the thread on
     (2, 0.3, prefetch.DEFAULT_CHUNKS_AHEAD),   # a quiet machine: a core is free
-    (2, 1.7, prefetch.DEFAULT_CHUNKS_AHEAD),   # this process and one more, mostly busy
-    (2, 2.0, 0),                          # the CPUs' count: no core free
+    (2, 1.2, prefetch.DEFAULT_CHUNKS_AHEAD),   # this process and a little more
+    (2, 1.6, 0),                          # within FREE_CORE_MARGIN of the CPUs: none free
     (2, 3.0, 0),                          # two other busy processes and this one
     (8, 3.0, prefetch.DEFAULT_CHUNKS_AHEAD),
+    (8, 7.6, 0),
 ])
 def test_the_default_takes_a_thread_only_when_a_core_is_free(monkeypatch, cpus, load, ahead):
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(cpus)))
