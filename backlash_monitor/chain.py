@@ -124,9 +124,11 @@ class ChunkJoiner:
         the other -- each signal's chunk of a range, in any order, then the next range's, at an
         index at or past the end of the one before (the way a recorder writes a drive's topics):
         the complete ranges, the joiner left as those adds leave it. None when they do not come
-        that way, or a chunk is irregular (an index that is not usable, a range whose chunks'
-        periods or lengths differ, no samples), or ranges are waiting already: then nothing is
-        done (add them one by one, which counts what is wrong).
+        that way (the first range behind the end of the last one completed before, too), or a
+        chunk is irregular (an index that is not usable, a range whose chunks' periods or
+        lengths differ, no samples), or ranges are waiting already: then nothing is done (add
+        them one by one, which counts what is wrong). Called again for the next chunks, it goes
+        on where the adds or the call before ended.
 
         ``signal``: each chunk's signal, as its index in ``signals`` (an int array);
         ``first_sample_index`` and ``sample_period_s``: numpy arrays of theirs (unsigned ints,
@@ -136,7 +138,7 @@ class ChunkJoiner:
         width = len(self.signals)
         codes = np.asarray(signal)
         n = codes.size
-        if (self.pending or self._end is not None or n == 0 or n % width or len(samples) != n
+        if (self.pending or n == 0 or n % width or len(samples) != n
                 or codes.dtype.kind not in "ui"):
             return None
         codes = codes.reshape(-1, width)
@@ -153,7 +155,8 @@ class ChunkJoiner:
                 and (sizes == sizes[:, :1]).all() and (sizes > 0).all()):
             return None
         starts = starts.astype(np.int64)
-        if (starts[1:] < starts[:-1] + sizes[:-1, 0]).any():
+        if (starts[1:] < starts[:-1] + sizes[:-1, 0]).any() or (
+                self._end is not None and starts[0] < self._end):
             return None       # a range behind the end of the one before: a restart or a repeat
         signals = self.signals
         firsts, period_list = starts.tolist(), periods[:, 0].tolist()

@@ -278,7 +278,9 @@ def time_analyze(tmp: Path, seconds: float = 10.0) -> dict:
     (rosbag2's noSummary) and without chunks (noChunking).
 
     `analyze.run` is what the CLI runs, settings included: it decompresses chunks in a worker
-    thread and raises glibc's malloc thresholds for its process (process/memory.py). The
+    thread when a core is free as it opens the bag (bag/prefetch.py: the load average says; else
+    in its own; ``analyze_decompression_thread`` says which, at the start and the end of the timed
+    rounds) and raises glibc's malloc thresholds for its process (process/memory.py). The
     rosbags read runs after it in this process, so under the same allocator setting (it takes
     fewer page faults too). Every analyze run writes its own output (the no-overwrite rule)."""
     import argparse as _argparse
@@ -313,8 +315,12 @@ def time_analyze(tmp: Path, seconds: float = 10.0) -> dict:
         gc.collect()
         return time_rosbags_read(bag, ANALYZE_TOPICS)
 
+    from backlash_monitor.bag.prefetch import default_chunks_ahead
+
     runs = {name: [] for name in bags}
     rosbags_runs = {name: [] for name in bags}
+    load = [round(os.getloadavg()[0], 2)]
+    thread = [default_chunks_ahead() > 0]
     for k in range(ROUNDS):         # alternated pairs: a load change hits both sides alike
         for name, bag in bags.items():
             if k % 2:
@@ -323,7 +329,10 @@ def time_analyze(tmp: Path, seconds: float = 10.0) -> dict:
             else:
                 runs[name].append(timed_analyze(name, bag, k))
                 rosbags_runs[name].append(timed_rosbags(bag))
+    load.append(round(os.getloadavg()[0], 2))
+    thread.append(default_chunks_ahead() > 0)
     out = {"analyze_bag_seconds": seconds, "timing": TIMING,
+           "load_average_1min_start_end": load, "analyze_decompression_thread_start_end": thread,
            "analyze_same_estimates_across_layouts": len(set(estimates.values())) == 1,
            "analyze_estimate_rows": estimates["default"].count("\n") - 1}
     for name in bags:

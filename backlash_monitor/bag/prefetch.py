@@ -4,8 +4,9 @@ zstd/lz4 decompression and the CRC release the GIL (or are short): on a second c
 decompressed and checked while the caller decodes and processes the messages of the one before.
 How far ahead is each reader's own setting: ``BagReader(path, chunks_ahead=N)`` makes its
 ChunkPrefetcher; 0 decompresses in the caller's thread (a process with no core to spare, e.g. one
-of a pool with a worker per core, where the thread would only take turns with it). Nothing here is
-set from outside.
+of a pool with a worker per core, where the thread would only take turns with it). The default
+(None) is a thread when a core is free when the reader opens: more than one CPU, and a load
+average that leaves one (:func:`default_chunks_ahead`). Nothing here is set from outside.
 
 The worker thread is this process's one ``bag-decompress`` thread, started on first use and kept
 for the next reader: a new thread per reader would cost ~2 ms a bag here (its start, and fresh
@@ -20,6 +21,17 @@ from collections import deque
 from functools import partial
 
 DEFAULT_CHUNKS_AHEAD = 6   # ~6 MiB of decompressed chunks at the default 1 MiB chunk size
+# The thread pays only with a core to run on: with every core busy it takes turns with the caller
+# and the other processes, and the caller waits for the GIL whenever the thread is descheduled
+# holding it. analyze of bench/bags.py's 10 s bag on this 2-core machine (medians of 12-20
+# alternated rosbags/analyze pairs, the ratio with the thread against without): load average ~1.1
+# 1.22 against 1.03; ~1.7 (one other busy process) 1.12 against 0.98; ~2.2 0.96 against 0.95;
+# ~3 (two) 0.99 against 1.07 and 1.05 against 1.07. bench/bags.py at load 1.4-2.0 with the
+# thread: 1.09-1.27 in one series, 0.995-0.998 in another; without it at 1.9-2.8: 1.007-1.055 in 7
+# of 7. Between ~1.5 and 2 it depends on what the other processes do; without the thread the
+# figure is steadier. So the default is no thread when the load average (1 min; it counts this
+# process while it runs) is within FREE_CORE_MARGIN of the machine's CPU count.
+FREE_CORE_MARGIN = 0.5      # [runnable processes]
 
 _POOL = None
 _POOL_LOCK = threading.Lock()
@@ -45,12 +57,19 @@ def _executor():
 
 
 def default_chunks_ahead() -> int:
-    """DEFAULT_CHUNKS_AHEAD where this process may run on two CPUs or more, else 0."""
+    """DEFAULT_CHUNKS_AHEAD where this process may run on two CPUs or more and the machine's
+    load average (1 min) is below its CPU count less FREE_CORE_MARGIN, else 0."""
     try:
         cpus = len(os.sched_getaffinity(0))
     except (AttributeError, OSError):  # pragma: no cover - not Linux
         cpus = os.cpu_count() or 1
-    return DEFAULT_CHUNKS_AHEAD if cpus > 1 else 0
+    if cpus <= 1:
+        return 0
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):  # pragma: no cover - no load average
+        return DEFAULT_CHUNKS_AHEAD
+    return DEFAULT_CHUNKS_AHEAD if load < (os.cpu_count() or cpus) - FREE_CORE_MARGIN else 0
 
 
 class ChunkPrefetcher:

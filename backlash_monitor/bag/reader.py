@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import mmap
 import os
+import struct
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from itertools import compress
@@ -43,7 +44,7 @@ from .integrity import DamagedChunk, Integrity, RecoveryReport, raise_for
 from .prefetch import ChunkPrefetcher
 from .records import (MAGIC, MALFORMED, MESSAGE_HEAD, OP_CHUNK, OP_HEADER, OP_MESSAGE,
                       RECORD_HEADER, WRITER_METADATA, chunk_compression_name, chunk_records, crc32,
-                      message_bodies, parse_header)
+                      U64, message_bodies, parse_header)
 from .signal_table import gather, signal_chunk_table
 from .summary import FooterState, Summary, read_footer, read_summary
 
@@ -102,8 +103,19 @@ class SignalChunkColumns(NamedTuple):
     sample_period_s: np.ndarray      # float64
     sec: np.ndarray                  # header.stamp.sec (int64)
     nanosec: np.ndarray              # header.stamp.nanosec (int64)
-    samples: list[np.ndarray]        # read-only float64 views of the file's map
+    samples: list[np.ndarray]        # read-only float64 views of the file's map (or of a chunk)
     texts: tuple[tuple[str, str, str], ...]   # per topic: (frame_id, signal_name, unit), alike for all its messages
+    log_time_ns: np.ndarray          # per message: its log time (uint64)
+
+    def records(self) -> list[SignalChunkRecord]:
+        """The same messages as the SignalChunkRecords ``signal_chunks(copy=False)`` yields."""
+        topics, texts = self.topics, self.texts
+        return [SignalChunkRecord(topics[k], log_time, first, period, samples, Stamp(sec, nanosec),
+                                  *texts[k])
+                for k, log_time, first, period, samples, sec, nanosec in zip(
+                    self.topic.tolist(), self.log_time_ns.tolist(),
+                    self.first_sample_index.tolist(), self.sample_period_s.tolist(), self.samples,
+                    self.sec.tolist(), self.nanosec.tolist())]
 
 
 @dataclass
@@ -152,6 +164,7 @@ class BagReader:
         self._index = BagIndex(data_end=self.file_size)
         self._integrity: Integrity | None = None
         self._codecs: dict[int, Codec] = {}
+        self._schema_codecs: dict[tuple, Codec] = {}   # (type, encoding, text) -> its codec
         self._last_chunk = None          # (offset, records) of the last chunk decompressed
         self.recovery: RecoveryReport | None = None
         try:
@@ -393,10 +406,15 @@ class BagReader:
                                          f"{info.message_encoding!r}; only 'cdr' is supported")
             if not info.type:
                 raise UnknownSchemaError(f"topic {topic!r} has no schema in the bag")
-            try:
-                codec = Codec.from_schema(info.type, info.schema_text, info.schema_encoding)
-            except UnknownSchemaError as exc:
-                raise UnknownSchemaError(f"topic {topic!r} ({info.type}): {exc}") from None
+            # channels of one schema (a drive's SignalChunk topics) share its codec: parsed once
+            key = (info.type, info.schema_encoding, info.schema_text)
+            codec = self._schema_codecs.get(key)
+            if codec is None:
+                try:
+                    codec = Codec.from_schema(info.type, info.schema_text, info.schema_encoding)
+                except UnknownSchemaError as exc:
+                    raise UnknownSchemaError(f"topic {topic!r} ({info.type}): {exc}") from None
+                self._schema_codecs[key] = codec
             self._codecs[info.channel_id] = codec
         return codec
 
@@ -441,7 +459,8 @@ class BagReader:
                       copy: bool = True) -> Iterator[SignalChunkRecord]:
         """The SignalChunk messages of ``topics`` in file order, as flat :class:`SignalChunkRecord`
         tuples: the fields ``messages`` decodes (the same values), without building message
-        objects -- the offline analysis reads its millions of samples this way. ``samples`` of a
+        objects -- the offline analysis reads its millions of samples this way (a chunk at a time:
+        :meth:`signal_chunk_batches`). ``samples`` of a
         message in a compressed chunk is a read-only view of the decompressed chunk (no
         allocation per message: fresh memory costs a page fault per 4 KiB); elsewhere (an
         uncompressed chunk, a message outside chunks: views of the file's map) it is a copy, or
@@ -451,17 +470,7 @@ class BagReader:
         map alive after ``close`` until it is dropped, and reads the file: it must not be
         truncated meanwhile. A payload the SignalChunk fast path does not take (big endian) goes
         through the generic decoder (a copy); a malformed one raises its CdrError."""
-        wanted = self._channel_ids(topics)
-        infos = {t.channel_id: t for t in self.topics.values()}
-        codecs = {}
-        for cid in wanted:
-            if not infos[cid].type.endswith("/SignalChunk"):
-                raise BagError(f"topic {infos[cid].name!r} has type {infos[cid].type}, "
-                               "not SignalChunk")
-            codecs[cid] = self.codec(infos[cid].name)
-        names = {cid: ch.topic for cid, ch in self.channels.items()}
-        # per topic: (its codec, its last string section)
-        fast = {cid: (codecs[cid], [None]) for cid in wanted}
+        wanted, fast, names = self._signal_codecs(topics)
         records = self._records_to_read(wanted, None, None)
         if records and all(op == OP_MESSAGE and len(body) >= MESSAGE_HEAD.size
                            for op, _pos, body in records):
@@ -474,6 +483,70 @@ class BagReader:
                 *fast[cid], body[head:], copy and type(body.obj) is not bytes)
             yield SignalChunkRecord(names[cid], log_time, first, period, samples,
                                     Stamp(sec, nanosec), frame_id, signal_name, unit)
+
+    def _signal_codecs(self, topics) -> tuple[set, dict, dict]:
+        """(wanted channel ids, per wanted channel (its codec, its string cache), channel id ->
+        topic) for reading SignalChunk ``topics``; BagError for a topic of another type."""
+        wanted = self._channel_ids(topics)
+        infos = {t.channel_id: t for t in self.topics.values()}
+        fast = {}
+        for cid in wanted:
+            if not infos[cid].type.endswith("/SignalChunk"):
+                raise BagError(f"topic {infos[cid].name!r} has type {infos[cid].type}, "
+                               "not SignalChunk")
+            fast[cid] = (self.codec(infos[cid].name), [None])   # its codec, its last string section
+        return wanted, fast, {cid: ch.topic for cid, ch in self.channels.items()}
+
+    def signal_chunk_batches(self, topics: Iterable[str] | str
+                             ) -> Iterator[SignalChunkColumns | list[SignalChunkRecord]]:
+        """What ``signal_chunks(topics, copy=False)`` yields, a batch at a time, in file order:
+        for each chunk, its messages of ``topics`` as :class:`SignalChunkColumns` when each
+        topic's payloads in it are laid out alike (signal_table.py; the samples read-only views
+        of the decompressed chunk), else as the list of records ``signal_chunks`` yields for it;
+        a message outside chunks as a list of its one record. The same values, errors and
+        damaged-chunk handling as ``signal_chunks``, without a Python step per message for the
+        fields of a chunk's messages (``analyze`` joins a chunk's whole ranges at once)."""
+        wanted, fast, names = self._signal_codecs(topics)
+        records = self._records_to_read(wanted, None, None)
+        idx = self._index
+        chunks = [(pos, body) for op, pos, body in records if op == OP_CHUNK]
+        decompressed = self._prefetcher.map(self._chunk_records, chunks)
+        head = MESSAGE_HEAD.size
+        unpack = MESSAGE_HEAD.unpack_from
+        try:
+            for op, pos, body in records:
+                if op != OP_CHUNK:    # (a message on a wanted channel, or too short: unpack names it)
+                    cid, _seq, log_time, _pub = unpack(body, 0)
+                    yield [self._signal_record(fast, names, cid, log_time, body[head:])]
+                    continue
+                try:
+                    buf = next(decompressed)()
+                    columns = _chunk_signal_columns(buf, wanted, fast, names)
+                    bodies = message_bodies(buf) if columns is None else ()
+                except CorruptBagError as error:
+                    if pos not in idx.corrupt:
+                        self._integrity.chunk_failed(pos, body, str(error))   # raises unless recovering
+                    continue
+                if columns is not None:
+                    yield columns
+                    continue
+                batch = []
+                for rbody in bodies:
+                    cid, _seq, log_time, _pub = unpack(rbody, 0)
+                    if cid in wanted:
+                        batch.append(self._signal_record(fast, names, cid, log_time, rbody[head:]))
+                yield batch
+        finally:
+            decompressed.close()   # waits for a chunk still being decompressed (the map stays valid)
+
+    @staticmethod
+    def _signal_record(fast: dict, names: dict, cid: int, log_time: int,
+                       payload) -> SignalChunkRecord:
+        """The SignalChunkRecord of one payload, as ``signal_chunks(copy=False)`` makes it."""
+        sec, nanosec, frame_id, signal_name, unit, period, first, samples = _signal_fields(
+            *fast[cid], payload, False)
+        return SignalChunkRecord(names[cid], log_time, first, period, samples,
+                                 Stamp(sec, nanosec), frame_id, signal_name, unit)
 
     def signal_chunk_columns(self, topics: Iterable[str] | str) -> SignalChunkColumns | None:
         """``signal_chunks(topics, copy=False)`` at once, as columns, when the file holds those
@@ -504,6 +577,7 @@ class BagReader:
         sizes = sizes[rows]
         channels = channels[rows]
         data = np.frombuffer(self._buf, dtype=np.uint8)
+        log_time = gather(data, starts + 6, 8).view("<u8")[:, 0]
         first_rows = {int(c): int(np.argmax(channels == c)) for c in np.unique(channels)}
         order = sorted(first_rows, key=first_rows.get)       # topics by their first message
         topic = np.empty(n, dtype=np.int64)
@@ -542,7 +616,7 @@ class BagReader:
             i = offset >> 3
             samples.append(base[i:i + size])
         return SignalChunkColumns(tuple(self.channels[cid].topic for cid in order), topic, first,
-                                  period, sec, nanosec, samples, tuple(texts))
+                                  period, sec, nanosec, samples, tuple(texts), log_time)
 
     def _unchunked_signal_chunks(self, records: list, fast: dict, names: dict,
                                  copy: bool) -> Iterator[SignalChunkRecord]:
@@ -705,6 +779,87 @@ def _signal_fields(codec: Codec, strings: list, payload, copy: bool) -> tuple:
     stamp = msg.header.stamp
     return (stamp.sec, stamp.nanosec, msg.header.frame_id, msg.signal_name, msg.unit,
             msg.sample_period_s, msg.first_sample_index, msg.samples)
+
+
+_RECORD_CHANNEL = struct.Struct("<BQH")   # a record's opcode and length, a Message's channel id
+_STAMP = struct.Struct("<iI")              # a SignalChunk's header.stamp (sec, nanosec)
+_TAIL = struct.Struct("<dQI")              # its sample_period_s, first_sample_index, sample count
+
+
+def _chunk_signal_columns(buf, wanted: set, fast: dict,
+                          names: dict) -> SignalChunkColumns | None:
+    """The SignalChunk messages of the ``wanted`` channels in a decompressed chunk's records
+    ``buf``, as columns, when every one of them is laid out as its channel's last payload read
+    (``fast``: per channel its codec and string cache, which ``Codec.signal_chunk_fields`` keeps:
+    plain little-endian CDR, the same string section byte for byte, so the same offsets after
+    it) and holds samples: their fields read at those offsets as ``signal_chunk_fields`` reads
+    them (the same bytes as the same types: the same values). None for anything else -- a
+    channel not read before, a payload laid out otherwise, one without samples, a record that
+    does not fit the chunk -- which is then read one by one (and named when malformed). One
+    Python step per record, a few struct reads per message, no numpy call per message."""
+    n = len(buf)
+    pos = 0
+    rows = []                       # (channel id, record body offset, body length)
+    unpack = _RECORD_CHANNEL.unpack_from
+    message = OP_MESSAGE
+    while pos + 11 <= n:
+        op, length, cid = unpack(buf, pos)
+        end = pos + 9 + length
+        if end > n:
+            return None
+        if op == message and cid in wanted:
+            rows.append((cid, pos + 9, length))
+        pos = end
+    if pos != n or not rows:
+        return None
+    layouts = {}                    # channel id -> (its topic's index, string section, its end, tail offset)
+    order = []
+    head = MESSAGE_HEAD.size
+    stamp_of, tail_of, u64 = _STAMP.unpack_from, _TAIL.unpack_from, U64.unpack_from
+    topic, log_time, first, period, sec, nanosec, samples_at, count = ([] for _ in range(8))
+    for cid, at, length in rows:
+        layout = layouts.get(cid)
+        if layout is None:
+            codec, strings = fast[cid]
+            if not codec.is_signal_chunk or strings[0] is None:
+                return None         # (read one by one first: that parses its string section)
+            raw, _frame_id, _signal_name, _unit, strings_end = strings[0]
+            layout = layouts[cid] = (len(order), raw, strings_end,
+                                     strings_end + ((-(strings_end - 4)) & 7))
+            order.append(cid)
+        k, raw, strings_end, tail_at = layout
+        p = at + head               # the payload
+        size = length - head
+        if (size < tail_at + _TAIL.size or buf[p] != 0 or buf[p + 1] != 1
+                or buf[p + 12:p + strings_end] != raw):
+            return None
+        t_period, t_first, t_count = tail_of(buf, p + tail_at)
+        if not t_count or tail_at + 24 + 8 * t_count > size:
+            return None
+        s, ns = stamp_of(buf, p + 4)
+        topic.append(k)
+        log_time.append(u64(buf, at + 6)[0])
+        first.append(t_first)
+        period.append(t_period)
+        sec.append(s)
+        nanosec.append(ns)
+        samples_at.append(p + tail_at + 24)
+        count.append(t_count)
+    views = {}      # a float64 view of the chunk per byte alignment; each message's samples a slice
+    samples = []
+    for offset, n_samples in zip(samples_at, count):
+        shift = offset & 7
+        base = views.get(shift)
+        if base is None:
+            base = views[shift] = np.frombuffer(buf, dtype=_F64_LE, count=(n - shift) // 8,
+                                                offset=shift)
+        i = offset >> 3
+        samples.append(base[i:i + n_samples])
+    texts = tuple(tuple(fast[cid][1][0][1:4]) for cid in order)
+    return SignalChunkColumns(tuple(names[cid] for cid in order), np.array(topic, dtype=np.int64),
+                              np.array(first, dtype=np.uint64), np.array(period, dtype=np.float64),
+                              np.array(sec, dtype=np.int64), np.array(nanosec, dtype=np.int64),
+                              samples, texts, np.array(log_time, dtype=np.uint64))
 
 
 def _series(topic: str, msgs: list) -> SignalSeries:

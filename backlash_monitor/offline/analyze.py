@@ -155,6 +155,11 @@ class SourceCheck:
             return True
         return self._check(m, name, key)
 
+    def passes(self, topic: str, period, signal_name: str, unit: str) -> bool:
+        """True when :meth:`ok` passes a chunk on ``topic`` with these fields without a look (they
+        are the ones last found good there): nothing to check, nothing to count."""
+        return self._known.get(topic) == (period, signal_name, unit)
+
     def wrong(self, topic: str, name: str, signal_name: str, unit: str) -> str | None:
         """What is wrong with a chunk on ``topic`` (signal ``name``) that carries ``signal_name``
         in ``unit`` (another signal, another unit), or None."""
@@ -265,8 +270,8 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
             # ones) are read in place: the feeder joins them into blocks, the stage copies what it keeps
             ranges = _ranges_at_once(reader, topics, source, joiner, first_a1)
             if ranges is None:
-                ranges = _ranges_one_by_one(reader.signal_chunks(list(topics), copy=False), topics,
-                                            source, joiner, first_a1)
+                ranges = _ranges_by_batch(reader.signal_chunk_batches(list(topics)), topics,
+                                          source, joiner, first_a1)
             for joined in _then_none(ranges):
                 if joined is None:
                     joiner.flush()      # ranges never completed: counted, not silently lost
@@ -329,11 +334,15 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
             "drive": first_a1[0][0], "first_stamp_s": first_a1[0][1], "sensor_offsets": sensor_offsets}
 
 
-def _ranges_one_by_one(chunks, topics: dict, source: SourceCheck, joiner, first_a1: list):
+def _ranges_one_by_one(chunks, topics: dict, source: SourceCheck, joiner, first_a1: list,
+                       state: dict | None = None):
     """The joined ranges of ``chunks`` (SignalChunkRecords of ``topics``: topic -> signal), chunk by
     chunk: each checked (``source``), the first a1 chunk's (frame_id, time of its first sample)
-    put in ``first_a1[0]``."""
-    a1_topics = {t for t, n in topics.items() if n == "a1"}
+    put in ``first_a1[0]``. ``state``: {"a1_topics": ...} shared by calls that go on where the
+    one before ended (None once the first a1 chunk is seen)."""
+    if state is None:
+        state = {"a1_topics": {t for t, n in topics.items() if n == "a1"}}
+    a1_topics = state["a1_topics"]
     source_ok = source.ok
     join = joiner.add
     for m in chunks:
@@ -343,11 +352,75 @@ def _ranges_one_by_one(chunks, topics: dict, source: SourceCheck, joiner, first_
         if a1_topics and m.topic in a1_topics:
             first_a1[0] = _first_sample_time(m.frame_id, m.stamp.sec, m.stamp.nanosec,
                                              m.first_sample_index, m.sample_period_s)
-            a1_topics = None
+            a1_topics = state["a1_topics"] = None
         joined = join(name, m.first_sample_index, m.sample_period_s, m.samples, m.stamp,
                       m.frame_id)
         if joined is not None:
             yield joined
+
+
+def _ranges_by_batch(batches, topics: dict, source: SourceCheck, joiner, first_a1: list):
+    """What :func:`_ranges_one_by_one` gives for the records of ``batches``
+    (BagReader.signal_chunk_batches: a chunk's records as columns, or as a list of records),
+    with a chunk's whole ranges joined at once (``ChunkJoiner.add_rows``) when nothing in it
+    needs a look chunk by chunk: every topic's chunks in it at the sample period, signal and
+    unit ``source`` found good before (so ``source.ok`` passes each, as it would), the first a1
+    chunk seen. The rows of a range begun in the chunk before are added one by one until it is
+    complete, and so are those of a range the next chunk completes; anything else that is not
+    whole ranges one after the other goes one by one (the joiner counts what is wrong)."""
+    from backlash_monitor.bag import Stamp
+    state = {"a1_topics": {t for t, n in topics.items() if n == "a1"}}
+    signals = joiner.signals
+    width = len(signals)
+    join = joiner.add
+    for batch in batches:
+        if type(batch) is list or state["a1_topics"]:
+            yield from _ranges_one_by_one(batch if type(batch) is list else batch.records(),
+                                          topics, source, joiner, first_a1, state)
+            continue
+        passed = True
+        for k, (topic, (_frame_id, signal_name, unit)) in enumerate(zip(batch.topics, batch.texts)):
+            periods = batch.sample_period_s[batch.topic == k]
+            if not ((periods == periods[0]).all()
+                    and source.passes(topic, float(periods[0]), signal_name, unit)):
+                passed = False
+                break
+        if not passed:
+            yield from _ranges_one_by_one(batch.records(), topics, source, joiner, first_a1, state)
+            continue
+        # each row's signal as its index in the joiner's signals
+        code = np.array([signals.index(topics[t]) for t in batch.topics])[batch.topic]
+        firsts = batch.first_sample_index
+        samples = batch.samples
+        frame_ids = [texts[0] for texts in batch.texts]
+        n = code.size
+        i = 0
+        while i < n and joiner.pending:      # the rest of a range begun before
+            joined = join(signals[code[i]], int(firsts[i]), float(batch.sample_period_s[i]),
+                          samples[i], Stamp(int(batch.sec[i]), int(batch.nanosec[i])),
+                          frame_ids[batch.topic[i]])
+            i += 1
+            if joined is not None:
+                yield joined
+        whole = i + (n - i) // width * width
+        ranges = None
+        if whole > i:
+            sec, nanosec, topic = (batch.sec[i:whole].tolist(), batch.nanosec[i:whole].tolist(),
+                                   batch.topic[i:whole].tolist())
+
+            def meta(j):
+                return Stamp(sec[j], nanosec[j]), frame_ids[topic[j]]
+            ranges = joiner.add_rows(code[i:whole], firsts[i:whole],
+                                     batch.sample_period_s[i:whole], samples[i:whole], meta)
+        if ranges is not None:
+            yield from ranges
+            i = whole
+        for j in range(i, n):                # a range the next chunk completes, or not whole ranges
+            joined = join(signals[code[j]], int(firsts[j]), float(batch.sample_period_s[j]),
+                          samples[j], Stamp(int(batch.sec[j]), int(batch.nanosec[j])),
+                          frame_ids[batch.topic[j]])
+            if joined is not None:
+                yield joined
 
 
 def _ranges_at_once(reader, topics: dict, source: SourceCheck, joiner, first_a1: list):

@@ -8,6 +8,7 @@ import threading
 import pytest
 
 from backlash_monitor.bag import BagReader
+from backlash_monitor.bag import prefetch
 from backlash_monitor.bag import reader as reader_module
 from backlash_monitor.bag.errors import CorruptBagError
 from backlash_monitor.bag.records import CHUNK_HEAD
@@ -66,6 +67,24 @@ def test_each_reader_its_own_setting(small_chunk_bag):
         assert not plain._prefetcher.started and ahead._prefetcher.started
     with pytest.raises(ValueError, match="chunks_ahead"):
         BagReader(path, chunks_ahead=-1)
+
+
+@pytest.mark.parametrize("cpus, load, ahead", [
+    (1, 0.0, 0),                          # one CPU: nothing to run the thread on
+    (2, 0.3, prefetch.DEFAULT_CHUNKS_AHEAD),   # a quiet machine: a core is free
+    (2, 1.2, prefetch.DEFAULT_CHUNKS_AHEAD),   # this process and a little more
+    (2, 1.6, 0),                          # within FREE_CORE_MARGIN of the CPUs: none free
+    (2, 3.0, 0),                          # two other busy processes and this one
+    (8, 3.0, prefetch.DEFAULT_CHUNKS_AHEAD),
+    (8, 7.6, 0),
+])
+def test_the_default_takes_a_thread_only_when_a_core_is_free(monkeypatch, cpus, load, ahead):
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(cpus)))
+    monkeypatch.setattr(os, "cpu_count", lambda: cpus)
+    monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load))
+    assert prefetch.default_chunks_ahead() == ahead
+    assert prefetch.ChunkPrefetcher().chunks_ahead == ahead
+    assert prefetch.ChunkPrefetcher(2).chunks_ahead == 2      # a reader's own setting stays
 
 
 def test_a_forked_child_reads_with_its_own_thread(small_chunk_bag):
