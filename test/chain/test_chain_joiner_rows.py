@@ -112,5 +112,21 @@ def test_what_does_not_come_as_whole_ranges_is_refused():
     waiting.add(*chunks(1, first=10_000)[0])                     # a range waits already
     assert refused(good, waiting)
     joined = ChunkJoiner(SIGNALS)
-    one_by_one(chunks(1, first=0), joined)                       # the joiner has a stream end
-    assert refused(chunks(2, first=5), joined)
+    one_by_one(chunks(1, first=0), joined)                       # the joiner's stream ends at 5
+    assert refused(chunks(2, first=3), joined)                   # behind it: a restart or a repeat
+
+
+@pytest.mark.parametrize("first", [5, 12], ids=["contiguous", "a gap"])
+def test_after_earlier_adds_whole_ranges_go_on_as_one_by_one(first):
+    """analyze adds a chunk's ranges one by one until the joiner has seen the drive's first a1 chunk
+    or a range ends, then the whole ranges at once: add_rows goes on where those adds ended."""
+    before = chunks(1, first=0)
+    more = chunks(3, first=first)
+    by_one, at = ChunkJoiner(SIGNALS), ChunkJoiner(SIGNALS)
+    one_by_one(before, by_one)
+    one_by_one(before, at)
+    want, _ = one_by_one(more, by_one)
+    got, _ = at_once(more, at)
+    assert got is not None and len(got) == len(want) == 3
+    assert all(same(a, b) for a, b in zip(got, want))
+    assert state(at) == state(by_one)
