@@ -157,6 +157,10 @@ WATCH_ORDER = ("model_watch",) + NODE_ORDER
 # machine: the node processes' first window can take seconds; CI saw a 2 s run end with none).
 IN_FLIGHT_QUIET_S = 2.0
 FIRST_ESTIMATE_GRACE_S = 10.0
+# The summary's count of onset windows before the sensor offset was known comes from the windowing
+# node's 1 Hz status on /diagnostics; a status can reach this process late (DDS discovery of a node
+# process): after the stream, wait up to this long for a first one rather than print a summary without it.
+WINDOWING_STATUS_GRACE_S = 5.0
 
 
 def node_parameters(args) -> dict[str, dict]:
@@ -502,7 +506,8 @@ def run(args) -> int:
             # The stream has ended: wait until the estimates in flight stop coming (windows and
             # estimates are transient local: a slow stage delivers late, it does not lose them).
             if stream_ended_s is not None and now - max(stream_ended_s, view.last_arrival_s or 0.0) \
-                    > (IN_FLIGHT_QUIET_S if view.last_arrival_s is not None else FIRST_ESTIMATE_GRACE_S):
+                    > (IN_FLIGHT_QUIET_S if view.last_arrival_s is not None else FIRST_ESTIMATE_GRACE_S) \
+                    and (view.windowing or now - stream_ended_s > WINDOWING_STATUS_GRACE_S):
                 break
     except ParameterValueError as error:
         print(f"pipeline: error: {error}", file=sys.stderr)

@@ -85,5 +85,5 @@ def test_each_node_in_its_own_process_classifies_every_onset(ros_env):
     assert len(lines) == 7, proc.stdout
     for line in lines:
         assert line.count(" ok") == 4, line     # a1, a2, a1+a2 and the fused estimate
-    assert "7 onset windows classified (1 more before the sensor offset was known" in proc.stdout
+    assert "7 onset windows classified (1 more before the sensor offset was known" in proc.stdout, proc.stdout
     assert "Traceback" not in proc.stderr
