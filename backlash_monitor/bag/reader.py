@@ -554,14 +554,8 @@ class BagReader:
         alike (signal_table.py: the same string section, every field inside the payload, at
         least one sample): the same values, with no Python step per message but making each
         one's samples view. None otherwise: read them with :meth:`signal_chunks`."""
-        wanted = self._channel_ids(topics)
-        infos = {t.channel_id: t for t in self.topics.values()}
-        codecs = {}
-        for cid in wanted:     # (as signal_chunks checks them)
-            if not infos[cid].type.endswith("/SignalChunk"):
-                raise BagError(f"topic {infos[cid].name!r} has type {infos[cid].type}, "
-                               "not SignalChunk")
-            codecs[cid] = self.codec(infos[cid].name)
+        wanted, fast, _names = self._signal_codecs(topics)     # (as signal_chunks checks them)
+        codecs = {cid: codec for cid, (codec, _strings) in fast.items()}
         head = MESSAGE_HEAD.size
         # a file of unchunked messages only (no chunk; each message holds its head): the records
         # of the wanted channels, in file order, are what _records_to_read gives
@@ -604,17 +598,7 @@ class BagReader:
             at[rows] = found.samples_at
             texts.append((found.frame_id, found.signal_name, found.unit))
         del data
-        # each message's samples: a slice of one float64 view of the map per byte alignment
-        views = {}
-        samples = []
-        for offset, size in zip(at.tolist(), count.tolist()):
-            shift = offset & 7
-            base = views.get(shift)
-            if base is None:
-                base = views[shift] = np.frombuffer(self._buf, dtype=_F64_LE,
-                                                    count=(len(self._buf) - shift) // 8, offset=shift)
-            i = offset >> 3
-            samples.append(base[i:i + size])
+        samples = _sample_slices(self._buf, at.tolist(), count.tolist())
         return SignalChunkColumns(tuple(self.channels[cid].topic for cid in order), topic, first,
                                   period, sec, nanosec, samples, tuple(texts), log_time)
 
@@ -845,21 +829,28 @@ def _chunk_signal_columns(buf, wanted: set, fast: dict,
         nanosec.append(ns)
         samples_at.append(p + tail_at + 24)
         count.append(t_count)
-    views = {}      # a float64 view of the chunk per byte alignment; each message's samples a slice
-    samples = []
-    for offset, n_samples in zip(samples_at, count):
-        shift = offset & 7
-        base = views.get(shift)
-        if base is None:
-            base = views[shift] = np.frombuffer(buf, dtype=_F64_LE, count=(n - shift) // 8,
-                                                offset=shift)
-        i = offset >> 3
-        samples.append(base[i:i + n_samples])
+    samples = _sample_slices(buf, samples_at, count)
     texts = tuple(tuple(fast[cid][1][0][1:4]) for cid in order)
     return SignalChunkColumns(tuple(names[cid] for cid in order), np.array(topic, dtype=np.int64),
                               np.array(first, dtype=np.uint64), np.array(period, dtype=np.float64),
                               np.array(sec, dtype=np.int64), np.array(nanosec, dtype=np.int64),
                               samples, texts, np.array(log_time, dtype=np.uint64))
+
+
+def _sample_slices(buf, offsets: list, counts: list) -> list[np.ndarray]:
+    """Each message's samples (``counts[i]`` float64 at byte ``offsets[i]`` of ``buf``) as a
+    read-only slice of one float64 view of ``buf`` per byte alignment: no allocation per message."""
+    views = {}
+    samples = []
+    for offset, count in zip(offsets, counts):
+        shift = offset & 7
+        base = views.get(shift)
+        if base is None:
+            base = views[shift] = np.frombuffer(buf, dtype=_F64_LE, count=(len(buf) - shift) // 8,
+                                                offset=shift)
+        i = offset >> 3
+        samples.append(base[i:i + count])
+    return samples
 
 
 def _series(topic: str, msgs: list) -> SignalSeries:
