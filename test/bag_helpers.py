@@ -80,3 +80,18 @@ def write_simulated_drive(path):
 
     write_simulation_bag(path, PlantSimulator([Scenario(width_m=0.0075, seed=3)], outputs=STREAM_SIGNALS), 2.0)
     return path
+
+
+def analyze_outputs(result: dict) -> tuple:
+    """What ``offline.analyze.analyze_bag`` gave that two runs on the same samples must share: its
+    result, its fault counts, the CSV, the estimates MCAP and the JSON, without the run's time and
+    the bag's path."""
+    import json
+    result = dict(result)
+    outputs = result.pop("outputs")
+    result.pop("seconds")
+    found = result.pop("faults")
+    text = json.loads(outputs["json"].read_text())
+    text.pop("seconds"), text.pop("bag")
+    return (result, [f.counts for f in found], outputs["csv"].read_text(),
+            outputs["mcap"].read_bytes(), text)

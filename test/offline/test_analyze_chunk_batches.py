@@ -3,7 +3,6 @@
 the rows of a range split over two chunks one by one: the same estimates, discards, faults and
 outputs, byte for byte, as reading it message by message -- with ranges split over chunks, chunks
 of every compression, a missing message, a damaged chunk recovered, a payload changed mid-file."""
-import json
 
 import numpy as np
 import pytest
@@ -15,7 +14,7 @@ from backlash_monitor.bag import BagReader, BagWriter, faults  # noqa: E402
 from backlash_monitor.bag import reader as reader_module  # noqa: E402
 from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag  # noqa: E402
 
-from bag_helpers import write_simulated_drive  # noqa: E402
+from bag_helpers import analyze_outputs, write_simulated_drive  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -56,13 +55,7 @@ def analyzed(bag, out, monkeypatch, batches: bool, recover: bool = False):
         patch.setattr(chain.ChunkJoiner, "add_rows", spy_rows)
         out.mkdir()
         result = analyze_bag(bag, out / "estimates", AnalyzeOptions(recover=recover), chunks_ahead=0)
-    outputs = result.pop("outputs")
-    result.pop("seconds")
-    found = result.pop("faults")
-    text = json.loads(outputs["json"].read_text())
-    text.pop("seconds"), text.pop("bag")
-    return ((result, [f.counts for f in found], outputs["csv"].read_text(),
-             outputs["mcap"].read_bytes(), text), sum(columns), sum(joined))
+    return analyze_outputs(result), sum(columns), sum(joined)
 
 
 def both_ways(bag, tmp_path, monkeypatch, **kw):

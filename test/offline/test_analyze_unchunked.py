@@ -2,7 +2,6 @@
 (BagReader.signal_chunk_columns, ChunkJoiner.add_rows) when they come whole, one after the other,
 and chunk by chunk otherwise: the same estimates, discards, faults and outputs either way, byte for
 byte, as reading it chunk by chunk."""
-import json
 
 import pytest
 
@@ -13,7 +12,7 @@ from backlash_monitor.bag import BagReader, BagWriter  # noqa: E402
 from backlash_monitor.errors import UsageError  # noqa: E402
 from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag  # noqa: E402
 
-from bag_helpers import write_simulated_drive  # noqa: E402
+from bag_helpers import analyze_outputs, write_simulated_drive  # noqa: E402
 from mcap_conformance import rewrite_with_mcap  # noqa: E402
 
 
@@ -52,13 +51,7 @@ def analyzed(bag, out, monkeypatch, at_once: bool):
             patch.setattr(BagReader, "signal_chunk_columns", lambda self, topics: None)
         out.mkdir()
         result = analyze_bag(bag, out / "estimates", AnalyzeOptions())   # (the MCAP names itself)
-    outputs = result.pop("outputs")
-    result.pop("seconds")
-    faults = result.pop("faults")
-    text = json.loads(outputs["json"].read_text())
-    text.pop("seconds"), text.pop("bag")
-    return ((result, [f.counts for f in faults], outputs["csv"].read_text(),
-             outputs["mcap"].read_bytes(), text), any(joined))
+    return analyze_outputs(result), any(joined)
 
 
 def test_whole_ranges_at_once_give_the_same_outputs(tmp_path, recording, monkeypatch):
