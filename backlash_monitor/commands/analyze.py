@@ -26,10 +26,9 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag
-
 if TYPE_CHECKING:
     from backlash_monitor.fleet.analyze import FleetOptions
+    from backlash_monitor.offline.analyze import AnalyzeOptions
 
 NAME = "analyze"
 HELP = "run the chain offline on an MCAP bag: estimates to CSV, JSON and MCAP"
@@ -99,6 +98,7 @@ def _add_many_arguments(parser) -> None:
 
 def options_from_args(args) -> AnalyzeOptions:
     """The analysis options of a parsed `analyze` command line."""
+    from backlash_monitor.offline.analyze import AnalyzeOptions
     return AnalyzeOptions(namespace=args.namespace, trigger=args.trigger, width_m=args.width_m,
                           window_offset_samples=args.window_offset, angle_source=args.angle_source,
                           mode=args.mode, n1=args.n1, library=args.library,
@@ -118,9 +118,15 @@ def fleet_options_from_args(args) -> FleetOptions:
 
 
 def run(args) -> int:
-    from backlash_monitor.fleet.analyze import is_many, run_many
+    # the analysis (numpy) is imported here, not with the command's arguments: a many-bag run limits the
+    # threads of its forked workers' pools first (they inherit this process's, set when numpy is imported)
+    from backlash_monitor.fleet.analyze import is_many, limit_threads, run_many, runs_parallel_here
     if is_many(args.bag):
-        return run_many(fleet_options_from_args(args), options_from_args(args))
+        fleet = fleet_options_from_args(args)
+        if runs_parallel_here(fleet):
+            limit_threads()
+        return run_many(fleet, options_from_args(args))
+    from backlash_monitor.offline.analyze import analyze_bag
     result = analyze_bag(args.bag, args.out, options_from_args(args))
     _print_summary(result["summary"], result["rows"], result["discarded"], result["n_samples"],
                    result["seconds"], result["outputs"])

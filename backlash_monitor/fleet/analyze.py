@@ -225,10 +225,10 @@ def model_fit_text(r: dict) -> str:
 def missing_references(rows: list[dict], options, watch: WatchOptions, log=print) -> list[dict]:
     """Build the default model's references the workers did not find (once, into the cache); the rows they
     concern, to evaluate again. ``options``: the AnalyzeOptions (their n1)."""
-    from backlash_monitor.workbench import reference
     again, built = [], set()
     for r in rows:
         if r.get("model_fit") == "no reference" and not watch.reference:
+            from backlash_monitor.workbench import reference     # (only then: ~0.2 s of imports)
             width = r["width_m"] if r["width_m"] == r["width_m"] else r["fused_width_m"]
             model = default_model(options.n1, width)
             path = str(reference.cache_path(model))
@@ -253,13 +253,26 @@ def _jobs(options, bags: list[Path], out_dir: Path, watch: WatchOptions | None =
     return jobs
 
 
+_THREADS_LIMITED_FIRST: list[bool] = []   # whether limit_threads' first call came before numpy's import
+
+
 def limit_threads() -> bool:
     """One thread per pool (BLAS, OpenMP, numba) in this process and the processes it starts;
-    True when it takes effect here too (numpy not imported yet: OpenBLAS reads it at import)."""
+    True when it takes effect here too (numpy not imported yet when it was first called: OpenBLAS
+    reads it at import). Called again, it answers as it did the first time: the command calls it
+    before it parses the analysis options (which import numpy), run_many once more."""
     import sys
     for var in THREAD_VARIABLES:
         os.environ.setdefault(var, "1")
-    return "numpy" not in sys.modules
+    if not _THREADS_LIMITED_FIRST:
+        _THREADS_LIMITED_FIRST.append("numpy" not in sys.modules)
+    return _THREADS_LIMITED_FIRST[0]
+
+
+def runs_parallel_here(fleet: FleetOptions) -> bool:
+    """Whether the bags run in a pool of processes forked from this one (--engine local, --jobs > 1): its
+    threads are limited (limit_threads) before numpy is imported, so that the forked workers inherit it."""
+    return fleet.engine == "local" and fleet.workers() > 1
 
 
 def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
@@ -393,7 +406,7 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     fleet.check()
     n_jobs = fleet.workers()
     # before numpy is imported here: forked workers inherit this process's thread pools
-    threads_limited = limit_threads() if n_jobs > 1 and fleet.engine == "local" else None
+    threads_limited = limit_threads() if runs_parallel_here(fleet) else None
     out_dir = Path(fleet.out) if fleet.out else bags[0].parent / "fleet_analysis"
     out_dir.mkdir(parents=True, exist_ok=True)
     try:

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy import stats
+from scipy.special import chdtri     # chi^2's isf, as scipy.stats.chi2.isf computes it (scipy.stats costs ~1 s to import)
 
 from backlash_monitor.workbench.consistency import predictive_p, predictive_t2_isf
 
@@ -174,7 +174,7 @@ def load_rule(path: str | None = None) -> AlarmRule:
 
 @lru_cache(maxsize=64)
 def _isf(p: float, dimension: int) -> float:
-    return float(stats.chi2.isf(p, dimension))
+    return float(chdtri(dimension, p))
 
 
 @lru_cache(maxsize=64)

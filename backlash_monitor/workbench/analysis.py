@@ -10,10 +10,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import pywt
-from scipy import signal as sps
-from scipy import stats
+from scipy.special import chdtrc     # chi^2's sf, as scipy.stats.chi2.sf computes it (scipy.stats: ~1 s to import)
 
-from . import plant_adapter, spectral
+from . import spectral
 from .events import (DC_BLOCKS, IMPACT_SETTLE_S, POST_SAMPLES, PRE_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet,
                      dc_block_deviations, dc_signals, denoise, ensemble_from_runs, event_set, onset_entries)
 
@@ -43,6 +42,7 @@ def recover_conditions(meas, model) -> dict:
                               f"model's pulse period is {period / fs * 1e3:.1f} ms; allowed: within 3 % "
                               f"(--set pulse_load.period_s={round(spacing) / fs:g})")
     # the model's delay from pulse start to onset entry (noise-free, nominal timing)
+    from . import plant_adapter      # the simulator (numba): imported where a model is simulated, not to evaluate
     runs = plant_adapter.simulate_sets(model, [{}], [0], int(round(1.0 * fs)), noise=False)
     sim_entries = onset_entries({k: v[0, 0] for k, v in runs.items()}, 1.0 / fs)
     first = int(round(cfg.pulse_load.first_s * fs))
@@ -105,6 +105,7 @@ def build_comparison(meas, model, seeds=None) -> Comparison:
     conditions = recover_conditions(meas, model)
     dc_names = dc_signals(meas.signals)
     ev = event_set(meas.signals, meas.sample_period_s, dc_names)
+    from . import plant_adapter
     runs = plant_adapter.simulate_sets(model, [{}], seeds, meas.n_samples, conditions=conditions,
                                        signals=("a1", "a2", "omega1", "omega2", "angle_difference"))
     ens = ensemble_from_runs(runs, meas.sample_period_s, keep_records=True, dc_names=dc_names)
@@ -172,40 +173,55 @@ SPECTRUM_NPERSEG = 8192     # Welch segment of the whole-record spectra (6.1 Hz 
 def welch_psd(x, fs: float) -> tuple[np.ndarray, np.ndarray]:
     """(f, PSD) of one record or of each row of (n, samples): the workbench's one spectrum estimate, so that
     every spectrum it compares has the same segment and bins. ``scipy.signal.welch(x, fs, nperseg=min(8192,
-    samples))`` to the last bit (test_analysis_welch.py), without rebuilding its window and ShortTimeFFT at every
-    call: the live watch's spectrum of an onset period (a1 and a2, 12,500 samples, two 8192-sample segments; one
-    every 4th event) cost 1.8 ms with scipy's welch, 0.7 ms so."""
+    samples))`` to the last bit (test_analysis_welch.py), computed here with numpy and scipy.fft in the order of
+    operations scipy's ShortTimeFFT uses: the segments' mean removed, times the periodic Hann window scaled to a
+    density, the one-sided FFT's squared magnitude, the inner bins doubled, the mean over the segments. Not
+    scipy.signal itself: importing it costs ~0.35 s per process (a `analyze FOLDER` worker's model fit, the
+    watch node's start), and its welch rebuilt the window at every call (the live watch's spectrum of an onset
+    period, two 8192-sample segments of a1 and a2 every 4th event, cost 1.8 ms with scipy's welch)."""
     x = np.asarray(x, dtype=float)
     n = x.shape[-1] if x.ndim else 0
     if x.ndim == 0 or x.size == 0:
+        from scipy import signal as sps     # scipy's own answer (and errors) for what has no segment
         return sps.welch(x, fs=fs, nperseg=min(SPECTRUM_NPERSEG, max(n, 1)), axis=-1)
+    from scipy import fft as scipy_fft
     nperseg = min(SPECTRUM_NPERSEG, n)
-    sft = _welch_plan(nperseg, float(fs))
-    noverlap = nperseg // 2
-    # what scipy.signal.csd(x, x) does (scipy 1.17): the spectrogram of the detrended periodic-Hann segments,
-    # one-sided (the inner bins doubled), averaged over the segments
-    pxx = sft.spectrogram(x, x, detr="constant", p0=0, p1=(n - noverlap) // sft.hop, k_offset=nperseg // 2,
-                          axis=-1)
-    pxx = np.moveaxis(pxx, pxx.ndim - 2, -1)
-    pxx[..., 1:-1 if sft.mfft % 2 == 0 else None] *= 2
-    pxx = np.moveaxis(pxx, -1, pxx.ndim - 2)
-    pxx = pxx.mean(axis=-1) if pxx.shape[-1] > 1 else np.reshape(pxx, pxx.shape[:-1])
-    return sft.f, pxx
+    win, f = _welch_plan(nperseg, float(fs))
+    hop = nperseg - nperseg // 2
+    n_segments = (n - nperseg // 2) // hop
+    segments = np.lib.stride_tricks.sliding_window_view(x, nperseg, axis=-1)[..., :n_segments * hop:hop, :]
+    segments = segments - np.mean(segments, axis=-1, keepdims=True)
+    spectrum = scipy_fft.rfft(segments * win, n=nperseg, axis=-1)          # (..., segment, bin)
+    pxx = spectrum.real ** 2 + spectrum.imag ** 2
+    pxx[..., 1:-1 if nperseg % 2 == 0 else None] *= 2
+    pxx = np.ascontiguousarray(np.moveaxis(pxx, -2, -1))                    # (..., bin, segment), as scipy sums
+    pxx = pxx.mean(axis=-1) if n_segments > 1 else np.reshape(pxx, pxx.shape[:-1])
+    return f, pxx
 
 
 _WELCH_PLANS: dict = {}
 
 
-def _welch_plan(nperseg: int, fs: float) -> "sps.ShortTimeFFT":
-    """scipy.signal.welch's ShortTimeFFT for (nperseg, fs) (its defaults: periodic Hann, half overlap,
-    density scaling), built once."""
+def _welch_plan(nperseg: int, fs: float) -> tuple[np.ndarray, np.ndarray]:
+    """(window, bin frequencies in Hz) of welch_psd for (nperseg, fs), built once: scipy's periodic Hann window
+    (``get_window('hann', nperseg)``: the symmetric one of nperseg + 1 points without its last, as a sum of
+    cosines on linspace(-pi, pi)) scaled to a density, 1 / sqrt(sum(w^2) * fs) with the sum taken in order as
+    ShortTimeFFT.fac_psd does."""
     plan = _WELCH_PLANS.get((nperseg, fs))
     if plan is None:
+        from scipy import fft as scipy_fft
         if len(_WELCH_PLANS) >= 16:
             _WELCH_PLANS.clear()
-        win = sps.get_window("hann_periodic", nperseg)
-        plan = _WELCH_PLANS[(nperseg, fs)] = sps.ShortTimeFFT(win, nperseg - nperseg // 2, fs, fft_mode="onesided",
-                                                              mfft=nperseg, scale_to="psd", phase_shift=None)
+        if nperseg <= 1:
+            win = np.ones(nperseg)
+        else:
+            angle = np.linspace(-np.pi, np.pi, nperseg + 1)
+            win = np.zeros(nperseg + 1)
+            for k, a in enumerate(np.asarray([0.5, 0.5])):
+                win += a * np.cos(k * angle)
+            win = win[:-1]
+        win = win * (1 / np.sqrt(sum(win ** 2 + 0.0) / (1 / fs)))
+        plan = _WELCH_PLANS[(nperseg, fs)] = (win, scipy_fft.rfftfreq(nperseg, 1 / fs))
     return plan
 
 
@@ -371,7 +387,7 @@ def ljung_box(x: np.ndarray, lags: int = 10) -> tuple[float, float]:
         return float("nan"), float("nan")
     d = np.sum(x ** 2)
     q = n * (n + 2) * sum((np.sum(x[k:] * x[:-k]) / d) ** 2 / (n - k) for k in range(1, lags + 1))
-    return float(q), float(stats.chi2.sf(q, lags))
+    return float(q), float(chdtrc(lags, q))
 
 
 def decorrelation_lag(loo: np.ndarray) -> int:

@@ -42,7 +42,6 @@ from types import SimpleNamespace
 import numpy as np
 
 from . import analysis, consistency, spectral, tolerance
-from . import plant_adapter
 from .events import (DC_BLOCKS, PRE_SAMPLES, POST_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, denoise,
                      ensemble_from_runs, event_set)
 
@@ -740,6 +739,7 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
         changes = _width_grid(float(model.nominal["width_m"]), width_step)
         # the width grid: the ensemble (as Problem.evaluate makes it) and every run's own events
         sets = [{WIDTH_KEY: float(c)} for c in changes]
+        from . import plant_adapter   # the simulator (numba): not imported by a watch that only evaluates
         runs = plant_adapter.simulate_sets(model, p._merge(sets), p.seeds, p.n_samples, conditions=p.conditions)
         p.n_sets_simulated += len(sets)
         grid_ens = ensemble_from_runs(runs, p.dt, dc_names=p.dc_names)
