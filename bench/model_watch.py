@@ -82,6 +82,7 @@ OWN_FAMILIES = {
 SWITCH_AT_S = 10.0          # own detection runs: the effect switches on here
 TRACE_RULE = None           # set in main: view_p 1e-3, ratio 2.5, persistence never
 AFTER_S = 30.0              # ... and the run goes on this long (120 onsets)
+RECORD_MEAN = ("a1", "a2", "omega1")   # the watch's record-mean signals (the node's watch_omega1; --no-omega1: a1, a2)
 
 
 def family_of(label: str) -> str:
@@ -120,7 +121,7 @@ def tracing_watch(ref):
     """A watch whose evaluations the traces record: the rule loose enough that every window a rule to be scored
     could call exceeding gets its leave-one-out windows computed, and it never goes WARN (a WARN stops them)."""
     from backlash_monitor.watch.core import ModelWatch
-    return ModelWatch(ref, rule=TRACE_RULE)
+    return ModelWatch(ref, rule=TRACE_RULE, record_mean=RECORD_MEAN)
 
 
 def stream(watch, signals: dict, chunk: int = 1000) -> list:
@@ -128,7 +129,7 @@ def stream(watch, signals: dict, chunk: int = 1000) -> list:
     n = len(signals["a1"])
     for k in range(0, n, chunk):
         out += watch.feed(k, signals["a1"][k:k + chunk], signals["a2"][k:k + chunk],
-                          signals["angle_difference"][k:k + chunk])
+                          signals["angle_difference"][k:k + chunk], signals["omega1"][k:k + chunk])
     return out
 
 
@@ -144,7 +145,7 @@ def clean_own(seconds_per_point: float, widen: bool = True) -> list:
         watches = [tracing_watch(r) for r in refs]
         scen = [Scenario(width_m=w, eta_k=e, n1=n, seed=700 + i + 50 * wear) for i, (w, e, n) in enumerate(CLEAN_GRID)]
         cfg = load_model(None).plant_config({"effects.backlash_width_drift": True} if wear else None)
-        sim = PlantSimulator(scen, config=cfg, outputs=("a1", "a2", "angle_difference"))
+        sim = PlantSimulator(scen, config=cfg, outputs=("a1", "a2", "angle_difference", "omega1"))
         ups = [[] for _ in scen]
         n_chunks = int(round(seconds_per_point / 0.02))
         t0 = time.perf_counter()
@@ -154,7 +155,7 @@ def clean_own(seconds_per_point: float, widen: bool = True) -> list:
                 sim.set_parameters({"backlash_width_drift.change": np.array([frac * s.width_m for s in scen])})
             ch = sim.run(1000)
             for i, w in enumerate(watches):
-                ups[i] += w.feed(ch.first_sample_index, ch.a1[i], ch.a2[i], ch.angle_difference[i])
+                ups[i] += w.feed(ch.first_sample_index, ch.a1[i], ch.a2[i], ch.angle_difference[i], ch.omega1[i])
             if c % 1500 == 0:
                 log(f"clean own{' (wear)' if wear else ''}: {c * 0.02:.0f} of {seconds_per_point:.0f} s "
                     f"({time.perf_counter() - t0:.0f} s)")
@@ -219,7 +220,7 @@ def detect_own(seeds=(0, 1)) -> list:
                                                                                          not_event_locked=True)}
         cfg = model.plant_config(switches)
         scen = [Scenario(width_m=g[0], eta_k=g[1], n1=g[2], seed=900 + s) for s in seeds for _ in labels]
-        sim = PlantSimulator(scen, config=cfg, outputs=("a1", "a2", "angle_difference"))
+        sim = PlantSimulator(scen, config=cfg, outputs=("a1", "a2", "angle_difference", "omega1"))
         watches = [tracing_watch(ref) for _ in scen]
         ups = [[] for _ in scen]
         switch = int(round(SWITCH_AT_S / sim.sample_period_s))
@@ -234,7 +235,7 @@ def detect_own(seeds=(0, 1)) -> list:
                 sim.set_parameters(params)
             ch = sim.run(1000)
             for i, w in enumerate(watches):
-                ups[i] += w.feed(ch.first_sample_index, ch.a1[i], ch.a2[i], ch.angle_difference[i])
+                ups[i] += w.feed(ch.first_sample_index, ch.a1[i], ch.a2[i], ch.angle_difference[i], ch.omega1[i])
         for i, u in enumerate(ups):
             lab = labels[i % len(labels)]
             out.append({"source": "own", "grid": g, "label": lab, "family": family_of(lab),
@@ -245,12 +246,12 @@ def detect_own(seeds=(0, 1)) -> list:
 
 def events_of(signals: dict, dt: float, period: int) -> list:
     from backlash_monitor.watch.events import LiveEvents
-    live = LiveEvents(dt, period)
+    live = LiveEvents(dt, period, dc_names=RECORD_MEAN)
     out = []
     n = len(signals["a1"])
     for k in range(0, n, 1000):
         out += live.feed(k, signals["a1"][k:k + 1000], signals["a2"][k:k + 1000],
-                         signals["angle_difference"][k:k + 1000])
+                         signals["angle_difference"][k:k + 1000], signals["omega1"][k:k + 1000])
     return out
 
 
@@ -404,9 +405,13 @@ def main() -> int:
                          "traces hold the leave-one-out windows of what exceeds those). CLIP_P ('none': no "
                          "clipping) and PREDICTIVE (0: chi^2 p-values) change the evaluations themselves: not with "
                          "--traces-in of other ones")
+    ap.add_argument("--no-omega1", action="store_true", help="the watch's record mean without the motor speed omega1 "
+                                                              "(a1 and a2 only: the node's watch_omega1 false)")
     args = ap.parse_args()
     from backlash_monitor.watch.alarm import AlarmRule, load_rule
-    global TRACE_RULE
+    global TRACE_RULE, RECORD_MEAN
+    if args.no_omega1:
+        RECORD_MEAN = ("a1", "a2")
     rule = load_rule()
     if args.rule:
         parts = args.rule.split(",")
@@ -423,7 +428,8 @@ def main() -> int:
     t0 = time.perf_counter()
     result = {"rule": {"view_p": rule.view_p, "residual_ratio": rule.residual_ratio,
                        "persistence": rule.persistence, "clear_after": rule.clear_after, "robust": rule.robust,
-                       "event_clip_p": rule.event_clip_p, "predictive": rule.predictive}}
+                       "event_clip_p": rule.event_clip_p, "predictive": rule.predictive},
+              "record_mean": list(RECORD_MEAN)}
     data = {"clean": [], "detect": []}
     if args.traces_in:
         with open(args.traces_in) as f:

@@ -4,7 +4,9 @@
         -p reference:=drive7_v3.watch.npz
 
 One per drive, in its namespace beside the classifier. Subscribes to the drive's ``plant/a1``, ``a2``,
-``angle_difference`` and ``omega1`` (``snapshot_signals``; ``omega2`` too if asked) as serialized messages; the core
+``angle_difference`` and ``omega1`` (``snapshot_signals``; ``omega2`` too if asked) as serialized messages; the
+events' record mean takes the motor speed omega1 beside a1 and a2 (``watch_omega1``: diagnose's record-mean view,
+the drive's load); the core
 (backlash_monitor/watch/: the live onset events, ModelWatch, the alarm rule) evaluates the model version's
 precomputed reference (workbench/reference.py: no simulation here) on the last ``window_events`` onset events after
 every event, and the node publishes:
@@ -39,7 +41,7 @@ from backlash_monitor.nodes.qos import CHUNK_QOS_CHOICES, chunk_qos
 from backlash_monitor.nodes.runtime import run_node
 from backlash_monitor.watch.alarm import load_config
 
-WATCHED = ("a1", "a2", "angle_difference")
+WATCHED = ("a1", "a2", "angle_difference")           # the streams every watch joins; with watch_omega1 also omega1
 PLANT_SIGNALS = ("a1", "a2", "omega1", "omega2", "angle_difference")
 MODEL_FIT_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)
 
@@ -73,6 +75,10 @@ def _parameters():
                       0.0, 0.1),
         ParameterSpec("predictive", c["predictive"], "alarm: the views' p-values from Hotelling's predictive law (the "
                       "whitening is estimated from the model's own events); false: chi^2"),
+        ParameterSpec("watch_omega1", True, "the events' record mean takes the motor speed plant/omega1 beside a1 "
+                      "and a2, as diagnose does on a recording that has it: a load on the motor (friction, a fan) "
+                      "slows it and shows there, not in the accelerations; false for a drive that does not publish "
+                      "omega1"),
         ParameterSpec("snapshot_dir", ".", "where the snapshot bags go (created if missing; empty: no snapshots)"),
         ParameterSpec("snapshot_before_s", c["snapshot_before_s"], "snapshot: seconds of the stream before the "
                       "WARN [s]", 0.0, 60.0),
@@ -128,9 +134,14 @@ class ModelWatchNode(Node):
                                       "allowed: batch_s <= stale_after_s / 2 (chunks held for a batch must not look "
                                       "like a stopped stream)")
         bad = [x for x in p["snapshot_signals"] if x not in PLANT_SIGNALS]
+        self.watched = WATCHED + (("omega1",) if p["watch_omega1"] else ())
         if bad or not set(WATCHED) <= set(p["snapshot_signals"]):
             raise ParameterValueError(f"parameter 'snapshot_signals' = {list(p['snapshot_signals'])!r}; allowed: "
                                       f"a1, a2, angle_difference and any of omega1, omega2")
+        if p["watch_omega1"] and "omega1" not in p["snapshot_signals"]:
+            raise ParameterValueError(f"parameter 'snapshot_signals' = {list(p['snapshot_signals'])!r} without omega1 "
+                                      "while watch_omega1 is true: a snapshot must hold what the watch saw; add "
+                                      "omega1, or set watch_omega1 false")
         self.params = p
         self.executor_batch_s = p["batch_s"]          # run_node's executor batches the wake-ups (lean_executor)
         self.blas_threads = 1                          # run_node: its small products on one thread (process/blas)
@@ -139,19 +150,21 @@ class ModelWatchNode(Node):
         from backlash_monitor.chain import ChunkJoiner
         from backlash_monitor.watch.alarm import AlarmRule
         from backlash_monitor.watch.core import ModelWatch
+        from backlash_monitor.workbench.events import DC_SIGNALS, SEGMENT_SIGNALS
         from backlash_monitor.watch.snapshot import SIGNAL_CHUNK, SnapshotRecorder
         self.reference = _load_reference(p)
         try:
             rule = AlarmRule(p["view_p"], p["residual_ratio"], p["persistence"], p["clear_after"],
                              p["robust"], p["event_clip_p"] or None, p["predictive"]).check()
-            self.watch = ModelWatch(self.reference, p["window_events"], rule)
+            self.watch = ModelWatch(self.reference, p["window_events"], rule,
+                                    DC_SIGNALS if p["watch_omega1"] else SEGMENT_SIGNALS)
         except ValueError as error:
             raise ParameterValueError(str(error)) from None
         self.model = self.reference.model_label
         self.codec = Codec.for_type("backlash_monitor_msgs/msg/SignalChunk")
         self.strings = {name: [None] for name in self.signals}
         self.faults = FaultLog()
-        self.joiner = ChunkJoiner(WATCHED, faults=self.faults)
+        self.joiner = ChunkJoiner(self.watched, faults=self.faults)
         self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "chunks")
         self.stream_start_s = None       # wall time of sample 0 of the stream (from the chunks' stamps)
         self.recorder = None
@@ -170,6 +183,7 @@ class ModelWatchNode(Node):
                                              p["snapshot_before_s"], p["snapshot_after_s"], topics,
                                              p["max_snapshots"])
         self.counts = {"chunks": 0, "events": 0, "evaluations": 0, "warnings": 0}
+        self.last_chunk_s: dict = {}     # per signal: monotonic time of its last chunk (a watched stream missing)
         qos = chunk_qos(p["qos"])
         from backlash_monitor_msgs.msg import ModelFit, SignalChunk
         self.fit_type = ModelFit
@@ -187,6 +201,7 @@ class ModelWatchNode(Node):
     def on_chunk(self, name: str, data: bytes) -> None:
         now = time.monotonic()
         self.health.arrived(now)
+        self.last_chunk_s[name] = now
         try:
             fields = self.codec.signal_chunk_fields(memoryview(data), copy=False, strings=self.strings[name])
         except Exception:  # noqa: BLE001 - a malformed payload: counted, never raised into the executor
@@ -197,7 +212,7 @@ class ModelWatchNode(Node):
             sec, nanosec, frame_id, _sig, _unit, period, first, samples = fields
             if self.recorder is not None:
                 self.recorder.add(self.topic_names[name], first, len(samples), time.time_ns(), data)
-            if name in WATCHED:
+            if name in self.watched:
                 joined = self.joiner.add(name, first, period, samples, (sec, nanosec), frame_id)
                 if joined is not None:
                     self.process(joined)
@@ -208,8 +223,8 @@ class ModelWatchNode(Node):
         arrays = joined.arrays
         n = len(arrays["a1"])
         if (abs(joined.sample_period_s - self.reference.sample_period_s) > 1e-9 * self.reference.sample_period_s
-                or any(len(arrays[s]) != n for s in WATCHED)
-                or not all(math.isfinite(float(arrays[s].sum())) for s in WATCHED)):
+                or any(len(arrays[s]) != n for s in self.watched)
+                or not all(math.isfinite(float(arrays[s].sum())) for s in self.watched)):
             self.faults.add("bad_range", f"range at sample {joined.first_sample_index}: sample period "
                             f"{joined.sample_period_s!r} (the model's {self.reference.sample_period_s:g} s), unequal "
                             "lengths or non-finite samples")
@@ -220,7 +235,7 @@ class ModelWatchNode(Node):
             sec, nanosec = joined.stamp
             self.stream_start_s = sec + nanosec * 1e-9 - joined.first_sample_index * joined.sample_period_s
         for update in self.watch.feed(joined.first_sample_index, arrays["a1"], arrays["a2"],
-                                      arrays["angle_difference"]):
+                                      arrays["angle_difference"], arrays.get("omega1")):
             self.on_update(update)
 
     # ------------------------------------------------------------------------------------------ results
@@ -328,11 +343,30 @@ class ModelWatchNode(Node):
             level = "STALE" if level == "OK" else level
         elif input_level == "WARN" and level == "OK":
             level = "WARN"
+        missing = self.missing_streams()
+        if missing:
+            level = "WARN" if level == "OK" else level
+            problem = "; ".join(x for x in (problem, missing) if x)
         if problem:
             message = f"{message}; {problem}"
         self.diagnostics.set(level, message, publish_now=publish_now, model=self.model,
                              snapshot=self.snapshot_text(), input_faults=self.faults.summary(),
                              dropped_events=self.watch.live.dropped_events, **self.counts, **values)
+
+    def missing_streams(self) -> str:
+        """What is wrong when a watched stream is missing while the others come (each range waits for all of them,
+        so the watch would evaluate nothing): the missing topics and what to do."""
+        now, stale = time.monotonic(), self.params["stale_after_s"]
+        if not any(now - t <= stale for t in self.last_chunk_s.values()):
+            return ""                  # nothing comes at all: the input's STALE says it
+        missing = [n for n in self.watched if now - self.last_chunk_s.get(n, -math.inf) > stale]
+        if not missing:
+            return ""
+        text = f"no chunks on {', '.join(self.topic_names[n] for n in missing)} for {stale:g} s: no onset event is " \
+               "evaluated"
+        if missing == ["omega1"]:
+            text += " (a drive without the motor speed: set watch_omega1 false)"
+        return text
 
     def destroy_node(self):
         recorder = getattr(self, "recorder", None)

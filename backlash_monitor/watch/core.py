@@ -1,6 +1,7 @@
 """The model watch's core: a drive's last N onset events against its model version's reference, after every event.
 
-``ModelWatch.feed`` takes the stream (a1, a2, angle difference by sample index; watch/events.py makes the events),
+``ModelWatch.feed`` takes the stream (a1, a2, angle difference and the motor speed omega1 by sample index;
+watch/events.py makes the events),
 ``add_event`` one completed event. Once the window holds N events, every new event evaluates the reference
 (workbench/reference.py: consistency.test, diagnose's test, at the width that fits best -- the measurand) on the
 window, with the sensor noise floor read off the window's spectra; the alarm rule (watch/alarm.py) turns the
@@ -15,7 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from backlash_monitor.workbench.events import SEGMENT_SIGNALS
+from backlash_monitor.workbench.events import DC_SIGNALS, SEGMENT_SIGNALS
 from backlash_monitor.workbench.reference import Evidence, ModelReference
 
 from .alarm import AlarmRule, AlarmState, p_min, result_p_min
@@ -70,9 +71,9 @@ class WindowEvidence(Evidence):
         self._raw = value
 
     @classmethod
-    def of(cls, events, noise_psd, quant_step) -> "WindowEvidence":
+    def of(cls, events, noise_psd, quant_step, dc_names=SEGMENT_SIGNALS) -> "WindowEvidence":
         out = cls(None, np.stack([e.dc for e in events]), np.stack([e.spec for e in events]), noise_psd,
-                  np.array([e.entry_sample_index for e in events]),
+                  np.array([e.entry_sample_index for e in events]), tuple(dc_names),
                   denoised=(np.stack([e.denoised for e in events]) if all(e.denoised is not None for e in events)
                             else None),
                   quant_step=quant_step)
@@ -81,17 +82,27 @@ class WindowEvidence(Evidence):
 
 
 class ModelWatch:
+    """``record_mean``: the record-mean view's signals, as diagnose takes a recording's (events.dc_signals): a1, a2
+    and the motor speed omega1 (DC_SIGNALS, the default: each feed brings omega1), or a1 and a2 only (a drive that
+    does not stream omega1; a load on the motor then shows only in what it does to the accelerations)."""
+
     def __init__(self, reference: ModelReference, window_events: int = DEFAULT_WINDOW_EVENTS,
-                 rule: AlarmRule | None = None):
+                 rule: AlarmRule | None = None, record_mean=DC_SIGNALS):
         if isinstance(window_events, bool) or not isinstance(window_events, int) or window_events < 3:
             raise ValueError(f"window_events = {window_events!r}; allowed: an integer >= 3 (diagnose needs 3 "
                              "onset events)")
+        self.record_mean = tuple(record_mean)
+        missing = [n for n in self.record_mean if n not in reference.dc_names]
+        if missing:
+            raise ValueError(f"record-mean signals {', '.join(self.record_mean)}: the reference {getattr(reference, 'path', '')} has "
+                             f"no {', '.join(missing)} (it has {', '.join(reference.dc_names)}); rebuild it with "
+                             "`python -m backlash_monitor watch-reference` or watch a1 and a2 only")
         self.reference = reference
         self.window_events = window_events
         self.rule = (rule or AlarmRule()).check()
         self.state = AlarmState(self.rule)
         self.events: deque = deque(maxlen=window_events)
-        self.live = LiveEvents(reference.sample_period_s, reference.pulse_period_samples)
+        self.live = LiveEvents(reference.sample_period_s, reference.pulse_period_samples, dc_names=self.record_mean)
         self.views_noise = np.zeros(len(SEGMENT_SIGNALS))
         self.views_quant: np.ndarray | None = None     # per signal the ADC step the views quantise the model at
         self.noise_checked = False
@@ -100,7 +111,7 @@ class ModelWatch:
         self.evaluations = 0
         self.dof = reference.view_dof()          # the views' whitening: degrees of freedom (the rule's p-values)
         self.last: WatchUpdate | None = None
-        reference.views(self.views_noise, window_events)      # the views at zero noise, before the stream
+        reference.views(self.views_noise, window_events, self.record_mean)   # the views at zero noise, before the stream
 
     def _noise_scale(self) -> np.ndarray:
         """Per signal: the model's weakest spectral band as a white PSD [(m/s^2)^2/Hz]."""
@@ -110,9 +121,11 @@ class ModelWatch:
                                     self.reference.sample_period_s)
         return self.reference.base_bands.mean(axis=0).min(axis=-1) / unit
 
-    def feed(self, first_sample_index: int, a1, a2, angle_difference) -> list[WatchUpdate]:
+    def feed(self, first_sample_index: int, a1, a2, angle_difference, omega1=None) -> list[WatchUpdate]:
+        """The next samples of the drive's stream (omega1 [rad/s] when record_mean has it); the evaluations of the
+        onset events they complete."""
         out = []
-        for ev in self.live.feed(first_sample_index, a1, a2, angle_difference):
+        for ev in self.live.feed(first_sample_index, a1, a2, angle_difference, omega1):
             u = self.add_event(ev)
             if u is not None:
                 out.append(u)
@@ -162,7 +175,7 @@ class ModelWatch:
     def evidence(self) -> Evidence:
         noise = self._views_noise()
         return WindowEvidence.of(list(self.events), noise,
-                                 self.views_quant if np.any(self.views_quant > 0) else None)
+                                 self.views_quant if np.any(self.views_quant > 0) else None, self.record_mean)
 
     def add_event(self, event: LiveEvent) -> WatchUpdate | None:
         self.events.append(event)

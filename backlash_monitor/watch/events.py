@@ -2,8 +2,10 @@
 
 The project's contact_loss detector (the one ``diagnose`` runs) finds the onset entries in the angle difference;
 an event is complete once its pulse period has streamed past: then it has its raw segment (PRE_SAMPLES before the
-entry to POST_SAMPLES after it, a1 and a2), its period mean of a1 and a2 (events.period_means: one pulse period
-from PRE_SAMPLES before the entry; the period is the median spacing of the drive's recent onset entries), its
+entry to POST_SAMPLES after it, a1 and a2), its period mean of a1, a2 and the motor speed omega1 when it is
+streamed (events.period_means: one pulse period from PRE_SAMPLES before the entry; the period is the median
+spacing of the drive's recent onset entries; omega1's mean is the motor's load, which the accelerations do not
+show), its
 raw spectral-shape features (spectral.event_features) and the Welch spectrum of that period (the sensor noise
 floor is read off it, as analysis.sensor_noise_floor reads the whole record's). Plain numpy, no rclpy.
 
@@ -19,7 +21,7 @@ import numpy as np
 
 from backlash_monitor.windowing import BacklashEntryDetector
 from backlash_monitor.workbench import analysis, spectral
-from backlash_monitor.workbench.events import POST_SAMPLES, PRE_SAMPLES, SEGMENT_SIGNALS, denoise
+from backlash_monitor.workbench.events import DC_SIGNALS, POST_SAMPLES, PRE_SAMPLES, SEGMENT_SIGNALS, denoise
 
 ENTRY_SPACINGS = 16          # onset spacings the period is the median of
 PSD_EVERY = 4                # the Welch spectrum of every 4th event's period (a sensor's noise floor is a slow
@@ -31,7 +33,7 @@ PSD_EVERY = 4                # the Welch spectrum of every 4th event's period (a
 class LiveEvent:
     entry_sample_index: int
     raw: np.ndarray              # (2, PRE + POST) a1, a2 [m/s^2]
-    dc: np.ndarray               # (2,) period means [m/s^2]
+    dc: np.ndarray               # (D,) period means of LiveEvents.dc_names [m/s^2, rad/s]
     spec: np.ndarray             # (n_features,) spectral-shape features (spectral.event_features)
     psd: np.ndarray | None       # (2, F) Welch PSD of the event's period [(m/s^2)^2/Hz] (analysis.welch_psd);
                                  # every PSD_EVERY-th event
@@ -83,16 +85,22 @@ class SampleRing:
 
 
 class LiveEvents:
-    """Streams a drive's a1, a2 and angle difference in; gives its completed onset events out."""
+    """Streams a drive's a1, a2, angle difference (and omega1) in; gives its completed onset events out.
+    ``dc_names``: the record-mean view's signals, a1 and a2 and optionally omega1 (events.DC_SIGNALS' order);
+    with omega1 every feed brings it."""
 
-    def __init__(self, sample_period_s: float, pulse_period_samples: int, psd_every: int = PSD_EVERY):
+    def __init__(self, sample_period_s: float, pulse_period_samples: int, psd_every: int = PSD_EVERY,
+                 dc_names=SEGMENT_SIGNALS):
+        self.dc_names = tuple(dc_names)
+        if self.dc_names not in (SEGMENT_SIGNALS, DC_SIGNALS):
+            raise ValueError(f"record-mean signals {self.dc_names}; allowed: {SEGMENT_SIGNALS} or {DC_SIGNALS}")
         self.dt = float(sample_period_s)
         self.psd_every = int(psd_every)
         self.completed = 0
         self.default_period = int(pulse_period_samples)
         self.detector = BacklashEntryDetector(trigger="contact_loss", sample_period_s=self.dt)
         # the detector confirms an entry a few ms late; an event needs PRE before it and a period after it
-        self.ring = SampleRing(SEGMENT_SIGNALS, PRE_SAMPLES + 3 * self.default_period)
+        self.ring = SampleRing(self.dc_names, PRE_SAMPLES + 3 * self.default_period)
         self.pending: deque = deque()
         self.spacings: deque = deque(maxlen=ENTRY_SPACINGS)
         self.last_entry: int | None = None
@@ -101,14 +109,22 @@ class LiveEvents:
         self.dropped_events = 0          # cut by a gap in the stream
         self.gaps = 0
 
-    def feed(self, first_sample_index: int, a1, a2, angle_difference) -> list[LiveEvent]:
+    def feed(self, first_sample_index: int, a1, a2, angle_difference, omega1=None) -> list[LiveEvent]:
+        """The next samples of the stream (from ``first_sample_index``; omega1 [rad/s] when dc_names has it); the
+        onset events they complete."""
         first = int(first_sample_index)
+        streams = {"a1": a1, "a2": a2}
+        if "omega1" in self.dc_names:
+            if omega1 is None or len(omega1) != len(a1):
+                raise ValueError("this watch's record mean has omega1: each feed brings omega1's samples of the "
+                                 "same range")
+            streams["omega1"] = omega1
         if self.next_index is not None and first != self.next_index:
             self.gaps += 1
             self.dropped_events += len(self.pending)
             self.pending.clear()
             self.last_entry = None
-        self.ring.append(first, {"a1": a1, "a2": a2})
+        self.ring.append(first, streams)
         self.next_index = first + len(a1)
         for e in self.detector.feed(first, {"angle_difference": np.asarray(angle_difference, dtype=np.float64)},
                                     self.dt):
@@ -137,8 +153,9 @@ class LiveEvents:
     def _event(self, k: int, lo: int, hi: int) -> LiveEvent:
         seg_hi = k + POST_SAMPLES
         raw = np.stack([self.ring.get(s, lo, seg_hi) for s in SEGMENT_SIGNALS])
-        period = np.stack([self.ring.get(s, lo, lo + self.period) for s in SEGMENT_SIGNALS])
-        psd = analysis.welch_psd(period, 1.0 / self.dt)[1] if self.completed % self.psd_every == 0 else None
+        period = np.stack([self.ring.get(s, lo, lo + self.period) for s in self.dc_names])
+        accel = period[:len(SEGMENT_SIGNALS)]
+        psd = analysis.welch_psd(accel, 1.0 / self.dt)[1] if self.completed % self.psd_every == 0 else None
         self.completed += 1
         return LiveEvent(int(k), raw, period.mean(axis=1), spectral.event_features(raw[None], self.dt)[0], psd,
                          denoise(raw))

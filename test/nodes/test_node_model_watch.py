@@ -86,6 +86,63 @@ def test_ok_on_its_model_then_warn_with_a_snapshot_when_friction_switches_on(ros
 
 
 @pytest.mark.ros
+def test_a_drive_without_the_motor_speed_is_named_and_the_parameter_to_set_is_said(ros_env, ref_path, tmp_path):
+    """The watch joins omega1 with a1, a2 and the angle difference (its record mean has the motor speed); a drive
+    that publishes the three but no plant/omega1 gets no evaluation, and /diagnostics says WARN naming the missing
+    topic and watch_omega1 false, instead of 'collecting onset events' for ever. With watch_omega1 false the same
+    stream is watched."""
+    import numpy as np
+    from backlash_monitor_msgs.msg import SignalChunk
+    os.environ["ROS_DOMAIN_ID"] = ros_env["ROS_DOMAIN_ID"]
+    rclpy.init()
+    try:
+        for watch_omega1 in (True, False):
+            watch = ModelWatchNode(namespace=NS, parameter_overrides=[
+                Parameter("reference", value=ref_path), Parameter("qos", value="reliable"),
+                Parameter("snapshot_dir", value=""), Parameter("watch_omega1", value=watch_omega1),
+                Parameter("stale_after_s", value=0.5), Parameter("batch_s", value=0.0)])
+            talker = rclpy.create_node("talker", namespace=NS)
+            qos = rclpy.qos.QoSProfile(depth=100, reliability=rclpy.qos.ReliabilityPolicy.RELIABLE)
+            pubs = {n: talker.create_publisher(SignalChunk, f"plant/{n}", qos) for n in ("a1", "a2", "angle_difference")}
+            executor = rclpy.executors.SingleThreadedExecutor()
+            executor.add_node(watch)
+            executor.add_node(talker)
+            for _ in range(200):
+                if all(p.get_subscription_count() for p in pubs.values()):
+                    break
+                executor.spin_once(timeout_sec=0.01)
+            for c in range(40):
+                for name, pub in pubs.items():
+                    msg = SignalChunk(signal_name=name, unit="rad" if name == "angle_difference" else "m/s^2",
+                                      sample_period_s=2e-5, first_sample_index=1000 * c,
+                                      samples=np.zeros(1000).tolist())
+                    pub.publish(msg)
+                executor.spin_once(timeout_sec=0.01)
+            for _ in range(100):
+                executor.spin_once(timeout_sec=0.01)
+            missing = watch.missing_streams()
+            joined = watch.counts["chunks"]
+            watch.destroy_node()
+            talker.destroy_node()
+            if watch_omega1:
+                assert joined == 0
+                assert "/line1/drive7/plant/omega1" in missing and "set watch_omega1 false" in missing
+            else:
+                assert joined == 40 and missing == ""
+    finally:
+        rclpy.try_shutdown()
+
+
+@pytest.mark.ros
+@pytest.mark.process
+def test_watch_omega1_without_omega1_in_the_snapshot_is_refused(ros_env):
+    proc = subprocess.run([EXECUTABLE, "--ros-args", "-p", "snapshot_signals:=[a1,a2,angle_difference]"],
+                          env=ros_env, capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2, proc.stderr
+    assert "without omega1 while watch_omega1 is true" in proc.stderr and "Traceback" not in proc.stderr
+
+
+@pytest.mark.ros
 @pytest.mark.process
 @pytest.mark.parametrize("override, named", [("window_events:=2", "window_events"),
                                              ("reference:=/nonexistent.watch.npz", "does not exist"),

@@ -9,7 +9,7 @@ from backlash_monitor.watch.alarm import AlarmRule, AlarmState
 from backlash_monitor.watch.core import ModelWatch, evaluate_recording
 from backlash_monitor.watch.events import LiveEvents, SampleRing
 from backlash_monitor.workbench import diagnose, plant_adapter, reference, synthetic
-from backlash_monitor.workbench.events import event_set
+from backlash_monitor.workbench.events import DC_SIGNALS, SEGMENT_SIGNALS, event_set
 from backlash_monitor.workbench.model import load_model
 
 SEEDS = [0, 1, 2]          # a small ensemble keeps the tests fast; diagnose is given the same
@@ -164,24 +164,42 @@ def test_sample_ring_returns_exactly_the_samples_it_was_given():
         assert np.array_equal(ring.get("x", lo, hi), np.array(held[lo:hi])), (lo, hi)
 
 
-def test_live_events_are_the_workbench_events_in_any_chunking(model):
+STREAMS = ("a1", "a2", "angle_difference", "omega1")
+
+
+@pytest.mark.parametrize("dc_names", [DC_SIGNALS, SEGMENT_SIGNALS])
+def test_live_events_are_the_workbench_events_in_any_chunking(model, dc_names):
     """Fed in chunks of 777 or 5000 samples, the live events are diagnose's events (events.event_set): the same
-    entries and segments, and the period means to the few samples the period estimates differ by."""
+    entries and segments, and the period means (a1, a2 and, streamed, the motor speed omega1) to the few samples
+    the period estimates differ by."""
     meas = synthetic.hidden_effect_recording(model, 3.0, seed=33)
-    ref_ev = event_set(meas.signals, meas.sample_period_s, ("a1", "a2"))      # the live events: a1 and a2
+    ref_ev = event_set(meas.signals, meas.sample_period_s, dc_names)
     for chunk in (777, 5000):
-        live = LiveEvents(meas.sample_period_s, 12500)
+        live = LiveEvents(meas.sample_period_s, 12500, dc_names=dc_names)
         got = []
         n = meas.n_samples
         for k in range(0, n, chunk):
-            got += live.feed(k, *(meas.signals[s][k:k + chunk] for s in ("a1", "a2", "angle_difference")))
+            got += live.feed(k, *(meas.signals[s][k:k + chunk] for s in STREAMS))
         entries = [e.entry_sample_index for e in got]
         assert entries == list(ref_ev.entries[:len(entries)]) and len(entries) >= ref_ev.n_events - 1
         for i, e in enumerate(got):
             assert np.array_equal(e.raw, ref_ev.raw[i])
             # the period mean: over the median of the last 16 onset spacings (live) or of the whole record's
-            # (offline): the periods differ by up to ~10 samples (the trigger's scatter), the means by < 0.03 m/s^2
-            assert np.allclose(e.dc, ref_ev.dc[i], rtol=0, atol=0.03)
+            # (offline): the periods differ by up to ~10 samples (the trigger's scatter), the accelerations' means
+            # by < 0.03 m/s^2, the motor speed's (~0.1 % of it in a period's ripple) by < 0.05 rad/s
+            assert e.dc.shape == (len(dc_names),)
+            assert np.allclose(e.dc[:2], ref_ev.dc[i, :2], rtol=0, atol=0.03)
+            assert np.allclose(e.dc[2:], ref_ev.dc[i, 2:], rtol=0, atol=0.05)
+
+
+def test_a_watch_with_the_motor_speed_needs_it_in_every_feed(model, ref):
+    live = LiveEvents(2e-5, 12500, dc_names=DC_SIGNALS)
+    with pytest.raises(ValueError, match="omega1"):
+        live.feed(0, np.zeros(100), np.zeros(100), np.zeros(100))
+    with pytest.raises(ValueError, match="record-mean signals"):
+        LiveEvents(2e-5, 12500, dc_names=("a1", "omega2"))
+    watch = ModelWatch(ref, window_events=16, record_mean=SEGMENT_SIGNALS)     # a drive without omega1
+    assert watch.feed(0, np.zeros(100), np.zeros(100), np.zeros(100)) == []
 
 
 def test_the_window_evidence_stacks_its_raw_segments_only_when_read(model, ref):
@@ -249,10 +267,10 @@ def test_alarm_state_persistence_and_clearing():
 
 def _events(model, seconds, seed, overrides=None):
     meas = synthetic.hidden_effect_recording(model, seconds, seed=seed, config_overrides=overrides)
-    live = LiveEvents(meas.sample_period_s, ref_period := 12500)
+    live = LiveEvents(meas.sample_period_s, ref_period := 12500, dc_names=DC_SIGNALS)
     out = []
     for k in range(0, meas.n_samples, 5000):
-        out += live.feed(k, *(meas.signals[s][k:k + 5000] for s in ("a1", "a2", "angle_difference")))
+        out += live.feed(k, *(meas.signals[s][k:k + 5000] for s in STREAMS))
     assert ref_period == 12500
     return out
 
@@ -282,7 +300,8 @@ def test_the_watch_stays_ok_on_its_model_and_warns_when_an_effect_switches_on(mo
     (PlantSimulator.set_parameters): OK before, WARN within 16 onsets after, the WARN's evaluations outside the
     band in the event average."""
     cfg = model.plant_config({"effects.wheel_coulomb_friction": True})      # neutral until switched
-    sim = PlantSimulator([Scenario(width_m=WIDTH_M, seed=5)], config=cfg, outputs=("a1", "a2", "angle_difference"))
+    sim = PlantSimulator([Scenario(width_m=WIDTH_M, seed=5)], config=cfg,
+                         outputs=("a1", "a2", "angle_difference", "omega1"))
     watch = ModelWatch(ref, window_events=12, rule=AlarmRule(view_p=1e-6, residual_ratio=3.0, persistence=2))
     switch = 8 * 50_000
     updates = []
@@ -290,7 +309,7 @@ def test_the_watch_stays_ok_on_its_model_and_warns_when_an_effect_switches_on(mo
         if k == switch:
             sim.set_parameters({"wheel_coulomb_friction.torque_Nm": 2.0})
         ch = sim.run(2500)
-        updates += watch.feed(ch.first_sample_index, ch.a1[0], ch.a2[0], ch.angle_difference[0])
+        updates += watch.feed(ch.first_sample_index, ch.a1[0], ch.a2[0], ch.angle_difference[0], ch.omega1[0])
     before = [u for u in updates if u.entry_sample_index < switch]
     after = [u for u in updates if u.entry_sample_index >= switch]
     assert before and all(u.level == "OK" for u in before)
@@ -321,11 +340,11 @@ def test_the_live_watch_quantises_the_model_at_the_adcs_step_as_diagnose_does(mo
     step = 2 * 4 * 9.81 / 2 ** 16
     meas = synthetic.hidden_effect_recording(model, 4.6, seed=44)
     meas.signals["a2"] = np.round(meas.signals["a2"] / step) * step
-    sig = {s: meas.signals[s] for s in ("a1", "a2", "angle_difference")}
+    sig = {s: meas.signals[s] for s in STREAMS}
     watch = ModelWatch(ref)
     updates = []
     for k in range(0, meas.n_samples, 5000):
-        updates += watch.feed(k, *(sig[s][k:k + 5000] for s in ("a1", "a2", "angle_difference")))
+        updates += watch.feed(k, *(sig[s][k:k + 5000] for s in STREAMS))
     assert len(watch.events) == watch.window_events and updates
     window = np.concatenate([e.raw[1] for e in watch.events])
     assert quantisation_step(window) == pytest.approx(step, rel=1e-6)
@@ -348,3 +367,25 @@ def test_the_live_watch_quantises_the_model_at_the_adcs_step_as_diagnose_does(mo
     white = ref.evaluate(reference.Evidence(live.raw, live.dc, live.spec, np.array([0.0, step ** 2 / 6 * 2e-5]),
                                             live.entries, live.dc_names), where=False)
     assert white.result.views["spectral_shape"].t2 > 3 * spectral_view.limit, white.result.views["spectral_shape"].t2
+
+
+@pytest.mark.slow
+def test_the_motor_speed_shows_a_load_on_the_motor_that_the_accelerations_do_not(model, ref):
+    """0.25 p.u. more load on the induction motor slows it by its slip (~2 rad/s) and leaves the accelerations'
+    period means at ~0: the live watch with omega1 in its record mean sees it outside the view's band (as diagnose
+    does on a recording with omega1), the watch on a1 and a2 alone sees nothing; the clean drive is inside both."""
+    load = plant_adapter.config_overrides({"motor_load_offset.load_pu": 0.25})
+    for overrides, outside_with_omega1 in ((None, False), (load, True)):
+        meas = synthetic.hidden_effect_recording(model, 5.0, seed=51, config_overrides=overrides)
+        views = {}
+        for record_mean in (DC_SIGNALS, SEGMENT_SIGNALS):
+            watch = ModelWatch(ref, window_events=16, record_mean=record_mean)
+            updates = []
+            for k in range(0, meas.n_samples, 5000):
+                updates += watch.feed(k, *(meas.signals[s][k:k + 5000] for s in STREAMS))
+            views[len(record_mean)] = updates[-1].evaluation.result.views["record_mean"]
+        assert views[3].dimension == 3 and views[2].dimension == 2
+        assert views[3].outside_band == outside_with_omega1
+        assert not views[2].outside_band
+        if outside_with_omega1:
+            assert views[3].t2 > 20 * views[2].t2
