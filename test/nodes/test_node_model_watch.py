@@ -135,21 +135,14 @@ def test_a_drive_without_the_motor_speed_is_named_and_the_parameter_to_set_is_sa
 
 @pytest.mark.ros
 @pytest.mark.process
-def test_watch_omega1_without_omega1_in_the_snapshot_is_refused(ros_env):
-    proc = subprocess.run([EXECUTABLE, "--ros-args", "-p", "snapshot_signals:=[a1,a2,angle_difference]"],
-                          env=ros_env, capture_output=True, text=True, timeout=60)
-    assert proc.returncode == 2, proc.stderr
-    assert "without omega1 while watch_omega1 is true" in proc.stderr and "Traceback" not in proc.stderr
-
-
-@pytest.mark.ros
-@pytest.mark.process
 @pytest.mark.parametrize("override, named", [("window_events:=2", "window_events"),
                                              ("reference:=/nonexistent.watch.npz", "does not exist"),
                                              ("view_p:=0.5", "view_p"),
                                              ("batch_s:=0.9", "batch_s"),
                                              ("stale_after_s:=0.1", "batch_s <= stale_after_s / 2"),
-                                             ("width_m:=0.0123", "watch-reference --width-m 0.0123")])
+                                             ("width_m:=0.0123", "watch-reference --width-m 0.0123"),
+                                             ("snapshot_signals:=[a1,a2,angle_difference]",
+                                              "without omega1 while watch_omega1 is true")])
 def test_bad_parameters_stop_the_node_with_a_clear_line(ros_env, override, named):
     proc = subprocess.run([EXECUTABLE, "--ros-args", "-p", override], env=ros_env, capture_output=True, text=True,
                           timeout=60)
