@@ -42,11 +42,19 @@ from types import SimpleNamespace
 import numpy as np
 
 from . import analysis, consistency, spectral, tolerance
-from .events import (DC_BLOCKS, PRE_SAMPLES, POST_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, denoise,
-                     ensemble_from_runs, event_set)
+from .events import (DC_BLOCKS, PRE_SAMPLES, POST_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, dc_block_deviations,
+                     denoise, ensemble_from_runs, event_set)
 
-FORMAT_VERSION = 3                 # 2: the record mean of a1, a2 and omega1 (diagnose's record-mean view on wb);
-                                   # 3: the model's own events at every grid width (width-local whitening)
+FORMAT_VERSION = 4                 # 2: the record mean of a1, a2 and omega1 (diagnose's record-mean view on wb);
+                                   # 3: the model's own events at every grid width (width-local whitening);
+                                   # 4: the record mean's noise from RECORD_MEAN_SEEDS more seeds (3 is read too)
+READ_VERSIONS = (3, 4)
+RECORD_MEAN_SEEDS = 24             # more noise seeds of the model at its nominal width, for the record mean's noise
+                                   # alone: its whitening is estimated from 6 seeds x (DC_BLOCKS - 1) = 18 degrees of
+                                   # freedom in diagnose's ensemble, and the watch's alarm at p 1e-6 on 18 dof is T^2
+                                   # 98.6 at 3 dimensions (chi^2's 30.7); with 30 seeds, 90 dof: 37.3. ~6 s more
+                                   # per build (docs/model_watch.md, "The record mean's noise")
+RECORD_MEAN_SEED0 = 1_000_000      # their seeds: RECORD_MEAN_SEED0 + i (not the ensemble's 0..K-1 nor BUILD_SEED)
 SUFFIX = ".watch.npz"              # LIB.npz -> LIB.watch.npz
 BUILD_DURATION_S = 4.0             # the model's own recording the views are built on: 16 onset events per seed, the
                                    # 4 s recordings the workbench is measured on (docs/model_watch.md)
@@ -171,6 +179,7 @@ class Views:
             raise ValueError(f"record-mean signals {self.dc_names}; this reference has "
                              f"{', '.join(ref.dc_names)}") from None
         seed_dc = [np.asarray(d)[:, dc_idx] for d in ref.seed_dc]
+        more_dc = [np.asarray(d)[:, dc_idx] for d in ref.record_mean_dc]     # the record-mean seeds' (none: diagnose's)
         self.n_events = int(n_events)
         self.n_seeds = len(ref.seeds)
         self.n_event_coords = int(ref.base_mean.size)
@@ -187,7 +196,9 @@ class Views:
         model_event_spec, chain = spectral.sensor_chain(ref.seed_events, dt, self.noise_psd, self.quant_step)
         feats = np.vstack(model_event_spec)
         self.ws = 1.0 / np.maximum(feats.std(axis=0) / math.sqrt(self.n_events), 1e-12)
-        self.wdc = 1.0 / np.maximum(analysis.record_mean_floor(seed_dc, self.n_events), 1e-12)   # diagnose's
+        # the record mean's noise floor: diagnose's estimate (analysis.record_mean_floor) on the ensemble's seeds and
+        # the record-mean seeds
+        self.wdc = 1.0 / np.maximum(analysis.record_mean_floor(seed_dc + more_dc, self.n_events), 1e-12)
         self.spec_noise = chain if self.quant_step is not None \
             else spectral.noise_power(self.noise_psd, PRE_SAMPLES + POST_SAMPLES, dt)
         # the model's prediction at the nominal width and at every width of the grid
@@ -216,7 +227,12 @@ class Views:
         self.basis = self.blocks = self.complement = self.tolerance_z = None
         z_all = consistency.model_event_vectors(comp, self)
         self.raw_blocks = consistency.candidate_basis(spans, self)
-        self.basis, self.blocks = consistency.whiten(self.raw_blocks, z_all)
+        more = None
+        if more_dc:       # the record-mean seeds' block deviations: rows for the record mean's whitening only
+            more = np.zeros((sum(len(d) for d in more_dc), z_all.shape[1]))
+            more[:, self.dc_slice] = np.vstack([dc_block_deviations(d) for d in more_dc]) * self.wdc[None]
+        self.basis, self.blocks = consistency.whiten(self.raw_blocks, z_all,
+                                                     None if more is None else {"record_mean": more})
         # the noise directions outside the subspace come from the event average alone (not from the noise floor,
         # which only the spectral block sees): computed once per number of events (an SVD of K*E x 4596: ~0.5 s)
         complement = ref._complements.get(self.n_events)
@@ -355,6 +371,9 @@ class ModelReference:
     local_complement: np.ndarray | None = None
     local_zev: list | None = None
     local_zc: list | None = None
+    record_mean_dc: list = field(default_factory=list)   # per extra seed (RECORD_MEAN_SEEDS): (E_k, D) the model's
+                                                         # period means at the nominal width, for the record mean's
+                                                         # noise (its floor and whitening) beside seed_dc's
     path: Path | None = None
     _views: dict = field(default_factory=dict, repr=False)
     _complements: dict = field(default_factory=dict, repr=False)
@@ -458,11 +477,12 @@ class ModelReference:
 
     def view_dof(self) -> dict:
         """Per view: the degrees of freedom of the covariance its whitening is estimated from (the model's K x E
-        own events; the record mean's from its K x DC_BLOCKS block means less the seeds' means) -- what
+        own events; the record mean's from its K (+ the record-mean seeds) x DC_BLOCKS block means less the seeds'
+        means) -- what
         consistency.predictive_t2_isf needs for the view's honest tail."""
         n = len(self.seeds) * self.build_events
         return {"event_average": n - 1, "spectral_shape": n - 1, "outside": n - 1,
-                "record_mean": len(self.seeds) * (DC_BLOCKS - 1)}
+                "record_mean": (len(self.seeds) + len(self.record_mean_dc)) * (DC_BLOCKS - 1)}
 
     def clip_radius(self, views, clip_p: float) -> dict:
         """Per clipped view: the length of one event's whitened deviation that the model's own events exceed with
@@ -569,7 +589,12 @@ class ModelReference:
         arrays["local_complement"] = self.local_complement
         for name, parts in (("seed_events", self.seed_events), ("seed_dc", self.seed_dc),
                             ("jac_bands", self.jac_bands), ("grid_bands", self.grid_bands),
-                            ("local_zev", self.local_zev), ("local_zc", self.local_zc)):
+                            ("local_zev", self.local_zev), ("local_zc", self.local_zc),
+                            ("record_mean_dc", self.record_mean_dc)):
+            if not parts:
+                arrays[name] = np.zeros((0, len(self.dc_names)))
+                arrays[name + "_counts"] = np.zeros(0, dtype=int)
+                continue
             arrays[name] = np.concatenate(parts, axis=0)
             arrays[name + "_counts"] = np.array([len(x) for x in parts])
         tmp = p.with_name(p.name + f".partial{os.getpid()}")
@@ -636,9 +661,9 @@ def load(path) -> ModelReference:
     try:
         with np.load(p, allow_pickle=False) as z:
             version = int(z["format_version"]) if "format_version" in z.files else None
-            if version != FORMAT_VERSION:
+            if version not in READ_VERSIONS:
                 raise ReferenceError(f"model reference {p} has format version {version}; this code reads "
-                                     f"{FORMAT_VERSION}; {rebuild}")
+                                     f"{', '.join(map(str, READ_VERSIONS))}; {rebuild}")
             d = {k: z[k] for k in z.files}
     except ReferenceError:
         raise
@@ -656,7 +681,9 @@ def load(path) -> ModelReference:
         grid_bands=_split(d["grid_bands"], d["grid_bands_counts"]), grid_dc=d["grid_dc"],
         noise_band_psd=d["noise_band_psd"], noise_band_f=d["noise_band_f"],
         local_event_basis=d["local_event_basis"], local_complement=d["local_complement"],
-        local_zev=_split(d["local_zev"], d["local_zev_counts"]), local_zc=_split(d["local_zc"], d["local_zc_counts"]), path=p)
+        local_zev=_split(d["local_zev"], d["local_zev_counts"]), local_zc=_split(d["local_zc"], d["local_zc_counts"]),
+        record_mean_dc=(_split(d["record_mean_dc"], d["record_mean_dc_counts"]) if "record_mean_dc" in d else []),
+        path=p)
 
 
 # ------------------------------------------------------------------------------------------------ build
@@ -683,7 +710,7 @@ def cache_path(model) -> Path:
     from backlash_monitor.classifier.dataset import CACHE_DIR
     from backlash_monitor.classifier.patterns import config_hash
     parts = {"plant": config_hash(model.plant_config()), "nominal": dict(model.nominal), "label": model.label(),
-             "format": FORMAT_VERSION, "duration_s": BUILD_DURATION_S, "seed": BUILD_SEED, "width_step": WIDTH_STEP,
+             "format": FORMAT_VERSION, "record_mean_seeds": RECORD_MEAN_SEEDS, "duration_s": BUILD_DURATION_S, "seed": BUILD_SEED, "width_step": WIDTH_STEP,
              "width_range": WIDTH_RANGE, "code": source_hash()}
     key = hashlib.sha256(json.dumps(parts, sort_keys=True, default=repr).encode()).hexdigest()[:16]
     safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in f"{model.name}_v{model.version}")
@@ -715,12 +742,13 @@ def _width_grid(nominal_width_m: float, step: float = WIDTH_STEP) -> np.ndarray:
 
 
 def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None,
-          width_step: float = WIDTH_STEP, recording=None) -> ModelReference:
+          width_step: float = WIDTH_STEP, recording=None, record_mean_seeds: int = RECORD_MEAN_SEEDS) -> ModelReference:
     """The reference of ``model`` (a WorkbenchModel): diagnose's prepare and screening on a recording the model
     makes of itself (``duration_s``, noise seed BUILD_SEED), plus the width grid (``width_step`` of the nominal
     width over +-WIDTH_RANGE) on the same seeds. ``recording``: build on this measurement instead (its conditions
     and length: then the reference evaluated on it is diagnose's test on it, to the last digit -- the tests check
-    it)."""
+    it, with ``record_mean_seeds`` 0). ``record_mean_seeds``: more noise seeds at the nominal width whose period means
+    the record mean's noise is estimated from too (RECORD_MEAN_SEEDS)."""
     from . import diagnose, synthetic
     t0 = time.perf_counter()
     meas = recording if recording is not None else synthetic.hidden_effect_recording(model, duration_s, BUILD_SEED)
@@ -746,6 +774,14 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
         grid_events = [[event_set({name: runs[name][i, k] for name in runs}, p.dt) for k in range(len(p.seeds))]
                        for i in range(len(sets))]
         del runs
+        # the record-mean seeds: the nominal set (as the ensemble's set 0) on other noise seeds, their period means
+        more_seeds = [RECORD_MEAN_SEED0 + i for i in range(int(record_mean_seeds))]
+        record_mean_dc = []
+        if more_seeds:
+            runs = plant_adapter.simulate_sets(model, p._merge([{}]), more_seeds, p.n_samples, conditions=p.conditions)
+            record_mean_dc = [event_set({name: runs[name][0, k] for name in runs}, p.dt, p.dc_names).dc
+                              for k in range(len(more_seeds))]
+            del runs
     finally:
         p.evaluate = evaluate
     comp = run.comp
@@ -789,7 +825,7 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
             # diagnose's own consistency test on the build recording (screen_step's): provenance, and what a
             # reference built on a recording must reproduce on it (test_model_watch_core.py)
             "build_consistency": run.before.to_json(), "build_events_measured": int(p.n_events),
-            "dc_names": list(p.dc_names)}
+            "dc_names": list(p.dc_names), "record_mean_seeds": more_seeds}
     ref = ModelReference(
         meta=meta, sample_period_s=float(meas.sample_period_s), seeds=list(comp.seeds),
         build_events=int(round(float(np.mean(comp.ensemble.n_events[0])))), weights=np.asarray(w, dtype=float),
@@ -804,7 +840,7 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
         grid_bands=[np.concatenate(grid_ens.seed_bands[i], axis=0) for i in range(len(changes))],
         grid_dc=np.stack([grid_ens.dc_mean(i) for i in range(len(changes))]),
         noise_band_psd=np.stack([spectra[s]["ensemble"].mean(axis=0) for s in SEGMENT_SIGNALS]),
-        noise_band_f=np.asarray(spectra[SEGMENT_SIGNALS[0]]["f"]))
+        noise_band_f=np.asarray(spectra[SEGMENT_SIGNALS[0]]["f"]), record_mean_dc=record_mean_dc)
     _add_local(ref, grid_events)
     ref.meta["build_seconds"] = time.perf_counter() - t0
     return ref

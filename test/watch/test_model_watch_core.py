@@ -43,7 +43,7 @@ def test_a_reference_built_on_a_recording_is_diagnoses_test_on_it_to_the_last_di
     are rebuilt from the stored arrays by consistency.py's own functions, nothing re-implemented."""
     meas = synthetic.hidden_effect_recording(model, 3.0, seed=36, config_overrides={
         "effects.load_mass_drift": True, "load_mass_drift.relative_change": 0.15})
-    own = reference.load(reference.build(model, seeds=SEEDS, width_step=0.2, recording=meas)
+    own = reference.load(reference.build(model, seeds=SEEDS, width_step=0.2, recording=meas, record_mean_seeds=0)
                          .save(tmp_path / "own.watch.npz"))
     ours = own.evaluate(reference.evidence_from_measurement(meas, own), profile_width=False)
     theirs = own.meta["build_consistency"]
@@ -53,6 +53,36 @@ def test_a_reference_built_on_a_recording_is_diagnoses_test_on_it_to_the_last_di
         assert ours.result.views[name].t2 == pytest.approx(v["T2"], rel=1e-9), name
         assert ours.result.views[name].dimension == v["dimension"]
     assert ours.result.residual_over_noise == pytest.approx(theirs["residual_over_noise"], rel=1e-9)
+
+
+@pytest.mark.slow
+def test_the_record_mean_seeds_sharpen_the_record_means_noise_and_nothing_else(model, tmp_path):
+    """More noise seeds of the model at its nominal width (reference.RECORD_MEAN_SEEDS) give the record mean's floor
+    and whitening more degrees of freedom (K x (DC_BLOCKS - 1) -> (K + extra) x (DC_BLOCKS - 1)); the other views
+    are untouched (to rounding: 1e-12). A reference of format 3 (none) is still read, with diagnose's estimate."""
+    import numpy as np
+    meas = synthetic.hidden_effect_recording(model, 3.0, seed=36)
+    plain = reference.build(model, seeds=SEEDS, width_step=0.2, recording=meas, record_mean_seeds=0)
+    more = reference.load(reference.build(model, seeds=SEEDS, width_step=0.2, recording=meas, record_mean_seeds=9)
+                          .save(tmp_path / "more.watch.npz"))
+    assert plain.view_dof()["record_mean"] == 3 * 3 and more.view_dof()["record_mean"] == (3 + 9) * 3
+    assert len(more.record_mean_dc) == 9 and all(d.shape[1] == len(more.dc_names) for d in more.record_mean_dc)
+    evidence = reference.evidence_from_measurement(meas, plain)
+    a, b = plain.evaluate(evidence, profile_width=False), more.evaluate(evidence, profile_width=False)
+    for name, v in a.result.views.items():
+        if name != "record_mean":
+            assert b.result.views[name].t2 == pytest.approx(v.t2, rel=1e-12), name
+    assert b.result.views["record_mean"].t2 != a.result.views["record_mean"].t2
+    # format 3: no record-mean seeds in the file
+    path = plain.save(tmp_path / "v3.watch.npz")
+    with np.load(path) as z:
+        arrays = {k: z[k] for k in z.files if not k.startswith("record_mean_dc")}
+    arrays["format_version"] = np.array(3)
+    np.savez(tmp_path / "v3.watch.npz", **arrays)
+    old = reference.load(tmp_path / "v3.watch.npz")
+    assert old.record_mean_dc == [] and old.view_dof()["record_mean"] == 3 * 3
+    assert old.evaluate(evidence, profile_width=False).result.views["record_mean"].t2 == \
+        a.result.views["record_mean"].t2
 
 
 @pytest.mark.slow
