@@ -23,10 +23,19 @@ signal guard conditions without a lock; ``Executor.shutdown()`` unregisters its 
   of the idle node died with SIGSEGV in 14 to 19 of 20 runs with SCHED_FIFO and in 2 to 11 of 20
   without, depending on the machine's load (docs/graph.md "Shutdown").
 
+At exit (atexit: Python has finished the program, C++ static destructors have not run yet) it
+prints ``dds participant at exit: alive|gone|unknown``: whether Fast DDS still holds a
+DomainParticipant of this process in ROS_DOMAIN_ID (asked through Fast DDS's own
+DomainParticipantFactory::lookup_participant; ``unknown`` where that library or symbol is not
+found). One still alive there is deleted by Fast DDS's static destructors, where (Fast DDS 2.14)
+it can spin forever: a managed_chain ran on 23 minutes after SIGTERM (nodes/lifecycle.py).
+
 Linux only (/proc, sched_setscheduler).
 """
 from __future__ import annotations
 
+import atexit
+import ctypes
 import os
 import runpy
 import sys
@@ -88,6 +97,25 @@ def freeze_startup_objects() -> None:
     print("READY", flush=True)
 
 
+def dds_participant_at_exit() -> str:
+    """``alive``, ``gone`` or ``unknown``: a Fast DDS participant of this process in its domain."""
+    try:   # the copy rmw_fastrtps_cpp loaded, not a second one
+        lib = ctypes.CDLL("libfastrtps.so.2.14", mode=os.RTLD_NOLOAD)
+        factory = lib._ZN8eprosima7fastdds3dds24DomainParticipantFactory12get_instanceEv
+        lookup = lib._ZNK8eprosima7fastdds3dds24DomainParticipantFactory18lookup_participantEj
+    except (OSError, AttributeError):
+        return "unknown"
+    factory.restype = ctypes.c_void_p
+    lookup.restype = ctypes.c_void_p
+    lookup.argtypes = [ctypes.c_void_p, ctypes.c_uint32]
+    domain = int(os.environ.get("ROS_DOMAIN_ID", "0") or 0)
+    return "alive" if lookup(factory(), domain) else "gone"
+
+
+def report_dds_participant() -> None:
+    os.write(2, f"dds participant at exit: {dds_participant_at_exit()}\n".encode())
+
+
 def idle_node():
     from rclpy.node import Node
     return Node("shutdown_probe")
@@ -100,6 +128,7 @@ def main(argv: list[str]) -> int:
     rclpy.install_signal_handlers = install_signal_handlers   # what rclpy.init calls
     _rclpy.unregister_sigint_guard_condition = unregister_sigint_guard_condition
     runtime.freeze_startup_objects = freeze_startup_objects
+    atexit.register(report_dds_participant)
     target, args = argv[0], argv[1:]
     if target == "idle":
         return runtime.run_node(idle_node, args=[sys.argv[0], *args])

@@ -48,11 +48,20 @@ class ManagedNodes(LifecycleNode):
         return nodes
 
     def _release(self) -> None:
-        for node in self.owned:
-            if self.executor_ref is not None:
-                self.executor_ref.remove_node(node)
-            node.destroy_node()
-        self.owned = []
+        """Remove the owned nodes from the executor and destroy them: every one, even if the
+        executor or one node fails (the first error is raised at the end), since a node left
+        undestroyed keeps the process's DDS participant alive until exit."""
+        owned, self.owned = self.owned, []
+        error_seen = None
+        for node in owned:
+            for step in ([lambda: self.executor_ref.remove_node(node)]
+                         if self.executor_ref is not None else []) + [node.destroy_node]:
+                try:
+                    step()
+                except Exception as error:
+                    error_seen = error_seen or error
+        if error_seen is not None:
+            raise error_seen
 
     def on_configure(self, state) -> TransitionCallbackReturn:
         try:
@@ -87,8 +96,26 @@ class ManagedNodes(LifecycleNode):
         return TransitionCallbackReturn.SUCCESS
 
     def destroy_node(self):
-        self._release()
-        return super().destroy_node()
+        """The owned nodes, this node, and its lifecycle state machine, in that order; each step
+        runs even if one before failed.
+
+        rclpy's (Jazzy) ``LifecycleNode.destroy_node`` is Node's: it leaves the node's
+        ``LifecycleStateMachine`` alive, and that keeps a reference to the rcl node, so the rcl
+        node -- and with it the process's DDS participant -- is finalised only when the Python
+        object is collected. It sits in reference cycles (and in gc.freeze's permanent
+        generation: runtime.freeze_startup_objects), so that happened never before exit: Fast DDS
+        then deleted the participant in its static destructors, after Python had finished, where
+        it can spin forever (a managed_chain that never exited after SIGTERM, 85 % of a core).
+        Destroying the state machine here finalises the rcl node now."""
+        try:
+            self._release()
+        finally:
+            try:
+                super().destroy_node()
+            finally:
+                state_machine = getattr(self, "_state_machine", None)
+                if state_machine is not None:
+                    state_machine.destroy_when_not_in_use()
 
 
 def spin_until_shutdown(executor) -> None:

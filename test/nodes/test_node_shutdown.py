@@ -159,6 +159,78 @@ def test_a_signal_ends_the_node_process_cleanly_with_rclpy_signal_thread_joined_
 
 @pytest.mark.process
 @pytest.mark.ros
+@pytest.mark.parametrize("name", list(NODES))
+def test_no_dds_participant_of_the_node_process_outlives_its_python(stopped_nodes, name):
+    """When the program has finished (atexit), the process holds no DDS participant any more:
+    one still alive is deleted by Fast DDS's static destructors, after Python, where it can spin
+    forever (a managed_chain ran on 23 minutes after SIGTERM). Before the fix every managed_chain
+    failed this: rclpy's LifecycleNode.destroy_node leaves its state machine, and with it the
+    rcl node, alive."""
+    tmp, probes, ready = stopped_nodes
+    probe = probes[name]
+    assert ready[name], probe.report()
+    assert probe.process.returncode == 0, probe.report()
+    if "dds participant at exit: unknown" in probe.stderr:
+        pytest.skip("Fast DDS's DomainParticipantFactory not found in the process")
+    assert "dds participant at exit: gone" in probe.stderr, probe.report()
+
+
+# managed_chain signalled (SIGTERM) in each phase of its life: (its arguments, "start" or "ready"
+# -- the delay counts from the process's start or from READY, the nodes built and about to spin,
+# where --activate configures and then activates: builds the chain's four nodes --, the delay).
+MANAGED_PHASES = {
+    "starting": (["--activate"], "start", 1.0),
+    "configuring": (["--activate"], "ready", 0.0),
+    "activating": (["--activate"], "ready", 0.3),
+    "activated": (["--activate"], "ready", 0.8),
+    "active, spinning": (["--activate"], "ready", 3.0),
+    "unconfigured": ([], "ready", 1.0),
+}
+EXIT_DEADLINE_S = 20.0     # as the fleet test gives its processes
+
+
+@pytest.mark.process
+@pytest.mark.ros
+def test_a_managed_chain_signalled_in_any_phase_exits_and_leaves_no_dds_participant(ros_env):
+    """SIGTERM before rclpy's handlers are in place ends the process by the signal (-15); from
+    then on the shutdown is clean: exit 0 within the deadline, no traceback, no DDS participant
+    left when Python has finished."""
+    ros_args = ["--ros-args", "-r", "__ns:=/line1/drive05", "-p", "drive_name:=line1/drive05"]
+    probes = {phase: Probe(ros_env, "backlash_monitor.nodes.lifecycle", *args, *ros_args)
+              for phase, (args, _, _) in MANAGED_PHASES.items()}
+    started = time.monotonic()
+    outcome = {}
+
+    def signal_at_phase(phase):
+        probe = probes[phase]
+        _, since, delay = MANAGED_PHASES[phase]
+        if since == "ready":
+            outcome[phase + " ready"] = probe.wait_ready()
+            time.sleep(delay)
+        else:
+            time.sleep(max(0.0, started + delay - time.monotonic()))
+        outcome[phase] = probe.stop(signal.SIGTERM, timeout_s=EXIT_DEADLINE_S)
+
+    threads = [threading.Thread(target=signal_at_phase, args=(phase,)) for phase in MANAGED_PHASES]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    for phase, (_, since, _) in MANAGED_PHASES.items():
+        probe = probes[phase]
+        if since == "ready":
+            assert outcome[phase + " ready"], f"{phase}: {probe.report()}"
+        code = outcome[phase]
+        assert code != -signal.SIGKILL, f"{phase}: no exit within {EXIT_DEADLINE_S} s of SIGTERM"
+        assert code in ((0, -signal.SIGTERM) if since == "start" else (0,)), \
+            f"{phase}: {probe.report()}"
+        if code == 0:
+            assert "Traceback" not in probe.stderr, f"{phase}: {probe.report()}"
+            assert "dds participant at exit: alive" not in probe.stderr, f"{phase}: {probe.report()}"
+
+
+@pytest.mark.process
+@pytest.mark.ros
 def test_with_rclpy_signal_thread_held_off_the_cpu_the_node_still_exits_cleanly(ros_env):
     """The race made likely: the thread wakes the executor and is preempted in its walk
     (shutdown_probe.py --starve). Before the fix, SIGINT runs here died with SIGSEGV in 14 to 19
