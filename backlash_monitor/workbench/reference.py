@@ -52,7 +52,7 @@ READ_VERSIONS = (3, 4)
 RECORD_MEAN_SEEDS = 24             # more noise seeds of the model at its nominal width, for the record mean's noise
                                    # alone: its whitening is estimated from 6 seeds x (DC_BLOCKS - 1) = 18 degrees of
                                    # freedom in diagnose's ensemble, and the watch's alarm at p 1e-6 on 18 dof is T^2
-                                   # 98.6 at 3 dimensions (chi^2's 30.7); with 30 seeds, 90 dof: 37.3. ~6 s more
+                                   # 98.6 at 3 dimensions (chi^2 30.7); with 30 seeds, 90 dof: 37.3. ~1 s more
                                    # per build (docs/model_watch.md, "The record mean's noise")
 RECORD_MEAN_SEED0 = 1_000_000      # their seeds: RECORD_MEAN_SEED0 + i (not the ensemble's 0..K-1 nor BUILD_SEED)
 SUFFIX = ".watch.npz"              # LIB.npz -> LIB.watch.npz
