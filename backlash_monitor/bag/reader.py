@@ -737,9 +737,11 @@ class BagReader:
                 raise BagError(f"topic {topic!r} has type {info.type}, not SignalChunk")
         per: dict[str, list] = {t: [] for t in topics}
         if topics:
-            for m in self.messages(topics):
-                per[m.topic].append((m.message, m.log_time_ns))
-        return {t: _series(t, msgs) for t, msgs in per.items()}
+            # the flat records (signal_chunks: the fields messages() decodes, no message objects; a
+            # diagnose or model fit of a 3 s bag read it in 18 ms per bag message by message)
+            for r in self.signal_chunks(topics):
+                per[r.topic].append(r)
+        return {t: _series(t, records) for t, records in per.items()}
 
 
 _MESSAGE_HEAD = np.dtype([("channel", "<u2"), ("sequence", "<u4"), ("log_time", "<u8"),
@@ -854,14 +856,16 @@ def _sample_slices(buf, offsets: list, counts: list) -> list[np.ndarray]:
 
 
 def _series(topic: str, msgs: list) -> SignalSeries:
-    msgs.sort(key=lambda x: x[0].first_sample_index)
+    """A topic's SignalChunkRecords (file order) as one series in stream order."""
+    msgs.sort(key=lambda r: r.first_sample_index)
     if not msgs:
         return SignalSeries(topic, "", "", float("nan"), np.zeros(0), np.zeros(0, np.uint64),
                             np.zeros(0, np.uint64), np.zeros(0, np.int64))
-    first = msgs[0][0]
-    samples = np.concatenate([m.samples for m, _ in msgs])
-    starts = np.array([m.first_sample_index for m, _ in msgs], dtype=np.uint64)
-    lengths = np.array([len(m.samples) for m, _ in msgs], dtype=np.int64)
+    first = msgs[0]
+    samples = np.concatenate([np.asarray(r.samples, dtype=np.float64) for r in msgs]) \
+        .astype(np.float64, copy=False)
+    starts = np.array([r.first_sample_index for r in msgs], dtype=np.uint64)
+    lengths = np.array([len(r.samples) for r in msgs], dtype=np.int64)
     offsets = np.concatenate(([0], np.cumsum(lengths)[:-1])).astype(np.uint64)
     idx = (np.repeat(starts - offsets, lengths)
            + np.arange(samples.size, dtype=np.uint64)) if samples.size else np.zeros(0, np.uint64)
@@ -871,5 +875,5 @@ def _series(topic: str, msgs: list) -> SignalSeries:
     if starts[0] != first.first_sample_index:  # pragma: no cover - sorted above
         gaps.insert(0, (int(first.first_sample_index), int(starts[0])))
     return SignalSeries(topic, first.signal_name, first.unit, first.sample_period_s, samples, idx,
-                        starts, np.array([t for _, t in msgs], dtype=np.int64),
-                        first.header.frame_id, gaps)
+                        starts, np.array([r.log_time_ns for r in msgs], dtype=np.int64),
+                        first.frame_id, gaps)

@@ -175,12 +175,17 @@ def reference_for_bag(options, watch: WatchOptions, width_m: float) -> str:
 
 def default_model(n1: float, width_m: float):
     """The default model at the pattern width nearest ``width_m`` (the drive's measured width), eta_k 0.025 and
-    the drive's n1 (analyze's --n1): its reference covers +-40 % of that width (the width is profiled)."""
+    the drive's n1 (analyze's --n1): its reference covers +-40 % of that width (the width is profiled). Loaded
+    once per process and (width, n1): a worker's bags share a few (~7 ms each to load and validate)."""
     from backlash_monitor.plant.scenarios import K2_WIDTHS_M
     from backlash_monitor.workbench.model import load_model
     w = width_m if width_m == width_m else 0.005
     nearest = min(K2_WIDTHS_M, key=lambda k: abs(k - w))
-    return load_model(None, width_m=nearest, eta_k=0.025, n1=float(n1 or 0.89))
+    key = (nearest, float(n1 or 0.89))
+    models = _WORKER.setdefault("default_models", {})
+    if key not in models:
+        models[key] = load_model(None, width_m=nearest, eta_k=0.025, n1=key[1])
+    return models[key]
 
 
 def model_fit(bag: str, options, watch: WatchOptions, row: dict) -> dict:
@@ -199,9 +204,10 @@ def model_fit(bag: str, options, watch: WatchOptions, row: dict) -> dict:
     except reference.ReferenceError as error:
         out["model_fit"] = "no reference" if not Path(path).exists() else str(error)
         return out
+    rule = _WORKER.get("alarm_rule") or _WORKER.setdefault("alarm_rule", load_rule())   # (its YAML: ~5 ms a bag)
     try:
         meas = load_measurement(bag, options.namespace or None)
-        fit = evaluate_recording(meas, ref, load_rule())
+        fit = evaluate_recording(meas, ref, rule)
     except (MeasurementError, ValueError) as error:
         out["model_fit"] = f"not evaluated: {error}"
         return out

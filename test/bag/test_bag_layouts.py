@@ -236,6 +236,35 @@ def test_analyze_gives_the_same_estimates_in_other_layouts(tmp_path, simulated_b
     assert _analyze(other, tmp_path / "other_out") == reference
 
 
+@pytest.mark.parametrize("options", [None, {"noSummary": True}, {"noChunking": True},
+                                     {"noRepeatedChannels": True, "noStatistics": True}],
+                         ids=["default", "noSummary", "noChunking", "noRepeatedChannels+noStatistics"])
+def test_read_signals_is_the_decoded_messages_joined_in_stream_order(tmp_path, simulated_bag, options):
+    """read_signals (the flat records of signal_chunks) gives what the decoded messages give, joined by their
+    first_sample_index: every sample, index, chunk start, log time, name, unit, period and frame id."""
+    import numpy as np
+    path = simulated_bag if options is None else mc.rewrite_with_mcap(simulated_bag, tmp_path / "o.mcap", **options)
+    with BagReader(path) as bag:
+        topics = [t for t, i in bag.topics.items() if i.type.endswith("/SignalChunk")]
+        got = bag.read_signals(topics)
+        decoded = {t: [] for t in topics}
+        for m in bag.messages(topics):
+            decoded[m.topic].append((m.message, m.log_time_ns))
+    assert topics and set(got) == set(topics)
+    for t in topics:
+        msgs = sorted(decoded[t], key=lambda x: x[0].first_sample_index)
+        s = got[t]
+        assert np.array_equal(s.samples, np.concatenate([m.samples for m, _ in msgs]))
+        assert s.samples.dtype == np.float64 and s.sample_index.dtype == np.uint64
+        assert s.chunk_first_index.tolist() == [m.first_sample_index for m, _ in msgs]
+        assert s.chunk_log_time_ns.tolist() == [lt for _, lt in msgs]
+        assert s.sample_index[0] == msgs[0][0].first_sample_index and len(s.sample_index) == len(s.samples)
+        first = msgs[0][0]
+        assert (s.signal_name, s.unit, s.sample_period_s, s.frame_id) == \
+            (first.signal_name, first.unit, first.sample_period_s, first.header.frame_id)
+        assert s.gaps == []
+
+
 def test_the_workbench_measures_the_same_samples_without_a_summary(tmp_path, simulated_bag):
     from backlash_monitor.workbench.measurement import load_measurement
 
