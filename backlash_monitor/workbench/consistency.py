@@ -116,15 +116,17 @@ def candidate_basis(jacobian_spans: list, problem) -> list:
 def whiten(blocks, z_all, more_rows: dict | None = None) -> tuple[np.ndarray, list]:
     """Per block: basis @ C^(-1/2), C the covariance of the model's own events (``z_all``: (K*E, N)) in that
     block's subspace: the projected event residuals then have unit variance per direction. ``more_rows``: per block
-    name, more rows of the model's noise (M, N) that only that block's covariance is estimated from too (the watch's
-    record-mean seeds, reference.RECORD_MEAN_SEEDS). -> (N, q) basis, [(block name, column slice)]."""
+    name, (column slice, rows (M, slice width)): more samples of the model's noise, zero outside that slice, that only
+    that block's covariance is estimated from too (the watch's record-mean seeds, reference.RECORD_MEAN_SEEDS).
+    -> (N, q) basis, [(block name, column slice)]."""
     cols, names, q0 = [], [], 0
     for name, basis in blocks:
         if basis.shape[1] == 0:
             continue
         z = z_all @ basis
         if more_rows and name in more_rows:
-            z = np.vstack([z, more_rows[name] @ basis])
+            part, rows = more_rows[name]
+            z = np.vstack([z, rows @ basis[part]])
         cov = np.cov(z, rowvar=False).reshape(basis.shape[1], basis.shape[1])
         vals, vecs = np.linalg.eigh(cov)
         vals = np.maximum(vals, 1e-12 * max(vals.max(), 1e-300))

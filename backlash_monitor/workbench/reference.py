@@ -227,12 +227,10 @@ class Views:
         self.basis = self.blocks = self.complement = self.tolerance_z = None
         z_all = consistency.model_event_vectors(comp, self)
         self.raw_blocks = consistency.candidate_basis(spans, self)
-        more = None
-        if more_dc:       # the record-mean seeds' block deviations: rows for the record mean's whitening only
-            more = np.zeros((sum(len(d) for d in more_dc), z_all.shape[1]))
-            more[:, self.dc_slice] = np.vstack([dc_block_deviations(d) for d in more_dc]) * self.wdc[None]
-        self.basis, self.blocks = consistency.whiten(self.raw_blocks, z_all,
-                                                     None if more is None else {"record_mean": more})
+        # the record-mean seeds' block deviations: rows (in the record-mean coordinates) for that view's whitening only
+        more = {"record_mean": (self.dc_slice, np.vstack([dc_block_deviations(d) for d in more_dc]) * self.wdc[None])
+                } if more_dc else None
+        self.basis, self.blocks = consistency.whiten(self.raw_blocks, z_all, more)
         # the noise directions outside the subspace come from the event average alone (not from the noise floor,
         # which only the spectral block sees): computed once per number of events (an SVD of K*E x 4596: ~0.5 s)
         complement = ref._complements.get(self.n_events)
