@@ -862,8 +862,7 @@ def _series(topic: str, msgs: list) -> SignalSeries:
         return SignalSeries(topic, "", "", float("nan"), np.zeros(0), np.zeros(0, np.uint64),
                             np.zeros(0, np.uint64), np.zeros(0, np.int64))
     first = msgs[0]
-    samples = np.concatenate([np.asarray(r.samples, dtype=np.float64) for r in msgs]) \
-        .astype(np.float64, copy=False)
+    samples = np.concatenate([np.asarray(r.samples, dtype=np.float64) for r in msgs])
     starts = np.array([r.first_sample_index for r in msgs], dtype=np.uint64)
     lengths = np.array([len(r.samples) for r in msgs], dtype=np.int64)
     offsets = np.concatenate(([0], np.cumsum(lengths)[:-1])).astype(np.uint64)

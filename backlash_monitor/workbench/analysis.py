@@ -220,7 +220,7 @@ def _welch_plan(nperseg: int, fs: float) -> tuple[np.ndarray, np.ndarray]:
             for k, a in enumerate(np.asarray([0.5, 0.5])):
                 win += a * np.cos(k * angle)
             win = win[:-1]
-        win = win * (1 / np.sqrt(sum(win ** 2 + 0.0) / (1 / fs)))
+        win = win * (1 / np.sqrt(sum(win ** 2) / (1 / fs)))
         plan = _WELCH_PLANS[(nperseg, fs)] = (win, scipy_fft.rfftfreq(nperseg, 1 / fs))
     return plan
 
