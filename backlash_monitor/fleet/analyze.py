@@ -160,6 +160,15 @@ def analyze_one(job: dict) -> dict:
 
 # ------------------------------------------------------------------------------------------- model fit
 
+def _kept(kind: str, key, make):
+    """What this worker process made once for ``key`` (``make()``), kept in its state: the model fit's references,
+    default models and alarm rule, shared by all the worker's bags."""
+    kept = _WORKER.setdefault(kind, {})
+    if key not in kept:
+        kept[key] = make()
+    return kept[key]
+
+
 def reference_for_bag(options, watch: WatchOptions, width_m: float) -> str:
     """The reference a bag's model fit takes (see --watch-reference): a path (may not exist yet: the default
     model's cache entry, built by the parent). ``options``: the bag's AnalyzeOptions (its library and n1)."""
@@ -181,11 +190,8 @@ def default_model(n1: float, width_m: float):
     from backlash_monitor.workbench.model import load_model
     w = width_m if width_m == width_m else 0.005
     nearest = min(K2_WIDTHS_M, key=lambda k: abs(k - w))
-    key = (nearest, float(n1 or 0.89))
-    models = _WORKER.setdefault("default_models", {})
-    if key not in models:
-        models[key] = load_model(None, width_m=nearest, eta_k=0.025, n1=key[1])
-    return models[key]
+    n1 = float(n1 or 0.89)
+    return _kept("default_models", (nearest, n1), lambda: load_model(None, width_m=nearest, eta_k=0.025, n1=n1))
 
 
 def model_fit(bag: str, options, watch: WatchOptions, row: dict) -> dict:
@@ -198,13 +204,12 @@ def model_fit(bag: str, options, watch: WatchOptions, row: dict) -> dict:
     width = row["width_m"] if row["width_m"] == row["width_m"] else row["fused_width_m"]
     path = reference_for_bag(options, watch, width)
     out = {"model_fit_reference": path, "model_fit": "", "model_fit_level": "", "model_fit_ratio": math.nan}
-    refs = _WORKER.setdefault("references", {})
     try:
-        ref = refs.get(path) or refs.setdefault(path, reference.load(path))
+        ref = _kept("references", path, lambda: reference.load(path))
     except reference.ReferenceError as error:
         out["model_fit"] = "no reference" if not Path(path).exists() else str(error)
         return out
-    rule = _WORKER.get("alarm_rule") or _WORKER.setdefault("alarm_rule", load_rule())   # (its YAML: ~5 ms a bag)
+    rule = _kept("alarm_rules", None, load_rule)          # (its YAML: ~5 ms a bag)
     try:
         meas = load_measurement(bag, options.namespace or None)
         fit = evaluate_recording(meas, ref, rule)
