@@ -15,8 +15,9 @@ One recording, followed through the named steps (docs/workbench.md, "Diagnose: t
 5. **confidence** (`confidence_step`): the model with the effect(s) must be consistent in every view, without
    making any view worse (decisions.confident); a torque ripple from the raw a1 spectrum (ripple.py) must be
    locked to the motor angle.
-6. **verdict** (`verdict_step`): consistent / discovery / width (the measurand) / partial / nothing explains;
-   the additions for the next model version; the message. -> diagnosis.Diagnosis.
+6. **verdict** (`verdict_step`): consistent / discovery / width (the measurand) / partial / nothing explains and
+   the additions for the next model version (`decide_verdict`); the message (`verdict_message`); the report's
+   fields (report.diagnosis_report). -> diagnosis.Diagnosis.
 """
 from __future__ import annotations
 
@@ -25,13 +26,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import analysis, consistency, fitting, pairs, plant_adapter, ripple, separation, spectral, tolerance
+from . import analysis, consistency, fitting, pairs, plant_adapter, report, ripple, separation, tolerance
 from .decisions import (DELTA_IC_DECISIVE, DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EXPLAINED, confident, identical_to,
                         likelihood_part, qualifies, significant)
 from .diagnosis import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOTHING_EXPLAINS, PARTIAL,
                         ROLE_DISCOVERY, ROLE_PARTIAL, ROLE_SECOND, Addition, Conditions, Diagnosis,
                         WidthMeasurement)
-from .events import SEGMENT_SIGNALS
 
 REFINE_TOP = 3               # singles refined first: the best 3 by explained share (model inconsistent)
 REFINE_EXTRA = 4             # more candidates refined when they may tie with the winner (the rim-force twins of a wheel
@@ -380,11 +380,25 @@ def _left_where(run: Run, up: Update) -> str:
     return "; ".join(t for t in (text, where) if t)
 
 
-def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> Diagnosis:
-    comp, p = run.comp, run.problem
-    before = run.before
-    overall_before = float(np.sqrt(np.mean(analysis.residual_ratio(comp) ** 2)))
-    width = width_measurement(run, up)
+@dataclass
+class Verdict:
+    """What verdict_step decides: the verdict, the effects in their roles, the additions for the next model
+    version, and the ripple from the raw a1 spectrum."""
+    verdict: str
+    discovery: fitting.FitResult | None
+    second: fitting.FitResult | None
+    partial: list
+    effects: list
+    additions: list
+    ripple_entry: dict | None
+    line_not_locked: bool
+    after_mean: np.ndarray
+
+
+def decide_verdict(run: Run, up: Update, ripple_fit) -> Verdict:
+    """The verdict (consistent / discovery / width / partial / nothing explains), the effects in their roles and
+    the additions for the next model version."""
+    comp = run.comp
     discovery = second = None
     partial: list = []
     additions: list = []
@@ -414,8 +428,6 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
                          Addition(ripple.EFFECT, ripple.EFFECT, dict(ripple_entry["parameters"]),
                                   dict(ripple_entry["uncertainty"]), role, "raw a1 spectrum"))
 
-    # the verdict and its message
-    best = run.fits[0] if run.fits else None
     if discovery is not None and not effects:
         verdict = MEASURAND
     elif discovery is not None or ripple_entry is not None:
@@ -426,6 +438,16 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
         verdict = NOTHING_EXPLAINS
     else:
         verdict = CONSISTENT
+    return Verdict(verdict, discovery, second, partial, effects, additions, ripple_entry, line_not_locked,
+                   after_mean)
+
+
+def verdict_message(run: Run, up: Update, v: Verdict, width: WidthMeasurement, ripple_fit,
+                    overall_before: float) -> str:
+    """The verdict in one message: what the recording shows, and what tells near-ties apart."""
+    comp = run.comp
+    verdict, discovery, second, partial = v.verdict, v.discovery, v.second, v.partial
+    best = run.fits[0] if run.fits else None
     wb = analysis.where(comp)
     where_text = (f"the residual sits in the {wb['dominant_phase'].replace('_', ' ')} phase and wavelet level "
                   f"{wb['dominant_level']}")
@@ -487,90 +509,41 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
                 if up.pair_alternatives:
                     parts[-1] += ("; the pair is not distinguishable from this recording from "
                                   + ", ".join(" + ".join(a["candidates"]) for a in up.pair_alternatives))
-        elif ripple_entry is not None:
+        elif v.ripple_entry is not None:
             parts.append("nothing to discover in the event average")
-        if ripple_entry is not None:
+        if v.ripple_entry is not None:
             parts.append(ripple.describe(ripple_fit))
         message = "; ".join(parts)
-    if line_not_locked:
+    if v.line_not_locked:
         message += "; " + ripple.describe_not_locked(ripple_fit)
+    return message
 
+
+def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> Diagnosis:
+    """The verdict (decide_verdict), its message (verdict_message) and the report (report.diagnosis_report)
+    -> diagnosis.Diagnosis."""
+    comp = run.comp
+    overall_before = float(np.sqrt(np.mean(analysis.residual_ratio(comp) ** 2)))
+    width = width_measurement(run, up)
+    v = decide_verdict(run, up, ripple_fit)
+    message = verdict_message(run, up, v, width, ripple_fit, overall_before)
+    discovery, second, partial, ripple_entry = v.discovery, v.second, v.partial, v.ripple_entry
     # the JSON's candidate entries: a confident ripple is the discovery when the event average has none, else
     # the second effect when there is none
     disc_json = discovery.to_json() if discovery is not None else ripple_entry
     second_json = (second.to_json() if second is not None
                    else ripple_entry if discovery is not None and ripple_entry is not None else None)
     ranked = _ranked(run, discovery)
-    where_after = (analysis.where(comp, up.after_mean, up.after_raw)
-                   if discovery is not None and up.after_raw is not None else None)
-    fit_before = analysis.fit_percent(comp.target, comp.model_mean)
-    fit_after = analysis.fit_percent(comp.target, after_mean)
-    band = analysis.noise_band_fit_percent(comp)
-    ratio_before = analysis.residual_ratio(comp)
-    ratio_after = analysis.residual_ratio(comp, after_mean)
-    after_view = (consistency.test(p, p.residual(up.after_pred)) if discovery is not None else before)
-    gates = before.views
-    report = {
-        "partial_checks": up.checks if partial else None,
-        "pairs_tried": up.pairs_tried,
-        "pair_alternatives": up.pair_alternatives if second is not None and discovery is not None else [],
-        "model_inconsistent": bool(run.inconsistent),
-        "subspace": {"dimension": int(p.blocks[0][1].stop), "T2": gates["event_average"].t2,
-                     "T2_limit_p01": gates["event_average"].limit,
-                     "residual_over_noise": float(np.sqrt(gates["event_average"].t2_without_tolerance
-                                                          * consistency.noise_scale(p.n_events, p.n_seeds)
-                                                          / max(p.blocks[0][1].stop, 1))),
-                     "blocks": {n: {"dimension": v.dimension, "T2": v.t2, "T2_limit_p01": v.limit,
-                                    "T2_without_tolerance": v.t2_without_tolerance}
-                                for n, v in gates.items() if n != consistency.OUTSIDE}},
-        "spectral_shape": {"bands_hz": list(spectral.BAND_EDGES_HZ),
-                           "measured_minus_model": dict(zip(
-                               [f"{s}_{lo:.0f}-{hi:.0f}_vs_{hi:.0f}-{hh:.0f}_Hz" for s in SEGMENT_SIGNALS
-                                for lo, hi, hh in zip(spectral.BAND_EDGES_HZ[:-2], spectral.BAND_EDGES_HZ[1:-1],
-                                                      spectral.BAND_EDGES_HZ[2:])],
-                               map(float, (p.target_vec - run.base_pred)[p.spectral_slice] / p.ws))),
-                           "units": "ln(power ratio of adjacent bands), mean over the events"},
-        "sensor_noise_floor": {"rms_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, np.sqrt(
-                                   comp.noise_psd * 0.5 / comp.meas.sample_period_s)))),
-                               "psd_m2_s4_per_hz": dict(zip(SEGMENT_SIGNALS, map(float, comp.noise_psd))),
-                               "quantisation_step_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, (
-                                   comp.quant_step if comp.quant_step is not None else np.zeros(2))))),
-                               "note": "the white noise the recording's sensor chain adds (read off above "
-                                       f"{analysis.NOISE_BAND_HZ[0] / 1e3:.0f} kHz), and its ADC's step when its "
-                                       "samples lie on a grid (the model's events are quantised at it); a nuisance "
-                                       "the spectral views allow for, not an effect"},
-        "record_mean": {"measured": dict(zip(comp.dc_names, map(float, p.events.dc.mean(axis=0)))),
-                        "model": dict(zip(comp.dc_names, map(float, comp.ensemble.dc_mean(0)))),
-                        "units": "a1, a2: m/s^2; omega1: rad/s; the mean over the events of each one's pulse-period "
-                                 "mean"},
-        "where": wb,
-        "where_after": where_after,
-        "fit_percent": {"before": dict(zip(SEGMENT_SIGNALS, map(float, fit_before))),
-                        "after": dict(zip(SEGMENT_SIGNALS, map(float, fit_after))),
-                        "noise_band_median": dict(zip(SEGMENT_SIGNALS, map(float, np.median(band, axis=0))))},
-        "residual_over_noise_floor": {"before": dict(zip(SEGMENT_SIGNALS, map(float, ratio_before))),
-                                      "after": dict(zip(SEGMENT_SIGNALS, map(float, ratio_after))),
-                                      "overall_before": overall_before,
-                                      "overall_after": float(np.sqrt(np.mean(ratio_after ** 2)))},
-        "identifiability": _identifiability(run),
-        "whiteness": analysis.whiteness(comp),
-        "input_correlation": analysis.input_correlation(comp),
-        "spectral_peaks": analysis.spectral_peaks(spec),
-        "spectral_discovery": ripple_fit,
-        "tolerance": {k: v for k, v in tolerance.NOMINAL_SIGMA.items()},
-        "information_criterion": "BIC on the events: IC = E*sum_d ln(mean_e z_ed^2) + k*ln(E), E onset events, z_ed "
-                                 "event e's residual in the whitened views' direction d",
-        "simulated_parameter_sets": p.n_sets_simulated + 1,
-        "seconds": time.perf_counter() - run.t0,
-    }
-    report["not_identifiable"] = [n for n, v in report["identifiability"].items() if not v["identifiable"]]
+    after_view = (consistency.test(run.problem, run.problem.residual(up.after_pred)) if discovery is not None
+                  else run.before)
+    report_dict = report.diagnosis_report(run, up, v, ripple_fit, spec, overall_before, _identifiability(run))
     conditions = Conditions(run.meas.source, run.model.label(),
                             str(run.model.path) if run.model.path else None, dict(run.model.nominal),
                             dict(run.overrides), [str(f) for f in run.model.effect_files],
                             run.model.to_dict(), list(comp.seeds), dict(comp.conditions), comp.events.n_events)
-    views = {"before": before.to_json(), "after": after_view.to_json()}
-    return Diagnosis(conditions, verdict, message, disc_json, second_json,
-                     [f.to_json() for f in partial], additions, width, ranked, views, report, comp,
+    views = {"before": run.before.to_json(), "after": after_view.to_json()}
+    return Diagnosis(conditions, v.verdict, message, disc_json, second_json,
+                     [f.to_json() for f in partial], v.additions, width, ranked, views, report_dict, comp,
                      up.after_mean if discovery is not None else None)
 
 

@@ -3,14 +3,88 @@ from __future__ import annotations
 
 import html
 import json
+import time
 from pathlib import Path
 
 import numpy as np
 
-from . import analysis
+from . import analysis, consistency, spectral, tolerance
 from .events import PRE_SAMPLES, SEGMENT_SIGNALS
 
 UNITS = {"a1": "m/s²", "a2": "m/s²"}
+
+
+def diagnosis_report(run, up, verdict, ripple_fit, spec, overall_before: float, identifiability: dict) -> dict:
+    """The report part of a diagnosis' JSON (diagnosis.Diagnosis.report): the consistency views, spectral shape,
+    noise floor, record mean, where the residual sits, fit %, whiteness, input correlation, spectral peaks.
+    ``run``, ``up``, ``verdict``: diagnose's Run, Update and Verdict; ``spec``: analysis.spectra of the comparison;
+    ``identifiability``: per candidate, how far its fit range moves the evidence."""
+    comp, p = run.comp, run.problem
+    discovery, partial = verdict.discovery, verdict.partial
+    wb = analysis.where(comp)
+    where_after = (analysis.where(comp, up.after_mean, up.after_raw)
+                   if discovery is not None and up.after_raw is not None else None)
+    fit_before = analysis.fit_percent(comp.target, comp.model_mean)
+    fit_after = analysis.fit_percent(comp.target, verdict.after_mean)
+    band = analysis.noise_band_fit_percent(comp)
+    ratio_before = analysis.residual_ratio(comp)
+    ratio_after = analysis.residual_ratio(comp, verdict.after_mean)
+    gates = run.before.views
+    report = {
+        "partial_checks": up.checks if partial else None,
+        "pairs_tried": up.pairs_tried,
+        "pair_alternatives": up.pair_alternatives if verdict.second is not None and discovery is not None else [],
+        "model_inconsistent": bool(run.inconsistent),
+        "subspace": {"dimension": int(p.blocks[0][1].stop), "T2": gates["event_average"].t2,
+                     "T2_limit_p01": gates["event_average"].limit,
+                     "residual_over_noise": float(np.sqrt(gates["event_average"].t2_without_tolerance
+                                                          * consistency.noise_scale(p.n_events, p.n_seeds)
+                                                          / max(p.blocks[0][1].stop, 1))),
+                     "blocks": {n: {"dimension": v.dimension, "T2": v.t2, "T2_limit_p01": v.limit,
+                                    "T2_without_tolerance": v.t2_without_tolerance}
+                                for n, v in gates.items() if n != consistency.OUTSIDE}},
+        "spectral_shape": {"bands_hz": list(spectral.BAND_EDGES_HZ),
+                           "measured_minus_model": dict(zip(
+                               [f"{s}_{lo:.0f}-{hi:.0f}_vs_{hi:.0f}-{hh:.0f}_Hz" for s in SEGMENT_SIGNALS
+                                for lo, hi, hh in zip(spectral.BAND_EDGES_HZ[:-2], spectral.BAND_EDGES_HZ[1:-1],
+                                                      spectral.BAND_EDGES_HZ[2:])],
+                               map(float, (p.target_vec - run.base_pred)[p.spectral_slice] / p.ws))),
+                           "units": "ln(power ratio of adjacent bands), mean over the events"},
+        "sensor_noise_floor": {"rms_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, np.sqrt(
+                                   comp.noise_psd * 0.5 / comp.meas.sample_period_s)))),
+                               "psd_m2_s4_per_hz": dict(zip(SEGMENT_SIGNALS, map(float, comp.noise_psd))),
+                               "quantisation_step_m_s2": dict(zip(SEGMENT_SIGNALS, map(float, (
+                                   comp.quant_step if comp.quant_step is not None else np.zeros(2))))),
+                               "note": "the white noise the recording's sensor chain adds (read off above "
+                                       f"{analysis.NOISE_BAND_HZ[0] / 1e3:.0f} kHz), and its ADC's step when its "
+                                       "samples lie on a grid (the model's events are quantised at it); a nuisance "
+                                       "the spectral views allow for, not an effect"},
+        "record_mean": {"measured": dict(zip(comp.dc_names, map(float, p.events.dc.mean(axis=0)))),
+                        "model": dict(zip(comp.dc_names, map(float, comp.ensemble.dc_mean(0)))),
+                        "units": "a1, a2: m/s^2; omega1: rad/s; the mean over the events of each one's pulse-period "
+                                 "mean"},
+        "where": wb,
+        "where_after": where_after,
+        "fit_percent": {"before": dict(zip(SEGMENT_SIGNALS, map(float, fit_before))),
+                        "after": dict(zip(SEGMENT_SIGNALS, map(float, fit_after))),
+                        "noise_band_median": dict(zip(SEGMENT_SIGNALS, map(float, np.median(band, axis=0))))},
+        "residual_over_noise_floor": {"before": dict(zip(SEGMENT_SIGNALS, map(float, ratio_before))),
+                                      "after": dict(zip(SEGMENT_SIGNALS, map(float, ratio_after))),
+                                      "overall_before": overall_before,
+                                      "overall_after": float(np.sqrt(np.mean(ratio_after ** 2)))},
+        "identifiability": identifiability,
+        "whiteness": analysis.whiteness(comp),
+        "input_correlation": analysis.input_correlation(comp),
+        "spectral_peaks": analysis.spectral_peaks(spec),
+        "spectral_discovery": ripple_fit,
+        "tolerance": {k: v for k, v in tolerance.NOMINAL_SIGMA.items()},
+        "information_criterion": "BIC on the events: IC = E*sum_d ln(mean_e z_ed^2) + k*ln(E), E onset events, z_ed "
+                                 "event e's residual in the whitened views' direction d",
+        "simulated_parameter_sets": p.n_sets_simulated + 1,
+        "seconds": time.perf_counter() - run.t0,
+    }
+    report["not_identifiable"] = [n for n, v in report["identifiability"].items() if not v["identifiable"]]
+    return report
 
 
 def _plt():
