@@ -10,7 +10,8 @@ For each of the four chain nodes (plant_simulator, windowing, denoise, classifie
 node, beside a CPU hog (one busy loop per core at normal priority, started before the pipeline and
 killed after it: process_fault_helpers.CpuHog). After the first estimate the node is SIGKILLed 10
 times; before each next kill the pipeline has named the restart and printed an onset estimate
-after it. Then the pipeline is interrupted (SIGINT: it prints its summary) and the gaps in the
+after it (for the windowing node: of an event over 1 s of stream after the last estimate before
+the kill, which the new process windowed). Then the pipeline is interrupted (SIGINT: it prints its summary) and the gaps in the
 onset estimates it reports ("onset estimates missing: t=a..b s (n onsets ...)") are read.
 
 ``onsets_lost_upstream`` (summed into under_load_kill_onsets_lost), per node:
@@ -80,7 +81,13 @@ def kill_repeatedly(node: str, offset: int) -> dict:
                 case["reason"] = f"no restart after kill {case['kills']}"
                 return case
             pid = int(FAULT.match(line).group(3))
-            if not run.wait_for(lambda text: ONSET.match(text), timeout_s=TIMEOUT_S):
+            last = FAULT.match(line).group(4)
+            # the restarted process works: a windowing node's estimate from after its outage (an
+            # event over 1 s of stream past the last one before the kill: not a late one of the
+            # killed process), any onset for the others (a restarted plant's stream starts at 0)
+            after_s = float(last) + 1.0 if node == "windowing" and last else -1.0
+            if not run.wait_for(lambda text: (m := ONSET.match(text)) is not None
+                                and float(m.group(1)) > after_s, timeout_s=TIMEOUT_S):
                 case["reason"] = f"no estimate after restart {case['kills']}"
                 return case
         time.sleep(2.0)
