@@ -58,7 +58,8 @@ FAULT = re.compile(r"^pipeline: node (\w+) \(pid (\d+)\) was killed by signal SI
 def _env(offset: int) -> dict:
     env = dict(os.environ)
     env["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
-    env["ROS_DOMAIN_ID"] = str((int(os.environ.get("ROS_DOMAIN_ID", "50")) + 20 + offset) % 101 + 1)
+    # the same domains as processes.py (ROS_DOMAIN_ID + 1 ...): the modules run one after another
+    env["ROS_DOMAIN_ID"] = str((int(os.environ.get("ROS_DOMAIN_ID", "50")) + offset) % 101 + 1)
     env["PYTHONUNBUFFERED"] = "1"
     return env
 
