@@ -29,6 +29,18 @@ from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture, default_window_offset
 
 MAX_PENDING_RANGES = 16
+# A node that joins chunks from queues deeper than that waits for a range as long as its missing
+# chunk can still be waiting in one (pending_ranges_for): on a reliable topic a chunk comes late,
+# never not at all, and under load the signals' topics run seconds apart (docs/graph.md, "While a
+# consumer is away").
+
+
+def pending_ranges_for(queue_depth: int) -> int:
+    """Ranges a joiner keeps waiting for their missing chunks when each signal's chunks come
+    through a queue of ``queue_depth``: that many (a chunk still in its queue can be that far
+    behind the other signals'), at least MAX_PENDING_RANGES (best effort's 5-deep queue: a lost
+    chunk never comes, a late one is a few ranges behind)."""
+    return max(MAX_PENDING_RANGES, int(queue_depth))
 # A range that starts this far (or more) behind the expected index is a restart of the stream (a
 # drive restarted, its index counts from 0 again), not a late chunk: 1 s at 50 kHz, far more than
 # any reordering of best-effort chunks (MAX_PENDING_RANGES ranges of 1000 samples at most).
@@ -76,6 +88,8 @@ class ChunkJoiner:
         self.dropped_ranges = 0
         self.faults = faults if faults is not None else FaultLog()
         self._end: int | None = None    # end of the last complete range (restart detection)
+        self._dropped_up_to: int | None = None  # the last range dropped incomplete (late chunks)
+        self.pending_max = 0            # most ranges that waited at once (how far the topics ran apart)
 
     def add(self, name: str, first_sample_index: int, sample_period_s: float, samples,
             stamp=None, frame_id: str = "") -> JoinedRange | None:
@@ -90,6 +104,14 @@ class ChunkJoiner:
             # the stream restarted: an old incomplete range must not be completed by new chunks
             self._drop_pending("stream restart")
             self._end = None
+            self._dropped_up_to = None
+        if (self._dropped_up_to is not None and first_sample_index not in self.pending
+                and first_sample_index <= self._dropped_up_to
+                and (first_sample_index > 0 or self._end is None)
+                and self._dropped_up_to - first_sample_index < RESYNC_SAMPLES):
+            self.faults.add("out_of_order", f"{name} chunk at sample {first_sample_index}: its "
+                            "range was dropped incomplete before it came")
+            return None
         try:
             array = np.asarray(samples, dtype=np.float64)
         except (TypeError, ValueError):
@@ -101,11 +123,13 @@ class ChunkJoiner:
         if name != self.signals[0]:
             group.setdefault("__periods__", {})[name] = sample_period_s
         if len(group) - ("__periods__" in group) < len(self.signals):
+            self.pending_max = max(self.pending_max, len(self.pending))
             if len(self.pending) > self.max_pending:
                 oldest = min(self.pending)
                 del self.pending[oldest]
                 self.meta.pop(oldest, None)
                 self.dropped_ranges += 1
+                self._dropped_up_to = max(oldest, self._dropped_up_to or 0)
                 self.faults.add("incomplete_range", f"range at sample {oldest}")
             return None
         del self.pending[first_sample_index]

@@ -113,3 +113,38 @@ class PipelineRun:
             self.process.wait(timeout=10)
         except subprocess.TimeoutExpired:
             pass
+
+
+HOG_CODE = "import time\nend = time.monotonic() + {s}\nwhile time.monotonic() < end: pass\n"
+
+
+class CpuHog:
+    """Keeps every core busy (one busy loop per core, normal priority): the machine under load
+    that the process-fault tests and benches also run on (issue 34). Each loop ends by itself
+    after ``max_s`` (bounded even if nobody stops it); ``stop()`` (or leaving the ``with``) kills
+    them at once."""
+
+    def __init__(self, max_s: float = 900.0, loops: int | None = None):
+        self.max_s = max_s
+        self.loops = loops or os.cpu_count() or 2
+        self.processes: list[subprocess.Popen] = []
+
+    def start(self) -> "CpuHog":
+        for _ in range(self.loops):
+            self.processes.append(subprocess.Popen(
+                [sys.executable, "-c", HOG_CODE.format(s=float(self.max_s))],
+                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        return self
+
+    def stop(self) -> None:
+        for process in self.processes:
+            if process.poll() is None:
+                process.kill()
+            process.wait(timeout=10)
+        self.processes.clear()
+
+    def __enter__(self) -> "CpuHog":
+        return self.start()
+
+    def __exit__(self, *exc) -> None:
+        self.stop()

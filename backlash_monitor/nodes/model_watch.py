@@ -147,7 +147,7 @@ class ModelWatchNode(Node):
         self.blas_threads = 1                          # run_node: its small products on one thread (process/blas)
         self.signals = tuple(n for n in PLANT_SIGNALS if n in p["snapshot_signals"])
         from backlash_monitor.bag.cdr import Codec
-        from backlash_monitor.chain import ChunkJoiner
+        from backlash_monitor.chain import ChunkJoiner, pending_ranges_for
         from backlash_monitor.watch.alarm import AlarmRule
         from backlash_monitor.watch.core import ModelWatch
         from backlash_monitor.workbench.events import DC_SIGNALS, SEGMENT_SIGNALS
@@ -164,7 +164,9 @@ class ModelWatchNode(Node):
         self.codec = Codec.for_type("backlash_monitor_msgs/msg/SignalChunk")
         self.strings = {name: [None] for name in self.signals}
         self.faults = FaultLog()
-        self.joiner = ChunkJoiner(self.watched, faults=self.faults)
+        # a range waits for its last chunk as long as that can still be queued (docs/graph.md)
+        self.joiner = ChunkJoiner(self.watched, max_pending=pending_ranges_for(chunk_qos(p["qos"]).depth),
+                                  faults=self.faults)
         self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "chunks")
         self.stream_start_s = None       # wall time of sample 0 of the stream (from the chunks' stamps)
         self.recorder = None

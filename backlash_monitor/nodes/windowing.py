@@ -34,7 +34,7 @@ from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueErro
                                                declare_and_validate)
 from backlash_monitor.nodes.qos import LATCHED, WINDOW_QOS, chunk_qos
 from backlash_monitor.nodes.runtime import run_node
-from backlash_monitor.chain import ChunkJoiner, WindowingStage
+from backlash_monitor.chain import ChunkJoiner, WindowingStage, pending_ranges_for
 from backlash_monitor.windowing.faults import FaultLog, InputHealth, is_period
 from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing.offset import implausible_offsets
@@ -87,7 +87,11 @@ class WindowingNode(Node):
         self.signals = self.stage.input_signals
         self.faults = FaultLog()
         self.stage.faults = self.faults
-        self.joiner = ChunkJoiner(self.signals, faults=self.faults)
+        qos = chunk_qos(p["qos"])
+        # a range waits for its last chunk as long as that can still be queued (a reliable topic's
+        # 1000 chunks: under load the signals' topics run seconds apart; docs/graph.md)
+        self.joiner = ChunkJoiner(self.signals, max_pending=pending_ranges_for(qos.depth),
+                                  faults=self.faults)
         self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "chunks")
         self.true_width_m = math.nan
         self.stream_start_s = None
@@ -97,7 +101,6 @@ class WindowingNode(Node):
                        "chunks": 0}
         self.last_discard = ""
         self.sensor_offsets: tuple[dict, int] = ({}, 0)   # the last window's estimate, periods
-        qos = chunk_qos(p["qos"])
         for name in self.signals:
             self.create_subscription(SignalChunk, f"plant/{name}",
                                      lambda msg, n=name: self.on_chunk(n, msg), qos)
@@ -171,6 +174,7 @@ class WindowingNode(Node):
         self.diagnostics.set(level, f"{problem}; {summary}" if problem else summary,
                              publish_now=publish_now, last_discard=self.last_discard,
                              incomplete_chunks=self.joiner.dropped_ranges,
+                             pending_ranges_max=self.joiner.pending_max,
                              lost_samples=self.stage.lost_samples,
                              input_faults=self.faults.summary(), offset_periods=periods,
                              plausible_offset_m_s2=limit, **values, **self.counts)

@@ -130,7 +130,7 @@ def test_children_die_when_their_parent_is_killed_with_sigkill(how, child):
         assert not any(gone(p) for p in pids)
         parent.kill()
         parent.wait()
-        assert wait_until(lambda: all(gone(p) for p in pids), timeout_s=10.0), pids
+        assert wait_until(lambda: all(gone(p) for p in pids), timeout_s=30.0), pids   # a loaded machine
     finally:
         try:
             os.killpg(parent.pid, signal.SIGKILL)

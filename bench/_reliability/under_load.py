@@ -1,0 +1,149 @@
+"""Node kills under load (issue 34): a node that dies loses nothing upstream, with every core busy.
+
+    python bench/_reliability/under_load.py    # one JSON object on stdout, progress on stderr
+
+``run()`` returns {"under_load_kill_onsets_lost", "under_load_kills", "under_load_ros_test_runs_passed"
+(when measured), "cases": [...]} (bench/reliability.py puts the first keys at its top level).
+
+For each of the four chain nodes (plant_simulator, windowing, denoise, classifier), one
+`pipeline --processes --restart on-failure --max-restarts 10` at x2 real time, in one process per
+node, beside a CPU hog (one busy loop per core at normal priority, started before the pipeline and
+killed after it: process_fault_helpers.CpuHog). After the first estimate the node is SIGKILLed 10
+times; before each next kill the pipeline has named the restart and printed an onset estimate
+after it (for the windowing node: of an event over 1 s of stream after the last estimate before
+the kill, which the new process windowed). Then the pipeline is interrupted (SIGINT: it prints its summary) and the gaps in the
+onset estimates it reports ("onset estimates missing: t=a..b s (n onsets ...)") are read.
+
+``onsets_lost_upstream`` (summed into under_load_kill_onsets_lost), per node:
+
+- denoise, classifier: every onset missing. The hops upstream (plant, windowing, and denoise for
+  the classifier) kept running, and the window topics keep the last 1000 windows for the
+  restarted process: nothing may be missing.
+- windowing: the onsets missing in gaps that no windowing outage explains. The chunk topics are
+  volatile: what the plant published while the windowing process was down is the killed node's
+  own loss (docs/graph.md): a gap that begins at most 2 s of stream before the "last estimate
+  before it" of one of its kills (the pipeline's fault line; the windows still queued in the
+  killed process go with it) and ends after it. Any other gap is an upstream loss.
+- plant_simulator: every onset missing inside a stream (a restarted plant starts a new stream
+  at sample 0: the end of the killed one is its own, not a gap).
+
+``under_load_ros_test_runs_passed`` is measured apart (`tools/ros_tests_under_load.py`, several
+minutes per run): this module reports it when BENCH_ROS_TEST_RUNS_JSON names that tool's output.
+"""
+from __future__ import annotations
+
+import json
+import os
+import pathlib
+import re
+import signal
+import sys
+import time
+
+REPO = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO / "test"))
+
+from process_fault_helpers import ONSET, CpuHog, PipelineRun  # noqa: E402
+
+RATE = 2.0
+KILLS = 10
+NODES = ("plant_simulator", "windowing", "denoise", "classifier")
+DURATION_S = 400          # simulated; the run is interrupted after the last kill has been survived
+TIMEOUT_S = 300           # for a restart or an estimate under load (a timeout, not a measurement)
+MISSING = re.compile(r"^onset estimates missing: t=([0-9.]+)\.\.([0-9.]+) s \((\d+) onsets")
+FAULT = re.compile(r"^pipeline: node (\w+) \(pid (\d+)\) was killed by signal SIGKILL \(9\); "
+                   r"restarted as pid (\d+)(?:; last estimate before it: event at t=([0-9.]+) s)?")
+
+
+def _env(offset: int) -> dict:
+    env = dict(os.environ)
+    env["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+    # the same domains as processes.py (ROS_DOMAIN_ID + 1 ...): the modules run one after another
+    env["ROS_DOMAIN_ID"] = str((int(os.environ.get("ROS_DOMAIN_ID", "50")) + offset) % 101 + 1)
+    env["PYTHONUNBUFFERED"] = "1"
+    return env
+
+
+def kill_repeatedly(node: str, offset: int) -> dict:
+    case = {"case": f"kill_{node}_x{KILLS}_under_load", "kills": 0}
+    run = PipelineRun(["--duration", str(DURATION_S), "--rate-factor", str(RATE), "--restart",
+                       "on-failure", "--max-restarts", str(KILLS)], _env(offset))
+    try:
+        if not run.wait_for(lambda line: ONSET.match(line), timeout_s=TIMEOUT_S):
+            case["reason"] = "no estimate before the first kill"
+            return case
+        pid = run.pids[node]
+        for _ in range(KILLS):
+            os.kill(pid, signal.SIGKILL)
+            case["kills"] += 1
+            line = run.wait_for(lambda text, p=pid: (m := FAULT.match(text)) is not None
+                                and int(m.group(2)) == p, timeout_s=TIMEOUT_S)
+            if line is None:
+                case["reason"] = f"no restart after kill {case['kills']}"
+                return case
+            pid = int(FAULT.match(line).group(3))
+            last = FAULT.match(line).group(4)
+            # the restarted process works: a windowing node's estimate from after its outage (an
+            # event over 1 s of stream past the last one before the kill: not a late one of the
+            # killed process), any onset for the others (a restarted plant's stream starts at 0)
+            after_s = float(last) + 1.0 if node == "windowing" and last else -1.0
+            if not run.wait_for(lambda text: (m := ONSET.match(text)) is not None
+                                and float(m.group(1)) > after_s, timeout_s=TIMEOUT_S):
+                case["reason"] = f"no estimate after restart {case['kills']}"
+                return case
+        time.sleep(2.0)
+        run.process.send_signal(signal.SIGINT)      # the pipeline prints its summary
+        case["exit_code"] = run.finish(timeout_s=TIMEOUT_S)
+    finally:
+        run.kill_group()
+    faults = [m for line in run.lines if (m := FAULT.match(line))]
+    before = [float(m.group(4)) for m in faults if m.group(4)]
+    gaps = [(float(m.group(1)), float(m.group(2)), int(m.group(3)))
+            for line in run.lines if (m := MISSING.match(line))]
+    if node == "windowing":
+        # the last estimate before a kill lies in the gap, or up to 2 s of stream before it (the
+        # windows still queued in the killed process are lost with it)
+        own = [g for g in gaps if any(g[0] - 2.0 <= t <= g[1] + 1e-3 for t in before)]
+    else:
+        own = []
+    lost = sum(n for g in gaps if g not in own for n in (g[2],))
+    case.update(restarts_named=len(faults), onsets_estimated=len(run.onsets()),
+                gaps=[f"{a:.3f}..{b:.3f} s ({n})" for a, b, n in gaps],
+                onsets_missing_own_outage=sum(g[2] for g in own), onsets_lost_upstream=lost)
+    case["survived"] = case["kills"] == KILLS and len(faults) == KILLS
+    if not case["survived"] or lost:
+        case["output_tail"] = run.lines[-15:] + run.stderr.splitlines()[-10:]
+    return case
+
+
+def ros_test_runs() -> dict:
+    path = os.environ.get("BENCH_ROS_TEST_RUNS_JSON", "")
+    if not path:
+        return {}
+    with open(path, encoding="utf-8") as f:
+        measured = json.load(f)
+    return {"under_load_ros_test_runs_passed": measured["passed"],
+            "under_load_ros_test_runs": measured["runs"], "ros_test_runs_details": measured}
+
+
+def run() -> dict:
+    cases = []
+    with CpuHog(max_s=1800.0) as hog:
+        for offset, node in enumerate(NODES):
+            print(f"under_load: kill {node} {KILLS} times beside {hog.loops} busy loops",
+                  file=sys.stderr, flush=True)
+            cases.append(kill_repeatedly(node, offset))
+            print(f"under_load: {json.dumps({k: v for k, v in cases[-1].items() if k != 'output_tail'})}",
+                  file=sys.stderr, flush=True)
+    lost = sum(c.get("onsets_lost_upstream", 0) for c in cases)
+    incomplete = [c["case"] for c in cases if not c.get("survived")]
+    return {"under_load_kill_onsets_lost": lost if not incomplete else None,
+            "under_load_kills": sum(c["kills"] for c in cases),
+            "under_load_cases_incomplete": incomplete, **ros_test_runs(), "cases": cases}
+
+
+if __name__ == "__main__":
+    started = time.monotonic()
+    result = run()
+    print(f"under_load: {time.monotonic() - started:.0f} s", file=sys.stderr)
+    print(json.dumps(result))
