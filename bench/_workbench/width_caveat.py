@@ -27,6 +27,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "bench"))
 
 from foreign_drives.spec import EffectSpec as E  # noqa: E402
 from foreign_drives.spec import RecordingSpec  # noqa: E402
