@@ -116,6 +116,7 @@ def confident_wrong_width_alarms(workdir=None, only=None) -> dict:
     """Every foreign bench recording through ``analyze DIR``: the confident wrong width alarms (module docstring)."""
     from backlash_monitor.fleet.caveat import FitVerdict, says_model_fails, with_caveat
     from backlash_monitor.fleet.trend import load_rule
+    from foreign_drives.drive import make_recording
     from foreign_drives.files import write_bag
     from foreign_drives.suites import suite
     import yaml
@@ -129,7 +130,8 @@ def confident_wrong_width_alarms(workdir=None, only=None) -> dict:
                 continue
             d = Path(tmp) / spec.label
             (d / "bag").mkdir(parents=True)
-            write_bag(spec, d / "bag" / "drive.mcap")
+            rec = make_recording(spec)
+            write_bag(spec, d / "bag" / "drive.mcap", recording=rec)
             rc, out, wall, cpu = _cli(["analyze", d / "bag", "--out", d / "out", "--jobs", "1", "--no-plots"], d)
             row = {"label": spec.label, "kind": spec.kind}
             if not (d / "out" / "fleet.json").exists():
@@ -138,7 +140,7 @@ def confident_wrong_width_alarms(workdir=None, only=None) -> dict:
                 log(f"[alarms] {spec.label}: ERROR {out[-300:]}")
                 continue
             r = json.loads((d / "out" / "fleet.json").read_text())["rows"][0]
-            truth = float(r["true_width_m"])
+            truth = float(rec.truth.true_width_m)
             fit = FitVerdict.from_recording(r.get("model_fit"))
             est = json.loads((d / "out" / "drive.estimates.json").read_text())["estimates"]
             mine = [e for e in est if e["signal"] == "a1+a2"]
