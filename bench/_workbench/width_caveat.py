@@ -2,9 +2,9 @@
 simulator), run through the commands as a user runs them.
 
 1. ``confident_wrong_width_alarms``: every recording of the foreign bench suite (``python -m foreign_drives write
-   --suite bench``) through ``analyze DIR`` (the fleet table, with its model fit against the default model at the
-   measured width, as the command gives it), one recording per folder (the suite's recordings share drive names; one
-   folder each keeps every drive its own trend). A *confident wrong width alarm*: the row's level is WARN with the
+   --suite bench``) through one ``analyze DIR`` (the fleet table, with its model fit against the default model at the
+   measured width, as the command gives it); each recording under a drive name of its own (the suite's recordings
+   share names, and the fleet's trend is per drive; the physics and the seed are the suite's). A *confident wrong width alarm*: the row's level is WARN with the
    true width below the trend's warn_width_m, or ERROR with it below error_width_m (config/trend.yaml), and neither
    the row's reason nor its width cell says that the model does not explain the drive (fleet/caveat.py). The live
    classifier's own alarm (its last fused width against config/diagnostics.yaml's thresholds) is counted the same
@@ -112,63 +112,79 @@ def _alarm(level: str, true_width_m: float, warn_m: float, error_m: float) -> bo
     return (level == "WARN" and true_width_m < warn_m) or (level == "ERROR" and true_width_m < error_m)
 
 
-def confident_wrong_width_alarms(workdir=None, only=None) -> dict:
-    """Every foreign bench recording through ``analyze DIR``: the confident wrong width alarms (module docstring)."""
-    from backlash_monitor.fleet.caveat import FitVerdict, says_model_fails, with_caveat
+def confident_wrong_width_alarms(workdir=None, only=None, jobs: int = 2, batch: int = 6) -> dict:
+    """Every foreign bench recording through one ``analyze DIR`` (each recording its own drive name: the suite's
+    recordings share names, and a fleet's trend is per drive): the confident wrong width alarms (module docstring)."""
+    import dataclasses
+
+    import yaml
+
     from backlash_monitor.fleet.trend import load_rule
     from foreign_drives.drive import make_recording
     from foreign_drives.files import write_bag
     from foreign_drives.suites import suite
-    import yaml
     rule = load_rule(None)
     cls = yaml.safe_load((ROOT / "config" / "diagnostics.yaml").read_text())["/**"]["ros__parameters"]
     warn_c, error_c = float(cls["warn_width_m"]), float(cls["error_width_m"])
+    specs = [s for s in suite("bench") if not only or s.label in only]
     rows = []
-    with tempfile.TemporaryDirectory(dir=workdir) as tmp:
-        for spec in suite("bench"):
-            if only and spec.label not in only:
+    wall = 0.0
+    for first in range(0, len(specs), batch):     # a batch per analyze DIR: rows come in as the batches end
+        with tempfile.TemporaryDirectory(dir=workdir) as tmp:
+            bags, out_dir = Path(tmp) / "bags", Path(tmp) / "out"
+            bags.mkdir()
+            truth = {}
+            for i, spec in enumerate(specs[first:first + batch], start=first):
+                spec = dataclasses.replace(spec, drive_name=f"foreign{i:02d}")   # the physics and its seed unchanged
+                rec = make_recording(spec)
+                write_bag(spec, bags / f"{spec.label}.mcap", recording=rec)
+                truth[spec.label] = float(rec.truth.true_width_m)
+            rc, out, seconds, cpu = _cli(["analyze", bags, "--out", out_dir, "--jobs", jobs, "--no-plots"], tmp)
+            wall += seconds
+            if not (out_dir / "fleet.json").exists():
+                rows += [{"label": label, "error": out[-1000:]} for label in truth]
                 continue
-            d = Path(tmp) / spec.label
-            (d / "bag").mkdir(parents=True)
-            rec = make_recording(spec)
-            write_bag(spec, d / "bag" / "drive.mcap", recording=rec)
-            rc, out, wall, cpu = _cli(["analyze", d / "bag", "--out", d / "out", "--jobs", "1", "--no-plots"], d)
-            row = {"label": spec.label, "kind": spec.kind}
-            if not (d / "out" / "fleet.json").exists():
-                row["error"] = out[-1500:]
-                rows.append(row)
-                log(f"[alarms] {spec.label}: ERROR {out[-300:]}")
-                continue
-            r = json.loads((d / "out" / "fleet.json").read_text())["rows"][0]
-            truth = float(rec.truth.true_width_m)
-            fit = FitVerdict.from_recording(r.get("model_fit"))
-            est = json.loads((d / "out" / "drive.estimates.json").read_text())["estimates"]
-            mine = [e for e in est if e["signal"] == "a1+a2"]
-            fused = mine[-1]["fused_width_m"] if mine else math.nan
-            cls_level = "ERROR" if fused >= error_c else "WARN" if fused >= warn_c else "OK"
-            cls_line = with_caveat(f"backlash {fused * 1e3:.2f} mm", fit)
-            trend_wrong = _alarm(r["level"], truth, rule.warn_width_m, rule.error_width_m)
-            cls_wrong = _alarm(cls_level, truth, warn_c, error_c)
-            row.update(true_width_mm=truth * 1e3, width_mm=r["width_m"] * 1e3,
-                       width_uncertainty_mm=(r.get("width_uncertainty_m") or math.nan) * 1e3,
-                       level=r["level"], reason=r["reason"], model_fit=r.get("model_fit_level"),
-                       model_fit_ratio=r.get("model_fit_ratio"), caveat=r.get("width_caveat", ""),
-                       classifier_level=cls_level, classifier_fused_width_mm=fused * 1e3,
-                       wrong_trend_alarm=trend_wrong, wrong_classifier_alarm=cls_wrong,
-                       confident_wrong=(trend_wrong and not says_model_fails(r["reason"]))
-                       or (cls_wrong and not says_model_fails(cls_line)),
-                       wall_seconds=wall)
-            rows.append(row)
-            log(f"[alarms] {spec.label}: width {row['width_mm']:.2f} ± {row['width_uncertainty_mm']:.2f} mm (truth "
-                f"{row['true_width_mm']:.2f}), {row['level']} / classifier {cls_level}, fit {row['model_fit']} "
-                f"{row['model_fit_ratio']}; confident wrong: {row['confident_wrong']} ({wall:.0f} s)")
+            for r in json.loads((out_dir / "fleet.json").read_text())["rows"]:
+                rows.append(_alarm_row(r, out_dir, truth, rule, warn_c, error_c))
     ok = [r for r in rows if "error" not in r]
     return {"confident_wrong_width_alarms": sum(r["confident_wrong"] for r in ok),
             "confident_wrong_width_alarm_labels": [r["label"] for r in ok if r["confident_wrong"]],
             "wrong_width_alarms_with_caveat": sum((r["wrong_trend_alarm"] or r["wrong_classifier_alarm"])
                                                   and not r["confident_wrong"] for r in ok),
             "width_alarm_recordings": len(rows), "width_alarm_errors": [r["label"] for r in rows if "error" in r],
-            "width_alarm_per_recording": rows}
+            "width_alarm_analyze_seconds": wall, "width_alarm_per_recording": rows}
+
+
+def _alarm_row(r: dict, out_dir: Path, truth: dict, rule, warn_c: float, error_c: float) -> dict:
+    """One fleet-table row as the alarm check reads it: the trend's level and reason, the classifier's level from
+    the last fused width (config/diagnostics.yaml), each with the caveat it carries."""
+    from backlash_monitor.fleet.caveat import FitVerdict, says_model_fails, with_caveat
+    label = Path(r["bag"]).stem
+    row = {"label": label}
+    if r["error"]:
+        row["error"] = r["error"]
+        return row
+    fit = FitVerdict.from_recording(r.get("model_fit"))
+    est = json.loads((out_dir / f"{label}.estimates.json").read_text())["estimates"]
+    mine = [e for e in est if e["signal"] == "a1+a2"]
+    fused = mine[-1]["fused_width_m"] if mine else math.nan
+    cls_level = "ERROR" if fused >= error_c else "WARN" if fused >= warn_c else "OK"
+    cls_line = with_caveat(f"backlash {fused * 1e3:.2f} mm", fit)      # as the classifier node writes it
+    t = truth[label]
+    trend_wrong = _alarm(r["level"], t, rule.warn_width_m, rule.error_width_m)
+    cls_wrong = _alarm(cls_level, t, warn_c, error_c)
+    row.update(true_width_mm=t * 1e3, width_mm=r["width_m"] * 1e3,
+               width_uncertainty_mm=(r.get("width_uncertainty_m") or math.nan) * 1e3,
+               level=r["level"], reason=r["reason"], model_fit=r.get("model_fit_level"),
+               model_fit_ratio=r.get("model_fit_ratio"), caveat=r.get("width_caveat", ""),
+               classifier_level=cls_level, classifier_fused_width_mm=fused * 1e3,
+               wrong_trend_alarm=trend_wrong, wrong_classifier_alarm=cls_wrong,
+               confident_wrong=(trend_wrong and not says_model_fails(r["reason"]))
+               or (cls_wrong and not says_model_fails(cls_line)))
+    log(f"[alarms] {label}: width {row['width_mm']:.2f} ± {row['width_uncertainty_mm']:.2f} mm (truth "
+        f"{row['true_width_mm']:.2f}), {row['level']} / classifier {cls_level}, fit {row['model_fit']} "
+        f"{row['model_fit_ratio']}; confident wrong: {row['confident_wrong']}")
+    return row
 
 
 if __name__ == "__main__":
