@@ -63,6 +63,7 @@ class WidthEstimate:
     fused_width_m: float
     fused_events: int
     fused_continuous_width_m: float = math.nan   # median continuous width of the fused events
+    fused_width_uncertainty_m: float = math.nan  # its robust standard error over them (fusion.py)
 
 
 def default_signals(mode: str) -> tuple[str, ...]:
@@ -232,7 +233,8 @@ class DriveEstimator:
                     width_m=float(self.widths_m[index]), b_margin=margin,
                     continuous_width_m=continuous, fused_width_m=f.width_m,
                     fused_events=f.events,
-                    fused_continuous_width_m=f.continuous_width_m))
+                    fused_continuous_width_m=f.continuous_width_m,
+                    fused_width_uncertainty_m=f.continuous_width_se_m))
         return out
 
 

@@ -371,7 +371,8 @@ class Codec:
                               _get(msg, "continuous_width_m"), _get(msg, "fused_width_m"))
         out += _U32_LE.pack(_get(msg, "fused_events"))
         _pad(out, pad, 8)
-        out += _F64X2_LE.pack(_get(msg, "true_width_m"), _get(msg, "fused_continuous_width_m"))
+        out += _F64X3_LE.pack(_get(msg, "true_width_m"), _get(msg, "fused_continuous_width_m"),
+                              _get(msg, "fused_width_uncertainty_m"))
         return bytes(out)
 
     def _enc(self, spec: MsgSpec, msg, out: bytearray) -> None:
@@ -444,6 +445,7 @@ _SIGNAL_CHUNK_SHAPE = {
 _U64_LE = struct.Struct("<Q")
 _F64X4_LE = struct.Struct("<dddd")
 _F64X2_LE = struct.Struct("<dd")
+_F64X3_LE = struct.Struct("<ddd")
 
 _BACKLASH_ESTIMATE_SHAPE = {
     "": (("header", "std_msgs/msg/Header", False), ("signal_name", "string", False),
@@ -453,7 +455,8 @@ _BACKLASH_ESTIMATE_SHAPE = {
          ("width_m", "float64", False), ("b_margin", "float64", False),
          ("continuous_width_m", "float64", False), ("fused_width_m", "float64", False),
          ("fused_events", "uint32", False), ("true_width_m", "float64", False),
-         ("fused_continuous_width_m", "float64", False)),
+         ("fused_continuous_width_m", "float64", False),
+         ("fused_width_uncertainty_m", "float64", False)),
     **_HEADER_SHAPE,
 }
 

@@ -167,8 +167,11 @@ def _print_summary(summary, rows, discarded, n_samples, elapsed, outputs):
     for signal, s in sorted(summary["per_signal"].items()):
         acc = "-" if math.isnan(true_width) else f"{s['correct'] / s['estimates']:.0%}"
         cont = s.get("fused_continuous_width_m", math.nan)
+        se = s.get("fused_width_uncertainty_m", math.nan)
+        cont_text = ("-" if math.isnan(cont) else f"{cont * 1e3:.2f} mm" if math.isnan(se)
+                     else f"{cont * 1e3:.2f} ± {se * 1e3:.2f} mm")
         lines.append((signal, str(s["estimates"]), acc, f"{s['fused_width_m'] * 1e3:.2f} mm",
-                      "-" if math.isnan(cont) else f"{cont * 1e3:.2f} mm", str(s["fused_events"])))
+                      cont_text, str(s["fused_events"])))
     widths = [max(len(line[i]) for line in lines) for i in range(len(header))]
     for i, line in enumerate(lines):
         print("  ".join(c.rjust(w) for c, w in zip(line, widths)))

@@ -122,6 +122,7 @@ def init_worker(options, library=None) -> None:
 def analyze_one(job: dict) -> dict:
     """One bag through the single-bag analysis (a worker's task: a job is its bag, its output prefix,
     the AnalyzeOptions and the WatchOptions of its model fit); returns its fleet-table row."""
+    from backlash_monitor.classifier.fusion import median_standard_error
     from backlash_monitor.offline.analyze import analyze_bag
     if _WORKER.get("options") != job["options"] or _WORKER.get("pid") != os.getpid():
         init_worker(job["options"])      # a worker started without the initializer (Dask)
@@ -141,8 +142,12 @@ def analyze_one(job: dict) -> dict:
     mine = [r for r in rows if r["signal"] == primary]
     widths = [r["continuous_width_m"] if r["continuous_width_m"] == r["continuous_width_m"]
               else r["width_m"] for r in mine]
+    continuous = [r["continuous_width_m"] for r in mine]
     row.update(drive=result["drive"] or Path(job["bag"]).stem, time_s=result["first_stamp_s"],
                width_m=statistics.median(widths) if widths else math.nan,
+               # the robust standard error of that median over the recording's onset windows (the
+               # events: classifier/fusion.py); NaN where the mode gives no continuous width
+               width_uncertainty_m=median_standard_error(continuous),
                fused_width_m=mine[-1]["fused_width_m"] if mine else math.nan,
                true_width_m=result["summary"]["true_width_m"],
                onsets=len({r["entry_sample_index"] for r in mine}),
@@ -375,6 +380,9 @@ def run_dask(jobs: list[dict], n_jobs: int, scheduler: str, progress=True) -> li
 
 
 def add_trends(rows: list[dict], rule) -> dict:
+    """Each drive's trend over its rows; each row's level and reason, the reason with the model-fit caveat of
+    that row's recording (fleet/caveat.py: a width alarm never stands alone when the model fit fails)."""
+    from backlash_monitor.fleet.caveat import FitVerdict, with_caveat
     from backlash_monitor.fleet.trend import drive_trend
     points: dict[str, list] = {}
     for r in rows:
@@ -388,7 +396,7 @@ def add_trends(rows: list[dict], rule) -> dict:
         t = trends.get(r["drive"])
         r["trend_m_per_day"] = math.nan if t is None else t.rate_m_per_day
         r["level"] = "ERROR" if r["error"] else t.level
-        r["reason"] = r["error"] or t.reason
+        r["reason"] = r["error"] or with_caveat(t.reason, FitVerdict.from_recording(r.get("model_fit")))
     return points, trends
 
 
@@ -396,6 +404,8 @@ TABLE = ("drive", "time", "width", "fused width", "trend", "level", "model fit",
 
 
 def format_rows(rows: list[dict]) -> list[tuple]:
+    from backlash_monitor.fleet.caveat import FitVerdict, width_text, with_caveat
+
     def mm(x):
         return "-" if x != x else f"{x * 1e3:.2f} mm"
     out = []
@@ -404,7 +414,10 @@ def format_rows(rows: list[dict]) -> list[tuple]:
                 datetime.fromtimestamp(r["time_s"], timezone.utc).strftime("%Y-%m-%d %H:%M:%S"))
         trend = ("-" if r["trend_m_per_day"] != r["trend_m_per_day"]
                  else f"{r['trend_m_per_day'] * 1e3:+.3f} mm/day")
-        out.append((r["drive"] or "?", when, mm(r["width_m"]), mm(r["fused_width_m"]), trend,
+        # the width with its uncertainty and, when the bag's model fit fails, the caveat in the same cell
+        width = with_caveat(width_text(r["width_m"], r.get("width_uncertainty_m", math.nan)),
+                            FitVerdict.from_recording(r.get("model_fit")))
+        out.append((r["drive"] or "?", when, width, mm(r["fused_width_m"]), trend,
                     r["level"], model_fit_text(r), Path(r["bag"]).name))
     return out
 
@@ -412,6 +425,7 @@ def format_rows(rows: list[dict]) -> list[tuple]:
 def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     """The many-bag `analyze`: ``fleet`` its FleetOptions (the bags, the output folder, the engine,
     the model fit's WatchOptions), ``options`` the AnalyzeOptions of every bag."""
+    from backlash_monitor.fleet.caveat import FitVerdict, caveat, with_caveat
     from backlash_monitor.fleet.trend import load_rule, plot_trends
     bags = expand_bags(fleet.bags)
     fleet.check()
@@ -445,7 +459,9 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     points, trends = add_trends(rows, rule)
     columns = ("drive", "time_s", "width_m", "fused_width_m", "trend_m_per_day", "level",
                "reason", "model_fit_level", "model_fit_ratio", "true_width_m", "onsets", "discarded", "bag",
-               "a1_offset_m_s2", "a2_offset_m_s2")
+               "a1_offset_m_s2", "a2_offset_m_s2", "width_uncertainty_m", "width_caveat")
+    for r in rows:
+        r["width_caveat"] = caveat(FitVerdict.from_recording(r.get("model_fit")))
     with open(out_dir / "fleet.csv", "w", newline="", encoding="utf-8") as f:
         writer = csv.writer(f)
         writer.writerow(columns)
@@ -467,7 +483,9 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
         print(f"{Path(r['bag']).name}: {r['error']}")
     warned = sorted(d for d, t in trends.items() if t.level != "OK")
     for d in warned:
-        print(f"{d}: {trends[d].level}: {trends[d].reason}")
+        last = [r for r in rows if r["drive"] == d and not r["error"]]
+        fit = FitVerdict.from_recording(last[-1].get("model_fit")) if last else None
+        print(f"{d}: {trends[d].level}: {with_caveat(trends[d].reason, fit)}")
     for r in rows:
         fit = r.get("model_fit")
         if isinstance(fit, dict) and fit["level"] != "OK":

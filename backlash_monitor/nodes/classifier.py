@@ -19,6 +19,12 @@ classified (not denoised, a1/a2 of unequal or the wrong length, another sample p
 library's, non-finite samples, an unknown entry kind; DriveEstimator.check_window) is dropped and
 counted with its reason and gives WARN with the reason while such windows come (``fault_hold_s``),
 never ERROR; no window for ``stale_after_s`` gives STALE. A width level of ERROR stays ERROR.
+
+The width carries its uncertainty (``fused_width_uncertainty_m``: the robust standard error of the fused
+continuous width over the fused events) and, when the model watch of the same namespace says the model does
+not explain the drive (its ``model_fit``, level WARN), the status message says so in the same line:
+"backlash 10.00 mm ... — model drive7 v1 does not explain this drive (residual 2.5× its floor): run diagnose
+before acting" (backlash_monitor/fleet/caveat.py).
 """
 from __future__ import annotations
 
@@ -29,10 +35,12 @@ import time
 from rclpy.node import Node
 
 from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_warning, load_library
+from backlash_monitor.fleet.caveat import width_text, with_caveat
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
 from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
+from backlash_monitor.nodes.model_fit_caveat import follow_model_fit
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
 from backlash_monitor.nodes.qos import ESTIMATE_QOS, WINDOW_QOS
@@ -96,12 +104,20 @@ class ClassifierNode(Node):
         self.faults = FaultLog()            # windows dropped here (not denoised)
         self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "windows")
         self.width_state = None             # (level, message, values) of the last fused width
+        self.model_fit = None               # the model watch's last FitVerdict (None: none heard)
+        follow_model_fit(self, self.on_model_fit)
         self.diagnostics = DriveDiagnostics(self, "backlash width", p["drive_name"],
                                             refresh=self.update_diagnostics)
         self.get_logger().info(f"mode {p['mode']}, signals {', '.join(self.estimator.signals)}, "
                                f"library {library.path}")
         if self.library_flag:
             self.get_logger().warning(self.library_flag)
+
+    def on_model_fit(self, verdict) -> None:
+        changed = self.model_fit is None or verdict.explains != self.model_fit.explains
+        self.model_fit = verdict
+        if changed:
+            self.update_diagnostics(publish_now=True)
 
     def on_window(self, msg: BacklashWindow):
         now = time.monotonic()
@@ -157,6 +173,7 @@ class ClassifierNode(Node):
         out.fused_width_m = estimate.fused_width_m
         out.fused_events = estimate.fused_events
         out.fused_continuous_width_m = estimate.fused_continuous_width_m
+        out.fused_width_uncertainty_m = estimate.fused_width_uncertainty_m
         out.true_width_m = window.true_width_m
         return out
 
@@ -165,13 +182,17 @@ class ClassifierNode(Node):
         width = estimate.fused_width_m
         level = ("ERROR" if width >= p["error_width_m"] else
                  "WARN" if width >= p["warn_width_m"] else "OK")
+        cont = width_text(estimate.fused_continuous_width_m, estimate.fused_width_uncertainty_m)
         self.width_state = (level, f"backlash {width * 1e3:.2f} mm (fused over "
-                                   f"{estimate.fused_events} events)", dict(
+                                   f"{estimate.fused_events} events" +
+                            ("" if cont == "-" else f"; continuous {cont}") + ")", dict(
             fused_width_m=f"{width:.5f}", last_width_m=f"{estimate.width_m:.5f}",
             continuous_width_m="" if math.isnan(estimate.continuous_width_m)
             else f"{estimate.continuous_width_m:.5f}",
             fused_continuous_width_m="" if math.isnan(estimate.fused_continuous_width_m)
             else f"{estimate.fused_continuous_width_m:.5f}",
+            fused_width_uncertainty_m="" if math.isnan(estimate.fused_width_uncertainty_m)
+            else f"{estimate.fused_width_uncertainty_m:.5f}",
             signal=estimate.signal_name, mode=estimate.mode))
         self.update_diagnostics()
 
@@ -196,6 +217,8 @@ class ClassifierNode(Node):
             message = f"{message}; {problem}"
         if self.library_flag:
             message = f"{message}; {self.library_flag}"
+        if self.width_state is not None:   # every width, OK, WARN or ERROR, carries a failed model fit
+            message = with_caveat(message, self.model_fit)
         rejected = self.faults.total + self.estimator.faults.total
         self.diagnostics.set(
             level, message, publish_now=publish_now, **values,
@@ -204,7 +227,9 @@ class ClassifierNode(Node):
             input_faults=", ".join(f for f in (self.faults.summary(), self.estimator.faults.summary())
                                    if f != "none") or "none",
             repeated_windows_skipped=self.repeated.repeats,
-            warn_width_m=p["warn_width_m"], error_width_m=p["error_width_m"])
+            warn_width_m=p["warn_width_m"], error_width_m=p["error_width_m"],
+            model_fit="" if self.model_fit is None else
+            ("explains" if self.model_fit.explains else "does not explain"))
 
 
 def main(args=None):

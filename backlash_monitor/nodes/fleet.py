@@ -180,6 +180,7 @@ class DriveTally:
     lags_s: list = field(default_factory=list)         # (monotonic arrival, lag [s]) per onset
     fused_width_m: float = math.nan
     fused_continuous_width_m: float = math.nan       # a1+a2's (the primary signal)
+    fused_width_uncertainty_m: float = math.nan      # its standard error (BacklashEstimate)
     true_width_m: float = math.nan
     windowing: dict = field(default_factory=dict)
     classifier: dict = field(default_factory=dict)
@@ -217,6 +218,7 @@ class FleetMonitor:
         t.fused_width_m = msg.fused_width_m
         if msg.signal_name == PRIMARY_SIGNAL:
             t.fused_continuous_width_m = msg.fused_continuous_width_m
+            t.fused_width_uncertainty_m = msg.fused_width_uncertainty_m
         t.true_width_m = msg.true_width_m
 
     def on_diagnostics(self, msg) -> None:
@@ -260,7 +262,8 @@ class FleetMonitor:
             classifiable = _classifiable_onsets(w)
             row = {"drive": d.hardware_id, "true_width_m": t.true_width_m,
                    "fused_width_m": t.fused_width_m,
-                   "fused_continuous_width_m": t.fused_continuous_width_m, "level": t.level,
+                   "fused_continuous_width_m": t.fused_continuous_width_m,
+                   "fused_width_uncertainty_m": t.fused_width_uncertainty_m, "level": t.level,
                    "model_fit": t.model_fit,
                    "chunks": int(w.get("chunks", 0)), "expected_chunks": expected_chunks,
                    "discarded": int(w.get("discarded", 0)),
@@ -289,6 +292,7 @@ def _classifiable_onsets(windowing: dict) -> int:
 
 def format_summary(rows: list[dict]) -> str:
     from backlash_monitor.fleet.aggregator import short_model_fit
+    from backlash_monitor.fleet.caveat import width_text
     head = ("drive", "true", "fused", "continuous", "level", "model fit", "chunks", "discarded", "onsets",
             "estimated", "lag p50/max", "CPU", "real time")
     table = [head]
@@ -298,7 +302,8 @@ def format_summary(rows: list[dict]) -> str:
         fit = r.get("model_fit", "-")
         level, _, text = fit.partition(": ")
         table.append((r["drive"], mm(r["true_width_m"]), mm(r["fused_width_m"]),
-                      mm(r.get("fused_continuous_width_m", math.nan)), r["level"],
+                      width_text(r.get("fused_continuous_width_m", math.nan),
+                                 r.get("fused_width_uncertainty_m", math.nan)), r["level"],
                       short_model_fit(text) if text else level,
                       f"{r['chunks']}/{r['expected_chunks']}", str(r["discarded"]),
                       str(r["onset_windows"]), str(r["onsets_estimated"]),

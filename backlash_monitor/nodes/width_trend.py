@@ -14,7 +14,9 @@ than ``live_min_span_s``: no rate yet). With ``state_file`` the trend's points a
 file (written when a point closes, once per ``live_point_period_s``, and at shutdown) and read at
 start: a restarted monitor goes on with the drive's history; without it the trend starts anew
 when the node starts. The offline trend (`analyze FOLDER`) covers the recordings of any length
-of time.
+of time. When the model watch of the same namespace says the drive's model does not explain it
+(``model_fit`` level WARN), the status says so in the same line (backlash_monitor/fleet/caveat.py):
+a WARN or ERROR on the width never stands alone when the model fit fails.
 """
 from __future__ import annotations
 
@@ -23,9 +25,11 @@ import sys
 
 from rclpy.node import Node
 
+from backlash_monitor.fleet.caveat import with_caveat
 from backlash_monitor.fleet.trend import (PRIMARY_SIGNAL, LiveTrend, load_live_points, load_rule,
                                           save_live_points)
 from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
+from backlash_monitor.nodes.model_fit_caveat import follow_model_fit
 from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
 from backlash_monitor.nodes.qos import ESTIMATE_QOS
@@ -62,9 +66,17 @@ class WidthTrendNode(Node):
         self.signal = p["signal"]
         self.first_signal = ""
         self.create_subscription(BacklashEstimate, "estimate", self.on_estimate, ESTIMATE_QOS)
+        self.model_fit = None       # the model watch's last FitVerdict (None: none heard)
+        follow_model_fit(self, self.on_model_fit)
         self.diagnostics = DriveDiagnostics(self, "width trend", p["drive_name"],
                                             refresh=self.update_diagnostics)
         self.update_diagnostics()
+
+    def on_model_fit(self, verdict) -> None:
+        changed = self.model_fit is None or verdict.explains != self.model_fit.explains
+        self.model_fit = verdict
+        if changed:
+            self.update_diagnostics(publish_now=True)
 
     def on_estimate(self, msg: BacklashEstimate):
         if not self.signal:
@@ -104,7 +116,7 @@ class WidthTrendNode(Node):
             level = "OK" if t.level == "STALE" else t.level
             rate = ("no rate" if math.isnan(t.rate_m_per_day)
                     else f"{t.rate_m_per_day * 1e3:+.3f} mm/day")
-            message = f"{rate}; {t.reason}" if t.reason else rate
+            message = with_caveat(f"{rate}; {t.reason}" if t.reason else rate, self.model_fit)
         if self.state_problem:      # the history is not kept (or was not read): never silently
             level = "WARN" if level == "OK" else level
             message = f"{message}; {self.state_problem}"

@@ -35,7 +35,7 @@ ESTIMATE_BATCH = 64   # onset windows per batched denoise + DriveEstimator.estim
 CSV_COLUMNS = ("entry_sample_index", "entry_time_s", "signal", "mode", "width_m", "width_index",
                "b_margin", "continuous_width_m", "fused_width_m", "fused_events", "true_width_m",
                "b_vector", "fused_continuous_width_m", "a1_offset_m_s2", "a2_offset_m_s2",
-               "offset_periods")
+               "offset_periods", "fused_width_uncertainty_m")
 TRIGGERS = ("contact_loss", "paper")
 ANGLE_SOURCES = ("measured", "integrated")
 
@@ -495,6 +495,7 @@ def _row(window, est, true_width) -> dict:
         "fused_events": est.fused_events, "true_width_m": true_width,
         "b_vector": np.asarray(est.b_vector, dtype=np.float64).tolist(),   # (Python floats)
         "fused_continuous_width_m": est.fused_continuous_width_m,
+        "fused_width_uncertainty_m": est.fused_width_uncertainty_m,
         "a1_offset_m_s2": window.sensor_offsets.get("a1", math.nan),
         "a2_offset_m_s2": window.sensor_offsets.get("a2", math.nan),
         "offset_periods": window.offset_periods,
@@ -518,6 +519,7 @@ def _summary(rows, true_width):
         s["fused_width_m"] = r["fused_width_m"]
         s["fused_events"] = r["fused_events"]
         s["fused_continuous_width_m"] = r.get("fused_continuous_width_m", math.nan)
+        s["fused_width_uncertainty_m"] = r.get("fused_width_uncertainty_m", math.nan)
     return {"true_width_m": true_width, "per_signal": per}
 
 
@@ -544,4 +546,5 @@ def _write_estimate_bag(path, estimates_msgs, true_width):
                 "b_margin": est.b_margin, "continuous_width_m": est.continuous_width_m,
                 "fused_width_m": est.fused_width_m, "fused_events": est.fused_events,
                 "true_width_m": true_width,
-                "fused_continuous_width_m": est.fused_continuous_width_m}, log_time_ns=stamp_ns)
+                "fused_continuous_width_m": est.fused_continuous_width_m,
+                "fused_width_uncertainty_m": est.fused_width_uncertainty_m}, log_time_ns=stamp_ns)

@@ -24,7 +24,7 @@ def estimate(**over):
            "b_vector": np.array([3.5, 2.0, 0.1, 1e-300, math.inf, 7.0]),
            "width_index": 2, "width_m": 0.005, "b_margin": 20.0, "continuous_width_m": 0.0051,
            "fused_width_m": 0.005, "fused_events": 8, "true_width_m": math.nan,
-           "fused_continuous_width_m": 0.00507}
+           "fused_continuous_width_m": 0.00507, "fused_width_uncertainty_m": 2.1e-5}
     msg.update(over)
     return msg
 
@@ -41,6 +41,7 @@ CASES = [
      "fused_events": np.uint32(0), "width_m": np.float64(0.0025), "true_width_m": 1},
     {"entry_kind": "x" * 7, "mode": "ab"},
     {"continuous_width_m": math.nan, "fused_width_m": -0.0, "fused_continuous_width_m": math.nan},
+    {"fused_continuous_width_m": math.nan, "fused_width_uncertainty_m": math.nan},
 ]
 
 

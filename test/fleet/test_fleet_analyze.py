@@ -1,4 +1,5 @@
 """`analyze FOLDER`: many recordings in parallel into one fleet table, with each drive's trend."""
+import csv
 import json
 import math
 import subprocess
@@ -66,6 +67,9 @@ def test_a_folder_of_bags_becomes_one_fleet_table_with_trends(fleet_bags, tmp_pa
     # candidate grid: its slope over the three recordings, near the true 0.125 mm/day
     driveA = sorted((r for r in rows if r["drive"] == "line1/driveA"), key=lambda r: r["time_s"])
     assert all(abs(r["width_m"] - r["true_width_m"]) < 3e-4 for r in rows)
+    # each recording's width carries the standard error of its windows' median (4-5 onset windows)
+    assert all(0 < r["width_uncertainty_m"] < 3e-4 for r in rows), [r["width_uncertainty_m"] for r in rows]
+    assert all(r["width_caveat"] == "" for r in rows)       # --no-model-fit: no fit, no caveat
     assert result["trends"]["line1/driveA"]["rate_m_per_day"] == pytest.approx(
         slope_per_day([r["time_s"] for r in driveA], [r["width_m"] for r in driveA]), rel=1e-9)
     assert result["trends"]["line1/driveA"]["rate_m_per_day"] == pytest.approx(1.25e-4, abs=2e-5)
@@ -103,6 +107,17 @@ def test_the_model_fit_column_holds_each_bag_against_the_drives_model(tmp_path):
     assert rows["friction"]["model_fit"]["model"] == "default v1"
     assert "model fit" in proc.stdout.splitlines()[0]
     assert "does not explain friction_" in proc.stdout and "run diagnose on it" in proc.stdout
+    # the width of the recording its model does not explain says so in the same line (table, CSV, JSON); the
+    # other's width stands alone
+    assert rows["clean"]["width_caveat"] == ""
+    assert rows["friction"]["width_caveat"].startswith("model default v1 does not explain this drive (residual ")
+    friction_line = next(line for line in proc.stdout.splitlines() if "friction_" in line and " mm" in line)
+    assert " mm — model default v1 does not explain this drive" in friction_line
+    clean_line = next(line for line in proc.stdout.splitlines() if "clean_" in line and " mm" in line)
+    assert "does not explain" not in clean_line
+    fleet_csv = list(csv.DictReader((out / "fleet.csv").open()))
+    assert {r["bag"].rsplit("/", 1)[1].split("_")[0]: r["width_caveat"] for r in fleet_csv}["friction"] \
+        == rows["friction"]["width_caveat"]
 
 
 def test_the_model_fit_reference_is_the_one_given_else_the_librarys_else_the_default_models_nearest_width(tmp_path):

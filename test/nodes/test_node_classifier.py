@@ -10,12 +10,13 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from rclpy.parameter import Parameter
 
 from backlash_monitor.chain import denoise_pair, denoising_label
+from backlash_monitor.classifier.fusion import median_standard_error
 from backlash_monitor.nodes.classifier import ClassifierNode, ESTIMATE_QOS
 from backlash_monitor.nodes.conversions import to_float64_array
 from backlash_monitor.nodes.windowing import WINDOW_QOS
 from backlash_monitor.plant import PlantSimulator, Scenario
 from backlash_monitor.windowing import extract_windows
-from backlash_monitor_msgs.msg import BacklashEstimate, BacklashWindow
+from backlash_monitor_msgs.msg import BacklashEstimate, BacklashWindow, ModelFit
 
 EXECUTABLE = os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor",
                           "classifier")
@@ -80,6 +81,20 @@ def test_estimates_and_namespaced_diagnostics(ros_env):
             if len(estimates) >= (len(windows) - 1) * len(node.estimator.signals) and \
                     any(d.status[0].level != DiagnosticStatus.STALE for d in diagnostics):
                 break
+        # the model watch of the same namespace says the model does not explain the drive: the width's
+        # status says so in the same line
+        fit_pub = probe.create_publisher(ModelFit, "model_fit", 10)
+        fit = ModelFit(level=ModelFit.WARN, model="drive7 v1", residual_over_noise_overall=2.5)
+        for _ in range(100):
+            executor.spin_once(timeout_sec=0.05)
+            if fit_pub.get_subscription_count():
+                break
+        before = len(diagnostics)
+        fit_pub.publish(fit)
+        for _ in range(100):
+            executor.spin_once(timeout_sec=0.05)
+            if len(diagnostics) > before and "does not explain" in diagnostics[-1].status[0].message:
+                break
     finally:
         rclpy.try_shutdown()
     # every onset window but the first (not classified, counted, no fault)
@@ -96,8 +111,16 @@ def test_estimates_and_namespaced_diagnostics(ros_env):
     # the fused continuous width: the median of the same events' continuous widths (this signal's)
     mine = [e.continuous_width_m for e in estimates if e.signal_name == est.signal_name][-est.fused_events:]
     assert est.fused_continuous_width_m == pytest.approx(float(np.median(mine)), rel=1e-12)
+    # and its uncertainty: the robust standard error of that median over the same events
+    assert est.fused_width_uncertainty_m == pytest.approx(median_standard_error(mine), rel=1e-12)
+    assert 0 < est.fused_width_uncertainty_m < 5e-4
     assert est.true_width_m == 0.009
-    status = [d.status[0] for d in diagnostics if d.status[0].level != DiagnosticStatus.STALE][-1]
+    last = diagnostics[-1].status[0]
+    assert last.message.endswith("— model drive7 v1 does not explain this drive (residual 2.5× its floor): "
+                                 "run diagnose before acting"), last.message
+    assert {kv.key: kv.value for kv in last.values}["model_fit"] == "does not explain"
+    assert not any("does not explain" in d.status[0].message for d in diagnostics[:before])
+    status = [d.status[0] for d in diagnostics[:before] if d.status[0].level != DiagnosticStatus.STALE][-1]
     assert status.name == "line1/drive7/classifier: backlash width"
     assert status.hardware_id == "drive7"
     assert {kv.key: kv.value for kv in status.values}["windows_waiting_for_offset"] == "1"

@@ -73,3 +73,5 @@ def test_offline_analysis_equals_the_live_estimates_exactly(recorded_run, tmp_pa
         assert e["fused_events"] == msg.fused_events
         assert e["fused_continuous_width_m"] == msg.fused_continuous_width_m or (
             np.isnan(e["fused_continuous_width_m"]) and np.isnan(msg.fused_continuous_width_m))
+        assert e["fused_width_uncertainty_m"] == msg.fused_width_uncertainty_m or (
+            np.isnan(e["fused_width_uncertainty_m"]) and np.isnan(msg.fused_width_uncertainty_m))
