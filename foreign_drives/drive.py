@@ -121,6 +121,7 @@ def make_recording(spec: RecordingSpec, tol_scale: float = 1.0) -> Recording:
     t = (np.arange(run.out.shape[0]) - n_pre) / fs
     accel = {"a1": run.signal("a1", pre_roll=True), "a2": run.signal("a2", pre_roll=True)}
     states = {"alpha1": run.signal("alpha1", pre_roll=True), "alpha2": run.signal("alpha2", pre_roll=True),
+              "omega1": run.signal("omega1", pre_roll=True),
               "a1_physical": accel["a1"], "a2_physical": accel["a2"]}
     sensed = apply_sensor_chain(spec, accel, t, fs, states=states)
     sig = {"a1": sensed["a1"][n_pre:], "a2": sensed["a2"][n_pre:],

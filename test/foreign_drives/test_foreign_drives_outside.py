@@ -79,7 +79,8 @@ def mass_term_N(rec):
 
 # --------------------------------------------------------------------------------------------- the registry
 def test_outside_mechanisms_are_twelve_or_more_split_in_halves_with_their_truth_vocabulary():
-    assert len(DEV) >= 6
+    assert len(OUTSIDE) >= 12 and len(DEV) >= 6 and len(SEALED) >= 6
+    assert abs(len(DEV) - len(SEALED)) <= 1
     for name, f in OUTSIDE.items():
         assert f.family is None and name not in F.CATALOGUE_FAMILIES
         assert f.balance in O.BALANCES, name
@@ -90,9 +91,11 @@ def test_outside_mechanisms_are_twelve_or_more_split_in_halves_with_their_truth_
             assert math.isfinite(lo) and math.isfinite(hi) and lo < hi, (name, p.name)
     from foreign_drives import outside_dev, outside_sealed
     assert {c.name for c in outside_dev.FORM_CLASSES} == set(DEV)
-    assert {c.name for c in outside_sealed.FORM_CLASSES} == set(SEALED)     # the sealed half: the next commit
+    assert {c.name for c in outside_sealed.FORM_CLASSES} == set(SEALED)
     assert {f.balance for f in DEV.values()} >= {"motor_load_moment", "wheel_torque", "clutch_torque", "mass_force",
                                                   "sensor"}
+    assert {f.balance for f in SEALED.values()} >= {"motor_load_moment", "wheel_torque", "clutch_torque",
+                                                     "mass_force", "sensor"}
 
 
 def _zero(form):
@@ -198,6 +201,33 @@ def test_rotating_gravity_is_on_a1_only_and_locked_to_the_motor_angle():
     assert np.array_equal(i["a1_physical"], clean().internal["a1_physical"])    # the drive itself unchanged
 
 
+# --------------------------------------------------------------------------------------------- sealed physics
+@pytest.mark.parametrize("name", sorted(SEALED))
+def test_sealed_mechanism_acts_in_its_recorded_balance_only(name):
+    """Every sealed mechanism, at its suite's strength, changes the balance its truth names and no other."""
+    from foreign_drives.suites import suite
+    (eff,) = [e for s in suite("outside_sealed") for e in s.effects if e.form == name][:1]
+    rec = make_recording(spec([eff]))
+    off = {"motor_load_moment": np.max(np.abs(motor_term_Nm(rec))), "wheel_torque": np.max(np.abs(wheel_term_Nm(rec))),
+           "mass_force": np.max(np.abs(mass_term_N(rec)))}
+    f = SEALED[name]
+    if f.balance == "sensor":
+        assert max(off.values()) < 1e-6
+        assert any(np.max(np.abs(rec.signals[k] - rec.internal[f"{k}_physical"])) > 0.05 for k in ("a1", "a2"))
+        assert np.array_equal(rec.internal["a1_physical"], clean().internal["a1_physical"])
+        return
+    if f.balance == "clutch_torque":
+        assert max(off.values()) < 1e-6
+        dtc = np.abs(rec.internal["clutch_torque_Nm"] - clean().internal["clutch_torque_Nm"])
+        assert dtc.max() > 0.5
+        return
+    for bal, v in off.items():
+        if bal == f.balance:
+            assert v > 0.5, (name, bal, v)             # N*m or N: a term that matters
+        else:
+            assert v < 1e-6, (name, bal, v)
+
+
 # --------------------------------------------------------------------------------------------- truth
 def test_truth_records_balance_states_law_and_the_plugin_of_the_angle_locked_ones():
     from foreign_drives.suites import suite
@@ -211,6 +241,10 @@ def test_truth_records_balance_states_law_and_the_plugin_of_the_angle_locked_one
             if e.plugin and e.balance != "sensor" and set(e.depends_on) & set(angle_locked):
                 angle_locked[next(iter(set(e.depends_on) & set(angle_locked)))] += 1
     assert angle_locked["wheel_angle"] >= 1 and angle_locked["motor_angle"] >= 1
+    for s in suite("outside_sealed"):
+        for e in s.truth().effects:
+            if e.family is None:
+                assert e.half == "sealed" and e.balance in O.BALANCES
 
 
 def test_the_plugins_are_the_laws_in_the_projects_plugin_form(tmp_path):
@@ -239,7 +273,7 @@ def test_outside_suites_are_well_formed():
     from foreign_drives.suites import BENCH, TEST, WIDTH_LOOP, suite
     dev, sealed = suite("outside_dev"), suite("outside_sealed")
     others = BENCH + WIDTH_LOOP + TEST
-    for s_, half, names in ((dev, "dev", DEV),):
+    for s_, half, names in ((dev, "dev", DEV), (sealed, "sealed", SEALED)):
         assert all(s.duration_s == 4.0 for s in s_)
         kinds = [s.kind for s in s_]
         assert 1 <= kinds.count("clean") <= 3
@@ -263,7 +297,7 @@ def test_outside_suites_write_valid_bags_with_their_truth(tmp_path):
     from foreign_drives.suites import suite
     from pathlib import Path
     repo = Path(__file__).resolve().parents[2]
-    for name in ("outside_dev",):
+    for name in ("outside_dev", "outside_sealed"):
         row = next(s for s in suite(name) if s.kind == "outside" and not s.truth().width_is_measurand)
         out = tmp_path / name
         r = subprocess.run([sys.executable, "-m", "foreign_drives", "write", "--suite", name, "--out", str(out),
