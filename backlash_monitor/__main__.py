@@ -8,6 +8,7 @@ import os
 import sys
 
 from backlash_monitor.commands import UsageError, discover_commands
+from backlash_monitor.errors import HelpFormatter
 
 
 def build_parser(only: str | None = None) -> argparse.ArgumentParser:
@@ -20,7 +21,7 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     for module in discover_commands(only):
         command_parser = sub.add_parser(
             module.NAME, help=module.HELP, description=getattr(module, "DESCRIPTION", module.HELP),
-            formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+            formatter_class=HelpFormatter)
         module.add_arguments(command_parser)
         command_parser.set_defaults(_run=module.run)
     return parser

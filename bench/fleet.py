@@ -58,7 +58,7 @@ def run_fleet(n, layout, duration_s, workdir):
     started = time.perf_counter()
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "fleet", "--drives", str(n),
                            "--duration", str(duration_s), "--layout", layout,
-                           "--view-period", "0", "--summary-json", summary, *watch],
+                           "--view-period", "0", "--json", summary, *watch],
                           capture_output=True, text=True, timeout=duration_s * 4 + 300)
     wall = time.perf_counter() - started
     after = resource.getrusage(resource.RUSAGE_CHILDREN)

@@ -9,7 +9,8 @@ def add_model_arguments(parser, measurement: bool = True) -> None:
         parser.add_argument("measurement", help="the drive's recording: an MCAP bag with the project's topics (any "
                                                 "namespace), or a CSV/NPZ table (layout: docs/workbench.md)")
         parser.add_argument("--namespace", default=None,
-                            help="namespace of the drive's topics in the bag (default: found by the topic names)")
+                            help="namespace of the drive's topics in the bag (default: the one drive the bag holds, "
+                                 "found by the topic names)")
         parser.add_argument("--row", type=int, default=0, help="row of a `simulate` NPZ with several scenarios")
     parser.add_argument("--model", default=None, metavar="M.yaml",
                         help="workbench model file (docs/workbench.md); default: config/plant.yaml at the nominal "
@@ -20,11 +21,33 @@ def add_model_arguments(parser, measurement: bool = True) -> None:
                         help="a Python file with your own Effect classes (docs/effects.md): registered, fitted as "
                              "candidates by diagnose, usable in --set, and kept in the model add-effect writes; "
                              "repeatable")
-    parser.add_argument("--width-m", type=float, default=None, help="the drive's nominal backlash width [m]")
-    parser.add_argument("--eta-k", type=float, default=None, help="nominal absorber consistency eta_k [Pa*s^n]")
-    parser.add_argument("--n1", type=float, default=None, help="nominal absorber flow index n1 [-]")
-    parser.add_argument("--seeds", type=int, default=6, metavar="K",
-                        help="noise seeds of the model's ensemble (>= 3; the band and the fits use them)")
+    parser.add_argument("--width-m", type=float, default=None, metavar="M",
+                        help="the drive's nominal backlash width [m] (default: the model's nominal; "
+                             f"without --model: {_nominal('width_m'):g})")
+    parser.add_argument("--eta-k", type=float, default=None,
+                        help="nominal absorber consistency eta_k [Pa*s^n] (default: the model's nominal; "
+                             f"without --model: {_nominal('eta_k'):g})")
+    parser.add_argument("--n1", type=float, default=None,
+                        help="nominal absorber flow index n1 [-] (default: the model's nominal; "
+                             f"without --model: {_nominal('n1'):g})")
+    parser.add_argument("--ensemble", type=int, default=6, metavar="N",
+                        help="size of the model's noise ensemble: seeds 0..N-1, 3 <= N <= 64 (the band and the fits "
+                             "use them)")
+    from backlash_monitor.commands.vocabulary import deprecated
+    deprecated(parser, "--seeds", "--ensemble", "ensemble", type=int, metavar="N")
+
+
+def add_progress_argument(parser) -> None:
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+# The default model's nominal values (workbench/model.py DEFAULT_NOMINAL, which imports the plant: seconds at
+# start-up), shown as the defaults of --width-m, --eta-k, --n1; test_cli_vocabulary checks they are the same.
+DEFAULT_NOMINAL_SHOWN = {"width_m": 0.0075, "eta_k": 0.025, "n1": 0.89}
+
+
+def _nominal(key: str) -> float:
+    return DEFAULT_NOMINAL_SHOWN[key]
 
 
 def model_overrides(args) -> dict:
@@ -75,8 +98,8 @@ def load(args, measurement: bool = True):
     from backlash_monitor.commands import UsageError
     from backlash_monitor.workbench.measurement import MeasurementError, check_against_model, load_measurement
     from backlash_monitor.workbench.model import ModelError, load_model
-    if not 3 <= args.seeds <= 64:
-        raise UsageError(f"--seeds {args.seeds}: allowed 3 <= K <= 64")
+    if not 3 <= args.ensemble <= 64:
+        raise UsageError(f"--ensemble {args.ensemble}: out of range, allowed 3..64")
     try:
         model = load_model(args.model, args.set, args.width_m, args.eta_k, args.n1,
                            effect_files=args.effects_file)

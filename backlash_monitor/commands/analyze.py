@@ -24,6 +24,7 @@ This module parses and prints; the analysis is backlash_monitor/offline/analyze.
 from __future__ import annotations
 
 import math
+import sys
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -39,16 +40,17 @@ def add_arguments(parser) -> None:
     parser.add_argument("bag", help="MCAP file recorded from a drive (or by `simulate --mcap`); "
                                     "a folder or a quoted glob of them: every bag in parallel, "
                                     "into one fleet table (backlash_monitor/fleet/analyze.py)")
-    parser.add_argument("--out", default="",
-                        help="output prefix (default: the bag's path without .mcap, plus "
-                             "'.estimates'): writes PREFIX.csv, PREFIX.json, PREFIX.mcap")
+    parser.add_argument("--out", default="", metavar="PREFIX",
+                        help="one bag: the output prefix, writes PREFIX.csv, PREFIX.json, PREFIX.mcap (default: "
+                             "the bag's path without .mcap, plus '.estimates')")
     parser.add_argument("--namespace", default="",
                         help="namespace of the drive's topics in the bag (e.g. /line1/drive7; default: the one drive "
                              "the bag holds, found by its plant/a1 topic)")
     parser.add_argument("--trigger", choices=("contact_loss", "paper"), default="contact_loss",
                         help="entry trigger (the library must be trained with it)")
-    parser.add_argument("--width-m", type=float, default=0.0,
-                        help="backlash width for the 'paper' trigger [m] (eq. 1)")
+    parser.add_argument("--width-m", type=float, default=0.0, metavar="M",
+                        help="the drive's backlash width [m], which the 'paper' trigger needs (eq. 1) (default: "
+                             "none; the contact_loss trigger needs no width)")
     parser.add_argument("--window-offset", type=int, default=None, metavar="SAMPLES",
                         help="samples from the detected entry to the window start (default: the "
                              "trigger's configured value, config/windowing.yaml; the library must "
@@ -58,9 +60,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("--mode", default="",
                         help="classifier mode: paper, paper_corrected or shape (default: shape)")
     parser.add_argument("--n1", type=float, default=0.89,
-                        help="absorber flow index (the paper modes use this n1's patterns)")
-    parser.add_argument("--library", default="", help="pattern library (default: the packaged one)")
-    parser.add_argument("--fusion-events", type=int, default=8,
+                        help="absorber flow index n1 [-] (the paper modes use this n1's patterns)")
+    parser.add_argument("--library", default="", metavar="LIB.npz", help="pattern library (default: the packaged one)")
+    parser.add_argument("--fusion-events", type=int, default=8, metavar="N",
                         help="onset events fused into one estimate")
     parser.add_argument("--recover", action="store_true",
                         help="analyse what is intact of a damaged bag (recorder killed, damaged "
@@ -68,6 +70,7 @@ def add_arguments(parser) -> None:
     parser.add_argument("--overwrite", action="store_true",
                         help="replace existing output files (never the analysed bag itself); "
                              "without it an existing output is an error")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar (over the bags of a folder)")
     _add_many_arguments(parser)
 
 
@@ -75,7 +78,10 @@ def _add_many_arguments(parser) -> None:
     """The options of the many-bag path (added to `analyze`'s; backlash_monitor/fleet/analyze.py)."""
     from backlash_monitor.fleet.analyze import ENGINES
     group = parser.add_argument_group("many recordings (BAG is a folder or a quoted glob)")
-    group.add_argument("--jobs", type=int, default=0,
+    group.add_argument("--out-dir", default="", metavar="DIR",
+                       help="folder for the fleet table, trend plots and each bag's estimates, created if missing "
+                            "(default: fleet_analysis beside the first bag)")
+    group.add_argument("--jobs", type=int, default=0, metavar="N",
                        help="bags analysed at once (default: this machine's cores; 1: one after "
                             "the other in this process)")
     group.add_argument("--engine", choices=ENGINES, default="local",
@@ -84,7 +90,7 @@ def _add_many_arguments(parser) -> None:
     group.add_argument("--scheduler", default="",
                        help="address of an existing Dask scheduler (tcp://host:8786); default: a "
                             "local cluster with --jobs workers")
-    group.add_argument("--trend-config", default="",
+    group.add_argument("--trend-config", default="", metavar="FILE.yaml",
                        help="trend rule file (default: the packaged config/trend.yaml)")
     group.add_argument("--no-plots", action="store_true", help="write no trend plots")
     group.add_argument("--watch-reference", default="", metavar="REF.watch.npz",
@@ -110,9 +116,9 @@ def fleet_options_from_args(args) -> FleetOptions:
     """The many-bag options of a parsed `analyze FOLDER` command line (a FleetOptions, its model
     fit's WatchOptions among them)."""
     from backlash_monitor.fleet.analyze import FleetOptions, WatchOptions
-    return FleetOptions(bags=args.bag, out=args.out, jobs=args.jobs, engine=args.engine,
+    return FleetOptions(bags=args.bag, out=args.out_dir, jobs=args.jobs, engine=args.engine,
                         scheduler=args.scheduler, trend_config=args.trend_config,
-                        plots=not args.no_plots,
+                        plots=not args.no_plots, progress=not args.no_progress,
                         watch=WatchOptions(enabled=not args.no_model_fit,
                                            reference=args.watch_reference))
 
@@ -122,10 +128,18 @@ def run(args) -> int:
     # threads of its forked workers' pools first (they inherit this process's, set when numpy is imported)
     from backlash_monitor.fleet.analyze import is_many, limit_threads, run_many, runs_parallel_here
     if is_many(args.bag):
+        if args.out and not args.out_dir:     # the release before named the folder --out
+            print("python -m backlash_monitor analyze: warning: --out for a folder of bags is deprecated and will "
+                  "be removed in the next release; use --out-dir", file=sys.stderr)
+            args.out_dir = args.out
         fleet = fleet_options_from_args(args)
         if runs_parallel_here(fleet):
             limit_threads()
         return run_many(fleet, options_from_args(args))
+    if args.out_dir:
+        from backlash_monitor.errors import UsageError
+        raise UsageError(f"--out-dir {args.out_dir}: is for a folder of bags; one bag's outputs are named by "
+                         "--out PREFIX")
     from backlash_monitor.offline.analyze import analyze_bag
     result = analyze_bag(args.bag, args.out, options_from_args(args))
     _print_summary(result["summary"], result["rows"], result["discarded"], result["n_samples"],

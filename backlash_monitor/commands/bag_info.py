@@ -29,7 +29,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--topic", action="append", default=[], metavar="TOPIC",
                         help="also decode this topic and show its details (SignalChunk: samples, "
                              "sample rate, gaps); repeatable")
-    parser.add_argument("--json", action="store_true", help="print one JSON object instead of text")
+    parser.add_argument("--format", choices=("text", "json"), default="text",
+                        help="print text, or one JSON object")
+    from backlash_monitor.commands.vocabulary import deprecated
+    deprecated(parser, "--json", "--format json", "format", const="json")
 
 
 def _fmt_time(ns: int | None) -> str:
@@ -120,7 +123,7 @@ def run(args) -> int:
         if details:
             info["details"] = details
 
-    if args.json:
+    if args.format == "json":
         print(json.dumps(info, indent=2))
     else:
         _print_text(info)

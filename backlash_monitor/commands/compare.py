@@ -1,7 +1,7 @@
 """`python -m backlash_monitor compare MEASUREMENT --model M`: the model against a measurement.
 
 The model runs under the measurement's conditions (its pulse train's phase recovered from the onset
-entries) for K noise seeds; the onset segments (contact_loss trigger, on both) are aligned at the entry
+entries) for N noise seeds (--ensemble); the onset segments (contact_loss trigger, on both) are aligned at the entry
 and averaged over the events. Per signal: fit % (1 - NRMSE) of the denoised event average against the
 ensemble mean, the same for the model's own runs (the noise band), the residual over the noise floor,
 the event-to-event spread measured vs modelled; whole-record raw spectra against the ensemble's.
@@ -20,12 +20,17 @@ DESCRIPTION = __doc__
 def add_arguments(parser) -> None:
     from backlash_monitor.commands._workbench import add_model_arguments
     add_model_arguments(parser)
-    parser.add_argument("--out-dir", default="compare_out", help="directory for compare.json and the PNGs")
-    parser.add_argument("--json", default=None, metavar="PATH", help="also write the JSON here")
-    parser.add_argument("--no-record", action="store_true",
+    parser.add_argument("--out-dir", default="compare_out", metavar="DIR",
+                        help="folder for compare.json and the PNGs, created if missing")
+    parser.add_argument("--json", default=None, metavar="FILE",
+                        help="also write the JSON to FILE (default: only DIR/compare.json)")
+    parser.add_argument("--no-history", action="store_true",
                         help="do not add this check to the model's history (workbench_history.jsonl)")
-    from backlash_monitor.commands._workbench import add_overwrite_argument
+    from backlash_monitor.commands.vocabulary import deprecated
+    deprecated(parser, "--no-record", "--no-history", "no_history", const=True)
+    from backlash_monitor.commands._workbench import add_overwrite_argument, add_progress_argument
     add_overwrite_argument(parser)
+    add_progress_argument(parser)
 
 
 def compare_result(meas, model, seeds):
@@ -61,9 +66,10 @@ def run(args) -> int:
         check_outputs(args, [args.json], "--json")
     model, meas = load(args)
     out.mkdir(parents=True, exist_ok=True)
-    with tqdm(total=1, desc=f"model ensemble ({args.seeds} seeds)", disable=None) as bar:
+    with tqdm(total=1, desc=f"model ensemble ({args.ensemble} seeds)",
+              disable=True if args.no_progress else None) as bar:
         try:
-            res, comp, spec = compare_result(meas, model, args.seeds)
+            res, comp, spec = compare_result(meas, model, args.ensemble)
         except (ConditionsError, ValueError) as exc:
             raise UsageError(str(exc)) from None
         bar.update(1)
@@ -73,7 +79,7 @@ def run(args) -> int:
     write_text_staged(out / "compare.json", text)
     if args.json:
         write_text_staged(args.json, text)
-    if not args.no_record:
+    if not args.no_history:
         record_check(model, meas.source, "compare", res["fit_percent"], res["residual_over_noise_floor"])
     rows = [(s, f"{res['fit_percent'][s]:.1f}", f"{res['noise_band_fit_percent'][s]['median']:.1f}",
              f"{res['residual_over_noise_floor'][s]:.2f}", f"{res['spread'][s]['measured']:.4g}",

@@ -21,10 +21,11 @@ DESCRIPTION = __doc__
 def add_arguments(parser) -> None:
     from backlash_monitor.commands._workbench import add_model_arguments
     add_model_arguments(parser)
-    parser.add_argument("--json", default=None, metavar="PATH", help="write the diagnosis JSON here "
+    parser.add_argument("--json", default=None, metavar="FILE", help="write the diagnosis JSON to FILE "
                         "(default: diagnosis.json in --report, or ./diagnosis.json)")
     parser.add_argument("--report", default=None, metavar="DIR",
-                        help="write the HTML report (index.html) and its PNGs into DIR")
+                        help="also write the HTML report (index.html) and its PNGs into DIR, created if missing "
+                             "(default: no report)")
     parser.add_argument("--candidates", default=None, metavar="NAME[,NAME...]",
                         help="fit only these catalogue effects as candidates (default: the whole catalogue; "
                              "your own effects from a file: --effects-file)")
@@ -32,9 +33,13 @@ def add_arguments(parser) -> None:
     parser.add_argument("--effects", dest="candidates", action=DeprecatedSpelling, new="--candidates",
                         metavar="NAME[,NAME...]", help=argparse.SUPPRESS)
     parser.add_argument("--no-second", action="store_true", help="do not try a second effect on top")
-    parser.add_argument("--no-record", action="store_true", help="do not add this check to the model's history")
-    from backlash_monitor.commands._workbench import add_overwrite_argument
+    parser.add_argument("--no-history", action="store_true",
+                        help="do not add this check to the model's history (workbench_history.jsonl)")
+    from backlash_monitor.commands.vocabulary import deprecated
+    deprecated(parser, "--no-record", "--no-history", "no_history", const=True)
+    from backlash_monitor.commands._workbench import add_overwrite_argument, add_progress_argument
     add_overwrite_argument(parser)
+    add_progress_argument(parser)
 
 
 def run(args) -> int:
@@ -54,14 +59,14 @@ def run(args) -> int:
                          f"your own effects is given with --effects-file {files[0]}")
     json_path = Path(args.json) if args.json else (Path(args.report) / "diagnosis.json" if args.report
                                                    else Path("diagnosis.json"))
-    check_outputs(args, [json_path], "--json")
+    check_outputs(args, [json_path], "--json" if args.json or not args.report else "--report")
     if args.report:
         check_outputs(args, [Path(args.report) / f for f in REPORT_FILES], "--report")
     model, meas = load(args)
     n = len(effects) if effects else len(plant_adapter.catalogue(model))
-    with tqdm(total=n, desc="screening candidate effects", unit="effect", disable=None) as bar:
+    with tqdm(total=n, desc="screening candidate effects", unit="effect", disable=True if args.no_progress else None) as bar:
         try:
-            result = diagnose(meas, model, seeds=list(range(args.seeds)), effects=effects, progress=bar.update,
+            result = diagnose(meas, model, seeds=list(range(args.ensemble)), effects=effects, progress=bar.update,
                               second=not args.no_second, overrides=model_overrides(args))
         except (ConditionsError, ValueError) as exc:
             raise UsageError(str(exc)) from None
@@ -71,7 +76,7 @@ def run(args) -> int:
     if args.report:
         page = report.write_report(result, args.report)
         print(f"report: {page}")
-    if not args.no_record:
+    if not args.no_history:
         record_check(model, meas.source, "diagnose", pub["fit_percent"]["before"],
                      pub["residual_over_noise_floor"]["before"])
     rows = []

@@ -15,8 +15,11 @@ DESCRIPTION = __doc__
 
 def add_arguments(parser) -> None:
     parser.add_argument("where", nargs="?", default=".", metavar="DIR_OR_MODEL",
-                        help="a model file or the directory holding workbench_history.jsonl (default: .)")
-    parser.add_argument("--json", action="store_true", help="print the history as JSON instead of a table")
+                        help="a model file or the folder holding workbench_history.jsonl (default: the current folder)")
+    parser.add_argument("--format", choices=("text", "json"), default="text",
+                        help="print the history as a table (text) or as JSON")
+    from backlash_monitor.commands.vocabulary import deprecated
+    deprecated(parser, "--json", "--format json", "format", const="json")
 
 
 def run(args) -> int:
@@ -29,7 +32,7 @@ def run(args) -> int:
     hist = read_history(args.where)
     if not hist:
         raise UsageError(f"no workbench history at {args.where} (add-effect, compare and diagnose write it)")
-    if args.json:
+    if args.format == "json":
         print(json.dumps(hist, indent=1))
         return 0
     versions = [h for h in hist if h.get("type") == "version"]

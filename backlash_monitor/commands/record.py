@@ -16,5 +16,10 @@ def add_arguments(parser) -> None:
 
 
 def run(args) -> int:
+    from pathlib import Path
+    from backlash_monitor.errors import UsageError
+    from backlash_monitor.files.outputs import missing_folder_message
     from backlash_monitor.nodes.record import PARAMETERS, main
+    if args.output and not Path(args.output).parent.is_dir():
+        raise UsageError(missing_folder_message("--output", args.output))
     return main(args=["record", *ros_arguments(args, PARAMETERS)])

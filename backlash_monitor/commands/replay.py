@@ -1,8 +1,8 @@
 """`python -m backlash_monitor replay BAG`: publish a recorded bag into the graph.
 
 The `replay` node (`ros2 run backlash_monitor replay`) with its parameters as options: at the
-recorded rate, at a factor (--rate 2), or as fast as the subscribers take it without drops
-(--rate 0); original or fresh header stamps.
+recorded rate, at a factor (--rate-factor 2), or as fast as the subscribers take it without drops
+(--rate-factor 0); original or fresh header stamps.
 """
 from backlash_monitor.commands._node_options import add_parameter_options, ros_arguments
 

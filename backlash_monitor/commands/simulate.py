@@ -15,7 +15,7 @@ from backlash_monitor.commands._args import float_list, seed_list
 from backlash_monitor.signals import STREAM_SIGNALS
 
 NAME = "simulate"
-HELP = "simulate the drive (plant model, SPEC section 3) for a grid of scenarios and write the signals to NPZ"
+HELP = "simulate the drive (plant model, docs/model.md) for a grid of scenarios: signals to NPZ and/or MCAP bags"
 DESCRIPTION = (
     "Simulate the drive (per-unit induction motor, backlash clutch, spring + power-law absorber load, "
     "pulse load and disturbances; docs/model.md) from a settled start at the 50 kHz sample rate, for every "
@@ -42,12 +42,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--seeds", type=seed_list, default=[0], metavar="S[,S...]",
                         help="noise seeds, integers >= 0; each scenario's two generators are seeded from its "
                              "seed and its parameters")
-    parser.add_argument("--duration", type=float, default=1.0, metavar="SECONDS",
+    parser.add_argument("--duration", type=float, default=1.0, metavar="S",
                         help="simulated time per scenario after the settled start [s], 0 < duration <= 3600")
     parser.add_argument("--no-noise", action="store_true",
                         help="switch both disturbance generators off (the pulse load stays on)")
-    parser.add_argument("-o", "--output", default="simulation.npz", metavar="PATH",
-                        help="output NPZ file (parent directory must exist)")
+    parser.add_argument("-o", "--output", default="simulation.npz", metavar="FILE.npz",
+                        help="output NPZ file (its folder must exist)")
     parser.add_argument("--config", default=None, metavar="YAML",
                         help="plant config file (default: config/plant.yaml of the package)")
     parser.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
@@ -60,19 +60,21 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     from backlash_monitor.errors import DeprecatedSpelling
     parser.add_argument("--effects", dest="effects_file", action=DeprecatedSpelling, new="--effects-file",
                         append=True, metavar="FILE.py", help=argparse.SUPPRESS)
-    parser.add_argument("--noise-seed", type=int, default=None, metavar="INT",
+    parser.add_argument("--noise-seed", type=int, default=None, metavar="N",
                         help="common random numbers: every scenario on the same noise realisation drawn from this "
                              "seed (default: each scenario's own noise from its seed, width, eta_k and n1)")
     parser.add_argument("--backend", choices=("auto", "numba", "numba-scalar", "numpy"), default=None,
                         help="integration backend (default: simulation.backend of the config)")
-    parser.add_argument("--chunk", type=float, default=0.05, metavar="SECONDS",
+    parser.add_argument("--chunk", type=float, default=0.05, metavar="S",
                         help="simulated time per progress step [s], 0 < chunk <= duration")
     parser.add_argument("--mcap", default=None, metavar="DIR",
                         help="also write one rosbag2 MCAP bag per scenario into DIR (created if missing), "
                              "with the live graph's topics (/plant/a1, ..., /plant/true_width_m), chunked as "
-                             "the plant_simulator node publishes; for `analyze`, `replay` and Foxglove")
+                             "the plant_simulator node publishes; for `analyze`, `replay` and Foxglove (default: no bags)")
     parser.add_argument("--no-npz", action="store_true", help="write no NPZ (use with --mcap)")
-    parser.add_argument("--quiet", action="store_true", help="no progress bar and no summary table")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar and no progress notes on stderr")
+    from backlash_monitor.commands.vocabulary import deprecated
+    deprecated(parser, "--quiet", "--no-progress", "no_progress", const=True)
     parser.add_argument("--overwrite", action="store_true",
                         help="replace an existing NPZ or bag (without it an existing one is an error, "
                              "reported before simulating); outputs are renamed into place when complete")
@@ -110,7 +112,8 @@ def run(args) -> int:
         return _error("--no-npz without --mcap would write nothing; allowed: --mcap DIR with --no-npz")
     out_path = Path(args.output)
     if not out_path.parent.exists() and str(out_path.parent) != "":
-        return _error(f"--output {args.output!r}: directory {str(out_path.parent)!r} does not exist")
+        from backlash_monitor.files.outputs import missing_folder_message
+        return _error(missing_folder_message("--output", out_path))
     if out_path.is_dir():
         return _error(f"--output {args.output!r} is a directory; allowed: a file path ending in .npz")
     from backlash_monitor.files.outputs import OutputError, check_outputs   # never over existing data
@@ -131,7 +134,7 @@ def run(args) -> int:
         return _error(f"{n_scen} scenarios x {args.duration:g} s need {mem_gb:.1f} GB; allowed: <= 16 GB "
                       "(fewer scenarios or a shorter --duration)")
 
-    if not args.quiet:
+    if not args.no_progress:
         print(f"settling {n_scen} scenarios (computed steady state + {cfg.simulation.run_in_s:g} s run-in) ...",
               file=sys.stderr)
     try:
@@ -144,7 +147,7 @@ def run(args) -> int:
     chunk_n = max(1, min(n_total, int(round(args.chunk * fs))))
     try:
         from tqdm import tqdm
-        bar = tqdm(total=n_total / fs, unit="s", unit_scale=False, file=sys.stderr, disable=args.quiet,
+        bar = tqdm(total=n_total / fs, unit="s", unit_scale=False, file=sys.stderr, disable=args.no_progress,
                    desc=f"simulate {n_scen} scenarios", bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} s "
                                                                  "[{elapsed}<{remaining}]")
     except ImportError:  # pragma: no cover
@@ -166,12 +169,11 @@ def run(args) -> int:
     wall = time.perf_counter() - t0
 
     if args.mcap:
-        bags = _write_bags(Path(args.mcap), scenarios, data, 1.0 / fs, quiet=args.quiet)
-        if not args.quiet:
+        bags = _write_bags(Path(args.mcap), scenarios, data, 1.0 / fs, quiet=args.no_progress)
+        if not args.no_progress:
             print(f"wrote {len(bags)} bag(s) into {args.mcap}", file=sys.stderr)
     if args.no_npz:
-        if not args.quiet:
-            _print_summary(scenarios, data, entries, sim, args.duration, wall, Path(args.mcap or "."), fs,
+        _print_summary(scenarios, data, entries, sim, args.duration, wall, Path(args.mcap or "."), fs,
                            impact_times_ms)
         return 0
     entry_rows = np.array([(i, k_, ENTRY_KINDS.index(kind)) for i in range(n_scen) for k_, kind in entries[i]],
@@ -190,8 +192,7 @@ def run(args) -> int:
              noise=np.bool_(not args.no_noise),
              config_json=np.array(cfg.to_json()))
 
-    if not args.quiet:
-        _print_summary(scenarios, data, entries, sim, args.duration, wall, out_path, fs, impact_times_ms)
+    _print_summary(scenarios, data, entries, sim, args.duration, wall, out_path, fs, impact_times_ms)
     return 0
 
 

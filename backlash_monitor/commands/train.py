@@ -31,7 +31,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     from backlash_monitor.classifier.dataset import DEFAULT_DURATION_S
     from backlash_monitor.classifier.shape import DEFAULT_RIDGE
     from backlash_monitor.classifier.training import DEFAULT_TRAIN_SEEDS
-    parser.add_argument("--out", default=None, metavar="FILE.npz",
+    from backlash_monitor.commands.vocabulary import deprecated
+    deprecated(parser, "--out", "--output", "output", metavar="FILE.npz")
+    parser.add_argument("-o", "--output", default=None, metavar="FILE.npz",
                         help="where to write the library (default: the packaged library of the trigger, "
                              "backlash_monitor/data/patterns.npz for contact_loss, patterns_paper.npz for paper)")
     parser.add_argument("--trigger", default="contact_loss", choices=TRIGGERS,
@@ -57,22 +59,22 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "configured value, config/windowing.yaml capture.window_offset_samples); the "
                              "library records it and the classifier refuses windows captured with another")
     parser.add_argument("--overwrite", action="store_true",
-                        help="replace an existing --out file (without --out, the packaged library "
+                        help="replace an existing --output file (without --output, the packaged library "
                              "is replaced: that is what `make patterns` asks for)")
     parser.add_argument("--model", action="append", default=None, metavar="M.yaml",
                         help="train on a workbench model version's plant config (docs/workbench.md; e.g. after "
-                             "add-effect) instead of config/plant.yaml; needs --out. Repeat it to train on "
+                             "add-effect) instead of config/plant.yaml; needs --output. Repeat it to train on "
                              "several versions at once (the seeds dealt out round-robin, the windows pooled): "
                              "when diagnose names indistinguishable effects, one version per candidate. Also writes "
                              "the live model watch's reference of the (first) version beside the library: "
-                             "LIB.watch.npz (~30 s more; docs/model_watch.md)")
+                             "LIB.watch.npz (~30 s more; docs/model_watch.md) (default: config/plant.yaml)")
     parser.add_argument("--previous-library", default=None, metavar="LIB.npz",
                         help="with --model: the library the monitor uses now (default: the packaged one); the "
                              "retrained library is checked against it on the diagnosed recording")
     parser.add_argument("--keep-worse", action="store_true",
                         help="with --model: write the retrained library even when it puts the monitor further from "
                              "the diagnosis than the previous library (default: the previous library is written under "
-                             "--out, saying why, and the retrained one as NAME.rejected.npz)")
+                             "--output, saying why, and the retrained one as NAME.rejected.npz)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -89,21 +91,21 @@ def _check(args) -> None:
         raise UsageError(f"--duration {args.duration}: must be between 0.5 and 60 s")
     if args.window_offset is not None and not 0 <= args.window_offset <= 65536:
         raise UsageError(f"--window-offset {args.window_offset}: must be 0 <= SAMPLES <= 65536")
-    if getattr(args, "model", None) and args.out is None:
-        raise UsageError("--model needs --out LIB.npz (the packaged library stays the default model's)")
+    if getattr(args, "model", None) and args.output is None:
+        raise UsageError("--model needs -o/--output LIB.npz (the packaged library stays the default model's)")
     if getattr(args, "model", None) and len(args.model) > len(args.seeds):
         raise UsageError(f"{len(args.model)} --model files need at least {len(args.model)} --seeds "
                          f"(the seeds are dealt out one per model), got {len(args.seeds)}")
-    if args.out is not None and not str(args.out).endswith(".npz"):
-        raise UsageError(f"--out {args.out}: the library is an .npz file; give a name ending in .npz")
-    if args.out is not None:   # before the minutes of training, not after
+    if args.output is not None and not str(args.output).endswith(".npz"):
+        raise UsageError(f"--output {args.output}: the library is an .npz file; give a name ending in .npz")
+    if args.output is not None:   # before the minutes of training, not after
         from backlash_monitor.files.outputs import OutputError, check_outputs
         from backlash_monitor.workbench.reference import reference_path_for_library
-        outs = [args.out] + ([str(reference_path_for_library(args.out))] if getattr(args, "model", None) else [])
+        outs = [args.output] + ([str(reference_path_for_library(args.output))] if getattr(args, "model", None) else [])
         try:
             if getattr(args, "model", None) and not getattr(args, "keep_worse", False):
-                outs.append(str(args.out)[:-len(".npz")] + ".rejected.npz")   # written if the check rejects it
-            check_outputs(outs, overwrite=args.overwrite, option="--out")
+                outs.append(str(args.output)[:-len(".npz")] + ".rejected.npz")   # written if the check rejects it
+            check_outputs(outs, overwrite=args.overwrite, option="--output")
         except OutputError as error:
             raise UsageError(str(error)) from None
 
@@ -114,7 +116,7 @@ def run(args) -> int:
 
     from backlash_monitor.classifier.patterns import default_library_path
     from backlash_monitor.classifier.training import build_library
-    out = args.out or default_library_path(args.trigger)
+    out = args.output or default_library_path(args.trigger)
     config = None
     models = []
     if args.model:
@@ -180,7 +182,7 @@ def run(args) -> int:
         if rejected is not None:
             print(f"WARNING: the retrained library puts the monitor further from the diagnosis than the previous one: "
                   f"{path} holds the previous library (its training.check says why); the retrained one is {rejected} "
-                  "(--keep-worse writes it as --out)", file=sys.stderr)
+                  "(--keep-worse writes it as --output)", file=sys.stderr)
         elif check["flagged"]:
             print(f"WARNING: the library {path} is FLAGGED (written into it; analyze and the classifier warn when "
                   "they load it): " + "; ".join(check["reasons"]), file=sys.stderr)

@@ -16,43 +16,46 @@ NAME = "watch-reference"
 HELP = "build the live model watch's reference of a model version (~30 s; docs/model_watch.md)"
 DESCRIPTION = ("Run the workbench's comparison and screening on a recording the model makes of itself and keep what "
                "the consistency test needs (noise ensemble, views, predictions over the backlash width), so that the "
-               "model_watch node simulates nothing. Without --out the reference goes into the cache (.cache/watch/), "
+               "model_watch node simulates nothing. Without --output the reference goes into the cache (.cache/watch/), "
                "where model_watch, fleet and pipeline --watch find the default model's at a drive's nominal width, "
                "eta_k and n1.")
 
 
 def add_arguments(parser) -> None:
-    from backlash_monitor.commands._workbench import add_model_arguments, add_overwrite_argument
+    from backlash_monitor.commands._workbench import add_model_arguments, add_overwrite_argument, add_progress_argument
+    from backlash_monitor.commands.vocabulary import deprecated
     add_model_arguments(parser, measurement=False)
-    parser.add_argument("--out", default=None, metavar="REF.watch.npz",
-                        help="where to write it (default: the cache; an existing --out is refused unless "
-                             "--overwrite)")
+    parser.add_argument("-o", "--output", default=None, metavar="REF.watch.npz",
+                        help="where to write it (default: the cache, .cache/watch/; an existing file is refused "
+                             "unless --overwrite)")
+    deprecated(parser, "--out", "--output", "output", metavar="REF.watch.npz")
     add_overwrite_argument(parser)
+    add_progress_argument(parser)
 
 
 def run(args) -> int:
     from backlash_monitor.commands._workbench import check_outputs, load
     from backlash_monitor.workbench import reference
-    if args.out is not None and not str(args.out).endswith(".npz"):
-        raise UsageError(f"--out {args.out}: a reference is an .npz file; give a name ending in .watch.npz")
-    if args.out is not None:
-        check_outputs(args, [args.out], "--out")
-    if args.out is None and args.seeds != 6:
-        raise UsageError(f"--seeds {args.seeds}: the cache holds references of 6 seeds (what model_watch, fleet and "
-                         "pipeline take); give --out for another number")
+    if args.output is not None and not str(args.output).endswith(".npz"):
+        raise UsageError(f"--output {args.output}: a reference is an .npz file; give a name ending in .watch.npz")
+    if args.output is not None:
+        check_outputs(args, [args.output], "--output")
+    if args.output is None and args.ensemble != 6:
+        raise UsageError(f"--ensemble {args.ensemble}: the cache holds references of 6 seeds (what model_watch, "
+                         "fleet and pipeline take); give --output for another number")
     model, _ = load(args, measurement=False)
     t0 = time.perf_counter()
-    if args.out is None:
+    if args.output is None:
         path = reference.cache_path(model)
         if path.is_file() and not args.overwrite:
             print(f"model reference of {model.label()} is cached already: {path}")
             return 0
-        ref = reference.build(model, seeds=list(range(args.seeds)))
+        ref = _build(reference, model, args)
         path.parent.mkdir(parents=True, exist_ok=True)
         ref.save(path)
     else:
-        ref = reference.build(model, seeds=list(range(args.seeds)))
-        path = ref.save(args.out)
+        ref = _build(reference, model, args)
+        path = ref.save(args.output)
     print(f"model reference written: {path}")
     print(f"  model {model.label()}: width {model.nominal['width_m'] * 1e3:g} mm, eta_k {model.nominal['eta_k']:g}, "
           f"n1 {model.nominal['n1']:g}; {len(ref.seeds)} seeds x {ref.build_events} onset events, "
@@ -60,3 +63,11 @@ def run(args) -> int:
           f"{ref.widths_m[0] * 1e3:.3f}..{ref.widths_m[-1] * 1e3:.3f} mm; {time.perf_counter() - t0:.0f} s",
           file=sys.stdout)
     return 0
+
+
+def _build(reference, model, args):
+    """reference.build with a progress bar over its candidate screening (the ~30 s of the command)."""
+    from tqdm import tqdm
+    with tqdm(desc="model reference: screening candidate effects", unit="effect", file=sys.stderr,
+              disable=True if args.no_progress else None) as bar:
+        return reference.build(model, seeds=list(range(args.ensemble)), progress=bar.update)

@@ -30,12 +30,30 @@ def _same_file(a: Path, b: Path) -> bool:
         return False
 
 
+# Options that name a folder of outputs: the folder is created if missing. The folder of an output
+# file (-o/--output, --out PREFIX, --json, --record) must exist: a typo in it is refused, not made.
+FOLDER_OPTIONS = ("--report", "--mcap")
+
+
+def creates_folder(option: str) -> bool:
+    return option.endswith("-dir") or option in FOLDER_OPTIONS
+
+
+def missing_folder_message(option: str, out) -> str:
+    out = Path(out)
+    return (f"{option} {out}: the folder {out.parent} does not exist; create it first (only folder options "
+            "such as --out-dir create their folder)")
+
+
 def check_outputs(outputs, *, inputs=(), overwrite: bool = False, option: str = "--out") -> None:
     """Raise :class:`OutputError` naming the first output that is an input (never allowed) or that
-    exists already while ``overwrite`` is false, or that is a directory."""
+    exists already while ``overwrite`` is false, or that is a directory, or whose folder does not
+    exist while ``option`` names a file (not a folder option, :func:`creates_folder`)."""
     outputs = [Path(p) for p in outputs]
     inputs = [Path(p) for p in inputs]
     for out in outputs:
+        if not creates_folder(option) and not out.parent.is_dir():
+            raise OutputError(missing_folder_message(option, out))
         for source in inputs:
             if _same_file(out, source) or out.resolve() == source.resolve():
                 raise OutputError(f"{option}: the output {out} is the input {source}; it would be "

@@ -68,6 +68,7 @@ class FleetOptions:
     trend_config: str = ""
     plots: bool = True
     watch: WatchOptions = WatchOptions()
+    progress: bool = True        # a progress bar over the bags on stderr
 
     def workers(self) -> int:
         """The bags analysed at once: ``jobs``, or this machine's cores for 0."""
@@ -443,12 +444,12 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     jobs = _jobs(options, bags, out_dir, watch)
     started = time.perf_counter()
     if fleet.engine == "dask":
-        rows = run_dask(jobs, n_jobs, fleet.scheduler)
+        rows = run_dask(jobs, n_jobs, fleet.scheduler, progress=fleet.progress)
     else:
         # the options checked and the library loaded once, here: a bad option is one error
         # before any worker starts, and forked workers inherit the library
         from backlash_monitor.offline.analyze import load_library
-        rows = run_local(jobs, n_jobs, library=load_library(options),
+        rows = run_local(jobs, n_jobs, library=load_library(options), progress=fleet.progress,
                          threads_limited=threads_limited)
     if watch.enabled:
         for r in missing_references(rows, options, watch):

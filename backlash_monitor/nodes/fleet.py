@@ -39,18 +39,19 @@ REALTIME_LAG_S = 1.0           # a chain that keeps up answers within tens of ms
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--drives", type=int, default=None, metavar="N",
-                        help="simulate N drives drive01..driveNN on --line (default: 4 unless "
-                             "--config is given)")
+                        help="simulate N drives drive01..driveNN on --line (default: 4, or the drives of "
+                             "--config)")
     parser.add_argument("--config", default="", metavar="FLEET.yaml",
                         help="the drives and their parameters per line (config/fleet.yaml shows "
-                             "the format)")
+                             "the format; default: --drives simulated drives)")
     parser.add_argument("--line", default="line1", help="the line of the --drives drives")
-    parser.add_argument("--width-m", type=float, default=0.005,
+    parser.add_argument("--width-m", type=float, default=0.005, metavar="M",
                         help="backlash width of the --drives drives' simulated clutches [m]")
-    parser.add_argument("--duration", type=float, default=10.0,
-                        help="simulated seconds per drive")
-    parser.add_argument("--rate-factor", type=float, default=1.0,
-                        help="simulated seconds per wall second (1 = real time)")
+    parser.add_argument("--duration", type=float, default=10.0, metavar="S",
+                        help="simulated seconds per drive [s]")
+    parser.add_argument("--rate-factor", type=float, default=1.0, metavar="X",
+                        help="simulated seconds per wall second (1 = real time; 0, as fast as possible, is "
+                             "replay's only: the simulators pace their streams)")
     parser.add_argument("--layout", choices=LAYOUTS, default=DEFAULT_LAYOUT,
                         help="'process': one process per drive; 'single': every drive in this "
                              "process on one executor")
@@ -62,14 +63,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "config/fleet_aggregator.yaml is config/fleet.yaml's)")
     parser.add_argument("--aggregator-yaml", default="", metavar="FILE",
                         help="write diagnostic_aggregator's analyzer file for these drives to FILE "
-                             "and exit")
+                             "and exit (default: run the fleet)")
     parser.add_argument("--foxglove-port", type=int, default=-1, metavar="PORT",
                         help="also serve every drive's topics and width to Foxglove on this "
                              "WebSocket port (8765 is Foxglove's default; 0: any free port; "
                              "needs the optional foxglove-sdk; layout: "
-                             "config/foxglove_fleet_layout.json)")
-    parser.add_argument("--summary-json", default="", metavar="FILE",
-                        help="also write the per-drive summary as JSON")
+                             "config/foxglove_fleet_layout.json; default: -1, no Foxglove server)")
+    parser.add_argument("--json", dest="summary_json", default="", metavar="FILE",
+                        help="also write the per-drive summary as JSON to FILE (default: none)")
+    from backlash_monitor.errors import DeprecatedSpelling
+    parser.add_argument("--summary-json", dest="summary_json", action=DeprecatedSpelling, new="--json",
+                        metavar="FILE", help=argparse.SUPPRESS)
     parser.add_argument("--trend-state-dir", default="", metavar="DIR",
                         help="keep each drive's live width trend in DIR/<line>_<drive>.json, so that "
                              "a restarted fleet goes on with the drives' history (a drive's own "

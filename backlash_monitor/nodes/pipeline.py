@@ -30,25 +30,26 @@ DEFAULTS = dict(width_m=0.005, eta_k=0.025, n1=0.89, seed=0, duration=10.0, rate
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--width-m", type=float, default=DEFAULTS["width_m"],
+    parser.add_argument("--width-m", type=float, default=DEFAULTS["width_m"], metavar="M",
                         help="backlash width of the simulated clutch [m] (the truth the estimates "
                              "are compared with)")
     parser.add_argument("--eta-k", type=float, default=DEFAULTS["eta_k"],
                         help="absorber fluid consistency [Pa*s^n]")
     parser.add_argument("--n1", type=float, default=DEFAULTS["n1"],
                         help="absorber flow (creep) index; the classifier uses the patterns of this n1")
-    parser.add_argument("--seed", type=int, default=DEFAULTS["seed"],
+    parser.add_argument("--seed", type=int, default=DEFAULTS["seed"], metavar="N",
                         help="seed of the simulator's disturbance generators")
-    parser.add_argument("--duration", type=float, default=DEFAULTS["duration"],
-                        help="simulated seconds to run (8 backlash entries per second, 4 onsets)")
+    parser.add_argument("--duration", type=float, default=DEFAULTS["duration"], metavar="S",
+                        help="simulated seconds to run [s] (8 backlash entries per second, 4 onsets)")
     parser.add_argument("--events", type=int, default=0,
                         help="stop after this many onset estimates (0 = run for --duration)")
-    parser.add_argument("--rate-factor", type=float, default=DEFAULTS["rate_factor"],
-                        help="simulated seconds per wall second (1 = real time)")
+    parser.add_argument("--rate-factor", type=float, default=DEFAULTS["rate_factor"], metavar="X",
+                        help="simulated seconds per wall second (1 = real time; 0, as fast as possible, is "
+                             "replay's only: the simulator paces its stream)")
     parser.add_argument("--trigger", choices=("contact_loss", "paper"), default="contact_loss",
                         help="entry trigger of the windowing node")
     parser.add_argument("--mode", default="",
-                        help="classifier mode (empty: the classifier's default, the best mode)")
+                        help="classifier mode (default: the classifier's default, the best mode)")
     parser.add_argument("--drive-name", default="drive", help="the drive's name (hardware_id)")
     parser.add_argument("--processes", action="store_true",
                         help="run each node in its own process (as `ros2 run` would) instead of one")
@@ -62,7 +63,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "ends the run")
     parser.add_argument("--record", metavar="FILE.mcap", default="",
                         help="also record every topic of the run into this MCAP file (an existing "
-                             "file is an error unless --overwrite)")
+                             "file is an error unless --overwrite; default: no recording)")
     parser.add_argument("--overwrite", action="store_true",
                         help="with --record: replace an existing file (the new recording replaces it "
                              "only once it is complete)")
@@ -88,7 +89,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "--eta-k, --n1); its reference: --library's LIB.watch.npz, else the cache (built "
                              "there once, ~30 s)")
     parser.add_argument("--snapshot-dir", default=".", metavar="DIR",
-                        help="with --watch: where the snapshot bags go")
+                        help="with --watch: the folder the snapshot bags go into (default: the current folder)")
     from backlash_monitor.errors import DeprecatedSpelling
     parser.add_argument("--effects", dest="effects_files", action=DeprecatedSpelling, new="--effects-file",
                         append=True, metavar="FILE.py", help=argparse.SUPPRESS)

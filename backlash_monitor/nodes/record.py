@@ -40,12 +40,12 @@ from backlash_monitor.nodes.runtime import begin_shutdown, run_node
 DEFAULT_EXCLUDE = r"^/(rosout|parameter_events)$"
 
 PARAMETERS = (
-    ParameterSpec("output", "", "the .mcap file to write (empty: backlash_<UTC time>.mcap here); an "
+    ParameterSpec("output", "", "the .mcap file to write (default, empty: backlash_<UTC time>.mcap here); an "
                   "existing file is an error unless overwrite is true"),
     ParameterSpec("overwrite", False, "replace an existing output file: the new recording goes to "
                   "OUTPUT.partial and replaces OUTPUT only when it is closed"),
     ParameterSpec("topics", "", "comma-separated topic names or glob patterns to record, e.g. "
-                  "'plant/*,estimate' (relative names are taken from /); empty: every topic"),
+                  "'plant/*,estimate' (relative names are taken from /); default, empty: every topic"),
     ParameterSpec("exclude_regex", DEFAULT_EXCLUDE, "topics matching this regex are not recorded"),
     ParameterSpec("discovery_period_s", 0.2, "how often new topics are looked for [s]", 0.01, 60.0),
     ParameterSpec("compression", "zstd", "chunk compression", choices=("zstd", "lz4", "none")),

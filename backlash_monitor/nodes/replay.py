@@ -38,7 +38,7 @@ PARAMETERS = (
     ParameterSpec("bag", "", "the .mcap file to play (required)"),
     ParameterSpec("rate", 1.0, "playback speed factor (1 = recorded rate; 0 = as fast as the "
                   "subscribers acknowledge, no drops)", 0.0, 1000.0),
-    ParameterSpec("topics", "", "comma-separated topics to play (empty: all)"),
+    ParameterSpec("topics", "", "comma-separated topics to play (default, empty: all)"),
     ParameterSpec("stamps", "original", "header stamps: as recorded, or shifted to now",
                   choices=("original", "fresh")),
     ParameterSpec("qos", "recorded", "publisher QoS: as offered when recorded, or reliable",

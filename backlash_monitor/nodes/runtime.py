@@ -47,9 +47,8 @@ def command_main(prog: str, description: str, add_arguments, run, argv=None) -> 
     ``PROG: error: ...`` and exit code 2."""
     import argparse
     from rclpy.utilities import remove_ros_args
-    from backlash_monitor.errors import UsageError
-    parser = argparse.ArgumentParser(prog=prog, description=description,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    from backlash_monitor.errors import HelpFormatter, UsageError
+    parser = argparse.ArgumentParser(prog=prog, description=description, formatter_class=HelpFormatter)
     add_arguments(parser)
     args = parser.parse_args(remove_ros_args(sys.argv if argv is None else argv)[1:])
     try:

@@ -254,7 +254,7 @@ def _try_bag(run, name, path, kind, work: Path, replay: bool) -> list[tuple[str,
     note("bag-info", rc, out, err, None if rc != 0 and _one_line_error(rc, err) else
          "exit 0 on a damaged bag" if rc == 0 and kind == "damaged" else None)
     if kind == "damaged":
-        rc, out, err = run("bag-info", path, "--recover", "--json")
+        rc, out, err = run("bag-info", path, "--recover", "--format", "json")
         escape = None
         if rc == 0:
             info = json.loads(out)
@@ -291,7 +291,7 @@ def _try_bag(run, name, path, kind, work: Path, replay: bool) -> list[tuple[str,
             escape = "no clear one-line error"
         note("analyze --recover", rc, out, err, escape)
     if replay:
-        rc, out, err = run("replay", path, "--rate", "1000", timeout=60)
+        rc, out, err = run("replay", path, "--rate-factor", "1000", timeout=60)
         note("replay", rc, out, err, "played a damaged bag without a word"
              if rc == 0 and kind == "damaged" and "DAMAGED" not in err + out else None)
     return results
@@ -319,7 +319,7 @@ COMMAND_LINES = [
     ("analyze --n1 without patterns", ["analyze", "{intact}", "--mode", "paper", "--n1", "0.5",
                                        "--out", "{out}"]),
     ("replay without a bag", ["replay"]),
-    ("replay --rate -1", ["replay", "{intact}", "--rate", "-1"]),
+    ("replay --rate-factor -1", ["replay", "{intact}", "--rate-factor", "-1"]),
     ("replay --topics not in the bag", ["replay", "{intact}", "--topics", "/nope"]),
     ("replay of a missing file", ["replay", "{missing}"]),
 ]
@@ -365,7 +365,7 @@ def _killed_recorder(run, work: Path) -> tuple[str, str, int]:
         return "", "recorder did not record (publisher not matched): not tried", 0
     rc, o, e = run("bag-info", out)
     escape = _crash(rc, o, e) or (None if rc == 1 and "--recover" in e else "killed bag not refused")
-    rc, o, e = run("bag-info", out, "--recover", "--json")
+    rc, o, e = run("bag-info", out, "--recover", "--format", "json")
     escape = escape or _crash(rc, o, e)
     lost_s = None
     if rc == 0:

@@ -94,7 +94,7 @@ def run_recording(spec, workdir: Path, loop: bool = True) -> dict:
     row = {"label": spec.label, "kind": spec.kind, "families": truth["families"], "outside": truth["outside"],
            "true_width_m": truth["true_width_m"], "seed": spec.seed}
     rc, out, wall, cpu = _cli(["diagnose", bag, "--width-m", spec.width_m, "--eta-k", spec.eta_k, "--n1", spec.n1,
-                               "--json", d / "d.json", "--no-record"], d)
+                               "--json", d / "d.json", "--no-history"], d)
     if rc != 0:
         row["error"] = out[-2000:]
         return row
@@ -117,7 +117,7 @@ def run_recording(spec, workdir: Path, loop: bool = True) -> dict:
         row["after"] = dict(row["before"])
         row["loop"] = "no new version: " + out.strip().splitlines()[-1][:200]
     else:
-        rc, out, _, _ = _cli(["train", "--model", d / "v2.yaml", "--out", d / "lib.npz", "--seeds", TRAIN_SEEDS,
+        rc, out, _, _ = _cli(["train", "--model", d / "v2.yaml", "--output", d / "lib.npz", "--seeds", TRAIN_SEEDS,
                               "--no-progress"], d)
         row["train_check"] = [ln.strip() for ln in out.splitlines() if "check " in ln or "FLAGGED" in ln]
         if rc != 0:

@@ -29,7 +29,7 @@ bm diagnose "$SNAPSHOT" --width-m 0.005 --json "$DIR/diag.json" | tail -n 3
 
 step "3. the next model version, and its monitor and watch reference"
 bm add-effect "$DIR/diag.json" -o "$DIR/drive_v2.yaml"
-bm train --model "$DIR/drive_v2.yaml" --out "$DIR/lib_v2.npz" --seeds 1000,1001 --no-progress
+bm train --model "$DIR/drive_v2.yaml" -o "$DIR/lib_v2.npz" --seeds 1000,1001 --no-progress
 
 step "4. the same drive (friction on) on the new version"
 bm pipeline --watch --model "$DIR/drive_v2.yaml" --library "$DIR/lib_v2.npz" --width-m 0.005 --duration 24 \

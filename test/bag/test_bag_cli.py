@@ -35,7 +35,7 @@ def test_info_shows_duration_topics_types_counts(bag, capsys):
 
 
 def test_info_json_and_topic_details(bag, capsys):
-    assert cli(["bag-info", str(bag), "--json", "--topic", "/plant/a2", "--topic", "/estimate"]) == 0
+    assert cli(["bag-info", str(bag), "--format", "json", "--topic", "/plant/a2", "--topic", "/estimate"]) == 0
     info = json.loads(capsys.readouterr().out)
     assert info["messages"] == 159 and info["complete"] and info["ros_distro"] == "jazzy"
     d = info["details"]["/plant/a2"]

@@ -144,7 +144,7 @@ def test_bag_info_reports_a_crc_error_and_recover_names_the_chunk(intact, tmp_pa
     assert "CRC mismatch" in strict.stderr and "--recover" in strict.stderr
     assert len(strict.stderr.strip().splitlines()) == 1 and "Traceback" not in strict.stderr
     assert "complete" not in strict.stdout
-    rec = _cli("bag-info", bad, "--recover", "--json")
+    rec = _cli("bag-info", bad, "--recover", "--format", "json")
     assert rec.returncode == 0, rec.stderr
     info = json.loads(rec.stdout)
     assert not info["intact"]
@@ -160,7 +160,7 @@ def drive_bag(tmp_path_factory):
     """A 2 s simulated drive (4 chunks of 0.5 s) and its analysis."""
     directory = tmp_path_factory.mktemp("drive")
     proc = _cli("simulate", "--widths", "0.005", "--eta-k", "0.025", "--n1", "0.89", "--duration", "2",
-                "--no-npz", "--mcap", directory / "sim", "--quiet")
+                "--no-npz", "--mcap", directory / "sim", "--no-progress")
     assert proc.returncode == 0, proc.stderr
     [bag] = sorted((directory / "sim").glob("*.mcap"))
     out = _cli("analyze", bag, "--out", directory / "ref")

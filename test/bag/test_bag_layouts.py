@@ -201,7 +201,7 @@ def test_bag_info_reads_every_option(rewritten, capsys):
     from backlash_monitor.commands import bag_info
 
     for name in OPTION_SETS:
-        assert bag_info.main([str(rewritten(name)), "--json"]) == 0, name
+        assert bag_info.main([str(rewritten(name)), "--format", "json"]) == 0, name
         info = json.loads(capsys.readouterr().out)
         assert info["complete"] and info["intact"], (name, info["integrity"])
         assert {t["topic"]: t["count"] for t in info["topics"]} == {

@@ -16,7 +16,7 @@ def test_simulated_bags_hold_the_npz_samples_in_the_live_layout(tmp_path, repo_r
     bags = tmp_path / "bags"
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "simulate", "--widths", "0.005",
                            "--eta-k", "0.025", "--n1", "0.89", "--duration", "0.5", "-o", str(npz),
-                           "--mcap", str(bags), "--quiet"], capture_output=True, text=True, timeout=300)
+                           "--mcap", str(bags), "--no-progress"], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr
     data = np.load(npz)
     (bag,) = sorted(bags.glob("*.mcap"))

@@ -14,7 +14,7 @@ def _run(*args):
 @pytest.mark.parametrize("args, expected", [
     (("train", "--epochs", "0"), "--epochs 0: must be an integer >= 1"),
     (("train", "--l1", "2"), "--l1 2.0: must be in (0, 1]"),
-    (("train", "--out", "lib.txt"), "give a name ending in .npz"),
+    (("train", "--output", "lib.txt"), "give a name ending in .npz"),
     (("train", "--trigger", "eq1"), "invalid choice: 'eq1'"),
     (("train", "--seeds", "a,b"), "not a comma-separated list of integers"),
     (("evaluate", "--fusion-events", "9"), "--fusion-events 9: must be between 1 and 8"),

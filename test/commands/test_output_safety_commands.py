@@ -22,7 +22,7 @@ def _refused(proc, path, before):
 def test_train_refuses_an_existing_library(tmp_path):
     lib = tmp_path / "lib.npz"
     lib.write_bytes(b"an older library")
-    _refused(_run("train", "--out", lib, "--no-progress"), lib, b"an older library")
+    _refused(_run("train", "--output", lib, "--no-progress"), lib, b"an older library")
 
 
 @pytest.mark.process
@@ -38,7 +38,7 @@ def test_evaluate_refuses_existing_outputs(tmp_path, name):
 def test_simulate_refuses_an_existing_npz_and_bag_and_replaces_them_when_told(tmp_path):
     npz, bags = tmp_path / "sim.npz", tmp_path / "bags"
     args = ["simulate", "--widths", "0.005", "--eta-k", "0.025", "--n1", "0.89", "--duration", "0.1",
-            "-o", npz, "--mcap", bags, "--quiet"]
+            "-o", npz, "--mcap", bags, "--no-progress"]
     npz.write_bytes(b"earlier run")
     _refused(_run(*args), npz, b"earlier run")
     npz.unlink()

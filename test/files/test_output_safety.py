@@ -24,7 +24,7 @@ def recording(tmp_path_factory):
     """A 1 s bag of one simulated drive, as `simulate --mcap` writes it (RUN.mcap)."""
     directory = tmp_path_factory.mktemp("rec")
     proc = _cli("simulate", "--widths", "0.005", "--eta-k", "0.025", "--n1", "0.89",
-                "--duration", "1", "--no-npz", "--mcap", directory, "--quiet")
+                "--duration", "1", "--no-npz", "--mcap", directory, "--no-progress")
     assert proc.returncode == 0, proc.stderr
     bags = sorted(directory.glob("*.mcap"))
     assert len(bags) == 1, bags
@@ -82,11 +82,11 @@ def test_record_refuses_an_existing_bag_and_replaces_it_only_when_told(recording
     bag = tmp_path / "old.mcap"
     bag.write_bytes(recording.read_bytes())
     before = _digest(bag)
-    proc = _cli("record", "--output", bag, "--duration-s", "0.3", env=ros_env, timeout=120)
+    proc = _cli("record", "--output", bag, "--duration", "0.3", env=ros_env, timeout=120)
     assert proc.returncode == 2, proc.stderr
     assert "exists already" in proc.stderr and "Traceback" not in proc.stderr
     assert _digest(bag) == before
-    proc = _cli("record", "--output", bag, "--duration-s", "0.3", "--overwrite", env=ros_env,
+    proc = _cli("record", "--output", bag, "--duration", "0.3", "--overwrite", env=ros_env,
                 timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert _digest(bag) != before

@@ -13,7 +13,7 @@ def test_two_drives_each_report_their_own_estimates_and_diagnostics(ros_env, tmp
     summary = tmp_path / "summary.json"
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "fleet", "--drives", "2",
                            "--width-m", "0.0075", "--duration", "2.5", "--layout", layout,
-                           "--view-period", "0", "--summary-json", str(summary),
+                           "--view-period", "0", "--json", str(summary),
                            "--trend-state-dir", str(tmp_path / "trend")],
                           env=ros_env, capture_output=True, text=True, timeout=150)
     assert proc.returncode == 0, proc.stdout + proc.stderr

@@ -92,7 +92,7 @@ def test_common_random_numbers_share_the_noise():
 def test_simulate_set_switches_a_catalogue_effect(tmp_path):
     out = tmp_path / "s.npz"
     args = ["simulate", "--widths", "0.005", "--eta-k", "0.025", "--n1", "0.89", "--duration", "0.02",
-            "--no-noise", "--quiet", "--overwrite", "--set", "simulation.run_in_s=0", "-o", str(out)]
+            "--no-noise", "--no-progress", "--overwrite", "--set", "simulation.run_in_s=0", "-o", str(out)]
     assert main(args + ["--set", "effects.mass_force_offset=true", "--set", "mass_force_offset.force_N=5"]) == 0
     with_effect = np.load(out)["a2"]
     assert main(args) == 0
@@ -118,7 +118,7 @@ def test_users_effect_from_a_file_runs_like_the_same_built_in_term(tmp_path):
     out = tmp_path / "d.npz"
     assert main(["simulate", "--effects-file", str(EXAMPLE), "--set", "effects.wheel_drag=true",
                  "--set", "wheel_drag.coefficient_Nms2_per_rad2=1e-4", "--widths", "0.005", "--eta-k", "0.025",
-                 "--n1", "0.89", "--duration", "0.01", "--no-noise", "--quiet", "--set", "simulation.run_in_s=0",
+                 "--n1", "0.89", "--duration", "0.01", "--no-noise", "--no-progress", "--set", "simulation.run_in_s=0",
                  "-o", str(out)]) == 0
     assert np.load(out)["a1"].shape == (1, 500)
 

@@ -103,7 +103,7 @@ def test_wheel_friction_named_then_retraining_removes_the_width_bias(tmp_path):
     assert main(["add-effect", str(tmp_path / "d.json"), "--model", str(tmp_path / "v1.yaml"),
                  "-o", str(tmp_path / "v2.yaml")]) == 0
     assert main(["train", "--model", str(tmp_path / "v2.yaml"), "--seeds", "1000", "--duration", "1",
-                 "--out", str(tmp_path / "v2.npz"), "--no-progress"]) == 0
+                 "--output", str(tmp_path / "v2.npz"), "--no-progress"]) == 0
     truth_mm = model.nominal["width_m"] * 1e3
     before = continuous_widths(meas).mean() * 1e3 - truth_mm
     after = continuous_widths(meas, tmp_path / "v2.npz").mean() * 1e3 - truth_mm

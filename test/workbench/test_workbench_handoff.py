@@ -34,7 +34,7 @@ def diagnosed_at_other_conditions(tmp_path_factory):
         "effects.wheel_coulomb_friction": True, "wheel_coulomb_friction.torque_Nm": 1.5})
     rec = _npz(d / "drive.npz", meas)
     assert main(["diagnose", str(rec), "--width-m", "0.005", "--eta-k", "0.0375", "--n1", "0.93",
-                 "--json", str(d / "diag.json"), "--no-record"]) == 0
+                 "--json", str(d / "diag.json"), "--no-history"]) == 0
     return d, json.loads((d / "diag.json").read_text())
 
 
@@ -105,7 +105,7 @@ def test_train_never_hands_on_a_worse_library(tmp_path, capsys):
                         provenance={"measurement": str(rec), "width_m": 0.0075, "width_uncertainty_m": 5e-5})
     wrong.save(tmp_path / "wrong.yaml")
     assert main(["train", "--model", str(tmp_path / "wrong.yaml"), "--seeds", "1000", "--duration", "1",
-                 "--out", str(tmp_path / "lib.npz"), "--no-progress"]) == 0
+                 "--output", str(tmp_path / "lib.npz"), "--no-progress"]) == 0
     out = capsys.readouterr()
     assert "further from the diagnosis" in out.err
     kept = load_library(tmp_path / "lib.npz")

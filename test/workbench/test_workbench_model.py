@@ -112,8 +112,8 @@ def test_catalogue_has_the_issue_names_with_ranges_inside_bounds():
 def test_train_model_needs_out_and_a_valid_model(tmp_path, capsys):
     from backlash_monitor.__main__ import main
     assert main(["train", "--model", str(tmp_path / "m.yaml")]) == 2
-    assert "--model needs --out" in capsys.readouterr().err
-    assert main(["train", "--model", str(tmp_path / "m.yaml"), "--out", str(tmp_path / "x.npz")]) == 2
+    assert "--model needs -o/--output" in capsys.readouterr().err
+    assert main(["train", "--model", str(tmp_path / "m.yaml"), "--output", str(tmp_path / "x.npz")]) == 2
     assert "does not exist" in capsys.readouterr().err
 
 

@@ -97,7 +97,7 @@ def test_train_several_models_needs_as_many_seeds(tmp_path, capsys):
     model.save(tmp_path / "a.yaml")
     model.save(tmp_path / "b.yaml")
     assert main(["train", "--model", str(tmp_path / "a.yaml"), "--model", str(tmp_path / "b.yaml"),
-                 "--seeds", "1000", "--out", str(tmp_path / "x.npz"), "--no-progress"]) == 2
+                 "--seeds", "1000", "--output", str(tmp_path / "x.npz"), "--no-progress"]) == 2
     assert "2 --model files need at least 2 --seeds" in capsys.readouterr().err
 
 
