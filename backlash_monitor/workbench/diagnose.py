@@ -32,6 +32,7 @@ from .diagnosis import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOT
                         ROLE_DISCOVERY, ROLE_PARTIAL, ROLE_SECOND, Addition, Conditions, Diagnosis,
                         WidthMeasurement)
 from .events import SEGMENT_SIGNALS
+from .measurement import saturation_of
 
 REFINE_TOP = 3               # singles refined first: the best 3 by explained share (model inconsistent)
 REFINE_EXTRA = 4             # more candidates refined when they may tie with the winner (the rim-force twins of a wheel
@@ -494,6 +495,8 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
         message = "; ".join(parts)
     if line_not_locked:
         message += "; " + ripple.describe_not_locked(ripple_fit)
+    saturation = saturation_of(run.meas.signals)
+    message = saturated_first(message, saturation)
 
     # the JSON's candidate entries: a confident ripple is the discovery when the event average has none, else
     # the second effect when there is none
@@ -563,6 +566,7 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
         "simulated_parameter_sets": p.n_sets_simulated + 1,
         "seconds": time.perf_counter() - run.t0,
     }
+    report["input_saturation"] = saturation
     report["not_identifiable"] = [n for n, v in report["identifiability"].items() if not v["identifiable"]]
     conditions = Conditions(run.meas.source, run.model.label(),
                             str(run.model.path) if run.model.path else None, dict(run.model.nominal),
@@ -572,6 +576,16 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
     return Diagnosis(conditions, verdict, message, disc_json, second_json,
                      [f.to_json() for f in partial], additions, width, ranked, views, report, comp,
                      up.after_mean if discovery is not None else None)
+
+
+def saturated_first(message: str, saturation: dict) -> str:
+    """A recording with a sensor at its rail (or stuck) says so before any effect is named: a clipped
+    accelerometer changes the event average as an effect would."""
+    if not saturation["saturated"]:
+        return message
+    railed = any("at its rail" in m for m in saturation["messages"])
+    what = "the recording is saturated" if railed else "a sensor of the recording is stuck"
+    return f"{what}: {'; '.join(saturation['messages'])}; what follows is read off those samples: {message}"
 
 
 def _ranked(run: Run, discovery) -> list:
