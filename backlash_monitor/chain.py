@@ -24,6 +24,7 @@ import numpy as np
 
 from backlash_monitor.denoise import DEFAULT_MODE, denoise_sym5, max_level
 from backlash_monitor.windowing.faults import MAX_INDEX, FaultLog, is_index, is_period
+from backlash_monitor.windowing.saturation import SaturationCounter, SaturationSettings
 from backlash_monitor.signals import SIGNAL_UNITS
 from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture, default_window_offset
@@ -260,6 +261,11 @@ class WindowingStage:
     (config/windowing.yaml sensors: the sensor's declared measurement range) makes the range
     bad as a non-finite sample does (``out_of_range_samples``). ``fed_samples``: the samples that
     reached the detector.
+
+    The captured signals (a1, a2) are counted for a rail (a clipped sensor) and for a stuck value
+    (a dead one) in blocks of 1 s (``saturation``: windowing/saturation.py); every window returned
+    carries its samples at a rail found so far, and its stuck ones (``input_saturation``). They are
+    not dropped: a clipped window is still a window, flagged.
     """
 
     def __init__(self, trigger: str = "contact_loss", width_m: float | None = None,
@@ -284,6 +290,9 @@ class WindowingStage:
         self.resync_samples = int(resync_samples)
         self.lost_samples = 0          # samples never fed: gaps and dropped bad ranges
         self.fed_samples = 0           # samples fed to the detector
+        # the captured signals' rails and stuck stretches, counted in blocks (windowing/saturation.py)
+        self.saturation = SaturationCounter(tuple(signals), SaturationSettings.from_config(
+            WINDOWING_DEFAULTS["saturation"]))
         self._next: int | None = None  # the index the next range should start at
         # while two streams may be in play (after a switch, for resync_samples fed samples):
         self._other_next: int | None = None   # where the stream of before the last switch goes on
@@ -420,8 +429,11 @@ class WindowingStage:
         # the range's samples are known finite here (check, or the block's samples_good): the
         # detector and the capture need not test them again
         entries = self.detector.feed(first, joined.arrays, joined.sample_period_s, finite=True)
+        self.saturation.feed(joined.arrays)
         windows, more = self.capture.feed(first, joined.arrays, entries=entries,
                                           sample_period_s=joined.sample_period_s, finite=True)
+        for window in windows:
+            window.input_saturation = self.saturation.check_window(window.signals)
         return windows, discarded + more
 
     def takes_block(self, first_sample_index: int) -> bool:

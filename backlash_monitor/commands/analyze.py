@@ -146,6 +146,7 @@ def run(args) -> int:
                    result["seconds"], result["outputs"])
     _print_integrity(result["integrity"])
     _print_sensor_offsets(result["sensor_offsets"])
+    print_saturation(result["input_saturation"])
     stage_faults, estimator_faults = result["faults"]
     if stage_faults.total or estimator_faults.total:   # dropped input (docs/windowing.md)
         print(f"input faults: {stage_faults.summary()}; windows rejected: "
@@ -165,6 +166,15 @@ def _print_sensor_offsets(info: dict) -> None:
         print(f"WARN: sensor offset {key[:-len('_m_s2')]} {value:+.2f} m/s^2 is beyond +-"
               f"{info['plausible_abs_m_s2']:g} m/s^2, more than a MEMS sensor's own offset: check the "
               "sensor and its mounting (the widths above are offset-free)")
+
+
+def print_saturation(info: dict) -> None:
+    """One line: 'input saturation: none', or each sensor at its rail / stuck and the windows flagged."""
+    if not info["saturated"]:
+        print("input saturation: none (no sensor at its rail, none stuck)")
+        return
+    print(f"WARN: input saturation: {'; '.join(info['messages'])} "
+          f"({info['saturated_windows']} of {info['windows_checked']} windows with such samples)")
 
 
 def _print_integrity(integrity) -> None:

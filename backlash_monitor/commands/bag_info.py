@@ -114,6 +114,7 @@ def run(args) -> int:
             "lost_bytes": reader.recovery.lost_bytes,
             "recovery": reader.recovery.to_dict(),
         }
+        info["input_saturation"] = _saturation(reader, topics)
         details = {}
         for t in args.topic:
             try:
@@ -134,6 +135,29 @@ def run(args) -> int:
     if not args.recover and not reader.recovery.intact:   # pragma: no cover - raised at open
         status = 1
     return status
+
+
+def _saturation(reader, topics) -> dict:
+    """Each accelerometer topic's samples at a rail (a clipped sensor) or stuck at one value, counted in
+    blocks of 1 s as the windowing node and analyze count them (windowing/saturation.py)."""
+    from ..bag import BagError
+    from ..windowing import DEFAULTS
+    from ..windowing.saturation import SaturationCounter, SaturationSettings
+    settings = SaturationSettings.from_config(DEFAULTS["saturation"])
+    out = {}
+    for name, t in topics.items():
+        if not t.type.endswith("/SignalChunk") or name.rsplit("/", 1)[-1] not in ("a1", "a2"):
+            continue
+        try:
+            signal = reader.read_signal(name)
+        except BagError as exc:
+            out[name] = {"error": str(exc)}
+            continue
+        counter = SaturationCounter((signal.signal_name,), settings)
+        counter.feed({signal.signal_name: signal.samples})
+        counter.flush()
+        out[name] = counter.totals()[signal.signal_name].as_dict()
+    return out
 
 
 def _topic_details(reader, topic: str) -> dict:
@@ -180,6 +204,9 @@ def _print_text(info: dict) -> None:
         msgs = "?" if d["messages"] is None else d["messages"]
         print(f"{'':<{w}}{'read ' if d['recovered'] else 'SKIPPED'} chunk at byte {d['offset']} "
               f"({d['length_bytes']} bytes, {span}, {msgs} messages): {d['reason']}")
+    for topic, sat in info.get("input_saturation", {}).items():
+        text = sat.get("error") or sat["message"] or "none (not at a rail, not stuck)"
+        print(f"{'Saturation:':<{w}}{topic}: {text}")
     for topic, d in info.get("details", {}).items():
         print(f"{'Details ' + topic + ':'}")
         for k, v in d.items():

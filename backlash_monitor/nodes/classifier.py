@@ -103,6 +103,9 @@ class ClassifierNode(Node):
         self.repeated = RepeatedWindows()
         self.faults = FaultLog()            # windows dropped here (not denoised)
         self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "windows")
+        # estimates from windows with samples at a sensor's rail or stuck: (count, when [monotonic s],
+        # the last one's entry sample, its saturated samples)
+        self.saturated_estimates: tuple = (0, None, 0, 0)
         self.width_state = None             # (level, message, values) of the last fused width
         self.model_fit = None               # the model watch's last FitVerdict (None: none heard)
         follow_model_fit(self, self.on_model_fit)
@@ -151,6 +154,10 @@ class ClassifierNode(Node):
                                             msg.entry_kind, msg.sample_period_s, sensor_offsets=offsets)
         for estimate in estimates:
             self.publisher.publish(self.to_message(msg, estimate))
+        if estimates and msg.saturated_samples:
+            # a window with samples at a sensor's rail (or stuck): classified, flagged on /diagnostics
+            self.saturated_estimates = (self.saturated_estimates[0] + 1, time.monotonic(),
+                                        msg.entry_sample_index, msg.saturated_samples)
         if estimates:
             self.classified += 1
             # Both signals together is the most informative estimate where the mode has it.
@@ -213,6 +220,12 @@ class ClassifierNode(Node):
             level = "WARN"
         else:
             level = "OK"
+        saturated = self.saturated_estimates
+        if saturated[0] and time.monotonic() - saturated[1] <= p["fault_hold_s"]:
+            problem = "; ".join(filter(None, [problem, (
+                f"estimate from a window with {saturated[3]} samples at a sensor's rail or stuck (entry "
+                f"{saturated[2]}; the windowing node names the sensor)")]))
+            level = "WARN" if level == "OK" else level
         if problem:
             message = f"{message}; {problem}"
         if self.library_flag:
@@ -226,7 +239,7 @@ class ClassifierNode(Node):
             windows_waiting_for_offset=self.estimator.waiting_for_offset,
             input_faults=", ".join(f for f in (self.faults.summary(), self.estimator.faults.summary())
                                    if f != "none") or "none",
-            repeated_windows_skipped=self.repeated.repeats,
+            repeated_windows_skipped=self.repeated.repeats, saturated_estimates=saturated[0],
             warn_width_m=p["warn_width_m"], error_width_m=p["error_width_m"],
             model_fit="" if self.model_fit is None else
             ("explains" if self.model_fit.explains else "does not explain"))

@@ -17,6 +17,12 @@ Each window carries the accelerometers' constant offsets estimated over the last
 periods (``a1_offset_m_s2``, ``a2_offset_m_s2``, ``offset_periods``; backlash_monitor.windowing.offset),
 which the classifier removes. ``/diagnostics`` shows the latest estimate and says WARN while one
 lies beyond +-``plausible_offset_m_s2`` (more than a MEMS sensor's offset: check the sensor).
+
+A sensor at its rail (clipped) or stuck at one value (backlash_monitor.windowing.saturation, counted
+by the core in blocks of 1 s): each window carries its samples at a rail or stuck
+(``saturated_samples``), and ``/diagnostics`` says WARN naming the signal, its rail and its share of
+samples ("a2 at its rail (±9.81 m/s²) in 4.1 % of samples: the accelerometer's range is too
+small") while such samples come and for ``fault_hold_s`` after.
 """
 from __future__ import annotations
 
@@ -101,6 +107,8 @@ class WindowingNode(Node):
                        "chunks": 0}
         self.last_discard = ""
         self.sensor_offsets: tuple[dict, int] = ({}, 0)   # the last window's estimate, periods
+        self.counts["saturated_windows"] = 0
+        self.last_saturation_s: float | None = None   # when a block or a window last had any
         for name in self.signals:
             self.create_subscription(SignalChunk, f"plant/{name}",
                                      lambda msg, n=name: self.on_chunk(n, msg), qos)
@@ -134,7 +142,10 @@ class WindowingNode(Node):
     def process(self, joined):
         """Feeds one joined range; returns the windows it discarded."""
         resyncs = self.faults.counts["stream_restart"] + self.faults.counts["gap"]
+        blocks = self.stage.saturation.blocks
         windows, discarded = self.stage.feed(joined)
+        if self.stage.saturation.blocks > blocks and any(r.faulty for r in self.stage.saturation.last.values()):
+            self.note_saturation()
         self.counts["chunks"] += 1
         resynced = self.faults.counts["stream_restart"] + self.faults.counts["gap"] > resyncs
         if (self.stream_start_s is None or resynced) and is_period(joined.sample_period_s):
@@ -153,8 +164,21 @@ class WindowingNode(Node):
             self.get_logger().warning(f"window discarded ({self.last_discard})")
         return discarded
 
+    def note_saturation(self):
+        first = self.last_saturation_s is None
+        self.last_saturation_s = time.monotonic()
+        if first:
+            self.get_logger().warning("; ".join(self.stage.saturation.messages()) or "saturated window")
+            self.update_diagnostics(publish_now=True)
+
     def update_diagnostics(self, publish_now: bool = False):
         level, problem = self.health.state(time.monotonic())
+        saturation = "; ".join(self.stage.saturation.messages())
+        if (saturation and self.last_saturation_s is not None
+                and time.monotonic() - self.last_saturation_s <= self.params["fault_hold_s"]):
+            problem = "; ".join(filter(None, [problem, saturation]))
+            if level == "OK":
+                level = "WARN"
         summary = f"{self.counts['windows']} windows, {self.counts['discarded']} discarded"
         offsets, periods = self.sensor_offsets
         values = {f"{name}_offset_m_s2": f"{value:.4f}" if math.isfinite(value) else ""
@@ -177,7 +201,8 @@ class WindowingNode(Node):
                              pending_ranges_max=self.joiner.pending_max,
                              lost_samples=self.stage.lost_samples,
                              input_faults=self.faults.summary(), offset_periods=periods,
-                             plausible_offset_m_s2=limit, **values, **self.counts)
+                             plausible_offset_m_s2=limit, saturation=saturation or "none",
+                             **values, **self.counts)
 
     def publish_window(self, window, frame_id: str, range_stamp=None):
         msg = BacklashWindow()
@@ -201,7 +226,11 @@ class WindowingNode(Node):
         msg.a1_offset_m_s2 = window.sensor_offsets.get("a1", math.nan)
         msg.a2_offset_m_s2 = window.sensor_offsets.get("a2", math.nan)
         msg.offset_periods = window.offset_periods
+        msg.saturated_samples = min(window.saturated_samples, 2 ** 32 - 1)
         self.publisher.publish(msg)
+        if window.saturated_samples:
+            self.counts["saturated_windows"] += 1
+            self.note_saturation()
         self.counts["windows"] += 1
         self.counts["onsets"] += window.kind == "onset"
         self.counts["onsets_before_offset"] += window.kind == "onset" and window.offset_periods == 0

@@ -262,6 +262,7 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
             feeder = BlockFeeder(stage)
             batch = []   # onset windows, denoised and estimated together (same numbers as one by one)
             last_offsets = ({}, 0)   # the latest window's sensor offset estimate, periods
+            saturated_windows = [0, 0]   # windows with samples at a rail or stuck, windows checked
             # the drive's name and the first sample's time, from the first a1 chunk
             first_a1 = [("", math.nan)]
             # a file without chunks: its ranges joined at once when they come whole, one after the
@@ -282,6 +283,8 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
                     discarded.extend(dropped)
                 for window, completing in windows:   # completing: the range completing it, one by one
                     last_offsets = (window.sensor_offsets, window.offset_periods)
+                    saturated_windows[0] += window.saturated_samples > 0
+                    saturated_windows[1] += 1
                     if not estimator.classifies(window.kind):
                         continue  # no estimate from it: skip denoising it (live: denoised, unused)
                     batch.append((completing, window))
@@ -292,6 +295,7 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
                     for (completing, window), estimates in zip(batch, results):
                         for est in estimates:
                             rows.append(_row(window, est, true_width))
+                            rows[-1]["saturated_samples"] = window.saturated_samples   # JSON, not CSV
                             estimates_msgs.append((completing, window, est))
                     batch = []
             integrity = reader.recovery.to_dict()
@@ -308,6 +312,7 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
 
     summary = _summary(rows, true_width)
     sensor_offsets = _sensor_offsets(*last_offsets, estimator.waiting_for_offset)
+    saturation = saturation_report(stage.saturation, *saturated_windows)
     # written under temporary names, renamed together once all three are complete
     with staged_outputs([outputs["csv"], outputs["json"], outputs["mcap"]]) as (csv_tmp, json_tmp, mcap_tmp):
         with open(csv_tmp, "w", newline="") as f:
@@ -326,12 +331,26 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
                        "input_faults": {**stage.faults.counts, **estimator.faults.counts},
                        "input_fault_examples": [{"reason": r, "detail": d} for r, d in stage.faults.take()[:20]],
                        "lost_samples": stage.lost_samples, "sensor_offsets": sensor_offsets,
+                       "input_saturation": saturation,
                        "summary": summary, "estimates": rows}, allow_nan=True))
         _write_estimate_bag(mcap_tmp, estimates_msgs, true_width)
     return {"rows": rows, "summary": summary, "discarded": discarded, "n_samples": n_samples,
             "seconds": elapsed, "outputs": outputs, "integrity": integrity,
             "faults": (stage.faults, estimator.faults), "lost_samples": stage.lost_samples,
-            "drive": first_a1[0][0], "first_stamp_s": first_a1[0][1], "sensor_offsets": sensor_offsets}
+            "drive": first_a1[0][0], "first_stamp_s": first_a1[0][1], "sensor_offsets": sensor_offsets,
+            "input_saturation": saturation}
+
+
+def saturation_report(counter, saturated_windows: int, windows: int) -> dict:
+    """The recording's sensors at a rail or stuck (windowing/saturation.py; counted in blocks of 1 s as
+    the live windowing node counts them): per signal counts and shares, the windows with such samples
+    in their analysed stretch, and one message per fault ('' when none)."""
+    counter.flush()
+    totals = counter.totals()
+    return {"saturated": any(r.faulty for r in totals.values()),
+            "signals": {name: r.as_dict() for name, r in totals.items()},
+            "saturated_windows": int(saturated_windows), "windows_checked": int(windows),
+            "messages": counter.messages()}
 
 
 def _ranges_one_by_one(chunks, topics: dict, source: SourceCheck, joiner, first_a1: list,

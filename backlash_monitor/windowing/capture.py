@@ -46,6 +46,14 @@ class BacklashWindow:
     # (mean over the last whole load periods, offset.py); NaN before the first whole period
     sensor_offsets: dict = field(default_factory=dict)
     offset_periods: int = 0             # whole load periods behind sensor_offsets (0: none yet)
+    # each captured signal's samples at a rail of the stream or stuck (saturation.SignalSaturation);
+    # empty: not checked (WindowingStage checks every window it returns)
+    input_saturation: dict = field(default_factory=dict)
+
+    @property
+    def saturated_samples(self) -> int:
+        """Samples of the window's signals at a rail or stuck (0: clean or not checked)."""
+        return sum(r.at_rail + r.stuck for r in self.input_saturation.values())
 
     @property
     def start_sample_index(self) -> int:

@@ -51,6 +51,15 @@ DEFAULTS: dict[str, Any] = {
         # |a1|, |a2| [m/s^2] an accelerometer can report (its full scale); beyond: a corrupted sample
         "accelerometer_range_m_s2": 1960.0,
     },
+    "saturation": {
+        # a signal at its rail (clipped) or stuck at one value (saturation.py; docs/windowing.md)
+        "rail_min_run_samples": 3,
+        "rail_band_fraction": 0.01,
+        "rail_band_quanta": 4,
+        "rail_overpopulation_ratio": 3.0,
+        "stuck_min_run_samples": 1000,
+        "block_samples": 50000,
+    },
 }
 
 # the packaged config/windowing.yaml (files.config: the source tree's, else the installed one)

@@ -32,6 +32,7 @@ from .decisions import (DELTA_IC_DECISIVE, DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EX
 from .diagnosis import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOTHING_EXPLAINS, PARTIAL,
                         ROLE_DISCOVERY, ROLE_PARTIAL, ROLE_SECOND, Addition, Conditions, Diagnosis,
                         WidthMeasurement)
+from .measurement import saturation_of
 
 REFINE_TOP = 3               # singles refined first: the best 3 by explained share (model inconsistent)
 REFINE_EXTRA = 4             # more candidates refined when they may tie with the winner (the rim-force twins of a wheel
@@ -527,6 +528,8 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
     width = width_measurement(run, up)
     v = decide_verdict(run, up, ripple_fit)
     message = verdict_message(run, up, v, width, ripple_fit, overall_before)
+    saturation = saturation_of(run.meas.signals)
+    message = saturated_first(message, saturation)
     discovery, second, partial, ripple_entry = v.discovery, v.second, v.partial, v.ripple_entry
     # the JSON's candidate entries: a confident ripple is the discovery when the event average has none, else
     # the second effect when there is none
@@ -537,6 +540,7 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
     after_view = (consistency.test(run.problem, run.problem.residual(up.after_pred)) if discovery is not None
                   else run.before)
     report_dict = report.diagnosis_report(run, up, v, ripple_fit, spec, overall_before, _identifiability(run))
+    report_dict["input_saturation"] = saturation
     conditions = Conditions(run.meas.source, run.model.label(),
                             str(run.model.path) if run.model.path else None, dict(run.model.nominal),
                             dict(run.overrides), [str(f) for f in run.model.effect_files],
@@ -545,6 +549,16 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
     return Diagnosis(conditions, v.verdict, message, disc_json, second_json,
                      [f.to_json() for f in partial], v.additions, width, ranked, views, report_dict, comp,
                      up.after_mean if discovery is not None else None)
+
+
+def saturated_first(message: str, saturation: dict) -> str:
+    """A recording with a sensor at its rail (or stuck) says so before any effect is named: a clipped
+    accelerometer changes the event average as an effect would."""
+    if not saturation["saturated"]:
+        return message
+    railed = any("at its rail" in m for m in saturation["messages"])
+    what = "the recording is saturated" if railed else "a sensor of the recording is stuck"
+    return f"{what}: {'; '.join(saturation['messages'])}; what follows is read off those samples: {message}"
 
 
 def _ranked(run: Run, discovery) -> list:

@@ -40,6 +40,23 @@ class Measurement:
     def duration_s(self) -> float:
         return self.n_samples * self.sample_period_s
 
+    def saturation(self) -> dict:
+        return saturation_of(self.signals)
+
+
+def saturation_of(signals: dict) -> dict:
+    """A recording's accelerometers at their rail (clipped) or stuck at one value, counted in blocks of
+    1 s as the windowing node and ``analyze`` count them (windowing/saturation.py):
+    {"saturated": bool, "signals": {a1, a2: counts, shares, rails}, "messages": [one per fault]}."""
+    from backlash_monitor.windowing import DEFAULTS
+    from backlash_monitor.windowing.saturation import SaturationCounter, SaturationSettings
+    counter = SaturationCounter(REQUIRED, SaturationSettings.from_config(DEFAULTS["saturation"]))
+    counter.feed({s: signals[s] for s in REQUIRED})
+    counter.flush()
+    totals = counter.totals()
+    return {"saturated": any(r.faulty for r in totals.values()),
+            "signals": {name: r.as_dict() for name, r in totals.items()}, "messages": counter.messages()}
+
 
 def _check_signals(sig: dict, source: str) -> None:
     missing = [s for s in REQUIRED if s not in sig]

@@ -1,0 +1,296 @@
+"""Sensor saturation (a signal at its rail) and a stuck sensor, found from the data alone.
+
+A clipped sensor reports exactly its rail value whenever the true signal lies beyond it: the rail is
+the signal's extreme value, it comes in runs of identical samples, and it holds far more samples than
+the thin band of values just inside it (the signal would have gone on, so it crosses that band fast).
+A clean signal's extreme is one sample (noise), or -- behind an undithered ADC -- one quantisation
+level that a slow peak sits on for a while; but then the levels just below it hold as many samples
+as it does. So an extreme value is a **rail** when (config/windowing.yaml ``saturation``, docs/windowing.md
+"Input faults"):
+
+- it comes in runs of at least ``rail_min_run_samples`` identical samples, and
+- it holds at least ``rail_overpopulation_ratio`` times the samples of the band just inside it, of
+  width max(``rail_band_fraction`` * |extreme - median|, ``rail_band_quanta`` * the signal's
+  quantisation step near the extreme).
+
+A **stuck** sensor repeats one value for ``stuck_min_run_samples`` samples or more, not at a rail (a
+dead sensor, a broken wire, a frozen driver): a signal of one value throughout is stuck, not saturated.
+
+``assess_signal(x, name)`` -> :class:`SignalSaturation` (one array: a window, a recording);
+``assess(signals)`` for several; :class:`SaturationCounter` counts a stream in blocks of
+``block_samples`` (the live node and ``analyze`` count a recording alike). Plain numpy, no rclpy.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields, replace
+from typing import Mapping, Sequence
+
+import numpy as np
+
+__all__ = ["SaturationSettings", "SignalSaturation", "assess_signal", "assess", "SaturationCounter",
+           "sensor_of", "unit_of"]
+
+
+@dataclass(frozen=True)
+class SaturationSettings:
+    """The thresholds (config/windowing.yaml ``saturation`` has each one's unit and reason)."""
+    rail_min_run_samples: int = 3
+    rail_band_fraction: float = 0.01
+    rail_band_quanta: int = 4
+    rail_overpopulation_ratio: float = 3.0
+    stuck_min_run_samples: int = 1000
+    block_samples: int = 50_000
+
+    def __post_init__(self):
+        for name, lo, hi, integer in (("rail_min_run_samples", 2, 10_000, True),
+                                      ("rail_band_fraction", 1e-6, 0.5, False),
+                                      ("rail_band_quanta", 1, 10_000, True),
+                                      ("rail_overpopulation_ratio", 1.0, 1e6, False),
+                                      ("stuck_min_run_samples", 2, 10_000_000, True),
+                                      ("block_samples", 2, 100_000_000, True)):
+            value = getattr(self, name)
+            ok = (not isinstance(value, bool) and isinstance(value, (int, float)) and math.isfinite(value)
+                  and lo <= value <= hi and (not integer or float(value).is_integer()))
+            if not ok:
+                raise ValueError(f"saturation.{name} = {value!r}; allowed: "
+                                 f"{'an integer' if integer else 'a number'} in [{lo:g}, {hi:g}]")
+
+    @classmethod
+    def from_config(cls, section: Mapping | None) -> "SaturationSettings":
+        """From ``load_windowing_config()["saturation"]`` (unknown keys are the loader's error)."""
+        known = {f.name for f in fields(cls)}
+        return cls(**{k: v for k, v in (section or {}).items() if k in known})
+
+
+def sensor_of(signal: str) -> str:
+    """The sensor behind a signal, as a user names it."""
+    if signal.startswith("a"):
+        return "accelerometer"
+    if signal.startswith("omega"):
+        return "speed sensor"
+    if "angle" in signal or signal.startswith("alpha"):
+        return "encoder"
+    return "sensor"
+
+
+def unit_of(signal: str) -> str:
+    if signal.startswith("a") and not signal.startswith("angle") and not signal.startswith("alpha"):
+        return "m/s²"
+    if signal.startswith("omega"):
+        return "rad/s"
+    if "angle" in signal or signal.startswith("alpha"):
+        return "rad"
+    return ""
+
+
+@dataclass(frozen=True)
+class SignalSaturation:
+    """One signal's count: ``samples`` looked at, ``at_rail`` of them at a rail (in ``runs`` runs of
+    at least ``rail_min_run_samples``), the rails (None: none), ``stuck`` samples in runs of one
+    value of at least ``stuck_min_run_samples`` (the longest at ``stuck_value``)."""
+    signal: str
+    samples: int = 0
+    at_rail: int = 0
+    runs: int = 0
+    upper_rail: float | None = None
+    lower_rail: float | None = None
+    stuck: int = 0
+    stuck_value: float | None = None
+
+    @property
+    def rail_fraction(self) -> float:
+        return self.at_rail / self.samples if self.samples else 0.0
+
+    @property
+    def stuck_fraction(self) -> float:
+        return self.stuck / self.samples if self.samples else 0.0
+
+    @property
+    def faulty(self) -> bool:
+        return bool(self.at_rail or self.stuck)
+
+    def rails_text(self) -> str:
+        unit = unit_of(self.signal)
+        up, lo = self.upper_rail, self.lower_rail
+        if up is not None and lo is not None and math.isclose(abs(up), abs(lo), rel_tol=0.01):
+            text = f"±{abs(up):.3g}"
+        else:
+            text = " and ".join(f"{v:+.3g}" for v in (up, lo) if v is not None)
+        return f"{text} {unit}".strip()
+
+    def message(self) -> str:
+        """One line per fault ('' when clean): the rail first, then a stuck stretch."""
+        parts = []
+        if self.at_rail:
+            parts.append(f"{self.signal} at its rail ({self.rails_text()}) in {100 * self.rail_fraction:.1f} % "
+                         f"of samples: the {sensor_of(self.signal)}'s range is too small")
+        if self.stuck:
+            value = "" if self.stuck_value is None else f" at {self.stuck_value:.4g} {unit_of(self.signal)}".rstrip()
+            parts.append(f"{self.signal} stuck{value} in {100 * self.stuck_fraction:.1f} % of samples (one value "
+                         f"repeated): a dead {sensor_of(self.signal)} or a broken wire")
+        return "; ".join(parts)
+
+    def merged(self, other: "SignalSaturation") -> "SignalSaturation":
+        """This count and ``other``'s (another stretch of the same signal) together."""
+        def extreme(a, b, pick):
+            return b if a is None else a if b is None else pick(a, b)
+        return replace(self, samples=self.samples + other.samples, at_rail=self.at_rail + other.at_rail,
+                       runs=self.runs + other.runs,
+                       upper_rail=extreme(self.upper_rail, other.upper_rail, max),
+                       lower_rail=extreme(self.lower_rail, other.lower_rail, min),
+                       stuck=self.stuck + other.stuck,
+                       stuck_value=self.stuck_value if other.stuck <= self.stuck else other.stuck_value)
+
+    def as_dict(self) -> dict:
+        """For JSON: counts, shares [%] and the rails [the signal's unit]."""
+        return {"samples": self.samples, "at_rail": self.at_rail, "rail_percent": round(100 * self.rail_fraction, 3),
+                "upper_rail": self.upper_rail, "lower_rail": self.lower_rail, "stuck": self.stuck,
+                "stuck_percent": round(100 * self.stuck_fraction, 3), "stuck_value": self.stuck_value,
+                "message": self.message()}
+
+
+def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Starts and lengths of the runs of True in a boolean array."""
+    edges = np.diff(np.concatenate(([0], mask.view(np.int8), [0])))
+    starts = np.flatnonzero(edges == 1)
+    return starts, np.flatnonzero(edges == -1) - starts
+
+
+def _rail(x: np.ndarray, side: int, median: float, hold: int,
+          s: SaturationSettings) -> tuple[float | None, int, int, np.ndarray]:
+    """The rail on one side (+1 upper, -1 lower): (value or None, samples in runs, runs, mask of them).
+    ``hold``: the signal's own typical run of one value (1; a sensor with a slower output rate, held
+    by the recorder: its hold), the unit of ``rail_min_run_samples``."""
+    value = float(x.max() if side > 0 else x.min())
+    at = x == value
+    starts, lengths = _runs(at)
+    long_runs = lengths >= s.rail_min_run_samples * hold
+    if not long_runs.any():
+        return None, 0, 0, at[:0]
+    depth = abs(value - median)
+    band = s.rail_band_fraction * depth
+    inner = side * (value - x)                       # >= 0: how far inside the extreme
+    inside = inner[inner > 0]                        # not empty: the signal is not one value
+    near = np.unique(inside[inside <= max(2 * band, float(inside.min()))])
+    step = float(np.diff(np.concatenate(([0.0], near))).min())   # the quantisation step next to it
+    band = max(band, s.rail_band_quanta * step)
+    n_band = int(np.count_nonzero((inner > 0) & (inner <= band)))
+    if band <= 0 or int(at.sum()) < s.rail_overpopulation_ratio * n_band:
+        return None, 0, 0, at[:0]
+    mask = np.zeros_like(at)
+    for start, length in zip(starts[long_runs], lengths[long_runs]):
+        mask[start:start + length] = True
+    return value, int(lengths[long_runs].sum()), int(long_runs.sum()), mask
+
+
+def assess_signal(x, name: str, settings: SaturationSettings | None = None) -> SignalSaturation:
+    """Saturated and stuck samples of one signal's stretch (non-finite samples are not looked at)."""
+    s = settings or SaturationSettings()
+    x = np.asarray(x, dtype=float).ravel()
+    x = x[np.isfinite(x)]
+    if x.size == 0:
+        return SignalSaturation(name)
+    if x.max() == x.min():                           # one value throughout: stuck (dead), no rail
+        stuck = x.size if x.size >= s.stuck_min_run_samples else 0
+        return SignalSaturation(name, int(x.size), stuck=stuck, stuck_value=float(x[0]) if stuck else None)
+    median = float(np.median(x))
+    change = np.flatnonzero(np.diff(x) != 0) + 1
+    starts = np.concatenate(([0], change))          # runs of one value
+    lengths = np.diff(np.concatenate((starts, [x.size])))
+    hold = max(1, int(np.median(lengths)))
+    up, n_up, runs_up, mask_up = _rail(x, +1, median, hold, s)
+    lo, n_lo, runs_lo, mask_lo = _rail(x, -1, median, hold, s)
+    railed = np.zeros(x.size, dtype=bool)
+    for mask in (mask_up, mask_lo):
+        if mask.size:
+            railed |= mask
+    # stuck: runs of one value (not at a rail) at least stuck_min_run_samples long
+    long_ = (lengths >= s.stuck_min_run_samples) & ~railed[starts]
+    stuck = int(lengths[long_].sum())
+    stuck_value = float(x[starts[long_][np.argmax(lengths[long_])]]) if stuck else None
+    return SignalSaturation(name, int(x.size), n_up + n_lo, runs_up + runs_lo, up, lo, stuck, stuck_value)
+
+
+def assess(signals: Mapping[str, np.ndarray], settings: SaturationSettings | None = None) -> dict[str, SignalSaturation]:
+    """``assess_signal`` for each signal: {name: SignalSaturation}."""
+    return {name: assess_signal(x, name, settings) for name, x in signals.items()}
+
+
+class SaturationCounter:
+    """Counts a recording's (a stream's) saturated and stuck samples in blocks of ``block_samples``.
+
+    ``feed({name: chunk})`` (the chunks of one sample range, equal lengths), ``flush()`` at the end (the
+    last, shorter block); ``totals()`` -> {name: SignalSaturation}; ``faulty_blocks``; ``last`` (the
+    latest block's counts). A gap in the stream needs nothing: blocks are stretches of samples.
+    """
+
+    def __init__(self, signals: Sequence[str], settings: SaturationSettings | None = None):
+        self.settings = settings or SaturationSettings()
+        self.signals = tuple(signals)
+        self._parts: dict[str, list[np.ndarray]] = {s: [] for s in self.signals}
+        self._held = 0
+        self._totals = {s: SignalSaturation(s) for s in self.signals}
+        self.blocks = 0
+        self.faulty_blocks = 0
+        self.last: dict[str, SignalSaturation] = {}
+
+    def feed(self, signals: Mapping[str, np.ndarray]) -> dict[str, SignalSaturation] | None:
+        """Adds one range; returns the counts of the block it completed (None: none)."""
+        n = min(len(signals[s]) for s in self.signals)
+        done = None
+        offset = 0
+        while offset < n:
+            take = min(n - offset, self.settings.block_samples - self._held)
+            for s in self.signals:
+                self._parts[s].append(np.asarray(signals[s][offset:offset + take], dtype=float))
+            self._held += take
+            offset += take
+            if self._held >= self.settings.block_samples:
+                done = self._assess_block()
+        return done
+
+    def flush(self) -> dict[str, SignalSaturation] | None:
+        return self._assess_block() if self._held else None
+
+    def _assess_block(self) -> dict[str, SignalSaturation]:
+        block = {s: np.concatenate(self._parts[s]) for s in self.signals}
+        self._parts = {s: [] for s in self.signals}
+        self._held = 0
+        result = assess(block, self.settings)
+        for s, r in result.items():
+            self._totals[s] = self._totals[s].merged(r)
+        self.blocks += 1
+        self.faulty_blocks += any(r.faulty for r in result.values())
+        self.last = result
+        return result
+
+    def rails(self) -> dict[str, tuple[float | None, float | None]]:
+        """The rails found so far: {name: (upper or None, lower or None)}."""
+        return {s: (r.upper_rail, r.lower_rail) for s, r in self._totals.items()}
+
+    def check_window(self, signals: Mapping[str, np.ndarray]) -> dict[str, SignalSaturation]:
+        """A window's analysed stretch against the rails found so far (the stream's, not the window's
+        own extremes: 2048 samples hold too few peaks to tell a rail from a held or quantised top):
+        its samples at a rail in runs of ``rail_min_run_samples``, and its stuck samples."""
+        out = {}
+        for name in self.signals:
+            x = np.asarray(signals[name], dtype=float).ravel()
+            up, lo = self.rails().get(name, (None, None))
+            at, runs = 0, 0
+            for rail in (up, lo):
+                if rail is not None:
+                    _, lengths = _runs(x == rail)
+                    long_ = lengths >= self.settings.rail_min_run_samples
+                    at += int(lengths[long_].sum())
+                    runs += int(long_.sum())
+            own = assess_signal(x, name, self.settings)
+            out[name] = SignalSaturation(name, int(x.size), at, runs, up if at else None, lo if at else None,
+                                         own.stuck, own.stuck_value)
+        return out
+
+    def totals(self) -> dict[str, SignalSaturation]:
+        return dict(self._totals)
+
+    def messages(self) -> list[str]:
+        return [m for m in (r.message() for r in self._totals.values()) if m]
