@@ -128,17 +128,10 @@ def screen_step(run: Run, effects=None, progress=None) -> None:
     p.fit_basis = consistency.fit_basis(p)
     run.base_ic = p.ic(run.base_pred, 0)
     run.before = consistency.test(p, p.residual(run.base_pred))
-    # the linear estimates in the whitened views (generalised least squares), and their IC
-    r0g = p.project(p.residual(run.base_pred))
+    # the linear estimates in the whitened views (generalised least squares), and their IC; a term locked to a
+    # shaft's angle as a sine/cosine pair
     for n, info in run.scr.items():
-        eff = run.by_name[n]
-        x0 = eff.default_vector()
-        lo, hi = eff.bounds()
-        jg = p.project(info["J"])
-        d = fitting.lsq_linear(jg, r0g, bounds=(lo - x0, hi - x0 + 1e-300)).x
-        info["x_lin"] = x0 + d
-        info["explained_lin"] = p.explained_share(r0g - jg @ d, r0g)
-        info["delta_ic_lin"] = p.ic(run.base_pred + info["J"] @ d, len(x0)) - run.base_ic
+        fitting.linear_estimate(p, run.by_name[n], info, run.base_pred, run.base_ic)
     run.order = sorted(allowed, key=lambda k: -run.scr[k]["explained_lin"])
 
 
@@ -163,7 +156,8 @@ def refine_step(run: Run) -> list:
 
         def lin_distance(n):
             x0 = run.by_name[n].default_vector()
-            pred = run.base_pred + scr[n]["J"] @ (scr[n]["x_lin"] - x0)
+            pred = (scr[n]["pred_lin"] if "pred_lin" in scr[n]
+                    else run.base_pred + scr[n]["J"] @ (scr[n]["x_lin"] - x0))
             return prediction_distance(p, best.pred, pred) / misfit_scale(p, best) if best is not None else np.inf
 
         near = {n for n in run.order if n not in first and lin_distance(n) < 4 * DELTA_IC_TIE}
