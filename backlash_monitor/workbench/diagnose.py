@@ -25,7 +25,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import analysis, consistency, fitting, pairs, plant_adapter, ripple, separation, spectral, tolerance
+from . import (analysis, consistency, fitting, pairs, plant_adapter, proposal, ripple, separation, spectral,
+               tolerance)
 from .decisions import (DELTA_IC_DECISIVE, DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EXPLAINED, confident, identical_to,
                         likelihood_part, qualifies, significant)
 from .diagnosis import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOTHING_EXPLAINS, PARTIAL,
@@ -605,10 +606,12 @@ def _identifiability(run: Run) -> dict:
 
 
 def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool = True,
-             overrides=None) -> Diagnosis:
+             overrides=None, propose: bool = True) -> Diagnosis:
     """The whole diagnosis of ``meas`` against ``model`` (a WorkbenchModel): the steps above, in order.
     ``effects``: only these candidates are ranked (the views and the tolerance use the whole catalogue);
-    ``overrides``: the command-line overrides the model was loaded with (recorded in the conditions)."""
+    ``overrides``: the command-line overrides the model was loaded with (recorded in the conditions);
+    ``propose``: when nothing in the catalogue explains (partial, nothing explains), propose a term from the
+    generic library (proposal.py; the JSON's ``proposal``)."""
     run = prepare(meas, model, seeds, effects, overrides)
     screen_step(run, effects, progress)
     refine_step(run)
@@ -616,7 +619,13 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
     up = second_effect_step(run, decision, second)
     confidence_step(run, up, decision)
     ripple_fit, spec = spectral_step(run)
-    return verdict_step(run, decision, up, ripple_fit, spec)
+    result = verdict_step(run, decision, up, ripple_fit, spec)
+    if propose:
+        found = proposal.propose(run, up, result.verdict)
+        result.report["proposal"] = None if found is None else found.to_json()
+        if found is not None and found.proposed:
+            result.message += f"; proposed term outside the catalogue: {found.reason} (add-effect --accept-proposal)"
+    return result
 
 
 def public(result) -> dict:
