@@ -42,7 +42,7 @@ def test_forward_selection_finds_the_term_in_the_events_and_nothing_in_noise():
     Y = (G @ truth)[None] + rng.normal(size=(e, d))
     sel, steps = proposal.forward_select(G, Y, groups)
     assert sel[:1] == [0] and steps[0][2] > proposal.CV_Z
-    assert proposal.stability(G, Y, groups, n=30)[0] >= proposal.STABILITY
+    assert proposal.stability(G, Y, groups, n=15)[0] >= proposal.STABILITY
     false = 0
     for k in range(20):
         noise = np.random.default_rng(100 + k).normal(size=(e, d))
@@ -70,3 +70,48 @@ def test_the_proposal_is_written_as_a_plugin_that_loads_with_its_fitted_values(t
     assert cfg.effect_parameter("proposed_term_wheel", "amplitude0_Nm") == pytest.approx(2.9)
     assert cfg.effect_parameter("proposed_term_wheel", "phase0_rad") == pytest.approx(0.31)
     assert cfg.effect_parameter("proposed_term_rim", "c0_N") == pytest.approx(-4.0)
+
+
+def _diagnosis_with_proposal(tmp_path, proposed=True):
+    """A diagnosis JSON as diagnose writes it, its verdict nothing_explains, with a proposal (the plug-in the proposal
+    writes for a wheel-angle torque)."""
+    import json
+
+    from backlash_monitor.workbench.diagnosis import Conditions
+    from backlash_monitor.workbench.model import load_model
+    by = candidate_terms.by_name()
+    pieces = [candidate_terms.ProposedPiece((by["cand_wheel_alpha2_sin1"], by["cand_wheel_alpha2_cos1"]),
+                                            (2.0, 1.0), (0.1, 0.1))]
+    src, values = candidate_terms.proposal_source(pieces)
+    model = load_model(None)
+    cond = Conditions("drive.mcap", model.label(), None, dict(model.nominal), {}, [], model.to_dict(), [1, 2], {}, 16)
+    prop = {"proposed": proposed, "reason": "test", "law": candidate_terms.proposal_law(pieces),
+            "plugin_source": src, "plugin_values": values, "on_top_of": []}
+    d = {"discovery": None, "verdict": "nothing_explains", "message": "nothing in the catalogue explains",
+         "additions": [], "conditions": cond.to_json(), "measured_width": {}, "proposal": prop}
+    path = tmp_path / "d.json"
+    path.write_text(json.dumps(d))
+    return path, values
+
+
+def test_add_effect_takes_a_proposal_only_when_asked_and_writes_its_plugin_file(tmp_path, capsys):
+    import yaml
+
+    from backlash_monitor.__main__ import main
+    from backlash_monitor.workbench.model import load_model
+    diag, values = _diagnosis_with_proposal(tmp_path)
+    out = tmp_path / "v2.yaml"
+    assert main(["add-effect", str(diag), "-o", str(out)]) == 2            # not without --accept-proposal
+    assert "names no effect to add" in capsys.readouterr().err
+    assert main(["add-effect", str(diag), "-o", str(out), "--accept-proposal"]) == 0
+    plugin = tmp_path / "v2_proposed_term.py"
+    assert plugin.is_file()
+    v2 = load_model(out)
+    cfg = v2.plant_config()
+    assert cfg.effects["proposed_term_wheel"]
+    assert cfg.effect_parameter("proposed_term_wheel", "amplitude0_Nm") == pytest.approx(np.hypot(2.0, 1.0))
+    assert cfg.effect_parameter("proposed_term_wheel", "phase0_rad") == pytest.approx(np.arctan2(1.0, 2.0))
+    assert any(str(f).endswith("v2_proposed_term.py") for f in yaml.safe_load(out.read_text())["effect_files"])
+    nothing, _ = _diagnosis_with_proposal(tmp_path / ".." / tmp_path.name, proposed=False)
+    assert main(["add-effect", str(nothing), "-o", str(tmp_path / "v3.yaml"), "--accept-proposal"]) == 2
+    assert "proposes no term" in capsys.readouterr().err
