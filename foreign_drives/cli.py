@@ -10,6 +10,8 @@ from pathlib import Path
 from . import forms as F
 from .spec import manifest
 
+SUITE_CHOICES = ("bench", "widthloop", "test", "outside_dev", "outside_sealed")
+
 DESCRIPTION = """\
 Foreign drives: recordings of the drive made by a second, independent simulator (docs/foreign_drives.md),
 with effects of the model catalogue's families written in other functional forms, and effects outside
@@ -26,6 +28,7 @@ examples:
   python -m foreign_drives write --suite bench --out foreign_bench
   python -m foreign_drives write --suite test --out /tmp/ft --only t_clean_w5 --format npz
   python -m foreign_drives list --suite widthloop
+  python -m foreign_drives write --suite outside_dev --out outside_dev
 """
 
 
@@ -41,10 +44,11 @@ def build_parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", metavar="{write,list,forms}", parser_class=_Parser)
     w = sub.add_parser("write", help="make a suite's recordings into a directory",
                        description="Make a suite's recordings: one file per recording in --out, and manifest.json.")
-    w.add_argument("--suite", required=True, choices=("bench", "widthloop", "test"),
+    w.add_argument("--suite", required=True, choices=SUITE_CHOICES,
                    help="bench: >= 30 recordings of 4 s (seeds 5000+) for bench/workbench.py; widthloop: the "
                         "hidden-effect drives whose monitor width is checked before/after retraining (seeds 6000+); "
-                        "test: short recordings the tests use (seeds 100-199)")
+                        "test: short recordings the tests use (seeds 100-199); outside_dev / outside_sealed: "
+                        "mechanisms outside the catalogue, development and sealed half (seeds 7000+ / 7100+)")
     w.add_argument("--out", required=True, metavar="DIR", help="output directory (created if missing)")
     w.add_argument("--only", action="append", metavar="LABEL", default=None,
                    help="write only this recording (repeatable); the manifest then lists only these")
@@ -54,7 +58,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="replace files that exist (default: refuse before any work)")
     w.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     ls = sub.add_parser("list", help="print a suite's recordings", description="Print a suite's recordings.")
-    ls.add_argument("--suite", required=True, choices=("bench", "widthloop", "test"), help="the suite")
+    ls.add_argument("--suite", required=True, choices=SUITE_CHOICES, help="the suite")
     ls.add_argument("--json", action="store_true", help="the specs and truths as JSON (the manifest's content)")
     sub.add_parser("forms", help="print every effect form", description="Print every effect form.")
     return p
@@ -142,7 +146,12 @@ def cmd_list(args) -> int:
 def cmd_forms(args) -> int:
     for f in F.FORMS.values():
         params = ", ".join(f"{p.name} [{p.unit}]" if p.unit else p.name for p in f.parameters)
-        print(f"{f.name}  family={f.family}  stage={f.stage}\n    {f.description}\n    parameters: {params}")
+        if getattr(f, "half", "") == "sealed":       # the sealed half's laws are not shown (issue 31 part 4)
+            print(f"{f.name}  family=None  outside (sealed)  balance={f.balance}\n    law withheld: the sealed "
+                  "half of the outside mechanisms")
+            continue
+        where = f"  balance={f.balance}  depends on {', '.join(f.depends_on)}" if getattr(f, "balance", "") else ""
+        print(f"{f.name}  family={f.family}  stage={f.stage}{where}\n    {f.description}\n    parameters: {params}")
         if f.note:
             print(f"    note: {f.note}")
     return 0

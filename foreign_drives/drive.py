@@ -50,6 +50,10 @@ class Recording:
                 "onset_entries": [k for k, kd in ent if kd == "onset"],
                 "return_entries": [k for k, kd in ent if kd == "return"],
                 "min_entry_spacing_samples": int(np.min(np.diff(ks))) if len(ks) > 1 else None,
+                # the simulator's shaft angles at sample 0 (mod 2*pi): a law locked to an angle, stated in the
+                # simulator's angle, has the phase phi + alpha(0) on the recording's own angle (integral of omega)
+                "angles_at_sample0_rad": {k: float(np.mod(self.internal[k][0], 2.0 * math.pi))
+                                          for k in ("alpha1", "alpha2") if k in self.internal},
                 "integrator": {k: v for k, v in self.stats.items()}}
 
 
@@ -66,7 +70,7 @@ def build_parameters(spec: RecordingSpec):
     return P, b
 
 
-def apply_sensor_chain(spec: RecordingSpec, accel: dict, t: np.ndarray, fs: float) -> dict:
+def apply_sensor_chain(spec: RecordingSpec, accel: dict, t: np.ndarray, fs: float, states: dict | None = None) -> dict:
     """The sensor forms on {a1, a2} (sensing element's gain and bias first, then the low-pass filters, each
     group in spec order), then the nuisance: white noise from the recording's sensor streams, the ADC's
     quantisation. ``accel`` arrays include the pre-roll; ``t`` their times [s] (t = 0 at sample 0)."""
@@ -76,7 +80,10 @@ def apply_sensor_chain(spec: RecordingSpec, accel: dict, t: np.ndarray, fs: floa
     for order in (0, 1):
         for form, p in sensors:
             if form.order == order:
-                form.apply_signal(sig, p, t, fs)
+                if getattr(form, "uses_states", False):      # an outside sensor mechanism reads the run's states
+                    form.apply_signal(sig, p, t, fs, states=states)
+                else:
+                    form.apply_signal(sig, p, t, fs)
     s = spec.sensor
     rng = N.streams(spec.seed)
     for name in ("a1", "a2"):
@@ -113,7 +120,9 @@ def make_recording(spec: RecordingSpec, tol_scale: float = 1.0) -> Recording:
     n_pre = -run.first_index
     t = (np.arange(run.out.shape[0]) - n_pre) / fs
     accel = {"a1": run.signal("a1", pre_roll=True), "a2": run.signal("a2", pre_roll=True)}
-    sensed = apply_sensor_chain(spec, accel, t, fs)
+    states = {"alpha1": run.signal("alpha1", pre_roll=True), "alpha2": run.signal("alpha2", pre_roll=True),
+              "a1_physical": accel["a1"], "a2_physical": accel["a2"]}
+    sensed = apply_sensor_chain(spec, accel, t, fs, states=states)
     sig = {"a1": sensed["a1"][n_pre:], "a2": sensed["a2"][n_pre:],
            "omega1": run.signal("omega1").copy(), "omega2": run.signal("omega2").copy(),
            "angle_difference": measured_angle_difference(run.signal("alpha1"), run.signal("alpha2"),
@@ -124,6 +133,9 @@ def make_recording(spec: RecordingSpec, tol_scale: float = 1.0) -> Recording:
                 "jaw_angle_difference": run.signal("jaw_angle_difference").copy(),
                 "clutch_torque_Nm": run.signal("clutch_torque_Nm").copy(), "te_pu": run.signal("te_pu").copy(),
                 "rim_force_N": run.signal("rim_force_N").copy(), "mode": run.signal("mode").copy(),
+                "alpha1": run.signal("alpha1").copy(), "alpha2": run.signal("alpha2").copy(),
+                "wheel_acceleration": run.signal("wheel_acceleration").copy(),
+                "mass_speed": run.signal("mass_speed").copy(), "spring_extension": run.signal("spring_extension").copy(),
                 "parameters": P, "pulse_amplitude_pu": b.pulse_amplitude_pu}
     return Recording(spec=spec, signals=sig, sample_period_s=C.SAMPLE_PERIOD_S, truth=truth, internal=internal,
                      stats=run.stats)

@@ -818,6 +818,17 @@ FORM_CLASSES = (WheelFrictionTanh, WheelFrictionLoadDependent, WheelDragPower, W
                 StructuralVibration, SecondTorsionalMode)
 FORMS = {cls.name: cls() for cls in FORM_CLASSES}
 
+
+def _register_outside() -> None:
+    """The mechanisms outside the catalogue of issue 31 (foreign_drives.outside_dev, .outside_sealed) join FORMS.
+    Imported here, at the end, because they build on Form and Param above."""
+    from . import outside_dev, outside_sealed
+    for cls in outside_dev.FORM_CLASSES + outside_sealed.FORM_CLASSES:
+        FORMS[cls.name] = cls()
+
+
+_register_outside()
+
 # the catalogue's families (backlash_monitor/plant/effects.py CATALOGUE, written out: this package does not
 # import the plant); test_foreign_drives checks the list against the catalogue
 CATALOGUE_FAMILIES = (

@@ -92,7 +92,14 @@ PARAM_NAMES = (
     "em_eps", "em_n", "em_ph", "gm_torque", "gm_n", "gm_ph",
     # structural vibration at a fixed frequency on the motor's load moment (p.u.)
     "vib_pu", "vib_hz", "vib_ph",
-)
+    # the pulse train's timing on the 0.2 ms segment grid (first, period, duration, in segments), and the held
+    # pulse indicator and the start time of the current pulse [s] (set per segment by run_segments)
+    "pulse_first_seg", "pulse_period_seg", "pulse_duration_seg", "pulse_on", "pulse_start_s",
+    # OUTSIDE terms (forms outside the catalogue, foreign_drives.outside): the number of active slots, then
+    # OUTSIDE_SLOTS slots of OUTSIDE_STRIDE values each (see outside_terms)
+    "outside_active",
+) + tuple(f"x{i}_{k}" for i in range(6) for k in ("balance", "amplitude", "nonperiodic", "sel1", "shape1", "a1",
+                                                    "b1", "c1", "sel2", "shape2", "a2", "b2", "c2"))
 N_PARAMS = len(PARAM_NAMES)
 PI = {name: i for i, name in enumerate(PARAM_NAMES)}
 (P_RS, P_RR, P_XS, P_XR, P_XM, P_U, P_OMB, P_OMMB, P_TB, P_J1,
@@ -105,7 +112,21 @@ PI = {name: i for i, name in enumerate(PARAM_NAMES)}
  P_RAILF, P_RAILV, P_MDC, P_MCF,
  P_RN0, P_RA0, P_RP0, P_RN1, P_RA1, P_RP1, P_RN2, P_RA2, P_RP2, P_RN3, P_RA3, P_RP3,
  P_EME, P_EMN, P_EMP, P_GMA, P_GMN, P_GMP,
- P_VIBA, P_VIBF, P_VIBP) = range(N_PARAMS)
+ P_VIBA, P_VIBF, P_VIBP,
+ P_PFIRST, P_PPER, P_PDUR, P_PON, P_PT0, P_XN) = range(PARAM_NAMES.index("x0_balance"))
+OUTSIDE_SLOTS = 6
+OUTSIDE_STRIDE = 13
+P_X0 = PARAM_NAMES.index("x0_balance")
+# offsets within a slot
+(X_BAL, X_AMP, X_NP, X_S1, X_F1, X_A1, X_B1, X_C1, X_S2, X_F2, X_A2, X_B2, X_C2) = range(OUTSIDE_STRIDE)
+# balances of an outside slot: the balance its term is added to
+XB_OFF, XB_MOTOR_LOAD, XB_WHEEL, XB_CLUTCH, XB_MASS = range(5)
+# selectors: the drive quantity a factor reads
+(XS_ONE, XS_OMEGA1, XS_OMEGA2, XS_RIM_SPEED, XS_MASS_SPEED, XS_PENETRATION, XS_SPRING_EXTENSION, XS_ALPHA1,
+ XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
+ XS_SIGN_OMEGA2) = range(17)
+# shapes of a factor f(x; a, b, c)
+(XF_ONE, XF_X, XF_POWER, XF_SIN, XF_SIN_POSITIVE, XF_EXCESS_POWER, XF_RAMP, XF_TANH, XF_RISE, XF_COS) = range(10)
 
 
 @njit(cache=True, inline="always")
@@ -156,6 +177,98 @@ def implied_mode(y, P):
 @njit(cache=True, inline="always")
 def _sgn(x):
     return 1.0 if x > 0.0 else (-1.0 if x < 0.0 else 0.0)
+
+
+@njit(cache=True)
+def _selected(sel, t, y, P, mode, pen, tcc):
+    """The drive quantity an outside factor reads (XS_*), SI units."""
+    r = P[P_R]
+    if sel == XS_ONE:
+        return 1.0
+    if sel == XS_OMEGA1:
+        return y[S_W1]
+    if sel == XS_OMEGA2:
+        return y[S_W2]
+    if sel == XS_RIM_SPEED:
+        return r * (y[S_WR] if P[P_KW] > 0.0 else y[S_W2])
+    if sel == XS_MASS_SPEED:
+        return y[S_V]
+    if sel == XS_PENETRATION:
+        return pen
+    if sel == XS_SPRING_EXTENSION:
+        return r * (y[S_AR] if P[P_KW] > 0.0 else y[S_A2]) - y[S_X]
+    if sel == XS_ALPHA1:
+        return y[S_A1]
+    if sel == XS_ALPHA2:
+        return y[S_A2]
+    if sel == XS_PULSE:
+        return P[P_PON]
+    if sel == XS_TIME:
+        return t
+    if sel == XS_PULSE_AGE:
+        return t - P[P_PT0] if P[P_PON] > 0.0 else -1.0
+    if sel == XS_JAW_SPEED:
+        return (y[S_WH] if P[P_KS] > 0.0 else y[S_W1]) - y[S_W2]
+    if sel == XS_MOTOR_RIM_MINUS_MASS:
+        return r * y[S_W1] - y[S_V]
+    if sel == XS_MODE:
+        return float(mode)
+    if sel == XS_CONTACT_TORQUE:
+        return tcc
+    if sel == XS_SIGN_OMEGA2:
+        return _sgn(y[S_W2])
+    return 0.0
+
+
+@njit(cache=True)
+def _shaped(shape, x, a, b, c):
+    """A factor's shape f(x; a, b, c) (XF_*)."""
+    if shape == XF_ONE:
+        return 1.0
+    if shape == XF_X:
+        return x
+    if shape == XF_POWER:
+        return abs(x) ** a * _sgn(x)
+    if shape == XF_SIN:
+        return math.sin(a * x + b)
+    if shape == XF_SIN_POSITIVE:
+        s = math.sin(a * x + b)
+        return s ** c if s > 0.0 else 0.0
+    if shape == XF_EXCESS_POWER:
+        e = x - a
+        return e ** b if e > 0.0 else 0.0
+    if shape == XF_RAMP:
+        q = x / a
+        return 0.0 if q < 0.0 else (1.0 if q > 1.0 else q)
+    if shape == XF_TANH:
+        return math.tanh(x / a)
+    if shape == XF_RISE:
+        return 1.0 - math.exp(-x / a) if x >= 0.0 else 0.0
+    if shape == XF_COS:
+        return math.cos(a * x + b)
+    return 0.0
+
+
+@njit(cache=True)
+def outside_terms(t, y, P, timevar, mode, pen, tcc, out):
+    """The outside slots' terms summed per balance into ``out`` = [motor load N*m, wheel N*m (+ drives the wheel),
+    clutch N*m (+ motor to wheel), mass N (+ along x)]. Each slot: amplitude * f1(sel1) * f2(sel2); a slot marked
+    non-periodic (angle- or time-locked) acts only when ``timevar`` is on (not in the settled start's period map)."""
+    out[0] = 0.0
+    out[1] = 0.0
+    out[2] = 0.0
+    out[3] = 0.0
+    for i in range(int(P[P_XN])):
+        o = P_X0 + i * OUTSIDE_STRIDE
+        bal = int(P[o + X_BAL])
+        if bal == XB_OFF or (P[o + X_NP] != 0.0 and timevar == 0.0):
+            continue
+        v = P[o + X_AMP]
+        v *= _shaped(int(P[o + X_F1]), _selected(int(P[o + X_S1]), t, y, P, mode, pen, tcc),
+                     P[o + X_A1], P[o + X_B1], P[o + X_C1])
+        v *= _shaped(int(P[o + X_F2]), _selected(int(P[o + X_S2]), t, y, P, mode, pen, tcc),
+                     P[o + X_A2], P[o + X_B2], P[o + X_C2])
+        out[bal - 1] += v
 
 
 @njit(cache=True)
@@ -218,11 +331,23 @@ def rhs(t, y, mode, load_pu, P, timevar, dy):
         tshaft = 0.0
     d, dd = clutch_angles(y, P)
     if mode == 1:
-        tc = contact_torque(d - P[P_BETA], dd, P[P_KCD], P)
+        pen = d - P[P_BETA]
+        tc = contact_torque(pen, dd, P[P_KCD], P)
     elif mode == -1:
-        tc = -contact_torque(-d - P[P_BETA], -dd, P[P_KCF], P)
+        pen = -d - P[P_BETA]
+        tc = -contact_torque(pen, -dd, P[P_KCF], P)
     else:
+        pen = 0.0
         tc = 0.0
+    xw = 0.0
+    xf = 0.0
+    if P[P_XN] > 0.0:
+        xs = np.empty(4)
+        outside_terms(t, y, P, timevar, mode, pen, tc, xs)
+        tload += xs[0]
+        tc += xs[2]
+        xw = xs[1]
+        xf = xs[3]
     if P[P_KS] > 0.0:
         dy[S_W1] = (tb * te - tshaft - tload) / P[P_J1]
         dy[S_WH] = (tshaft - tc) / P[P_JH]
@@ -267,16 +392,16 @@ def rhs(t, y, mode, load_pu, P, timevar, dy):
     if timevar != 0.0 and P[P_GMA] != 0.0:
         tf += P[P_GMA] * math.sin(P[P_GMN] * a2 + P[P_GMP])
     if P[P_KW] > 0.0:
-        dy[S_W2] = (tc - twist - tf) / P[P_J2]
+        dy[S_W2] = (tc - twist - tf + xw) / P[P_J2]
         dy[S_WR] = (twist - r * f) / P[P_JR]
         dy[S_AR] = y[S_WR]
     else:
-        dy[S_W2] = (tc - r * f - tf) / P[P_J2]
+        dy[S_W2] = (tc - r * f - tf + xw) / P[P_J2]
         dy[S_WR] = 0.0
         dy[S_AR] = 0.0
     dy[S_A2] = w2
     dy[S_X] = v
-    fm = f - P[P_F0] + P[P_MCF]
+    fm = f - P[P_F0] + P[P_MCF] + xf
     if P[P_RAILF] != 0.0:
         fm -= P[P_RAILF] * math.tanh(v / P[P_RAILV])
     if P[P_MDC] != 0.0:
@@ -305,7 +430,8 @@ D7 = 69997945 / 29380423
 
 # output columns of a recorded run
 OUT_NAMES = ("a1", "a2", "omega1", "omega2", "angle_difference", "clutch_torque_Nm", "te_pu", "rim_force_N",
-             "alpha1", "alpha2", "mode", "jaw_angle_difference")
+             "alpha1", "alpha2", "mode", "jaw_angle_difference", "wheel_acceleration", "mass_speed",
+             "spring_extension")
 N_OUT = len(OUT_NAMES)
 
 
@@ -371,6 +497,9 @@ def _record(out, row, y, dy, tc, te, f, mode, P):
     out[row, 9] = y[S_A2]
     out[row, 10] = mode
     out[row, 11] = y[S_AH] - y[S_A2] if P[P_KS] > 0.0 else y[S_A1] - y[S_A2]
+    out[row, 12] = dy[S_W2]
+    out[row, 13] = y[S_V]
+    out[row, 14] = P[P_R] * (y[S_AR] if P[P_KW] > 0.0 else y[S_A2]) - y[S_X]
 
 
 @njit(cache=True)
@@ -408,6 +537,11 @@ def run_segments(y, mode, seg0, loads, seg_samples, dt, P, timevar, atol, rtol, 
     for j in range(loads.size):
         tj = (seg0 + j) * seg_dt
         u = loads[j]
+        if P[P_PPER] > 0.0:           # the held pulse indicator of this segment and its pulse's start time
+            ja = float(seg0 + j) - P[P_PFIRST]
+            q = ja - P[P_PPER] * math.floor(ja / P[P_PPER])
+            P[P_PON] = 1.0 if q < P[P_PDUR] else 0.0
+            P[P_PT0] = (seg0 + j - q) * seg_dt
         turns = math.floor(y[S_A2] / two_pi)
         if turns != 0.0:
             shift = turns * two_pi

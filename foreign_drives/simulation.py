@@ -23,8 +23,8 @@ from scipy.optimize import brentq
 
 from . import constants as C
 from . import noise as N
-from .kernel import (N_OUT, N_STATES, OUT_NAMES, P_BETA, P_F0, P_K, P_KCD, P_KS, P_KW, P_R, P_RR, P_RS, P_U, P_XM,
-                     P_XR, P_XS, S_A1, S_A2, S_AH, S_AR, S_ISD, S_ISQ, S_PRD, S_PRQ, S_V, S_W1, S_W2, S_WH, S_WR,
+from .kernel import (N_OUT, N_STATES, OUT_NAMES, P_BETA, P_F0, P_K, P_KCD, P_KS, P_KW, P_PDUR, P_PFIRST, P_PPER,
+                     P_R, P_RR, P_RS, P_U, P_XM, P_XR, P_XS, S_A1, S_A2, S_AH, S_AR, S_ISD, S_ISQ, S_PRD, S_PRQ, S_V, S_W1, S_W2, S_WH, S_WR,
                      S_X, implied_mode, run_segments)
 
 # tolerances of the DOPRI5 error control (per state; angles and the mass position absolute only)
@@ -137,6 +137,14 @@ def _advance(y, mode, seg0, loads, P, timevar, tol_scale, h, out=None, stats=Non
     return mode, h
 
 
+def set_pulse_timing(P, pulse_first_s: float) -> None:
+    """The pulse train's timing on the segment grid into P (the kernel derives the held pulse indicator and the
+    current pulse's start time from it, for outside terms that follow the pulse)."""
+    P[P_PFIRST] = N.segments_of(pulse_first_s, "pulse_first_s")
+    P[P_PPER] = N.segments_of(C.PULSE_PERIOD_S, "pulse period")
+    P[P_PDUR] = N.segments_of(C.PULSE_DURATION_S, "pulse duration")
+
+
 def period_map(q, P, pulse, tol_scale=1e-2):
     """Phi: the reduced state after one pulse period, noise-free, without the non-periodic terms."""
     y = from_reduced(q, P)
@@ -148,6 +156,7 @@ def period_map(q, P, pulse, tol_scale=1e-2):
 def periodic_orbit(P, pulse_amplitude_pu: float, pulse_first_s: float, max_newton: int = 12) -> tuple:
     """(full state at t = 0 on the noise-free periodic orbit, info dict). Raises RuntimeError when Newton's
     method does not reach RESIDUAL_TOL (never silently returns an unsettled start)."""
+    set_pulse_timing(P, pulse_first_s)
     n_per = N.segments_of(C.PULSE_PERIOD_S, "pulse period")
     pulse = N.pulse_train(0, n_per, pulse_amplitude_pu, pulse_first_s)
     act = _active(P)
@@ -202,6 +211,7 @@ def simulate(P, *, duration_s: float, seed: int, noise: bool = True, pulse_ampli
     if n_pre > n_run:
         raise ValueError(f"pre_roll_s = {pre_roll_s} exceeds run_in_s = {run_in_s}")
     rng = N.streams(seed)
+    set_pulse_timing(P, pulse_first_s)
     y, info = periodic_orbit(P, pulse_amplitude_pu, pulse_first_s)
     mode = implied_mode(y, P)
     loads_run = N.pulse_train(-n_run, n_run, pulse_amplitude_pu, pulse_first_s)

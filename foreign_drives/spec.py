@@ -69,6 +69,14 @@ class EffectTruth:
     also_accepted: dict                # {other family: equivalent or None}: explain it as well on this drive
     description: str
     note: str = ""
+    # outside mechanisms (foreign_drives.outside): the balance the term acts in (outside.BALANCES), the drive
+    # states it reads (outside.STATES), its law with the values, a plug-in's source with the exact law where a user
+    # can write one, and the half it belongs to (dev | sealed)
+    balance: str | None = None
+    depends_on: tuple = ()
+    law: str = ""
+    plugin: str | None = None
+    half: str = ""
 
 
 @dataclass(frozen=True)
@@ -168,10 +176,14 @@ class RecordingSpec:
                 eta *= 1.0 + p["relative_change"]
             elif form.name == "drift_n1":
                 n1 += p["change"]
+            outside = {}
+            if getattr(form, "balance", None):
+                outside = dict(balance=form.balance, depends_on=tuple(form.depends_on), law=form.law(p),
+                               plugin=form.plugin(p), half=form.half)
             effects.append(EffectTruth(form=form.name, family=form.family, parameters=dict(p),
                                        equivalent=form.equivalent(p) if form.family else None,
                                        also_accepted=form.also(p) if form.family else {},
-                                       description=form.description, note=form.note))
+                                       description=form.description, note=form.note, **outside))
         return Truth(true_width_m=width, true_eta_k=eta, true_n1=n1,
                      nominal={"width_m": self.width_m, "eta_k": self.eta_k, "n1": self.n1},
                      families=tuple(e.family for e in effects if e.family),

@@ -167,13 +167,60 @@ TEST_ROWS = [
      [E("structural_vibration", {"amplitude_pu": 0.3, "frequency_hz": 83.0, "phase_rad": 0.5})]),
 ]
 
+# ---- issue 31 part 4: mechanisms OUTSIDE the catalogue (foreign_drives.outside_dev; the sealed half's rows are
+# in foreign_drives.outside_sealed). Each row: one mechanism at a nominal width/eta_k/n1; controls: clean rows and
+# width changes beside a mechanism (the width is the measurand there).
+OUTSIDE_DEV_ROWS = [
+    ("od_clean_w6.0_eta0.03_n0.92", "clean", 0.006, 0.03, 0.92, []),
+    # a torque locked to the WHEEL angle: a cam and its follower (exact law: a plug-in, manifest truth.plugin)
+    ("od_wheel_cam_4Nm_q0.6", "outside", 0.005, 0.025, 0.89,
+     [E("wheel_cam_follower", {"amplitude_Nm": 4.0, "lift_ratio": 0.6, "phase_rad": 0.4})]),
+    # a torque locked to the MOTOR angle: a single-acting crank pump (exact law: a plug-in)
+    ("od_motor_crank_pump_0.3pu", "outside", 0.0075, 0.0375, 0.93,
+     [E("motor_crank_pump", {"amplitude_pu": 0.3, "phase_rad": -1.0})]),
+    # the wheel-angle law of issue 31's set 3: -A*sin(alpha2 + phi) (the cam without lift)
+    ("od_wheel_unbalance_3Nm", "outside", 0.01, 0.05, 0.97,
+     [E("wheel_cam_follower", {"amplitude_Nm": 3.0, "lift_ratio": 0.0, "phase_rad": 2.2})]),
+    ("od_mass_creep_20N", "outside", 0.0065, 0.02, 0.90,
+     [E("mass_creeping_resistance", {"force_N": 20.0, "creep_time_s": 4.0})]),
+    ("od_wheel_process_brake_3Nm", "outside", 0.008, 0.03, 0.95,
+     [E("wheel_process_brake", {"torque_Nm": 3.0, "build_up_s": 0.005})]),
+    ("od_clutch_gap_drag_0.6", "outside", 0.0055, 0.025, 0.91,
+     [E("clutch_gap_drag", {"damping_Nms_per_rad": 0.6})]),
+    ("od_motor_carriage_coupling_3", "outside", 0.009, 0.015, 0.89,
+     [E("motor_carriage_coupling", {"coefficient_Nms_per_m": 3.0})]),
+    ("od_a1_rotating_gravity", "outside", 0.004, 0.045, 0.96,
+     [E("a1_rotating_gravity", {"amplitude_m_s2": 9.81, "phase_rad": 0.9})]),
+    # width changes beside a mechanism (the true width is nominal + change)
+    ("od_width_5.0_to_6.2+gap_drag", "outside", 0.005, 0.025, 0.89,
+     [E("drift_width", {"change": 0.0012}), E("clutch_gap_drag", {"damping_Nms_per_rad": 0.5})]),
+    ("od_width_7.5_to_8.3+wheel_cam", "outside", 0.0075, 0.025, 0.89,
+     [E("drift_width", {"change": 0.0008}), E("wheel_cam_follower", {"amplitude_Nm": 3.0, "lift_ratio": 0.3,
+                                                                      "phase_rad": -2.0})]),
+    ("od_width_4.0_to_5.0+crank_pump", "outside", 0.004, 0.03, 0.93,
+     [E("drift_width", {"change": 0.001}), E("motor_crank_pump", {"amplitude_pu": 0.25, "phase_rad": 1.7})]),
+    ("od_clean_w8.7_eta0.018_n0.94", "clean", 0.0087, 0.018, 0.94, []),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
-SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST}
+OUTSIDE_DEV = _suite(OUTSIDE_DEV_ROWS, 7000, 4.0)
+SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV}
+
+
+def _outside_sealed():
+    """The sealed half's suite, made from foreign_drives.outside_sealed on first use (its rows live there)."""
+    from .outside_sealed import suite_rows
+    return _suite(suite_rows(), 7100, 4.0)
+
+
+SUITE_NAMES = tuple(SUITES) + ("outside_sealed",)
 
 
 def suite(name: str) -> list:
+    if name == "outside_sealed":
+        return _outside_sealed()
     if name not in SUITES:
-        raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITES)}")
+        raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])
