@@ -88,6 +88,8 @@ def library() -> tuple[Term, ...]:
     # the motor's load moment: its speed, the torque it delivers, both shafts' angles
     t += _speed_terms("motor_load_moment_pu", "omega1", "Ω₁", ms)
     t.append(Term(f"{PREFIX}motor_te", "motor_load_moment_pu", "te", "t_e", "te", "motor_te", ("te",)))
+    t.append(Term(f"{PREFIX}motor_xdot", "motor_load_moment_pu", f"xdot / (wheel_radius_m * {SPEED_REF})",
+                  "ẋ/(rΩ_mb)", "xdot", "motor_xdot", ("xdot",)))
     t += _harmonics("motor_load_moment_pu", "alpha1", "α₁")
     t += _harmonics("motor_load_moment_pu", "alpha2", "α₂", (1,))
     # the wheel torque: its speed, the slip across the gap, both shafts' angles

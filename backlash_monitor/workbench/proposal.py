@@ -35,6 +35,7 @@ STABILITY = 0.6        # share of the resamples a proposed group must be selecte
 MIN_EVENTS = 6         # fewer events: no honest cross-validation
 REFINE_NFEV = 5        # least-squares evaluations of the refinement on the simulator
 BOOTSTRAP_SEED = 31    # the resampling's seed: a diagnosis is reproducible
+BATCH_SETS = 6         # parameter sets simulated per batch (memory: a 4 s recording's set is ~0.2 GB over 8 seeds)
 
 
 @dataclass
@@ -173,9 +174,14 @@ def propose(run, up, verdict: str) -> Proposal | None:
     keys = [f"{t.name}.{candidate_terms.coefficient_name(t)}" for t in terms]
     steps = np.array([candidate_terms.BALANCES[t.balance][1] for t in terms])
     # 1. sensitivities: the reference and every term at a small coefficient, one batch (common random numbers)
-    ens = p.evaluate([{}] + [{k: float(h)} for k, h in zip(keys, steps)])
-    ref = p.pred_of(ens, 0)
-    S = np.stack([(p.pred_of(ens, j + 1) - ref) / steps[j] for j in range(len(terms))], axis=1)
+    sets = [{}] + [{k: float(h)} for k, h in zip(keys, steps)]
+    preds = []
+    for i in range(0, len(sets), BATCH_SETS):        # in batches: a batch's raw runs are sets x seeds x samples
+        ens = p.evaluate(sets[i:i + BATCH_SETS])
+        preds += [p.pred_of(ens, j) for j in range(len(sets[i:i + BATCH_SETS]))]
+        del ens
+    ref = preds[0]
+    S = np.stack([(preds[j + 1] - ref) / steps[j] for j in range(len(terms))], axis=1)
     G = p.project(S)
     Y = p.project((p.event_vecs - ref[None]).T).T
     names = [t.name for t in terms]

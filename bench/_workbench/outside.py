@@ -92,11 +92,10 @@ def _measurement(spec):
                        {k: np.asarray(v) for k, v in rec.signals.items()}), rec.truth
 
 
-def exact_law_plugin(directory: Path, order: int) -> Path:
+def exact_law_source(order: int) -> str:
     """A user's plug-in with the exact law of foreign_drives' wheel mesh: A*sin(n*alpha2 + phi) on the wheel."""
-    path = directory / f"wheel_mesh_order{order}.py"
     arg = "alpha2" if order == 1 else f"{order} * alpha2"
-    path.write_text(
+    return (
         "from backlash_monitor.plant.effects import Effect, Parameter\n"
         "from backlash_monitor.plant.mathlib import sin\n\n\n"
         "class WheelMesh(Effect):\n"
@@ -108,22 +107,36 @@ def exact_law_plugin(directory: Path, order: int) -> Path:
         "    @staticmethod\n"
         "    def term(alpha2, amplitude_Nm, phase_rad):\n"
         f"        return amplitude_Nm * sin({arg} + phase_rad)\n")
-    return path
+
+
+# the proposal's balances and states (candidate_terms.Term) in the manifest's words (foreign_drives/outside.py
+# BALANCES, STATES); the rim force (between wheel and mass) is neither of the manifest's balances
+BALANCE_WORDS = {"motor_load_moment_pu": "motor_load_moment", "wheel_torque_Nm": "wheel_torque",
+                 "clutch_torque_Nm": "clutch_torque", "mass_force_N": "mass_force"}
+STATE_WORDS = {"omega1": ("motor_speed",), "omega2": ("wheel_speed",), "xdot": ("mass_speed",), "v": ("rim_speed",),
+               "rel_speed": ("motor_speed", "wheel_speed"), "penetration": ("clutch_penetration",),
+               "penetration rate": ("clutch_penetration",), "z": ("spring_extension",), "alpha1": ("motor_angle",),
+               "alpha2": ("wheel_angle",), "te": ()}
 
 
 def _truth_of(spec, truth) -> tuple[set, set]:
-    """(balances, states) of the recording's effects outside the catalogue (the manifest's, else OUTSIDE_TRUTH)."""
+    """(balances, states) of the recording's effects outside the catalogue, in the manifest's words (its ``balance``
+    and ``depends_on``; for the forms of foreign_drives/forms.py, OUTSIDE_TRUTH)."""
     bal, st = set(), set()
     for e in truth.effects:
         b = getattr(e, "balance", None)
-        s = getattr(e, "state", None)
         if b:
-            bal |= set([b] if isinstance(b, str) else b)
-            st |= set([s] if isinstance(s, str) else (s or ()))
+            bal.add(b)
+            st |= set(getattr(e, "depends_on", ()) or ())
         elif e.form in OUTSIDE_TRUTH:
-            bal |= set(OUTSIDE_TRUTH[e.form][0])
-            st |= set(OUTSIDE_TRUTH[e.form][1])
+            bal |= {BALANCE_WORDS.get(x, x) for x in OUTSIDE_TRUTH[e.form][0]}
+            st |= {w for x in OUTSIDE_TRUTH[e.form][1] for w in STATE_WORDS.get(x, (x,))}
     return bal, st
+
+
+def right_balance(terms, bal: set, st: set) -> bool:
+    """A proposed term acts in the truth's balance and depends on one of its states."""
+    return any(BALANCE_WORDS.get(t["balance"]) in bal and set(STATE_WORDS.get(t["state"], ())) & st for t in terms)
 
 
 def run_outside(specs) -> list:
@@ -137,8 +150,7 @@ def run_outside(specs) -> list:
         prop = d.get("proposal") or {}
         bal, st = _truth_of(spec, truth)
         terms = prop.get("terms") or []
-        right = bool(prop.get("proposed")) and any(t["balance"] in bal and (not st or t["state"] in st)
-                                                   for t in terms)
+        right = bool(prop.get("proposed")) and right_balance(terms, bal, st)
         row = {"label": spec.label, "verdict": d["verdict"], "proposed": bool(prop.get("proposed")),
                "law": prop.get("law"), "consistent": bool(prop.get("consistent")), "right_balance": right,
                "truth_balance": sorted(bal), "truth_state": sorted(st),
@@ -166,24 +178,42 @@ def run_explained(specs) -> list:
     return rows
 
 
+def angle_rows(specs) -> list:
+    """(spec, plug-in source, effect name, amplitude parameter, true amplitude) of every drive with a torque locked to a
+    shaft's angle: the suite's (the manifest's exact-law plug-in) and ANGLE_ROWS (a plug-in written here)."""
+    import re
+    out = []
+    for spec in specs:
+        for e in spec.truth().effects:
+            src = getattr(e, "plugin", None)
+            if src and {"motor_angle", "wheel_angle"} & set(getattr(e, "depends_on", ()) or ()):
+                name = re.search(r"name = ['\"]([A-Za-z_0-9]+)['\"]", src).group(1)
+                amp = next(k for k in e.parameters if k.startswith("amplitude"))
+                out.append((spec, src, name, amp, float(e.parameters[amp])))
+    for spec, pname in ANGLE_ROWS:
+        eff = next(e for e in spec.effects if e.form == "ripple_wheel_mesh")
+        order = int(eff.parameters["order"])
+        out.append((spec, exact_law_source(order), f"user_wheel_mesh{order}", pname,
+                    float(eff.parameters["amplitude_Nm"])))
+    return out
+
+
 def run_angle_locked(rows) -> list:
     out = []
     with tempfile.TemporaryDirectory() as tmp:
-        for spec, pname in rows:
-            eff = next(e for e in spec.effects if e.form == "ripple_wheel_mesh")
-            order = int(eff.parameters["order"])
-            plugin = exact_law_plugin(Path(tmp), order)
+        for spec, src, name, pname, truth in rows:
+            plugin = Path(tmp) / f"{spec.label}_{name}.py"
+            plugin.write_text(src)
             meas, _ = _measurement(spec)
             model = load_model(None, width_m=spec.width_m, eta_k=spec.eta_k, n1=spec.n1, effect_files=[plugin])
             d = diagnose(meas, model, propose=False).to_json()
-            name = f"user_wheel_mesh{order}"
-            named = name in (d.get("indistinguishable") or []) or d.get("discovery") == name
+            named = name in (d.get("indistinguishable") or []) or d.get("discovery") == name or any(
+                name == (e or {}).get("effect") for e in [d.get("second_effect")])
             fit = next((r for r in d["ranked"] if r["effect"] == name), None)
             a = fit["parameters"][pname] if fit else None
             s = (fit.get("uncertainty") or {}).get(pname) if fit else None
-            truth = float(eff.parameters["amplitude_Nm"])
             within = a is not None and s is not None and abs(a - truth) <= 3 * s
-            row = {"label": spec.label, "verdict": d["verdict"], "named": bool(named), "amplitude": a,
+            row = {"label": spec.label, "plugin": name, "verdict": d["verdict"], "named": bool(named), "amplitude": a,
                    "uncertainty": s, "truth": truth, "within_3_sigma": bool(within), "message": d["message"]}
             log(json.dumps(row, default=float))
             out.append(row)
@@ -217,16 +247,18 @@ def summary(outside, explained, angle) -> dict:
             "angle_locked_per_recording": angle}
 
 
-def run_all(sealed: bool = False, only=(), skip_explained: bool = False, skip_angle: bool = False):
+def run_all(sealed: bool = False, only=(), skip_explained: bool = False, skip_angle: bool = False,
+            skip_outside: bool = False):
     """(outside rows, explained rows, angle-locked rows) of the chosen suite."""
     specs = [s for s in suite_rows(sealed) if not only or s.label in only]
-    outside = run_outside(specs)
+    outside = [] if skip_outside else run_outside(specs)
     explained = []
     if not skip_explained:
         from foreign_drives.suites import suite
         explained = run_explained([s for s in suite("bench") if s.kind in ("clean", "one")
                                    and (not only or s.label in only)])
-    angle = [] if skip_angle else run_angle_locked([r for r in ANGLE_ROWS if not only or r[0].label in only])
+    angle = [] if skip_angle else run_angle_locked([r for r in angle_rows(suite_rows(sealed))
+                                                    if not only or r[0].label in only])
     return outside, explained, angle
 
 
@@ -238,9 +270,10 @@ def main(argv=None):
     ap.add_argument("--skip-explained", action="store_true",
                     help="skip the foreign bench's clean and one-effect rows (proposals_on_explained: null)")
     ap.add_argument("--skip-angle", action="store_true", help="skip the angle-locked plug-in rows")
+    ap.add_argument("--skip-outside", action="store_true", help="skip the proposals on the outside rows")
     args = ap.parse_args(argv)
     t0 = time.perf_counter()
-    out = summary(*run_all(args.sealed, args.only, args.skip_explained, args.skip_angle))
+    out = summary(*run_all(args.sealed, args.only, args.skip_explained, args.skip_angle, args.skip_outside))
     out["suite"] = "outside_sealed" if args.sealed else "outside_dev"
     out["wall_seconds"] = time.perf_counter() - t0
     print(json.dumps(out, default=float))
