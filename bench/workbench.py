@@ -319,10 +319,13 @@ def parse_args(argv=None):
                     help="run only this suite row (repeatable; seeds as in the full run: 9001 + its index in "
                          "SUITE) and skip the width check, the foreign suite and the sensor check; the JSON then holds "
                          "only those rows' figures")
+    ap.add_argument("--sealed", action="store_true",
+                    help="with --parts outside: the sealed outside suite (run once, at the end), not the development one")
     ap.add_argument("--parts", default="own,foreign,sensor", metavar="PART[,PART...]",
                     help="what to run: own (this project's simulator: the suite and the width check), foreign (the "
                          "foreign drives of foreign_drives/ through the README's loop: diagnose, add-effect, train, "
-                         "analyze), sensor (the monitor's width against sensor offsets and gains, own and foreign)")
+                         "analyze), sensor (the monitor's width against sensor offsets and gains, own and foreign), "
+                         "outside (proposing a missing term: bench/_workbench/outside.py, the development suite)")
     return ap.parse_args(argv)
 
 
@@ -340,9 +343,9 @@ def main(argv=None):
                           "per_recording": rows, "wall_seconds": time.perf_counter() - t0}))
         return
     parts = {p.strip() for p in args.parts.split(",") if p.strip()}
-    unknown = parts - {"own", "foreign", "sensor"}
+    unknown = parts - {"own", "foreign", "sensor", "outside"}
     if unknown:
-        log(f"--parts: unknown part {sorted(unknown)[0]!r}; allowed: own, foreign, sensor")
+        log(f"--parts: unknown part {sorted(unknown)[0]!r}; allowed: own, foreign, sensor, outside")
         sys.exit(2)
     out = {}
     if "foreign" in parts:
@@ -350,6 +353,9 @@ def main(argv=None):
         frows = foreign.run_suite("bench")
         out.update(foreign.summary(frows))
         out["foreign_per_recording"] = frows
+    if "outside" in parts:
+        from _workbench import outside
+        out.update(outside.summary(*outside.run_all(sealed=args.sealed)))
     if "sensor" in parts:
         out.update(sensor_check())
     if "own" in parts:

@@ -35,6 +35,11 @@ def add_arguments(parser) -> None:
                              "only part of the residual (the rest is outside the catalogue, or a catalogue effect in "
                              "another form): the new version is a better approximation, not the drive's physics, "
                              "and the monitor retrained on it may still be biased")
+    parser.add_argument("--accept-proposal", action="store_true",
+                        help="with a diagnosis that proposes a term outside the catalogue (its JSON's 'proposal'): "
+                             "write the term as a plug-in file beside -o (M2_proposed_term.py, bounded parameters "
+                             "you can read and edit) and add it at its fitted values, with the partial explanation "
+                             "it was fitted on top of")
     parser.add_argument("--name", default=None, help="model name (default: the input model's)")
     from backlash_monitor.commands._workbench import add_overwrite_argument
     add_overwrite_argument(parser)
@@ -82,6 +87,27 @@ def _base_from_diagnosis(args, conditions, src):
     return explicit
 
 
+def _take_proposal(diag, src, adds, model, output):
+    """(additions, model, note) with a diagnosis's proposed term: its plug-in file written beside ``output`` and put
+    into the model's effect files; the additions its proposal was fitted on top of, and the term at its values."""
+    import copy
+
+    from backlash_monitor.commands import UsageError
+    from backlash_monitor.workbench.diagnosis import Addition
+    prop = diag.get("proposal")
+    if not isinstance(prop, dict) or not prop.get("proposed"):
+        why = prop.get("reason") if isinstance(prop, dict) else "its verdict is not partial or nothing_explains"
+        raise UsageError(f"diagnosis {src} proposes no term (--accept-proposal): {why}")
+    path = output.with_name(output.stem + "_proposed_term.py")
+    path.write_text(prop["plugin_source"])
+    model = copy.copy(model)
+    model.effect_files = list(model.effect_files) + [path.resolve()]
+    kept = [a for a in adds if a.effect in prop.get("on_top_of", []) or a.candidate in prop.get("on_top_of", [])]
+    for effect, values in prop["plugin_values"].items():
+        kept.append(Addition(effect, effect, dict(values), {}, "discovery", "proposal"))
+    return kept, model, f"proposed term added (--accept-proposal): {prop['law']}; its plug-in file {path}"
+
+
 def run(args) -> int:
     from backlash_monitor.commands import UsageError
     from backlash_monitor.commands._workbench import check_outputs, load, print_table
@@ -102,6 +128,9 @@ def run(args) -> int:
         except (ValueError, KeyError, TypeError) as exc:
             raise UsageError(f"diagnosis {src}: {exc}") from None
         model = _base_from_diagnosis(args, conditions, src) if conditions else load(args, measurement=False)[0]
+        if args.accept_proposal:
+            adds, model, note = _take_proposal(diag, src, adds, model, Path(args.output))
+            notes.append(note)
         partial = [a for a in adds if a.role == ROLE_PARTIAL]
         confident = [a for a in adds if a.role != ROLE_PARTIAL]
         width = diag.get("measured_width") or {}

@@ -26,7 +26,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import analysis, consistency, fitting, pairs, plant_adapter, report, ripple, separation, tolerance
+from . import (analysis, consistency, fitting, pairs, plant_adapter, proposal, report, ripple, separation,
+               tolerance)
 from .decisions import (DELTA_IC_DECISIVE, DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EXPLAINED, confident, identical_to,
                         likelihood_part, qualifies, significant)
 from .diagnosis import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOTHING_EXPLAINS, PARTIAL,
@@ -129,17 +130,10 @@ def screen_step(run: Run, effects=None, progress=None) -> None:
     p.fit_basis = consistency.fit_basis(p)
     run.base_ic = p.ic(run.base_pred, 0)
     run.before = consistency.test(p, p.residual(run.base_pred))
-    # the linear estimates in the whitened views (generalised least squares), and their IC
-    r0g = p.project(p.residual(run.base_pred))
+    # the linear estimates in the whitened views (generalised least squares), and their IC; a term locked to a
+    # shaft's angle as a sine/cosine pair
     for n, info in run.scr.items():
-        eff = run.by_name[n]
-        x0 = eff.default_vector()
-        lo, hi = eff.bounds()
-        jg = p.project(info["J"])
-        d = fitting.lsq_linear(jg, r0g, bounds=(lo - x0, hi - x0 + 1e-300)).x
-        info["x_lin"] = x0 + d
-        info["explained_lin"] = p.explained_share(r0g - jg @ d, r0g)
-        info["delta_ic_lin"] = p.ic(run.base_pred + info["J"] @ d, len(x0)) - run.base_ic
+        fitting.linear_estimate(p, run.by_name[n], info, run.base_pred, run.base_ic)
     run.order = sorted(allowed, key=lambda k: -run.scr[k]["explained_lin"])
 
 
@@ -164,7 +158,8 @@ def refine_step(run: Run) -> list:
 
         def lin_distance(n):
             x0 = run.by_name[n].default_vector()
-            pred = run.base_pred + scr[n]["J"] @ (scr[n]["x_lin"] - x0)
+            pred = (scr[n]["pred_lin"] if "pred_lin" in scr[n]
+                    else run.base_pred + scr[n]["J"] @ (scr[n]["x_lin"] - x0))
             return prediction_distance(p, best.pred, pred) / misfit_scale(p, best) if best is not None else np.inf
 
         near = {n for n in run.order if n not in first and lin_distance(n) < 4 * DELTA_IC_TIE}
@@ -598,10 +593,12 @@ def _identifiability(run: Run) -> dict:
 
 
 def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool = True,
-             overrides=None) -> Diagnosis:
+             overrides=None, propose: bool = True) -> Diagnosis:
     """The whole diagnosis of ``meas`` against ``model`` (a WorkbenchModel): the steps above, in order.
     ``effects``: only these candidates are ranked (the views and the tolerance use the whole catalogue);
-    ``overrides``: the command-line overrides the model was loaded with (recorded in the conditions)."""
+    ``overrides``: the command-line overrides the model was loaded with (recorded in the conditions);
+    ``propose``: when nothing in the catalogue explains (partial, nothing explains), propose a term from the
+    generic library (proposal.py; the JSON's ``proposal``)."""
     run = prepare(meas, model, seeds, effects, overrides)
     screen_step(run, effects, progress)
     refine_step(run)
@@ -609,7 +606,13 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
     up = second_effect_step(run, decision, second)
     confidence_step(run, up, decision)
     ripple_fit, spec = spectral_step(run)
-    return verdict_step(run, decision, up, ripple_fit, spec)
+    result = verdict_step(run, decision, up, ripple_fit, spec)
+    if propose:
+        found = proposal.propose(run, up, result.verdict)
+        result.report["proposal"] = None if found is None else found.to_json()
+        if found is not None and found.proposed:
+            result.message += f"; proposed term outside the catalogue: {found.reason} (add-effect --accept-proposal)"
+    return result
 
 
 def public(result) -> dict:

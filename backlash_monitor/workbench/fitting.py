@@ -210,6 +210,11 @@ def screen(problem: Problem, effects, base_pred: np.ndarray, progress=None, two_
     out = {}
     sets, owners = [], []
     for eff in effects:
+        if angle_pair(eff):
+            for j, (_, x) in enumerate(pair_points(eff)):
+                sets.append(plant_adapter.apply_values(eff, x))
+                owners.append((eff.name, j, "pair"))
+            continue
         x0 = eff.default_vector()
         h = _step(eff)
         both = _two_sided(eff, h) if two_sided else np.zeros(len(x0), bool)
@@ -223,6 +228,16 @@ def screen(problem: Problem, effects, base_pred: np.ndarray, progress=None, two_
     preds = {o: problem.pred_of(ens, j) for j, o in enumerate(owners)}
     lin_r0 = problem.project(r0)
     for eff in effects:
+        if angle_pair(eff):
+            pts = pair_points(eff)
+            h = _pair_steps(eff)
+            cols = np.stack([(preds[(eff.name, j, "pair")] - base_pred) / h[i] for j, (i, _) in enumerate(pts)],
+                            axis=1)
+            out[eff.name] = {"pair_columns": cols, "h": h}
+            out[eff.name].update(pair_estimate(problem, eff, out[eff.name], base_pred, lin_r0))
+            if progress is not None:
+                progress(1)
+            continue
         x0 = eff.default_vector()
         h0 = _step(eff)
         lo, hi = eff.bounds()
@@ -246,6 +261,107 @@ def screen(problem: Problem, effects, base_pred: np.ndarray, progress=None, two_
         if progress is not None:
             progress(1)
     return out
+
+
+# ------------------------------------------------------------------ terms locked to a shaft's angle: sine/cosine pairs
+PAIR_PHASE_STEP_RAD = 0.5     # the phase's step of the refinement's forward differences and its x_scale
+
+
+def angle_pair(effect) -> bool:
+    """A term locked to a shaft's angle (plant_adapter.angle_phase_index) whose amplitudes are 0 in the model: its
+    phase has no derivative there, so it is screened as a sine/cosine pair instead of by secants."""
+    k = getattr(effect, "phase_index", -1)
+    if k < 0:
+        return False
+    x0 = effect.default_vector()
+    return bool(np.all(np.delete(x0, k) == 0.0)) and len(x0) >= 2
+
+
+def _pair_steps(effect) -> np.ndarray:
+    h = np.abs(_step(effect))
+    h[effect.phase_index] = PAIR_PHASE_STEP_RAD
+    return h
+
+
+def _wrap(phase):
+    return (np.asarray(phase, float) + np.pi) % (2.0 * np.pi) - np.pi
+
+
+def pair_points(effect) -> list:
+    """(amplitude index, parameter vector) of the pair's simulations: each amplitude stepped by h at the model's
+    phase phi0 and at phi0 + pi/2. For a law A*g(alpha + phi) the response to a small amplitude is
+    (A/h)*(cos(d)*R0 + sin(d)*R90) with d = phi - phi0: linear in (A cos d, A sin d)."""
+    k = effect.phase_index
+    x0 = effect.default_vector()
+    h = _pair_steps(effect)
+    pts = []
+    for i in range(len(x0)):
+        if i == k:
+            continue
+        for shift in (0.0, 0.5 * np.pi):
+            x = x0.copy()
+            x[i] += h[i]
+            x[k] = float(_wrap(x0[k] + shift))
+            pts.append((i, x))
+    return pts
+
+
+def pair_estimate(problem: Problem, effect, info: dict, base_pred: np.ndarray, r0g=None) -> dict:
+    """The linear estimate of a sine/cosine pair (unbounded in its coefficients, then the amplitudes clipped to the
+    bounds): x_lin, the linear prediction there, the share explained and the Jacobian at x_lin (amplitude columns
+    along the fitted phase, the phase column at the fitted amplitude -- at least one step -- so that the views'
+    subspace holds both directions)."""
+    k = effect.phase_index
+    x0 = effect.default_vector()
+    lo, hi = effect.bounds()
+    h = info["h"]
+    cols = info["pair_columns"]                      # (N, 2 m): (R0_i, R90_i) per amplitude i
+    if r0g is None:
+        r0g = problem.project(problem.residual(base_pred))
+    g = problem.project(cols)
+    c = np.linalg.lstsq(g, r0g, rcond=None)[0].reshape(-1, 2)     # (m, 2): per amplitude (cos d, sin d) * A / h
+    amp_idx = [i for i in range(len(x0)) if i != k]
+    mags = np.hypot(c[:, 0], c[:, 1])
+    j = int(np.argmax(mags))
+    d = float(np.arctan2(c[j, 1], c[j, 0]))
+    x = x0.copy()
+    phase = float(_wrap(x0[k] + d))
+    x[k] = float(np.clip(phase, lo[k], hi[k]))
+    d = x[k] - x0[k]
+    for m, i in enumerate(amp_idx):
+        # the amplitude along the common phase (a negative projection: the amplitude's lower bound)
+        a = h[i] * (c[m, 0] * np.cos(d) + c[m, 1] * np.sin(d))
+        x[i] = float(np.clip(x0[i] + a, lo[i], hi[i]))
+    r0c, r90c = cols[:, 0::2], cols[:, 1::2]
+    amps = np.array([x[i] - x0[i] for i in amp_idx])
+    hs = np.array([h[i] for i in amp_idx])
+    along = np.cos(d) * r0c + np.sin(d) * r90c                    # (N, m) per unit step h
+    shift = along @ (amps / hs)
+    J = np.zeros((cols.shape[0], len(x0)))
+    for m, i in enumerate(amp_idx):
+        J[:, i] = along[:, m] / hs[m]
+    J[:, k] = (-np.sin(d) * r0c + np.cos(d) * r90c) @ (np.maximum(np.abs(amps), hs) / hs)
+    pred = base_pred + shift
+    explained = problem.explained_share(r0g - problem.project(shift), r0g)
+    return {"J": J, "x_lin": x, "explained_lin": explained, "pred_lin": pred}
+
+
+def linear_estimate(problem: Problem, effect, info: dict, base_pred: np.ndarray, base_ic: float) -> None:
+    """The linear estimate of ``effect`` in the problem's (whitened) metric, into ``info``: x_lin, explained_lin,
+    delta_ic_lin (diagnose.screen_step, once the views are known). A bounded linear step on the screening's
+    secants; a term locked to a shaft's angle as a sine/cosine pair (pair_estimate)."""
+    x0 = effect.default_vector()
+    if "pair_columns" in info:
+        info.update(pair_estimate(problem, effect, info, base_pred))
+        info["delta_ic_lin"] = problem.ic(info["pred_lin"], len(x0)) - base_ic
+        return
+    lo, hi = effect.bounds()
+    r0g = problem.project(problem.residual(base_pred))
+    jg = problem.project(info["J"])
+    d = lsq_linear(jg, r0g, bounds=(lo - x0, hi - x0 + 1e-300)).x
+    info["x_lin"] = x0 + d
+    info["explained_lin"] = problem.explained_share(r0g - jg @ d, r0g)
+    info["delta_ic_lin"] = problem.ic(base_pred + info["J"] @ d, len(x0)) - base_ic
 
 
 def refine(problem: Problem, effect, screening: dict, base_pred: np.ndarray, base_ic: float,

@@ -94,6 +94,7 @@ class CandidateEffect:
     parameters: tuple          # the fitted EffectParameters
     signal: str | None = None
     fixed: tuple = ()          # ("effect.param", value): parameters this candidate holds at a fixed value (a form)
+    phase_index: int = -1      # a term locked to a shaft's angle: the index of its phase parameter (angle_phase_index)
 
     @property
     def fixed_values(self) -> dict:
@@ -170,8 +171,32 @@ def catalogue(model, not_event_locked: bool = False) -> list[CandidateEffect]:
                     out.append(CandidateEffect(label, name, cls.balance, cls.description, sub, sig,
                                                ((key, float(v)),)))
         else:
-            out.append(CandidateEffect(name, name, cls.balance, cls.description, tuple(params)))
+            out.append(CandidateEffect(name, name, cls.balance, cls.description, tuple(params),
+                                       phase_index=angle_phase_index(cls)))
     return out
+
+
+ANGLE_VARIABLES = ("alpha1", "alpha2")
+
+
+def angle_phase_index(cls) -> int:
+    """The index of a term's phase parameter when the term is locked to a shaft's angle, else -1: a term effect that
+    names ``alpha1`` or ``alpha2`` and has a parameter in rad whose name says phase (``phase_rad``, ``phi_rad``...).
+    Such a term is fitted as a sine/cosine pair (fitting.screen): at the model's amplitude 0 its phase has no
+    derivative, and the model's shaft angle lines up with the recording's only up to a constant, which the phase
+    takes up."""
+    if getattr(cls, "kind", "") != "term" or getattr(cls, "nominal", False):
+        return -1
+    try:
+        args = plant_effects.term_arguments(cls)
+    except (ValueError, TypeError, OSError, SyntaxError):
+        return -1
+    if not any(a in args for a in ANGLE_VARIABLES):
+        return -1
+    for i, p in enumerate(cls.parameters):
+        if p.unit.strip().lower() in ("rad", "radian", "radians") and ("phase" in p.name or p.name.startswith("phi")):
+            return i
+    return -1
 
 
 def effect_by_name(model, name: str) -> CandidateEffect:

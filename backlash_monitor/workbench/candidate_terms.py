@@ -1,0 +1,288 @@
+"""The generic library of candidate terms a proposal is built from (docs/workbench.md, "Proposing a missing term").
+
+Each term is coefficient x f(states), put into one balance of the model (docs/effects.md "Kinds and balances"):
+the motor's load moment [p.u.], the clutch's contact torque [N*m], the rim force between wheel and mass [N], the
+wheel torque [N*m], the mass force [N]. f is dimensionless and of order 1 at the operating point (each state divided
+by the scale below), so the coefficient carries the balance's unit. The library is not a list of known faults: it is
+the powers and signs of the speeds, the clutch's penetration and its rate (and their product), the spring
+extension's powers, the harmonics of both shafts' angles (integer orders 1 and 2, as sine/cosine pairs that are
+linear in their coefficients: a pair is one group, selected together, reported as amplitude and phase), and the
+electromagnetic torque. Not in it (no model variable carries them to a term): the load pulse and its edges, time
+within the record.
+
+The library is written as a plug-in file (the documented ``--effects-file`` form): every term one Effect class with
+one bounded coefficient, default 0 (neutral), so that the model's simulator screens all of them on common random
+numbers in one batch. A proposal is written back in the same form (``proposal_source``).
+"""
+from __future__ import annotations
+
+import hashlib
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+PREFIX = "cand_"     # the library's effect names: cand_<balance>_<what>
+
+# the scales f divides the states by [unit of the state] -- the size of each state at the paper's operating point
+# (config/plant.yaml; measured on the nominal model: Omega ~151.5 +- 1.5 rad/s, a clutch torque up to ~35 N*m at
+# k_c = 3000 N*m/rad, the spring's static extension F0/k = 0.3 m):
+SPEED_REF = "base_mechanical_speed_rad_s"     # speeds by the motor's base speed Omega_mb (a model variable)
+REL_SPEED_SCALE_RAD_S = 10.0                  # Omega1 - Omega2 while the gap is crossed: a few rad/s
+PENETRATION_SCALE_RAD = 3e-3                  # ~10 N*m / k_c: the jaw's penetration under the working load
+APPROACH_SCALE_RAD_S = 1.0                    # the contact's closing speed at entry: ~1 rad/s
+EXTENSION_SCALE_M = 0.3                       # the spring's static extension F0/k
+RIM_SPEED_SCALE_M_S = 0.1                     # r*Omega2 - xdot: the spring's rate, ~0.1 m/s
+# the balances: (unit of the coefficient, the screening's step = a small amount of the term in its balance, the
+# coefficient's bounds); the step ~ a tenth of the balance's own size (F0*r = 4.5 N*m at the rim, T_b = 20 N*m)
+BALANCES = {
+    "motor_load_moment_pu": ("p.u.", 0.02, 1.0),
+    "clutch_torque_Nm": ("N*m", 2.0, 200.0),
+    "rim_mass_force_N": ("N", 3.0, 200.0),
+    "wheel_torque_Nm": ("N*m", 0.5, 20.0),
+    "mass_force_N": ("N", 3.0, 200.0),
+}
+BALANCE_WORDS = {"motor_load_moment_pu": "motor load moment", "clutch_torque_Nm": "clutch torque",
+                 "rim_mass_force_N": "rim force", "wheel_torque_Nm": "wheel torque", "mass_force_N": "mass force"}
+SHORT = {"motor_load_moment_pu": "motor", "clutch_torque_Nm": "clutch", "rim_mass_force_N": "rim",
+         "wheel_torque_Nm": "wheel", "mass_force_N": "mass"}
+
+
+@dataclass(frozen=True)
+class Term:
+    name: str            # effect name in the library
+    balance: str
+    expression: str      # f, in model variables (docs/effects.md), dimensionless
+    symbol: str          # f in symbols, for the law
+    state: str           # the state it depends on: a speed, an angle, penetration, extension, te, constant
+    group: str           # terms selected together (a harmonic's sine and cosine)
+    variables: tuple     # model variables f names
+    harmonic: tuple | None = None     # (angle variable, order, "sin"/"cos")
+
+
+def _speed_terms(balance, var, sym, scale_expr):
+    b = SHORT[balance]
+    x = f"({var} / {scale_expr})"
+    return [Term(f"{PREFIX}{b}_{var}_sign", balance, f"smooth_sign({var}, 1e-3)", f"sgn({sym})", var,
+                 f"{b}_{var}_sign", (var,)),
+            Term(f"{PREFIX}{b}_{var}_1", balance, x, f"{sym}/{sym}ref", var, f"{b}_{var}_1", (var,)),
+            Term(f"{PREFIX}{b}_{var}_2", balance, f"{x} * fabs({x})", f"({sym}/{sym}ref)·|{sym}/{sym}ref|", var,
+                 f"{b}_{var}_2", (var,))]
+
+
+def _harmonics(balance, var, sym, orders=(1, 2)):
+    b = SHORT[balance]
+    out = []
+    for k in orders:
+        arg = f"{k} * {var}" if k != 1 else var
+        for fn in ("sin", "cos"):
+            out.append(Term(f"{PREFIX}{b}_{var}_{fn}{k}", balance, f"{fn}({arg})", f"{fn}({k if k != 1 else ''}{sym})",
+                            var, f"{b}_{var}_h{k}", (var,), (var, k, fn)))
+    return out
+
+
+def library() -> tuple[Term, ...]:
+    """The candidate terms, in a fixed order."""
+    ms, ws = f"({SPEED_REF})", f"({SPEED_REF})"
+    t: list[Term] = []
+    # the motor's load moment: its speed, the torque it delivers, both shafts' angles
+    t += _speed_terms("motor_load_moment_pu", "omega1", "Ω₁", ms)
+    t.append(Term(f"{PREFIX}motor_te", "motor_load_moment_pu", "te", "t_e", "te", "motor_te", ("te",)))
+    t.append(Term(f"{PREFIX}motor_xdot", "motor_load_moment_pu", f"xdot / (wheel_radius_m * {SPEED_REF})",
+                  "ẋ/(rΩ_mb)", "xdot", "motor_xdot", ("xdot",)))
+    t += _harmonics("motor_load_moment_pu", "alpha1", "α₁")
+    t += _harmonics("motor_load_moment_pu", "alpha2", "α₂", (1,))
+    # the wheel torque: its speed, the slip across the gap, both shafts' angles
+    t += _speed_terms("wheel_torque_Nm", "omega2", "Ω₂", ws)
+    t.append(Term(f"{PREFIX}wheel_rel_speed", "wheel_torque_Nm", f"rel_speed / {REL_SPEED_SCALE_RAD_S}",
+                  f"(Ω₁−Ω₂)/{REL_SPEED_SCALE_RAD_S:g}", "rel_speed", "wheel_rel_speed", ("rel_speed",)))
+    t += _harmonics("wheel_torque_Nm", "alpha2", "α₂")
+    t += _harmonics("wheel_torque_Nm", "alpha1", "α₁", (1,))
+    # the clutch's contact: a constant in contact (a preload), the penetration's powers, its rate, their product
+    p = f"(penetration / {PENETRATION_SCALE_RAD})"
+    q = f"(approach_speed / {APPROACH_SCALE_RAD_S})"
+    t += [Term(f"{PREFIX}clutch_const", "clutch_torque_Nm", "1.0 + 0.0 * penetration", "1 (in contact)",
+               "penetration", "clutch_const", ("penetration",)),
+          Term(f"{PREFIX}clutch_pen_1", "clutch_torque_Nm", p, f"p/{PENETRATION_SCALE_RAD:g}", "penetration",
+               "clutch_pen_1", ("penetration",)),
+          Term(f"{PREFIX}clutch_pen_2", "clutch_torque_Nm", f"{p} * {p}", f"(p/{PENETRATION_SCALE_RAD:g})²",
+               "penetration", "clutch_pen_2", ("penetration",)),
+          Term(f"{PREFIX}clutch_rate", "clutch_torque_Nm", q, f"ṗ/{APPROACH_SCALE_RAD_S:g}", "penetration rate",
+               "clutch_rate", ("approach_speed",)),
+          Term(f"{PREFIX}clutch_pen_rate", "clutch_torque_Nm", f"{p} * {q}", "(p/p₀)·(ṗ/ṗ₀)", "penetration rate",
+               "clutch_pen_rate", ("penetration", "approach_speed"))]
+    # the rim force (spring and absorber between wheel and mass): the extension's powers, its rate
+    z = f"(z / {EXTENSION_SCALE_M})"
+    v = f"(v / {RIM_SPEED_SCALE_M_S})"
+    t += [Term(f"{PREFIX}rim_z_1", "rim_mass_force_N", z, f"z/{EXTENSION_SCALE_M:g}", "z", "rim_z_1", ("z",)),
+          Term(f"{PREFIX}rim_z_2", "rim_mass_force_N", f"{z} * fabs({z})", f"(z/{EXTENSION_SCALE_M:g})·|z/{EXTENSION_SCALE_M:g}|",
+               "z", "rim_z_2", ("z",)),
+          Term(f"{PREFIX}rim_z_3", "rim_mass_force_N", f"{z} * {z} * {z}", f"(z/{EXTENSION_SCALE_M:g})³", "z",
+               "rim_z_3", ("z",)),
+          Term(f"{PREFIX}rim_v_1", "rim_mass_force_N", v, f"v/{RIM_SPEED_SCALE_M_S:g}", "v", "rim_v_1", ("v",)),
+          Term(f"{PREFIX}rim_v_sign", "rim_mass_force_N", "smooth_sign(v, 1e-4)", "sgn(v)", "v", "rim_v_sign", ("v",))]
+    # the mass: its speed's powers and sign
+    xs = f"(wheel_radius_m * {SPEED_REF})"
+    t += _speed_terms("mass_force_N", "xdot", "ẋ", xs)
+    return tuple(t)
+
+
+def by_name() -> dict:
+    return {t.name: t for t in library()}
+
+
+def groups() -> dict:
+    """group -> [term names], in library order."""
+    out: dict = {}
+    for t in library():
+        out.setdefault(t.group, []).append(t.name)
+    return out
+
+
+def coefficient_name(term: Term) -> str:
+    unit = BALANCES[term.balance][0]
+    return {"p.u.": "coefficient_pu", "N*m": "coefficient_Nm", "N": "coefficient_N"}[unit]
+
+
+def _class_source(cls_name, name, balance, description, params, args, body) -> str:
+    plist = ",\n                  ".join(params)
+    return (f"class {cls_name}(Effect):\n"
+            f"    name = {name!r}\n"
+            f"    balance = {balance!r}\n"
+            f"    description = {description!r}\n"
+            f"    parameters = ({plist},)\n\n"
+            f"    @staticmethod\n"
+            f"    def term({', '.join(args)}):\n"
+            f"        return {body}\n")
+
+
+HEADER = ("from backlash_monitor.plant.effects import Effect, Parameter\n"
+          "from backlash_monitor.plant.mathlib import cos, fabs, sin, smooth_sign  # noqa: F401\n\n\n")
+
+
+def _variables(expr: str, extra=()) -> list:
+    from backlash_monitor.plant.effects import MODEL_VARIABLES
+    import re
+    names = set(re.findall(r"[A-Za-z_][A-Za-z_0-9]*", expr))
+    return [v for v in MODEL_VARIABLES if v in names] + list(extra)
+
+
+def library_source() -> str:
+    parts = ['"""The candidate terms of a proposal (backlash_monitor/workbench/candidate_terms.py), generated."""\n'
+             + HEADER]
+    for i, t in enumerate(library()):
+        unit, _, bound = BALANCES[t.balance]
+        c = coefficient_name(t)
+        param = f"Parameter({c!r}, {unit!r}, 0.0, ({-bound!r}, {bound!r}), 'the coefficient')"
+        parts.append(_class_source(f"Cand{i}", t.name, t.balance, f"{BALANCE_WORDS[t.balance]} += c * {t.symbol}",
+                                   [param], _variables(t.expression) + [c], f"{c} * ({t.expression})"))
+    return "\n\n".join(parts)
+
+
+def cache_dir() -> Path:
+    base = os.environ.get("BACKLASH_MONITOR_KERNEL_CACHE")
+    root = Path(base) if base else Path.home() / ".cache" / "backlash_monitor"
+    d = root / "proposals"
+    d.mkdir(parents=True, exist_ok=True)
+    return d
+
+
+def library_file() -> Path:
+    """The library as a plug-in file in the cache (named by its content; written once, atomically)."""
+    src = library_source()
+    path = cache_dir() / f"candidate_terms_{hashlib.sha256(src.encode()).hexdigest()[:16]}.py"
+    if not path.exists():
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_text(src)
+        os.replace(tmp, path)
+    return path
+
+
+# --------------------------------------------------------------------------------------------- a proposal's forms
+@dataclass
+class ProposedPiece:
+    """One selected group with its fitted coefficients: a plain term (one coefficient) or a harmonic (amplitude and
+    phase from its sine/cosine pair: c_s sin(k a) + c_c cos(k a) = A sin(k a + phi))."""
+    terms: tuple            # Term objects of the group
+    coefficients: tuple     # fitted, one per term
+    uncertainties: tuple
+
+    @property
+    def balance(self) -> str:
+        return self.terms[0].balance
+
+    @property
+    def harmonic(self) -> bool:
+        return self.terms[0].harmonic is not None
+
+    def amplitude_phase(self) -> tuple[float, float, float]:
+        """(A, phi, sigma_A) of a harmonic pair."""
+        cs = dict(zip((t.harmonic[2] for t in self.terms), self.coefficients))
+        us = dict(zip((t.harmonic[2] for t in self.terms), self.uncertainties))
+        s, c = cs.get("sin", 0.0), cs.get("cos", 0.0)
+        a = math.hypot(s, c)
+        sig = math.sqrt(((s * us.get("sin", 0.0)) ** 2 + (c * us.get("cos", 0.0)) ** 2)) / a if a > 0 else 0.0
+        return a, math.atan2(c, s), sig
+
+    def law(self) -> str:
+        unit = BALANCES[self.balance][0].replace("*", "·")
+        if self.harmonic:
+            a, phi, _ = self.amplitude_phase()
+            var, k, _ = self.terms[0].harmonic
+            sym = {"alpha1": "α₁", "alpha2": "α₂"}[var]
+            return f"{a:.3g} {unit} · sin({'' if k == 1 else k}{sym} {'+' if phi >= 0 else '−'} {abs(phi):.2f})"
+        return f"{self.coefficients[0]:+.3g} {unit} · {self.terms[0].symbol}"
+
+    def state(self) -> str:
+        return self.terms[0].state
+
+
+def proposal_law(pieces) -> str:
+    """The law in words and symbols, one line per balance: "wheel torque += 2.9 N·m · sin(α₂ + 0.31)"."""
+    by: dict = {}
+    for p in pieces:
+        by.setdefault(p.balance, []).append(p.law())
+    return "; ".join(f"{BALANCE_WORDS[b]} += " + " ".join(
+        (x if i == 0 or x.startswith(("+", "-", "−")) else "+ " + x) for i, x in enumerate(laws))
+        for b, laws in by.items())
+
+
+def proposal_source(pieces, name: str = "proposed_term") -> tuple[str, dict]:
+    """A plug-in file (docs/effects.md) holding the proposal: one Effect per balance, its parameters the fitted
+    coefficients (a harmonic as amplitude and phase), each bounded, its default 0 (neutral; add-effect sets the
+    fitted values). -> (source, {effect name: {parameter: fitted value}})."""
+    by: dict = {}
+    for p in pieces:
+        by.setdefault(p.balance, []).append(p)
+    parts = ['"""A term the workbench proposed from a residual (docs/workbench.md, "Proposing a missing term").\n'
+             "Read it, edit it: each parameter is bounded, its default 0 does nothing; the fitted values are in the\n"
+             'model version add-effect --accept-proposal writes."""\n' + HEADER]
+    values: dict = {}
+    for j, (balance, pieces_b) in enumerate(by.items()):
+        unit, _, bound = BALANCES[balance]
+        params, body, args = [], [], set()
+        ename = f"{name}_{SHORT[balance]}"
+        vals = {}
+        for i, p in enumerate(pieces_b):
+            if p.harmonic:
+                a, phi, _ = p.amplitude_phase()
+                var, k, _ = p.terms[0].harmonic
+                an, ph = f"amplitude{i}_{coefficient_name(p.terms[0]).split('_', 1)[1]}", f"phase{i}_rad"
+                params += [f"Parameter({an!r}, {unit!r}, 0.0, (0.0, {bound!r}), 'amplitude')",
+                           f"Parameter({ph!r}, 'rad', 0.0, ({-math.pi!r}, {math.pi!r}), 'phase')"]
+                arg = var if k == 1 else f"{k} * {var}"
+                body.append(f"{an} * sin({arg} + {ph})")
+                args |= {var}
+                vals[an], vals[ph] = a, phi
+            else:
+                cn = f"c{i}_{coefficient_name(p.terms[0]).split('_', 1)[1]}"
+                params.append(f"Parameter({cn!r}, {unit!r}, 0.0, ({-bound!r}, {bound!r}), {p.terms[0].symbol!r})")
+                body.append(f"{cn} * ({p.terms[0].expression})")
+                args |= set(_variables(p.terms[0].expression))
+                vals[cn] = p.coefficients[0]
+        from backlash_monitor.plant.effects import MODEL_VARIABLES
+        arglist = [v for v in MODEL_VARIABLES if v in args] + [q.split("'")[1] for q in params]
+        law = proposal_law(pieces_b)
+        parts.append(_class_source(f"Proposed{j}", ename, balance, law, params, arglist, " + ".join(body)))
+        values[ename] = vals
+    return "\n\n".join(parts), values

@@ -1,0 +1,283 @@
+"""Proposing the missing term on drives with mechanisms outside the catalogue (issue 31), and a user's exact-law plug-in
+on drives with a torque locked to a shaft's angle.
+
+    python bench/_workbench/outside.py [--sealed] [--only LABEL ...] [--skip-explained]
+    (or: python bench/workbench.py --parts outside [--sealed])
+
+Goals (docs/workbench.md "Proposing a missing term"):
+- outside_proposal_consistent_rate: on the outside recordings, the model with the proposed term passes diagnose's
+  consistency test (a recording without a proposal counts as a failure);
+- outside_proposal_right_balance_rate: the proposed term acts in the truth's balance and depends on its state (the
+  manifest's ``balance`` and ``state`` of the outside effect; for the forms of foreign_drives/forms.py, OUTSIDE_TRUTH);
+- proposals_on_explained: terms proposed on a clean drive or a drive one catalogue effect explains (the foreign
+  bench's clean and one-effect rows);
+- angle_locked_plugin_named_rate: on every foreign drive with a torque locked to a shaft's angle, a user's plug-in with
+  the exact law is named, its amplitude within 3 uncertainties of the truth;
+- proposal_cpu_seconds: the proposal's own CPU time per recording (on top of diagnose), one core.
+
+The development suite is ``foreign_drives.suites.suite("outside_dev")`` when it exists, else DEV_ROWS below; the
+sealed one only with ``--sealed`` (run once, by others, at the end). Each recording is diagnosed in this process at the
+drive's nominal values (NUMBA_NUM_THREADS=1); the proposal's CPU time is its own (proposal.Proposal.cpu_seconds).
+"""
+from __future__ import annotations
+
+import json
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT))
+
+import numpy as np                                                      # noqa: E402
+
+from foreign_drives.drive import make_recording                         # noqa: E402
+from foreign_drives.spec import EffectSpec as E                         # noqa: E402
+from foreign_drives.spec import RecordingSpec, SensorNuisance           # noqa: E402
+
+from backlash_monitor.workbench.diagnose import diagnose                # noqa: E402
+from backlash_monitor.workbench.measurement import Measurement          # noqa: E402
+from backlash_monitor.workbench.model import load_model                 # noqa: E402
+
+# where the forms outside the catalogue that foreign_drives/forms.py has act: (balance(s), state(s)) -- the
+# library's balance names and states (candidate_terms.Term.state)
+OUTSIDE_TRUTH = {
+    "spring_hardening": (("rim_mass_force_N",), ("z",)),
+    "clutch_contact_preload": (("clutch_torque_Nm",), ("penetration", "penetration rate")),
+    "clutch_contact_progressive": (("clutch_torque_Nm",), ("penetration", "penetration rate")),
+    "ripple_wheel_mesh": (("wheel_torque_Nm",), ("alpha2",)),
+    "structural_vibration": (("motor_load_moment_pu",), ("time",)),
+    "second_torsional_mode": (("wheel_torque_Nm", "clutch_torque_Nm"), ("omega2", "rel_speed")),
+}
+
+
+def _spec(label, kind, seed, effects, width=0.0075, eta=0.025, n1=0.89):
+    return RecordingSpec(label=label, kind=kind, width_m=width, eta_k=eta, n1=n1, effects=tuple(effects),
+                         sensor=SensorNuisance(), seed=seed, duration_s=4.0).check()
+
+
+# the development rows while the mech developer's outside_dev suite is not there: forms of foreign_drives outside the
+# catalogue, or outside its laws (seeds 7100+: no other suite uses them)
+DEV_ROWS = [
+    _spec("dev_spring_hardening_z0_0.35", "one", 7101, [E("spring_hardening", {"z0_m": 0.35})], width=0.0045),
+    _spec("dev_contact_preload_20Nm", "outside", 7102,
+          [E("clutch_contact_preload", {"preload_Nm": 20.0, "build_up_rad": 1e-3})], width=0.006),
+    _spec("dev_wheel_angle_6Nm", "one", 7103,
+          [E("ripple_wheel_mesh", {"amplitude_Nm": 6.0, "order": 1, "phase_rad": 0.31})], width=0.006),
+    _spec("dev_second_mode", "outside", 7104, [E("second_torsional_mode", {
+        "rim_fraction": 0.3, "stiffness_Nm_per_rad": 2e4, "damping_Nms_per_rad": 2.0})]),
+]
+
+# drives with a torque locked to a shaft's angle: (spec, the user's exact-law plug-in: balance, angle, order, unit)
+ANGLE_ROWS = [
+    (_spec("angle_wheel_order1_8Nm", "one", 7201,
+           [E("ripple_wheel_mesh", {"amplitude_Nm": 8.0, "order": 1, "phase_rad": 0.31})], width=0.006),
+     "amplitude_Nm"),
+    (_spec("angle_wheel_order2_5Nm", "one", 7202,
+           [E("ripple_wheel_mesh", {"amplitude_Nm": 5.0, "order": 2, "phase_rad": -1.1})], width=0.0075),
+     "amplitude_Nm"),
+]
+
+
+def log(*a):
+    print(*a, file=sys.stderr, flush=True)
+
+
+def _measurement(spec):
+    rec = make_recording(spec)
+    return Measurement(f"foreign:{spec.label}", rec.sample_period_s,
+                       {k: np.asarray(v) for k, v in rec.signals.items()}), rec.truth
+
+
+def exact_law_source(order: int) -> str:
+    """A user's plug-in with the exact law of foreign_drives' wheel mesh: A*sin(n*alpha2 + phi) on the wheel."""
+    arg = "alpha2" if order == 1 else f"{order} * alpha2"
+    return (
+        "from backlash_monitor.plant.effects import Effect, Parameter\n"
+        "from backlash_monitor.plant.mathlib import sin\n\n\n"
+        "class WheelMesh(Effect):\n"
+        f"    name = 'user_wheel_mesh{order}'\n"
+        "    balance = 'wheel_torque_Nm'\n"
+        f"    description = 'a torque locked to the wheel angle, A*sin({order}*alpha2 + phi)'\n"
+        "    parameters = (Parameter('amplitude_Nm', 'N*m', 0.0, (0.0, 20.0), 'A'),\n"
+        "                  Parameter('phase_rad', 'rad', 0.0, (-3.141592653589793, 3.141592653589793), 'phi'))\n\n"
+        "    @staticmethod\n"
+        "    def term(alpha2, amplitude_Nm, phase_rad):\n"
+        f"        return amplitude_Nm * sin({arg} + phase_rad)\n")
+
+
+# the proposal's balances and states (candidate_terms.Term) in the manifest's words (foreign_drives/outside.py
+# BALANCES, STATES); the rim force (between wheel and mass) is neither of the manifest's balances
+BALANCE_WORDS = {"motor_load_moment_pu": "motor_load_moment", "wheel_torque_Nm": "wheel_torque",
+                 "clutch_torque_Nm": "clutch_torque", "mass_force_N": "mass_force"}
+STATE_WORDS = {"omega1": ("motor_speed",), "omega2": ("wheel_speed",), "xdot": ("mass_speed",), "v": ("rim_speed",),
+               "rel_speed": ("motor_speed", "wheel_speed"), "penetration": ("clutch_penetration",),
+               "penetration rate": ("clutch_penetration",), "z": ("spring_extension",), "alpha1": ("motor_angle",),
+               "alpha2": ("wheel_angle",), "te": ()}
+
+
+def _truth_of(spec, truth) -> tuple[set, set]:
+    """(balances, states) of the recording's effects outside the catalogue, in the manifest's words (its ``balance``
+    and ``depends_on``; for the forms of foreign_drives/forms.py, OUTSIDE_TRUTH)."""
+    bal, st = set(), set()
+    for e in truth.effects:
+        b = getattr(e, "balance", None)
+        if b:
+            bal.add(b)
+            st |= set(getattr(e, "depends_on", ()) or ())
+        elif e.form in OUTSIDE_TRUTH:
+            bal |= {BALANCE_WORDS.get(x, x) for x in OUTSIDE_TRUTH[e.form][0]}
+            st |= {w for x in OUTSIDE_TRUTH[e.form][1] for w in STATE_WORDS.get(x, (x,))}
+    return bal, st
+
+
+def right_balance(terms, bal: set, st: set) -> bool:
+    """A proposed term acts in the truth's balance and depends on one of its states."""
+    return any(BALANCE_WORDS.get(t["balance"]) in bal and set(STATE_WORDS.get(t["state"], ())) & st for t in terms)
+
+
+def run_outside(specs) -> list:
+    rows = []
+    for spec in specs:
+        meas, truth = _measurement(spec)
+        model = load_model(None, width_m=spec.width_m, eta_k=spec.eta_k, n1=spec.n1)
+        t0 = time.process_time()
+        d = diagnose(meas, model).to_json()
+        cpu = time.process_time() - t0
+        prop = d.get("proposal") or {}
+        bal, st = _truth_of(spec, truth)
+        terms = prop.get("terms") or []
+        right = bool(prop.get("proposed")) and right_balance(terms, bal, st)
+        row = {"label": spec.label, "verdict": d["verdict"], "proposed": bool(prop.get("proposed")),
+               "law": prop.get("law"), "consistent": bool(prop.get("consistent")), "right_balance": right,
+               "truth_balance": sorted(bal), "truth_state": sorted(st),
+               "terms": [(t["balance"], t["state"], t["group"]) for t in terms],
+               "stability": prop.get("stability"), "reason": prop.get("reason"),
+               "explained_fraction": prop.get("explained_fraction"),
+               "proposal_cpu_seconds": prop.get("cpu_seconds"), "diagnose_cpu_seconds": cpu,
+               "message": d["message"]}
+        log(json.dumps(row, default=float))
+        rows.append(row)
+    return rows
+
+
+def run_explained(specs) -> list:
+    rows = []
+    for spec in specs:
+        meas, _ = _measurement(spec)
+        model = load_model(None, width_m=spec.width_m, eta_k=spec.eta_k, n1=spec.n1)
+        d = diagnose(meas, model).to_json()
+        prop = d.get("proposal") or {}
+        row = {"label": spec.label, "kind": spec.kind, "verdict": d["verdict"],
+               "proposed": bool(prop.get("proposed")), "law": prop.get("law")}
+        log(json.dumps(row))
+        rows.append(row)
+    return rows
+
+
+def angle_rows(specs) -> list:
+    """(spec, plug-in source, effect name, amplitude parameter, true amplitude) of every drive with a torque locked to a
+    shaft's angle: the suite's (the manifest's exact-law plug-in) and ANGLE_ROWS (a plug-in written here)."""
+    import re
+    out = []
+    for spec in specs:
+        for e in spec.truth().effects:
+            src = getattr(e, "plugin", None)
+            if src and {"motor_angle", "wheel_angle"} & set(getattr(e, "depends_on", ()) or ()):
+                name = re.search(r"name = ['\"]([A-Za-z_0-9]+)['\"]", src).group(1)
+                amp = next(k for k in e.parameters if k.startswith("amplitude"))
+                out.append((spec, src, name, amp, float(e.parameters[amp])))
+    for spec, pname in ANGLE_ROWS:
+        eff = next(e for e in spec.effects if e.form == "ripple_wheel_mesh")
+        order = int(eff.parameters["order"])
+        out.append((spec, exact_law_source(order), f"user_wheel_mesh{order}", pname,
+                    float(eff.parameters["amplitude_Nm"])))
+    return out
+
+
+def run_angle_locked(rows) -> list:
+    out = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for spec, src, name, pname, truth in rows:
+            plugin = Path(tmp) / f"{spec.label}_{name}.py"
+            plugin.write_text(src)
+            meas, _ = _measurement(spec)
+            model = load_model(None, width_m=spec.width_m, eta_k=spec.eta_k, n1=spec.n1, effect_files=[plugin])
+            d = diagnose(meas, model, propose=False).to_json()
+            named = name in (d.get("indistinguishable") or []) or d.get("discovery") == name or any(
+                name == (e or {}).get("effect") for e in [d.get("second_effect")])
+            fit = next((r for r in d["ranked"] if r["effect"] == name), None)
+            a = fit["parameters"][pname] if fit else None
+            s = (fit.get("uncertainty") or {}).get(pname) if fit else None
+            within = a is not None and s is not None and abs(a - truth) <= 3 * s
+            row = {"label": spec.label, "plugin": name, "verdict": d["verdict"], "named": bool(named), "amplitude": a,
+                   "uncertainty": s, "truth": truth, "within_3_sigma": bool(within), "message": d["message"]}
+            log(json.dumps(row, default=float))
+            out.append(row)
+    return out
+
+
+def suite_rows(sealed: bool) -> list:
+    from foreign_drives import suites
+    name = "outside_sealed" if sealed else "outside_dev"
+    if name in getattr(suites, "SUITES", {}):
+        return suites.suite(name)
+    if sealed:
+        raise SystemExit(f"--sealed: foreign_drives.suites has no suite {name!r}")
+    return list(DEV_ROWS)
+
+
+def summary(outside, explained, angle) -> dict:
+    def rate(rows, key):
+        return float(np.mean([bool(r[key]) for r in rows])) if rows else None
+    cpu = [r["proposal_cpu_seconds"] for r in outside if r["proposal_cpu_seconds"] is not None]
+    return {"outside_recordings": len(outside),
+            "outside_proposed_rate": rate(outside, "proposed"),
+            "outside_proposal_consistent_rate": rate(outside, "consistent"),
+            "outside_proposal_right_balance_rate": rate(outside, "right_balance"),
+            "proposals_on_explained": int(sum(r["proposed"] for r in explained)) if explained else None,
+            "explained_recordings": len(explained),
+            "angle_locked_plugin_named_rate": (float(np.mean([r["named"] and r["within_3_sigma"] for r in angle]))
+                                               if angle else None),
+            "proposal_cpu_seconds": float(np.max(cpu)) if cpu else None,
+            "outside_per_recording": outside, "explained_per_recording": explained,
+            "angle_locked_per_recording": angle}
+
+
+def run_all(sealed: bool = False, only=(), skip_explained: bool = False, skip_angle: bool = False,
+            skip_outside: bool = False):
+    """(outside rows, explained rows, angle-locked rows) of the chosen suite."""
+    specs = [s for s in suite_rows(sealed) if not only or s.label in only]
+    outside = [] if skip_outside else run_outside(specs)
+    explained = []
+    if not skip_explained:
+        from foreign_drives.suites import suite
+        explained = run_explained([s for s in suite("bench") if s.kind in ("clean", "one")
+                                   and (not only or s.label in only)])
+    angle = [] if skip_angle else run_angle_locked([r for r in angle_rows(suite_rows(sealed))
+                                                    if not only or r[0].label in only])
+    return outside, explained, angle
+
+
+def main(argv=None):
+    import argparse
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--sealed", action="store_true", help="run the sealed outside suite (once, at the end)")
+    ap.add_argument("--only", action="append", default=[], metavar="LABEL", help="only these rows (repeatable)")
+    ap.add_argument("--skip-explained", action="store_true",
+                    help="skip the foreign bench's clean and one-effect rows (proposals_on_explained: null)")
+    ap.add_argument("--skip-angle", action="store_true", help="skip the angle-locked plug-in rows")
+    ap.add_argument("--skip-outside", action="store_true", help="skip the proposals on the outside rows")
+    args = ap.parse_args(argv)
+    t0 = time.perf_counter()
+    out = summary(*run_all(args.sealed, args.only, args.skip_explained, args.skip_angle, args.skip_outside))
+    out["suite"] = "outside_sealed" if args.sealed else "outside_dev"
+    out["wall_seconds"] = time.perf_counter() - t0
+    print(json.dumps(out, default=float))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,117 @@
+"""Proposing a missing term (issue 31): the generic candidate library, the selection on the events (cross-validation
+over events, stability under their resampling) and the proposal's plug-in file."""
+import os
+
+import numpy as np
+import pytest
+
+os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+
+from backlash_monitor.plant import load_plant_config                      # noqa: E402
+from backlash_monitor.plant.catalogue import builtin_catalogue           # noqa: E402
+from backlash_monitor.plant.effects import MODEL_VARIABLES               # noqa: E402
+from backlash_monitor.workbench import candidate_terms, proposal         # noqa: E402
+
+
+def test_the_library_is_generic_and_covers_every_balance_and_both_shafts_angles():
+    lib = candidate_terms.library()
+    assert {t.balance for t in lib} == set(candidate_terms.BALANCES)
+    harm = {(t.harmonic[0], t.harmonic[1]) for t in lib if t.harmonic}
+    assert ("alpha1", 1) in harm and ("alpha2", 1) in harm and ("alpha2", 2) in harm
+    # a harmonic's sine and cosine are one group: selected together, linear in their coefficients
+    for g, names in candidate_terms.groups().items():
+        kinds = {candidate_terms.by_name()[n].harmonic is not None for n in names}
+        assert len(kinds) == 1 and (len(names) == 2) == kinds.pop()
+    for t in lib:
+        assert set(t.variables) <= set(MODEL_VARIABLES)
+    # the library is a valid plug-in file: every term an effect with a neutral default
+    cat = builtin_catalogue().with_files([candidate_terms.library_file()])
+    assert all(t.name in cat for t in lib)
+    assert all(cat[t.name].parameters[0].default == 0.0 for t in lib)
+
+
+def test_forward_selection_finds_the_term_in_the_events_and_nothing_in_noise():
+    """Whitened sensitivities G (D x M) and events Y_e = G c + noise (unit variance per direction, the events
+    independent): the true group is selected and stable; on noise alone nothing is selected."""
+    rng = np.random.default_rng(5)
+    d, m, e = 60, 12, 16
+    G = rng.normal(size=(d, m)) * 0.4
+    groups = [[0, 1]] + [[i] for i in range(2, m)]
+    truth = np.zeros(m)
+    truth[[0, 1]] = [1.2, -0.8]
+    Y = (G @ truth)[None] + rng.normal(size=(e, d))
+    sel, steps = proposal.forward_select(G, Y, groups)
+    assert sel[:1] == [0] and steps[0][2] > proposal.CV_Z
+    assert proposal.stability(G, Y, groups, n=15)[0] >= proposal.STABILITY
+    false = 0
+    for k in range(20):
+        noise = np.random.default_rng(100 + k).normal(size=(e, d))
+        false += len(proposal.forward_select(G, noise, groups)[0])
+    assert false <= 1
+
+
+def test_the_proposal_is_written_as_a_plugin_that_loads_with_its_fitted_values(tmp_path):
+    by = candidate_terms.by_name()
+    pieces = [candidate_terms.ProposedPiece((by["cand_wheel_alpha2_sin1"], by["cand_wheel_alpha2_cos1"]),
+                                            (2.9 * np.cos(0.31), 2.9 * np.sin(0.31)), (0.1, 0.1)),
+              candidate_terms.ProposedPiece((by["cand_rim_z_3"],), (-4.0,), (0.5,))]
+    law = candidate_terms.proposal_law(pieces)
+    assert "wheel torque += 2.9 N·m · sin(α₂ + 0.31)" in law and "rim force += -4 N" in law
+    src, values = candidate_terms.proposal_source(pieces)
+    f = tmp_path / "proposed.py"
+    f.write_text(src)
+    cat = builtin_catalogue().with_files([f])
+    assert set(values) == {"proposed_term_wheel", "proposed_term_rim"}
+    over = {}
+    for eff, vals in values.items():
+        over[f"effects.{eff}"] = True
+        over.update({f"{eff}.{k}": v for k, v in vals.items()})
+    cfg = load_plant_config(overrides=over, catalogue=cat)
+    assert cfg.effect_parameter("proposed_term_wheel", "amplitude0_Nm") == pytest.approx(2.9)
+    assert cfg.effect_parameter("proposed_term_wheel", "phase0_rad") == pytest.approx(0.31)
+    assert cfg.effect_parameter("proposed_term_rim", "c0_N") == pytest.approx(-4.0)
+
+
+def _diagnosis_with_proposal(tmp_path, proposed=True):
+    """A diagnosis JSON as diagnose writes it, its verdict nothing_explains, with a proposal (the plug-in the proposal
+    writes for a wheel-angle torque)."""
+    import json
+
+    from backlash_monitor.workbench.diagnosis import Conditions
+    from backlash_monitor.workbench.model import load_model
+    by = candidate_terms.by_name()
+    pieces = [candidate_terms.ProposedPiece((by["cand_wheel_alpha2_sin1"], by["cand_wheel_alpha2_cos1"]),
+                                            (2.0, 1.0), (0.1, 0.1))]
+    src, values = candidate_terms.proposal_source(pieces)
+    model = load_model(None)
+    cond = Conditions("drive.mcap", model.label(), None, dict(model.nominal), {}, [], model.to_dict(), [1, 2], {}, 16)
+    prop = {"proposed": proposed, "reason": "test", "law": candidate_terms.proposal_law(pieces),
+            "plugin_source": src, "plugin_values": values, "on_top_of": []}
+    d = {"discovery": None, "verdict": "nothing_explains", "message": "nothing in the catalogue explains",
+         "additions": [], "conditions": cond.to_json(), "measured_width": {}, "proposal": prop}
+    path = tmp_path / "d.json"
+    path.write_text(json.dumps(d))
+    return path, values
+
+
+def test_add_effect_takes_a_proposal_only_when_asked_and_writes_its_plugin_file(tmp_path, capsys):
+    import yaml
+
+    from backlash_monitor.__main__ import main
+    from backlash_monitor.workbench.model import load_model
+    diag, values = _diagnosis_with_proposal(tmp_path)
+    out = tmp_path / "v2.yaml"
+    assert main(["add-effect", str(diag), "-o", str(out)]) == 2            # not without --accept-proposal
+    assert "names no effect to add" in capsys.readouterr().err
+    assert main(["add-effect", str(diag), "-o", str(out), "--accept-proposal"]) == 0
+    plugin = tmp_path / "v2_proposed_term.py"
+    assert plugin.is_file()
+    v2 = load_model(out)
+    cfg = v2.plant_config()
+    assert cfg.effects["proposed_term_wheel"]
+    assert cfg.effect_parameter("proposed_term_wheel", "amplitude0_Nm") == pytest.approx(np.hypot(2.0, 1.0))
+    assert cfg.effect_parameter("proposed_term_wheel", "phase0_rad") == pytest.approx(np.arctan2(1.0, 2.0))
+    assert any(str(f).endswith("v2_proposed_term.py") for f in yaml.safe_load(out.read_text())["effect_files"])
+    nothing, _ = _diagnosis_with_proposal(tmp_path / ".." / tmp_path.name, proposed=False)
+    assert main(["add-effect", str(nothing), "-o", str(tmp_path / "v3.yaml"), "--accept-proposal"]) == 2
+    assert "proposes no term" in capsys.readouterr().err
