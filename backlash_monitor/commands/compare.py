@@ -74,7 +74,8 @@ def run(args) -> int:
     if args.json:
         write_text_staged(args.json, text)
     if not args.no_record:
-        record_check(model, meas.source, "compare", res["fit_percent"], res["residual_over_noise_floor"])
+        record_check(model, meas.source, "compare", res["fit_percent"], res["residual_over_noise_floor"],
+                     directory=out.parent)
     rows = [(s, f"{res['fit_percent'][s]:.1f}", f"{res['noise_band_fit_percent'][s]['median']:.1f}",
              f"{res['residual_over_noise_floor'][s]:.2f}", f"{res['spread'][s]['measured']:.4g}",
              f"{res['spread'][s]['model_median']:.4g}", ",".join(f"{f:.0f}" for f in res["spectral_peaks"][s]["peaks_hz"])

@@ -72,8 +72,9 @@ def run(args) -> int:
         page = report.write_report(result, args.report)
         print(f"report: {page}")
     if not args.no_record:
-        record_check(model, meas.source, "diagnose", pub["fit_percent"]["before"],
-                     pub["residual_over_noise_floor"]["before"])
+        where = record_check(model, meas.source, "diagnose", pub["fit_percent"]["before"],
+                             pub["residual_over_noise_floor"]["before"], directory=json_path.parent)
+        print(f"history: this check of {model.label()} added to {where} (`history` lists it)")
     rows = []
     for r in pub["ranked"]:
         unc = r.get("uncertainty") or {}

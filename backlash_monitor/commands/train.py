@@ -161,6 +161,8 @@ def run(args) -> int:
         t_ref = time.time()
         ref_path = build_reference(models[0]).save(reference_path_for_library(path))
         ref_seconds = time.time() - t_ref
+    if check is not None:
+        _record_monitor_widths(models, check, path, rejected, args.previous_library)
     fit = lib.training["shape"]["fit"]
     print(f"pattern library written: {path}")
     print(f"  trigger {args.trigger}, seeds {','.join(map(str, args.seeds))}, "
@@ -185,3 +187,23 @@ def run(args) -> int:
             print(f"WARNING: the library {path} is FLAGGED (written into it; analyze and the classifier warn when "
                   "they load it): " + "; ".join(check["reasons"]), file=sys.stderr)
     return 0
+
+
+def _record_monitor_widths(models, check, library, rejected, previous) -> None:
+    """The workbench history: the monitor's width on the diagnosed recording with the library written (for the
+    version trained on) and with the library in use before (for the version the diagnosis was made against)."""
+    from backlash_monitor.classifier.patterns import default_library_path
+    from backlash_monitor.workbench.model import append_history
+    by_label = {m.label(): m for m in models}
+    for c in check["checked"]:
+        m = by_label.get(c.get("model"))
+        if m is None or m.path is None or "retrained_width_m" not in c:
+            continue
+        width = c["packaged_width_m"] if rejected is not None else c["retrained_width_m"]
+        common = {"type": "monitor", "measurement": c["measurement"], "diagnosed_width_m": c["diagnosed_width_m"]}
+        append_history(m.path, {**common, "model": m.path.name, "name": m.name, "version": m.version,
+                                "library": str(library), "width_m": width,
+                                "note": "previous library kept (the retrained one was worse)" if rejected else ""})
+        parent = (m.provenance or {}).get("diagnosed_model") or {"name": m.name, "version": m.version - 1}
+        append_history(m.path, {**common, "model": None, "name": parent["name"], "version": parent["version"],
+                                "library": str(previous or default_library_path()), "width_m": c["packaged_width_m"]})
