@@ -26,7 +26,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("source", metavar="DIAGNOSIS_OR_EFFECT",
                         help="a diagnosis JSON (from diagnose --json) or a catalogue effect name")
     add_model_arguments(parser, measurement=False)
-    parser.add_argument("-o", "--output", required=True, metavar="M2.yaml", help="the new model version's file")
+    parser.add_argument("-o", "--output", default=None, metavar="M2.yaml",
+                        help="the new model version's file (with --drive, default: DRIVE_vN.yaml beside the registry)")
     parser.add_argument("--value", action="append", default=[], metavar="PARAM=VALUE",
                         help="with an effect name: a parameter's value, e.g. --value mass_kg=12.5 (default: its "
                              "current value); repeatable")
@@ -88,7 +89,10 @@ def run(args) -> int:
     from backlash_monitor.workbench.diagnosis import ROLE_PARTIAL, read_handoff
     from backlash_monitor.workbench.model import append_history
     from backlash_monitor.workbench.versions import EffectValues, add_effects
-    check_outputs(args, [args.output], "-o")
+    from backlash_monitor.commands._workbench import apply_drive
+    entry = apply_drive(args)
+    if args.output is None and entry is None:
+        raise UsageError("add-effect needs -o M2.yaml (the new model version's file), or --drive NAME")
     src = Path(args.source)
     additions, nominal, provenance, notes, all_taken = [], {}, {}, [], False
     if src.suffix == ".json" or src.is_file():
@@ -150,6 +154,11 @@ def run(args) -> int:
             except ValueError:
                 raise UsageError(f"--value {text!r}: {v!r} is not a number") from None
         additions.append(EffectValues(args.source, values, {}, "command line"))
+    if entry is not None and model.path is None:
+        model.name = entry.model_name
+    if args.output is None:
+        args.output = str(Path(args.registry).resolve().parent / f"{entry.model_name}_v{model.version + 1}.yaml")
+    check_outputs(args, [args.output], "-o")
     try:
         new = add_effects(model, additions, name=args.name, nominal=nominal, provenance=provenance)
     except ValueError as exc:

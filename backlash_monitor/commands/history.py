@@ -22,8 +22,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("--plot", default=None, metavar="PNG", help="write the error per version as a PNG")
     parser.add_argument("--report", default=None, metavar="DIR",
                         help="write an HTML page (index.html, history.png) with the table and the plot into DIR")
-    from backlash_monitor.commands._workbench import add_overwrite_argument
+    from backlash_monitor.commands._workbench import add_drive_arguments, add_overwrite_argument
     add_overwrite_argument(parser)
+    add_drive_arguments(parser)
 
 
 def run(args) -> int:
@@ -33,6 +34,18 @@ def run(args) -> int:
     from backlash_monitor.files.outputs import OutputError, check_outputs
     from backlash_monitor.workbench.history import HEADER, plot_history, version_rows, write_html
     from backlash_monitor.workbench.model import read_history
+    from backlash_monitor.commands._workbench import drive_entry
+    entry = drive_entry(args)
+    names = None
+    if entry is not None:
+        names = {entry.model_name}
+        if entry.model is not None:
+            from backlash_monitor.workbench.model import ModelError, load_model
+            try:
+                names.add(load_model(entry.model).name)
+            except ModelError as exc:
+                raise UsageError(f"drive {entry.hardware_id}: {exc}") from None
+        args.where = str(entry.model.parent if entry.model is not None else Path(args.registry).resolve().parent)
     if not Path(args.where).exists():
         raise UsageError(f"{args.where} does not exist; give a model file or its directory")
     outs = ([args.plot] if args.plot else []) + ([str(Path(args.report) / f) for f in ("index.html", "history.png")]
@@ -51,6 +64,14 @@ def run(args) -> int:
         print(json.dumps(hist, indent=1))
         return 0
     rows = version_rows(hist)
+    if names is not None:
+        rows = [r for r in rows if r.name in names]
+        if not rows:
+            raise UsageError(f"no workbench history of drive {entry.hardware_id} at {args.where} (diagnose --drive "
+                             f"{args.drive} writes it)")
+        print(f"drive {entry.hardware_id} ({args.registry}): version {entry.version}, model "
+              f"{entry.model or 'default at its nominal'}, library {entry.library or 'packaged'}, watch reference "
+              f"{entry.watch_reference or 'default'}")
     print_table([r.cells() for r in rows], HEADER)
     if args.plot:
         print(f"wrote {plot_history(rows, args.plot)}")

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import math
+from pathlib import Path
 import sys
 import time
 
@@ -74,6 +75,27 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "the diagnosis than the previous library (default: the previous library is written under "
                              "--out, saying why, and the retrained one as NAME.rejected.npz)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    from backlash_monitor.commands._workbench import add_drive_arguments
+    add_drive_arguments(parser)
+
+
+def _drive_defaults(args):
+    """With --drive: --model defaults to the drive's current model version, --out to beside it (M.npz),
+    --previous-library to the drive's library. -> the registry entry or None."""
+    from backlash_monitor.commands._workbench import drive_entry
+    entry = drive_entry(args)
+    if entry is None:
+        return None
+    if not args.model:
+        if entry.model is None:
+            raise UsageError(f"train --drive {args.drive}: the drive has no model file in {args.registry}; give "
+                             "--model M.yaml (e.g. add-effect's new version)")
+        args.model = [str(entry.model)]
+    if args.out is None:
+        args.out = str(Path(args.model[0]).with_suffix(".npz"))
+    if args.previous_library is None and entry.library is not None:
+        args.previous_library = str(entry.library)
+    return entry
 
 
 def _check(args) -> None:
@@ -109,6 +131,7 @@ def _check(args) -> None:
 
 
 def run(args) -> int:
+    entry = _drive_defaults(args)
     _check(args)
     from tqdm import tqdm
 
@@ -163,6 +186,15 @@ def run(args) -> int:
         ref_seconds = time.time() - t_ref
     if check is not None:
         _record_monitor_widths(models, check, path, rejected, args.previous_library)
+    if entry is not None:
+        if rejected is None:
+            from backlash_monitor.files.registry import register
+            register(args.registry, entry.hardware_id, model=args.model[0], library=path, watch_reference=ref_path)
+            print(f"registry {args.registry}: {entry.hardware_id} is at version {entry.version + 1}: model "
+                  f"{args.model[0]}, library {path}, watch reference {ref_path}")
+        else:
+            print(f"registry {args.registry}: {entry.hardware_id} stays at version {entry.version} (the retrained "
+                  "library was worse; nothing registered)")
     fit = lib.training["shape"]["fit"]
     print(f"pattern library written: {path}")
     print(f"  trigger {args.trigger}, seeds {','.join(map(str, args.seeds))}, "

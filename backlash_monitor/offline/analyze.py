@@ -331,7 +331,8 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
     return {"rows": rows, "summary": summary, "discarded": discarded, "n_samples": n_samples,
             "seconds": elapsed, "outputs": outputs, "integrity": integrity,
             "faults": (stage.faults, estimator.faults), "lost_samples": stage.lost_samples,
-            "drive": first_a1[0][0], "first_stamp_s": first_a1[0][1], "sensor_offsets": sensor_offsets}
+            "drive": first_a1[0][0], "first_stamp_s": first_a1[0][1], "sensor_offsets": sensor_offsets,
+            "namespace": namespace}
 
 
 def _ranges_one_by_one(chunks, topics: dict, source: SourceCheck, joiner, first_a1: list,
