@@ -95,3 +95,18 @@ def test_analyze_holds_each_bag_against_its_own_drive(reg, tmp_path):
     stranger = {"drive": "press7", "namespace": "/press7"}
     assert registered_drive(watch, stranger) is None
     assert reference_for_bag(opts, watch, 0.005, stranger) == reference_for_bag(opts, WatchOptions(), 0.005, stranger)
+
+
+def test_pipeline_takes_the_drive_from_the_registry(reg, tmp_path):
+    import argparse
+
+    from backlash_monitor.nodes import pipeline
+    parser = argparse.ArgumentParser()
+    pipeline.add_arguments(parser)
+    args = parser.parse_args(["--watch", "--drive", "line1/drive02", "--registry", str(reg)])
+    pipeline.apply_registry(args)
+    assert (args.width_m, args.eta_k, args.n1) == (0.006, 0.05, 0.93) and args.drive_name == "line1/drive02"
+    assert args.library == str(tmp_path / "m" / "drive02_v3.npz") and args.model == str(tmp_path / "m" / "drive02_v3.yaml")
+    assert pipeline.watch_reference(args) == str(tmp_path / "m" / "drive02_v3.watch.npz")
+    node = pipeline.node_parameters(args)
+    assert node["classifier"]["library"] == args.library and node["plant_simulator"]["width_m"] == 0.006
