@@ -27,6 +27,10 @@ measured on a busy machine is a lower bound.
     python bench/fleet.py --parts analyze                         # only the analysis speed-up
     python bench/fleet.py --parts capacity --layouts process single --counts 8 10
     python bench/fleet.py --parts capacity --layouts process --watch both     # without and with the model watch
+    python bench/fleet.py --parts model_fit [--compare-default]    # the registry's per-drive model fit
+fleet_model_fit_false_warn / fleet_model_fit_detected: `analyze FOLDER --registry` on 12 healthy foreign drives of
+  different nominal conditions and 6 foreign drives with effects, each registered at its own nominal (docs/registry.md):
+  model-fit WARNs on the healthy ones, and the share of the others with a WARN.
 """
 import argparse
 import json
@@ -198,7 +202,68 @@ def analyze_speedup(workdir, n_bags=100, repeats=7, bag_s=3.0):
                                       "machine_parallel_work_ratio": work_ratio}, cores
 
 
-PARTS = ("capacity", "diagnostics", "analyze", "two_host")
+# the registry's model fit (fleet_model_fit_false_warn, fleet_model_fit_detected): foreign drives (foreign_drives/,
+# an independent simulator), each in its own namespace fleetA/dNN and registered at its own nominal conditions
+EXTRA_HEALTHY = (("clean_w4.0_eta0.03_n0.92", 0.004, 0.03, 0.92), ("clean_w8.5_eta0.02_n0.94", 0.0085, 0.02, 0.94))
+EFFECT_LABELS = ("mass_+0.3", "spring_+0.5", "absorber_eta_+0.6", "wheel_drag_quadratic_1.2Nm",
+                 "clutch_hunt_crossley_+0.6", "gain_a2_+0.15")
+
+
+def registry_model_fit(workdir, duration_s=5.0, compare_default=False):
+    """`analyze FOLDER --registry` on >= 12 healthy foreign drives of different nominal conditions (the bench
+    suite's clean rows and two more) and 6 with effects diagnose finds: WARNs on the healthy ones (false) and on
+    the sick ones (detected). Each drive is registered with its own nominal (width, eta_k, n1): its reference is
+    the default model's at those conditions (built into the cache once when missing: ~30 s each)."""
+    import dataclasses
+    import yaml
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    from foreign_drives.drive import make_recording
+    from foreign_drives.files import write_bag
+    from foreign_drives.suites import suite
+    bench = {s.label: s for s in suite("bench")}
+    healthy = [s for s in bench.values() if s.kind == "clean"]
+    healthy += [dataclasses.replace(healthy[0], label=label, width_m=w, eta_k=e, n1=n, seed=7700 + i)
+                for i, (label, w, e, n) in enumerate(EXTRA_HEALTHY)]
+    sick = [bench[label] for label in EFFECT_LABELS]
+    bag_dir = os.path.join(workdir, "registry_bags")
+    os.makedirs(bag_dir, exist_ok=True)
+    lines, kinds = {"fleetA": {}}, {}
+    started = time.perf_counter()
+    for i, s in enumerate(healthy + sick):
+        name = f"d{i + 1:02d}"
+        spec = dataclasses.replace(s, namespace=f"fleetA/{name}", drive_name=f"fleetA/{name}",
+                                   duration_s=duration_s).check()
+        write_bag(spec, os.path.join(bag_dir, f"{name}_{s.label}.mcap"), recording=make_recording(spec))
+        lines["fleetA"][name] = {"width_m": s.width_m, "eta_k": s.eta_k, "n1": s.n1}
+        kinds[f"fleetA/{name}"] = (s.label, "healthy" if s.kind == "clean" else "effect")
+    log(f"wrote {len(kinds)} foreign bags of {duration_s:g} s in {time.perf_counter() - started:.0f} s")
+    reg = os.path.join(workdir, "drives.yaml")
+    with open(reg, "w") as f:
+        yaml.safe_dump({"lines": lines}, f)
+
+    def run(extra, tag):
+        out = os.path.join(workdir, f"registry_out_{tag}")
+        t0 = time.perf_counter()
+        proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", bag_dir, "--out", out,
+                               "--no-plots", *extra], capture_output=True, text=True, timeout=7200)
+        log(proc.stdout[-3000:], proc.stderr[-1500:])
+        rows = json.load(open(os.path.join(out, "fleet.json")))["rows"]
+        per = {r["drive"]: {"label": kinds.get(r["drive"], ("?", "?"))[0], "kind": kinds.get(r["drive"], ("?", "?"))[1],
+                            "level": r.get("model_fit_level") or "", "ratio": r.get("model_fit_ratio")}
+               for r in rows}
+        healthy_rows = [v for v in per.values() if v["kind"] == "healthy"]
+        sick_rows = [v for v in per.values() if v["kind"] == "effect"]
+        return {"false_warn": sum(v["level"] not in ("OK",) for v in healthy_rows), "healthy": len(healthy_rows),
+                "detected": sum(v["level"] in ("WARN", "ERROR") for v in sick_rows) / max(len(sick_rows), 1),
+                "sick": len(sick_rows), "per_drive": per, "seconds": time.perf_counter() - t0,
+                "exit": proc.returncode}
+    out = {"registry": run(["--registry", reg], "registry")}
+    if compare_default:
+        out["default_model"] = run([], "default")
+    return out
+
+
+PARTS = ("capacity", "diagnostics", "analyze", "two_host", "model_fit")
 
 
 def _autogroup() -> str:
@@ -260,6 +325,9 @@ def main():
     parser.add_argument("--analyze-repeats", type=int, default=7,
                         help="alternated pairs of the analyze part (each ~5 s; the best time of each "
                              "side is its least disturbed run on a shared machine)")
+    parser.add_argument("--compare-default", action="store_true",
+                        help="model_fit part: also run the same bags without the registry (every drive against the "
+                             "default model, as before)")
     args = parser.parse_args()
     result = {"load_average_1min_start": os.getloadavg()[0], "cores": os.cpu_count(),
               "parts": args.parts,
@@ -301,6 +369,12 @@ def main():
                           fleet_analyze_speedup_best_of=times["best_of"],
                           fleet_analyze_bags=n_bags, fleet_analyze_bag_s=3.0,
                           fleet_analyze_cores=cores)
+        if "model_fit" in args.parts:
+            fit = registry_model_fit(workdir, compare_default=args.compare_default)
+            result.update(fleet_model_fit_false_warn=fit["registry"]["false_warn"],
+                          fleet_model_fit_healthy_drives=fit["registry"]["healthy"],
+                          fleet_model_fit_detected=fit["registry"]["detected"],
+                          fleet_model_fit_effect_drives=fit["registry"]["sick"], fleet_model_fit=fit)
         if "two_host" in args.parts:
             from backlash_monitor.nodes.netns import can_make_namespaces, run_two_hosts
             reason = can_make_namespaces()

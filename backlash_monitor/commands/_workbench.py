@@ -4,6 +4,50 @@ from __future__ import annotations
 import sys
 
 
+def add_drive_arguments(parser) -> None:
+    """--drive NAME and --registry PATH: the drive registry (docs/registry.md) gives the drive's model version,
+    library and watch reference."""
+    from backlash_monitor.files.registry import DEFAULT_REGISTRY
+    parser.add_argument("--drive", default=None, metavar="NAME",
+                        help="a drive of the registry (LINE/DRIVE, or DRIVE when unique): its current model version "
+                             "(or the default model at its nominal width, eta_k, n1), library and watch reference")
+    parser.add_argument("--registry", default=DEFAULT_REGISTRY, metavar="PATH",
+                        help=f"the drive registry YAML (docs/registry.md; default: ./{DEFAULT_REGISTRY})")
+
+
+def drive_entry(args):
+    """The registry's entry of --drive (None without --drive); a UsageError naming the problem."""
+    if not getattr(args, "drive", None):
+        return None
+    from backlash_monitor.commands import UsageError
+    from backlash_monitor.files.registry import RegistryError, find
+    try:
+        return find(args.registry, args.drive)
+    except RegistryError as exc:
+        raise UsageError(str(exc)) from None
+
+
+def apply_drive(args):
+    """With --drive: the drive's model file as --model (unless one is given), or the default model at the
+    drive's nominal conditions (where --width-m/--eta-k/--n1 give none). -> the entry or None."""
+    entry = drive_entry(args)
+    if entry is None:
+        return None
+    if getattr(args, "model", None) is None and entry.model is not None:
+        args.model = str(entry.model)
+    elif getattr(args, "model", None) is None:
+        for key, value in entry.nominal.items():
+            if getattr(args, key, None) is None:
+                setattr(args, key, value)
+    return entry
+
+
+def history_dir(args, default):
+    """Where a check of an unsaved model goes: beside the registry with --drive, else ``default``."""
+    from pathlib import Path
+    return Path(args.registry).resolve().parent if getattr(args, "drive", None) else default
+
+
 def add_model_arguments(parser, measurement: bool = True) -> None:
     if measurement:
         parser.add_argument("measurement", help="the drive's recording: an MCAP bag with the project's topics (any "
@@ -35,6 +79,7 @@ def add_model_arguments(parser, measurement: bool = True) -> None:
                              "use them)")
     from backlash_monitor.commands.vocabulary import deprecated
     deprecated(parser, "--seeds", "--ensemble", "ensemble", type=int, metavar="N")
+    add_drive_arguments(parser)
 
 
 def add_progress_argument(parser) -> None:
@@ -100,11 +145,14 @@ def load(args, measurement: bool = True):
     from backlash_monitor.workbench.model import ModelError, load_model
     if not 3 <= args.ensemble <= 64:
         raise UsageError(f"--ensemble {args.ensemble}: out of range, allowed 3..64")
+    entry = apply_drive(args)
     try:
         model = load_model(args.model, args.set, args.width_m, args.eta_k, args.n1,
                            effect_files=args.effects_file)
     except ModelError as exc:
         raise UsageError(str(exc)) from None
+    if entry is not None and model.path is None:
+        model.name = entry.model_name      # the drive's versions carry its name in the history
     if not measurement:
         return model, None
     try:

@@ -26,7 +26,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("source", metavar="DIAGNOSIS_OR_EFFECT",
                         help="a diagnosis JSON (from diagnose --json) or a catalogue effect name")
     add_model_arguments(parser, measurement=False)
-    parser.add_argument("-o", "--output", required=True, metavar="M2.yaml", help="the new model version's file")
+    parser.add_argument("-o", "--output", default=None, metavar="M2.yaml",
+                        help="the new model version's file (with --drive, default: DRIVE_vN.yaml beside the registry)")
     parser.add_argument("--value", action="append", default=[], metavar="PARAM=VALUE",
                         help="with an effect name: a parameter's value, e.g. --value mass_kg=12.5 (default: its "
                              "current value); repeatable")
@@ -114,9 +115,12 @@ def run(args) -> int:
     from backlash_monitor.workbench.diagnosis import ROLE_PARTIAL, read_handoff
     from backlash_monitor.workbench.model import append_history
     from backlash_monitor.workbench.versions import EffectValues, add_effects
-    check_outputs(args, [args.output], "-o")
+    from backlash_monitor.commands._workbench import apply_drive
+    entry = apply_drive(args)
+    if args.output is None and entry is None:
+        raise UsageError("add-effect needs -o M2.yaml (the new model version's file), or --drive NAME")
     src = Path(args.source)
-    additions, nominal, provenance, notes = [], {}, {}, []
+    additions, nominal, provenance, notes, all_taken = [], {}, {}, [], False
     if src.suffix == ".json" or src.is_file():
         if not src.is_file():
             raise UsageError(f"diagnosis {src} does not exist")
@@ -128,6 +132,8 @@ def run(args) -> int:
         except (ValueError, KeyError, TypeError) as exc:
             raise UsageError(f"diagnosis {src}: {exc}") from None
         model = _base_from_diagnosis(args, conditions, src) if conditions else load(args, measurement=False)[0]
+        import datetime as _dt
+        all_taken = True   # every addition at its fitted values: the diagnosis's fit "after" is this version's
         if args.accept_proposal:
             adds, model, note = _take_proposal(diag, src, adds, model, Path(args.output))
             notes.append(note)
@@ -143,10 +149,12 @@ def run(args) -> int:
             notes.append(f"not added: {', '.join(a.candidate for a in partial)} explains only part of the residual "
                          "(--accept-partial adds it)")
             adds = confident
+            all_taken = False
         elif partial:
             notes.append(f"partial explanation added on request (--accept-partial): {', '.join(a.candidate for a in partial)} "
                          "explains only part of the residual; the monitor retrained on it may still be biased")
-        additions = [EffectValues(a.effect, a.parameters, a.uncertainty, str(src)) for a in adds]
+        src_label = f"{src} of {_dt.datetime.fromtimestamp(src.stat().st_mtime, _dt.timezone.utc):%Y-%m-%d %H:%M} UTC"
+        additions = [EffectValues(a.effect, a.parameters, a.uncertainty, src_label) for a in adds]
         if width.get("differs_from_nominal"):
             nominal["width_m"] = float(width["width_m"])
             notes.append(f"the backlash width measured {width['width_m'] * 1e3:.3f} mm (nominal "
@@ -155,7 +163,10 @@ def run(args) -> int:
         if not additions and not nominal:
             raise UsageError(f"diagnosis {src} names no effect to add (verdict {verdict or diag.get('discovery')}: "
                              f"{diag.get('message', '')}); nothing to add")
-        provenance = {"diagnosis": str(src.resolve()), "measurement": str(Path(conditions.measurement).resolve())
+        provenance = {"diagnosis": str(src.resolve()),
+                      "diagnosis_time_utc": _dt.datetime.fromtimestamp(src.stat().st_mtime, _dt.timezone.utc)
+                      .isoformat(timespec="seconds"),
+                      "diagnosed_model": {"name": model.name, "version": model.version}, "measurement": str(Path(conditions.measurement).resolve())
                       if conditions and Path(conditions.measurement).exists() else
                       (conditions.measurement if conditions else diag.get("measurement")),
                       "width_m": float(width.get("width_m", model.nominal["width_m"])),
@@ -172,6 +183,11 @@ def run(args) -> int:
             except ValueError:
                 raise UsageError(f"--value {text!r}: {v!r} is not a number") from None
         additions.append(EffectValues(args.source, values, {}, "command line"))
+    if entry is not None and model.path is None:
+        model.name = entry.model_name
+    if args.output is None:
+        args.output = str(Path(args.registry).resolve().parent / f"{entry.model_name}_v{model.version + 1}.yaml")
+    check_outputs(args, [args.output], "-o")
     try:
         new = add_effects(model, additions, name=args.name, nominal=nominal, provenance=provenance)
     except ValueError as exc:
@@ -180,12 +196,30 @@ def run(args) -> int:
     if not out.parent.exists():
         raise UsageError(f"-o {out}: directory {out.parent} does not exist")
     new.save(out)
+    updates = new.nominal_updates[len(model.nominal_updates):]
+    folded = {u["effect"] for u in updates}
+    changed = {**{k: {"from": model.nominal[k], "value": v, "uncertainty": provenance.get("width_uncertainty_m")}
+                  for k, v in nominal.items()},
+               **{u["parameter"]: {"from": u["from"], "value": u["value"], "uncertainty": u["uncertainty"]}
+                  for u in updates}}
+    additions = [a for a in additions if a.effect not in folded]
     append_history(out, {"type": "version", "model": out.name, "name": new.name, "version": new.version,
                          "parent": new.parent, "added": [a.__dict__ for a in additions],
-                         "nominal_changed": nominal or None})
+                         "nominal_changed": changed or None, "provenance": provenance or None})
+    if provenance and all_taken:
+        # the diagnosis fitted exactly these values on its recording: its fit "after" is this version's fit there
+        fp, rr = diag.get("fit_percent") or {}, diag.get("residual_over_noise_floor") or {}
+        if fp.get("after") and rr.get("after"):
+            append_history(out, {"type": "check", "model": out.name, "name": new.name, "version": new.version,
+                                 "measurement": provenance.get("measurement"), "command": "diagnose (fit after)",
+                                 "fit_percent": fp["after"], "residual_over_noise_floor": rr["after"]})
     if additions:
         print_table([(a.effect, ", ".join(f"{k}={v:.4g}" for k, v in a.parameters.items()), a.source)
                      for a in additions], ("effect", "values", "from"))
+    for u in updates:
+        print(f"nominal {u['parameter']}: {u['from']:.4g} -> {u['value']:.4g}"
+              + (f" ± {u['uncertainty']:.2g}" if u["uncertainty"] is not None else "")
+              + f", from {u['from_diagnosis']} ({u['effect']}: the new nominal value, not an effect)")
     for n in notes:
         print(f"note: {n}")
     print(f"wrote {out}: {new.label()} (parent {new.parent}; nominal width {new.nominal['width_m'] * 1e3:.3f} mm, "

@@ -98,6 +98,11 @@ def _add_many_arguments(parser) -> None:
                             "--library's LIB.watch.npz where it exists, else the default model's at the pattern "
                             "width nearest the drive's measured width, eta_k 0.025 and --n1: from the cache, "
                             "built there once when missing; docs/model_watch.md)")
+    group.add_argument("--registry", default="", metavar="PATH",
+                       help="the drive registry (docs/registry.md; e.g. drives.yaml, or the fleet file): each bag's "
+                            "model fit is held against its own drive's current version (matched by the bag's "
+                            "namespace /LINE/DRIVE or recorded drive name LINE/DRIVE; its watch_reference, else the "
+                            "default model at its nominal width, eta_k, n1); bags that match no drive are named")
     group.add_argument("--no-model-fit", action="store_true",
                        help="no model-fit column (the model watch's test on each bag's last onset events)")
 
@@ -120,7 +125,20 @@ def fleet_options_from_args(args) -> FleetOptions:
                         scheduler=args.scheduler, trend_config=args.trend_config,
                         plots=not args.no_plots, progress=not args.no_progress,
                         watch=WatchOptions(enabled=not args.no_model_fit,
-                                           reference=args.watch_reference))
+                                           reference=args.watch_reference, drives=registry_drives(args)))
+
+
+def registry_drives(args) -> tuple:
+    """(hardware_id, reference, (width_m, eta_k, n1)) of every drive of --registry (empty without one)."""
+    if not getattr(args, "registry", ""):
+        return ()
+    from backlash_monitor.commands import UsageError
+    from backlash_monitor.files.registry import RegistryError, entries
+    try:
+        return tuple((d.hardware_id, str(d.watch_reference or ""), tuple(d.nominal[k] for k in ("width_m", "eta_k", "n1")))
+                     for d in entries(args.registry))
+    except RegistryError as exc:
+        raise UsageError(str(exc)) from None
 
 
 def run(args) -> int:

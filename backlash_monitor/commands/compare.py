@@ -59,6 +59,7 @@ def run(args) -> int:
                                                       write_text_staged)
     from backlash_monitor.workbench import report
     from backlash_monitor.workbench.analysis import ConditionsError
+    from backlash_monitor.commands._workbench import history_dir
     from backlash_monitor.workbench.model import record_check
     out = Path(args.out_dir)
     check_outputs(args, [out / f for f in COMPARE_FILES], "--out-dir")
@@ -80,7 +81,8 @@ def run(args) -> int:
     if args.json:
         write_text_staged(args.json, text)
     if not args.no_history:
-        record_check(model, meas.source, "compare", res["fit_percent"], res["residual_over_noise_floor"])
+        record_check(model, meas.source, "compare", res["fit_percent"], res["residual_over_noise_floor"],
+                     directory=history_dir(args, out.parent))
     rows = [(s, f"{res['fit_percent'][s]:.1f}", f"{res['noise_band_fit_percent'][s]['median']:.1f}",
              f"{res['residual_over_noise_floor'][s]:.2f}", f"{res['spread'][s]['measured']:.4g}",
              f"{res['spread'][s]['model_median']:.4g}", ",".join(f"{f:.0f}" for f in res["spectral_peaks"][s]["peaks_hz"])

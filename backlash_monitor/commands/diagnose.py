@@ -49,7 +49,7 @@ def run(args) -> int:
                                                       write_text_staged)
     from backlash_monitor.workbench import plant_adapter, report
     from backlash_monitor.workbench.analysis import ConditionsError
-    from backlash_monitor.commands._workbench import model_overrides
+    from backlash_monitor.commands._workbench import history_dir, model_overrides
     from backlash_monitor.workbench.diagnose import diagnose
     from backlash_monitor.workbench.model import record_check
     effects = [e.strip() for e in args.candidates.split(",") if e.strip()] if args.candidates else None
@@ -77,8 +77,10 @@ def run(args) -> int:
         page = report.write_report(result, args.report)
         print(f"report: {page}")
     if not args.no_history:
-        record_check(model, meas.source, "diagnose", pub["fit_percent"]["before"],
-                     pub["residual_over_noise_floor"]["before"])
+        where = record_check(model, meas.source, "diagnose", pub["fit_percent"]["before"],
+                             pub["residual_over_noise_floor"]["before"],
+                             directory=history_dir(args, json_path.parent))
+        print(f"history: this check of {model.label()} added to {where} (`history` lists it)")
     rows = []
     for r in pub["ranked"]:
         unc = r.get("uncertainty") or {}

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import math
+from pathlib import Path
 import sys
 import time
 
@@ -76,6 +77,27 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "the diagnosis than the previous library (default: the previous library is written under "
                              "--output, saying why, and the retrained one as NAME.rejected.npz)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    from backlash_monitor.commands._workbench import add_drive_arguments
+    add_drive_arguments(parser)
+
+
+def _drive_defaults(args):
+    """With --drive: --model defaults to the drive's current model version, --out to beside it (M.npz),
+    --previous-library to the drive's library. -> the registry entry or None."""
+    from backlash_monitor.commands._workbench import drive_entry
+    entry = drive_entry(args)
+    if entry is None:
+        return None
+    if not args.model:
+        if entry.model is None:
+            raise UsageError(f"train --drive {args.drive}: the drive has no model file in {args.registry}; give "
+                             "--model M.yaml (e.g. add-effect's new version)")
+        args.model = [str(entry.model)]
+    if args.out is None:
+        args.out = str(Path(args.model[0]).with_suffix(".npz"))
+    if args.previous_library is None and entry.library is not None:
+        args.previous_library = str(entry.library)
+    return entry
 
 
 def _check(args) -> None:
@@ -111,6 +133,7 @@ def _check(args) -> None:
 
 
 def run(args) -> int:
+    entry = _drive_defaults(args)
     _check(args)
     from tqdm import tqdm
 
@@ -163,6 +186,17 @@ def run(args) -> int:
         t_ref = time.time()
         ref_path = build_reference(models[0]).save(reference_path_for_library(path))
         ref_seconds = time.time() - t_ref
+    if check is not None:
+        _record_monitor_widths(models, check, path, rejected, args.previous_library)
+    if entry is not None:
+        if rejected is None:
+            from backlash_monitor.files.registry import register
+            register(args.registry, entry.hardware_id, model=args.model[0], library=path, watch_reference=ref_path)
+            print(f"registry {args.registry}: {entry.hardware_id} is at version {entry.version + 1}: model "
+                  f"{args.model[0]}, library {path}, watch reference {ref_path}")
+        else:
+            print(f"registry {args.registry}: {entry.hardware_id} stays at version {entry.version} (the retrained "
+                  "library was worse; nothing registered)")
     fit = lib.training["shape"]["fit"]
     print(f"pattern library written: {path}")
     print(f"  trigger {args.trigger}, seeds {','.join(map(str, args.seeds))}, "
@@ -187,3 +221,23 @@ def run(args) -> int:
             print(f"WARNING: the library {path} is FLAGGED (written into it; analyze and the classifier warn when "
                   "they load it): " + "; ".join(check["reasons"]), file=sys.stderr)
     return 0
+
+
+def _record_monitor_widths(models, check, library, rejected, previous) -> None:
+    """The workbench history: the monitor's width on the diagnosed recording with the library written (for the
+    version trained on) and with the library in use before (for the version the diagnosis was made against)."""
+    from backlash_monitor.classifier.patterns import default_library_path
+    from backlash_monitor.workbench.model import append_history
+    by_label = {m.label(): m for m in models}
+    for c in check["checked"]:
+        m = by_label.get(c.get("model"))
+        if m is None or m.path is None or "retrained_width_m" not in c:
+            continue
+        width = c["packaged_width_m"] if rejected is not None else c["retrained_width_m"]
+        common = {"type": "monitor", "measurement": c["measurement"], "diagnosed_width_m": c["diagnosed_width_m"]}
+        append_history(m.path, {**common, "model": m.path.name, "name": m.name, "version": m.version,
+                                "library": str(library), "width_m": width,
+                                "note": "previous library kept (the retrained one was worse)" if rejected else ""})
+        parent = (m.provenance or {}).get("diagnosed_model") or {"name": m.name, "version": m.version - 1}
+        append_history(m.path, {**common, "model": None, "name": parent["name"], "version": parent["version"],
+                                "library": str(previous or default_library_path()), "width_m": c["packaged_width_m"]})

@@ -48,6 +48,8 @@ class WatchOptions:
     the default model's at the pattern width nearest the drive's measured width, from the cache)."""
     enabled: bool = True
     reference: str = ""
+    drives: tuple = ()      # the drive registry's drives (--registry, docs/registry.md): (hardware_id, reference
+                            # path or "", (width_m, eta_k, n1)) each; a bag is held against its own drive's version
 
 
 @dataclass(frozen=True)
@@ -144,7 +146,8 @@ def analyze_one(job: dict) -> dict:
     widths = [r["continuous_width_m"] if r["continuous_width_m"] == r["continuous_width_m"]
               else r["width_m"] for r in mine]
     continuous = [r["continuous_width_m"] for r in mine]
-    row.update(drive=result["drive"] or Path(job["bag"]).stem, time_s=result["first_stamp_s"],
+    row.update(drive=result["drive"] or Path(job["bag"]).stem, namespace=result.get("namespace", ""),
+               time_s=result["first_stamp_s"],
                width_m=statistics.median(widths) if widths else math.nan,
                # the robust standard error of that median over the recording's onset windows (the
                # events: classifier/fusion.py); NaN where the mode gives no continuous width
@@ -175,12 +178,34 @@ def _kept(kind: str, key, make):
     return kept[key]
 
 
-def reference_for_bag(options, watch: WatchOptions, width_m: float) -> str:
+def registered_drive(watch: WatchOptions, row: dict):
+    """The registry's drive (hardware_id, reference, nominal) a bag belongs to: by its topics' namespace
+    (/LINE/DRIVE) or its recorded drive name (LINE/DRIVE); None when none matches or there is no registry."""
+    for key in (row.get("namespace"), row.get("drive")):
+        k = str(key or "").strip("/")
+        for d in watch.drives if k else ():
+            if d[0] == k:
+                return d
+    return None
+
+
+def drive_model(nominal):
+    """The default model at a registered drive's nominal (width_m, eta_k, n1), once per process."""
+    from backlash_monitor.workbench.model import load_model
+    w, eta_k, n1 = (float(x) for x in nominal)
+    return _kept("drive_models", (w, eta_k, n1), lambda: load_model(None, width_m=w, eta_k=eta_k, n1=n1))
+
+
+def reference_for_bag(options, watch: WatchOptions, width_m: float, row: dict | None = None) -> str:
     """The reference a bag's model fit takes (see --watch-reference): a path (may not exist yet: the default
-    model's cache entry, built by the parent). ``options``: the bag's AnalyzeOptions (its library and n1)."""
+    model's cache entry, built by the parent). ``options``: the bag's AnalyzeOptions (its library and n1);
+    ``row``: the bag's row (its drive and namespace), matched to the registry's drives (--registry)."""
     from backlash_monitor.workbench import reference
     if watch.reference:
         return watch.reference
+    drive = registered_drive(watch, row or {}) if watch.drives else None
+    if drive is not None:
+        return drive[1] or str(reference.cache_path(drive_model(drive[2])))
     if options.library:
         beside = reference.reference_path_for_library(options.library)
         if beside.is_file():
@@ -208,7 +233,7 @@ def model_fit(bag: str, options, watch: WatchOptions, row: dict) -> dict:
     from backlash_monitor.workbench import reference
     from backlash_monitor.workbench.measurement import MeasurementError, load_measurement
     width = row["width_m"] if row["width_m"] == row["width_m"] else row["fused_width_m"]
-    path = reference_for_bag(options, watch, width)
+    path = reference_for_bag(options, watch, width, row)
     out = {"model_fit_reference": path, "model_fit": "", "model_fit_level": "", "model_fit_ratio": math.nan}
     try:
         ref = _kept("references", path, lambda: reference.load(path))
@@ -247,7 +272,8 @@ def missing_references(rows: list[dict], options, watch: WatchOptions, log=print
         if r.get("model_fit") == "no reference" and not watch.reference:
             from backlash_monitor.workbench import reference     # (only then: ~0.2 s of imports)
             width = r["width_m"] if r["width_m"] == r["width_m"] else r["fused_width_m"]
-            model = default_model(options.n1, width)
+            drive = registered_drive(watch, r) if watch.drives else None
+            model = drive_model(drive[2]) if drive is not None else default_model(options.n1, width)
             path = str(reference.cache_path(model))
             if path not in built:
                 reference.cached(model, log=lambda text: log(f"analyze: {text}"))
@@ -497,6 +523,12 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
             print(f"{Path(r['bag']).name}: WARN: sensor offset {signal} "
                   f"{r[signal + '_offset_m_s2']:+.2f} m/s^2 beyond what a MEMS sensor shows "
                   "(config/windowing.yaml sensor_offset): check the sensor (the widths are offset-free)")
+    if watch.enabled and watch.drives:
+        unmatched = [r for r in rows if not r["error"] and registered_drive(watch, r) is None]
+        if unmatched:
+            print(f"{len(unmatched)} bags matched no drive of the registry (held against the default model): "
+                  + ", ".join(f"{Path(r['bag']).name} (drive {r['drive']!r}, namespace {r.get('namespace') or '/'!r})"
+                              for r in unmatched))
     print(f"analysed {len(bags)} bags of {len(points)} drives in {wall:.1f} s on {n_jobs} "
           f"{'worker' if n_jobs == 1 else 'workers'} ({fleet.engine}); wrote {out_dir / 'fleet.csv'}"
           f", .json{', ' + str(len(plots)) + ' plots' if plots else ''}")

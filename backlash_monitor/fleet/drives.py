@@ -30,7 +30,11 @@ WATCH_KEYS = ("watch", "watch_reference", "snapshot_dir")   # the model watch: o
                                                             # --model-watch: on), its model version's reference
                                                             # (default: the default model's at the drive's
                                                             # width_m, eta_k, n1), its snapshot folder
-DRIVE_KEYS = tuple(sorted(set(PLANT_KEYS + CLASSIFIER_KEYS + WINDOWING_KEYS + TREND_KEYS + WATCH_KEYS)))
+# the drive registry's keys (files/registry.py, docs/registry.md): the fleet file is the registry; a drive's current
+# model version, its library (the classifier's) and watch reference, the versions before
+REGISTRY_KEYS = ("model", "library", "versions", "registered_utc")
+DRIVE_KEYS = tuple(sorted(set(PLANT_KEYS + CLASSIFIER_KEYS + WINDOWING_KEYS + TREND_KEYS + WATCH_KEYS
+                              + REGISTRY_KEYS)))
 
 NAME_PATTERN = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")   # a ROS name token: namespaces, node names
 DEFAULT_LINE = "line1"
@@ -83,6 +87,8 @@ class Drive:
                          width_m=float(plant["width_m"]) if trigger == "paper" else 0.0)
         classifier = {k: p[k] for k in CLASSIFIER_KEYS if k in p}
         classifier["drive_name"] = self.hardware_id
+        if p.get("library"):
+            classifier["library"] = str(p["library"])
         width, eta_k, n1 = self.nominal()
         watch = {"drive_name": self.hardware_id, "qos": "reliable", "width_m": width, "eta_k": eta_k, "n1": n1,
                  "snapshot_dir": str(p.get("snapshot_dir", ".")),
@@ -168,4 +174,12 @@ def load_drives(path: str) -> list[Drive]:
     except yaml.YAMLError as error:
         raise UsageError(f"fleet file {path} is not valid YAML: "
                          f"{str(error).splitlines()[0]}") from None
-    return drives_from_config(config, source=f"fleet file {path}")
+    drives = drives_from_config(config, source=f"fleet file {path}")
+    # the registry's paths are relative to the file (docs/registry.md)
+    import os
+    root = os.path.dirname(os.path.abspath(path))
+    return [Drive(d.line, d.name, {**d.parameters, **{k: os.path.join(root, d.parameters[k])
+                                                       for k in ("model", "library", "watch_reference")
+                                                       if isinstance(d.parameters.get(k), str)
+                                                       and d.parameters[k]}})
+            for d in drives]

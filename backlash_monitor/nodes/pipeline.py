@@ -90,13 +90,38 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "there once, ~30 s)")
     parser.add_argument("--snapshot-dir", default=".", metavar="DIR",
                         help="with --watch: the folder the snapshot bags go into (default: the current folder)")
+    parser.add_argument("--drive", default="", metavar="NAME",
+                        help="a drive of the registry (docs/registry.md): its nominal width, eta_k and n1, its name, "
+                             "and (unless given) its library, model version and watch reference")
+    parser.add_argument("--registry", default="drives.yaml", metavar="PATH",
+                        help="the drive registry YAML (default: ./drives.yaml); with --drive")
     from backlash_monitor.errors import DeprecatedSpelling
     parser.add_argument("--effects", dest="effects_files", action=DeprecatedSpelling, new="--effects-file",
                         append=True, metavar="FILE.py", help=argparse.SUPPRESS)
 
 
+def apply_registry(args) -> None:
+    """--drive: the drive's nominal conditions and hardware id, and its library, model and watch reference where
+    none is given (files/registry.py)."""
+    from backlash_monitor.errors import UsageError
+    from backlash_monitor.files.registry import RegistryError, find
+    try:
+        entry = find(args.registry, args.drive)
+    except RegistryError as exc:
+        raise UsageError(str(exc)) from None
+    args.width_m, args.eta_k, args.n1 = (entry.nominal[k] for k in ("width_m", "eta_k", "n1"))
+    args.drive_name = entry.hardware_id
+    if not args.library and entry.library is not None:
+        args.library = str(entry.library)
+    if args.watch and not args.model and entry.model is not None:
+        args.model = str(entry.model)
+    args.registry_reference = str(entry.watch_reference or "")
+
+
 def validate(args) -> None:
     from backlash_monitor.errors import UsageError
+    if getattr(args, "drive", ""):
+        apply_registry(args)
     checks = [("--width-m", args.width_m, 1e-4, 0.05), ("--eta-k", args.eta_k, 1e-4, 1.0),
               ("--n1", args.n1, 0.5, 1.5), ("--duration", args.duration, 0.1, 1e6),
               ("--rate-factor", args.rate_factor, 0.01, 1000.0)]
@@ -196,6 +221,8 @@ def watch_reference(args, log=print) -> str:
     from backlash_monitor.errors import UsageError
     from backlash_monitor.workbench import reference
     from backlash_monitor.workbench.model import ModelError, load_model
+    if getattr(args, "registry_reference", ""):
+        return args.registry_reference
     if args.library:
         beside = reference.reference_path_for_library(args.library)
         if beside.is_file():

@@ -338,7 +338,7 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
             "seconds": elapsed, "outputs": outputs, "integrity": integrity,
             "faults": (stage.faults, estimator.faults), "lost_samples": stage.lost_samples,
             "drive": first_a1[0][0], "first_stamp_s": first_a1[0][1], "sensor_offsets": sensor_offsets,
-            "input_saturation": saturation}
+            "input_saturation": saturation, "namespace": namespace}
 
 
 def saturation_report(counter, saturated_windows: int, windows: int) -> dict:

@@ -11,6 +11,9 @@ File layout (docs/workbench.md)::
     plant: {load: {mass_kg: 12.9}, effects: {constant_motor_load: true}, constant_motor_load_pu: 0.1}
     effects_added:              # what add-effect put in, with the fitted values and uncertainties
       - {effect: load_mass, parameters: {mass_kg: 12.9}, uncertainty: {mass_kg: 0.2}, from: diagnosis.json}
+    nominal_updates:            # nominal values a diagnosed drift moved (the drift is not kept as an effect)
+      - {parameter: n1, from: 0.89, value: 0.9104, uncertainty: 0.0004, effect: absorber_flow_index_drift,
+         from_diagnosis: diag.json of 2026-11-28 22:12}
     effect_files: [my_effects.py]   # optional: the user's plug-in effect files (relative to this file)
 
 The history log is ``workbench_history.jsonl`` beside the model file: one JSON line per version made and
@@ -52,6 +55,8 @@ class WorkbenchModel:
     effect_files: list = field(default_factory=list)  # absolute paths of the user's plug-in effect files
     provenance: dict = field(default_factory=dict)    # the diagnosis this version came from (add-effect): its file,
                                                       # measurement and measured width, for train's check
+    nominal_updates: list = field(default_factory=list)   # nominal values a diagnosed drift moved (add-effect):
+                                                          # {parameter, from, value, uncertainty, effect, from_diagnosis}
 
     @property
     def catalogue(self):
@@ -90,6 +95,8 @@ class WorkbenchModel:
                                    for f in self.effect_files]
         if self.provenance:
             out["provenance"] = copy.deepcopy(self.provenance)
+        if self.nominal_updates:
+            out["nominal_updates"] = copy.deepcopy(self.nominal_updates)
         return out
 
     def label(self) -> str:
@@ -136,7 +143,7 @@ def _load_effect_files(paths) -> list:
 
 
 MODEL_KEYS = ("workbench_model", "name", "version", "parent", "nominal", "plant", "effects_added", "effect_files",
-              "provenance")
+              "provenance", "nominal_updates")
 
 
 def model_from_dict(data, path=None, base_dir=None) -> WorkbenchModel:
@@ -159,12 +166,16 @@ def model_from_dict(data, path=None, base_dir=None) -> WorkbenchModel:
     provenance = data.get("provenance") or {}
     if not isinstance(provenance, dict):
         raise ModelError(f"{where}: provenance must be a mapping (written by add-effect)")
+    updates = data.get("nominal_updates") or []
+    if not isinstance(updates, list) or not all(isinstance(u, dict) for u in updates):
+        raise ModelError(f"{where}: nominal_updates must be a list of mappings (written by add-effect)")
     return WorkbenchModel(name=str(data.get("name", Path(path).stem if path else "default")),
                           version=int(data.get("version", 1)), parent=data.get("parent"), nominal=nominal,
                           plant=copy.deepcopy(data.get("plant") or {}),
                           effects_added=list(data.get("effects_added") or []),
                           path=Path(path) if path is not None else None,
-                          effect_files=_load_effect_files(files), provenance=dict(provenance))
+                          effect_files=_load_effect_files(files), provenance=dict(provenance),
+                          nominal_updates=copy.deepcopy(updates))
 
 
 def load_model(path=None, sets: Sequence[str] = (), width_m: float | None = None, eta_k: float | None = None,
@@ -240,10 +251,18 @@ def read_history(directory) -> list[dict]:
     return out
 
 
-def record_check(model: WorkbenchModel, measurement: str, kind: str, fit_percent: dict, ratio: dict) -> None:
-    """Append a check of a saved model version against a measurement to its history (no-op unsaved)."""
+def record_check(model: WorkbenchModel, measurement: str, kind: str, fit_percent: dict, ratio: dict,
+                 directory=None) -> Path | None:
+    """Append a check of a model version against a measurement to its history: beside its file, or for an
+    unsaved model (the default model, or one from --set/--width-m...) in ``directory`` (e.g. where the diagnosis
+    is written, which add-effect's next version is usually written beside). None: nowhere to write it."""
+    if model.path is None and directory is None:
+        return None
+    where = model.path if model.path is not None else Path(directory) / "(unsaved)"
+    entry = {"type": "check", "model": model.path.name if model.path is not None else "(unsaved)",
+             "name": model.name, "version": model.version, "measurement": str(measurement), "command": kind,
+             "fit_percent": fit_percent, "residual_over_noise_floor": ratio}
     if model.path is None:
-        return
-    append_history(model.path, {"type": "check", "model": model.path.name, "name": model.name,
-                                "version": model.version, "measurement": str(measurement), "command": kind,
-                                "fit_percent": fit_percent, "residual_over_noise_floor": ratio})
+        entry["nominal"] = dict(model.nominal)
+    append_history(where, entry)
+    return history_path(where)

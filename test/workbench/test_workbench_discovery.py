@@ -68,8 +68,17 @@ def test_add_effect_brings_the_fit_to_the_noise_band(hidden_mass):
     d, diag = hidden_mass
     assert main(["add-effect", str(d / "diag.json"), "--model", str(d / "v1.yaml"), "-o", str(d / "v2.yaml")]) == 0
     v2 = load_model(d / "v2.yaml")
-    assert v2.version == 2 and v2.effects_added[0]["effect"] == diag["discovery"]
-    assert v2.plant_config().effects[diag["discovery"]]
+    assert v2.version == 2
+    if diag["discovery"] == "load_mass_drift":
+        # a drift of a nominal value is the new version's nominal value, not a stacked effect
+        assert not v2.effects_added and not v2.plant_config().effects.get("load_mass_drift")
+        (update,) = v2.nominal_updates
+        assert update["parameter"] == "load.mass_kg" and update["from"] == 10.0
+        assert v2.plant_config().load.mass_kg == pytest.approx(10.0 * (1 + MASS_CHANGE), rel=MASS_TOLERANCE)
+        assert update["uncertainty"] > 0 and "diag.json" in update["from_diagnosis"]
+    else:
+        assert v2.effects_added[0]["effect"] == diag["discovery"]
+        assert v2.plant_config().effects[diag["discovery"]]
     assert main(["compare", str(d / "drive.npz"), "--model", str(d / "v2.yaml"), "--out-dir", str(d / "cmp2"),
                  "--json", str(d / "cmp2.json")]) == 0
     after = json.loads((d / "cmp2.json").read_text())

@@ -56,7 +56,8 @@ def test_add_effect_carries_the_conditions_into_the_next_version(diagnosed_at_ot
     assert main(["add-effect", str(d / "diag.json"), "-o", str(d / "v2.yaml")]) == 0
     v2 = load_model(d / "v2.yaml")
     assert v2.nominal == {"width_m": 0.005, "eta_k": 0.0375, "n1": 0.93}        # not the default 7.5 mm, 0.025, 0.89
-    assert v2.effects_added[0]["effect"] == diag["discovery"]
+    assert diag["discovery"] in ([e["effect"] for e in v2.effects_added]
+                                 + [u["effect"] for u in v2.nominal_updates])
     assert v2.provenance["measurement"].endswith("drive.npz") and v2.provenance["width_m"] == 0.005
     # options that name another model than the diagnosed one are refused, naming the difference
     capsys.readouterr()
