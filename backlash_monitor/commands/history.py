@@ -51,12 +51,14 @@ def run(args) -> int:
         args.where = str(entry.model.parent if entry.model is not None else Path(args.registry).resolve().parent)
     if not Path(args.where).exists():
         raise UsageError(f"{args.where} does not exist; give a model file or its directory")
-    outs = ([args.plot] if args.plot else []) + ([str(Path(args.report) / f) for f in ("index.html", "history.png")]
-                                                 if args.report else [])
     if args.plot and not str(args.plot).lower().endswith(".png"):
         raise UsageError(f"--plot {args.plot}: the plot is a PNG; give a name ending in .png")
     try:
-        check_outputs(outs, overwrite=args.overwrite, option="--plot/--report")
+        if args.plot:
+            check_outputs([args.plot], overwrite=args.overwrite, option="--plot")
+        if args.report:
+            check_outputs([Path(args.report) / f for f in ("index.html", "history.png")], overwrite=args.overwrite,
+                          option="--report")
     except OutputError as exc:
         raise UsageError(str(exc)) from None
     hist = read_history(args.where)
