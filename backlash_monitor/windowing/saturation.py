@@ -189,17 +189,22 @@ def assess_signal(x, name: str, settings: SaturationSettings | None = None) -> S
     """Saturated and stuck samples of one signal's stretch (non-finite samples are not looked at)."""
     s = settings or SaturationSettings()
     x = np.asarray(x, dtype=float).ravel()
-    x = x[np.isfinite(x)]
+    if not math.isfinite(np.add.reduce(x)):
+        x = x[np.isfinite(x)]
     if x.size == 0:
         return SignalSaturation(name)
-    if x.max() == x.min():                           # one value throughout: stuck (dead), no rail
+    diff = np.abs(np.diff(x))
+    change = np.flatnonzero(diff) + 1
+    if change.size == x.size - 1:                    # no two neighbours equal: no run at all (a noisy signal)
+        return SignalSaturation(name, int(x.size))
+    if not change.size:                              # one value throughout: stuck (dead), no rail
         stuck = x.size if x.size >= s.stuck_min_run_samples else 0
         return SignalSaturation(name, int(x.size), stuck=stuck, stuck_value=float(x[0]) if stuck else None)
-    median = float(np.median(x))
-    diff = np.abs(np.diff(x))
-    change = np.flatnonzero(diff != 0) + 1
     starts = np.concatenate(([0], change))          # runs of one value
     lengths = np.diff(np.concatenate((starts, [x.size])))
+    if lengths.max() < min(s.rail_min_run_samples, s.stuck_min_run_samples):
+        return SignalSaturation(name, int(x.size))
+    median = float(np.median(x))
     step = float(diff[change - 1].min())            # the smallest change: an ADC's step, ~0 unquantised
     up, n_up, runs_up, mask_up = _rail(x, +1, median, step, (starts, lengths), s)
     lo, n_lo, runs_lo, mask_lo = _rail(x, -1, median, step, (starts, lengths), s)
