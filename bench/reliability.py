@@ -17,6 +17,10 @@
   node did not window while it was down (bounded and reported, not a recording).
 - under_load_*: each chain node killed 10 times beside a CPU hog (_reliability/under_load.py,
   issue 34), and the ros tests' runs under load when measured (tools/ros_tests_under_load.py).
+- saturation_detected_rate / saturation_false_flags (bench/_reliability/saturation.py, issue 34): recordings
+  with a1 or a2 clipped at 50-95 % of their peak found at their rail, and clean recordings flagged
+  (``--modules saturation`` runs that module alone; its sealed half: ``python bench/_reliability/saturation.py
+  --sealed``).
 """
 from __future__ import annotations
 
@@ -41,6 +45,8 @@ SUMMED = ("bad_inputs_tried", "escapes", "faults_injected", "faults_survived", "
 # a module's own goal figures, shown at the top level as they are (under_load.py: issue 34)
 LIFTED = ("under_load_kill_onsets_lost", "under_load_kills", "under_load_ros_test_runs_passed",
           "under_load_ros_test_runs")
+# a module's figures shown at the top level as they are (saturation.py: issue 34's sensor-saturation goals)
+PROMOTED = ("saturation_detected_rate", "saturation_false_flags")
 
 
 def fuzz(examples: int, nodes: bool = True) -> tuple[dict, int, dict]:
@@ -118,10 +124,10 @@ def _counted(check, counter):
     return body
 
 
-def modules() -> list[tuple[str, dict]]:
+def modules(only=None) -> list[tuple[str, dict]]:
     out = []
     for path in sorted((REPO / "bench" / "_reliability").glob("*.py")):
-        if path.name.startswith("__"):
+        if path.name.startswith("__") or (only and path.stem not in only):
             continue
         spec = importlib.util.spec_from_file_location(f"_reliability_{path.stem}", path)
         module = importlib.util.module_from_spec(spec)
@@ -145,6 +151,8 @@ def main() -> int:
     parser.add_argument("--skip-fuzz", action="store_true", help="the modules only")
     parser.add_argument("--skip-nodes", action="store_true",
                         help="fuzz the cores only, not the nodes' callbacks")
+    parser.add_argument("--modules", default="", help="only these bench/_reliability modules "
+                        "(comma-separated names, e.g. saturation); default: all")
     args = parser.parse_args()
     os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
     result = {"fuzz_inputs": {}, "fuzz_failures": 0, **{k: 0 for k in SUMMED}, "details": {}}
@@ -153,11 +161,12 @@ def main() -> int:
         result["fuzz_inputs"], result["fuzz_failures"] = counts, failures
         result["details"]["fuzz"] = details
     if not args.skip_modules:
-        for name, module_result in modules():
+        for name, module_result in modules([m for m in args.modules.split(",") if m]):
             for key in SUMMED:
                 value = module_result.get(key, 0)
                 result[key] += value if isinstance(value, (int, float)) else 0
             result.update({key: module_result[key] for key in LIFTED if key in module_result})
+            result.update({key: module_result[key] for key in PROMOTED if key in module_result})
             result["details"][name] = module_result
     print(json.dumps(result, default=str))
     return 0

@@ -54,7 +54,7 @@ DEFAULTS: dict[str, Any] = {
     "saturation": {
         # a signal at its rail (clipped) or stuck at one value (saturation.py; docs/windowing.md)
         "rail_min_run_samples": 3,
-        "rail_band_fraction": 0.01,
+        "rail_band_fraction": 0.0025,
         "rail_band_quanta": 4,
         "rail_overpopulation_ratio": 3.0,
         "stuck_min_run_samples": 1000,

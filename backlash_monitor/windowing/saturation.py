@@ -36,7 +36,7 @@ __all__ = ["SaturationSettings", "SignalSaturation", "assess_signal", "assess", 
 class SaturationSettings:
     """The thresholds (config/windowing.yaml ``saturation`` has each one's unit and reason)."""
     rail_min_run_samples: int = 3
-    rail_band_fraction: float = 0.01
+    rail_band_fraction: float = 0.0025
     rail_band_quanta: int = 4
     rail_overpopulation_ratio: float = 3.0
     stuck_min_run_samples: int = 1000
@@ -157,50 +157,57 @@ def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return starts, np.flatnonzero(edges == -1) - starts
 
 
-def _rail(x: np.ndarray, side: int, median: float, hold: int,
+def _rail(x: np.ndarray, side: int, median: float, step: float, runs: tuple,
           s: SaturationSettings) -> tuple[float | None, int, int, np.ndarray]:
     """The rail on one side (+1 upper, -1 lower): (value or None, samples in runs, runs, mask of them).
-    ``hold``: the signal's own typical run of one value (1; a sensor with a slower output rate, held
-    by the recorder: its hold), the unit of ``rail_min_run_samples``."""
+    ``step``: the signal's quantisation step (its smallest change between two samples; ~0 unquantised);
+    ``runs``: (starts, lengths) of its runs of one value."""
     value = float(x.max() if side > 0 else x.min())
-    at = x == value
-    starts, lengths = _runs(at)
-    long_runs = lengths >= s.rail_min_run_samples * hold
-    if not long_runs.any():
-        return None, 0, 0, at[:0]
-    depth = abs(value - median)
-    band = s.rail_band_fraction * depth
+    starts, lengths = runs
+    on = np.flatnonzero(x[starts] == value)          # the runs at the extreme
+    # a run counts when it is rail_min_run_samples times as long as the runs next to it: a sensor whose
+    # output the recorder holds for several samples (a slower output rate) holds its top as long as
+    # any other value, and a clipped signal arrives at and leaves its rail in short runs
+    before = lengths[np.maximum(on - 1, 0)]
+    after = lengths[np.minimum(on + 1, lengths.size - 1)]
+    hold = np.maximum(1, np.minimum(before, after))
+    good = on[lengths[on] >= s.rail_min_run_samples * hold]
+    if not good.size:
+        return None, 0, 0, x[:0].astype(bool)
+    band = max(s.rail_band_fraction * abs(value - median), s.rail_band_quanta * step)
     inner = side * (value - x)                       # >= 0: how far inside the extreme
-    inside = inner[inner > 0]                        # not empty: the signal is not one value
-    near = np.unique(inside[inside <= max(2 * band, float(inside.min()))])
-    step = float(np.diff(np.concatenate(([0.0], near))).min())   # the quantisation step next to it
-    band = max(band, s.rail_band_quanta * step)
     n_band = int(np.count_nonzero((inner > 0) & (inner <= band)))
-    if band <= 0 or int(at.sum()) < s.rail_overpopulation_ratio * n_band:
-        return None, 0, 0, at[:0]
-    mask = np.zeros_like(at)
-    for start, length in zip(starts[long_runs], lengths[long_runs]):
+    if band <= 0 or int(np.count_nonzero(inner == 0)) < s.rail_overpopulation_ratio * n_band:
+        return None, 0, 0, x[:0].astype(bool)
+    mask = np.zeros(x.size, dtype=bool)
+    for start, length in zip(starts[good], lengths[good]):
         mask[start:start + length] = True
-    return value, int(lengths[long_runs].sum()), int(long_runs.sum()), mask
+    return value, int(lengths[good].sum()), int(good.size), mask
 
 
 def assess_signal(x, name: str, settings: SaturationSettings | None = None) -> SignalSaturation:
     """Saturated and stuck samples of one signal's stretch (non-finite samples are not looked at)."""
     s = settings or SaturationSettings()
     x = np.asarray(x, dtype=float).ravel()
-    x = x[np.isfinite(x)]
+    if not math.isfinite(np.add.reduce(x)):
+        x = x[np.isfinite(x)]
     if x.size == 0:
         return SignalSaturation(name)
-    if x.max() == x.min():                           # one value throughout: stuck (dead), no rail
+    diff = np.abs(np.diff(x))
+    change = np.flatnonzero(diff) + 1
+    if change.size == x.size - 1:                    # no two neighbours equal: no run at all (a noisy signal)
+        return SignalSaturation(name, int(x.size))
+    if not change.size:                              # one value throughout: stuck (dead), no rail
         stuck = x.size if x.size >= s.stuck_min_run_samples else 0
         return SignalSaturation(name, int(x.size), stuck=stuck, stuck_value=float(x[0]) if stuck else None)
-    median = float(np.median(x))
-    change = np.flatnonzero(np.diff(x) != 0) + 1
     starts = np.concatenate(([0], change))          # runs of one value
     lengths = np.diff(np.concatenate((starts, [x.size])))
-    hold = max(1, int(np.median(lengths)))
-    up, n_up, runs_up, mask_up = _rail(x, +1, median, hold, s)
-    lo, n_lo, runs_lo, mask_lo = _rail(x, -1, median, hold, s)
+    if lengths.max() < min(s.rail_min_run_samples, s.stuck_min_run_samples):
+        return SignalSaturation(name, int(x.size))
+    median = float(np.median(x))
+    step = float(diff[change - 1].min())            # the smallest change: an ADC's step, ~0 unquantised
+    up, n_up, runs_up, mask_up = _rail(x, +1, median, step, (starts, lengths), s)
+    lo, n_lo, runs_lo, mask_lo = _rail(x, -1, median, step, (starts, lengths), s)
     railed = np.zeros(x.size, dtype=bool)
     for mask in (mask_up, mask_lo):
         if mask.size:
