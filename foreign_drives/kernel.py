@@ -124,7 +124,7 @@ XB_OFF, XB_MOTOR_LOAD, XB_WHEEL, XB_CLUTCH, XB_MASS = range(5)
 # selectors: the drive quantity a factor reads
 (XS_ONE, XS_OMEGA1, XS_OMEGA2, XS_RIM_SPEED, XS_MASS_SPEED, XS_PENETRATION, XS_SPRING_EXTENSION, XS_ALPHA1,
  XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
- XS_SIGN_OMEGA2) = range(17)
+ XS_SIGN_OMEGA2, XS_JAW_ANGLE) = range(18)
 # shapes of a factor f(x; a, b, c)
 (XF_ONE, XF_X, XF_POWER, XF_SIN, XF_SIN_POSITIVE, XF_EXCESS_POWER, XF_RAMP, XF_TANH, XF_RISE, XF_COS) = range(10)
 
@@ -217,6 +217,8 @@ def _selected(sel, t, y, P, mode, pen, tcc):
         return tcc
     if sel == XS_SIGN_OMEGA2:
         return _sgn(y[S_W2])
+    if sel == XS_JAW_ANGLE:
+        return (y[S_AH] if P[P_KS] > 0.0 else y[S_A1]) - y[S_A2]
     return 0.0
 
 

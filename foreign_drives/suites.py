@@ -179,8 +179,8 @@ OUTSIDE_DEV_ROWS = [
     ("od_motor_crank_pump_0.3pu", "outside", 0.0075, 0.0375, 0.93,
      [E("motor_crank_pump", {"amplitude_pu": 0.3, "phase_rad": -1.0})]),
     # the wheel-angle law of issue 31's set 3: -A*sin(alpha2 + phi) (the cam without lift)
-    ("od_wheel_unbalance_3Nm", "outside", 0.01, 0.05, 0.97,
-     [E("wheel_cam_follower", {"amplitude_Nm": 3.0, "lift_ratio": 0.0, "phase_rad": 2.2})]),
+    ("od_wheel_unbalance_6Nm", "outside", 0.01, 0.05, 0.97,
+     [E("wheel_cam_follower", {"amplitude_Nm": 6.0, "lift_ratio": 0.0, "phase_rad": 2.2})]),
     ("od_mass_creep_20N", "outside", 0.0065, 0.02, 0.90,
      [E("mass_creeping_resistance", {"force_N": 20.0, "creep_time_s": 4.0})]),
     ("od_wheel_process_brake_3Nm", "outside", 0.008, 0.03, 0.95,

@@ -103,7 +103,7 @@ def _zero(form):
     p = {}
     for q in form.parameters:
         lo, hi = q.bounds
-        if q.name.startswith(("amplitude", "torque", "force", "damping", "coefficient", "gain", "relative")):
+        if q.name.startswith(("amplitude", "torque", "force", "damping", "coefficient", "gain", "relative", "stiffness")):
             p[q.name] = 0.0
         else:
             p[q.name] = float(min(max(0.5 * (lo + hi) if math.isfinite(hi - lo) else 1.0, lo), hi))
