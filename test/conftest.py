@@ -45,6 +45,23 @@ def repo_root():
     return REPO_ROOT
 
 
+# A CPU hog that nobody stops still ends after this long [s]: longer than any one process test under
+# load, short enough that a killed pytest leaves no busy loop behind for long.
+HOG_MAX_S = 600.0
+
+
+@pytest.fixture(params=["idle", "hog"])
+def machine_load(request):
+    """The machine a process test runs on (issue 34): 'idle', or 'hog': one busy loop per core at
+    normal priority beside the test, killed when the test ends (passed, failed or interrupted)."""
+    if request.param == "idle":
+        yield "idle"
+        return
+    from process_fault_helpers import CpuHog
+    with CpuHog(max_s=HOG_MAX_S):
+        yield "hog"
+
+
 def pytest_addoption(parser):
     parser.addoption(
         "--run-slow", action="store_true", default=False,

@@ -49,3 +49,64 @@ def test_a_stalled_hop_loses_no_onset(node, ros_env, machine_load):
     assert events == list(range(1, 80)), out
     windowing = [line for line in run.lines if "diagnostics" in line and "windowing" in line]
     assert windowing and INCOMPLETE.search(windowing[-1]).group(1) == "0", out
+
+
+_MONITOR = """
+import sys, time, rclpy
+from backlash_monitor.nodes.qos import ESTIMATE_QOS
+from backlash_monitor_msgs.msg import BacklashEstimate
+rclpy.init()
+node = rclpy.create_node("monitor")
+got = []
+node.create_subscription(BacklashEstimate, "estimate", got.append, ESTIMATE_QOS)
+deadline = time.monotonic() + float(sys.argv[2])
+while len(got) < int(sys.argv[1]) and time.monotonic() < deadline:
+    rclpy.spin_once(node, timeout_sec=0.1)
+for m in got:
+    print(m.entry_sample_index, m.entry_kind, m.signal_name)
+"""
+
+
+@pytest.mark.process
+@pytest.mark.ros
+def test_a_stalled_chain_process_loses_no_onset(ros_env, machine_load):
+    """The same in one process (`chain`: windowing, denoise and classifier on one executor) fed
+    by a plant process: the chain stalls 3 s, every onset of a 12 s stream is classified."""
+    import subprocess
+    import sys
+
+    from ament_index_python.packages import get_package_prefix
+    prefix = os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor")
+    events = list(range(1, 48))                 # onsets 0.054 s + k 0.25 s < 12 s, from the second
+    chain = subprocess.Popen([os.path.join(prefix, "chain"), "--ros-args", "-p", "qos:=reliable"],
+                             env=ros_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    monitor = subprocess.Popen([sys.executable, "-c", _MONITOR, str(3 * len(events)), "300"],
+                               env=ros_env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    plant = subprocess.Popen([os.path.join(prefix, "plant_simulator"), "--ros-args", "-p", "qos:=reliable",
+                              "-p", "duration_s:=12.0", "-p", "rate_factor:=2.0",
+                              "-p", "wait_for_subscribers:=['windowing:a1,a2,angle_difference']"],
+                             env=ros_env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        started = None
+        for line in plant.stderr:
+            if "streaming" in line and ("subscribers there" in line or "without them" in line):
+                started = line
+                break
+        assert started, "the plant did not start streaming"
+        time.sleep(2.0)
+        os.kill(chain.pid, signal.SIGSTOP)
+        try:
+            time.sleep(STALL_S)
+        finally:
+            os.kill(chain.pid, signal.SIGCONT)
+        out, err = monitor.communicate(timeout=400)
+    finally:
+        for proc in (plant, chain, monitor):
+            if proc.poll() is None:
+                proc.terminate()
+        chain_out, _ = chain.communicate(timeout=60)
+        plant.communicate(timeout=60)
+    onsets = sorted({round((int(index) * 2e-5 - FIRST_ONSET_S) / ONSET_PERIOD_S)
+                     for index, kind, name in (row.split() for row in out.splitlines())
+                     if kind == "onset" and name == "a1+a2"})
+    assert onsets == events, out + err + chain_out
