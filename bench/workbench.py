@@ -325,7 +325,9 @@ def parse_args(argv=None):
                     help="what to run: own (this project's simulator: the suite and the width check), foreign (the "
                          "foreign drives of foreign_drives/ through the README's loop: diagnose, add-effect, train, "
                          "analyze), sensor (the monitor's width against sensor offsets and gains, own and foreign), "
-                         "outside (proposing a missing term: bench/_workbench/outside.py, the development suite)")
+                         "outside (proposing a missing term: bench/_workbench/outside.py, the development suite), "
+                         "width (never a confident wrong width, issue 31: the width alarms on every foreign recording "
+                         "and the width+effect foreign drives, development and sealed; bench/_workbench/width_caveat.py)")
     return ap.parse_args(argv)
 
 
@@ -343,9 +345,9 @@ def main(argv=None):
                           "per_recording": rows, "wall_seconds": time.perf_counter() - t0}))
         return
     parts = {p.strip() for p in args.parts.split(",") if p.strip()}
-    unknown = parts - {"own", "foreign", "sensor", "outside"}
+    unknown = parts - {"own", "foreign", "sensor", "outside", "width"}
     if unknown:
-        log(f"--parts: unknown part {sorted(unknown)[0]!r}; allowed: own, foreign, sensor, outside")
+        log(f"--parts: unknown part {sorted(unknown)[0]!r}; allowed: own, foreign, sensor, outside, width")
         sys.exit(2)
     out = {}
     if "foreign" in parts:
@@ -358,6 +360,16 @@ def main(argv=None):
         out.update(outside.summary(*outside.run_all(sealed=args.sealed)))
     if "sensor" in parts:
         out.update(sensor_check())
+    if "width" in parts:
+        from _workbench import width_caveat
+        out.update(width_caveat.confident_wrong_width_alarms())
+        dev = width_caveat.width_plus_effect(width_caveat.DEVELOPMENT, "width_plus_effect_development_")
+        sealed = width_caveat.width_plus_effect(width_caveat.SEALED, "width_plus_effect_sealed_")
+        out.update(dev | sealed)
+        rows = dev["width_plus_effect_development_per_recording"] + sealed["width_plus_effect_sealed_per_recording"]
+        ok = [r for r in rows if "error" not in r]
+        out["width_plus_effect_named_rate"] = sum(r["other_named"] for r in ok) / len(rows) if rows else None
+        out["width_plus_effect_width_error_sigma_max"] = max((r["width_error_sigma"] for r in ok), default=None)
     if "own" in parts:
         out.update(own_figures(rows_fn=lambda: run_suite(None)))
     out["wall_seconds"] = time.perf_counter() - t0

@@ -84,3 +84,26 @@ def beyond_tolerance(fit, candidate, factor: float = 2.0) -> bool:
     sig = sigma_of(candidate)
     d = np.abs(np.asarray(fit.values) - np.asarray(fit.nominal))
     return bool(np.any((sig == 0) | (d > factor * sig)))
+
+
+def measurand_form_sigma(problem, screening: dict, by_name: dict, measurand_column: np.ndarray) -> float:
+    """The model-form tolerance of a measurand fitted alone (the backlash width) [its unit]: how far the fitted value
+    moves when the drive's nominal values are off by their sigma (NOMINAL_SIGMA; the whole sigma, not x SCALE: the
+    width takes up what it can of a nominal error) and the model's spectral shape and mean speed by theirs. Per
+    tolerance direction d: the shift (j'd)/(j'j) of the linear fit of the measurand's column j (projected); the
+    directions are independent: the root of the sum of squares. ``measurand_column``: the measurand's Jacobian
+    column in the prediction space."""
+    j = problem.project(np.asarray(measurand_column, dtype=float))
+    jj = float(j @ j)
+    if not jj > 0:
+        return float("nan")
+    cols = []
+    for name, info in screening.items():
+        for i, s in enumerate(sigma_of(by_name[name])):
+            if s > 0:
+                cols.append(info["J"][:, i] * s)
+    shifts = [float(j @ problem.project(c)) / jj for c in cols]
+    rest = directions(problem, {}, by_name)        # the spectral shape's and the mean speed's (no nominal spread)
+    if rest.shape[1]:
+        shifts += list((j @ problem.project(rest)) / jj)
+    return float(np.sqrt(np.sum(np.square(shifts))))

@@ -201,5 +201,6 @@ if __name__ == "__main__":
         out.update(width_plus_effect([s for s in DEVELOPMENT if not a.only or s.label in a.only],
                                      "width_plus_effect_development_"))
     if "sealed" in parts:
-        out.update(width_plus_effect(SEALED, "width_plus_effect_sealed_"))
+        out.update(width_plus_effect([s for s in SEALED if not a.only or s.label in a.only],
+                                     "width_plus_effect_sealed_"))
     print(json.dumps(out, default=float))

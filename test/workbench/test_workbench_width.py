@@ -135,3 +135,33 @@ def test_a_weakly_evidenced_effect_within_two_of_its_uncertainties_does_not_qual
     assert not qualifies(fit(2.3e-5, 2.3e-5, -3.9), shaft)
     assert qualifies(fit(2.3e-5, 0.5e-5, -3.9), shaft)
     assert qualifies(fit(2.3e-5, 2.3e-5, -40.0), shaft)
+
+
+def test_the_measurand_form_tolerance_is_how_far_the_width_moves_with_the_nominal_values():
+    """A nominal value off by its sigma moves a width fitted alone by the projection of its prediction change on the
+    width's direction; independent nominal values add in quadrature, and a direction orthogonal to the width's moves
+    it not at all (linear algebra on a toy prediction space, identity metric)."""
+    from types import SimpleNamespace
+
+    from backlash_monitor.workbench import tolerance
+
+    class Toy:
+        target_vec = np.zeros(4)
+        spectral_slice = slice(4, 4)
+        ws = np.zeros(0)
+
+        @staticmethod
+        def project(r):
+            return r
+
+    width_col = np.array([1.0, 0.0, 0.0, 0.0])         # the width's prediction change per metre
+    mass = SimpleNamespace(parameters=[SimpleNamespace(key="load_mass_drift.relative_change")])      # sigma 0.02
+    spring = SimpleNamespace(parameters=[SimpleNamespace(key="spring_stiffness_drift.relative_change")])  # 0.05
+    gain = SimpleNamespace(parameters=[SimpleNamespace(key="accelerometer_gain.a1_relative_change")])     # 0.02
+    screening = {"m": {"J": np.array([[3.0], [1.0], [0.0], [0.0]])},      # partly along the width: 3 per unit
+                 "k": {"J": np.array([[-2.0], [0.0], [5.0], [0.0]])},
+                 "g": {"J": np.array([[0.0], [0.0], [0.0], [7.0]])}}      # orthogonal to it
+    by_name = {"m": mass, "k": spring, "g": gain}
+    sigma = tolerance.measurand_form_sigma(Toy(), screening, by_name, width_col)
+    assert sigma == pytest.approx(np.hypot(3.0 * 0.02, -2.0 * 0.05))
+    assert tolerance.measurand_form_sigma(Toy(), {"g": screening["g"]}, by_name, width_col) == 0.0
