@@ -115,3 +115,37 @@ def test_add_effect_takes_a_proposal_only_when_asked_and_writes_its_plugin_file(
     nothing, _ = _diagnosis_with_proposal(tmp_path / ".." / tmp_path.name, proposed=False)
     assert main(["add-effect", str(nothing), "-o", str(tmp_path / "v3.yaml"), "--accept-proposal"]) == 2
     assert "proposes no term" in capsys.readouterr().err
+
+
+def _foreign(label, kind, seed, effects, width):
+    from foreign_drives.drive import make_recording
+    from foreign_drives.spec import RecordingSpec, SensorNuisance
+
+    from backlash_monitor.workbench.measurement import Measurement
+    spec = RecordingSpec(label=label, kind=kind, width_m=width, eta_k=0.025, n1=0.89, effects=tuple(effects),
+                         sensor=SensorNuisance(), seed=seed, duration_s=3.0).check()
+    rec = make_recording(spec)
+    return Measurement(f"foreign:{label}", rec.sample_period_s, {k: np.asarray(v) for k, v in rec.signals.items()})
+
+
+def _run_steps(meas, width):
+    from backlash_monitor.workbench import diagnose as dg
+    from backlash_monitor.workbench.model import load_model
+    run = dg.prepare(meas, load_model(None, width_m=width, eta_k=0.025, n1=0.89))
+    dg.screen_step(run)
+    dg.refine_step(run)
+    decision = dg.decide_step(run)
+    up = dg.second_effect_step(run, decision)
+    dg.confidence_step(run, up, decision)
+    return run, up
+
+
+@pytest.mark.slow
+def test_no_term_is_proposed_on_a_clean_foreign_drive_even_when_asked():
+    """A clean drive made by foreign_drives (3 s, 12 events): the proposal, forced as if nothing explained it, selects
+    nothing that is stable over the events -- the selection does not fit the noise."""
+    meas = _foreign("clean_propose", "clean", 331, (), 0.0065)
+    run, up = _run_steps(meas, 0.0065)
+    found = proposal.propose(run, up, "nothing_explains")
+    assert found is not None and not found.proposed, found.law
+    assert proposal.propose(run, up, "consistent") is None
