@@ -110,3 +110,19 @@ def test_pipeline_takes_the_drive_from_the_registry(reg, tmp_path):
     assert pipeline.watch_reference(args) == str(tmp_path / "m" / "drive02_v3.watch.npz")
     node = pipeline.node_parameters(args)
     assert node["classifier"]["library"] == args.library and node["plant_simulator"]["width_m"] == 0.006
+
+
+def test_train_drive_defaults_and_refusals(reg, tmp_path, capsys):
+    import argparse
+
+    from backlash_monitor.commands import train
+    parser = argparse.ArgumentParser()
+    train.add_arguments(parser)
+    args = parser.parse_args(["--drive", "line1/drive02", "--registry", str(reg)])
+    entry = train._drive_defaults(args)
+    assert entry.hardware_id == "line1/drive02" and args.model == [str(tmp_path / "m" / "drive02_v3.yaml")]
+    assert args.out == str(tmp_path / "m" / "drive02_v3.npz")
+    assert args.previous_library == str(tmp_path / "m" / "drive02_v3.npz")
+    # a drive without a model file needs --model (the version to register)
+    assert main(["train", "--drive", "line2/drive01", "--registry", str(reg)]) == 2
+    assert "has no model file" in capsys.readouterr().err
