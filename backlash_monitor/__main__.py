@@ -7,8 +7,8 @@ import argparse
 import os
 import sys
 
-from backlash_monitor.commands import UsageError, discover_commands
-from backlash_monitor.errors import HelpFormatter
+from backlash_monitor.commands import UsageError, command_module_names, discover_commands
+from backlash_monitor.errors import HelpFormatter, RunFailure, one_line
 
 
 def build_parser(only: str | None = None) -> argparse.ArgumentParser:
@@ -34,12 +34,17 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if not getattr(args, "_run", None):
         parser.print_help()
+        print(f"{parser.prog}: error: give a command; allowed: {', '.join(sorted(command_module_names()))}",
+              file=sys.stderr)
         return 2
     try:
         return int(args._run(args) or 0)
     except UsageError as error:
-        print(f"{parser.prog} {args.command}: error: {error}", file=sys.stderr)
+        print(f"{parser.prog} {args.command}: error: {one_line(error)}", file=sys.stderr)
         return 2
+    except RunFailure as error:
+        print(f"{parser.prog} {args.command}: error: {one_line(error)}", file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         print(f"{parser.prog} {args.command}: interrupted", file=sys.stderr)
         return 130

@@ -13,7 +13,17 @@ import sys
 
 
 class UsageError(Exception):
-    """Bad input from the user: the message names the problem and the allowed values."""
+    """Bad input from the user: the message names the problem and the allowed values (exit code 2)."""
+
+
+class RunFailure(Exception):
+    """A failure while running, not a bad option: a damaged or truncated bag, a recording that recorded
+    nothing (exit code 1, one line; docs/cli.md)."""
+
+
+def one_line(error: BaseException) -> str:
+    """An error's message on one line (a message from a library may span several)."""
+    return "; ".join(line.strip() for line in str(error).splitlines() if line.strip() and line.strip() != "^")
 
 
 class DeprecatedSpelling(argparse.Action):

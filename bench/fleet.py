@@ -178,7 +178,7 @@ def analyze_speedup(workdir, n_bags=100, repeats=7, bag_s=3.0):
             started = time.perf_counter()
             before = resource.getrusage(resource.RUSAGE_CHILDREN)
             proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", bag_dir,
-                                   "--out", out, "--jobs", str(n_jobs), "--no-plots"],
+                                   "--out-dir", out, "--jobs", str(n_jobs), "--no-plots"],
                                   capture_output=True, text=True, timeout=1800,
                                   preexec_fn=(None if cpu_pin is None else
                                               lambda: os.sched_setaffinity(0, {cpu_pin})))

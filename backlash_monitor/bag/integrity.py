@@ -181,7 +181,7 @@ def raise_for(report: RecoveryReport, path, file_size: int) -> None:
             + f". {report.complete_chunks} complete chunk(s) with {report.messages} message(s) "
             f"are intact in the first {report.intact_bytes} of {report.file_size} bytes"
             + (f"; {report.damage_text()}" if report.damaged_any else "")
-            + "; read them with recovery (BagReader(path, recover=True), `--recover`)",
+            + "; read them with recovery (--recover)",
             path=str(path), file_size=file_size, intact_bytes=report.intact_bytes,
             complete_chunks=report.complete_chunks)
     if report.damaged_any:

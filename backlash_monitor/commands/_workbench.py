@@ -142,9 +142,15 @@ def write_text_staged(path, text: str) -> None:
 def load(args, measurement: bool = True):
     from backlash_monitor.commands import UsageError
     from backlash_monitor.workbench.measurement import MeasurementError, check_against_model, load_measurement
-    from backlash_monitor.workbench.model import ModelError, load_model
+    from backlash_monitor.errors import out_of_range
+    from backlash_monitor.workbench.model import NOMINAL_RANGES, ModelError, load_model
     if not 3 <= args.ensemble <= 64:
-        raise UsageError(f"--ensemble {args.ensemble}: out of range, allowed 3..64")
+        raise out_of_range("--ensemble", args.ensemble, 3, 64)
+    for key, unit in (("width_m", "m"), ("eta_k", "Pa*s^n"), ("n1", "")):
+        value, (low, high) = getattr(args, key, None), NOMINAL_RANGES[key]
+        if value is not None and not low < value <= high:
+            raise UsageError(f"--{key.replace('_', '-')} {value:g}: out of range, allowed {low:g}..{high:g}"
+                             f"{' ' + unit if unit else ''}, above {low:g}")
     entry = apply_drive(args)
     try:
         model = load_model(args.model, args.set, args.width_m, args.eta_k, args.n1,

@@ -121,6 +121,10 @@ def fleet_options_from_args(args) -> FleetOptions:
     """The many-bag options of a parsed `analyze FOLDER` command line (a FleetOptions, its model
     fit's WatchOptions among them)."""
     from backlash_monitor.fleet.analyze import FleetOptions, WatchOptions
+    if args.out and not args.out_dir:     # the release before named the folder --out
+        print("python -m backlash_monitor analyze: warning: --out for a folder of bags is deprecated and will "
+              "be removed in the next release; use --out-dir", file=sys.stderr)
+        args.out_dir = args.out
     return FleetOptions(bags=args.bag, out=args.out_dir, jobs=args.jobs, engine=args.engine,
                         scheduler=args.scheduler, trend_config=args.trend_config,
                         plots=not args.no_plots, progress=not args.no_progress,
@@ -146,10 +150,6 @@ def run(args) -> int:
     # threads of its forked workers' pools first (they inherit this process's, set when numpy is imported)
     from backlash_monitor.fleet.analyze import is_many, limit_threads, run_many, runs_parallel_here
     if is_many(args.bag):
-        if args.out and not args.out_dir:     # the release before named the folder --out
-            print("python -m backlash_monitor analyze: warning: --out for a folder of bags is deprecated and will "
-                  "be removed in the next release; use --out-dir", file=sys.stderr)
-            args.out_dir = args.out
         fleet = fleet_options_from_args(args)
         if runs_parallel_here(fleet):
             limit_threads()

@@ -51,7 +51,7 @@ def _fmt_size(n: int) -> str:
 
 
 def _err(msg: str) -> None:
-    print(f"bag-info: error: {msg}", file=sys.stderr)
+    print(f"python -m backlash_monitor bag-info: error: {msg}", file=sys.stderr)
 
 
 def run(args) -> int:

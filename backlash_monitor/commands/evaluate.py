@@ -71,7 +71,7 @@ def _libraries(args) -> dict:
 
 def _check(args) -> None:
     if not 1 <= args.fusion_events <= 8:
-        raise UsageError(f"--fusion-events {args.fusion_events}: must be between 1 and 8")
+        raise UsageError(f"--fusion-events {args.fusion_events}: out of range, allowed 1..8")
 
 
 def _public(r: dict) -> dict:

@@ -20,6 +20,11 @@ def run(args) -> int:
     from backlash_monitor.errors import UsageError
     from backlash_monitor.files.outputs import missing_folder_message
     from backlash_monitor.nodes.record import PARAMETERS, main
-    if args.output and not Path(args.output).parent.is_dir():
+    if args.output and not Path(args.output).absolute().parent.is_dir():
         raise UsageError(missing_folder_message("--output", args.output))
-    return main(args=["record", *ros_arguments(args, PARAMETERS)])
+    code = main(args=["record", *ros_arguments(args, PARAMETERS)], empty_exit_code=1)
+    if code == 1:
+        import sys
+        print("python -m backlash_monitor record: warning: recorded nothing (no publisher on the recorded topics); "
+              "the bag holds no messages", file=sys.stderr)
+    return code

@@ -21,4 +21,21 @@ def run(args) -> int:
     from backlash_monitor.nodes.replay import PARAMETERS, main
     if not args.bag:
         raise UsageError("give the bag to play: python -m backlash_monitor replay FILE.mcap")
+    _check_bag(args.bag, args.recover)
     return main(args=["replay", *ros_arguments(args, PARAMETERS)])
+
+
+def _check_bag(path, recover: bool) -> None:
+    """The bag opened as the node will open it, before the node starts: a bad path is bad input (exit 2), a
+    damaged or truncated bag a failure (exit 1, as bag-info and analyze), each one line (docs/cli.md)."""
+    from backlash_monitor.bag import BagError, BagReader, DamagedBagError, TruncatedBagError
+    from backlash_monitor.errors import RunFailure, UsageError
+    try:
+        with BagReader(path, recover=recover):
+            pass
+    except FileNotFoundError as error:
+        raise UsageError(f"{error}; allowed: the path of an existing .mcap file") from None
+    except (TruncatedBagError, DamagedBagError) as error:
+        raise RunFailure(str(error)) from None
+    except (BagError, OSError) as error:
+        raise UsageError(f"{path}: {error}") from None

@@ -94,10 +94,17 @@ def run(args) -> int:
     from backlash_monitor.plant import PlantSimulator, Scenario, builtin_catalogue, load_plant_config
     from backlash_monitor.plant.analysis import impact_times_ms
 
+    # the grid's ranges, as Scenario checks them, named by the option (docs/cli.md: one range form)
+    for option, values, high, unit in (("--widths", args.widths, 1.0, "m"), ("--eta-k", args.eta_k, 100.0, "Pa*s^n"),
+                                       ("--n1", args.n1, 3.0, "")):
+        bad = [v for v in values if not 0.0 < v <= high]
+        if bad:
+            return _error(f"{option} {bad[0]:g}: out of range, allowed 0..{high:g}{' ' + unit if unit else ''}, "
+                          "above 0")
     try:
         catalogue = builtin_catalogue().with_files(args.effects_file)
         if args.noise_seed is not None and args.noise_seed < 0:
-            raise ValueError(f"--noise-seed {args.noise_seed}: allowed: an integer >= 0")
+            raise ValueError(f"--noise-seed {args.noise_seed}: out of range, allowed 0..inf")
         overrides = dict(_parse_override(t) for t in args.set)
         cfg = load_plant_config(args.config, overrides=overrides or None, catalogue=catalogue)
         scenarios = [Scenario(width_m=w, eta_k=e, n1=n, seed=s)
@@ -105,9 +112,9 @@ def run(args) -> int:
     except ValueError as exc:
         return _error(str(exc))
     if not (0.0 < args.duration <= 3600.0):
-        return _error(f"--duration {args.duration:g} is out of range; allowed: 0 < duration <= 3600 s")
+        return _error(f"--duration {args.duration:g}: out of range, allowed 0..3600 s, above 0")
     if not (0.0 < args.chunk):
-        return _error(f"--chunk {args.chunk:g} is out of range; allowed: 0 < chunk <= duration")
+        return _error(f"--chunk {args.chunk:g}: out of range, allowed 0..--duration s, above 0")
     if args.no_npz and not args.mcap:
         return _error("--no-npz without --mcap would write nothing; allowed: --mcap DIR with --no-npz")
     out_path = Path(args.output)

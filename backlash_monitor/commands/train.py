@@ -102,17 +102,17 @@ def _drive_defaults(args):
 
 def _check(args) -> None:
     if args.epochs < 1:
-        raise UsageError(f"--epochs {args.epochs}: must be an integer >= 1 (paper: 30)")
+        raise UsageError(f"--epochs {args.epochs}: out of range, allowed 1..inf (paper: 30)")
     for name in ("l1", "l2"):
         v = getattr(args, name)
         if not (math.isfinite(v) and 0 < v <= 1):
-            raise UsageError(f"--{name} {v}: must be in (0, 1] (paper: l1 = 0.1, l2 = 0.09)")
+            raise UsageError(f"--{name} {v:g}: out of range, allowed 0..1, above 0 (paper: l1 = 0.1, l2 = 0.09)")
     if not (math.isfinite(args.ridge) and args.ridge > 0):
-        raise UsageError(f"--ridge {args.ridge}: must be a number > 0 (default 1e-5)")
+        raise UsageError(f"--ridge {args.ridge:g}: out of range, allowed 0..inf, above 0 (default 1e-5)")
     if not (math.isfinite(args.duration) and 0.5 <= args.duration <= 60):
-        raise UsageError(f"--duration {args.duration}: must be between 0.5 and 60 s")
+        raise UsageError(f"--duration {args.duration:g}: out of range, allowed 0.5..60 s")
     if args.window_offset is not None and not 0 <= args.window_offset <= 65536:
-        raise UsageError(f"--window-offset {args.window_offset}: must be 0 <= SAMPLES <= 65536")
+        raise UsageError(f"--window-offset {args.window_offset}: out of range, allowed 0..65536 samples")
     if getattr(args, "model", None) and args.output is None:
         raise UsageError("--model needs -o/--output LIB.npz (the packaged library stays the default model's)")
     if getattr(args, "model", None) and len(args.model) > len(args.seeds):

@@ -82,7 +82,7 @@ class FleetOptions:
             raise UsageError(f"engine {self.engine!r}; allowed: {', '.join(ENGINES)}")
         n_jobs = self.workers()
         if n_jobs < 1 or n_jobs > 1024:
-            raise UsageError(f"--jobs = {self.jobs}; allowed: 1 .. 1024 (0: this machine's cores)")
+            raise UsageError(f"--jobs {self.jobs}: out of range, allowed 0..1024 (0: this machine's cores)")
 
 
 def is_many(bag: str) -> bool:

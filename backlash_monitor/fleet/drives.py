@@ -133,7 +133,7 @@ def drives_from_count(count: int, line: str = DEFAULT_LINE, width_m: float = DEF
         -> list[Drive]:
     """drive01..driveNN on ``line``: the same plant, disturbance seeds 1..N."""
     if not isinstance(count, int) or count < 1 or count > 999:
-        raise UsageError(f"--drives = {count!r}; allowed: 1 .. 999")
+        raise UsageError(f"--drives {count!r}: out of range, allowed 1..999")
     _check_name("line", line)
     digits = max(2, len(str(count)))
     return [Drive(line, f"drive{i:0{digits}d}", {"width_m": width_m, "seed": i})

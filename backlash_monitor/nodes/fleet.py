@@ -90,16 +90,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def validate(args):
-    from backlash_monitor.errors import UsageError
+    from backlash_monitor.errors import UsageError, out_of_range
     from backlash_monitor.fleet.drives import drives_from_count, load_drives
-    for name, value, lo, hi in (("--duration", args.duration, 0.1, 1e6),
-                                ("--rate-factor", args.rate_factor, 0.01, 1000.0),
-                                ("--width-m", args.width_m, 1e-4, 0.05),
-                                ("--view-period", args.view_period, 0.0, 3600.0)):
+    if args.rate_factor == 0:
+        raise UsageError("--rate-factor 0 (as fast as possible) is replay's only: the simulators pace their "
+                         "streams; allowed 0.01..1000")
+    for name, value, lo, hi, unit in (("--duration", args.duration, 0.1, 1e6, "s"),
+                                      ("--rate-factor", args.rate_factor, 0.01, 1000.0, ""),
+                                      ("--width-m", args.width_m, 1e-4, 0.05, "m"),
+                                      ("--view-period", args.view_period, 0.0, 3600.0, "s")):
         if not (lo <= value <= hi):
-            raise UsageError(f"{name} = {value:g} is out of range; allowed: {lo:g} .. {hi:g}")
+            raise out_of_range(name, value, lo, hi, unit)
     if args.config and args.drives is not None:
         raise UsageError("give --drives or --config, not both")
+    for option, path in (("--json", args.summary_json), ("--aggregator-yaml", args.aggregator_yaml)):
+        if path and not os.path.isdir(os.path.dirname(os.path.abspath(path))):
+            from backlash_monitor.files.outputs import missing_folder_message
+            raise UsageError(missing_folder_message(option, path))
     drives = (load_drives(args.config) if args.config else
               drives_from_count(4 if args.drives is None else args.drives, line=args.line,
                                 width_m=args.width_m))

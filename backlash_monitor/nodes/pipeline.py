@@ -119,21 +119,24 @@ def apply_registry(args) -> None:
 
 
 def validate(args) -> None:
-    from backlash_monitor.errors import UsageError
+    from backlash_monitor.errors import UsageError, out_of_range
     if getattr(args, "drive", ""):
         apply_registry(args)
-    checks = [("--width-m", args.width_m, 1e-4, 0.05), ("--eta-k", args.eta_k, 1e-4, 1.0),
-              ("--n1", args.n1, 0.5, 1.5), ("--duration", args.duration, 0.1, 1e6),
-              ("--rate-factor", args.rate_factor, 0.01, 1000.0)]
-    for name, value, lo, hi in checks:
+    if args.rate_factor == 0:
+        raise UsageError("--rate-factor 0 (as fast as possible) is replay's only: the simulator paces its stream; "
+                         "allowed 0.01..1000")
+    checks = [("--width-m", args.width_m, 1e-4, 0.05, "m"), ("--eta-k", args.eta_k, 1e-4, 1.0, "Pa*s^n"),
+              ("--n1", args.n1, 0.5, 1.5, ""), ("--duration", args.duration, 0.1, 1e6, "s"),
+              ("--rate-factor", args.rate_factor, 0.01, 1000.0, "")]
+    for name, value, lo, hi, unit in checks:
         if not (lo <= value <= hi):
-            raise UsageError(f"{name} = {value:g} is out of range; allowed: {lo:g} .. {hi:g}")
+            raise out_of_range(name, value, lo, hi, unit)
     if args.events < 0:
-        raise UsageError(f"--events = {args.events}; allowed: 0 (no limit) or more")
+        raise out_of_range("--events", args.events, 0, "inf (0: no limit)")
     if args.seed < 0:
-        raise UsageError(f"--seed = {args.seed}; allowed: 0 or more")
+        raise out_of_range("--seed", args.seed, 0, "inf")
     if args.max_restarts < 0:
-        raise UsageError(f"--max-restarts = {args.max_restarts}; allowed: 0 or more")
+        raise out_of_range("--max-restarts", args.max_restarts, 0, "inf")
     if args.restart != "no" and not args.processes:
         raise UsageError(f"--restart {args.restart} needs --processes (one process has no node "
                          "process to restart); allowed: --restart no, or add --processes")
@@ -538,8 +541,8 @@ def run(args) -> int:
                     and (view.windowing or now - stream_ended_s > WINDOWING_STATUS_GRACE_S):
                 break
     except ParameterValueError as error:
-        print(f"pipeline: error: {error}", file=sys.stderr)
-        return 2
+        from backlash_monitor.errors import UsageError
+        raise UsageError(str(error)) from None
     except (KeyboardInterrupt, ExternalShutdownException):
         print("pipeline: interrupted", file=sys.stderr)
         interrupted = True     # Ctrl-C reaches the node processes too: not their fault

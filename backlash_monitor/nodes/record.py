@@ -210,11 +210,15 @@ class RecordNode(Node):
             if self.writing_to != self.output:
                 os.replace(self.writing_to, self.output)
             total = sum(self.counts.values())
+            self.recorded_messages = total
             text = f"closed {self.output}: {total} messages on {len(self.counts)} topics"
+            if total == 0:     # no publisher (or none matched): a warning and exit code 1 (docs/cli.md)
+                text += ("; recorded nothing: no publisher on the recorded topics"
+                         + (f" ({self.params['topics']})" if self.params["topics"] else ""))
             if self.context.ok():
-                self.get_logger().info(text)
+                (self.get_logger().warning if total == 0 else self.get_logger().info)(text)
             else:  # after SIGINT/SIGTERM the context is gone: rosout logging would complain
-                print(f"[INFO] [record]: {text}", file=sys.stderr, flush=True)
+                print(f"[{'WARN' if total == 0 else 'INFO'}] [record]: {text}", file=sys.stderr, flush=True)
 
     def destroy_node(self):
         try:
@@ -233,8 +237,18 @@ def _spin(node: RecordNode, executor) -> None:
         node.close()
 
 
-def main(args=None) -> int:
-    return run_node(RecordNode, args=args, spin=_spin)
+def main(args=None, empty_exit_code: int = 0) -> int:
+    """Exit code 0 (``empty_exit_code`` when the recording holds no message: the warning says so; the CLI's
+    `record` gives 1), or 2 for bad parameters."""
+    spun = []
+
+    def spin(node, executor):
+        spun.append(node)
+        _spin(node, executor)
+    code = run_node(RecordNode, args=args, spin=spin)
+    if code == 0 and spun and getattr(spun[0], "recorded_messages", 1) == 0:
+        return empty_exit_code
+    return code
 
 
 if __name__ == "__main__":

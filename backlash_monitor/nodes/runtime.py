@@ -47,15 +47,18 @@ def command_main(prog: str, description: str, add_arguments, run, argv=None) -> 
     ``PROG: error: ...`` and exit code 2."""
     import argparse
     from rclpy.utilities import remove_ros_args
-    from backlash_monitor.errors import HelpFormatter, UsageError
+    from backlash_monitor.errors import HelpFormatter, RunFailure, UsageError, one_line
     parser = argparse.ArgumentParser(prog=prog, description=description, formatter_class=HelpFormatter)
     add_arguments(parser)
     args = parser.parse_args(remove_ros_args(sys.argv if argv is None else argv)[1:])
     try:
         return run(args)
     except UsageError as error:
-        print(f"{prog}: error: {error}", file=sys.stderr)
+        print(f"{prog}: error: {one_line(error)}", file=sys.stderr)
         return 2
+    except RunFailure as error:
+        print(f"{prog}: error: {one_line(error)}", file=sys.stderr)
+        return 1
 
 
 SHUTDOWN_SIGNALS = (signal.SIGINT, signal.SIGTERM)

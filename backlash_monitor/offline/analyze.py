@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from backlash_monitor.errors import UsageError
+from backlash_monitor.errors import RunFailure, UsageError
 
 ESTIMATE_BATCH = 64   # onset windows per batched denoise + DriveEstimator.estimate_many call
 
@@ -70,10 +70,10 @@ class AnalyzeOptions:
         if self.angle_source not in ANGLE_SOURCES:
             raise UsageError(f"angle source {self.angle_source!r}; allowed: {', '.join(ANGLE_SOURCES)}")
         if self.trigger == "paper" and not (0 < self.width_m <= 0.05):
-            raise UsageError(f"--width-m = {self.width_m:g}: the paper trigger needs the width; "
-                             "allowed: 0 < width <= 0.05 m")
+            raise UsageError(f"--width-m {self.width_m:g}: out of range, allowed 0..0.05 m, above 0 (the paper "
+                             "trigger needs the drive's width)")
         if self.fusion_events < 1:
-            raise UsageError(f"--fusion-events = {self.fusion_events}; allowed: 1 or more")
+            raise UsageError(f"--fusion-events {self.fusion_events}: out of range, allowed 1..inf")
 
 
 def load_library(options: AnalyzeOptions):
@@ -84,7 +84,7 @@ def load_library(options: AnalyzeOptions):
     offset = (default_window_offset(options.trigger) if options.window_offset_samples is None
               else options.window_offset_samples)
     if not 0 <= offset <= 65536:
-        raise UsageError(f"--window-offset = {offset}; allowed: 0 <= SAMPLES <= 65536")
+        raise UsageError(f"--window-offset {offset}: out of range, allowed 0..65536 samples")
     try:
         library = load(options.library or None, trigger=options.trigger, window_offset_samples=offset)
     except (PatternLibraryError, ValueError) as error:
@@ -203,7 +203,7 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
     ``chunks_ahead``: the bag reader's decompression thread (BagReader; None: its default; 0: none,
     for a pool with a worker per core). Raises UsageError (one line) for anything wrong with the
     bag or the options."""
-    from backlash_monitor.bag import BagError, BagReader
+    from backlash_monitor.bag import BagError, BagReader, DamagedBagError, TruncatedBagError
     from backlash_monitor.chain import BlockFeeder, ChunkJoiner, WindowingStage, denoise_pairs
     from backlash_monitor.classifier.patterns import PatternLibraryError
     from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator
@@ -299,6 +299,8 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
                             estimates_msgs.append((completing, window, est))
                     batch = []
             integrity = reader.recovery.to_dict()
+    except (TruncatedBagError, DamagedBagError) as error:   # the data is damaged, not the command line
+        raise RunFailure(str(error)) from None
     except BagError as error:
         raise UsageError(str(error)) from None
     except ValueError as error:   # a core's check of its input: one line, never a traceback

@@ -257,14 +257,20 @@ def _file_classes(path) -> tuple:
         return classes
     digest = hashlib.sha256(str(resolved).encode()).hexdigest()[:12]
     mod_name = f"_backlash_monitor_user_effects_{digest}_{content[:8]}"
+    if resolved.suffix != ".py":
+        raise ValueError(f"effects file {str(p)!r} is not a Python file; allowed: a .py file defining Effect "
+                         "subclasses (docs/effects.md)")
     spec = importlib.util.spec_from_file_location(mod_name, resolved)
     module = importlib.util.module_from_spec(spec)
     sys.modules[mod_name] = module
     try:
         spec.loader.exec_module(module)
+    except SyntaxError as exc:
+        sys.modules.pop(mod_name, None)
+        raise ValueError(f"effects file {str(p)!r}, line {exc.lineno}: invalid Python ({exc.msg})") from None
     except Exception as exc:  # noqa: BLE001 - a user's file: report, do not trace back
         sys.modules.pop(mod_name, None)
-        raise ValueError(f"effects file {str(p)!r} failed to import: {type(exc).__name__}: {exc}") from None
+        raise ValueError(f"effects file {str(p)!r} failed to import: {exc}") from None
     classes = tuple(_classes_in(module))
     if not classes:
         raise ValueError(f"effects file {str(p)!r} defines no Effect subclass with a name; allowed: "

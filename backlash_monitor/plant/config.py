@@ -365,7 +365,7 @@ def _build_switches(data: Any, reg) -> EffectSwitches:
     for key, value in data.items():
         if key not in reg:
             raise ValueError(f"plant config: unknown key effects.{key}{_nearest('effects.' + str(key), ['effects.' + n for n in reg])}; "
-                             "allowed: the effects of the catalogue (backlash_monitor.plant.catalogue; "
+                             "allowed: the effects of the catalogue (docs/effects.md; "
                              "plug-ins with --effects-file FILE)")
         if not isinstance(value, bool):
             raise ValueError(f"plant config: effects.{key} = {value!r} is not allowed; allowed: true or false")

@@ -102,7 +102,7 @@ def load_measurement(path, namespace: str | None = None, row: int = 0) -> Measur
 
 
 def _load_mcap(p: Path, namespace: str | None) -> Measurement:
-    from backlash_monitor.bag import BagError, BagReader
+    from backlash_monitor.bag import BagError, BagReader, DamagedBagError, TruncatedBagError
     try:
         with BagReader(p) as reader:
             topics = list(reader.topics)
@@ -122,6 +122,9 @@ def _load_mcap(p: Path, namespace: str | None) -> Measurement:
             if not chosen:
                 raise MeasurementError(f"measurement {p}: no plant/a1 ... topics; it has {', '.join(topics)}")
             series = reader.read_signals(list(chosen.values()))
+    except (TruncatedBagError, DamagedBagError) as exc:   # the data is damaged, not the command line
+        from backlash_monitor.errors import RunFailure
+        raise RunFailure(f"measurement {p}: {exc}") from None
     except BagError as exc:
         raise MeasurementError(f"measurement {p}: {exc}") from None
     sig, periods, starts = {}, set(), set()

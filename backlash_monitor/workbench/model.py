@@ -199,7 +199,10 @@ def load_model(path=None, sets: Sequence[str] = (), width_m: float | None = None
         try:
             data = yaml.safe_load(p.read_text()) or {}
         except yaml.YAMLError as exc:
-            raise ModelError(f"model file {p} is not valid YAML: {exc}") from None
+            mark = getattr(exc, "problem_mark", None)
+            where = f" (line {mark.line + 1}, column {mark.column + 1})" if mark is not None else ""
+            raise ModelError(f"model file {p} is not valid YAML{where}: {getattr(exc, 'problem', None) or exc}; "
+                             "allowed: a workbench model YAML (docs/workbench.md)") from None
         model = model_from_dict(data, p)
     for f in _load_effect_files(effect_files):
         if f not in model.effect_files:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -460,6 +461,9 @@ def run() -> dict:
         try:
             cases = {**_chunk_cases(), **_window_cases(), **_message_cases(), **_config_cases(tmp),
                      **_cli_cases(tmp, env)}
+            every = every_command(tmp / "every_command", env) if parts_wanted("every") else []
+            if not parts_wanted("table"):
+                cases = {}
             for name, case in cases.items():
                 try:
                     outcome, escape = case(), None
@@ -473,11 +477,174 @@ def run() -> dict:
                 print(f"{'ESCAPE ' + escape if escape else 'ok':>22}  {name}", file=sys.stderr)
         finally:
             rclpy.try_shutdown()
+    results += every
     return {"bad_inputs_tried": len(results),
             "escapes": sum(r["escape"] is not None for r in results),
+            "command_bad_inputs": len(every),
+            "command_tracebacks": sum(r["escape"] == "traceback" for r in every),
+            "command_internal_names": sum(r["escape"] == "internal name" for r in every),
+            "command_other_escapes": sum(r["escape"] not in (None, "traceback", "internal name") for r in every),
             "details": {"inputs": results}}
+
+
+def parts_wanted(part: str) -> bool:
+    """RELIABILITY_INPUTS=every: only every command's bad command lines (bench/reliability.py --modules inputs
+    --inputs every); =table: only the named table; unset: both."""
+    wanted = os.environ.get("RELIABILITY_INPUTS", "")
+    return not wanted or wanted == part
 
 
 def _short(outcome) -> str:
     text = outcome if isinstance(outcome, str) else json.dumps(outcome, default=str)
     return text if len(text) < 300 else text[:297] + "..."
+
+
+# ---------------------------------------------------------------- every command's bad inputs (issue 33)
+# One error policy (docs/cli.md): exit 2 for bad input, 1 for a failure while running (a truncated bag), the last
+# stderr line "python -m backlash_monitor <command>: error: ...", never a traceback, never an internal name.
+INTERNAL_NAMES = re.compile(r"Traceback|NoneType|object has no attribute|\b[A-Z]\w+Error\b|\b[A-Z]\w+\([a-z_]+="
+                            r"|\bbacklash_monitor\.[a-z_]+\.|\bself\.|<class |<function |0x[0-9a-f]{6,}")
+
+
+def _command_fixtures(tmp: Path) -> dict:
+    intact = tmp / "intact.mcap"
+    _write_bag(intact, lambda lo, s, first, period, x: (first, period, x))
+    truncated = tmp / "truncated.mcap"
+    data = intact.read_bytes()
+    truncated.write_bytes(data[:len(data) * 2 // 3])
+    (tmp / "notabag.txt").write_text("not a bag\n")
+    (tmp / "syntax_error.py").write_text("def broken(:\n")
+    (tmp / "bad_model.yaml").write_text("workbench_model: [1\n")
+    (tmp / "garbage.json").write_text("{\"verdict\": 3}\n")
+    (tmp / "empty_dir").mkdir()
+    (tmp / "exists.yaml").write_text("x: 1\n")
+    return {"intact": str(intact), "truncated": str(truncated), "notabag": str(tmp / "notabag.txt"),
+            "syntax": str(tmp / "syntax_error.py"), "bad_model": str(tmp / "bad_model.yaml"),
+            "garbage_json": str(tmp / "garbage.json"), "empty_dir": str(tmp / "empty_dir"),
+            "missing": str(tmp / "missing.mcap"), "nodir": str(tmp / "no_such_folder" / "out"),
+            "exists": str(tmp / "exists.yaml"), "out": str(tmp / "out")}
+
+
+# (name, argv after `python -m backlash_monitor`, exit code the policy wants)
+EVERY_COMMAND = [
+    ("no command", [], 2),
+    ("unknown command", ["frobnicate"], 2),
+    ("simulate --widths abc", ["simulate", "--widths", "abc"], 2),
+    ("simulate --widths 0", ["simulate", "--widths", "0", "--no-progress"], 2),
+    ("simulate --duration 0", ["simulate", "--duration", "0"], 2),
+    ("simulate --duration 1e9", ["simulate", "--duration", "1e9"], 2),
+    ("simulate -o into a missing folder", ["simulate", "-o", "{nodir}.npz", "--duration", "0.01"], 2),
+    ("simulate --set unknown key", ["simulate", "--set", "nosuch.key=1"], 2),
+    ("simulate --set unknown effect", ["simulate", "--set", "effects.nosuch=true"], 2),
+    ("simulate --effects-file not Python", ["simulate", "--effects-file", "{notabag}"], 2),
+    ("simulate --effects-file missing", ["simulate", "--effects-file", "{missing}.py"], 2),
+    ("simulate --effects-file with a syntax error", ["simulate", "--effects-file", "{syntax}"], 2),
+    ("simulate --config missing", ["simulate", "--config", "{missing}.yaml"], 2),
+    ("simulate --noise-seed -1", ["simulate", "--noise-seed", "-1"], 2),
+    ("simulate --no-npz without --mcap", ["simulate", "--no-npz"], 2),
+    ("simulate --seeds -1", ["simulate", "--seeds", "-1"], 2),
+    ("pipeline --width-m 0.2", ["pipeline", "--width-m", "0.2"], 2),
+    ("pipeline --rate-factor 0", ["pipeline", "--rate-factor", "0"], 2),
+    ("pipeline --duration -1", ["pipeline", "--duration", "-1"], 2),
+    ("pipeline --restart without --processes", ["pipeline", "--restart", "on-failure"], 2),
+    ("pipeline --library missing", ["pipeline", "--library", "{missing}.npz"], 2),
+    ("pipeline --record into a missing folder", ["pipeline", "--record", "{nodir}.mcap"], 2),
+    ("pipeline --set-at garbage", ["pipeline", "--set-at", "soon", "x=1"], 2),
+    ("pipeline --model without --watch", ["pipeline", "--model", "{exists}"], 2),
+    ("pipeline --effects-file not Python", ["pipeline", "--effects-file", "{notabag}"], 2),
+    ("fleet --drives 0", ["fleet", "--drives", "0"], 2),
+    ("fleet --config missing", ["fleet", "--config", "{missing}.yaml"], 2),
+    ("fleet --drives and --config", ["fleet", "--drives", "2", "--config", "config/fleet.yaml"], 2),
+    ("fleet --rate-factor 0", ["fleet", "--rate-factor", "0"], 2),
+    ("fleet --json into a missing folder", ["fleet", "--drives", "1", "--json", "{nodir}.json"], 2),
+    ("record --chunk-size-bytes 1", ["record", "--chunk-size-bytes", "1"], 2),
+    ("record --compression brotli", ["record", "--compression", "brotli"], 2),
+    ("record --output into a missing folder", ["record", "--output", "{nodir}.mcap"], 2),
+    ("record --duration -1", ["record", "--duration", "-1"], 2),
+    ("replay without a bag", ["replay"], 2),
+    ("replay of a missing file", ["replay", "{missing}"], 2),
+    ("replay of a text file", ["replay", "{notabag}"], 2),
+    ("replay --rate-factor -1", ["replay", "{intact}", "--rate-factor", "-1"], 2),
+    ("replay of a truncated bag", ["replay", "{truncated}", "--rate-factor", "0"], 1),
+    ("bag-info of a missing file", ["bag-info", "{missing}"], 2),
+    ("bag-info of a text file", ["bag-info", "{notabag}"], 2),
+    ("bag-info of an empty folder", ["bag-info", "{empty_dir}"], 2),
+    ("bag-info of a truncated bag", ["bag-info", "{truncated}"], 1),
+    ("bag-info --topic not in the bag", ["bag-info", "{intact}", "--topic", "/nope"], 2),
+    ("analyze of a missing file", ["analyze", "{missing}"], 2),
+    ("analyze of a text file", ["analyze", "{notabag}", "--out", "{out}"], 2),
+    ("analyze of a truncated bag", ["analyze", "{truncated}", "--out", "{out}"], 1),
+    ("analyze --fusion-events 0", ["analyze", "{intact}", "--fusion-events", "0", "--out", "{out}"], 2),
+    ("analyze --trigger paper without a width", ["analyze", "{intact}", "--trigger", "paper", "--out", "{out}"], 2),
+    ("analyze --library a text file", ["analyze", "{intact}", "--library", "{notabag}", "--out", "{out}"], 2),
+    ("analyze --out into a missing folder", ["analyze", "{intact}", "--out", "{nodir}"], 2),
+    ("analyze an empty folder", ["analyze", "{empty_dir}"], 2),
+    ("analyze --out-dir with one bag", ["analyze", "{intact}", "--out-dir", "{out}"], 2),
+    ("train --epochs 0", ["train", "--epochs", "0"], 2),
+    ("train --l1 2", ["train", "--l1", "2"], 2),
+    ("train --output not .npz", ["train", "--output", "{out}.txt"], 2),
+    ("train --model missing", ["train", "--model", "{missing}.yaml", "-o", "{out}.npz"], 2),
+    ("train --seeds a,b", ["train", "--seeds", "a,b"], 2),
+    ("train --duration 100", ["train", "--duration", "100"], 2),
+    ("evaluate --fusion-events 9", ["evaluate", "--fusion-events", "9"], 2),
+    ("evaluate --library without a trigger", ["evaluate", "--library", "{notabag}"], 2),
+    ("evaluate --library missing", ["evaluate", "--library", "paper={missing}.npz", "--out-dir", "{out}"], 2),
+    ("compare of a missing recording", ["compare", "{missing}"], 2),
+    ("compare of a text file", ["compare", "{notabag}"], 2),
+    ("compare --ensemble 2", ["compare", "{intact}", "--ensemble", "2"], 2),
+    ("compare --model missing", ["compare", "{intact}", "--model", "{missing}.yaml"], 2),
+    ("compare --model broken YAML", ["compare", "{intact}", "--model", "{bad_model}"], 2),
+    ("compare --effects-file not Python", ["compare", "{intact}", "--effects-file", "{notabag}"], 2),
+    ("compare --width-m 0.2", ["compare", "{intact}", "--width-m", "0.2"], 2),
+    ("diagnose --candidates unknown", ["diagnose", "{intact}", "--candidates", "nosuch", "--json", "{out}.json"], 2),
+    ("diagnose --effects-file not Python", ["diagnose", "{intact}", "--effects-file", "{notabag}",
+                                            "--json", "{out}.json"], 2),
+    ("diagnose --json into a missing folder", ["diagnose", "{intact}", "--json", "{nodir}.json"], 2),
+    ("diagnose of a truncated bag", ["diagnose", "{truncated}", "--json", "{out}.json"], 1),
+    ("add-effect of a missing diagnosis", ["add-effect", "{missing}.json", "-o", "{out}.yaml"], 2),
+    ("add-effect of a garbage JSON", ["add-effect", "{garbage_json}", "-o", "{out}.yaml"], 2),
+    ("add-effect of an unknown effect", ["add-effect", "nosuch_effect", "-o", "{out}.yaml"], 2),
+    ("add-effect --value unknown parameter", ["add-effect", "wheel_coulomb_friction", "--value", "bad=1",
+                                              "-o", "{out}.yaml"], 2),
+    ("add-effect -o existing", ["add-effect", "wheel_coulomb_friction", "-o", "{exists}"], 2),
+    ("record with no publishers", ["record", "--output", "{out}.mcap", "--duration", "0.5"], 1),
+    ("history of a missing folder", ["history", "{nodir}"], 2),
+    ("history of a folder without history", ["history", "{empty_dir}"], 2),
+    ("watch-reference --ensemble 2", ["watch-reference", "--ensemble", "2", "-o", "{out}.watch.npz"], 2),
+    ("watch-reference --output not .npz", ["watch-reference", "--output", "{out}.txt"], 2),
+    ("watch-reference --model missing", ["watch-reference", "--model", "{missing}.yaml"], 2),
+]
+
+
+def every_command(tmp: Path, env, cases=EVERY_COMMAND) -> list[dict]:
+    """Each bad command line once: its exit code, last stderr line, and what escaped (a traceback, an internal
+    name, another exit code than the policy's, no one-line error)."""
+    tmp.mkdir(parents=True, exist_ok=True)
+    fx = _command_fixtures(tmp)
+    rows = []
+    for name, argv, want in cases:
+        argv = [a.format(**fx) for a in argv]
+        try:
+            proc = subprocess.run([sys.executable, "-m", "backlash_monitor", *argv], capture_output=True,
+                                  text=True, timeout=120, env=env, cwd=REPO)
+            rc, text, err = proc.returncode, proc.stdout + proc.stderr, proc.stderr
+        except subprocess.TimeoutExpired:
+            rc, text, err = None, "", ""
+        lines = [ln for ln in err.splitlines() if ln.strip()]
+        last = lines[-1] if lines else ""
+        escape = None
+        if rc is None:
+            escape = "hang"
+        elif "Traceback" in text:
+            escape = "traceback"
+        elif INTERNAL_NAMES.search(err):
+            escape = "internal name"
+        elif rc != want:
+            escape = f"exit {rc}, wanted {want}"
+        elif not re.match(r"python -m backlash_monitor( [a-z-]+)?: (error|warning): ", last) and not (
+                rc == 1 and ": error: " in last or rc == 1 and "ERROR" in last):
+            escape = "no one-line error"
+        rows.append({"name": f"every command: {name}", "category": "every command", "escape": escape,
+                     "outcome": f"exit {rc}: {_short(last)}"})
+        print(f"{'ESCAPE ' + escape if escape else 'ok':>22}  {name}: exit {rc}: {last[:150]}", file=sys.stderr)
+    return rows

@@ -181,7 +181,7 @@ def test_analyze_refuses_a_damaged_length_and_recovers_all_of_it(drive_bag, tmp_
     bad = tmp_path / "len.mcap"
     bad.write_bytes(faults.chunk_length_field(bag.read_bytes(), off, 2 * length))
     proc, _ = _analyze(bad, tmp_path)
-    assert proc.returncode == 2 and "chunk length field damaged" in proc.stderr
+    assert proc.returncode == 1 and "chunk length field damaged" in proc.stderr
     assert "--recover" in proc.stderr and "Traceback" not in proc.stderr
     proc, result = _analyze(bad, tmp_path, "--recover")
     assert proc.returncode == 0, proc.stderr
@@ -198,7 +198,7 @@ def test_analyze_recover_records_the_skipped_chunk(drive_bag, tmp_path):
     bad = tmp_path / "crc.mcap"
     bad.write_bytes(faults.chunk_payload_byte(bag.read_bytes(), off, length))
     proc, _ = _analyze(bad, tmp_path)
-    assert proc.returncode == 2 and f"byte {off}" in proc.stderr
+    assert proc.returncode == 1 and f"byte {off}" in proc.stderr
     proc, result = _analyze(bad, tmp_path, "--recover")
     assert proc.returncode == 0, proc.stderr
     integrity = result["bag_integrity"]

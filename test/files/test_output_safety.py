@@ -88,7 +88,9 @@ def test_record_refuses_an_existing_bag_and_replaces_it_only_when_told(recording
     assert _digest(bag) == before
     proc = _cli("record", "--output", bag, "--duration", "0.3", "--overwrite", env=ros_env,
                 timeout=120)
-    assert proc.returncode == 0, proc.stderr
+    # nothing was published: the recording is written, with a warning and exit code 1 (docs/cli.md)
+    assert proc.returncode == 1, proc.stderr
+    assert "recorded nothing" in proc.stderr and "Traceback" not in proc.stderr
     assert _digest(bag) != before
     assert not partial_path(bag).exists()
     with BagReader(bag) as reader:   # a complete (empty: nothing was published) recording

@@ -155,7 +155,7 @@ def test_a_fleet_file_with_an_unknown_key_or_a_bad_name_is_refused_with_the_allo
         drives_from_config({"lines": {"line1": {"drive01": {"width_mm": 5}}}})
     with pytest.raises(UsageError, match="drive name '7drive' is not allowed"):
         drives_from_config({"lines": {"line1": {"7drive": {}}}})
-    with pytest.raises(UsageError, match="--drives = 0"):
+    with pytest.raises(UsageError, match="--drives 0: out of range"):
         drives_from_count(0)
     with pytest.raises(UsageError, match="line1/drive01: watch = 'yes'; allowed: true or false"):
         drives_from_config({"lines": {"line1": {"drive01": {"watch": "yes"}}}})

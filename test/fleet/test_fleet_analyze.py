@@ -52,7 +52,7 @@ def fleet_bags(tmp_path_factory):
 def test_a_folder_of_bags_becomes_one_fleet_table_with_trends(fleet_bags, tmp_path, engine_args):
     out = tmp_path / "out"
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze",
-                           str(fleet_bags[0].parent), "--out", str(out), "--no-model-fit", *engine_args],
+                           str(fleet_bags[0].parent), "--out-dir", str(out), "--no-model-fit", *engine_args],
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     result = json.loads((out / "fleet.json").read_text())
@@ -98,7 +98,7 @@ def test_the_model_fit_column_holds_each_bag_against_the_drives_model(tmp_path):
         for f in (bags / d).glob("*.mcap"):
             f.rename(bags / f"{d}_{f.name}")
     out = tmp_path / "out"
-    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(bags), "--out", str(out),
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(bags), "--out-dir", str(out),
                            "--jobs", "1", "--no-plots"], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     rows = {r["bag"].rsplit("/", 1)[1].split("_")[0]: r for r in json.loads((out / "fleet.json").read_text())["rows"]}
@@ -142,22 +142,25 @@ def test_the_model_fit_reference_is_the_one_given_else_the_librarys_else_the_def
 
 def test_the_command_line_becomes_typed_fleet_options_checked_with_the_allowed_ranges():
     """`analyze FOLDER`'s flags become one FleetOptions (its WatchOptions among them); run_many reads no
-    command line. --jobs outside 1 .. 1024 is refused with the allowed range."""
+    command line. --jobs outside 0..1024 is refused with the allowed range; the old spelling of the folder,
+    --out, still gives it for one release."""
     from backlash_monitor.__main__ import build_parser
     from backlash_monitor.commands.analyze import fleet_options_from_args
     from backlash_monitor.errors import UsageError
     from backlash_monitor.fleet.analyze import FleetOptions, WatchOptions
     args = build_parser("analyze").parse_args(
-        ["analyze", "bags/*.mcap", "--out", "o", "--jobs", "3", "--engine", "dask", "--scheduler",
+        ["analyze", "bags/*.mcap", "--out-dir", "o", "--jobs", "3", "--engine", "dask", "--scheduler",
          "tcp://h:8786", "--trend-config", "t.yaml", "--no-plots", "--watch-reference", "r.watch.npz"])
     assert fleet_options_from_args(args) == FleetOptions(
         bags="bags/*.mcap", out="o", jobs=3, engine="dask", scheduler="tcp://h:8786",
         trend_config="t.yaml", plots=False, watch=WatchOptions(enabled=True, reference="r.watch.npz"))
+    old = build_parser("analyze").parse_args(["analyze", "bags/*.mcap", "--out", "o"])
+    assert fleet_options_from_args(old).out == "o"
     defaults = fleet_options_from_args(build_parser("analyze").parse_args(["analyze", "d", "--no-model-fit"]))
     assert defaults == FleetOptions(bags="d", watch=WatchOptions(enabled=False))
     FleetOptions(bags="d", jobs=1024).check()
     for jobs in (-1, 1025):
-        with pytest.raises(UsageError, match=rf"--jobs = {jobs}; allowed: 1 \.\. 1024 \(0: this machine's cores\)"):
+        with pytest.raises(UsageError, match=rf"--jobs {jobs}: out of range, allowed 0\.\.1024 \(0: this machine's cores\)"):
             FleetOptions(bags="d", jobs=jobs).check()
     with pytest.raises(UsageError, match="engine 'spark'; allowed: local, dask"):
         FleetOptions(bags="d", engine="spark").check()
@@ -177,7 +180,7 @@ def test_the_dask_engine_gives_the_same_table_on_a_local_cluster(fleet_bags, tmp
                                                    "distributed)")
     out = tmp_path / "dask"
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze",
-                           str(fleet_bags[0].parent / "*.mcap"), "--out", str(out),
+                           str(fleet_bags[0].parent / "*.mcap"), "--out-dir", str(out),
                            "--engine", "dask", "--jobs", "2", "--no-plots", "--no-model-fit"],
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr
