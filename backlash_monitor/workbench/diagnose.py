@@ -537,6 +537,7 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
     after_view = (consistency.test(run.problem, run.problem.residual(up.after_pred)) if discovery is not None
                   else run.before)
     report_dict = report.diagnosis_report(run, up, v, ripple_fit, spec, overall_before, _identifiability(run))
+    report_dict["near_ties"] = _near_ties(run, discovery)
     conditions = Conditions(run.meas.source, run.model.label(),
                             str(run.model.path) if run.model.path else None, dict(run.model.nominal),
                             dict(run.overrides), [str(f) for f in run.model.effect_files],
@@ -545,6 +546,24 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
     return Diagnosis(conditions, v.verdict, message, disc_json, second_json,
                      [f.to_json() for f in partial], v.additions, width, ranked, views, report_dict, comp,
                      up.after_mean if discovery is not None else None)
+
+
+def _near_ties(run: Run, discovery) -> list:
+    """Fitted candidates that the decision told apart from the discovery, but only just: they explain at least
+    MIN_EXPLAINED of the residual and trail it by less than DELTA_IC_DECISIVE; each with the measurement that would
+    separate them (separation.py)."""
+    if discovery is None:
+        return []
+    out = []
+    for f in run.fits:
+        if (f is discovery or f.effect == discovery.effect or f.effect in discovery.indistinguishable_from
+                or f.explained_fraction < MIN_EXPLAINED or f.delta_ic - discovery.delta_ic >= DELTA_IC_DECISIVE):
+            continue
+        out.append({"effect": f.effect.split("[")[0], "candidate": f.effect, "description": f.description,
+                    "explained_fraction": float(f.explained_fraction), "delta_ic": float(f.delta_ic),
+                    "ic_behind": float(f.delta_ic - discovery.delta_ic),
+                    "separating_measurement": _separating_measurement(discovery, f, run.model.catalogue)})
+    return out
 
 
 def _ranked(run: Run, discovery) -> list:
