@@ -78,7 +78,7 @@ def run(args) -> int:
     for r in pub["ranked"]:
         unc = r.get("uncertainty") or {}
         vals = ", ".join(f"{k}={v:.4g}" + (f"±{unc[k]:.2g}" if k in unc else "") for k, v in r["parameters"].items())
-        rows.append((r["effect"], vals, "-" if r["delta_ic"] is None else f"{r['delta_ic']:.1f}",
+        rows.append((r["effect"], vals, "screened" if r["delta_ic"] is None else f"{r['delta_ic']:.1f}",
                      f"{r['explained_fraction']:.0%}"))
     print_table(rows, ("effect", "fitted", "delta IC", "explained"))
     fp = pub["fit_percent"]

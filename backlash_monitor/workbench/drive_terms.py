@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 
+from .decisions import identical_to
 from .diagnosis import MEASURAND_EFFECTS
 
 # the quantity a parameter drift (plant/effects.DRIFTS) moves: its name on the drive, its unit and the scale from
@@ -166,7 +167,9 @@ def summary_lines(diag: dict, model) -> list[str]:
                 lines.append(f"    {r['effect']}: {r.get('description') or ''}")
                 lines += ["      " + p for p in parameter_lines(r, model)]
             seps = [r["separating_measurement"] if not r["separating_measurement"].startswith("none")
-                    else f"nothing: {r['effect']} is the same term of the model as {disc['effect']}"
+                    else f"nothing separates {r['effect']} from "
+                         + (" and ".join(identical_to(r["effect"])) or "the candidate it duplicates")
+                         + ": the same term of the model"
                     for r in diag.get("ranked") or []
                     if r.get("candidate", r["effect"]) in twins and r.get("separating_measurement")]
             for sep in dict.fromkeys(seps):
