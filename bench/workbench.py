@@ -321,10 +321,11 @@ def parse_args(argv=None):
                          "only those rows' figures")
     ap.add_argument("--sealed", action="store_true",
                     help="with --parts outside: the sealed outside suite (run once, at the end), not the development one")
-    ap.add_argument("--parts", default="own,foreign,sensor", metavar="PART[,PART...]",
+    ap.add_argument("--parts", default="own,foreign,sensor,memory", metavar="PART[,PART...]",
                     help="what to run: own (this project's simulator: the suite and the width check), foreign (the "
                          "foreign drives of foreign_drives/ through the README's loop: diagnose, add-effect, train, "
                          "analyze), sensor (the monitor's width against sensor offsets and gains, own and foreign), "
+                         "memory (diagnose's peak memory on the README's 4 s recording, in a child process), "
                          "outside (proposing a missing term: bench/_workbench/outside.py, the development suite), "
                          "width (never a confident wrong width, issue 31: the width alarms on every foreign recording "
                          "and the width+effect foreign drives, development and sealed; bench/_workbench/width_caveat.py)")
@@ -345,9 +346,9 @@ def main(argv=None):
                           "per_recording": rows, "wall_seconds": time.perf_counter() - t0}))
         return
     parts = {p.strip() for p in args.parts.split(",") if p.strip()}
-    unknown = parts - {"own", "foreign", "sensor", "outside", "width"}
+    unknown = parts - {"own", "foreign", "sensor", "memory", "outside", "width"}
     if unknown:
-        log(f"--parts: unknown part {sorted(unknown)[0]!r}; allowed: own, foreign, sensor, outside, width")
+        log(f"--parts: unknown part {sorted(unknown)[0]!r}; allowed: own, foreign, sensor, memory, outside, width")
         sys.exit(2)
     out = {}
     if "foreign" in parts:
@@ -370,10 +371,43 @@ def main(argv=None):
         ok = [r for r in rows if "error" not in r]
         out["width_plus_effect_named_rate"] = sum(r["other_named"] for r in ok) / len(rows) if rows else None
         out["width_plus_effect_width_error_sigma_max"] = max((r["width_error_sigma"] for r in ok), default=None)
+    if "memory" in parts:
+        out.update(diagnose_memory())
     if "own" in parts:
         out.update(own_figures(rows_fn=lambda: run_suite(None)))
     out["wall_seconds"] = time.perf_counter() - t0
     print(json.dumps(out, default=float))
+
+
+# the README's workbench recording ("The model workbench"): 4 s of a drive with a wheel friction of 1.5 N*m
+MEMORY_RECORDING = ["simulate", "--widths", "0.0075", "--eta-k", "0.025", "--n1", "0.89", "--seeds", "7",
+                    "--duration", "4", "--no-npz", "--set", "effects.wheel_coulomb_friction=true",
+                    "--set", "wheel_coulomb_friction.torque_Nm=1.5"]
+# run in a child that runs `diagnose` as its own child: RUSAGE_CHILDREN's ru_maxrss is then that one process's peak
+_PEAK_OF_CHILD = ("import resource, subprocess, sys; rc = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL)"
+                  ".returncode; print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, rc)")
+
+
+def diagnose_memory() -> dict:
+    """diagnose's peak resident memory [MB] on the README's 4 s recording (issue 33's goal: <= 1024 MB), and its
+    verdict: `python -m backlash_monitor diagnose REC --json ...` in a child process, ru_maxrss (kB on Linux)."""
+    import subprocess
+    with tempfile.TemporaryDirectory() as d:
+        rc = subprocess.run([sys.executable, "-m", "backlash_monitor", *MEMORY_RECORDING, "--mcap", d + "/rec"],
+                            stdout=subprocess.DEVNULL).returncode
+        recs = sorted(os.listdir(d + "/rec")) if rc == 0 else []
+        if not recs:
+            return {"diagnose_peak_rss_mb": None, "diagnose_memory_error": f"simulate exited {rc}"}
+        t0 = time.perf_counter()
+        out = subprocess.run([sys.executable, "-c", _PEAK_OF_CHILD, sys.executable, "-m", "backlash_monitor",
+                              "diagnose", f"{d}/rec/{recs[0]}", "--json", f"{d}/diag.json", "--no-record"],
+                             capture_output=True, text=True)
+        kb, rc = out.stdout.split()
+        diag = json.loads(open(f"{d}/diag.json").read()) if rc == "0" else {}
+    log(f"diagnose of the README's 4 s recording: peak {int(kb) / 1024:.0f} MB, verdict {diag.get('verdict')} "
+        f"({time.perf_counter() - t0:.0f} s)")
+    return {"diagnose_peak_rss_mb": int(kb) / 1024, "diagnose_memory_exit_code": int(rc),
+            "diagnose_memory_verdict": diag.get("verdict"), "diagnose_memory_discovery": diag.get("discovery")}
 
 
 def sensor_check() -> dict:

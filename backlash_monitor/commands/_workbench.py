@@ -111,7 +111,7 @@ def model_overrides(args) -> dict:
     return out
 
 
-REPORT_FILES = ("index.html", "event_average.png", "where.png", "ranked.png", "spectra.png")
+REPORT_FILES = ("index.html", "event_average.png", "event_residuals.png", "where.png", "ranked.png", "spectra.png")
 COMPARE_FILES = ("compare.json", "event_average.png", "spectra.png")
 
 

@@ -47,7 +47,7 @@ def run(args) -> int:
     from backlash_monitor.commands import UsageError
     from backlash_monitor.commands._workbench import (REPORT_FILES, check_outputs, load, print_table,
                                                       write_text_staged)
-    from backlash_monitor.workbench import plant_adapter, report
+    from backlash_monitor.workbench import drive_terms, plant_adapter, report
     from backlash_monitor.workbench.analysis import ConditionsError
     from backlash_monitor.commands._workbench import history_dir, model_overrides
     from backlash_monitor.workbench.diagnose import diagnose
@@ -74,7 +74,7 @@ def run(args) -> int:
     pub = result.to_json()
     write_text_staged(json_path, json.dumps(pub, indent=1, default=float))
     if args.report:
-        page = report.write_report(result, args.report)
+        page = report.write_report(result, args.report, json_path=json_path)
         print(f"report: {page}")
     if not args.no_history:
         where = record_check(model, meas.source, "diagnose", pub["fit_percent"]["before"],
@@ -85,13 +85,16 @@ def run(args) -> int:
     for r in pub["ranked"]:
         unc = r.get("uncertainty") or {}
         vals = ", ".join(f"{k}={v:.4g}" + (f"±{unc[k]:.2g}" if k in unc else "") for k, v in r["parameters"].items())
-        rows.append((r["effect"], vals, "-" if r["delta_ic"] is None else f"{r['delta_ic']:.1f}",
+        rows.append((r["effect"], vals, "screened" if r["delta_ic"] is None else f"{r['delta_ic']:.1f}",
                      f"{r['explained_fraction']:.0%}"))
     print_table(rows, ("effect", "fitted", "delta IC", "explained"))
     fp = pub["fit_percent"]
     print("fit %: " + ", ".join(f"{s} {fp['before'][s]:.1f} -> {fp['after'][s]:.1f} (band {fp['noise_band_median'][s]:.1f})"
                                 for s in ("a1", "a2")))
     print(f"verdict: {pub['verdict']}: {pub['message']}")
+    print()
+    for line in drive_terms.summary_lines(pub, model):
+        print(line)
     if pub["additions"]:
         print("for the next model version (add-effect " + str(json_path) + "): " + ", ".join(
             f"{a['candidate']} ({a['role']})" for a in pub["additions"]))

@@ -573,6 +573,7 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
                   else run.before)
     report_dict = report.diagnosis_report(run, up, v, ripple_fit, spec, overall_before, _identifiability(run))
     report_dict["input_saturation"] = saturation
+    report_dict["near_ties"] = _near_ties(run, discovery)
     conditions = Conditions(run.meas.source, run.model.label(),
                             str(run.model.path) if run.model.path else None, dict(run.model.nominal),
                             dict(run.overrides), [str(f) for f in run.model.effect_files],
@@ -591,6 +592,24 @@ def saturated_first(message: str, saturation: dict) -> str:
     railed = any("at its rail" in m for m in saturation["messages"])
     what = "the recording is saturated" if railed else "a sensor of the recording is stuck"
     return f"{what}: {'; '.join(saturation['messages'])}; what follows is read off those samples: {message}"
+
+
+def _near_ties(run: Run, discovery) -> list:
+    """Fitted candidates that the decision told apart from the discovery, but only just: they explain at least
+    MIN_EXPLAINED of the residual and trail it by less than DELTA_IC_DECISIVE; each with the measurement that would
+    separate them (separation.py)."""
+    if discovery is None:
+        return []
+    out = []
+    for f in run.fits:
+        if (f is discovery or f.effect == discovery.effect or f.effect in discovery.indistinguishable_from
+                or f.explained_fraction < MIN_EXPLAINED or f.delta_ic - discovery.delta_ic >= DELTA_IC_DECISIVE):
+            continue
+        out.append({"effect": f.effect.split("[")[0], "candidate": f.effect, "description": f.description,
+                    "explained_fraction": float(f.explained_fraction), "delta_ic": float(f.delta_ic),
+                    "ic_behind": float(f.delta_ic - discovery.delta_ic),
+                    "separating_measurement": _separating_measurement(discovery, f, run.model.catalogue)})
+    return out
 
 
 def _ranked(run: Run, discovery) -> list:

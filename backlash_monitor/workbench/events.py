@@ -208,3 +208,15 @@ def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = 
                          "its backlash under these conditions")
     records = {s: runs[s][0] for s in runs} if keep_records else None
     return Ensemble(means, counts, per_event, records, per_entries, bands, dc, per_dc)
+
+
+def concat_ensembles(parts: list) -> Ensemble:
+    """One ensemble of the sets of ``parts`` (ensembles of the same seeds from ensemble_from_runs, in order): the
+    per-event fields of set 0 from the first part."""
+    if len(parts) == 1:
+        return parts[0]
+    first = parts[0]
+    return Ensemble(np.concatenate([p.seed_means for p in parts], axis=0),
+                    np.concatenate([p.n_events for p in parts], axis=0), first.per_event, first.raw_records,
+                    first.per_event_entries, [b for p in parts for b in p.seed_bands],
+                    np.concatenate([p.seed_dc for p in parts], axis=0), first.per_event_dc)

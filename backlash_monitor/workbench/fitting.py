@@ -25,11 +25,17 @@ import numpy as np
 from scipy.optimize import least_squares, lsq_linear
 
 from . import plant_adapter, spectral
-from .events import denoise, ensemble_from_runs
+from .events import concat_ensembles, denoise, ensemble_from_runs
 
 
 LINEAR_EFFECTS = ("accelerometer_bias", "accelerometer_gain")   # a -> a + b, a -> a (1 + g)
 AT_BOUND_FRACTION = 0.01     # of the fit range: a fitted value this close to a bound is 'pinned'
+# The simulation batches' memory (Problem.evaluate): a diagnose screens ~50 parameter sets x 6 seeds; simulated in
+# one batch their whole records at 50 kHz (4 recorded signals, the motor's load and supply arrays) made a 4 s
+# recording's diagnose peak at 3.7 GB. Batches of BATCH_BYTES bound it; a batch of a few sets still runs the
+# simulator's scenarios together (its per-batch cost is small against the 200k samples of each scenario)
+BATCH_BYTES = 160e6
+BATCH_ARRAYS_PER_SCENARIO = 10   # whole-record float64 arrays per scenario: 4 outputs, load, 2 supply, phase, copies
 
 
 @dataclass
@@ -122,12 +128,25 @@ class Problem:
         return out
 
     def evaluate(self, sets):
-        """Ensemble (denoised model means per set) of (scenario, config) override sets, one batch."""
-        runs = plant_adapter.simulate_sets(self.model, self._merge(sets), self.seeds, self.n_samples,
-                                           conditions=self.conditions)
+        """Ensemble (denoised model means per set) of (scenario, config) override sets, in batches of at most
+        sets_per_batch sets: each batch's whole records are reduced to its events before the next is simulated
+        (the same seeds in every batch: common random numbers hold across them)."""
+        merged = self._merge(sets)
+        per = self.sets_per_batch()
+        parts = []
+        for i in range(0, len(merged), per):
+            runs = plant_adapter.simulate_sets(self.model, merged[i:i + per], self.seeds, self.n_samples,
+                                               conditions=self.conditions)
+            parts.append(ensemble_from_runs(runs, self.dt, dc_names=self.dc_names))
+            del runs
         self.n_sets_simulated += len(sets)
-        ens = ensemble_from_runs(runs, self.dt, dc_names=self.dc_names)
-        return ens
+        return concat_ensembles(parts)
+
+    def sets_per_batch(self) -> int:
+        """Parameter sets simulated in one batch: as many as fit BATCH_BYTES of whole-record samples (every seed,
+        BATCH_SIGNALS signals and the simulator's working arrays, float64), at least one."""
+        per_set = 8 * BATCH_ARRAYS_PER_SCENARIO * max(self.n_seeds, 1) * max(self.n_samples, 1)
+        return max(1, int(BATCH_BYTES // per_set))
 
     def pred(self, mean_denoised, spec, dc) -> np.ndarray:
         return np.concatenate([(mean_denoised * self.w).ravel(), np.asarray(spec) * self.ws,

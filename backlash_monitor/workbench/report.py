@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import html
 import json
+import os
 import time
 from pathlib import Path
 
@@ -161,22 +162,66 @@ def plot_where(where_before, where_after, path) -> Path:
 
 
 def plot_ranked(ranked, path) -> Path:
+    """The candidates' ΔIC (fitted ones) and explained share (all), one row per candidate: the figure grows with
+    the rows so that their labels never overlap."""
     plt = _plt()
     fitted = [r for r in ranked if r.get("delta_ic") is not None]
     screened = [r for r in ranked if r.get("delta_ic") is None]
-    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
-    names = [r["effect"] for r in fitted]
-    axes[0].barh(names, [r["delta_ic"] for r in fitted], color="tab:purple")
-    axes[0].axvline(-2, color="k", ls="--", lw=0.8)
-    axes[0].set_xlabel("delta IC (BIC on events; < -2 positive)")
-    axes[0].invert_yaxis()
     allr = fitted + screened
-    axes[1].barh([r["effect"] for r in allr], [r["explained_fraction"] for r in allr],
+    height = max(3.0, 0.24 * len(allr) + 1.4)
+    fig, axes = plt.subplots(1, 2, figsize=(11, height), gridspec_kw={"width_ratios": (1, 1)})
+    names = [r.get("candidate", r["effect"]) for r in allr]
+    y = np.arange(len(allr))
+    axes[0].barh(y[:len(fitted)], [r["delta_ic"] for r in fitted], color="tab:purple")
+    axes[0].axvline(-2, color="k", ls="--", lw=0.8)
+    axes[0].set_xlabel("ΔIC (BIC on the events; < -2 positive evidence)")
+    axes[1].barh(y, [r["explained_fraction"] for r in allr],
                  color=["tab:purple"] * len(fitted) + ["tab:gray"] * len(screened))
-    axes[1].set_xlabel("share of the residual explained")
-    axes[1].set_xlim(min(0, min(r["explained_fraction"] for r in allr)), 1)
-    axes[1].invert_yaxis()
+    axes[1].set_xlabel("share of the residual explained (purple: fitted, grey: screened)")
+    axes[1].set_xlim(min(0, min((r["explained_fraction"] for r in allr), default=0)), 1)
+    for ax in axes:
+        ax.set_yticks(y)
+        ax.set_ylim(len(allr) - 0.5, -0.5)
+        ax.tick_params(axis="y", labelsize=8)
+    axes[0].set_yticklabels(names)
+    axes[1].set_yticklabels([])
     return _save(plt, fig, path)
+
+
+def event_residuals(comp, model_mean=None) -> tuple[np.ndarray, list]:
+    """Per onset event: the rms of its denoised segment minus the model's mean, in noise floors, per signal;
+    (E, 2) for the recording and, per seed of the model's own ensemble, the same (E_k, 2) (the band a correct
+    model's events fill)."""
+    from .events import denoise
+    m = comp.model_mean if model_mean is None else model_mean
+    w = comp.weights[None, :, None]
+
+    def per_event(raw):
+        return np.sqrt(np.mean(((denoise(raw) - m[None]) * w) ** 2, axis=-1))
+    return per_event(comp.events.raw), [per_event(p) for p in comp.ensemble.per_event if len(p)]
+
+
+def plot_event_residuals(comp, path, after_mean=None) -> Path:
+    """Each onset event's residual against the model (rms over its segment, in noise floors), per signal, with the
+    model's own events' range: an effect that is missing shows in every event, a single bad event stands alone."""
+    plt = _plt()
+    meas, band = event_residuals(comp)
+    after = event_residuals(comp, after_mean)[0] if after_mean is not None else None
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6), sharey=False)
+    k = np.arange(1, len(meas) + 1)
+    for i, s in enumerate(SEGMENT_SIGNALS):
+        ax = axes[i]
+        if band:
+            vals = np.concatenate([b[:, i] for b in band])
+            ax.axhspan(vals.min(), vals.max(), color="tab:blue", alpha=0.2, label="model's own events (min..max)")
+        ax.plot(k, meas[:, i], "o-", color="k", ms=4, lw=0.8, label="before")
+        if after is not None:
+            ax.plot(k, after[:, i], "s-", color="tab:green", ms=4, lw=0.8, label="with the effect")
+        ax.set_xlabel("onset event")
+        ax.set_ylabel(f"{s}: rms residual / noise floor")
+        ax.set_title(s)
+        ax.legend(fontsize=7)
+    return _save(plt, fig, path, "per-event residual (each event against the model's mean)")
 
 
 def _table(rows, header) -> str:
@@ -186,17 +231,49 @@ def _table(rows, header) -> str:
     return "\n".join(out + ["</table>"])
 
 
-def write_report(diagnosis, directory) -> Path:
+def _header(result: dict, comp) -> list[str]:
+    """The report's header: date, tool version, drive, model, nominal conditions and units."""
+    import datetime
+
+    from backlash_monitor import __version__
+    cond = result.get("conditions") or {}
+    nom = cond.get("nominal") or {}
+    timing = cond.get("timing") or {}
+    rows = [("date", datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")),
+            ("tool", f"backlash_monitor {__version__} (diagnose)"),
+            ("drive (recording)", str(result["measurement"])),
+            ("model", str(result["model"]) + (f" ({result['model_file']})" if result.get("model_file") else "")),
+            ("nominal conditions", f"backlash width {nom.get('width_m', float('nan')) * 1e3:.2f} mm, absorber "
+                                   f"consistency eta_k {nom.get('eta_k', float('nan')):.4g} Pa·s^n, flow index n1 "
+                                   f"{nom.get('n1', float('nan')):.3g}"),
+            ("recording", f"{result['events']} onset events, {comp.meas.n_samples * comp.meas.sample_period_s:.1f} s "
+                          f"at {1 / comp.meas.sample_period_s / 1e3:.0f} kHz; pulse train from "
+                          + ", ".join(f"{k} = {v:.4g} s" for k, v in timing.items())),
+            ("units", "accelerations a1, a2 in m/s²; widths in mm; residuals in noise floors (1 = as close as the "
+                      "model's own runs); n1, gains and relative changes have no unit")]
+    return ["<table class='hdr'>" + "".join(f"<tr><th>{html.escape(k)}</th><td>{html.escape(v)}</td></tr>"
+                                            for k, v in rows) + "</table>"]
+
+
+def write_report(diagnosis, directory, json_path=None) -> Path:
     """index.html + PNGs in ``directory`` (created). ``diagnosis``: a diagnosis.Diagnosis (its comparison and the
-    model mean after the update draw the figures; its JSON the tables)."""
+    model mean after the update draw the figures; its JSON the tables); ``json_path``: the diagnosis JSON the page
+    links (written beside the page as diagnosis.json when not given)."""
+    from . import drive_terms
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     result = diagnosis.to_json()
     comp = diagnosis.comparison
     after = diagnosis.model_mean_after
+    model = comp.model
+    if json_path is None:
+        json_path = d / "diagnosis.json"
+        json_path.write_text(json.dumps(result, indent=1, default=float))
+    json_href = Path(os.path.relpath(Path(json_path).resolve(), d.resolve())).as_posix()
     spec = analysis.spectra(comp)
     imgs = [("Measurement vs model per signal (before/after)",
              plot_event_average(comp, d / "event_average.png", after)),
+            ("Residual per onset event", plot_event_residuals(comp, d / "event_residuals.png", after)),
             ("Residual per phase and wavelet level", plot_where(result["where"], result.get("where_after"),
                                                                 d / "where.png")),
             ("Ranked candidate effects", plot_ranked(result["ranked"], d / "ranked.png")),
@@ -205,36 +282,45 @@ def write_report(diagnosis, directory) -> Path:
     rr = result["residual_over_noise_floor"]
     fit_rows = [(s, f"{fp['before'][s]:.1f}", f"{fp['after'][s]:.1f}", f"{fp['noise_band_median'][s]:.1f}",
                  f"{rr['before'][s]:.2f}", f"{rr['after'][s]:.2f}") for s in SEGMENT_SIGNALS]
+    disc = result.get("discovery_parameters") or {}
+    ties = {t["candidate"]: t for t in result.get("near_ties") or []}
     rank_rows = []
     for r in result["ranked"]:
-        unc = r.get("uncertainty") or {}
-        vals = ", ".join(f"{k} = {v:.4g}" + (f" ± {unc[k]:.2g}" if k in unc else "")
-                         for k, v in r["parameters"].items())
-        rank_rows.append((r["effect"], vals, "-" if r["delta_ic"] is None else f"{r['delta_ic']:.1f}",
-                          f"{r['explained_fraction']:.0%}", ", ".join(r.get("indistinguishable_from", [])) or "-"))
-    body = [f"<h1>Diagnosis: {html.escape(result['model'])} against {html.escape(str(result['measurement']))}</h1>",
-            f"<p class='msg'><b>{html.escape(result['verdict'].replace('_', ' '))}</b>: "
-            f"{html.escape(result['message'])}</p>",
-            f"<p>{result['events']} onset events; ensemble of {len(result['seeds'])} noise seeds; "
-            f"{result['simulated_parameter_sets']} simulated parameter sets in {result['seconds']:.1f} s.</p>",
-            "<h2>Fit</h2>", _table(fit_rows, ("signal", "fit % before", "fit % after", "fit % noise band",
-                                               "residual/noise before", "residual/noise after")),
-            "<h2>Candidates</h2>", _table(rank_rows, ("effect", "fitted values", "delta IC", "explained",
-                                                      "indistinguishable from"))]
-    views = result["consistency"]["before"]["views"]
-    after_views = result["consistency"]["after"]["views"]
-    body += ["<h2>Consistency per view (T² with the model-form tolerance, against its 1 % limit)</h2>",
-             _table([(n.replace("_", " "), v["dimension"], f"{v['T2']:.1f}", f"{after_views[n]['T2']:.1f}",
-                      f"{v['T2_limit_p01']:.1f}", f"{v['T2_without_tolerance']:.1f}")
-                     for n, v in views.items()],
-                    ("view", "dimension", "T² before", "T² after", "limit", "T² before, no tolerance"))]
+        cand = r.get("candidate", r["effect"])
+        if cand in (disc.get("indistinguishable_from") or []):
+            tie = "indistinguishable from " + disc["effect"]
+        elif cand in ties:
+            tie = f"near-tie: {ties[cand]['ic_behind']:.1f} IC behind {disc['effect']}"
+        elif cand == disc.get("candidate"):
+            tie = "the discovery"
+        else:
+            tie = ""
+        values = "; ".join(drive_terms.parameter_lines(r, model)) or ", ".join(
+            f"{k} = {v:.4g}" for k, v in r["parameters"].items())
+        rank_rows.append((cand, r.get("description") or "", values,
+                          "screened only" if r["delta_ic"] is None else f"{r['delta_ic']:.1f}",
+                          f"{r['explained_fraction']:.0%}", tie))
+    summary = "".join(f"<li style='margin-left:{(len(line) - len(line.lstrip())) * 0.6:.1f}em'>"
+                      f"{html.escape(line.strip())}</li>" for line in drive_terms.summary_lines(result, model)[1:]
+                      if line not in (drive_terms.DELTA_IC_LINE, drive_terms.T2_LINE, drive_terms.UNITLESS_LINE))
+    body = [f"<h1>Diagnosis of {html.escape(str(result['measurement']))}</h1>"]
+    body += _header(result, comp)
+    body += ["<h2>Summary</h2>",
+             f"<p class='msg'><b>{html.escape(result['verdict'].replace('_', ' '))}</b>: "
+             f"{html.escape(result['message'])}</p>", f"<ul>{summary}</ul>",
+             f"<p>The whole diagnosis as data: <a href='{html.escape(json_href)}'>{html.escape(json_href)}</a> "
+             f"(JSON). {result['events']} onset events; ensemble of {len(result['seeds'])} noise seeds; "
+             f"{result['simulated_parameter_sets']} simulated parameter sets in {result['seconds']:.1f} s.</p>",
+             "<p class='legend'>" + html.escape(drive_terms.DELTA_IC_LINE) + "<br>" + html.escape(drive_terms.T2_LINE)
+             + "</p>"]
+    for title, p in imgs:
+        body.append(f"<h2>{html.escape(title)}</h2><img src='{p.name}' alt='{html.escape(title)}'>")
+    body += ["<h2>Fit</h2>", _table(fit_rows, ("signal", "fit % before", "fit % after", "fit % noise band",
+                                               "residual/noise before", "residual/noise after"))]
     if result["additions"]:
         body += ["<h2>For the next model version (add-effect)</h2>",
                  _table([(a["candidate"], a["role"], ", ".join(f"{k} = {v:.4g}" for k, v in a["parameters"].items()),
                           a["evidence"]) for a in result["additions"]], ("effect", "role", "values", "evidence"))]
-    mw = result["measured_width"]
-    body.append(f"<p>Backlash width shown by the recording: {mw['width_m'] * 1e3:.3f} ± "
-                f"{mw['uncertainty_m'] * 1e3:.3f} mm (model nominal {mw['nominal_width_m'] * 1e3:.3f} mm).</p>")
     sd = result.get("spectral_discovery")
     if sd and sd.get("parameters"):
         p, u = sd["parameters"], sd["uncertainty"]
@@ -243,20 +329,24 @@ def write_report(diagnosis, directory) -> Path:
                  f"order {p['order']:.2f} ± {u['order']:.2f} (line at {sd['line_hz']:.1f} Hz, rotation "
                  f"{sd['rotation_hz']:.2f} Hz); explains {sd['explained_fraction']:.0%} of the line's excess power; "
                  f"{'confident' if sd['confident'] else 'not confident'}; phase not identifiable from a spectrum. "
-                 "The event average cannot show it (not locked to the events): see the spectra below.</p>"]
+                 "The event average cannot show it (not locked to the events): see the spectra above.</p>"]
+    body += ["<h2>Candidates</h2>", _table(rank_rows, ("effect", "what it is", "fitted (model's value → fitted)",
+                                                      "ΔIC", "explained", "tie"))]
+    views = result["consistency"]["before"]["views"]
+    after_views = result["consistency"]["after"]["views"]
+    body += ["<h2>Consistency per view (T² with the model-form tolerance, against its 1 % limit)</h2>",
+             _table([(n.replace("_", " "), v["dimension"], f"{v['T2']:.1f}", f"{after_views[n]['T2']:.1f}",
+                      f"{v['T2_limit_p01']:.1f}", f"{v['T2_without_tolerance']:.1f}")
+                     for n, v in views.items()],
+                    ("view", "dimension", "T² before", "T² after", "limit", "T² before, no tolerance"))]
     if result.get("not_identifiable"):
         body.append("<h2>Not identifiable from this recording</h2><p>Over their whole fit range these effects move "
                     "the event average by less than the noise floor (linearised): "
                     + html.escape(", ".join(result["not_identifiable"])) + ".</p>")
-    for title, p in imgs:
-        body.append(f"<h2>{html.escape(title)}</h2><img src='{p.name}' alt='{html.escape(title)}'>")
-    body.append("<h2>JSON</h2><pre>" + html.escape(json.dumps(
-        {k: v for k, v in result.items() if k in ("where", "whiteness", "input_correlation", "spectral_peaks",
-                                                   "spectral_discovery")},
-        indent=1, default=float)[:20000]) + "</pre>")
     page = ("<!DOCTYPE html><html><head><meta charset='utf-8'><title>backlash_monitor diagnosis</title>"
             "<style>body{font-family:sans-serif;margin:2em;max-width:1100px}table{border-collapse:collapse}"
-            "td,th{border:1px solid #999;padding:3px 8px}img{max-width:100%;border:1px solid #ccc}"
+            "td,th{border:1px solid #999;padding:3px 8px;text-align:left;vertical-align:top}"
+            "img{max-width:100%;border:1px solid #ccc}.hdr th{background:#f4f4f4}.legend{font-size:0.9em;color:#444}"
             ".msg{font-size:1.2em;background:#eef;padding:8px}</style></head><body>"
             + "\n".join(body) + "</body></html>")
     out = d / "index.html"

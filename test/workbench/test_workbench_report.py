@@ -1,5 +1,7 @@
 """The diagnosis report renders in a real headless browser (Debian's chromium; `make chromium` installs it):
-the screenshot is not blank and every <img> loaded (naturalWidth > 0)."""
+the screenshot is not blank and every <img> loaded (naturalWidth > 0). The page opens with its header (date, tool
+version, drive, nominal conditions, units) and the summary, then the figures (the per-event residual among them)
+before any table, and links the diagnosis JSON instead of printing it."""
 import shutil
 import subprocess
 
@@ -36,13 +38,34 @@ def report_dir(tmp_path_factory):
     return page
 
 
+def test_report_opens_with_header_summary_and_figures(report_dir):
+    import json
+
+    from backlash_monitor import __version__
+    html = report_dir.read_text()
+    for label in ("date", "tool", "drive (recording)", "model", "nominal conditions", "units"):
+        assert f"<th>{label}</th>" in html, label
+    assert f"backlash_monitor {__version__}" in html
+    assert "backlash width 7.50 mm" in html                      # the model's nominal width, in mm
+    assert "m/s²" in html
+    summary, first_img, first_table_after_header = (html.index("<h2>Summary</h2>"), html.index("<img "),
+                                                    html.index("<table>"))
+    assert summary < first_img < first_table_after_header       # summary, then the plots, then the tables
+    assert "event_residuals.png" in html
+    assert "<pre>" not in html                                   # no raw JSON dump
+    assert "href='diagnosis.json'" in html
+    data = json.loads((report_dir.parent / "diagnosis.json").read_text())
+    assert data["verdict"] in html
+    assert "ΔIC:" in html and "T²:" in html                      # the two terms explained
+
+
 @pytest.mark.process
 @pytest.mark.skipif(CHROMIUM is None, reason="chromium missing: run `make chromium` (make test does)")
 def test_report_renders_with_all_images(report_dir, tmp_path):
     html = report_dir.read_text()
     n_img = html.count("<img ")
-    assert n_img >= 4
-    for name in ("event_average.png", "where.png", "ranked.png", "spectra.png"):
+    assert n_img >= 5
+    for name in ("event_average.png", "event_residuals.png", "where.png", "ranked.png", "spectra.png"):
         assert (report_dir.parent / name).stat().st_size > 1000
     probe = report_dir.with_name("probe.html")
     probe.write_text(html.replace("</body>", MARKER_SCRIPT))
