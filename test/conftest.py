@@ -103,22 +103,3 @@ def _order_files_with_slow_tests_first(items) -> None:
     for i, item in enumerate(items):
         first_index.setdefault(item.path, i)
     items.sort(key=lambda item: (-slow_per_file[item.path], first_index[item.path]))
-
-
-# ---- the process tests' machine: idle, or every core kept busy by a CPU hog (issue 34) ----
-
-# A hog that nobody stops still ends after this long [s]: longer than any one process test under
-# load, short enough that a killed pytest leaves no busy loop behind for long.
-HOG_MAX_S = 600.0
-
-
-@pytest.fixture(params=["idle", "hog"])
-def machine_load(request):
-    """'idle', or 'hog': one busy loop per core at normal priority beside the test, killed when
-    the test ends (passed, failed or interrupted)."""
-    if request.param == "idle":
-        yield "idle"
-        return
-    from process_fault_helpers import CpuHog
-    with CpuHog(max_s=HOG_MAX_S):
-        yield "hog"
