@@ -93,8 +93,8 @@ def _drive_defaults(args):
             raise UsageError(f"train --drive {args.drive}: the drive has no model file in {args.registry}; give "
                              "--model M.yaml (e.g. add-effect's new version)")
         args.model = [str(entry.model)]
-    if args.out is None:
-        args.out = str(Path(args.model[0]).with_suffix(".npz"))
+    if args.output is None:
+        args.output = str(Path(args.model[0]).with_suffix(".npz"))
     if args.previous_library is None and entry.library is not None:
         args.previous_library = str(entry.library)
     return entry

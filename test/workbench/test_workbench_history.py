@@ -112,7 +112,7 @@ def test_the_readme_loop_fills_every_history_cell(tmp_path, monkeypatch, capsys)
     (rec,) = sorted((tmp_path / "rec").glob("*.mcap"))
     assert main(["diagnose", str(rec), "--json", "diag.json", "--report", "report"]) == 0
     assert main(["add-effect", "diag.json", "-o", "drive_v2.yaml"]) == 0
-    assert main(["train", "--model", "drive_v2.yaml", "--out", "lib_v2.npz", "--seeds", "1000,1001",
+    assert main(["train", "--model", "drive_v2.yaml", "--output", "lib_v2.npz", "--seeds", "1000,1001",
                  "--no-progress"]) == 0
     assert main(["analyze", str(rec), "--library", "lib_v2.npz", "--out", "after"]) == 0
     capsys.readouterr()
