@@ -121,7 +121,7 @@ def test_train_drive_defaults_and_refusals(reg, tmp_path, capsys):
     args = parser.parse_args(["--drive", "line1/drive02", "--registry", str(reg)])
     entry = train._drive_defaults(args)
     assert entry.hardware_id == "line1/drive02" and args.model == [str(tmp_path / "m" / "drive02_v3.yaml")]
-    assert args.out == str(tmp_path / "m" / "drive02_v3.npz")
+    assert args.output == str(tmp_path / "m" / "drive02_v3.npz")
     assert args.previous_library == str(tmp_path / "m" / "drive02_v3.npz")
     # a drive without a model file needs --model (the version to register)
     assert main(["train", "--drive", "line2/drive01", "--registry", str(reg)]) == 2
