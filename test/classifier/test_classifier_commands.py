@@ -35,7 +35,7 @@ def test_bad_input_exit_2_with_message(args, expected):
 def test_help_explains_every_option(command):
     r = _run(command, "--help")
     assert r.returncode == 0
-    for option in (("--out", "--trigger", "--seeds", "--epochs", "--l1", "--l2", "--ridge", "--duration")
+    for option in (("--output", "--trigger", "--seeds", "--epochs", "--l1", "--l2", "--ridge", "--duration")
                    if command == "train" else ("--out-dir", "--trigger", "--seeds", "--library", "--fusion-events",
                                                "--unseen-seeds", "--no-plots")):
         assert option in r.stdout

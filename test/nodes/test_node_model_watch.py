@@ -170,8 +170,9 @@ def test_the_pipelines_watch_options_are_checked_before_anything_runs(ros_env, a
 
 @pytest.mark.process
 @pytest.mark.parametrize("args,named", [
-    (["--out", "ref.txt"], "--out ref.txt: a reference is an .npz file"),
-    (["--seeds", "3"], "--seeds 3: the cache holds references of 6 seeds"),
+    (["--output", "ref.txt"], "--output ref.txt: a reference is an .npz file"),
+    (["--ensemble", "3"], "--ensemble 3: the cache holds references of 6 seeds"),
+    (["--seeds", "3"], "--ensemble 3: the cache holds references of 6 seeds"),    # the old spelling, one release
     (["--width-m", "-1"], "width"),
 ])
 def test_watch_reference_refuses_bad_input_before_building(tmp_path, args, named):
