@@ -220,7 +220,7 @@ def simulated_bag(tmp_path_factory):
 
 
 def _analyze(bag: Path, out: Path) -> str:
-    from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag
+    from backlash_monitor.offline.bag_analysis import AnalyzeOptions, analyze_bag
 
     analyze_bag(bag, out, AnalyzeOptions())
     return out.with_suffix(".csv").read_text()

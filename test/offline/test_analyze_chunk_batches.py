@@ -12,7 +12,7 @@ pytest.importorskip("backlash_monitor.plant")
 from backlash_monitor import chain  # noqa: E402
 from backlash_monitor.bag import BagReader, BagWriter, faults  # noqa: E402
 from backlash_monitor.bag import reader as reader_module  # noqa: E402
-from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag  # noqa: E402
+from backlash_monitor.offline.bag_analysis import AnalyzeOptions, analyze_bag  # noqa: E402
 
 from bag_helpers import analyze_outputs, write_simulated_drive  # noqa: E402
 
