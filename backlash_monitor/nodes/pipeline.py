@@ -249,7 +249,7 @@ class SignalTally:
     continuous: list = field(default_factory=list)
 
 
-class LiveView:
+class PipelineConsole:
     """Prints one line per onset event as its estimates arrive; keeps tallies for the summary."""
 
     def __init__(self, true_width_m: float, signals: tuple[str, ...],
@@ -451,7 +451,7 @@ def run(args) -> int:
     from backlash_monitor.nodes.parameters import ros_parameter_args
     params = node_parameters(args)
     order = WATCH_ORDER if args.watch else NODE_ORDER
-    view = LiveView(args.width_m, default_signals(args.mode or DEFAULT_MODE))
+    view = PipelineConsole(args.width_m, default_signals(args.mode or DEFAULT_MODE))
     supervisor = None
     exit_code = 0
     interrupted = False
