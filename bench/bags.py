@@ -415,14 +415,15 @@ def damaged_reads(path: Path, tmp: Path) -> dict:
     first damaged record."""
     from mcap.reader import NonSeekingReader, make_reader
 
-    from backlash_monitor.bag import BagReader, faults
+    import bag_damage
+    from backlash_monitor.bag import BagReader
 
     data = path.read_bytes()
     with BagReader(path) as bag:
         total = bag.message_count
         middle = bag.chunks[len(bag.chunks) // 2]
-    cases = {"flipped_byte": faults.chunk_payload_byte(data, middle.offset, middle.length),
-             "cut_in_half": faults.truncate(data, len(data) // 2)}
+    cases = {"flipped_byte": bag_damage.chunk_payload_byte(data, middle.offset, middle.length),
+             "cut_in_half": bag_damage.truncate(data, len(data) // 2)}
     out = {}
     for name, damaged in cases.items():
         bad = tmp / f"damaged_{name}.mcap"

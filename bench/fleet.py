@@ -376,7 +376,7 @@ def main():
                           fleet_model_fit_detected=fit["registry"]["detected"],
                           fleet_model_fit_effect_drives=fit["registry"]["sick"], fleet_model_fit=fit)
         if "two_host" in args.parts:
-            from backlash_monitor.nodes.netns import can_make_namespaces, run_two_hosts
+            from backlash_monitor.ros.netns import can_make_namespaces, run_two_hosts
             reason = can_make_namespaces()
             if reason:
                 result["two_host_estimates_delivered"] = None

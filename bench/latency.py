@@ -25,7 +25,7 @@ import numpy as np
 os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
 os.environ.setdefault("ROS_DOMAIN_ID", str(os.getpid() % 90 + 5))
 
-from backlash_monitor.nodes.fast_dds import configure_fast_dds  # noqa: E402
+from backlash_monitor.ros.fast_dds import configure_fast_dds  # noqa: E402
 
 configure_fast_dds()  # as every node of the project does, before rclpy.init
 
@@ -34,9 +34,9 @@ from ament_index_python.packages import get_package_prefix  # noqa: E402
 from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
 from rclpy.parameter import Parameter  # noqa: E402
 
-from backlash_monitor.nodes.qos import ESTIMATE_QOS  # noqa: E402
-from backlash_monitor.nodes.lean_executor import make_executor  # noqa: E402
-from backlash_monitor.nodes.runtime import freeze_startup_objects  # noqa: E402
+from backlash_monitor.ros.qos import ESTIMATE_QOS  # noqa: E402
+from backlash_monitor.ros.lean_executor import make_executor  # noqa: E402
+from backlash_monitor.ros.runtime import freeze_startup_objects  # noqa: E402
 from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode  # noqa: E402
 from backlash_monitor.windowing import default_window_offset  # noqa: E402
 from backlash_monitor_msgs.msg import BacklashEstimate  # noqa: E402
@@ -87,7 +87,7 @@ def run_graph(duration_s, rate_factor, chunk=None, stages=None, one_process=Fals
         discarded = [0]
         arrivals = {"window": {}, "denoised": {}}
         if stages is not None:
-            from backlash_monitor.nodes.qos import WINDOW_QOS
+            from backlash_monitor.ros.qos import WINDOW_QOS
             from backlash_monitor_msgs.msg import BacklashWindow
             for key, topic in (("window", "windows/raw"), ("denoised", "windows/denoised")):
                 monitor.create_subscription(
@@ -131,7 +131,7 @@ def run_graph(duration_s, rate_factor, chunk=None, stages=None, one_process=Fals
         executor = make_executor()   # as the project's nodes and the pipeline spin
         executor.add_node(plant)
         executor.add_node(monitor)
-        freeze_startup_objects()     # as the nodes do once built (nodes/runtime.run_nodes)
+        freeze_startup_objects()     # as the nodes do once built (ros/runtime.run_nodes)
         started = time.time()
         # onsets whose window ends inside the run (4 per second), less the first (no sensor offset
         # estimate before one whole load period: not classified) and one of margin

@@ -31,7 +31,7 @@ from backlash_monitor.workbench import analysis                       # noqa: E4
 from backlash_monitor.workbench.diagnose import diagnose, public      # noqa: E402
 from backlash_monitor.workbench.model import load_model               # noqa: E402
 from backlash_monitor.workbench.synthetic import hidden_effect_recording  # noqa: E402
-from backlash_monitor.workbench.diagnosis import MEASURAND_EFFECTS  # noqa: E402
+from backlash_monitor.workbench.diagnosis_result import MEASURAND_EFFECTS  # noqa: E402
 from backlash_monitor.workbench.versions import EffectValues, add_effects  # noqa: E402
 
 DURATION_S = 4.0

@@ -83,7 +83,7 @@ def write_simulated_drive(path):
 
 
 def analyze_outputs(result: dict) -> tuple:
-    """What ``offline.analyze.analyze_bag`` gave that two runs on the same samples must share: its
+    """What ``offline.bag_analysis.analyze_bag`` gave that two runs on the same samples must share: its
     result, its fault counts, the CSV, the estimates MCAP and the JSON, without the run's time and
     the bag's path."""
     import json

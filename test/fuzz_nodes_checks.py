@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 import fuzz_cores as fc
 from backlash_monitor.chain import denoising_label
-from backlash_monitor.nodes.conversions import to_float64_array
+from backlash_monitor.ros.conversions import to_float64_array
 
 
 class Sink:

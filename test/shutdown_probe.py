@@ -43,7 +43,7 @@ import sys
 import rclpy
 from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 
-from backlash_monitor.nodes import runtime
+from backlash_monitor.ros import runtime
 
 signal_thread_ids: list[str] = []
 starve = False

@@ -16,7 +16,7 @@ import argparse
 import math
 
 from backlash_monitor.errors import DeprecatedSpelling, UsageError
-from backlash_monitor.nodes.parameters import ros_parameter_args  # noqa: F401  (re-exported)
+from backlash_monitor.ros.parameters import ros_parameter_args  # noqa: F401  (re-exported)
 
 # parameter name -> the vocabulary's option (the parameter's own spelling is the deprecated one)
 VOCABULARY_FLAGS = {"rate": "--rate-factor", "duration_s": "--duration"}

@@ -94,7 +94,7 @@ def _take_proposal(diag, src, adds, model, output):
     import copy
 
     from backlash_monitor.commands import UsageError
-    from backlash_monitor.workbench.diagnosis import Addition
+    from backlash_monitor.workbench.diagnosis_result import Addition
     prop = diag.get("proposal")
     if not isinstance(prop, dict) or not prop.get("proposed"):
         why = prop.get("reason") if isinstance(prop, dict) else "its verdict is not partial or nothing_explains"
@@ -112,7 +112,7 @@ def _take_proposal(diag, src, adds, model, output):
 def run(args) -> int:
     from backlash_monitor.commands import UsageError
     from backlash_monitor.commands._workbench import check_outputs, load, print_table
-    from backlash_monitor.workbench.diagnosis import ROLE_PARTIAL, read_handoff
+    from backlash_monitor.workbench.diagnosis_result import ROLE_PARTIAL, read_handoff
     from backlash_monitor.workbench.model import append_history
     from backlash_monitor.workbench.versions import EffectValues, add_effects
     from backlash_monitor.commands._workbench import apply_drive

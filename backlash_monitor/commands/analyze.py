@@ -19,7 +19,7 @@ inside the bag is dropped and counted as the live chain counts it ("input_faults
 docs/windowing.md "Input faults"): a sample period that is not a positive number, signals' chunks
 of unequal length, non-finite samples, accelerometer samples outside the sensor's declared range.
 
-This module parses and prints; the analysis is backlash_monitor/offline/analyze.py.
+This module parses and prints; the analysis is backlash_monitor/offline/bag_analysis.py.
 """
 from __future__ import annotations
 
@@ -28,8 +28,8 @@ import sys
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from backlash_monitor.fleet.analyze import FleetOptions
-    from backlash_monitor.offline.analyze import AnalyzeOptions
+    from backlash_monitor.fleet.folder_analysis import FleetOptions
+    from backlash_monitor.offline.bag_analysis import AnalyzeOptions
 
 NAME = "analyze"
 HELP = "run the chain offline on an MCAP bag: estimates to CSV, JSON and MCAP"
@@ -39,7 +39,7 @@ DESCRIPTION = __doc__
 def add_arguments(parser) -> None:
     parser.add_argument("bag", help="MCAP file recorded from a drive (or by `simulate --mcap`); "
                                     "a folder or a quoted glob of them: every bag in parallel, "
-                                    "into one fleet table (backlash_monitor/fleet/analyze.py)")
+                                    "into one fleet table (backlash_monitor/fleet/folder_analysis.py)")
     parser.add_argument("--out", default="", metavar="PREFIX",
                         help="one bag: the output prefix, writes PREFIX.csv, PREFIX.json, PREFIX.mcap (default: "
                              "the bag's path without .mcap, plus '.estimates')")
@@ -75,8 +75,8 @@ def add_arguments(parser) -> None:
 
 
 def _add_many_arguments(parser) -> None:
-    """The options of the many-bag path (added to `analyze`'s; backlash_monitor/fleet/analyze.py)."""
-    from backlash_monitor.fleet.analyze import ENGINES
+    """The options of the many-bag path (added to `analyze`'s; backlash_monitor/fleet/folder_analysis.py)."""
+    from backlash_monitor.fleet.folder_analysis import ENGINES
     group = parser.add_argument_group("many recordings (BAG is a folder or a quoted glob)")
     group.add_argument("--out-dir", default="", metavar="DIR",
                        help="folder for the fleet table, trend plots and each bag's estimates, created if missing "
@@ -109,7 +109,7 @@ def _add_many_arguments(parser) -> None:
 
 def options_from_args(args) -> AnalyzeOptions:
     """The analysis options of a parsed `analyze` command line."""
-    from backlash_monitor.offline.analyze import AnalyzeOptions
+    from backlash_monitor.offline.bag_analysis import AnalyzeOptions
     return AnalyzeOptions(namespace=args.namespace, trigger=args.trigger, width_m=args.width_m,
                           window_offset_samples=args.window_offset, angle_source=args.angle_source,
                           mode=args.mode, n1=args.n1, library=args.library,
@@ -120,7 +120,7 @@ def options_from_args(args) -> AnalyzeOptions:
 def fleet_options_from_args(args) -> FleetOptions:
     """The many-bag options of a parsed `analyze FOLDER` command line (a FleetOptions, its model
     fit's WatchOptions among them)."""
-    from backlash_monitor.fleet.analyze import FleetOptions, WatchOptions
+    from backlash_monitor.fleet.folder_analysis import FleetOptions, WatchOptions
     if args.out and not args.out_dir:     # the release before named the folder --out
         print("python -m backlash_monitor analyze: warning: --out for a folder of bags is deprecated and will "
               "be removed in the next release; use --out-dir", file=sys.stderr)
@@ -148,7 +148,7 @@ def registry_drives(args) -> tuple:
 def run(args) -> int:
     # the analysis (numpy) is imported here, not with the command's arguments: a many-bag run limits the
     # threads of its forked workers' pools first (they inherit this process's, set when numpy is imported)
-    from backlash_monitor.fleet.analyze import is_many, limit_threads, run_many, runs_parallel_here
+    from backlash_monitor.fleet.folder_analysis import is_many, limit_threads, run_many, runs_parallel_here
     if is_many(args.bag):
         fleet = fleet_options_from_args(args)
         if runs_parallel_here(fleet):
@@ -158,7 +158,7 @@ def run(args) -> int:
         from backlash_monitor.errors import UsageError
         raise UsageError(f"--out-dir {args.out_dir}: is for a folder of bags; one bag's outputs are named by "
                          "--out PREFIX")
-    from backlash_monitor.offline.analyze import analyze_bag
+    from backlash_monitor.offline.bag_analysis import analyze_bag
     result = analyze_bag(args.bag, args.out, options_from_args(args))
     _print_summary(result["summary"], result["rows"], result["discarded"], result["n_samples"],
                    result["seconds"], result["outputs"])

@@ -3,7 +3,7 @@
 :func:`config_file` is the one resource locator for the packaged config files (config/*.yaml):
 the windowing, plant and trend loaders find their defaults through it. YAML errors and unknown
 keys are reported by :func:`yaml_error_line` and :func:`nearest` (the YAML loaders:
-windowing/config.py, nodes/params_file.py). No rclpy.
+windowing/config.py, ros/params_file.py). No rclpy.
 """
 from __future__ import annotations
 

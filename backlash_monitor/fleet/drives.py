@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from backlash_monitor.errors import UsageError
 
 # Per-drive keys and the nodes they go to. The values are checked by the nodes themselves (their
-# declared ranges, nodes/parameters.py); a bad one stops that drive with one clear line.
+# declared ranges, ros/parameters.py); a bad one stops that drive with one clear line.
 PLANT_KEYS = ("width_m", "eta_k", "n1", "seed", "noise")
 CLASSIFIER_KEYS = ("mode", "n1", "trigger", "fusion_events", "warn_width_m", "error_width_m")
 WINDOWING_KEYS = ("trigger",)

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import sys
 
-from backlash_monitor.nodes.runtime import run_nodes
+from backlash_monitor.ros.runtime import run_nodes
 
 
 def main(args=None) -> int:

@@ -40,7 +40,7 @@ class ChunkListener(Node):
 
 
 def main(args=None):
-    from backlash_monitor.nodes.runtime import run_node
+    from backlash_monitor.ros.runtime import run_node
     built = []
 
     def build():

@@ -55,7 +55,7 @@ class ChunkTalker(Node):
 
 
 def main(args=None):
-    from backlash_monitor.nodes.runtime import run_node
+    from backlash_monitor.ros.runtime import run_node
 
     def spin(node, executor):
         while rclpy.ok() and not node.done:

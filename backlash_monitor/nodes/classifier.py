@@ -38,13 +38,13 @@ from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_wa
 from backlash_monitor.fleet.caveat import width_text, with_caveat
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
-from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
-from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
-from backlash_monitor.nodes.model_fit_caveat import follow_model_fit
-from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
+from backlash_monitor.ros.conversions import from_float64_field, to_float64_array
+from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
+from backlash_monitor.ros.model_fit_caveat import follow_model_fit
+from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
-from backlash_monitor.nodes.qos import ESTIMATE_QOS, WINDOW_QOS
-from backlash_monitor.nodes.runtime import run_node
+from backlash_monitor.ros.qos import ESTIMATE_QOS, WINDOW_QOS
+from backlash_monitor.ros.runtime import run_node
 from backlash_monitor.classifier.repeats import RepeatedWindows
 from backlash_monitor.windowing import default_window_offset
 from backlash_monitor_msgs.msg import BacklashEstimate, BacklashWindow

@@ -18,13 +18,13 @@ from rclpy.node import Node
 
 from backlash_monitor.chain import denoise_checked, denoising_label
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
-from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
+from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.denoise import DEFAULT_MODE
-from backlash_monitor.nodes.conversions import from_float64_field, to_float64_array
-from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
+from backlash_monitor.ros.conversions import from_float64_field, to_float64_array
+from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
-from backlash_monitor.nodes.qos import WINDOW_QOS
-from backlash_monitor.nodes.runtime import run_node
+from backlash_monitor.ros.qos import WINDOW_QOS
+from backlash_monitor.ros.runtime import run_node
 from backlash_monitor_msgs.msg import BacklashWindow
 
 PARAMETERS = (

@@ -208,7 +208,7 @@ class FleetMonitor:
     def __init__(self, node, drives, aggregator_config: dict, rate_factor: float):
         from diagnostic_msgs.msg import DiagnosticArray
         from backlash_monitor.fleet.aggregator import AggregatorView
-        from backlash_monitor.nodes.qos import DIAGNOSTICS_DEPTH, ESTIMATE_QOS
+        from backlash_monitor.ros.qos import DIAGNOSTICS_DEPTH, ESTIMATE_QOS
         from backlash_monitor_msgs.msg import BacklashEstimate
         self.rate_factor = rate_factor
         self.view = AggregatorView(aggregator_config, now_s=time.monotonic())
@@ -358,7 +358,7 @@ def run_one_drive(args) -> int:
     """A drive's own process (layout 'process'): its managed chain and plant on one executor."""
     from backlash_monitor.fleet.drives import Drive
     from backlash_monitor.nodes.lifecycle import spin_until_shutdown
-    from backlash_monitor.nodes.runtime import run_nodes
+    from backlash_monitor.ros.runtime import run_nodes
     drive = Drive.from_dict(json.loads(args.drive_json))
     managed = []
 
@@ -391,10 +391,10 @@ def run(args) -> int:
     ensure_references(drives)
     import rclpy
     from rclpy.executors import ExternalShutdownException
-    from backlash_monitor.nodes.fast_dds import configure_fast_dds
-    from backlash_monitor.nodes.lean_executor import make_executor
-    from backlash_monitor.nodes.parameters import ParameterValueError
-    from backlash_monitor.nodes.runtime import (begin_shutdown, freeze_startup_objects,
+    from backlash_monitor.ros.fast_dds import configure_fast_dds
+    from backlash_monitor.ros.lean_executor import make_executor
+    from backlash_monitor.ros.parameters import ParameterValueError
+    from backlash_monitor.ros.runtime import (begin_shutdown, freeze_startup_objects,
                                                is_shutdown_error, release_nodes)
     configure_fast_dds()   # before rclpy.init; the drives' processes inherit it
     expected_chunks = int(round(args.duration / CHUNK_S))
@@ -494,7 +494,7 @@ def run(args) -> int:
 
 def main(argv=None) -> int:
     """`ros2 run backlash_monitor fleet [options]` (ROS arguments are passed through)."""
-    from backlash_monitor.nodes.runtime import command_main
+    from backlash_monitor.ros.runtime import command_main
     return command_main("fleet", __doc__, add_arguments, run, argv)
 
 

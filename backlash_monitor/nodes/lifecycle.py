@@ -24,7 +24,7 @@ import sys
 
 from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 
-from backlash_monitor.nodes.parameters import ParameterValueError
+from backlash_monitor.ros.parameters import ParameterValueError
 
 
 class ManagedNodes(LifecycleNode):
@@ -123,7 +123,7 @@ def spin_until_shutdown(executor) -> None:
     callback is publishing (the plant publishes a burst of chunks per tick): that publish then
     fails with RCLError, which here is the shutdown, not a fault."""
     import rclpy
-    from backlash_monitor.nodes.runtime import is_shutdown_error
+    from backlash_monitor.ros.runtime import is_shutdown_error
     while rclpy.ok():
         try:
             executor.spin_once(timeout_sec=0.1)
@@ -150,7 +150,7 @@ def run_managed(name: str, factories, args=None) -> int:
     """Spin one ManagedNodes until shut down; ``--activate`` (before --ros-args) configures and
     activates it at start."""
     from rclpy.utilities import remove_ros_args
-    from backlash_monitor.nodes.runtime import run_nodes
+    from backlash_monitor.ros.runtime import run_nodes
     argv = sys.argv if args is None else args
     activate = "--activate" in remove_ros_args(argv)[1:]
     holder = {}

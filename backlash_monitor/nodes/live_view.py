@@ -22,9 +22,9 @@ import time
 
 from rclpy.node import Node
 
-from backlash_monitor.nodes.parameters import ParameterSpec, ParameterValueError, declare_and_validate
-from backlash_monitor.nodes.qos import DIAGNOSTICS_DEPTH, ESTIMATE_QOS, WINDOW_QOS
-from backlash_monitor.nodes.runtime import run_node
+from backlash_monitor.ros.parameters import ParameterSpec, ParameterValueError, declare_and_validate
+from backlash_monitor.ros.qos import DIAGNOSTICS_DEPTH, ESTIMATE_QOS, WINDOW_QOS
+from backlash_monitor.ros.runtime import run_node
 
 PARAMETERS = (
     ParameterSpec("namespaces", ["/line1/drive01"], "the drives' namespaces to serve"),

@@ -34,11 +34,11 @@ from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
-from backlash_monitor.nodes.conversions import to_float64_array
-from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
-from backlash_monitor.nodes.parameters import ParameterSpec, ParameterValueError, declare_and_validate
-from backlash_monitor.nodes.qos import CHUNK_QOS_CHOICES, chunk_qos
-from backlash_monitor.nodes.runtime import run_node
+from backlash_monitor.ros.conversions import to_float64_array
+from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
+from backlash_monitor.ros.parameters import ParameterSpec, ParameterValueError, declare_and_validate
+from backlash_monitor.ros.qos import CHUNK_QOS_CHOICES, chunk_qos
+from backlash_monitor.ros.runtime import run_node
 from backlash_monitor.watch.alarm import load_config
 
 WATCHED = ("a1", "a2", "angle_difference")           # the streams every watch joins; with watch_omega1 also omega1
@@ -294,7 +294,7 @@ class ModelWatchNode(Node):
         return "; ".join(parts)
 
     def to_message(self, u):
-        from backlash_monitor.nodes.conversions import time_from_seconds
+        from backlash_monitor.ros.conversions import time_from_seconds
         from backlash_monitor.workbench.events import SEGMENT_SIGNALS
         ev = u.evaluation
         msg = self.fit_type()

@@ -252,7 +252,7 @@ class SignalTally:
     continuous: list = field(default_factory=list)
 
 
-class LiveView:
+class PipelineConsole:
     """Prints one line per onset event as its estimates arrive; keeps tallies for the summary."""
 
     def __init__(self, true_width_m: float, signals: tuple[str, ...],
@@ -443,18 +443,18 @@ def run(args) -> int:
     from rclpy.parameter import Parameter
     from diagnostic_msgs.msg import DiagnosticArray
     from backlash_monitor_msgs.msg import BacklashEstimate
-    from backlash_monitor.nodes.qos import ESTIMATE_QOS
-    from backlash_monitor.nodes.parameters import ParameterValueError
-    from backlash_monitor.nodes.runtime import begin_shutdown, freeze_startup_objects, release_nodes
+    from backlash_monitor.ros.qos import ESTIMATE_QOS
+    from backlash_monitor.ros.parameters import ParameterValueError
+    from backlash_monitor.ros.runtime import begin_shutdown, freeze_startup_objects, release_nodes
 
     from backlash_monitor.estimation import DEFAULT_MODE, default_signals
-    from backlash_monitor.nodes.fast_dds import configure_fast_dds
-    from backlash_monitor.nodes.lean_executor import make_executor
+    from backlash_monitor.ros.fast_dds import configure_fast_dds
+    from backlash_monitor.ros.lean_executor import make_executor
     configure_fast_dds()  # before rclpy.init; the child processes inherit it
-    from backlash_monitor.nodes.parameters import ros_parameter_args
+    from backlash_monitor.ros.parameters import ros_parameter_args
     params = node_parameters(args)
     order = WATCH_ORDER if args.watch else NODE_ORDER
-    view = LiveView(args.width_m, default_signals(args.mode or DEFAULT_MODE))
+    view = PipelineConsole(args.width_m, default_signals(args.mode or DEFAULT_MODE))
     supervisor = None
     exit_code = 0
     interrupted = False
@@ -561,7 +561,7 @@ def run(args) -> int:
 
 def main(argv=None) -> int:
     """`ros2 run backlash_monitor pipeline [options]` (ROS arguments are passed through)."""
-    from backlash_monitor.nodes.runtime import command_main
+    from backlash_monitor.ros.runtime import command_main
     return command_main("pipeline", __doc__, add_arguments, run, argv)
 
 

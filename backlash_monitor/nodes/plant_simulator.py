@@ -17,10 +17,10 @@ from rclpy.node import Node
 from rclpy.qos import QoSCompatibility, qos_check_compatible
 from std_msgs.msg import Float64
 
-from backlash_monitor.nodes.conversions import SIGNAL_UNITS, stamp_of_sample, to_float64_array
-from backlash_monitor.nodes.parameters import ParameterSpec, declare_and_validate
-from backlash_monitor.nodes.qos import LATCHED, chunk_qos
-from backlash_monitor.nodes.runtime import run_node
+from backlash_monitor.ros.conversions import SIGNAL_UNITS, stamp_of_sample, to_float64_array
+from backlash_monitor.ros.parameters import ParameterSpec, declare_and_validate
+from backlash_monitor.ros.qos import LATCHED, chunk_qos
+from backlash_monitor.ros.runtime import run_node
 from backlash_monitor.plant import Scenario, PlantSimulator, load_plant_config
 from backlash_monitor.plant.integrator import BACKENDS
 from backlash_monitor.process.subscriber_wait import TopicState, fully_qualified, missing, parse_wanted
@@ -119,7 +119,7 @@ class PlantSimulatorNode(Node):
             for _t, _changes, cfg in self.set_at_configs:
                 check_runtime_change(config, cfg)
         except ValueError as error:
-            from backlash_monitor.nodes.parameters import ParameterValueError
+            from backlash_monitor.ros.parameters import ParameterValueError
             raise ParameterValueError(str(error)) from None
         self.sample_period_s = self.simulator.sample_period_s
         qos = chunk_qos(p["qos"])
@@ -136,7 +136,7 @@ class PlantSimulatorNode(Node):
             self.wanted = parse_wanted(p["wait_for_subscribers"], self.get_namespace(),
                                        SIGNAL_UNITS)
         except ValueError as error:
-            from backlash_monitor.nodes.parameters import ParameterValueError
+            from backlash_monitor.ros.parameters import ParameterValueError
             raise ParameterValueError(f"parameter {error}") from None
         self.chunk_qos = qos
         self.wait_started = time.monotonic()

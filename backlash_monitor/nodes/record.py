@@ -33,9 +33,9 @@ from backlash_monitor.bag import BagWriter
 from backlash_monitor.bag.errors import BagError
 from backlash_monitor.bag.writer import INFINITE
 from backlash_monitor.files.outputs import partial_path
-from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
+from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
-from backlash_monitor.nodes.runtime import begin_shutdown, run_node
+from backlash_monitor.ros.runtime import begin_shutdown, run_node
 
 DEFAULT_EXCLUDE = r"^/(rosout|parameter_events)$"
 

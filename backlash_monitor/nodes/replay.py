@@ -28,10 +28,10 @@ from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPo
 
 from backlash_monitor.bag import BagReader
 from backlash_monitor.bag.errors import BagError, DamagedBagError, TruncatedBagError
-from backlash_monitor.nodes.fast_dds import configure_fast_dds
-from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
+from backlash_monitor.ros.fast_dds import configure_fast_dds
+from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
-from backlash_monitor.nodes.runtime import run_node
+from backlash_monitor.ros.runtime import run_node
 from backlash_monitor.nodes.record import message_class
 
 PARAMETERS = (

@@ -1,4 +1,4 @@
-"""The monitor on host A of the two-host run (nodes/netns.py): counts a drive's onset estimates
+"""The monitor on host A of the two-host run (ros/netns.py): counts a drive's onset estimates
 coming back from host B and its windowing's onset windows (from /diagnostics; and those published
 before the sensor offset was known, which are not classified); prints one JSON line.
 
@@ -16,7 +16,7 @@ def main(argv=None) -> int:
     namespace, wall_limit_s = argv[0], float(argv[1])
     import rclpy
     from diagnostic_msgs.msg import DiagnosticArray
-    from backlash_monitor.nodes.qos import ESTIMATE_QOS
+    from backlash_monitor.ros.qos import ESTIMATE_QOS
     from backlash_monitor_msgs.msg import BacklashEstimate
     rclpy.init()
     node = rclpy.create_node("two_host_monitor")

@@ -28,12 +28,12 @@ from rclpy.node import Node
 from backlash_monitor.fleet.caveat import with_caveat
 from backlash_monitor.fleet.trend import (PRIMARY_SIGNAL, LiveTrend, load_live_points, load_rule,
                                           save_live_points)
-from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
-from backlash_monitor.nodes.model_fit_caveat import follow_model_fit
-from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
+from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
+from backlash_monitor.ros.model_fit_caveat import follow_model_fit
+from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
-from backlash_monitor.nodes.qos import ESTIMATE_QOS
-from backlash_monitor.nodes.runtime import run_node
+from backlash_monitor.ros.qos import ESTIMATE_QOS
+from backlash_monitor.ros.runtime import run_node
 from backlash_monitor_msgs.msg import BacklashEstimate
 
 

@@ -33,13 +33,13 @@ import time
 from rclpy.node import Node
 from std_msgs.msg import Float64
 
-from backlash_monitor.nodes.conversions import (from_float64_field, stamp_of_sample,
+from backlash_monitor.ros.conversions import (from_float64_field, stamp_of_sample,
                                                  seconds_from_time, to_float64_array)
-from backlash_monitor.nodes.drive_diagnostics import DriveDiagnostics
-from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
+from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
+from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
-from backlash_monitor.nodes.qos import LATCHED, WINDOW_QOS, chunk_qos
-from backlash_monitor.nodes.runtime import run_node
+from backlash_monitor.ros.qos import LATCHED, WINDOW_QOS, chunk_qos
+from backlash_monitor.ros.runtime import run_node
 from backlash_monitor.chain import ChunkJoiner, WindowingStage, pending_ranges_for
 from backlash_monitor.windowing.faults import FaultLog, InputHealth, is_period
 from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 from backlash_monitor.process import parent_watch
 
 RESTART_POLICIES = ("no", "on-failure")
-NOT_RESTARTED = (2,)    # the nodes' exit code for a refused parameter (nodes/parameters.py)
+NOT_RESTARTED = (2,)    # the nodes' exit code for a refused parameter (ros/parameters.py)
 
 
 def describe_exit(returncode: int) -> str:

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import consistency, tolerance
-from .diagnosis import MEASURAND_EFFECTS
+from .diagnosis_result import MEASURAND_EFFECTS
 
 DELTA_IC_STRONG = 2.0        # "positive" evidence (Kass & Raftery) on E events
 DELTA_IC_DECISIVE = 10.0     # below "very strong" evidence (Kass & Raftery) a single effect must also be significant:

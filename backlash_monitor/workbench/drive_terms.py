@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 
 from .decisions import identical_to
-from .diagnosis import MEASURAND_EFFECTS
+from .diagnosis_result import MEASURAND_EFFECTS
 
 # the quantity a parameter drift (plant/effects.DRIFTS) moves: its name on the drive, its unit and the scale from
 # the config's SI value to that unit

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .diagnosis import MEASURAND_EFFECTS
+from .diagnosis_result import MEASURAND_EFFECTS
 
 AGREEMENT_M = 0.15e-3        # |retrained monitor - diagnosed width| allowed, + 2 x the diagnosis' uncertainty: the
                              # fused continuous width's own error on a drive of the right physics is 0.05 mm

@@ -5,7 +5,7 @@ import copy
 from dataclasses import dataclass, field
 
 from . import plant_adapter
-from .diagnosis import MEASURAND_EFFECTS
+from .diagnosis_result import MEASURAND_EFFECTS
 from .model import WorkbenchModel, _set_nested
 
 

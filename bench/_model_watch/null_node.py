@@ -1,6 +1,6 @@
 """A node with the model_watch node's subscriptions and no work: the side-by-side baseline of cpu_per_drive.
 
-The same runtime (nodes/runtime.run_node: the lean executor, batching the wake-ups as model_watch's does: the
+The same runtime (ros/runtime.run_node: the lean executor, batching the wake-ups as model_watch's does: the
 second argument, its ``batch_s``), the same four plant topics taken serialized (``raw=True``) with the same QoS
 (the first argument: the model_watch node's ``qos`` in the run measured; pipeline --watch gives it 'reliable',
 whose acknowledgements cost more than best effort); the callback only counts the bytes. What model_watch costs beyond this is the
@@ -15,8 +15,8 @@ import sys
 
 from rclpy.node import Node
 
-from backlash_monitor.nodes.qos import chunk_qos
-from backlash_monitor.nodes.runtime import run_node
+from backlash_monitor.ros.qos import chunk_qos
+from backlash_monitor.ros.runtime import run_node
 from backlash_monitor_msgs.msg import SignalChunk
 
 SIGNALS = ("a1", "a2", "angle_difference", "omega1")    # model_watch's (its snapshot_signals default)

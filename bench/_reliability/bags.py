@@ -27,8 +27,9 @@ import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
-if str(REPO) not in sys.path:
-    sys.path.insert(0, str(REPO))
+for _extra in (REPO, REPO / "test"):   # test/: bag_damage, the damage injected into the bags
+    if str(_extra) not in sys.path:
+        sys.path.insert(0, str(_extra))
 
 TIMEOUT_S = 180
 MIN_BYTES = 150_000       # the killed recorder's file: a few chunks (plant-like chunks compress ~12x)
@@ -85,7 +86,7 @@ def _make_bags(directory: Path):
     error), counted (analysed, the bad part discarded and counted); and the intact source."""
     import numpy as np
 
-    from backlash_monitor.bag import faults
+    import bag_damage
     from backlash_monitor.bag.simulated import write_simulation_bag
     from backlash_monitor.plant import PlantSimulator, Scenario, load_plant_config
 
@@ -93,7 +94,7 @@ def _make_bags(directory: Path):
     sim = PlantSimulator([Scenario(0.0075, 0.025, 0.89, seed=11)], config=load_plant_config(), noise=True)
     write_simulation_bag(intact, sim, DURATION_S)
     data = intact.read_bytes()
-    layout = faults.chunk_layout(intact)
+    layout = bag_damage.chunk_layout(intact)
     off, length = layout[2][:2]
     bags = {}
 
@@ -102,21 +103,21 @@ def _make_bags(directory: Path):
         path.write_bytes(content)
         bags[name] = (path, kind)
 
-    put("truncated_inside_a_chunk", faults.truncate(data, layout[3][0] + length // 3), "damaged")
-    put("truncated_in_a_record_header", faults.truncate(data, layout[3][0] + 5), "damaged")
-    put("truncated_to_half", faults.truncate(data, len(data) // 2), "damaged")
-    put("chunk_length_too_long", faults.chunk_length_field(data, off, 3 * length), "damaged")
-    put("chunk_length_too_short", faults.chunk_length_field(data, off, 100), "damaged")
-    put("chunk_length_huge", faults.chunk_length_field(data, off, 1 << 40), "damaged")
-    put("chunk_crc_error", faults.chunk_crc_field(data, off), "damaged")
-    put("chunk_payload_byte", faults.chunk_payload_byte(data, off, length), "damaged")
-    put("two_damaged_chunks", faults.chunk_crc_field(faults.chunk_length_field(
+    put("truncated_inside_a_chunk", bag_damage.truncate(data, layout[3][0] + length // 3), "damaged")
+    put("truncated_in_a_record_header", bag_damage.truncate(data, layout[3][0] + 5), "damaged")
+    put("truncated_to_half", bag_damage.truncate(data, len(data) // 2), "damaged")
+    put("chunk_length_too_long", bag_damage.chunk_length_field(data, off, 3 * length), "damaged")
+    put("chunk_length_too_short", bag_damage.chunk_length_field(data, off, 100), "damaged")
+    put("chunk_length_huge", bag_damage.chunk_length_field(data, off, 1 << 40), "damaged")
+    put("chunk_crc_error", bag_damage.chunk_crc_field(data, off), "damaged")
+    put("chunk_payload_byte", bag_damage.chunk_payload_byte(data, off, length), "damaged")
+    put("two_damaged_chunks", bag_damage.chunk_crc_field(bag_damage.chunk_length_field(
         data, layout[1][0], 7), layout[4][0]), "damaged")
-    put("missing_summary", faults.without_summary(data), "damaged")
-    put("summary_crc_error", faults.summary_byte(data), "damaged")
+    put("missing_summary", bag_damage.without_summary(data), "damaged")
+    put("summary_crc_error", bag_damage.summary_byte(data), "damaged")
     put("missing_summary_and_chunk_length",
-        faults.without_summary(faults.chunk_length_field(data, off, 3 * length)), "damaged")
-    header_gone = bytearray(faults.without_summary(data))
+        bag_damage.without_summary(bag_damage.chunk_length_field(data, off, 3 * length)), "damaged")
+    header_gone = bytearray(bag_damage.without_summary(data))
     header_gone[off:off + 40] = b"\xee" * 40
     put("missing_summary_and_chunk_header", bytes(header_gone), "damaged")
     index_byte = bytearray(data)
@@ -129,7 +130,7 @@ def _make_bags(directory: Path):
 
     def rewrite(name, change, kind):
         path = directory / f"{name}.mcap"
-        faults.rewrite_signals(intact, path, change)
+        bag_damage.rewrite_signals(intact, path, change)
         bags[name] = (path, kind)
 
     def slower(topic, f):
@@ -421,9 +422,9 @@ def run(replay_all: bool = True) -> dict:
         work = Path(tmp)
         intact, bags = _make_bags(work)
         intact_data = intact.read_bytes()
-        from backlash_monitor.bag import faults
+        import bag_damage
 
-        layout = faults.chunk_layout(intact)
+        layout = bag_damage.chunk_layout(intact)
         per_chunk = _chunk_keys(intact, layout)
         # control: the intact bag passes every command (not counted as a bad input)
         rc, out, err = run_("analyze", intact, "--out", work / "intact.analysis")

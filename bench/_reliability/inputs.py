@@ -214,7 +214,7 @@ def _message_cases():
         return node.diagnostics.publisher.messages[-1].status[0].message if levels else ""
 
     def chunk(name, first, period, samples):
-        from backlash_monitor.nodes.conversions import to_float64_array
+        from backlash_monitor.ros.conversions import to_float64_array
         from backlash_monitor_msgs.msg import SignalChunk
         msg = SignalChunk(signal_name=name, sample_period_s=float(period), first_sample_index=int(first))
         msg.samples = to_float64_array(samples)
@@ -263,7 +263,7 @@ def _message_cases():
 
     def window_msg(a1, a2, kind="onset", period=PERIOD_S, denoised=True, index=0):
         from backlash_monitor.chain import denoising_label
-        from backlash_monitor.nodes.conversions import to_float64_array
+        from backlash_monitor.ros.conversions import to_float64_array
         from backlash_monitor_msgs.msg import BacklashWindow
         msg = BacklashWindow(entry_sample_index=index, entry_kind=kind, trigger="contact_loss",
                              sample_period_s=period, true_width_m=float("nan"),
@@ -317,7 +317,7 @@ def _message_cases():
 
 # ---------------------------------------------------------------- configs
 def _config_cases(tmp: Path):
-    from backlash_monitor.nodes.params_file import check_params_file
+    from backlash_monitor.ros.params_file import check_params_file
     from backlash_monitor.windowing import load_windowing_config
 
     def expect_one_line(loader, text, *needles):

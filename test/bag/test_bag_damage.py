@@ -14,7 +14,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from backlash_monitor.bag import BagReader, DamagedBagError, TruncatedBagError, faults
+from backlash_monitor.bag import BagReader, DamagedBagError, TruncatedBagError
+import bag_damage
 from bag_helpers import write_sample_bag
 
 REPO = Path(__file__).resolve().parents[2]
@@ -25,7 +26,7 @@ def intact(tmp_path_factory):
     """A bag of 12 chunks (0.1 s each) and, per chunk, the keys of the messages in it."""
     path = tmp_path_factory.mktemp("damage") / "intact.mcap"
     write_sample_bag(path, n_chunks=60, chunk_duration_s=0.1)
-    layout = faults.chunk_layout(path)
+    layout = bag_damage.chunk_layout(path)
     with BagReader(path) as bag:
         keys = [(m.topic, m.log_time_ns, m.sequence) for m in bag.messages(decode=False)]
     per_chunk = [[k for k in keys if start <= k[1] <= end] for _off, _len, start, end in layout]
@@ -38,11 +39,11 @@ def _keys(bag):
 
 
 DAMAGE = {
-    "length_too_long": lambda d, off, ln: faults.chunk_length_field(d, off, 3 * ln),
-    "length_too_short": lambda d, off, ln: faults.chunk_length_field(d, off, 100),
-    "length_huge": lambda d, off, ln: faults.chunk_length_field(d, off, 1 << 40),
-    "crc_field": lambda d, off, ln: faults.chunk_crc_field(d, off),
-    "payload_byte": lambda d, off, ln: faults.chunk_payload_byte(d, off, ln),
+    "length_too_long": lambda d, off, ln: bag_damage.chunk_length_field(d, off, 3 * ln),
+    "length_too_short": lambda d, off, ln: bag_damage.chunk_length_field(d, off, 100),
+    "length_huge": lambda d, off, ln: bag_damage.chunk_length_field(d, off, 1 << 40),
+    "crc_field": lambda d, off, ln: bag_damage.chunk_crc_field(d, off),
+    "payload_byte": lambda d, off, ln: bag_damage.chunk_payload_byte(d, off, ln),
 }
 # only a header field: the contents pass the CRC and are read
 CONTENTS_INTACT = {"length_too_long", "length_too_short", "length_huge"}
@@ -57,7 +58,7 @@ def test_a_damaged_chunk_is_named_and_recovery_reads_every_other_chunk(intact, t
     off, length, start, end = layout[k]
     damaged = DAMAGE[kind](data, off, length)
     if not summary:
-        damaged = faults.without_summary(damaged)
+        damaged = bag_damage.without_summary(damaged)
     bad = tmp_path / "bad.mcap"
     bad.write_bytes(damaged)
     with pytest.raises((DamagedBagError, TruncatedBagError)) as error:
@@ -86,7 +87,7 @@ def test_a_damaged_chunk_is_named_and_recovery_reads_every_other_chunk(intact, t
 def test_damaged_record_header_without_summary_resynchronises_on_the_next_chunk(intact, tmp_path):
     path, data, layout, keys, per_chunk = intact
     off = layout[3][0]
-    broken = bytearray(faults.without_summary(data))
+    broken = bytearray(bag_damage.without_summary(data))
     broken[off:off + 40] = b"\xee" * 40   # opcode, length and time range of chunk 3 destroyed
     bad = tmp_path / "garbage.mcap"
     bad.write_bytes(bytes(broken))
@@ -102,7 +103,7 @@ def test_damaged_record_header_without_summary_resynchronises_on_the_next_chunk(
 def test_summary_crc_mismatch_is_an_error_and_recovery_reads_everything(intact, tmp_path):
     path, data, _layout, keys, _ = intact
     bad = tmp_path / "summary.mcap"
-    bad.write_bytes(faults.summary_byte(data))
+    bad.write_bytes(bag_damage.summary_byte(data))
     with pytest.raises(TruncatedBagError, match="summary section CRC mismatch"):
         BagReader(bad)
     with BagReader(bad, recover=True) as bag:
@@ -138,7 +139,7 @@ def test_bag_info_reports_a_crc_error_and_recover_names_the_chunk(intact, tmp_pa
     path, data, layout, _keys_, per_chunk = intact
     off, length = layout[5][:2]
     bad = tmp_path / "crc.mcap"
-    bad.write_bytes(faults.chunk_crc_field(data, off))
+    bad.write_bytes(bag_damage.chunk_crc_field(data, off))
     strict = _cli("bag-info", bad)
     assert strict.returncode == 1
     assert "CRC mismatch" in strict.stderr and "--recover" in strict.stderr
@@ -177,9 +178,9 @@ def _analyze(bag, tmp_path, *extra):
 @pytest.mark.process
 def test_analyze_refuses_a_damaged_length_and_recovers_all_of_it(drive_bag, tmp_path):
     bag, reference = drive_bag
-    off, length = faults.chunk_layout(bag)[1][:2]
+    off, length = bag_damage.chunk_layout(bag)[1][:2]
     bad = tmp_path / "len.mcap"
-    bad.write_bytes(faults.chunk_length_field(bag.read_bytes(), off, 2 * length))
+    bad.write_bytes(bag_damage.chunk_length_field(bag.read_bytes(), off, 2 * length))
     proc, _ = _analyze(bad, tmp_path)
     assert proc.returncode == 1 and "chunk length field damaged" in proc.stderr
     assert "--recover" in proc.stderr and "Traceback" not in proc.stderr
@@ -193,10 +194,10 @@ def test_analyze_refuses_a_damaged_length_and_recovers_all_of_it(drive_bag, tmp_
 @pytest.mark.process
 def test_analyze_recover_records_the_skipped_chunk(drive_bag, tmp_path):
     bag, reference = drive_bag
-    layout = faults.chunk_layout(bag)
+    layout = bag_damage.chunk_layout(bag)
     off, length, start, end = layout[2]
     bad = tmp_path / "crc.mcap"
-    bad.write_bytes(faults.chunk_payload_byte(bag.read_bytes(), off, length))
+    bad.write_bytes(bag_damage.chunk_payload_byte(bag.read_bytes(), off, length))
     proc, _ = _analyze(bad, tmp_path)
     assert proc.returncode == 1 and f"byte {off}" in proc.stderr
     proc, result = _analyze(bad, tmp_path, "--recover")
@@ -217,7 +218,7 @@ def test_analyze_recover_records_the_skipped_chunk(drive_bag, tmp_path):
 
 def _rewritten(bag, tmp_path, change, name):
     out = tmp_path / f"{name}.mcap"
-    faults.rewrite_signals(bag, out, change)
+    bag_damage.rewrite_signals(bag, out, change)
     return out
 
 
@@ -279,7 +280,7 @@ def test_replay_names_the_damage_and_recover_plays_every_intact_chunk(intact, tm
     path, data, layout, keys, per_chunk = intact
     off, length = layout[6][:2]
     bad = tmp_path / "replay.mcap"
-    bad.write_bytes(faults.chunk_payload_byte(data, off, length))
+    bad.write_bytes(bag_damage.chunk_payload_byte(data, off, length))
 
     def replay(*params):
         return subprocess.run([sys.executable, "-m", "backlash_monitor.nodes.replay", "--ros-args",
@@ -330,11 +331,11 @@ def test_a_bag_without_data_crc_has_its_chunk_crcs_checked_when_read(tmp_path):
     with BagReader(good) as bag:
         assert _keys(bag) == keys and not bag.recovery.verified   # nothing vouched for by a CRC
         assert bag.verify().intact
-    layout = faults.chunk_layout(good)
+    layout = bag_damage.chunk_layout(good)
     off, _length, start, end = layout[3]
     in_chunk = [k for k in keys if start <= k[1] <= end]     # log times are unique here
     bad = tmp_path / "crc.mcap"
-    bad.write_bytes(faults.chunk_crc_field(good.read_bytes(), off))
+    bad.write_bytes(bag_damage.chunk_crc_field(good.read_bytes(), off))
     with BagReader(bad) as bag:                      # only reading can tell
         with pytest.raises(DamagedBagError, match=f"byte {off}"):
             _keys(bag)
@@ -354,10 +355,10 @@ def test_a_bag_without_chunk_index_is_scanned_and_a_damaged_length_recovered(tmp
     keys = _mcap_library_bag(good, IndexType.NONE)
     with BagReader(good) as bag:
         assert _keys(bag) == keys and bag.recovery.intact
-    layout = faults.chunk_layout(good)
+    layout = bag_damage.chunk_layout(good)
     off, length = layout[2][:2]
     bad = tmp_path / "no_index_len.mcap"
-    bad.write_bytes(faults.chunk_length_field(good.read_bytes(), off, 5 * length))
+    bad.write_bytes(bag_damage.chunk_length_field(good.read_bytes(), off, 5 * length))
     with pytest.raises(DamagedBagError, match="chunk length field damaged"):
         BagReader(bad)
     with BagReader(bad, recover=True) as bag:

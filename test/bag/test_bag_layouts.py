@@ -220,7 +220,7 @@ def simulated_bag(tmp_path_factory):
 
 
 def _analyze(bag: Path, out: Path) -> str:
-    from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag
+    from backlash_monitor.offline.bag_analysis import AnalyzeOptions, analyze_bag
 
     analyze_bag(bag, out, AnalyzeOptions())
     return out.with_suffix(".csv").read_text()
@@ -340,7 +340,8 @@ def test_an_unknown_chunk_compression_is_refused_naming_it(tmp_path, with_summar
 def test_a_damaged_chunk_in_another_layout_is_named_and_skipped(tmp_path, project_bag, options):
     """Damage is still damage in these layouts: the chunk is named (DamagedBagError; bag-info exit
     1), and recovery reads every other chunk and counts only what it read."""
-    from backlash_monitor.bag import DamagedBagError, faults
+    import bag_damage
+    from backlash_monitor.bag import DamagedBagError
     from backlash_monitor.commands import bag_info
 
     path = mc.rewrite_with_mcap(project_bag, tmp_path / "layout.mcap", chunkSize=128 * 1024,
@@ -350,7 +351,7 @@ def test_a_damaged_chunk_in_another_layout_is_named_and_skipped(tmp_path, projec
         everything = [(m.topic, m.log_time_ns, m.sequence) for m in bag.messages(decode=False)]
     bad = chunks[len(chunks) // 2]
     damaged = tmp_path / "damaged.mcap"
-    damaged.write_bytes(faults.chunk_payload_byte(path.read_bytes(), bad.offset, bad.length))
+    damaged.write_bytes(bag_damage.chunk_payload_byte(path.read_bytes(), bad.offset, bad.length))
     with pytest.raises(DamagedBagError, match=f"byte {bad.offset}"):
         with BagReader(damaged) as bag:
             list(bag.messages(decode=False))

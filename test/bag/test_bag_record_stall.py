@@ -18,7 +18,7 @@ pytest.importorskip("backlash_monitor_msgs.msg")
 from backlash_monitor.bag import BagReader  # noqa: E402
 from test_bag_record_replay import REPO, _start_recorder, _stop  # noqa: E402
 
-from backlash_monitor.nodes.qos import RELIABLE_CHUNK_DEPTH  # noqa: E402
+from backlash_monitor.ros.qos import RELIABLE_CHUNK_DEPTH  # noqa: E402
 
 
 @pytest.mark.process

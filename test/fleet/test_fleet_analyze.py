@@ -123,8 +123,8 @@ def test_the_model_fit_column_holds_each_bag_against_the_drives_model(tmp_path):
 def test_the_model_fit_reference_is_the_one_given_else_the_librarys_else_the_default_models_nearest_width(tmp_path):
     """--watch-reference wins; without it a --library with a LIB.watch.npz beside it (train --model) gives that;
     else the default model's cache entry at the pattern width nearest the measured width, with analyze's n1."""
-    from backlash_monitor.fleet.analyze import WatchOptions, default_model, reference_for_bag
-    from backlash_monitor.offline.analyze import AnalyzeOptions
+    from backlash_monitor.fleet.folder_analysis import WatchOptions, default_model, reference_for_bag
+    from backlash_monitor.offline.bag_analysis import AnalyzeOptions
     from backlash_monitor.plant.scenarios import K2_WIDTHS_M
     from backlash_monitor.workbench import reference
     library = tmp_path / "drive7_v3.npz"
@@ -147,7 +147,7 @@ def test_the_command_line_becomes_typed_fleet_options_checked_with_the_allowed_r
     from backlash_monitor.__main__ import build_parser
     from backlash_monitor.commands.analyze import fleet_options_from_args
     from backlash_monitor.errors import UsageError
-    from backlash_monitor.fleet.analyze import FleetOptions, WatchOptions
+    from backlash_monitor.fleet.folder_analysis import FleetOptions, WatchOptions
     args = build_parser("analyze").parse_args(
         ["analyze", "bags/*.mcap", "--out-dir", "o", "--jobs", "3", "--engine", "dask", "--scheduler",
          "tcp://h:8786", "--trend-config", "t.yaml", "--no-plots", "--watch-reference", "r.watch.npz"])

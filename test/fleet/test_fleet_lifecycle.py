@@ -23,7 +23,7 @@ def ros(ros_env, monkeypatch):
     for key in ("ROS_DOMAIN_ID", "ROS_AUTOMATIC_DISCOVERY_RANGE"):
         monkeypatch.setenv(key, ros_env[key])
     import rclpy
-    from backlash_monitor.nodes.fast_dds import configure_fast_dds
+    from backlash_monitor.ros.fast_dds import configure_fast_dds
     configure_fast_dds()
     context = rclpy.Context()
     rclpy.init(context=context)
@@ -70,7 +70,7 @@ def call(node, executor, srv_type, name, request, timeout=30.0):
 def test_a_supervisor_takes_one_drive_down_and_up_without_touching_the_other(ros):
     from lifecycle_msgs.msg import State, Transition
     from lifecycle_msgs.srv import ChangeState, GetState
-    from backlash_monitor.nodes.qos import ESTIMATE_QOS
+    from backlash_monitor.ros.qos import ESTIMATE_QOS
     from backlash_monitor_msgs.msg import BacklashEstimate
     node, executor = ros
     arrivals = {"drive01": [], "drive02": []}

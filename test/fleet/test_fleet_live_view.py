@@ -26,7 +26,7 @@ def test_a_foxglove_client_receives_a_drives_estimates_and_width(ros_env, monkey
                             env=ros_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     import rclpy
     from rclpy.serialization import deserialize_message
-    from backlash_monitor.nodes.qos import ESTIMATE_QOS
+    from backlash_monitor.ros.qos import ESTIMATE_QOS
     from backlash_monitor_msgs.msg import BacklashEstimate
     context = rclpy.Context()
     rclpy.init(context=context)

@@ -1,7 +1,7 @@
 """What `analyze FOLDER` costs before its first bag, and what its forked workers inherit.
 
 - The command's arguments are parsed without importing numpy: its thread pools are limited to one
-  thread per worker (fleet/analyze.limit_threads) before numpy's import, so the pool forks workers that
+  thread per worker (fleet/folder_analysis.limit_threads) before numpy's import, so the pool forks workers that
   inherit this process's modules and library; otherwise it falls back to a forkserver, whose workers
   import and load everything again (what a many-bag run did before this test: 0.1 s a worker, and the
   fork path never taken).
@@ -30,7 +30,7 @@ def test_parsing_analyze_imports_no_numpy_so_the_threads_are_limited_first(tmp_p
         "from backlash_monitor.__main__ import build_parser\n"
         f"args = build_parser('analyze').parse_args(['analyze', {str(tmp_path)!r}, '--jobs', '2'])\n"
         "from backlash_monitor.commands.analyze import fleet_options_from_args\n"
-        "from backlash_monitor.fleet.analyze import limit_threads, runs_parallel_here\n"
+        "from backlash_monitor.fleet.folder_analysis import limit_threads, runs_parallel_here\n"
         "fleet = fleet_options_from_args(args)\n"
         "print('numpy' in sys.modules, runs_parallel_here(fleet))\n"
         "first = limit_threads()\n"
@@ -45,7 +45,7 @@ def test_parsing_analyze_imports_no_numpy_so_the_threads_are_limited_first(tmp_p
 
 
 def test_one_worker_or_dask_is_not_a_local_pool():
-    from backlash_monitor.fleet.analyze import FleetOptions, runs_parallel_here
+    from backlash_monitor.fleet.folder_analysis import FleetOptions, runs_parallel_here
     assert runs_parallel_here(FleetOptions(bags="x", jobs=2))
     assert not runs_parallel_here(FleetOptions(bags="x", jobs=1))
     assert not runs_parallel_here(FleetOptions(bags="x", jobs=2, engine="dask"))

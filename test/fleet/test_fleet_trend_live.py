@@ -95,7 +95,7 @@ def test_node_publishes_the_trend_warn_per_drive_on_diagnostics(ros_env, tmp_pat
     from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
     from rclpy.parameter import Parameter
 
-    from backlash_monitor.nodes.qos import ESTIMATE_QOS
+    from backlash_monitor.ros.qos import ESTIMATE_QOS
     from backlash_monitor.nodes.width_trend import WidthTrendNode
     from backlash_monitor_msgs.msg import BacklashEstimate
     config = tmp_path / "trend.yaml"

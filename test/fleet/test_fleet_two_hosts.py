@@ -5,7 +5,7 @@ import subprocess
 
 import pytest
 
-from backlash_monitor.nodes.netns import can_make_namespaces, run_two_hosts
+from backlash_monitor.ros.netns import can_make_namespaces, run_two_hosts
 from conftest import fresh_domain_id
 
 
@@ -36,7 +36,7 @@ def test_estimates_cross_between_two_network_namespaces(tmp_path, ros_env):
 
 @pytest.mark.ros
 def test_the_profiles_name_only_the_two_addresses():
-    from backlash_monitor.nodes.netns import fast_dds_profile
+    from backlash_monitor.ros.netns import fast_dds_profile
     xml = fast_dds_profile("10.231.5.1", "10.231.5.2")
     import re
     assert set(re.findall(r"<address>([^<]+)</address>", xml)) == {"10.231.5.1", "10.231.5.2"}

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from backlash_monitor.fleet.analyze import add_trends
+from backlash_monitor.fleet.folder_analysis import add_trends
 from backlash_monitor.fleet.caveat import (FitVerdict, caveat, says_model_fails, width_line, width_text,
                                            with_caveat)
 from backlash_monitor.fleet.trend import TrendRule

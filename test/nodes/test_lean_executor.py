@@ -15,8 +15,8 @@ from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64
 
-from backlash_monitor.nodes.lean_executor import LeanExecutor, make_executor
-from backlash_monitor.nodes.parameters import (ParameterSpec, ParameterValueError,
+from backlash_monitor.ros.lean_executor import LeanExecutor, make_executor
+from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
 
 

@@ -12,7 +12,7 @@ from rclpy.parameter import Parameter
 from backlash_monitor.chain import denoise_pair, denoising_label
 from backlash_monitor.classifier.fusion import median_standard_error
 from backlash_monitor.nodes.classifier import ClassifierNode, ESTIMATE_QOS
-from backlash_monitor.nodes.conversions import to_float64_array
+from backlash_monitor.ros.conversions import to_float64_array
 from backlash_monitor.nodes.windowing import WINDOW_QOS
 from backlash_monitor.plant import PlantSimulator, Scenario
 from backlash_monitor.windowing import extract_windows

@@ -8,7 +8,7 @@ import rclpy
 from ament_index_python.packages import get_package_prefix
 from rclpy.parameter import Parameter
 
-from backlash_monitor.nodes.conversions import SIGNAL_UNITS, from_float64_field
+from backlash_monitor.ros.conversions import SIGNAL_UNITS, from_float64_field
 from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode
 from backlash_monitor_msgs.msg import SignalChunk
 

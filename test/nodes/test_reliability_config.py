@@ -6,7 +6,7 @@ import sys
 import pytest
 
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
-from backlash_monitor.nodes.params_file import ParamsFileError, check_params_file, params_files
+from backlash_monitor.ros.params_file import ParamsFileError, check_params_file, params_files
 from backlash_monitor.windowing import load_windowing_config
 
 

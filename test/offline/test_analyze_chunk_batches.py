@@ -10,9 +10,10 @@ import pytest
 pytest.importorskip("backlash_monitor.plant")
 
 from backlash_monitor import chain  # noqa: E402
-from backlash_monitor.bag import BagReader, BagWriter, faults  # noqa: E402
+from backlash_monitor.bag import BagReader, BagWriter  # noqa: E402
+import bag_damage  # noqa: E402
 from backlash_monitor.bag import reader as reader_module  # noqa: E402
-from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag  # noqa: E402
+from backlash_monitor.offline.bag_analysis import AnalyzeOptions, analyze_bag  # noqa: E402
 
 from bag_helpers import analyze_outputs, write_simulated_drive  # noqa: E402
 
@@ -95,7 +96,7 @@ def test_a_damaged_chunk_recovered_gives_the_same_outputs(tmp_path, recording, m
     with BagReader(recording) as reader:
         middle = reader.chunks[len(reader.chunks) // 2]
     bag = tmp_path / "damaged.mcap"
-    bag.write_bytes(faults.chunk_payload_byte(recording.read_bytes(), middle.offset, middle.length))
+    bag.write_bytes(bag_damage.chunk_payload_byte(recording.read_bytes(), middle.offset, middle.length))
     fast, n_columns, _ = both_ways(bag, tmp_path, monkeypatch, recover=True)
     assert fast[0]["integrity"]["damaged_chunks"] and n_columns > 0
 

@@ -12,7 +12,7 @@ pytest.importorskip("backlash_monitor.plant")
 
 from backlash_monitor.commands import bag_info  # noqa: E402
 from backlash_monitor.commands.analyze import print_saturation  # noqa: E402
-from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag  # noqa: E402
+from backlash_monitor.offline.bag_analysis import AnalyzeOptions, analyze_bag  # noqa: E402
 
 
 @pytest.fixture(scope="module")

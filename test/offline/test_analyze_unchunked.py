@@ -10,7 +10,7 @@ pytest.importorskip("backlash_monitor.plant")
 from backlash_monitor import chain  # noqa: E402
 from backlash_monitor.bag import BagReader, BagWriter  # noqa: E402
 from backlash_monitor.errors import UsageError  # noqa: E402
-from backlash_monitor.offline.analyze import AnalyzeOptions, analyze_bag  # noqa: E402
+from backlash_monitor.offline.bag_analysis import AnalyzeOptions, analyze_bag  # noqa: E402
 
 from bag_helpers import analyze_outputs, write_simulated_drive  # noqa: E402
 from mcap_conformance import rewrite_with_mcap  # noqa: E402

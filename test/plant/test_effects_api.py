@@ -171,7 +171,7 @@ def test_live_node_publishes_the_same_effects_as_a_batch_run(ros_env):
     import rclpy
     from rclpy.parameter import Parameter as RosParameter
 
-    from backlash_monitor.nodes.conversions import from_float64_field
+    from backlash_monitor.ros.conversions import from_float64_field
     from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode
     from backlash_monitor_msgs.msg import SignalChunk
     sets = ("simulation.run_in_s=0.1;effects.wheel_coulomb_friction=true;wheel_coulomb_friction.torque_Nm=0.5;"

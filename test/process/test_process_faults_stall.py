@@ -53,7 +53,7 @@ def test_a_stalled_hop_loses_no_onset(node, ros_env, machine_load):
 
 _MONITOR = """
 import sys, time, rclpy
-from backlash_monitor.nodes.qos import ESTIMATE_QOS
+from backlash_monitor.ros.qos import ESTIMATE_QOS
 from backlash_monitor_msgs.msg import BacklashEstimate
 rclpy.init()
 node = rclpy.create_node("monitor")

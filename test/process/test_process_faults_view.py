@@ -5,7 +5,7 @@ import pytest
 import io
 from types import SimpleNamespace
 
-from backlash_monitor.nodes.pipeline import LiveView
+from backlash_monitor.nodes.pipeline import PipelineConsole
 
 PERIOD_S = 2e-5
 SIGNALS = ("a1", "a2", "a1+a2")
@@ -33,7 +33,7 @@ def feed(view, entries, **kw):
 
 @pytest.mark.ros
 def test_a_re_sent_estimate_counts_once():
-    view = LiveView(0.005, SIGNALS, PERIOD_S, out=io.StringIO())
+    view = PipelineConsole(0.005, SIGNALS, PERIOD_S, out=io.StringIO())
     feed(view, [onset(k) for k in range(4)])
     feed(view, [onset(k) for k in range(4)])          # a restarted classifier sends them again
     assert view.repeated == 12
@@ -44,7 +44,7 @@ def test_a_re_sent_estimate_counts_once():
 
 @pytest.mark.ros
 def test_a_gap_in_the_onsets_is_named_with_the_onsets_missing():
-    view = LiveView(0.005, SIGNALS, PERIOD_S, out=io.StringIO())
+    view = PipelineConsole(0.005, SIGNALS, PERIOD_S, out=io.StringIO())
     feed(view, [onset(k) for k in (0, 1, 2, 3, 9, 10, 11)])     # 4..8 lost (a windowing restart)
     (before, after, missing), = view.onset_gaps()
     assert (round(before, 3), round(after, 3), missing) == (0.804, 2.304, 5)
@@ -54,7 +54,7 @@ def test_a_gap_in_the_onsets_is_named_with_the_onsets_missing():
 
 @pytest.mark.ros
 def test_a_restarted_plants_new_stream_is_kept_apart_from_the_old_one():
-    view = LiveView(0.005, SIGNALS, PERIOD_S, out=io.StringIO())
+    view = PipelineConsole(0.005, SIGNALS, PERIOD_S, out=io.StringIO())
     feed(view, [onset(k) for k in range(6)], stream_start_s=100.0)
     feed(view, [onset(k) for k in range(6)], stream_start_s=103.7)     # from sample 0 again
     assert view.repeated == 0 and view.completed_events == 12
@@ -65,7 +65,7 @@ def test_a_restarted_plants_new_stream_is_kept_apart_from_the_old_one():
 @pytest.mark.ros
 def test_a_node_fault_is_printed_at_once_and_listed_in_the_summary():
     out = io.StringIO()
-    view = LiveView(0.005, SIGNALS, PERIOD_S, out=out)
+    view = PipelineConsole(0.005, SIGNALS, PERIOD_S, out=out)
     feed(view, [onset(0)])
     view.on_fault("node denoise (pid 7) was killed by signal SIGKILL (9)")
     assert out.getvalue().splitlines()[-1] == (

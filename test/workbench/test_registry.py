@@ -81,8 +81,8 @@ def test_analyze_holds_each_bag_against_its_own_drive(reg, tmp_path):
     import argparse
 
     from backlash_monitor.commands.analyze import registry_drives
-    from backlash_monitor.fleet.analyze import WatchOptions, reference_for_bag, registered_drive
-    from backlash_monitor.offline.analyze import AnalyzeOptions
+    from backlash_monitor.fleet.folder_analysis import WatchOptions, reference_for_bag, registered_drive
+    from backlash_monitor.offline.bag_analysis import AnalyzeOptions
     from backlash_monitor.workbench import reference
     watch = WatchOptions(drives=registry_drives(argparse.Namespace(registry=str(reg))))
     opts = AnalyzeOptions()

@@ -12,7 +12,7 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 from backlash_monitor.__main__ import main                               # noqa: E402
 from backlash_monitor.classifier.patterns import load_library           # noqa: E402
-from backlash_monitor.workbench.diagnosis import Addition, Conditions, read_handoff  # noqa: E402
+from backlash_monitor.workbench.diagnosis_result import Addition, Conditions, read_handoff  # noqa: E402
 from backlash_monitor.workbench.model import load_model                 # noqa: E402
 from backlash_monitor.workbench.retrain import training_config          # noqa: E402
 from backlash_monitor.workbench.synthetic import hidden_effect_recording  # noqa: E402

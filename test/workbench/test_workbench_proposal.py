@@ -77,7 +77,7 @@ def _diagnosis_with_proposal(tmp_path, proposed=True):
     writes for a wheel-angle torque)."""
     import json
 
-    from backlash_monitor.workbench.diagnosis import Conditions
+    from backlash_monitor.workbench.diagnosis_result import Conditions
     from backlash_monitor.workbench.model import load_model
     by = candidate_terms.by_name()
     pieces = [candidate_terms.ProposedPiece((by["cand_wheel_alpha2_sin1"], by["cand_wheel_alpha2_cos1"]),

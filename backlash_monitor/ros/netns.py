@@ -9,7 +9,7 @@ and each process gets a Fast DDS profile (:func:`fast_dds_profile`) that
   network: /dev/shm is shared between network namespaces),
 - discovers by unicast to the other host's address (initial peers) and listens for discovery
   on its own address only, so no multicast is sent anywhere,
-- keeps the project's 10 ms writer heartbeat (nodes/fast_dds.py).
+- keeps the project's 10 ms writer heartbeat (ros/fast_dds.py).
 
 Needs root (``ip netns add``); :func:`can_make_namespaces` says why not where it cannot.
 """
@@ -21,7 +21,7 @@ import uuid
 from contextlib import contextmanager
 from dataclasses import dataclass
 
-from backlash_monitor.nodes.fast_dds import WRITER_PROFILE_XML
+from backlash_monitor.ros.fast_dds import WRITER_PROFILE_XML
 
 SUBNET = "10.231.{n}.{host}"
 

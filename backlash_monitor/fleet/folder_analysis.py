@@ -30,7 +30,7 @@ from backlash_monitor.errors import UsageError
 from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
 
 if TYPE_CHECKING:
-    from backlash_monitor.offline.analyze import AnalyzeOptions
+    from backlash_monitor.offline.bag_analysis import AnalyzeOptions
 
 ENGINES = ("local", "dask")
 THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
@@ -113,7 +113,7 @@ def init_worker(options, library=None) -> None:
     for var in THREAD_VARIABLES:
         os.environ[var] = "1"
     import multiprocessing
-    from backlash_monitor.offline.analyze import load_library
+    from backlash_monitor.offline.bag_analysis import load_library
     # a pool worker (a worker per core): no core for a bag reader's decompression thread, which
     # would only take turns with the worker; its readers get chunks_ahead=0 (None: the reader's
     # default, which is 0 on one CPU too)
@@ -126,7 +126,7 @@ def analyze_one(job: dict) -> dict:
     """One bag through the single-bag analysis (a worker's task: a job is its bag, its output prefix,
     the AnalyzeOptions and the WatchOptions of its model fit); returns its fleet-table row."""
     from backlash_monitor.classifier.fusion import median_standard_error
-    from backlash_monitor.offline.analyze import analyze_bag
+    from backlash_monitor.offline.bag_analysis import analyze_bag
     if _WORKER.get("options") != job["options"] or _WORKER.get("pid") != os.getpid():
         init_worker(job["options"])      # a worker started without the initializer (Dask)
     started = time.perf_counter()
@@ -345,7 +345,7 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
     # numpy is imported (its OpenBLAS starts its threads then); where numpy was imported before
     # with more threads, a forkserver with the limits set in its environment starts the workers.
     modules = ["backlash_monitor.bag", "backlash_monitor.chain",
-               "backlash_monitor.offline.analyze", "backlash_monitor.estimation"]
+               "backlash_monitor.offline.bag_analysis", "backlash_monitor.estimation"]
     if threads_limited and "fork" in multiprocessing.get_all_start_methods():
         import importlib
         for name in modules:
@@ -474,7 +474,7 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     else:
         # the options checked and the library loaded once, here: a bad option is one error
         # before any worker starts, and forked workers inherit the library
-        from backlash_monitor.offline.analyze import load_library
+        from backlash_monitor.offline.bag_analysis import load_library
         rows = run_local(jobs, n_jobs, library=load_library(options), progress=fleet.progress,
                          threads_limited=threads_limited)
     if watch.enabled:

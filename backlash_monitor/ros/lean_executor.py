@@ -42,7 +42,7 @@ from rclpy.qos import HistoryPolicy
 from rclpy.subscription import Subscription
 from rclpy.waitable import NumberOfEntities
 
-from backlash_monitor.nodes.parameters import ParameterValueError
+from backlash_monitor.ros.parameters import ParameterValueError
 
 
 MAX_WAIT_S = 0.5   # longest single wait: how late a shutdown whose wake-up was lost is noticed [s]

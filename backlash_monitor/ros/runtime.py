@@ -1,6 +1,6 @@
 """The process shell shared by the nodes' executables: init, build, spin, clean shutdown.
 
-Separate from :mod:`backlash_monitor.nodes.parameters` (declaration and validation of parameters,
+Separate from :mod:`backlash_monitor.ros.parameters` (declaration and validation of parameters,
 imported by every node module) so that neither that module nor the executor imports the other.
 """
 from __future__ import annotations
@@ -15,9 +15,9 @@ import rclpy
 import rclpy.executors
 import rclpy.signals
 
-from backlash_monitor.nodes.fast_dds import configure_fast_dds
-from backlash_monitor.nodes.lean_executor import make_executor
-from backlash_monitor.nodes.parameters import ParameterValueError
+from backlash_monitor.ros.fast_dds import configure_fast_dds
+from backlash_monitor.ros.lean_executor import make_executor
+from backlash_monitor.ros.parameters import ParameterValueError
 from backlash_monitor.process.blas import limit_blas_threads
 from backlash_monitor.process.parent_watch import start_watchdog
 
@@ -137,7 +137,7 @@ def release_nodes(executor, nodes) -> None:
 def run_node(node_factory, args=None, spin=None) -> int:
     """``main()`` body shared by the nodes: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
 
-    The node spins on a :func:`~backlash_monitor.nodes.lean_executor.make_executor` executor
+    The node spins on a :func:`~backlash_monitor.ros.lean_executor.make_executor` executor
     (batching, when the node has an attribute ``executor_batch_s`` > 0: see LeanExecutor; and
     with ``blas_threads`` > 0 the process's BLAS uses that many threads: process/blas.py);
     ``spin(node, executor)`` replaces the plain ``executor.spin()``. A
@@ -154,7 +154,7 @@ def run_nodes(node_factories, args=None, spin=None) -> int:
     ``blas_threads``)."""
     start_watchdog()    # started by a supervisor (pipeline --processes): end with it
     configure_fast_dds()
-    from backlash_monitor.nodes.params_file import check_params_files
+    from backlash_monitor.ros.params_file import check_params_files
     try:   # unknown keys and broken YAML in --params-file files: one line, not rclpy's traceback
         check_params_files(sys.argv if args is None else args)
     except ParameterValueError as error:

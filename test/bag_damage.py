@@ -6,12 +6,12 @@ damaged bytes; none changes the file it was read from.
 """
 from __future__ import annotations
 
-from .records import CHUNK_HEAD, FOOTER_RECORD_LEN, OP_DATA_END, RECORD_HEADER, U32, U64
+from backlash_monitor.bag.records import CHUNK_HEAD, FOOTER_RECORD_LEN, OP_DATA_END, RECORD_HEADER, U32, U64
 
 
 def chunk_layout(path) -> list[tuple[int, int, int, int]]:
     """(offset, length_bytes, start_ns, end_ns) of every chunk of an intact bag, in file order."""
-    from .reader import BagReader
+    from backlash_monitor.bag.reader import BagReader
 
     with BagReader(path) as bag:
         return [(c.offset, c.length, c.start, c.end) for c in bag.chunks]
@@ -75,8 +75,8 @@ def rewrite_signals(src, dst, change) -> None:
     sample_period_s, samples, signal_name, unit; None drops the message). Other topics are copied
     as they are. For bags whose signals are wrong in a given way (another sample rate, a2 chunks
     shorter than a1, a NaN sample period, signals under another name)."""
-    from .reader import BagReader
-    from .writer import BagWriter
+    from backlash_monitor.bag.reader import BagReader
+    from backlash_monitor.bag.writer import BagWriter
 
     with BagReader(src) as bag, BagWriter(dst) as out:
         topics = bag.topics

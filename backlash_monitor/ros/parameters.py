@@ -4,7 +4,7 @@ Each node lists its parameters as :class:`ParameterSpec` (name, default, descrip
 range or choices). :func:`declare_and_validate` declares them with a ``ParameterDescriptor`` (so
 ``ros2 param describe`` shows the description and range) and checks the values the node was
 started with. A bad value raises :class:`ParameterValueError` naming the parameter and what is
-allowed; :func:`backlash_monitor.nodes.runtime.run_node` turns that into one clear log line and
+allowed; :func:`backlash_monitor.ros.runtime.run_node` turns that into one clear log line and
 exit code 2 — the node does not start. Values set later at run time are checked by the same rule and refused with the same reason.
 """
 from __future__ import annotations

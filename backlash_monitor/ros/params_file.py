@@ -22,7 +22,7 @@ import sys
 from pathlib import Path
 
 from backlash_monitor.files.config import nearest, yaml_error_line
-from backlash_monitor.nodes.parameters import ParameterValueError
+from backlash_monitor.ros.parameters import ParameterValueError
 
 # node name -> module whose PARAMETERS (ParameterSpec tuple) the node declares
 NODE_MODULES = {
