@@ -46,6 +46,29 @@ HEADLINES = [
     ("model_watch", "cpu_per_drive", "model watch: CPU per drive [fraction of a core]", "≤ 0.05"),
     ("fleet", "drives_realtime", "fleet: 50 kHz drives one 2-core machine monitors in real time", "≥ 8"),
     ("fleet", "fleet_analyze_speedup", "fleet: `analyze FOLDER` on 2 cores over 1 core", "≥ 1.8"),
+    ("reliability", "saturation_detected_rate", "a1 or a2 clipped at 50-95 % of its peak found at its rail", "1.0"),
+    ("reliability", "saturation_false_flags", "clean recordings flagged as saturated", "0"),
+    ("reliability", "under_load_kill_onsets_lost", "onsets lost upstream of a chain node killed beside a CPU hog", "0"),
+    ("reliability", "under_load_ros_test_runs_passed", "ros and process tests on a clean clone beside a CPU hog, runs of 5",
+     "5"),
+    ("reliability", "command_tracebacks", "tracebacks over every command's bad command lines", "0"),
+    ("reliability", "command_internal_names", "internal names in those errors", "0"),
+    ("workbench", "diagnose_peak_rss_mb", "workbench: diagnose's peak memory, 4 s recording [MB]", "≤ 1024"),
+    ("workbench", "outside_proposal_consistent_rate", "workbench: outside mechanisms, model with the proposed term "
+     "consistent", "≥ 0.8"),
+    ("workbench", "outside_proposal_right_balance_rate", "workbench: proposed term in the true balance, on the right "
+     "state", "≥ 0.8"),
+    ("workbench", "proposals_on_explained", "workbench: terms proposed on clean or catalogue-explained drives", "0"),
+    ("workbench", "angle_locked_plugin_named_rate", "workbench: a user's exact-law angle-locked plug-in named", "1.0"),
+    ("workbench", "proposal_cpu_seconds", "workbench: CPU of one proposal on top of diagnose [s]", "≤ 60"),
+    ("workbench", "confident_wrong_width_alarms", "width alarms on a drive below its threshold without the "
+     "model-fit caveat", "0"),
+    ("workbench", "width_plus_effect_named_rate", "width changed beside another effect: the other effect named",
+     "≥ 0.8"),
+    ("workbench", "width_plus_effect_width_error_sigma_max", "... the width's error in its stated uncertainties",
+     "≤ 3"),
+    ("fleet", "fleet_model_fit_false_warn", "fleet: model-fit WARN on healthy drives, each at its own nominal", "0"),
+    ("fleet", "fleet_model_fit_detected", "fleet: model-fit WARN on drives with effects diagnose finds", "1.0"),
 ]
 
 SHORT_TEXT = 160     # longer texts (logs, stderr tails) stay in the JSON
