@@ -22,9 +22,10 @@ def add_arguments(parser) -> None:
                         help="print the history as a table (text) or as JSON")
     from backlash_monitor.commands.vocabulary import deprecated
     deprecated(parser, "--json", "--format json", "format", const="json")
-    parser.add_argument("--plot", default=None, metavar="PNG", help="write the error per version as a PNG")
+    parser.add_argument("--plot", default=None, metavar="PNG", help="write the error per version as a PNG (default: no plot)")
     parser.add_argument("--report", default=None, metavar="DIR",
-                        help="write an HTML page (index.html, history.png) with the table and the plot into DIR")
+                        help="write an HTML page (index.html, history.png) with the table and the plot into DIR, created if "
+                             "missing (default: no page)")
     from backlash_monitor.commands._workbench import add_drive_arguments, add_overwrite_argument
     add_overwrite_argument(parser)
     add_drive_arguments(parser)

@@ -92,7 +92,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="with --watch: the folder the snapshot bags go into (default: the current folder)")
     parser.add_argument("--drive", default="", metavar="NAME",
                         help="a drive of the registry (docs/registry.md): its nominal width, eta_k and n1, its name, "
-                             "and (unless given) its library, model version and watch reference")
+                             "and (unless given) its library, model version and watch reference (default: no drive of a registry)")
     parser.add_argument("--registry", default="drives.yaml", metavar="PATH",
                         help="the drive registry YAML (default: ./drives.yaml); with --drive")
     from backlash_monitor.errors import DeprecatedSpelling
