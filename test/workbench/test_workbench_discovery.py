@@ -125,7 +125,7 @@ def test_wheel_friction_named_then_retraining_removes_the_width_bias(tmp_path):
 def test_clean_recordings_give_no_discovery(scenario, seed):
     model = load_model(None, width_m=scenario["width_m"], eta_k=scenario.get("eta_k"))
     meas = hidden_effect_recording(model, DURATION_S, seed=seed)
-    res = public(diagnose(meas, model))
+    res = public(diagnose(meas, model, propose=False))
     assert res["discovery"] is None, res["message"]
 
 
@@ -140,7 +140,7 @@ def test_out_of_catalogue_effect_inconsistent_and_where():
     is not always so (docs/workbench.md, "Identifiability, measured")."""
     model = load_model(None)
     meas = hidden_effect_recording(model, DURATION_S, seed=43, config_overrides={"motor.r_r_pu": 0.12})
-    res = public(diagnose(meas, model))
+    res = public(diagnose(meas, model, propose=False))
     assert res["model_inconsistent"], res["residual_over_noise_floor"]
     assert res["discovery"] is None, res["message"]
     assert res["where"]["dominant_phase"] != "before_entry"

@@ -63,7 +63,7 @@ def diagnosed(name):
         rec = make_recording(spec)
         meas = Measurement(f"foreign:{name}", rec.sample_period_s, {k: np.asarray(v) for k, v in rec.signals.items()})
         model = load_model(None, width_m=spec.width_m, eta_k=spec.eta_k, n1=spec.n1)
-        _CACHE[name] = (diagnose(meas, model).to_json(), rec.truth)
+        _CACHE[name] = (diagnose(meas, model, propose=False).to_json(), rec.truth)
     return _CACHE[name]
 
 

@@ -47,7 +47,7 @@ def test_batched_ensemble_is_the_whole_batch(drive, monkeypatch):
 @pytest.mark.slow
 def test_one_set_per_batch_same_verdict_and_values(drive, monkeypatch):
     model, meas = drive
-    kwargs = dict(seeds=[0, 1, 2], effects=["load_mass_drift", "wheel_inertia_drift"])
+    kwargs = dict(seeds=[0, 1, 2], effects=["load_mass_drift", "wheel_inertia_drift"], propose=False)
     monkeypatch.setattr(fitting, "BATCH_BYTES", 1e18)
     whole = diagnose(meas, model, **kwargs).to_json()
     monkeypatch.setattr(fitting, "BATCH_BYTES", 1.0)

@@ -33,7 +33,7 @@ def report_dir(tmp_path_factory):
     model = load_model(None)
     meas = hidden_effect_recording(model, 2.0, seed=51, config_overrides={
         "effects.load_mass_drift": True, "load_mass_drift.relative_change": 0.3})
-    res = diagnose(meas, model, seeds=[0, 1, 2], effects=["load_mass_drift", "wheel_inertia_drift"])
+    res = diagnose(meas, model, seeds=[0, 1, 2], effects=["load_mass_drift", "wheel_inertia_drift"], propose=False)
     page = report.write_report(res, d)
     return page
 
