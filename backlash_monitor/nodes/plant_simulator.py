@@ -66,6 +66,10 @@ PARAMETERS = (
     ParameterSpec("wait_timeout_s", 60.0, "how long to wait for wait_for_subscribers before "
                   "streaming anyway (logged as a warning naming who is missing); 0 = no limit [s]",
                   0.0, 86400.0),
+    ParameterSpec("match_settle_s", 0.25, "once the awaited subscriptions are matched, wait this long "
+                  "more before streaming: the publisher sees the match before the subscriber has "
+                  "matched back, and a volatile subscriber drops what was sent before its side "
+                  "matched (the stream's first chunk, seen across two hosts) [s]", 0.0, 60.0),
 )
 
 def parse_set_at(entries) -> list:
@@ -140,6 +144,7 @@ class PlantSimulatorNode(Node):
             raise ParameterValueError(f"parameter {error}") from None
         self.chunk_qos = qos
         self.wait_started = time.monotonic()
+        self.matched_at_s: float | None = None   # when the awaited subscriptions were all matched
         if self.wanted:
             limit = f"up to {p['wait_timeout_s']:g} s" if p["wait_timeout_s"] > 0 else "no limit"
             self.get_logger().info(
@@ -185,14 +190,20 @@ class PlantSimulatorNode(Node):
         timed out: then say who is missing)."""
         absent = self.missing_subscribers()
         if absent:
+            self.matched_at_s = None
             timeout = self.params["wait_timeout_s"]
             if timeout <= 0 or time.monotonic() - self.wait_started < timeout:
                 return False
             self.get_logger().warning(f"streaming without them after waiting {timeout:g} s for "
                                       f"subscribers: missing {'; '.join(absent)} (they lose the "
                                       "stream's start)")
-        elif self.wanted:
-            self.get_logger().info(f"subscribers there after {time.monotonic() - self.wait_started:.1f} s: "
+        elif self.wanted or self.params["wait_for_subscriptions"]:
+            now = time.monotonic()
+            if self.matched_at_s is None:
+                self.matched_at_s = now
+            if now - self.matched_at_s < self.params["match_settle_s"]:
+                return False
+            self.get_logger().info(f"subscribers there after {self.matched_at_s - self.wait_started:.1f} s: "
                                    "streaming")
         self.stream_start_s = self.get_clock().now().nanoseconds * 1e-9
         self.wall_start = time.monotonic()

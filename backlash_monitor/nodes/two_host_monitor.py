@@ -33,8 +33,9 @@ def main(argv=None) -> int:
     last_change, last = started, (0, 0)
     while time.monotonic() - started < wall_limit_s:
         rclpy.spin_once(node, timeout_sec=0.1)
+        # settled: no new estimate, onset window or chunk for 2.5 s (the diagnostics come once a second)
         state = (len(onsets), int(windowing.get("onsets", 0))
-                 - int(windowing.get("onsets_before_offset", 0)))
+                 - int(windowing.get("onsets_before_offset", 0)), windowing.get("chunks"))
         if state != last:
             last, last_change = state, time.monotonic()
         if state[1] and state[0] >= state[1] and time.monotonic() - last_change > 2.5:
@@ -43,7 +44,11 @@ def main(argv=None) -> int:
                       "onset_windows": int(windowing.get("onsets", 0)),
                       "onsets_before_offset": int(windowing.get("onsets_before_offset", 0)),
                       "chunks": int(windowing.get("chunks", 0)),
-                      "discarded": int(windowing.get("discarded", 0))}), flush=True)
+                      "discarded": int(windowing.get("discarded", 0)),
+                      # where a lost chunk went: the stream joined late, a range never completed
+                      "joined_at_sample": int(windowing.get("joined_at_sample", 0)),
+                      "incomplete_chunks": int(windowing.get("incomplete_chunks", 0)),
+                      "input_faults": windowing.get("input_faults", "")}), flush=True)
     node.destroy_node()
     rclpy.try_shutdown()
     return 0

@@ -188,7 +188,9 @@ def run_two_hosts(workdir: str, base_env: dict, domain_id: int, duration_s: floa
             procs["plant"] = subprocess.Popen(
                 a.command([os.path.join(exe, "plant_simulator"), *ros,
                            "-p", f"duration_s:={duration_s}", "-p", f"rate_factor:={rate_factor}",
-                           "-p", "wait_for_subscribers:=['windowing:a1,a2,angle_difference']"]), env=env_a,
+                           "-p", "wait_for_subscribers:=['windowing:a1,a2,angle_difference']",
+                           # discovery across the veth pair is slower: let host B match back
+                           "-p", "match_settle_s:=1.0"]), env=env_a,
                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
             out, _ = procs["monitor"].communicate(timeout=timeout_s)
         finally:
