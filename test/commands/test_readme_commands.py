@@ -12,6 +12,8 @@ from pathlib import Path
 import pytest
 import yaml
 
+from backlash_monitor.workbench.history import HEADER, NOT_CHECKED, version_rows
+
 REPO = Path(__file__).resolve().parents[2]
 README = REPO / "README.md"
 
@@ -90,6 +92,19 @@ def test_the_workbench_loop_finds_the_hidden_friction(tmp_path, ros_env):
     assert (tmp_path / "cmp_v2" / "compare.json").is_file()
     assert (tmp_path / "lib_v2.npz").is_file() and (tmp_path / "lib_v2.watch.npz").is_file()
     assert (tmp_path / "after.csv").is_file()
+    # ... and `history` lists v1 (the default model, checked by diagnose) and v2 (checked by compare, trained,
+    # analysed) with every cell filled, the residual falling from v1 to v2, and draws it
+    rows = version_rows([json.loads(x) for x in (tmp_path / "workbench_history.jsonl").read_text().splitlines()])
+    assert [r.version for r in rows] == [1, 2]
+    for r in rows:
+        cells = dict(zip(HEADER, r.cells()))
+        assert all(c.strip() for c in cells.values()), cells
+        assert NOT_CHECKED not in cells.values() and cells["monitor width mm"] != "not trained", cells
+        assert f"{r.name} v{r.version}" in proc.stdout, proc.stdout[-3000:]
+    v1, v2 = rows
+    assert max(v2.residual_over_noise_floor.values()) < max(v1.residual_over_noise_floor.values())
+    assert dict(zip(HEADER, v2.cells()))["from diagnosis"].startswith("diag.json of ")
+    assert (tmp_path / "history.png").stat().st_size > 1000
     # the README quotes diagnose's console: its verdict line is the one this run printed
     readme = README.read_text()
     verdict = next(line for line in proc.stdout.splitlines() if line.startswith("verdict: "))

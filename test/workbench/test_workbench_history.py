@@ -3,8 +3,8 @@
 Fast: the rows folded from a history's entries (a version never checked says so; no blank cell), the plot; a drift
 of a nominal value becomes the next version's nominal value (with its uncertainty and source), an effect stays an
 effect, old model files (a stacked drift) still load and are folded when diagnosed again.
-Slow: the README's own loop (simulate a 4 s recording with a hidden wheel friction -> diagnose -> add-effect ->
-train --model -> analyze --library) and `history` shows every version's figures, no cell blank.
+The README's own loop ending in `history` (every version's figures, no cell blank) is run by
+test/commands/test_readme_commands.py.
 """
 import json
 
@@ -98,34 +98,3 @@ def test_an_old_model_with_a_stacked_drift_still_loads_and_is_folded(tmp_path):
     m3 = add_effects(m, [EffectValues("absorber_flow_index_drift", {"change": 0.025}, {}, "d")])
     assert m3.nominal["n1"] == pytest.approx(0.915)
     assert not m3.plant_config().effects.get("absorber_flow_index_drift")
-
-
-@pytest.mark.slow
-def test_the_readme_loop_fills_every_history_cell(tmp_path, monkeypatch, capsys):
-    """README "The model workbench": simulate -> diagnose -> add-effect -> train --model -> analyze --library,
-    then `history` in the same directory lists v1 (the default model) and v2 with fit, residual, monitor width,
-    the diagnosis and the date; the residual falls from v1 to v2."""
-    monkeypatch.chdir(tmp_path)
-    assert main(["simulate", "--widths", "0.0075", "--eta-k", "0.025", "--n1", "0.89", "--seeds", "7",
-                 "--duration", "4", "--no-npz", "--mcap", "rec", "--set", "effects.wheel_coulomb_friction=true",
-                 "--set", "wheel_coulomb_friction.torque_Nm=1.5"]) == 0
-    (rec,) = sorted((tmp_path / "rec").glob("*.mcap"))
-    assert main(["diagnose", str(rec), "--json", "diag.json", "--report", "report"]) == 0
-    assert main(["add-effect", "diag.json", "-o", "drive_v2.yaml"]) == 0
-    assert main(["train", "--model", "drive_v2.yaml", "--output", "lib_v2.npz", "--seeds", "1000,1001",
-                 "--no-progress"]) == 0
-    assert main(["analyze", str(rec), "--library", "lib_v2.npz", "--out", "after"]) == 0
-    capsys.readouterr()
-    assert main(["history", "--plot", "history.png"]) == 0
-    out = capsys.readouterr().out
-    rows = version_rows([json.loads(x) for x in (tmp_path / "workbench_history.jsonl").read_text().splitlines()])
-    assert [r.version for r in rows] == [1, 2]
-    for r in rows:
-        cells = dict(zip(HEADER, r.cells()))
-        assert all(c.strip() for c in cells.values()), cells
-        assert NOT_CHECKED not in cells.values() and cells["monitor width mm"] != "not trained", cells
-        assert f"v{r.version}" in out
-    v1, v2 = rows
-    assert max(v2.residual_over_noise_floor.values()) < max(v1.residual_over_noise_floor.values())
-    assert dict(zip(HEADER, v2.cells()))["from diagnosis"].startswith("diag.json of ")
-    assert (tmp_path / "history.png").stat().st_size > 1000
