@@ -18,6 +18,13 @@ wavelet="sym5", axis=-1) -> np.ndarray``
     convenience: applies ``denoise_sym5`` to every array of a window's ``signals`` dict and returns
     a dict of denoised arrays.
 
+The chain's window helpers (the denoise node's core and ``analyze``'s), with ``DENOISE_DEFAULTS``:
+``check_window_pair(a1, a2)`` the reason a window cannot be denoised, or None;
+``denoise_checked(a1, a2)`` ``((a1, a2), None)`` or ``(None, reason)``; ``denoise_pair(a1, a2)`` a
+window's a1 and a2 in one call (as the node does); ``denoise_pairs(pairs)`` many windows in one
+batch, bit for bit the same; ``denoising_label(level, details_removed, mode)`` the text the nodes
+report.
+
 Boundary mode
 -------------
 A window is not periodic (the entry at its start, the far-side impact or the settling at its
@@ -42,6 +49,12 @@ __all__ = [
     "ALLOWED_MODES",
     "denoise_sym5",
     "denoise_sym5_window",
+    "DENOISE_DEFAULTS",
+    "check_window_pair",
+    "denoise_checked",
+    "denoise_pair",
+    "denoise_pairs",
+    "denoising_label",
     "max_level",
     "boundary_mode_error",
 ]
@@ -120,6 +133,79 @@ def denoise_sym5_window(window, signals: Iterable[str] | None = None, **kwargs) 
     if missing:
         raise ValueError(f"signals={names!r}: not in the window (it has {sorted(data)})")
     return {s: denoise_sym5(data[s], **kwargs) for s in names}
+
+
+# What the denoise node and ``analyze`` apply to every window (the paper's: d1..d6 of level 6 removed).
+DENOISE_DEFAULTS = dict(level=DEFAULT_LEVEL, details_removed=DEFAULT_DETAILS_REMOVED, mode=DEFAULT_MODE)
+
+
+def check_window_pair(a1, a2, level: int = DENOISE_DEFAULTS["level"],
+                      window_length: int | None = None) -> str | None:
+    """The reason a window's (a1, a2) cannot be denoised (or classified), or None: both 1-D of one
+    length (``window_length`` when given), long enough for ``level``, finite (input_faults.REASONS)."""
+    try:
+        a1 = np.asarray(a1, dtype=np.float64)
+        a2 = np.asarray(a2, dtype=np.float64)
+    except (TypeError, ValueError):
+        return "non_finite_samples"
+    if a1.ndim != 1 or a2.ndim != 1:
+        return "bad_shape"
+    if a1.size != a2.size:
+        return "length_mismatch"
+    if window_length is not None and a1.size != window_length:
+        return "wrong_window_length"
+    if a1.size == 0 or max_level(a1.size) < level:
+        return "wrong_window_length"
+    if not (np.isfinite(a1).all() and np.isfinite(a2).all()):
+        return "non_finite_samples"
+    return None
+
+
+def denoise_checked(a1, a2, **options):
+    """``((a1, a2), None)`` denoised, or ``(None, reason)``: the window is checked first
+    (:func:`check_window_pair`) and a result that is not finite (finite samples near the float
+    limit can overflow the transform) is refused as ``denoise_failed``. The denoise node's core."""
+    level = options.get("level", DENOISE_DEFAULTS["level"])
+    reason = check_window_pair(a1, a2, level=level)
+    if reason is not None:
+        return None, reason
+    try:
+        with np.errstate(over="ignore", invalid="ignore"):
+            clean = denoise_pair(a1, a2, **options)
+    except ValueError:
+        return None, "denoise_failed"
+    if not (np.isfinite(clean[0]).all() and np.isfinite(clean[1]).all()):
+        return None, "denoise_failed"
+    return clean, None
+
+
+def denoise_pair(a1, a2, **options):
+    """sym5 denoising of a window's a1 and a2 in one call; returns (a1, a2)."""
+    clean = denoise_sym5(np.stack([np.asarray(a1, dtype=np.float64),
+                                   np.asarray(a2, dtype=np.float64)]),
+                         **{**DENOISE_DEFAULTS, **options})
+    return clean[0], clean[1]
+
+
+def denoise_pairs(pairs, **options) -> list[tuple[np.ndarray, np.ndarray]]:
+    """:func:`denoise_pair` of many windows' (a1, a2) in one batched transform (offline).
+
+    pywt transforms every row of a 2-D batch with the same 1-D routine, so each result is bit for
+    bit the window's own ``denoise_pair`` (test/denoise/test_denoise_pairs.py); windows of unequal
+    lengths are denoised pair by pair."""
+    pairs = [(np.asarray(a1, dtype=np.float64), np.asarray(a2, dtype=np.float64))
+             for a1, a2 in pairs]
+    shapes = {a.shape for pair in pairs for a in pair}
+    if len(pairs) < 2 or len(shapes) != 1 or len(next(iter(shapes))) != 1:
+        return [denoise_pair(a1, a2, **options) for a1, a2 in pairs]
+    rows = np.stack([a for pair in pairs for a in pair])          # a1, a2, a1, a2, ...
+    clean = denoise_sym5(rows, **{**DENOISE_DEFAULTS, **options})
+    return [(clean[2 * i], clean[2 * i + 1]) for i in range(len(pairs))]
+
+
+def denoising_label(level: int, details_removed, mode: str) -> str:
+    return (f"sym5 level {level}, details {','.join(map(str, details_removed))} removed, "
+            f"mode {mode}")
 
 
 def boundary_mode_error(

@@ -10,7 +10,7 @@ interleaved rounds per side, old and new alternating which goes first):
   and integrated speeds;
 - ``chunk1000_*``: 1000-sample chunks (20 ms at 50 kHz), as the live windowing node gets them;
   contact_loss and paper (integrated speeds);
-- ``block65536``: blocks of 65 536 samples, as ``analyze`` feeds measured angles (chain.BlockFeeder).
+- ``block65536``: blocks of 65 536 samples, as ``analyze`` feeds measured angles (chain.block_feeder.BlockFeeder).
 ``speedup_*`` = old time / new time (> 1: the new one is faster). ``identical``: every case gave
 the same entries (all fields) from both. The old version is bench/_detector/reference_detector.py;
 the full identity check over ~1150 scenarios is bench/_detector/identity.py.
@@ -73,13 +73,13 @@ def run_case(cls, kw, feeds_per_record, widths):
 
 def analyze_old_vs_new(rounds: int) -> dict:
     """analyze of a 10 s bag with the new and the old detector, and rosbags reading it (see above)."""
-    import backlash_monitor.chain as chain
+    import backlash_monitor.chain.stage as stage   # WindowingStage looks BacklashEntryDetector up there
     import bags
     from backlash_monitor.bag.simulated import write_simulation_bag
     from backlash_monitor.commands import analyze
     from backlash_monitor.plant import PlantSimulator, Scenario
 
-    detectors = {"new": chain.BacklashEntryDetector, "old": reference_detector.BacklashEntryDetector}
+    detectors = {"new": stage.BacklashEntryDetector, "old": reference_detector.BacklashEntryDetector}
     parser = argparse.ArgumentParser()
     analyze.add_arguments(parser)
     best = {"new": float("inf"), "old": float("inf"), "rosbags": float("inf")}
@@ -91,7 +91,7 @@ def analyze_old_vs_new(rounds: int) -> dict:
         try:
             for k in range(-1, rounds):          # round -1: warm-up (imports, caches), not timed
                 for side in (("new", "old") if k % 2 == 0 else ("old", "new")):
-                    chain.BacklashEntryDetector = detectors[side]
+                    stage.BacklashEntryDetector = detectors[side]
                     out = Path(tmp) / f"{side}_{k}"
                     t = bags._analyze(analyze, parser, bag, out)
                     csv[side] = (Path(tmp) / f"{side}_{k}.csv").read_text()
@@ -101,7 +101,7 @@ def analyze_old_vs_new(rounds: int) -> dict:
                 if k >= 0:
                     best["rosbags"] = min(best["rosbags"], t)
         finally:
-            chain.BacklashEntryDetector = detectors["new"]
+            stage.BacklashEntryDetector = detectors["new"]
     return {"analyze_new_detector_ms": round(best["new"] * 1e3, 1),
             "analyze_old_detector_ms": round(best["old"] * 1e3, 1),
             "rosbags_read_same_topics_ms": round(best["rosbags"] * 1e3, 1),

@@ -25,7 +25,11 @@ from functools import lru_cache
 import numpy as np
 from hypothesis import strategies as st
 
-from backlash_monitor.chain import ChunkJoiner, WindowingStage, denoise_checked
+from backlash_monitor.chain.joiner import ChunkJoiner
+
+from backlash_monitor.chain.stage import WindowingStage
+
+from backlash_monitor.denoise import denoise_checked
 from backlash_monitor.windowing.faults import REASONS
 
 INPUTS: Counter = Counter()
@@ -294,7 +298,7 @@ def good_window():
     t = np.arange(WINDOW_LENGTH) * PERIOD_S
     a1 = np.where(t < 0.004, 0.0, -40.0) + np.where(t > 0.025, 60.0 * np.exp(-(t - 0.025) / 0.004), 0.0)
     a2 = np.where(t > 0.025, -300.0 * np.exp(-(t - 0.025) / 0.003), 0.0) + 2.0
-    from backlash_monitor.chain import denoise_pair
+    from backlash_monitor.denoise import denoise_pair
     return denoise_pair(a1, a2)
 
 

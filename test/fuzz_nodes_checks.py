@@ -9,7 +9,7 @@ import numpy as np
 from hypothesis import strategies as st
 
 import fuzz_cores as fc
-from backlash_monitor.chain import denoising_label
+from backlash_monitor.denoise import denoising_label
 from backlash_monitor.ros.conversions import to_float64_array
 
 

@@ -2,8 +2,8 @@
 
 Reads the drive's SignalChunk topics (plant/a1, plant/a2, plant/angle_difference — or
 plant/omega1/omega2 with --angle-source integrated) in the order they were recorded, runs the same
-stages as the live graph (backlash_monitor.chain: join, detect entries, capture, denoise, classify,
-fuse) and writes the estimates to OUT.csv, OUT.json and OUT.mcap (topic `estimate`, the live
+stages as the live graph (backlash_monitor.chain: join, detect entries, capture; backlash_monitor.denoise;
+classify, fuse) and writes the estimates to OUT.csv, OUT.json and OUT.mcap (topic `estimate`, the live
 pipeline's message type). Given the same recorded chunks, the estimates equal the live pipeline's.
 
 The accelerometers' constant offsets are estimated over whole load periods and removed before the

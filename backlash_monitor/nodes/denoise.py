@@ -5,7 +5,7 @@
 Subscribes to ``windows/raw`` and publishes ``windows/denoised``: the same windows with a1 and a2
 decomposed to level 6 with sym5, details d1..d6 zeroed and reconstructed (backlash_monitor.denoise).
 A window that cannot be denoised (a1 and a2 of unequal lengths, non-finite samples, too short for
-the level; backlash_monitor.chain.denoise_checked) is dropped and counted with its reason;
+the level; backlash_monitor.denoise.denoise_checked) is dropped and counted with its reason;
 ``/diagnostics`` says WARN with it while such windows come, STALE when none came for
 ``stale_after_s``.
 """
@@ -16,7 +16,7 @@ import time
 
 from rclpy.node import Node
 
-from backlash_monitor.chain import denoise_checked, denoising_label
+from backlash_monitor.denoise import denoise_checked, denoising_label
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
 from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.denoise import DEFAULT_MODE

@@ -147,7 +147,7 @@ class ModelWatchNode(Node):
         self.blas_threads = 1                          # run_node: its small products on one thread (process/blas)
         self.signals = tuple(n for n in PLANT_SIGNALS if n in p["snapshot_signals"])
         from backlash_monitor.bag.cdr import Codec
-        from backlash_monitor.chain import ChunkJoiner, pending_ranges_for
+        from backlash_monitor.chain.joiner import ChunkJoiner, pending_ranges_for
         from backlash_monitor.watch.alarm import AlarmRule
         from backlash_monitor.watch.core import ModelWatch
         from backlash_monitor.workbench.events import DC_SIGNALS, SEGMENT_SIGNALS

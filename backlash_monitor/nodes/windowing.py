@@ -40,7 +40,8 @@ from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
 from backlash_monitor.ros.qos import LATCHED, WINDOW_QOS, chunk_qos
 from backlash_monitor.ros.runtime import run_node
-from backlash_monitor.chain import ChunkJoiner, WindowingStage, pending_ranges_for
+from backlash_monitor.chain.joiner import ChunkJoiner, pending_ranges_for
+from backlash_monitor.chain.stage import WindowingStage
 from backlash_monitor.windowing.faults import FaultLog, InputHealth, is_period
 from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing.offset import implausible_offsets

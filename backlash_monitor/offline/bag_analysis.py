@@ -2,7 +2,7 @@
 
 Reads the drive's SignalChunk topics (plant/a1, plant/a2, plant/angle_difference -- or
 plant/omega1/omega2 with angle_source "integrated") in the order they were recorded, runs the same
-stages as the live graph (backlash_monitor.chain: join, check and window, denoise, classify, fuse)
+stages as the live graph (backlash_monitor.chain: join, check and window; backlash_monitor.denoise; classify, fuse)
 and writes the estimates to PREFIX.csv, PREFIX.json and PREFIX.mcap (topic ``estimate``, the live
 pipeline's message type). Given the same recorded chunks, the estimates equal the live pipeline's.
 
@@ -204,7 +204,10 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
     for a pool with a worker per core). Raises UsageError (one line) for anything wrong with the
     bag or the options."""
     from backlash_monitor.bag import BagError, BagReader, DamagedBagError, TruncatedBagError
-    from backlash_monitor.chain import BlockFeeder, ChunkJoiner, WindowingStage, denoise_pairs
+    from backlash_monitor.chain.block_feeder import BlockFeeder
+    from backlash_monitor.chain.joiner import ChunkJoiner
+    from backlash_monitor.chain.stage import WindowingStage
+    from backlash_monitor.denoise import denoise_pairs
     from backlash_monitor.classifier.patterns import PatternLibraryError
     from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator
     from backlash_monitor.files.outputs import OutputError, check_outputs, staged_outputs

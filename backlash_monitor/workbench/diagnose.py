@@ -26,8 +26,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import (analysis, consistency, fitting, pairs, plant_adapter, proposal, report, ripple, separation,
-               tolerance)
+from . import (analysis, consistency, drive_terms, fitting, pairs, plant_adapter, proposal, report, ripple,
+               separation, tolerance)
 from .decisions import (DELTA_IC_DECISIVE, DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EXPLAINED, confident, identical_to,
                         likelihood_part, qualifies, significant)
 from .diagnosis_result import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOTHING_EXPLAINS, PARTIAL,
@@ -503,15 +503,13 @@ def verdict_message(run: Run, up: Update, v: Verdict, width: WidthMeasurement, r
     else:
         parts = []
         if discovery is not None:
-            vals = ", ".join(f"{n} = {v:.4g} ± {u:.2g} {unit}" for n, v, u, unit in
-                             zip(discovery.parameter_names, discovery.values, discovery.uncertainty, discovery.units))
             caveat = separation.motor_side_note(discovery.effect, discovery.indistinguishable_from)
             if _is_measurand(discovery):
                 parts.append(f"the backlash width is {width.width_m * 1e3:.3f} ± {width.uncertainty_m * 1e3:.2f} mm "
                              f"(model nominal {width.nominal_width_m * 1e3:.3f} mm): the width is what the monitor "
                              "measures, not a missing effect")
             else:
-                parts.append(f"missing effect: {discovery.effect} ({vals}), explains "
+                parts.append(f"missing effect: {drive_terms.effect_text(discovery.to_json(), run.model)}, explains "
                              f"{discovery.explained_fraction:.0%} of the residual, delta_ic {discovery.delta_ic:.1f}")
             if discovery.indistinguishable_from:
                 parts[-1] += ("; not distinguishable from this recording from "
@@ -535,7 +533,7 @@ def verdict_message(run: Run, up: Update, v: Verdict, width: WidthMeasurement, r
                     parts.append(f"at a backlash width of {width.width_m * 1e3:.3f} mm (nominal "
                                  f"{width.nominal_width_m * 1e3:.3f} mm: the measurand, not an effect)")
                 else:
-                    parts.append(f"a second effect on top: {second.effect} ({second.values[0]:.4g})"
+                    parts.append(f"a second effect on top: {drive_terms.effect_text(second.to_json(), run.model)}"
                                  + (" (not distinguishable from this recording from "
                                     + ", ".join(second.indistinguishable_from) + ")"
                                     if second.indistinguishable_from else ""))

@@ -123,6 +123,20 @@ def parameter_lines(entry: dict, model) -> list[str]:
     return out
 
 
+def effect_text(entry: dict, model) -> str:
+    """An effect in one line, as diagnose's verdict message gives it: its candidate name, its parameters in drive
+    terms (:func:`parameter_lines`, the same lines the console and the report show) and its plain description:
+    "absorber_flow_index_drift — n1: 0.89 → 0.9104 ± 0.0004 (drift of the absorber flow index n1 from nominal:
+    value + change)"."""
+    text = entry.get("candidate") or entry["effect"]
+    values = parameter_lines(entry, model)
+    if values:
+        text += " — " + ", ".join(values)
+    if entry.get("description"):
+        text += f" ({entry['description']})"
+    return text
+
+
 def width_line(diag: dict) -> str:
     mw = diag["measured_width"]
     v, du = significant_digits(mw["width_m"] * 1e3, mw["uncertainty_m"] * 1e3)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from backlash_monitor.chain import denoise_pairs
+from backlash_monitor.denoise import denoise_pairs
 from backlash_monitor.classifier.patterns import load_library
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DriveEstimator
 from backlash_monitor.windowing import default_window_offset, extract_windows

@@ -81,7 +81,8 @@ def _two_faults():
 
 
 def _small_restart():
-    from backlash_monitor.chain import ChunkJoiner, WindowingStage
+    from backlash_monitor.chain.joiner import ChunkJoiner
+    from backlash_monitor.chain.stage import WindowingStage
     data, _ = fc.synthetic_stream()
     stage = WindowingStage()
     joiner = ChunkJoiner(stage.input_signals, faults=stage.faults)
@@ -98,7 +99,8 @@ def _small_restart():
 
 
 def _not_numbers():
-    from backlash_monitor.chain import ChunkJoiner, WindowingStage
+    from backlash_monitor.chain.joiner import ChunkJoiner
+    from backlash_monitor.chain.stage import WindowingStage
     stage = WindowingStage()
     joiner = ChunkJoiner(stage.input_signals, faults=stage.faults)
     joiner.add("a1", 0, PERIOD_S, ["x"] * 10)
@@ -110,7 +112,8 @@ def _not_numbers():
 
 
 def _two_d():
-    from backlash_monitor.chain import ChunkJoiner, WindowingStage
+    from backlash_monitor.chain.joiner import ChunkJoiner
+    from backlash_monitor.chain.stage import WindowingStage
     stage = WindowingStage()
     joiner = ChunkJoiner(stage.input_signals, faults=stage.faults)
     for s in stage.input_signals:
@@ -151,7 +154,7 @@ def _window_cases():
 
     def case(window):
         def run():
-            from backlash_monitor.chain import denoise_checked
+            from backlash_monitor.denoise import denoise_checked
             clean, reason = denoise_checked(window[0], window[1])
             if clean is not None and not (np.isfinite(clean[0]).all() and np.isfinite(clean[1]).all()):
                 raise Escape("non-finite estimate", "denoised window not finite")
@@ -262,7 +265,7 @@ def _message_cases():
         lambda lo, s, f, p, x: (f - 5000 if lo >= 5000 else f, p, x))
 
     def window_msg(a1, a2, kind="onset", period=PERIOD_S, denoised=True, index=0):
-        from backlash_monitor.chain import denoising_label
+        from backlash_monitor.denoise import denoising_label
         from backlash_monitor.ros.conversions import to_float64_array
         from backlash_monitor_msgs.msg import BacklashWindow
         msg = BacklashWindow(entry_sample_index=index, entry_kind=kind, trigger="contact_loss",

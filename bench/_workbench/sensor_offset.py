@@ -18,7 +18,7 @@ what the plant's effects do to its published samples too.
 
 An extra recording is a mapping: ``signals`` ({"a1", "a2", and "angle_difference" or "omega1" +
 "omega2": 1-D arrays [m/s^2, rad, rad/s]}), ``sample_period_s``, ``true_width_m`` and optionally
-``name``. The monitor runs as ``analyze`` runs it (backlash_monitor.chain.estimate_record: windows
+``name``. The monitor runs as ``analyze`` runs it (backlash_monitor.chain.record.estimate_record: windows
 with the sensor offset estimate, sym5 denoising, the packaged contact_loss library, shape mode).
 
     python bench/_workbench/sensor_offset.py      # one JSON object on stdout (~20 s)
@@ -101,7 +101,7 @@ def perturbed(recording: Mapping, kind: str, signal: str, value: float) -> dict:
 def monitor_trace(recording: Mapping, library) -> dict:
     """The monitor's estimates of one recording: per classified onset window (by entry index) the
     fused continuous width and its fused events, and the last sensor offset estimate."""
-    from backlash_monitor.chain import estimate_record
+    from backlash_monitor.chain.record import estimate_record
     from backlash_monitor.estimation import DriveEstimator
     estimator = DriveEstimator(library, mode="shape")
     trace, offsets = {}, {}

@@ -1,4 +1,4 @@
-"""chain.ChunkJoiner.add_rows (analyze on a file without chunks: its chunks joined at once) gives
+"""chain.joiner.ChunkJoiner.add_rows (analyze on a file without chunks: its chunks joined at once) gives
 the ranges that ChunkJoiner.add gives chunk by chunk, and leaves the joiner as those adds leave
 it; chunks that do not come as whole ranges one after the other are refused (None), with the
 joiner untouched, so that they are added one by one (which counts what is wrong)."""
@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from backlash_monitor.chain import ChunkJoiner, JoinedRange
+from backlash_monitor.chain.joiner import ChunkJoiner, JoinedRange
 
 SIGNALS = ("a1", "a2", "angle_difference")
 PERIOD = 2e-5

@@ -9,7 +9,7 @@ joiner sized for the queue (pending_ranges_for(1000)) completes every range, in 
 """
 import numpy as np
 
-from backlash_monitor.chain import MAX_PENDING_RANGES, ChunkJoiner, pending_ranges_for
+from backlash_monitor.chain.joiner import MAX_PENDING_RANGES, ChunkJoiner, pending_ranges_for
 
 CHUNK = 1000
 PERIOD_S = 2e-5

@@ -8,7 +8,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 
 import fuzz_cores as fc
-from backlash_monitor.chain import ChunkJoiner, JoinedRange, WindowingStage
+from backlash_monitor.chain.joiner import ChunkJoiner, JoinedRange
+from backlash_monitor.chain.stage import WindowingStage
 
 SETTINGS = settings(max_examples=150, deadline=None, database=None, derandomize=True,
                     suppress_health_check=list(HealthCheck))
@@ -153,7 +154,7 @@ def test_a_stray_chunk_of_the_old_stream_after_a_restart_does_not_move_the_new_o
 def test_the_old_stream_going_on_after_a_stray_restart_chunk_resumes():
     """A stray chunk at index 0 in the middle of a stream (a restart that was none): the stream
     going on is taken back after RESTART_CONFIRM_RANGES ranges, and its windows resume."""
-    from backlash_monitor.chain import RESTART_CONFIRM_RANGES
+    from backlash_monitor.chain.stage import RESTART_CONFIRM_RANGES
     data, _ = fc.synthetic_stream()
     stage = WindowingStage(window_length=fc.WINDOW_LENGTH)
     windows = []

@@ -5,7 +5,11 @@ next settled contact), denoised and classified with the width the clean stream g
 import numpy as np
 import pytest
 
-from backlash_monitor.chain import ChunkJoiner, WindowingStage, denoise_checked
+from backlash_monitor.chain.joiner import ChunkJoiner
+
+from backlash_monitor.chain.stage import WindowingStage
+
+from backlash_monitor.denoise import denoise_checked
 from backlash_monitor.classifier.patterns import load_library
 from backlash_monitor.estimation import DriveEstimator
 from backlash_monitor.plant import PlantSimulator, Scenario

@@ -9,7 +9,7 @@ from ament_index_python.packages import get_package_prefix
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from rclpy.parameter import Parameter
 
-from backlash_monitor.chain import denoise_pair, denoising_label
+from backlash_monitor.denoise import denoise_pair, denoising_label
 from backlash_monitor.classifier.fusion import median_standard_error
 from backlash_monitor.nodes.classifier import ClassifierNode, ESTIMATE_QOS
 from backlash_monitor.ros.conversions import to_float64_array

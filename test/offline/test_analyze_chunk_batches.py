@@ -9,7 +9,7 @@ import pytest
 
 pytest.importorskip("backlash_monitor.plant")
 
-from backlash_monitor import chain  # noqa: E402
+from backlash_monitor.chain import joiner  # noqa: E402
 from backlash_monitor.bag import BagReader, BagWriter  # noqa: E402
 import bag_damage  # noqa: E402
 from backlash_monitor.bag import reader as reader_module  # noqa: E402
@@ -40,7 +40,7 @@ def analyzed(bag, out, monkeypatch, batches: bool, recover: bool = False):
     """(result without run time, fault counts, CSV, MCAP bytes, JSON without run time and bag path)
     of analyze, and how many chunks went as columns and how many ranges add_rows joined."""
     columns, joined = [], []
-    chunk_columns, add_rows = reader_module._chunk_signal_columns, chain.ChunkJoiner.add_rows
+    chunk_columns, add_rows = reader_module._chunk_signal_columns, joiner.ChunkJoiner.add_rows
 
     def spy_columns(*args):
         got = chunk_columns(*args) if batches else None
@@ -53,7 +53,7 @@ def analyzed(bag, out, monkeypatch, batches: bool, recover: bool = False):
         return got
     with monkeypatch.context() as patch:
         patch.setattr(reader_module, "_chunk_signal_columns", spy_columns)
-        patch.setattr(chain.ChunkJoiner, "add_rows", spy_rows)
+        patch.setattr(joiner.ChunkJoiner, "add_rows", spy_rows)
         out.mkdir()
         result = analyze_bag(bag, out / "estimates", AnalyzeOptions(recover=recover), chunks_ahead=0)
     return analyze_outputs(result), sum(columns), sum(joined)

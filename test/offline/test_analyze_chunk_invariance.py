@@ -1,4 +1,4 @@
-"""`analyze` feeds the windowing stage blocks of joined ranges (chain.BlockFeeder) instead of the live
+"""`analyze` feeds the windowing stage blocks of joined ranges (chain.block_feeder.BlockFeeder) instead of the live
 node's 1000-sample ranges. That is exact only because the entry detector and the window capture are
 chunk-invariant: on plant data, 1000-sample chunks, 50000-sample blocks, irregular blocks and the
 whole record give bit-identical windows; irregular streams (gap, duplicate, replay, reorder) give
@@ -8,7 +8,11 @@ import pytest
 
 plant = pytest.importorskip("backlash_monitor.plant")
 
-from backlash_monitor.chain import BlockFeeder, JoinedRange, WindowingStage  # noqa: E402
+from backlash_monitor.chain.block_feeder import BlockFeeder  # noqa: E402
+
+from backlash_monitor.chain.joiner import JoinedRange  # noqa: E402
+
+from backlash_monitor.chain.stage import WindowingStage  # noqa: E402
 
 WIDTHS = (0.0025, 0.0075, 0.0125)
 SECONDS = 4.0

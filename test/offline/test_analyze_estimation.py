@@ -7,7 +7,11 @@ import pytest
 
 plant = pytest.importorskip("backlash_monitor.plant")
 
-from backlash_monitor.chain import JoinedRange, WindowingStage, denoise_pair  # noqa: E402
+from backlash_monitor.chain.joiner import JoinedRange  # noqa: E402
+
+from backlash_monitor.chain.stage import WindowingStage  # noqa: E402
+
+from backlash_monitor.denoise import denoise_pair  # noqa: E402
 from backlash_monitor.classifier.cpn import b_margin  # noqa: E402
 from backlash_monitor.classifier.patterns import default_library_path, load_library  # noqa: E402
 from backlash_monitor.classifier.shape import a1_features, a2_features  # noqa: E402

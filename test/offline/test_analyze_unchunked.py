@@ -7,7 +7,7 @@ import pytest
 
 pytest.importorskip("backlash_monitor.plant")
 
-from backlash_monitor import chain  # noqa: E402
+from backlash_monitor.chain import joiner  # noqa: E402
 from backlash_monitor.bag import BagReader, BagWriter  # noqa: E402
 from backlash_monitor.errors import UsageError  # noqa: E402
 from backlash_monitor.offline.bag_analysis import AnalyzeOptions, analyze_bag  # noqa: E402
@@ -39,14 +39,14 @@ def analyzed(bag, out, monkeypatch, at_once: bool):
     """(result without run time, CSV, MCAP bytes, JSON without run time and bag path) of analyze,
     and whether the ranges were joined at once."""
     joined = []
-    add_rows = chain.ChunkJoiner.add_rows
+    add_rows = joiner.ChunkJoiner.add_rows
 
     def spy(self, *args):
         got = add_rows(self, *args)
         joined.append(got is not None)
         return got
     with monkeypatch.context() as patch:
-        patch.setattr(chain.ChunkJoiner, "add_rows", spy)
+        patch.setattr(joiner.ChunkJoiner, "add_rows", spy)
         if not at_once:
             patch.setattr(BagReader, "signal_chunk_columns", lambda self, topics: None)
         out.mkdir()

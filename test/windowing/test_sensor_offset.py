@@ -14,7 +14,11 @@ import sys
 import numpy as np
 import pytest
 
-from backlash_monitor.chain import JoinedRange, WindowingStage, estimate_record
+from backlash_monitor.chain.joiner import JoinedRange
+
+from backlash_monitor.chain.record import estimate_record
+
+from backlash_monitor.chain.stage import WindowingStage
 from backlash_monitor.classifier.patterns import load_library
 from backlash_monitor.estimation import OFFSET_UNKNOWN, DriveEstimator
 from backlash_monitor.plant import PlantSimulator, Scenario, load_plant_config

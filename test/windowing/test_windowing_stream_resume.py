@@ -1,4 +1,4 @@
-"""The windowing stage (chain.WindowingStage, fed by ChunkJoiner as the live node and ``analyze``
+"""The windowing stage (chain.stage.WindowingStage, fed by ChunkJoiner as the live node and ``analyze``
 do) resumes after any cluster of stream faults: swaps, lost chunks, duplicates, index jumps,
 restarts and bad ranges close together, then a clean stream. Its clean ranges are fed to the
 detector again after at most RESTART_CONFIRM_RANGES of them are dropped, windows come again,
@@ -10,7 +10,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 
 import fuzz_cores as fc
-from backlash_monitor.chain import RESTART_CONFIRM_RANGES, BlockFeeder, WindowingStage
+from backlash_monitor.chain.block_feeder import BlockFeeder
+from backlash_monitor.chain.stage import RESTART_CONFIRM_RANGES, WindowingStage
 
 SETTINGS = settings(max_examples=300, deadline=None, database=None, derandomize=True,
                     suppress_health_check=list(HealthCheck))

@@ -68,3 +68,35 @@ def test_summary_width_near_tie_and_legend(model):
             and "a recording at another motor speed" in text)
     assert drive_terms.DELTA_IC_LINE in lines and drive_terms.T2_LINE in lines
     assert not any(line.rstrip().endswith(" -") or " -)" in line for line in lines)     # no bare unit "-"
+
+
+def test_effect_text_is_the_parameter_lines_and_the_description(model):
+    entry = _entry("wheel_coulomb_friction", "torque_Nm", 1.52, 0.04, "N*m", description="dry friction at the wheel")
+    assert drive_terms.effect_text(entry, model) == ("wheel_coulomb_friction — friction torque T (torque_Nm): "
+                                                     "0 → 1.52 ± 0.04 N·m (dry friction at the wheel)")
+
+
+N1_CHANGE = 0.05            # the recorded drive's flow index: the model's n1 + this
+
+
+@pytest.mark.slow
+def test_diagnosed_n1_drift_message_reads_in_drive_terms():
+    """A drive whose absorber flow index n1 is higher than the model's: the verdict message gives the drift as n1
+    moving from the model's value to the fitted one (value and uncertainty from the diagnosis itself), with the
+    effect's description, and no unit for the dimensionless n1."""
+    from backlash_monitor.workbench.diagnose import diagnose
+    from backlash_monitor.workbench.synthetic import hidden_effect_recording
+    model = load_model(None)
+    n1 = model.nominal["n1"]
+    meas = hidden_effect_recording(model, 3.0, seed=7, scenario={"n1": n1 + N1_CHANGE})
+    pub = diagnose(meas, model, effects=["absorber_flow_index_drift"], second=False, propose=False).to_json()
+    message = pub["message"]
+    assert pub["discovery"] == "absorber_flow_index_drift", message
+    disc = pub["discovery_parameters"]
+    change, unc = disc["parameters"]["change"], disc["uncertainty"]["change"]
+    value, u = drive_terms.significant_digits(n1 + change, unc)
+    assert f"missing effect: absorber_flow_index_drift — n1: {n1:.4g} → {value} ± {u} (" in message, message
+    assert disc["description"] and disc["description"] in message
+    assert " -)" not in message and "change =" not in message
+    # the fit finds the drive's n1 (measured: change 0.0479 ± 0.0013 for the recorded 0.05, seed 7)
+    assert abs(change - N1_CHANGE) < 0.1 * N1_CHANGE, (change, unc)

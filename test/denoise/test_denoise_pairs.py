@@ -1,9 +1,9 @@
-"""chain.denoise_pairs (analyze: all onset windows of a batch in one transform) gives every window
-bit for bit what chain.denoise_pair (the denoise node, window by window) gives it."""
+"""denoise.denoise_pairs (analyze: all onset windows of a batch in one transform) gives every window
+bit for bit what denoise.denoise_pair (the denoise node, window by window) gives it."""
 import numpy as np
 import pytest
 
-from backlash_monitor.chain import denoise_pair, denoise_pairs
+from backlash_monitor.denoise import denoise_pair, denoise_pairs
 
 
 def windows(rng, count, n=2048):
