@@ -11,8 +11,8 @@ An import belongs at its module's top, so that a file's top shows what it uses (
 Prints one line per function-level import with ``--list`` (``file:line  module  [deferred|BARE]``),
 then a summary: how many imports the package has (module level and function level, internal and
 third-party), and how many of the function-level ones carry a ``# deferred:`` comment. ``--check``
-exits 1 if any function-level import lacks one (the files given by ``--exclude``, relative to the
-repository, are not checked; they are still counted). Standard library `ast` only.
+exits 1 if any function-level import lacks one (the files and folders given by ``--exclude``,
+relative to the repository, are not checked; they are still counted). Standard library `ast` only.
 """
 from __future__ import annotations
 
@@ -100,19 +100,23 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--check", action="store_true",
                         help="exit 1 if a function-level import lacks a '# deferred:' comment")
     parser.add_argument("--exclude", nargs="*", default=[], metavar="PATH",
-                        help="files (relative to the repository) that --check skips")
+                        help="files or folders (relative to the repository) that --check skips")
     args = parser.parse_args(argv)
     root = args.root.resolve()
     if not root.is_dir():
         print(f"function_imports: {args.root} is not a directory (give the package's directory)", file=sys.stderr)
         return 2
     excluded = {(REPO / p).resolve() for p in args.exclude}
+
+    def is_excluded(path: Path) -> bool:
+        return path in excluded or any(e in path.parents for e in excluded)
+
     sites = package_sites(root)
     in_function = [s for s in sites if s.in_function]
-    bare = [s for s in in_function if not s.deferred and s.path not in excluded]
+    bare = [s for s in in_function if not s.deferred and not is_excluded(s.path)]
     if args.list:
         for s in in_function:
-            mark = "deferred" if s.deferred else ("excluded" if s.path in excluded else "BARE")
+            mark = "deferred" if s.deferred else ("excluded" if is_excluded(s.path) else "BARE")
             print(f"{s.path.relative_to(root.parent)}:{s.line}  {s.module}  [{mark}]")
     internal = [s for s in sites if s.internal]
     print(f"imports: {len(sites)} ({len(internal)} internal); "
