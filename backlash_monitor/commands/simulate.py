@@ -16,7 +16,7 @@ from backlash_monitor.commands._args import float_list, seed_list
 from backlash_monitor.signals import STREAM_SIGNALS
 from backlash_monitor.errors import DeprecatedSpelling
 from backlash_monitor.commands.vocabulary import deprecated
-from backlash_monitor.files.outputs import missing_folder_message, OutputError, check_outputs, staged_outputs
+from backlash_monitor.files.outputs import missing_folder_message, OutputError, check_outputs, staged_outputs   # never over existing data
 
 NAME = "simulate"
 HELP = "simulate the drive (plant model, docs/model.md) for a grid of scenarios: signals to NPZ and/or MCAP bags"

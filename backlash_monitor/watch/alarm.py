@@ -29,7 +29,7 @@ import os
 
 import numpy as np
 from scipy.special import chdtri     # chi^2's isf, as scipy.stats.chi2.isf computes it (scipy.stats costs ~1 s to import)
-from scipy.special import chdtrc
+from scipy.special import chdtrc     # chi^2 survival function (stats.chi2.sf without its overhead)
 from ament_index_python.packages import get_package_share_directory
 import yaml
 
