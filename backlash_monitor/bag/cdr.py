@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from .errors import CdrError, UnknownSchemaError
-from .schema import PRIMITIVES, Field, MsgSpec, local_specs, parse_schema
+from .schema import PRIMITIVES, Field, MsgSpec, local_specs, parse_schema, normalize_type_name
 
 CDR_LE_HEADER = b"\x00\x01\x00\x00"
 
@@ -123,8 +123,6 @@ class Codec:
     """
 
     def __init__(self, type_name: str, specs: Mapping[str, MsgSpec]):
-        from .schema import normalize_type_name
-
         self.type_name = normalize_type_name(type_name)
         if self.type_name not in specs:
             raise UnknownSchemaError(f"no definition of {self.type_name!r} in the schema")

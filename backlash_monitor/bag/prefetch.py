@@ -19,6 +19,7 @@ import os
 import threading
 from collections import deque
 from functools import partial
+from concurrent.futures import ThreadPoolExecutor
 
 DEFAULT_CHUNKS_AHEAD = 6   # ~6 MiB of decompressed chunks at the default 1 MiB chunk size
 # The thread pays only with a core to run on: with every core busy it takes turns with the caller
@@ -50,8 +51,6 @@ def _executor():
     global _POOL
     with _POOL_LOCK:
         if _POOL is None:
-            from concurrent.futures import ThreadPoolExecutor
-
             _POOL = ThreadPoolExecutor(max_workers=1, thread_name_prefix="bag-decompress")
         return _POOL
 

@@ -35,6 +35,7 @@ from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
+import yaml
 
 from .cdr import Codec, RosMessage
 from .errors import BagError, CorruptBagError, MissingTopicError, NotABagError, TruncatedBagError, \
@@ -390,8 +391,6 @@ class BagReader:
         text = self.metadata.get("rosbag2", {}).get("serialized_metadata")
         if not text:
             return None
-        import yaml
-
         return yaml.safe_load(text)
 
     def codec(self, topic: str) -> Codec:

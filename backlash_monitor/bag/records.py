@@ -15,6 +15,9 @@ import struct
 import threading
 from typing import NamedTuple
 
+import zstandard
+import lz4.frame
+
 from .errors import CorruptBagError, UnsupportedBagError
 
 try:  # ISA-L's CRC-32 (SIMD): the same checksum as zlib.crc32, ~10x faster (21 vs 284 us per MiB)
@@ -368,8 +371,6 @@ def _zstd_decompressor():
     """This thread's zstd decompressor (a ZstdDecompressor must not be shared between threads)."""
     d = getattr(_THREAD_STATE, "zstd", None)
     if d is None:
-        import zstandard
-
         d = _THREAD_STATE.zstd = zstandard.ZstdDecompressor()
     return d
 
@@ -388,8 +389,6 @@ def chunk_records(body) -> memoryview:
         elif compression == "zstd":
             out = _zstd_decompressor().decompress(data, max_output_size=head.uncompressed_size)
         else:
-            import lz4.frame
-
             out = lz4.frame.decompress(bytes(data))
     except Exception as exc:  # noqa: BLE001 - zstd/lz4 errors
         raise CorruptBagError(f"chunk does not decompress: {exc}") from None

@@ -84,6 +84,7 @@ def _repo_msg_dirs() -> list[Path]:
 def _share_dirs(package: str) -> list[Path]:
     out: list[Path] = []
     try:
+        # deferred: optional (no ROS, or not installed: the AMENT_PREFIX_PATH walk below)
         from ament_index_python.packages import get_package_share_directory
 
         out.append(Path(get_package_share_directory(package)))

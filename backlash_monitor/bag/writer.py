@@ -28,6 +28,11 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
+import array
+import struct
+
+import zstandard
+import lz4.frame
 
 import backlash_monitor.bag.schema as schema_mod
 from .cdr import Codec
@@ -185,12 +190,8 @@ class BagWriter:
         self.fsync = fsync
         self.custom_data = dict(custom_data or {})
         if compression == "zstd":
-            import zstandard
-
             self._compress = zstandard.ZstdCompressor(level=compression_level).compress
         elif compression == "lz4":
-            import lz4.frame
-
             self._compress = lz4.frame.compress
         else:
             self._compress = None
@@ -482,12 +483,8 @@ class BagWriter:
 
 
 def _pack_u64s(values: list[int]) -> bytes:
-    import array
-
     a = array.array("Q", values)
     if a.itemsize != 8:  # pragma: no cover - all supported platforms have 8-byte Q
-        import struct
-
         return struct.pack(f"<{len(values)}Q", *values)
     if not _LITTLE:  # pragma: no cover
         a.byteswap()

@@ -27,6 +27,7 @@ import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
+import dataclasses
 
 import numpy as np
 
@@ -75,7 +76,6 @@ def config_hash(obj) -> str:
     effect parameters (held beside its dataclass fields) are part of it: two model versions that differ only
     in an effect's value (load_mass_drift +0.30 vs +0.32) must not share training windows (dataset.py's cache
     key). A config without any (the nominal plant) hashes as before, so existing libraries keep their hash."""
-    import dataclasses
     extra = getattr(obj, "effect_parameters", None) if dataclasses.is_dataclass(obj) else None
     if dataclasses.is_dataclass(obj):
         obj = dataclasses.asdict(obj)

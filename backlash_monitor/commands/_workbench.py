@@ -2,12 +2,18 @@
 from __future__ import annotations
 
 import sys
+from pathlib import Path
+
+from backlash_monitor.files.registry import DEFAULT_REGISTRY, RegistryError, find
+from backlash_monitor.commands import UsageError
+from backlash_monitor.commands.vocabulary import deprecated
+from backlash_monitor.files.outputs import OutputError, check_outputs as check, staged_outputs
+from backlash_monitor.errors import out_of_range
 
 
 def add_drive_arguments(parser) -> None:
     """--drive NAME and --registry PATH: the drive registry (docs/registry.md) gives the drive's model version,
     library and watch reference."""
-    from backlash_monitor.files.registry import DEFAULT_REGISTRY
     parser.add_argument("--drive", default=None, metavar="NAME",
                         help="a drive of the registry (LINE/DRIVE, or DRIVE when unique): its current model version "
                              "(or the default model at its nominal width, eta_k, n1), library and watch reference")
@@ -19,8 +25,6 @@ def drive_entry(args):
     """The registry's entry of --drive (None without --drive); a UsageError naming the problem."""
     if not getattr(args, "drive", None):
         return None
-    from backlash_monitor.commands import UsageError
-    from backlash_monitor.files.registry import RegistryError, find
     try:
         return find(args.registry, args.drive)
     except RegistryError as exc:
@@ -44,7 +48,6 @@ def apply_drive(args):
 
 def history_dir(args, default):
     """Where a check of an unsaved model goes: beside the registry with --drive, else ``default``."""
-    from pathlib import Path
     return Path(args.registry).resolve().parent if getattr(args, "drive", None) else default
 
 
@@ -77,7 +80,6 @@ def add_model_arguments(parser, measurement: bool = True) -> None:
     parser.add_argument("--ensemble", type=int, default=6, metavar="N",
                         help="size of the model's noise ensemble: seeds 0..N-1, 3 <= N <= 64 (the band and the fits "
                              "use them)")
-    from backlash_monitor.commands.vocabulary import deprecated
     deprecated(parser, "--seeds", "--ensemble", "ensemble", type=int, metavar="N")
     add_drive_arguments(parser)
 
@@ -123,8 +125,6 @@ def add_overwrite_argument(parser) -> None:
 def check_outputs(args, outputs, option: str) -> None:
     """Before any work: no output may be one of the command's inputs (the measurement, the model
     file), nor an existing file unless --overwrite (backlash_monitor.files.outputs)."""
-    from backlash_monitor.commands import UsageError
-    from backlash_monitor.files.outputs import OutputError, check_outputs as check
     inputs = [p for p in (getattr(args, "measurement", None), args.model, getattr(args, "source", None)) if p]
     try:
         check(outputs, inputs=inputs, overwrite=args.overwrite, option=option)
@@ -134,15 +134,14 @@ def check_outputs(args, outputs, option: str) -> None:
 
 def write_text_staged(path, text: str) -> None:
     """Write ``text`` to ``path`` under its .partial name, renamed once complete."""
-    from backlash_monitor.files.outputs import staged_outputs
     with staged_outputs([path]) as (tmp,):
         tmp.write_text(text)
 
 
 def load(args, measurement: bool = True):
-    from backlash_monitor.commands import UsageError
+    # deferred: backlash_monitor.workbench.measurement costs ~340 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.measurement import MeasurementError, check_against_model, load_measurement
-    from backlash_monitor.errors import out_of_range
+    # deferred: backlash_monitor.workbench.model costs ~1300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.model import NOMINAL_RANGES, ModelError, load_model
     if not 3 <= args.ensemble <= 64:
         raise out_of_range("--ensemble", args.ensemble, 3, 64)

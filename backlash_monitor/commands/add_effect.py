@@ -15,6 +15,19 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+import json as _json
+import copy
+import datetime as _dt
+
+from backlash_monitor.commands._workbench import (
+    add_model_arguments,
+    add_overwrite_argument,
+    check_outputs,
+    load,
+    print_table,
+    apply_drive,
+)
+from backlash_monitor.commands import UsageError
 
 NAME = "add-effect"
 HELP = "write the next model version with a (diagnosed) effect switched on at its fitted values"
@@ -22,7 +35,6 @@ DESCRIPTION = __doc__
 
 
 def add_arguments(parser) -> None:
-    from backlash_monitor.commands._workbench import add_model_arguments
     parser.add_argument("source", metavar="DIAGNOSIS_OR_EFFECT",
                         help="a diagnosis JSON (from diagnose --json) or a catalogue effect name")
     add_model_arguments(parser, measurement=False)
@@ -42,13 +54,11 @@ def add_arguments(parser) -> None:
                              "you can read and edit) and add it at its fitted values, with the partial explanation "
                              "it was fitted on top of")
     parser.add_argument("--name", default=None, help="model name (default: the input model's)")
-    from backlash_monitor.commands._workbench import add_overwrite_argument
     add_overwrite_argument(parser)
 
 
 def _model_difference(a, b) -> str | None:
     """How model ``a`` differs from ``b`` in what a diagnosis depends on (nominal values, plant, effect files)."""
-    import json as _json
     for key in ("width_m", "eta_k", "n1"):
         if abs(float(a.nominal[key]) - float(b.nominal[key])) > 1e-12 * max(abs(float(b.nominal[key])), 1.0):
             return f"nominal {key} {a.nominal[key]:g} (the diagnosis: {b.nominal[key]:g})"
@@ -63,7 +73,7 @@ def _base_from_diagnosis(args, conditions, src):
     """The model the diagnosis was made against (its recorded effective model). Options that name a model
     (--model, --set, --width-m, --eta-k, --n1, --effects-file) must give that same model: the fitted values are
     relative to it."""
-    from backlash_monitor.commands import UsageError
+    # deferred: backlash_monitor.workbench.model costs ~1300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.model import ModelError, load_model, model_from_dict
     try:
         recorded = load_model(None, base=model_from_dict(conditions.model, base_dir=Path(src).resolve().parent))
@@ -91,9 +101,7 @@ def _base_from_diagnosis(args, conditions, src):
 def _take_proposal(diag, src, adds, model, output):
     """(additions, model, note) with a diagnosis's proposed term: its plug-in file written beside ``output`` and put
     into the model's effect files; the additions its proposal was fitted on top of, and the term at its values."""
-    import copy
-
-    from backlash_monitor.commands import UsageError
+    # deferred: backlash_monitor.workbench.diagnosis_result costs ~170 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.diagnosis_result import Addition
     prop = diag.get("proposal")
     if not isinstance(prop, dict) or not prop.get("proposed"):
@@ -110,12 +118,12 @@ def _take_proposal(diag, src, adds, model, output):
 
 
 def run(args) -> int:
-    from backlash_monitor.commands import UsageError
-    from backlash_monitor.commands._workbench import check_outputs, load, print_table
+    # deferred: backlash_monitor.workbench.diagnosis_result costs ~170 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.diagnosis_result import ROLE_PARTIAL, read_handoff
+    # deferred: backlash_monitor.workbench.model costs ~1300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.model import append_history
+    # deferred: backlash_monitor.workbench.versions costs ~1240 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.versions import EffectValues, add_effects
-    from backlash_monitor.commands._workbench import apply_drive
     entry = apply_drive(args)
     if args.output is None and entry is None:
         raise UsageError("add-effect needs -o M2.yaml (the new model version's file), or --drive NAME")
@@ -132,7 +140,6 @@ def run(args) -> int:
         except (ValueError, KeyError, TypeError) as exc:
             raise UsageError(f"diagnosis {src}: {exc}") from None
         model = _base_from_diagnosis(args, conditions, src) if conditions else load(args, measurement=False)[0]
-        import datetime as _dt
         all_taken = True   # every addition at its fitted values: the diagnosis's fit "after" is this version's
         if args.accept_proposal:
             adds, model, note = _take_proposal(diag, src, adds, model, Path(args.output))

@@ -27,6 +27,9 @@ import math
 import sys
 from typing import TYPE_CHECKING
 
+from backlash_monitor.commands import UsageError
+from backlash_monitor.files.registry import RegistryError, entries
+
 if TYPE_CHECKING:
     from backlash_monitor.fleet.folder_analysis import FleetOptions
     from backlash_monitor.offline.bag_analysis import AnalyzeOptions
@@ -76,6 +79,7 @@ def add_arguments(parser) -> None:
 
 def _add_many_arguments(parser) -> None:
     """The options of the many-bag path (added to `analyze`'s; backlash_monitor/fleet/folder_analysis.py)."""
+    # deferred: backlash_monitor.fleet.folder_analysis costs ~100 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.fleet.folder_analysis import ENGINES
     group = parser.add_argument_group("many recordings (BAG is a folder or a quoted glob)")
     group.add_argument("--out-dir", default="", metavar="DIR",
@@ -109,6 +113,7 @@ def _add_many_arguments(parser) -> None:
 
 def options_from_args(args) -> AnalyzeOptions:
     """The analysis options of a parsed `analyze` command line."""
+    # deferred: backlash_monitor.offline.bag_analysis costs ~300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.offline.bag_analysis import AnalyzeOptions
     return AnalyzeOptions(namespace=args.namespace, trigger=args.trigger, width_m=args.width_m,
                           window_offset_samples=args.window_offset, angle_source=args.angle_source,
@@ -120,6 +125,7 @@ def options_from_args(args) -> AnalyzeOptions:
 def fleet_options_from_args(args) -> FleetOptions:
     """The many-bag options of a parsed `analyze FOLDER` command line (a FleetOptions, its model
     fit's WatchOptions among them)."""
+    # deferred: backlash_monitor.fleet.folder_analysis costs ~100 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.fleet.folder_analysis import FleetOptions, WatchOptions
     if args.out and not args.out_dir:     # the release before named the folder --out
         print("python -m backlash_monitor analyze: warning: --out for a folder of bags is deprecated and will "
@@ -136,8 +142,6 @@ def registry_drives(args) -> tuple:
     """(hardware_id, reference, (width_m, eta_k, n1)) of every drive of --registry (empty without one)."""
     if not getattr(args, "registry", ""):
         return ()
-    from backlash_monitor.commands import UsageError
-    from backlash_monitor.files.registry import RegistryError, entries
     try:
         return tuple((d.hardware_id, str(d.watch_reference or ""), tuple(d.nominal[k] for k in ("width_m", "eta_k", "n1")))
                      for d in entries(args.registry))
@@ -148,6 +152,7 @@ def registry_drives(args) -> tuple:
 def run(args) -> int:
     # the analysis (numpy) is imported here, not with the command's arguments: a many-bag run limits the
     # threads of its forked workers' pools first (they inherit this process's, set when numpy is imported)
+    # deferred: backlash_monitor.fleet.folder_analysis costs ~100 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.fleet.folder_analysis import is_many, limit_threads, run_many, runs_parallel_here
     if is_many(args.bag):
         fleet = fleet_options_from_args(args)
@@ -155,9 +160,9 @@ def run(args) -> int:
             limit_threads()
         return run_many(fleet, options_from_args(args))
     if args.out_dir:
-        from backlash_monitor.errors import UsageError
         raise UsageError(f"--out-dir {args.out_dir}: is for a folder of bags; one bag's outputs are named by "
                          "--out PREFIX")
+    # deferred: backlash_monitor.offline.bag_analysis costs ~300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.offline.bag_analysis import analyze_bag
     result = analyze_bag(args.bag, args.out, options_from_args(args))
     _print_summary(result["summary"], result["rows"], result["discarded"], result["n_samples"],

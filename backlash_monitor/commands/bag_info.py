@@ -17,6 +17,8 @@ import datetime as _dt
 import json
 import sys
 
+from backlash_monitor.commands.vocabulary import deprecated
+
 NAME = "bag-info"
 HELP = "show a recorded MCAP bag: duration, topics, types, counts, integrity (like ros2 bag info)"
 
@@ -31,7 +33,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "sample rate, gaps); repeatable")
     parser.add_argument("--format", choices=("text", "json"), default="text",
                         help="print text, or one JSON object")
-    from backlash_monitor.commands.vocabulary import deprecated
     deprecated(parser, "--json", "--format json", "format", const="json")
 
 
@@ -55,6 +56,7 @@ def _err(msg: str) -> None:
 
 
 def run(args) -> int:
+    # deferred: backlash_monitor.bag costs ~250 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from ..bag import (BagError, BagReader, DamagedBagError, MissingTopicError, NotABagError,
                        TruncatedBagError, UnknownSchemaError, UnsupportedBagError)
 
@@ -140,8 +142,11 @@ def run(args) -> int:
 def _saturation(reader, topics) -> dict:
     """Each accelerometer topic's samples at a rail (a clipped sensor) or stuck at one value, counted in
     blocks of 1 s as the windowing node and analyze count them (windowing/saturation.py)."""
+    # deferred: backlash_monitor.bag costs ~250 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from ..bag import BagError
+    # deferred: backlash_monitor.windowing costs ~190 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from ..windowing import DEFAULTS
+    # deferred: backlash_monitor.windowing.saturation costs ~230 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from ..windowing.saturation import SaturationCounter, SaturationSettings
     settings = SaturationSettings.from_config(DEFAULTS["saturation"])
     out = {}

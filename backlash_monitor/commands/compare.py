@@ -12,13 +12,26 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from backlash_monitor.commands._workbench import (
+    add_model_arguments,
+    add_overwrite_argument,
+    add_progress_argument,
+    COMPARE_FILES,
+    check_outputs,
+    load,
+    print_table,
+    write_text_staged,
+    history_dir,
+)
+from backlash_monitor.commands.vocabulary import deprecated
+from backlash_monitor.commands import UsageError
+
 NAME = "compare"
 HELP = "compare a measurement with a model: event-averaged fit %%, spread and spectra against the model's noise band"
 DESCRIPTION = __doc__
 
 
 def add_arguments(parser) -> None:
-    from backlash_monitor.commands._workbench import add_model_arguments
     add_model_arguments(parser)
     parser.add_argument("--out-dir", default="compare_out", metavar="DIR",
                         help="folder for compare.json and the PNGs, created if missing")
@@ -26,16 +39,17 @@ def add_arguments(parser) -> None:
                         help="also write the JSON to FILE (default: only DIR/compare.json)")
     parser.add_argument("--no-history", action="store_true",
                         help="do not add this check to the model's history (workbench_history.jsonl)")
-    from backlash_monitor.commands.vocabulary import deprecated
     deprecated(parser, "--no-record", "--no-history", "no_history", const=True)
-    from backlash_monitor.commands._workbench import add_overwrite_argument, add_progress_argument
     add_overwrite_argument(parser)
     add_progress_argument(parser)
 
 
 def compare_result(meas, model, seeds):
+    # deferred: numpy costs ~190 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     import numpy as np
+    # deferred: backlash_monitor.workbench.analysis costs ~620 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench import analysis
+    # deferred: backlash_monitor.workbench.events costs ~240 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.events import SEGMENT_SIGNALS
     comp = analysis.build_comparison(meas, model, list(range(seeds)))
     fp = analysis.fit_percent(comp.target, comp.model_mean)
@@ -53,13 +67,13 @@ def compare_result(meas, model, seeds):
 
 
 def run(args) -> int:
+    # deferred: tqdm costs ~40-140 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from tqdm import tqdm
-    from backlash_monitor.commands import UsageError
-    from backlash_monitor.commands._workbench import (COMPARE_FILES, check_outputs, load, print_table,
-                                                      write_text_staged)
+    # deferred: backlash_monitor.workbench.report costs ~690 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench import report
+    # deferred: backlash_monitor.workbench.analysis costs ~620 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.analysis import ConditionsError
-    from backlash_monitor.commands._workbench import history_dir
+    # deferred: backlash_monitor.workbench.model costs ~1300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.model import record_check
     out = Path(args.out_dir)
     check_outputs(args, [out / f for f in COMPARE_FILES], "--out-dir")

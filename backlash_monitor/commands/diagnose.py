@@ -13,13 +13,28 @@ import argparse
 import json
 from pathlib import Path
 
+from backlash_monitor.commands._workbench import (
+    add_model_arguments,
+    add_overwrite_argument,
+    add_progress_argument,
+    REPORT_FILES,
+    check_outputs,
+    load,
+    print_table,
+    write_text_staged,
+    history_dir,
+    model_overrides,
+)
+from backlash_monitor.errors import DeprecatedSpelling
+from backlash_monitor.commands.vocabulary import deprecated
+from backlash_monitor.commands import UsageError
+
 NAME = "diagnose"
 HELP = "find where the model fails on a measurement and which catalogue effect is missing (JSON + HTML report)"
 DESCRIPTION = __doc__
 
 
 def add_arguments(parser) -> None:
-    from backlash_monitor.commands._workbench import add_model_arguments
     add_model_arguments(parser)
     parser.add_argument("--json", default=None, metavar="FILE", help="write the diagnosis JSON to FILE "
                         "(default: diagnosis.json in --report, or ./diagnosis.json)")
@@ -29,28 +44,26 @@ def add_arguments(parser) -> None:
     parser.add_argument("--candidates", default=None, metavar="NAME[,NAME...]",
                         help="fit only these catalogue effects as candidates (default: the whole catalogue; "
                              "your own effects from a file: --effects-file)")
-    from backlash_monitor.errors import DeprecatedSpelling
     parser.add_argument("--effects", dest="candidates", action=DeprecatedSpelling, new="--candidates",
                         metavar="NAME[,NAME...]", help=argparse.SUPPRESS)
     parser.add_argument("--no-second", action="store_true", help="do not try a second effect on top")
     parser.add_argument("--no-history", action="store_true",
                         help="do not add this check to the model's history (workbench_history.jsonl)")
-    from backlash_monitor.commands.vocabulary import deprecated
     deprecated(parser, "--no-record", "--no-history", "no_history", const=True)
-    from backlash_monitor.commands._workbench import add_overwrite_argument, add_progress_argument
     add_overwrite_argument(parser)
     add_progress_argument(parser)
 
 
 def run(args) -> int:
+    # deferred: tqdm costs ~40-140 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from tqdm import tqdm
-    from backlash_monitor.commands import UsageError
-    from backlash_monitor.commands._workbench import (REPORT_FILES, check_outputs, load, print_table,
-                                                      write_text_staged)
+    # deferred: backlash_monitor.workbench.report costs ~690 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench import drive_terms, plant_adapter, report
+    # deferred: backlash_monitor.workbench.analysis costs ~620 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.analysis import ConditionsError
-    from backlash_monitor.commands._workbench import history_dir, model_overrides
+    # deferred: backlash_monitor.workbench.diagnose costs ~1310 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.diagnose import diagnose
+    # deferred: backlash_monitor.workbench.model costs ~1300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.model import record_check
     effects = [e.strip() for e in args.candidates.split(",") if e.strip()] if args.candidates else None
     files = [e for e in effects or [] if e.endswith(".py")]

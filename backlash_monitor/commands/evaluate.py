@@ -16,6 +16,7 @@ import numpy as np
 
 from backlash_monitor.commands import UsageError
 from backlash_monitor.commands._args import seed_list
+from backlash_monitor.files.outputs import OutputError, check_outputs, staged_outputs
 
 NAME = "evaluate"
 HELP = "identification accuracy, confusion, B margin, fusion, continuous width and the paper's tables, per mode"
@@ -56,6 +57,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _libraries(args) -> dict:
+    # deferred: backlash_monitor.classifier.patterns costs ~90 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.patterns import default_library_path
     triggers = args.trigger or list(TRIGGERS)
     paths = {t: default_library_path(t) for t in triggers}
@@ -80,6 +82,7 @@ def _public(r: dict) -> dict:
 
 def run(args) -> int:
     _check(args)
+    # deferred: backlash_monitor.classifier.patterns costs ~90 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.patterns import PatternLibraryError, load_library
 
     libs = {}
@@ -96,7 +99,6 @@ def run(args) -> int:
         if clash:
             raise UsageError(f"--seeds {','.join(map(str, args.seeds))}: seed(s) {','.join(map(str, clash))} trained "
                              f"the {trig} library {path}; evaluate on other seeds")
-    from backlash_monitor.files.outputs import OutputError, check_outputs, staged_outputs
     out_dir = Path(args.out_dir)
     outputs = [out_dir / "evaluation.json"] + ([] if args.no_plots else [
         out_dir / f"{kind}_{trig}.png" for trig in libs
@@ -114,9 +116,12 @@ def run(args) -> int:
 
 
 def _evaluate(args, libs, out_dir, staged) -> dict:
+    # deferred: tqdm costs ~40-140 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from tqdm import tqdm
 
+    # deferred: backlash_monitor.classifier.dataset costs ~880 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.dataset import collect_windows
+    # deferred: backlash_monitor.classifier.evaluation costs ~740 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.evaluation import (EVAL_SIGNALS, MODES, UNSEEN_WIDTHS_M, continuous_error,
                                                         evaluate_mode, paper_miss_explanation, paper_table_rows)
     t0 = time.time()
@@ -175,8 +180,10 @@ def _summary(report: dict) -> None:
 
 
 def _plots(out_dir: Path, trig: str, lib, test, unseen, res: dict, staged: dict) -> None:
+    # deferred: matplotlib costs ~180 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     import matplotlib
     matplotlib.use("Agg")
+    # deferred: matplotlib.pyplot costs ~450 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     import matplotlib.pyplot as plt
     widths = np.asarray(lib.widths_m)
     keys = list(res)
@@ -231,6 +238,7 @@ def _plots(out_dir: Path, trig: str, lib, test, unseen, res: dict, staged: dict)
     fig.savefig(staged[out_dir / f"windows_{trig}.png"], dpi=90, format="png")
     plt.close(fig)
 
+    # deferred: backlash_monitor.classifier.evaluation costs ~740 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.evaluation import classify_windows
     fig, ax = plt.subplots(1, 3, figsize=(14, 4.2))
     for a, sig in zip(ax, ("a1", "a2", "a1+a2")):

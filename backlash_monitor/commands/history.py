@@ -9,6 +9,13 @@ against, the monitor's width with the library trained on it, and its date. A ver
 from __future__ import annotations
 
 import json
+from pathlib import Path
+
+from backlash_monitor.commands.vocabulary import deprecated
+from backlash_monitor.commands._workbench import add_drive_arguments, add_overwrite_argument, print_table, drive_entry
+from backlash_monitor.commands import UsageError
+from backlash_monitor.files.outputs import OutputError, check_outputs
+from backlash_monitor.workbench.history import HEADER, plot_history, version_rows, write_html
 
 NAME = "history"
 HELP = "list the workbench model versions with their errors on the measurements they were checked against"
@@ -20,30 +27,24 @@ def add_arguments(parser) -> None:
                         help="a model file or the folder holding workbench_history.jsonl (default: the current folder)")
     parser.add_argument("--format", choices=("text", "json"), default="text",
                         help="print the history as a table (text) or as JSON")
-    from backlash_monitor.commands.vocabulary import deprecated
     deprecated(parser, "--json", "--format json", "format", const="json")
     parser.add_argument("--plot", default=None, metavar="PNG", help="write the error per version as a PNG (default: no plot)")
     parser.add_argument("--report", default=None, metavar="DIR",
                         help="write an HTML page (index.html, history.png) with the table and the plot into DIR, created if "
                              "missing (default: no page)")
-    from backlash_monitor.commands._workbench import add_drive_arguments, add_overwrite_argument
     add_overwrite_argument(parser)
     add_drive_arguments(parser)
 
 
 def run(args) -> int:
-    from pathlib import Path
-    from backlash_monitor.commands import UsageError
-    from backlash_monitor.commands._workbench import print_table
-    from backlash_monitor.files.outputs import OutputError, check_outputs
-    from backlash_monitor.workbench.history import HEADER, plot_history, version_rows, write_html
+    # deferred: backlash_monitor.workbench.model costs ~1300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.model import read_history
-    from backlash_monitor.commands._workbench import drive_entry
     entry = drive_entry(args)
     names = None
     if entry is not None:
         names = {entry.model_name}
         if entry.model is not None:
+            # deferred: backlash_monitor.workbench.model costs ~1300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
             from backlash_monitor.workbench.model import ModelError, load_model
             try:
                 names.add(load_model(entry.model).name)

@@ -5,6 +5,8 @@ recorded rate, at a factor (--rate-factor 2), or as fast as the subscribers take
 (--rate-factor 0); original or fresh header stamps.
 """
 from backlash_monitor.commands._node_options import add_parameter_options, ros_arguments
+from backlash_monitor.commands import UsageError
+from backlash_monitor.errors import RunFailure
 
 NAME = "replay"
 HELP = "publish an MCAP bag into the graph (recorded rate, a factor, or as fast as possible)"
@@ -12,12 +14,13 @@ DESCRIPTION = __doc__
 
 
 def add_arguments(parser) -> None:
+    # deferred: backlash_monitor.nodes.replay costs ~330 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.nodes.replay import PARAMETERS
     add_parameter_options(parser, PARAMETERS, positional="bag")
 
 
 def run(args) -> int:
-    from backlash_monitor.commands import UsageError
+    # deferred: backlash_monitor.nodes.replay costs ~330 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.nodes.replay import PARAMETERS, main
     if not args.bag:
         raise UsageError("give the bag to play: python -m backlash_monitor replay FILE.mcap")
@@ -28,8 +31,8 @@ def run(args) -> int:
 def _check_bag(path, recover: bool) -> None:
     """The bag opened as the node will open it, before the node starts: a bad path is bad input (exit 2), a
     damaged or truncated bag a failure (exit 1, as bag-info and analyze), each one line (docs/cli.md)."""
+    # deferred: backlash_monitor.bag costs ~250 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.bag import BagError, BagReader, DamagedBagError, TruncatedBagError
-    from backlash_monitor.errors import RunFailure, UsageError
     try:
         with BagReader(path, recover=recover):
             pass

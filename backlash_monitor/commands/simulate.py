@@ -8,11 +8,15 @@ import argparse
 import sys
 import time
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 
 from backlash_monitor.commands._args import float_list, seed_list
 from backlash_monitor.signals import STREAM_SIGNALS
+from backlash_monitor.errors import DeprecatedSpelling
+from backlash_monitor.commands.vocabulary import deprecated
+from backlash_monitor.files.outputs import missing_folder_message, OutputError, check_outputs, staged_outputs   # never over existing data
 
 NAME = "simulate"
 HELP = "simulate the drive (plant model, docs/model.md) for a grid of scenarios: signals to NPZ and/or MCAP bags"
@@ -30,6 +34,7 @@ SIGNALS = STREAM_SIGNALS
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    # deferred: backlash_monitor.plant costs ~690 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.plant import ETA_K_VALUES, K2_WIDTHS_M, N1_VALUES
     join = lambda xs: ",".join(f"{x:g}" for x in xs)  # noqa: E731
     parser.add_argument("--widths", type=float_list, default=list(K2_WIDTHS_M), metavar="M[,M...]",
@@ -57,7 +62,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--effects-file", action="append", default=[], metavar="FILE.py",
                         help="a Python file defining your own Effect classes (docs/effects.md); they are registered "
                              "and can then be switched on with --set effects.NAME=true; repeatable")
-    from backlash_monitor.errors import DeprecatedSpelling
     parser.add_argument("--effects", dest="effects_file", action=DeprecatedSpelling, new="--effects-file",
                         append=True, metavar="FILE.py", help=argparse.SUPPRESS)
     parser.add_argument("--noise-seed", type=int, default=None, metavar="N",
@@ -73,7 +77,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "the plant_simulator node publishes; for `analyze`, `replay` and Foxglove (default: no bags)")
     parser.add_argument("--no-npz", action="store_true", help="write no NPZ (use with --mcap)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar and no progress notes on stderr")
-    from backlash_monitor.commands.vocabulary import deprecated
     deprecated(parser, "--quiet", "--no-progress", "no_progress", const=True)
     parser.add_argument("--overwrite", action="store_true",
                         help="replace an existing NPZ or bag (without it an existing one is an error, "
@@ -81,6 +84,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _parse_override(text: str):
+    # deferred: backlash_monitor.plant.config costs ~640 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.plant.config import parse_override
     return parse_override(text)
 
@@ -91,7 +95,9 @@ def _error(message: str) -> int:
 
 
 def run(args) -> int:
+    # deferred: backlash_monitor.plant costs ~690 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.plant import PlantSimulator, Scenario, builtin_catalogue, load_plant_config
+    # deferred: backlash_monitor.plant.analysis costs ~630 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.plant.analysis import impact_times_ms
 
     # the grid's ranges, as Scenario checks them, named by the option (docs/cli.md: one range form)
@@ -119,11 +125,9 @@ def run(args) -> int:
         return _error("--no-npz without --mcap would write nothing; allowed: --mcap DIR with --no-npz")
     out_path = Path(args.output)
     if not out_path.parent.exists() and str(out_path.parent) != "":
-        from backlash_monitor.files.outputs import missing_folder_message
         return _error(missing_folder_message("--output", out_path))
     if out_path.is_dir():
         return _error(f"--output {args.output!r} is a directory; allowed: a file path ending in .npz")
-    from backlash_monitor.files.outputs import OutputError, check_outputs   # never over existing data
     try:
         check_outputs([] if args.no_npz else [_npz_path(out_path)], overwrite=args.overwrite,
                       option="--output")
@@ -153,6 +157,7 @@ def run(args) -> int:
     entries: list[list] = [[] for _ in range(n_scen)]
     chunk_n = max(1, min(n_total, int(round(args.chunk * fs))))
     try:
+        # deferred: tqdm costs ~40-140 ms at start-up (python -X importtime, 29 Nov); --help imports every command
         from tqdm import tqdm
         bar = tqdm(total=n_total / fs, unit="s", unit_scale=False, file=sys.stderr, disable=args.no_progress,
                    desc=f"simulate {n_scen} scenarios", bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} s "
@@ -210,7 +215,6 @@ def _npz_path(out_path: Path) -> Path:
 
 def _staged_savez(path: Path, **arrays) -> None:
     """np.savez into PATH.partial, renamed onto PATH when complete (never a half-written NPZ)."""
-    from backlash_monitor.files.outputs import staged_outputs
     with staged_outputs([path]) as (tmp,), open(tmp, "wb") as f:
         np.savez(f, **arrays)
 
@@ -221,11 +225,11 @@ def bag_name(scenario) -> str:
 
 
 def _write_bags(directory: Path, scenarios, data, sample_period_s: float, quiet: bool) -> list[Path]:
+    # deferred: backlash_monitor.bag.simulated costs ~100 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.bag.simulated import DEFAULT_CHUNK_SAMPLES, SimulationBagWriter
     directory.mkdir(parents=True, exist_ok=True)
     paths = []
     n_total = data["a1"].shape[1]
-    from backlash_monitor.files.outputs import staged_outputs
     for i, scenario in enumerate(scenarios):
         path = directory / bag_name(scenario)
         with staged_outputs([path]) as (tmp,), SimulationBagWriter(tmp, true_width_m=scenario.width_m) as bag:
@@ -238,7 +242,6 @@ def _write_bags(directory: Path, scenarios, data, sample_period_s: float, quiet:
 
 def _print_summary(scenarios, data, entries, sim, duration, wall, out_path, fs, impact_times_ms):
     """Per width: onset/return entries per second, mean far-side impact time after onsets, RMS of a1/a2."""
-    from types import SimpleNamespace
     widths = sorted({s.width_m for s in scenarios})
     chunk = SimpleNamespace(entries=entries, angle_difference=data["angle_difference"], first_sample_index=0,
                             n_samples=data["a1"].shape[1], sample_period_s=1.0 / fs)

@@ -14,6 +14,10 @@ import time
 
 from backlash_monitor.commands import UsageError
 from backlash_monitor.commands._args import seed_list
+from backlash_monitor.commands.vocabulary import deprecated
+from backlash_monitor.commands._workbench import add_drive_arguments, drive_entry
+from backlash_monitor.files.outputs import OutputError, check_outputs
+from backlash_monitor.files.registry import register
 
 NAME = "train"
 HELP = "simulate noisy training drives and write the versioned pattern library (all classifier modes)"
@@ -28,11 +32,14 @@ TRIGGERS = ("contact_loss", "paper")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    # deferred: backlash_monitor.classifier.cpn costs ~120 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.cpn import DEFAULT_EPOCHS, DEFAULT_L1, DEFAULT_L2
+    # deferred: backlash_monitor.classifier.dataset costs ~880 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.dataset import DEFAULT_DURATION_S
+    # deferred: backlash_monitor.classifier.shape costs ~100 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.shape import DEFAULT_RIDGE
+    # deferred: backlash_monitor.classifier.training costs ~720 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.training import DEFAULT_TRAIN_SEEDS
-    from backlash_monitor.commands.vocabulary import deprecated
     deprecated(parser, "--out", "--output", "output", metavar="FILE.npz")
     parser.add_argument("-o", "--output", default=None, metavar="FILE.npz",
                         help="where to write the library (default: the packaged library of the trigger, "
@@ -77,14 +84,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "the diagnosis than the previous library (default: the previous library is written under "
                              "--output, saying why, and the retrained one as NAME.rejected.npz)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
-    from backlash_monitor.commands._workbench import add_drive_arguments
     add_drive_arguments(parser)
 
 
 def _drive_defaults(args):
     """With --drive: --model defaults to the drive's current model version, --out to beside it (M.npz),
     --previous-library to the drive's library. -> the registry entry or None."""
-    from backlash_monitor.commands._workbench import drive_entry
     entry = drive_entry(args)
     if entry is None:
         return None
@@ -121,7 +126,7 @@ def _check(args) -> None:
     if args.output is not None and not str(args.output).endswith(".npz"):
         raise UsageError(f"--output {args.output}: the library is an .npz file; give a name ending in .npz")
     if args.output is not None:   # before the minutes of training, not after
-        from backlash_monitor.files.outputs import OutputError, check_outputs
+        # deferred: backlash_monitor.workbench.reference costs ~750 ms at start-up (python -X importtime, 29 Nov); --help imports every command
         from backlash_monitor.workbench.reference import reference_path_for_library
         outs = [args.output] + ([str(reference_path_for_library(args.output))] if getattr(args, "model", None) else [])
         try:
@@ -135,15 +140,20 @@ def _check(args) -> None:
 def run(args) -> int:
     entry = _drive_defaults(args)
     _check(args)
+    # deferred: tqdm costs ~40-140 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from tqdm import tqdm
 
+    # deferred: backlash_monitor.classifier.patterns costs ~90 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.patterns import default_library_path
+    # deferred: backlash_monitor.classifier.training costs ~720 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.training import build_library
     out = args.output or default_library_path(args.trigger)
     config = None
     models = []
     if args.model:
+        # deferred: backlash_monitor.workbench.model costs ~1300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
         from backlash_monitor.workbench.model import ModelError, load_model
+        # deferred: backlash_monitor.workbench.retrain costs ~320 ms at start-up (python -X importtime, 29 Nov); --help imports every command
         from backlash_monitor.workbench.retrain import training_config
         configs = []
         try:
@@ -165,11 +175,13 @@ def run(args) -> int:
     check = None
     rejected = None
     if models and any(m.provenance.get("measurement") for m in models):
+        # deferred: backlash_monitor.workbench.retrain costs ~320 ms at start-up (python -X importtime, 29 Nov); --help imports every command
         from backlash_monitor.workbench.retrain import check_library
         check = check_library(lib, models, args.previous_library)
         lib.training["check"] = check
         if check["worse"] and not args.keep_worse:
             # never a worse monitor: the previous library goes under the requested name, the retrained one beside it
+            # deferred: backlash_monitor.classifier.patterns costs ~90 ms at start-up (python -X importtime, 29 Nov); --help imports every command
             from backlash_monitor.classifier.patterns import load_library
             rejected = lib.save(str(out)[:-len(".npz")] + ".rejected.npz")
             lib = load_library(args.previous_library or default_library_path(args.trigger))
@@ -182,6 +194,7 @@ def run(args) -> int:
     ref_path = None
     if models:
         # the live model watch's reference of the (first) version: the consistency test without simulation
+        # deferred: backlash_monitor.workbench.reference costs ~750 ms at start-up (python -X importtime, 29 Nov); --help imports every command
         from backlash_monitor.workbench.reference import build as build_reference, reference_path_for_library
         t_ref = time.time()
         ref_path = build_reference(models[0]).save(reference_path_for_library(path))
@@ -190,7 +203,6 @@ def run(args) -> int:
         _record_monitor_widths(models, check, path, rejected, args.previous_library)
     if entry is not None:
         if rejected is None:
-            from backlash_monitor.files.registry import register
             register(args.registry, entry.hardware_id, model=args.model[0], library=path, watch_reference=ref_path)
             print(f"registry {args.registry}: {entry.hardware_id} is at version {entry.version + 1}: model "
                   f"{args.model[0]}, library {path}, watch reference {ref_path}")
@@ -210,6 +222,7 @@ def run(args) -> int:
         print(f"model watch reference written: {ref_path} (model {models[0].label()}, {ref_seconds:.0f} s; "
               "model_watch takes it with -p reference:=..., pipeline --watch with --library)")
     if check is not None:
+        # deferred: backlash_monitor.workbench.retrain costs ~320 ms at start-up (python -X importtime, 29 Nov); --help imports every command
         from backlash_monitor.workbench.retrain import describe
         for line in describe(check):
             print("  " + line)
@@ -226,7 +239,9 @@ def run(args) -> int:
 def _record_monitor_widths(models, check, library, rejected, previous) -> None:
     """The workbench history: the monitor's width on the diagnosed recording with the library written (for the
     version trained on) and with the library in use before (for the version the diagnosis was made against)."""
+    # deferred: backlash_monitor.classifier.patterns costs ~90 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.patterns import default_library_path
+    # deferred: backlash_monitor.workbench.model costs ~1300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.model import append_history
     by_label = {m.label(): m for m in models}
     for c in check["checked"]:

@@ -21,7 +21,7 @@ import argparse
 from dataclasses import dataclass
 
 from backlash_monitor.commands._args import float_list, seed_list
-from backlash_monitor.errors import HelpFormatter as _HelpFormatter
+from backlash_monitor.errors import HelpFormatter as _HelpFormatter, DeprecatedSpelling
 
 
 @dataclass(frozen=True)
@@ -100,5 +100,4 @@ HelpFormatter = _HelpFormatter   # the help format of every command (errors.py: 
 def deprecated(parser, old: str, new: str, dest: str, **kwargs) -> None:
     """Take ``old``, an option's spelling of the release before, into ``dest`` for one more release, with one
     line on stderr naming ``new`` (errors.DeprecatedSpelling; hidden from --help)."""
-    from backlash_monitor.errors import DeprecatedSpelling
     parser.add_argument(old, dest=dest, action=DeprecatedSpelling, new=new, help=argparse.SUPPRESS, **kwargs)

@@ -11,6 +11,14 @@ import sys
 import time
 
 from backlash_monitor.commands import UsageError
+from backlash_monitor.commands._workbench import (
+    add_model_arguments,
+    add_overwrite_argument,
+    add_progress_argument,
+    check_outputs,
+    load,
+)
+from backlash_monitor.commands.vocabulary import deprecated
 
 NAME = "watch-reference"
 HELP = "build the live model watch's reference of a model version (~30 s; docs/model_watch.md)"
@@ -22,8 +30,6 @@ DESCRIPTION = ("Run the workbench's comparison and screening on a recording the 
 
 
 def add_arguments(parser) -> None:
-    from backlash_monitor.commands._workbench import add_model_arguments, add_overwrite_argument, add_progress_argument
-    from backlash_monitor.commands.vocabulary import deprecated
     add_model_arguments(parser, measurement=False)
     parser.add_argument("-o", "--output", default=None, metavar="REF.watch.npz",
                         help="where to write it (default: the cache, .cache/watch/; an existing file is refused "
@@ -34,7 +40,7 @@ def add_arguments(parser) -> None:
 
 
 def run(args) -> int:
-    from backlash_monitor.commands._workbench import check_outputs, load
+    # deferred: backlash_monitor.workbench.reference costs ~750 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench import reference
     if args.output is not None and not str(args.output).endswith(".npz"):
         raise UsageError(f"--output {args.output}: a reference is an .npz file; give a name ending in .watch.npz")
@@ -67,6 +73,7 @@ def run(args) -> int:
 
 def _build(reference, model, args):
     """reference.build with a progress bar over its candidate screening (the ~30 s of the command)."""
+    # deferred: tqdm costs ~40-140 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from tqdm import tqdm
     with tqdm(desc="model reference: screening candidate effects", unit="effect", file=sys.stderr,
               disable=True if args.no_progress else None) as bar:

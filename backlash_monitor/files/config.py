@@ -18,6 +18,7 @@ def _share_config_dir() -> Path | None:
     """share/backlash_monitor/config of the installed package (colcon), or None without ROS or
     without an installed package."""
     try:
+        # deferred: optional: without ROS or an installed package the source tree's config/ is used
         from ament_index_python.packages import get_package_share_directory  # type: ignore
         return Path(get_package_share_directory(PACKAGE)) / "config"
     except Exception:  # noqa: BLE001 - no ROS, or the package is not installed

@@ -24,6 +24,7 @@ import datetime as _dt
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
+import yaml
 
 DEFAULT_REGISTRY = "drives.yaml"
 VERSION_KEYS = ("model", "library", "watch_reference")   # what one version of a drive is
@@ -71,7 +72,6 @@ class DriveEntry:
 
 def read(path) -> dict:
     """The registry file's content (a mapping with ``lines``); RegistryError naming the problem."""
-    import yaml
     p = Path(path)
     if not p.is_file():
         raise RegistryError(f"registry {p} does not exist; give the drive registry YAML with --registry "
@@ -148,7 +148,6 @@ def match(drives: list[DriveEntry], namespace: str | None = None, drive_name: st
 def register(path, name: str, model=None, library=None, watch_reference=None) -> DriveEntry:
     """Make (model, library, watch_reference) the drive's current version; the current one goes to its
     ``versions``. Paths are written relative to the registry file. The file is written beside and renamed."""
-    import yaml
     p = Path(path)
     data = read(p)
     entry = find(p, name)

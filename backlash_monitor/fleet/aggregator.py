@@ -186,7 +186,6 @@ class AggregatorView:
 def short_model_fit(message: str) -> str:
     """The model watch's status for a table cell: 'OK 0.9x', 'WARN 2.8x since 12:03:11 (gap traversal, d4)', the
     collecting/STALE text as it is."""
-    import re
     if message.startswith("STALE (") and message.endswith(")"):
         return f"STALE ({short_model_fit(message[len('STALE ('):-1]).split(' (')[0]})"
     m = re.match(r"model (.+?) explains the drive \(residual ([\d.]+)x", message)

@@ -17,6 +17,9 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+import os
+
+import yaml
 
 from backlash_monitor.errors import UsageError
 
@@ -165,7 +168,6 @@ def drives_from_config(config: dict, source: str = "fleet file") -> list[Drive]:
 
 
 def load_drives(path: str) -> list[Drive]:
-    import yaml
     try:
         with open(path, encoding="utf-8") as f:
             config = yaml.safe_load(f)
@@ -176,7 +178,6 @@ def load_drives(path: str) -> list[Drive]:
                          f"{str(error).splitlines()[0]}") from None
     drives = drives_from_config(config, source=f"fleet file {path}")
     # the registry's paths are relative to the file (docs/registry.md)
-    import os
     root = os.path.dirname(os.path.abspath(path))
     return [Drive(d.line, d.name, {**d.parameters, **{k: os.path.join(root, d.parameters[k])
                                                        for k in ("model", "library", "watch_reference")

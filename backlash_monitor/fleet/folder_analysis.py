@@ -25,9 +25,14 @@ from dataclasses import dataclass
 from datetime import datetime, timezone
 from pathlib import Path
 from typing import TYPE_CHECKING
+import multiprocessing
+import sys
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+import importlib
 
 from backlash_monitor.errors import UsageError
-from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
+from backlash_monitor.fleet.trend import PRIMARY_SIGNAL, drive_trend, load_rule, plot_trends
+from backlash_monitor.fleet.caveat import FitVerdict, with_caveat, width_text, caveat
 
 if TYPE_CHECKING:
     from backlash_monitor.offline.bag_analysis import AnalyzeOptions
@@ -112,7 +117,7 @@ def init_worker(options, library=None) -> None:
     (inherited by a forked worker)."""
     for var in THREAD_VARIABLES:
         os.environ[var] = "1"
-    import multiprocessing
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.offline.bag_analysis import load_library
     # a pool worker (a worker per core): no core for a bag reader's decompression thread, which
     # would only take turns with the worker; its readers get chunks_ahead=0 (None: the reader's
@@ -125,7 +130,9 @@ def init_worker(options, library=None) -> None:
 def analyze_one(job: dict) -> dict:
     """One bag through the single-bag analysis (a worker's task: a job is its bag, its output prefix,
     the AnalyzeOptions and the WatchOptions of its model fit); returns its fleet-table row."""
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.classifier.fusion import median_standard_error
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.offline.bag_analysis import analyze_bag
     if _WORKER.get("options") != job["options"] or _WORKER.get("pid") != os.getpid():
         init_worker(job["options"])      # a worker started without the initializer (Dask)
@@ -191,6 +198,7 @@ def registered_drive(watch: WatchOptions, row: dict):
 
 def drive_model(nominal):
     """The default model at a registered drive's nominal (width_m, eta_k, n1), once per process."""
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.workbench.model import load_model
     w, eta_k, n1 = (float(x) for x in nominal)
     return _kept("drive_models", (w, eta_k, n1), lambda: load_model(None, width_m=w, eta_k=eta_k, n1=n1))
@@ -200,6 +208,7 @@ def reference_for_bag(options, watch: WatchOptions, width_m: float, row: dict | 
     """The reference a bag's model fit takes (see --watch-reference): a path (may not exist yet: the default
     model's cache entry, built by the parent). ``options``: the bag's AnalyzeOptions (its library and n1);
     ``row``: the bag's row (its drive and namespace), matched to the registry's drives (--registry)."""
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.workbench import reference
     if watch.reference:
         return watch.reference
@@ -217,7 +226,9 @@ def default_model(n1: float, width_m: float):
     """The default model at the pattern width nearest ``width_m`` (the drive's measured width), eta_k 0.025 and
     the drive's n1 (analyze's --n1): its reference covers +-40 % of that width (the width is profiled). Loaded
     once per process and (width, n1): a worker's bags share a few (~7 ms each to load and validate)."""
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.plant.scenarios import K2_WIDTHS_M
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.workbench.model import load_model
     w = width_m if width_m == width_m else 0.005
     nearest = min(K2_WIDTHS_M, key=lambda k: abs(k - w))
@@ -228,9 +239,13 @@ def default_model(n1: float, width_m: float):
 def model_fit(bag: str, options, watch: WatchOptions, row: dict) -> dict:
     """The bag's model fit (watch/core.evaluate_recording) against its reference; a missing reference or a bag
     that cannot be evaluated gives the reason instead. ``options``: the bag's AnalyzeOptions."""
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.watch.alarm import load_rule
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.watch.core import evaluate_recording
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.workbench import reference
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.workbench.measurement import MeasurementError, load_measurement
     width = row["width_m"] if row["width_m"] == row["width_m"] else row["fused_width_m"]
     path = reference_for_bag(options, watch, width, row)
@@ -270,6 +285,7 @@ def missing_references(rows: list[dict], options, watch: WatchOptions, log=print
     again, built = [], set()
     for r in rows:
         if r.get("model_fit") == "no reference" and not watch.reference:
+            # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
             from backlash_monitor.workbench import reference     # (only then: ~0.2 s of imports)
             width = r["width_m"] if r["width_m"] == r["width_m"] else r["fused_width_m"]
             drive = registered_drive(watch, r) if watch.drives else None
@@ -304,7 +320,6 @@ def limit_threads() -> bool:
     True when it takes effect here too (numpy not imported yet when it was first called: OpenBLAS
     reads it at import). Called again, it answers as it did the first time: the command calls it
     before it parses the analysis options (which import numpy), run_many once more."""
-    import sys
     for var in THREAD_VARIABLES:
         os.environ.setdefault(var, "1")
     if not _THREADS_LIMITED_FIRST:
@@ -326,6 +341,7 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
     their rows collected as they finish."""
     rows = []
     if n_jobs == 1:
+        # deferred: tqdm costs ~55 ms at start-up (python -X importtime, 29 Nov); every --help imports this module
         from tqdm import tqdm
         bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
         if jobs:
@@ -335,8 +351,6 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
             bar.update()
         bar.close()
         return rows
-    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-    import multiprocessing
     if threads_limited is None:
         threads_limited = limit_threads()
     # Workers forked from this process start at once, with the chain's modules imported and the
@@ -347,7 +361,6 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
     modules = ["backlash_monitor.bag", "backlash_monitor.chain",
                "backlash_monitor.offline.bag_analysis", "backlash_monitor.estimation"]
     if threads_limited and "fork" in multiprocessing.get_all_start_methods():
-        import importlib
         for name in modules:
             importlib.import_module(name)
         context = multiprocessing.get_context("fork")
@@ -365,6 +378,7 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
             pending.add(pool.submit(analyze_one, job))
             if len(pending) >= 2 * n_jobs:
                 break
+        # deferred: tqdm costs ~55 ms at start-up (python -X importtime, 29 Nov); every --help imports this module
         from tqdm import tqdm     # imported while the workers start: not on the serial path
         bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
         while pending:
@@ -381,10 +395,12 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
 
 def run_dask(jobs: list[dict], n_jobs: int, scheduler: str, progress=True) -> list[dict]:
     try:
+        # deferred: optional: dask.distributed may be missing (the ImportError is handled here)
         from dask.distributed import Client, LocalCluster, as_completed
     except ImportError:
         raise UsageError("--engine dask needs the optional extra: pip install dask distributed "
                          "(or use --engine local)") from None
+    # deferred: tqdm costs ~55 ms at start-up (python -X importtime, 29 Nov); every --help imports this module
     from tqdm import tqdm
     cluster = None
     if scheduler:
@@ -409,8 +425,6 @@ def run_dask(jobs: list[dict], n_jobs: int, scheduler: str, progress=True) -> li
 def add_trends(rows: list[dict], rule) -> dict:
     """Each drive's trend over its rows; each row's level and reason, the reason with the model-fit caveat of
     that row's recording (fleet/caveat.py: a width alarm never stands alone when the model fit fails)."""
-    from backlash_monitor.fleet.caveat import FitVerdict, with_caveat
-    from backlash_monitor.fleet.trend import drive_trend
     points: dict[str, list] = {}
     for r in rows:
         if not r["error"]:
@@ -431,8 +445,6 @@ TABLE = ("drive", "time", "width", "fused width", "trend", "level", "model fit",
 
 
 def format_rows(rows: list[dict]) -> list[tuple]:
-    from backlash_monitor.fleet.caveat import FitVerdict, width_text, with_caveat
-
     def mm(x):
         return "-" if x != x else f"{x * 1e3:.2f} mm"
     out = []
@@ -452,8 +464,6 @@ def format_rows(rows: list[dict]) -> list[tuple]:
 def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     """The many-bag `analyze`: ``fleet`` its FleetOptions (the bags, the output folder, the engine,
     the model fit's WatchOptions), ``options`` the AnalyzeOptions of every bag."""
-    from backlash_monitor.fleet.caveat import FitVerdict, caveat, with_caveat
-    from backlash_monitor.fleet.trend import load_rule, plot_trends
     bags = expand_bags(fleet.bags)
     fleet.check()
     n_jobs = fleet.workers()
@@ -474,6 +484,7 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     else:
         # the options checked and the library loaded once, here: a bad option is one error
         # before any worker starts, and forked workers inherit the library
+        # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
         from backlash_monitor.offline.bag_analysis import load_library
         rows = run_local(jobs, n_jobs, library=load_library(options), progress=fleet.progress,
                          threads_limited=threads_limited)

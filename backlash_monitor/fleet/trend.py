@@ -25,6 +25,14 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass
+import statistics
+import json
+from datetime import datetime, timezone
+from pathlib import Path
+
+import yaml
+
+from backlash_monitor.files.config import config_file
 
 SECONDS_PER_DAY = 86400.0
 
@@ -49,7 +57,6 @@ LIVE_KEYS = ("live_point_period_s", "live_history_s", "live_min_span_s")
 def load_rule(path: str | None = None) -> TrendRule:
     """The rule of config/trend.yaml (or ``path``); KeyError/ValueError/TypeError for a missing or
     non-positive value."""
-    import yaml
     path = path or _default_path()
     with open(path, encoding="utf-8") as f:
         cfg = yaml.safe_load(f)
@@ -65,7 +72,6 @@ def load_rule(path: str | None = None) -> TrendRule:
 
 def _default_path() -> str:
     """The packaged config/trend.yaml (files.config: the source tree's, else the installed one)."""
-    from backlash_monitor.files.config import config_file
     return str(config_file("trend.yaml"))
 
 
@@ -161,7 +167,6 @@ class LiveTrend:
 
     @staticmethod
     def _median(samples):
-        import statistics
         return (statistics.median(t for t, _ in samples), statistics.median(w for _, w in samples))
 
     def trend(self) -> Trend:
@@ -182,7 +187,6 @@ LIVE_STATE_VERSION = 1
 def save_live_points(path: str, drive: str, trend: "LiveTrend") -> None:
     """The live trend's closed points (and the period being collected) as JSON, written to a
     temporary file and renamed over ``path``: a crash while writing leaves the previous file."""
-    import json
     state = {"version": LIVE_STATE_VERSION, "drive": drive, "points": trend.points,
              "open": trend.open_samples}
     tmp = f"{path}.tmp{os.getpid()}"
@@ -197,7 +201,6 @@ def load_live_points(path: str, drive: str, trend: "LiveTrend") -> str:
     """Feeds a saved state's points into ``trend`` (a fresh one); returns "" or why nothing was
     taken: no file yet is not a problem (""), a damaged file, another drive's or another version's
     is (the trend then starts anew, and the reason is shown)."""
-    import json
     try:
         with open(path, encoding="utf-8") as f:
             state = json.load(f)
@@ -222,11 +225,11 @@ def load_live_points(path: str, drive: str, trend: "LiveTrend") -> str:
 def plot_trends(points_by_drive: dict, trends: dict, rule: TrendRule, out_dir) -> list:
     """A PNG per drive (width per recording over time, the fitted trend, the limits) and a
     fleet PNG with every drive; returns the paths written."""
+    # deferred: matplotlib.pyplot costs ~900 ms at start-up (python -X importtime, 29 Nov)
     import matplotlib
     matplotlib.use("Agg")
+    # deferred: as matplotlib above
     import matplotlib.pyplot as plt
-    from datetime import datetime, timezone
-    from pathlib import Path
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     written = []

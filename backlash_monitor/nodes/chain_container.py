@@ -16,13 +16,13 @@ from __future__ import annotations
 import sys
 
 from backlash_monitor.ros.runtime import run_nodes
+from backlash_monitor.nodes.classifier import ClassifierNode
+from backlash_monitor.nodes.denoise import DenoiseNode
+from backlash_monitor.nodes.width_trend import WidthTrendNode
+from backlash_monitor.nodes.windowing import WindowingNode
 
 
 def main(args=None) -> int:
-    from backlash_monitor.nodes.classifier import ClassifierNode
-    from backlash_monitor.nodes.denoise import DenoiseNode
-    from backlash_monitor.nodes.width_trend import WidthTrendNode
-    from backlash_monitor.nodes.windowing import WindowingNode
     # Downstream first: each reader exists before its writer starts publishing.
     return run_nodes([WidthTrendNode, ClassifierNode, DenoiseNode, WindowingNode], args=args)
 

@@ -13,6 +13,8 @@ from rclpy.node import Node
 
 from backlash_monitor_msgs.msg import SignalChunk
 
+from backlash_monitor.ros.runtime import run_node
+
 
 class ChunkListener(Node):
     def __init__(self):
@@ -40,7 +42,6 @@ class ChunkListener(Node):
 
 
 def main(args=None):
-    from backlash_monitor.ros.runtime import run_node
     built = []
 
     def build():

@@ -14,6 +14,8 @@ from rclpy.node import Node
 
 from backlash_monitor_msgs.msg import SignalChunk
 
+from backlash_monitor.ros.runtime import run_node
+
 SAMPLE_PERIOD_S = 2e-5
 
 
@@ -55,8 +57,6 @@ class ChunkTalker(Node):
 
 
 def main(args=None):
-    from backlash_monitor.ros.runtime import run_node
-
     def spin(node, executor):
         while rclpy.ok() and not node.done:
             executor.spin_once(timeout_sec=0.1)

@@ -26,7 +26,24 @@ import sys
 import time
 from dataclasses import dataclass, field
 
+import yaml
+from diagnostic_msgs.msg import DiagnosticArray
+from backlash_monitor_msgs.msg import BacklashEstimate
+
 from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
+from backlash_monitor.errors import DeprecatedSpelling, UsageError, out_of_range
+from backlash_monitor.fleet.drives import drives_from_count, load_drives, Drive
+from backlash_monitor.files.outputs import missing_folder_message
+from backlash_monitor.fleet.aggregator import (
+    AggregatorView,
+    LEVEL_NAMES,
+    short_model_fit,
+    analyzer_config,
+    format_table,
+)
+from backlash_monitor.fleet.caveat import width_text
+from backlash_monitor.ros.fast_dds import configure_fast_dds
+from backlash_monitor.ros.parameters import ParameterValueError
 
 LAYOUTS = ("process", "single")
 DEFAULT_LAYOUT = "process"     # holds more drives in real time (docs/fleet.md)
@@ -71,7 +88,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "config/foxglove_fleet_layout.json; default: -1, no Foxglove server)")
     parser.add_argument("--json", dest="summary_json", default="", metavar="FILE",
                         help="also write the per-drive summary as JSON to FILE (default: none)")
-    from backlash_monitor.errors import DeprecatedSpelling
     parser.add_argument("--summary-json", dest="summary_json", action=DeprecatedSpelling, new="--json",
                         metavar="FILE", help=argparse.SUPPRESS)
     parser.add_argument("--trend-state-dir", default="", metavar="DIR",
@@ -90,8 +106,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def validate(args):
-    from backlash_monitor.errors import UsageError, out_of_range
-    from backlash_monitor.fleet.drives import drives_from_count, load_drives
     if args.rate_factor == 0:
         raise UsageError("--rate-factor 0 (as fast as possible) is replay's only: the simulators pace their "
                          "streams; allowed 0.01..1000")
@@ -105,13 +119,11 @@ def validate(args):
         raise UsageError("give --drives or --config, not both")
     for option, path in (("--json", args.summary_json), ("--aggregator-yaml", args.aggregator_yaml)):
         if path and not os.path.isdir(os.path.dirname(os.path.abspath(path))):
-            from backlash_monitor.files.outputs import missing_folder_message
             raise UsageError(missing_folder_message(option, path))
     drives = (load_drives(args.config) if args.config else
               drives_from_count(4 if args.drives is None else args.drives, line=args.line,
                                 width_m=args.width_m))
     if args.trend_state_dir:
-        from backlash_monitor.fleet.drives import Drive
         try:
             os.makedirs(args.trend_state_dir, exist_ok=True)
         except OSError as error:
@@ -120,7 +132,6 @@ def validate(args):
         drives = [d if d.parameters.get("trend_state_file") else Drive(d.line, d.name, {
             **d.parameters, "trend_state_file": os.path.join(
                 os.path.abspath(args.trend_state_dir), f"{d.line}_{d.name}.json")}) for d in drives]
-    from backlash_monitor.fleet.drives import Drive
     if args.model_watch:
         drives = [d if "watch" in d.parameters else Drive(d.line, d.name, {**d.parameters, "watch": True})
                   for d in drives]
@@ -133,7 +144,9 @@ def validate(args):
 def ensure_references(drives, log=print) -> None:
     """Every watched drive without its own reference needs the default model's at its nominal conditions: built
     into the cache before the drives start (~30 s each, once; the nodes never simulate)."""
+    # deferred: the model (the simulator) costs ~800-1100 ms at start-up (python -X importtime, 29 Nov); only a model watch loads it
     from backlash_monitor.workbench import reference
+    # deferred: the model (the simulator) costs ~800-1100 ms at start-up (python -X importtime, 29 Nov); only a model watch loads it
     from backlash_monitor.workbench.model import load_model
     done = set()
     for d in drives:
@@ -146,9 +159,6 @@ def ensure_references(drives, log=print) -> None:
 
 
 def load_analyzers(path: str) -> dict:
-    import yaml
-    from backlash_monitor.errors import UsageError
-    from backlash_monitor.fleet.aggregator import AggregatorView
     try:
         with open(path, encoding="utf-8") as f:
             config = yaml.safe_load(f)
@@ -165,17 +175,24 @@ def load_analyzers(path: str) -> dict:
 def drive_node_factories(drive, duration_s: float, rate_factor: float) -> list:
     """Builders of one drive's nodes in its namespace, downstream first (each reader exists before
     its writer publishes)."""
+    # deferred: rclpy costs ~60-100 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from rclpy.parameter import Parameter
+    # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
     from backlash_monitor.nodes.classifier import ClassifierNode
+    # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
     from backlash_monitor.nodes.denoise import DenoiseNode
+    # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
     from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode
+    # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
     from backlash_monitor.nodes.width_trend import WidthTrendNode
+    # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
     from backlash_monitor.nodes.windowing import WindowingNode
     params = drive.node_parameters(duration_s, rate_factor)
     out = []
     nodes = [(WidthTrendNode, "width_trend"), (ClassifierNode, "classifier"), (DenoiseNode, "denoise"),
              (WindowingNode, "windowing"), (PlantSimulatorNode, "plant_simulator")]
     if drive.watched:
+        # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
         from backlash_monitor.nodes.model_watch import ModelWatchNode
         nodes.insert(0, (ModelWatchNode, "model_watch"))
     for cls, name in nodes:
@@ -206,10 +223,8 @@ class FleetMonitor:
     """Takes /diagnostics and every drive's estimates; keeps the aggregator view and the tallies."""
 
     def __init__(self, node, drives, aggregator_config: dict, rate_factor: float):
-        from diagnostic_msgs.msg import DiagnosticArray
-        from backlash_monitor.fleet.aggregator import AggregatorView
+        # deferred: ros.qos (rclpy) costs ~50-60 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
         from backlash_monitor.ros.qos import DIAGNOSTICS_DEPTH, ESTIMATE_QOS
-        from backlash_monitor_msgs.msg import BacklashEstimate
         self.rate_factor = rate_factor
         self.view = AggregatorView(aggregator_config, now_s=time.monotonic())
         self.tally = {d.hardware_id: DriveTally() for d in drives}
@@ -233,7 +248,6 @@ class FleetMonitor:
         t.true_width_m = msg.true_width_m
 
     def on_diagnostics(self, msg) -> None:
-        from backlash_monitor.fleet.aggregator import LEVEL_NAMES
         now = time.monotonic()
         for status in msg.status:
             level = status.level if isinstance(status.level, int) else ord(status.level)
@@ -302,8 +316,6 @@ def _classifiable_onsets(windowing: dict) -> int:
 
 
 def format_summary(rows: list[dict]) -> str:
-    from backlash_monitor.fleet.aggregator import short_model_fit
-    from backlash_monitor.fleet.caveat import width_text
     head = ("drive", "true", "fused", "continuous", "level", "model fit", "chunks", "discarded", "onsets",
             "estimated", "lag p50/max", "CPU", "real time")
     table = [head]
@@ -341,6 +353,7 @@ def _cpu_seconds(pid: int) -> float:
 def managed_drive(drive, duration_s: float, rate_factor: float) -> list:
     """The drive's chain and plant as lifecycle nodes ``<namespace>/chain`` and
     ``<namespace>/plant`` (nodes/lifecycle.py): a supervisor can take one drive down and up."""
+    # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
     from backlash_monitor.nodes.lifecycle import ManagedNodes
     factories = drive_node_factories(drive, duration_s, rate_factor)
     return [ManagedNodes("chain", factories[:-1], namespace=drive.namespace),
@@ -356,8 +369,9 @@ def activate(managed, executor) -> None:
 
 def run_one_drive(args) -> int:
     """A drive's own process (layout 'process'): its managed chain and plant on one executor."""
-    from backlash_monitor.fleet.drives import Drive
+    # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
     from backlash_monitor.nodes.lifecycle import spin_until_shutdown
+    # deferred: ros.runtime (rclpy) costs ~75-120 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from backlash_monitor.ros.runtime import run_nodes
     drive = Drive.from_dict(json.loads(args.drive_json))
     managed = []
@@ -376,12 +390,10 @@ def run(args) -> int:
     if args.drive_json:
         return run_one_drive(args)
     drives = validate(args)
-    from backlash_monitor.fleet.aggregator import analyzer_config, format_table
     config = analyzer_config(drives)
     if args.analyzers:
         config = load_analyzers(args.analyzers)
     if args.aggregator_yaml:
-        import yaml
         with open(args.aggregator_yaml, "w", encoding="utf-8") as f:
             f.write("# diagnostic_aggregator analyzers for the fleet (written by `fleet "
                     "--aggregator-yaml`)\n")
@@ -389,11 +401,13 @@ def run(args) -> int:
         print(f"fleet: wrote the analyzers of {len(drives)} drives to {args.aggregator_yaml}")
         return 0
     ensure_references(drives)
+    # deferred: rclpy costs ~60-100 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     import rclpy
+    # deferred: rclpy costs ~60-100 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from rclpy.executors import ExternalShutdownException
-    from backlash_monitor.ros.fast_dds import configure_fast_dds
+    # deferred: ros.lean_executor (rclpy) costs ~70-95 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from backlash_monitor.ros.lean_executor import make_executor
-    from backlash_monitor.ros.parameters import ParameterValueError
+    # deferred: ros.runtime (rclpy) costs ~75-120 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from backlash_monitor.ros.runtime import (begin_shutdown, freeze_startup_objects,
                                                is_shutdown_error, release_nodes)
     configure_fast_dds()   # before rclpy.init; the drives' processes inherit it
@@ -407,7 +421,9 @@ def run(args) -> int:
         nodes.append(monitor_node)
         monitor = FleetMonitor(monitor_node, drives, config, args.rate_factor)
         if args.foxglove_port >= 0:
+            # deferred: rclpy costs ~60-100 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
             from rclpy.parameter import Parameter
+            # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
             from backlash_monitor.nodes.live_view import LiveViewNode
             nodes.append(LiveViewNode(parameter_overrides=[
                 Parameter("namespaces", value=[d.namespace for d in drives]),
@@ -494,6 +510,7 @@ def run(args) -> int:
 
 def main(argv=None) -> int:
     """`ros2 run backlash_monitor fleet [options]` (ROS arguments are passed through)."""
+    # deferred: ros.runtime (rclpy) costs ~75-120 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from backlash_monitor.ros.runtime import command_main
     return command_main("fleet", __doc__, add_arguments, run, argv)
 

@@ -23,8 +23,11 @@ from __future__ import annotations
 import sys
 
 from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
+import rclpy
+from rclpy.utilities import remove_ros_args
 
 from backlash_monitor.ros.parameters import ParameterValueError
+from backlash_monitor.ros.runtime import is_shutdown_error, run_nodes
 
 
 class ManagedNodes(LifecycleNode):
@@ -122,8 +125,6 @@ def spin_until_shutdown(executor) -> None:
     """Spin until Ctrl-C/SIGTERM. The signal invalidates the context at once, possibly while a
     callback is publishing (the plant publishes a burst of chunks per tick): that publish then
     fails with RCLError, which here is the shutdown, not a fault."""
-    import rclpy
-    from backlash_monitor.ros.runtime import is_shutdown_error
     while rclpy.ok():
         try:
             executor.spin_once(timeout_sec=0.1)
@@ -134,14 +135,19 @@ def spin_until_shutdown(executor) -> None:
 
 
 def chain_factories():
+    # deferred: the chain's node modules cost ~250 ms each at start-up (python -X importtime, 29 Nov); managed_plant does not run them
     from backlash_monitor.nodes.classifier import ClassifierNode
+    # deferred: the chain's node modules cost ~250 ms each at start-up (python -X importtime, 29 Nov); managed_plant does not run them
     from backlash_monitor.nodes.denoise import DenoiseNode
+    # deferred: the chain's node modules cost ~250 ms each at start-up (python -X importtime, 29 Nov); managed_plant does not run them
     from backlash_monitor.nodes.width_trend import WidthTrendNode
+    # deferred: the chain's node modules cost ~250 ms each at start-up (python -X importtime, 29 Nov); managed_plant does not run them
     from backlash_monitor.nodes.windowing import WindowingNode
     return [WidthTrendNode, ClassifierNode, DenoiseNode, WindowingNode]   # downstream first
 
 
 def plant_factories():
+    # deferred: the plant node (numba) costs ~1300 ms at start-up (python -X importtime, 29 Nov); managed_chain does not run it
     from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode
     return [PlantSimulatorNode]
 
@@ -149,8 +155,6 @@ def plant_factories():
 def run_managed(name: str, factories, args=None) -> int:
     """Spin one ManagedNodes until shut down; ``--activate`` (before --ros-args) configures and
     activates it at start."""
-    from rclpy.utilities import remove_ros_args
-    from backlash_monitor.ros.runtime import run_nodes
     argv = sys.argv if args is None else args
     activate = "--activate" in remove_ros_args(argv)[1:]
     holder = {}

@@ -19,12 +19,16 @@ from __future__ import annotations
 
 import sys
 import time
+import importlib
 
 from rclpy.node import Node
+from rclpy.qos import qos_profile_sensor_data
+from rclpy.serialization import deserialize_message
 
 from backlash_monitor.ros.parameters import ParameterSpec, ParameterValueError, declare_and_validate
 from backlash_monitor.ros.qos import DIAGNOSTICS_DEPTH, ESTIMATE_QOS, WINDOW_QOS
 from backlash_monitor.ros.runtime import run_node
+from backlash_monitor.bag.schema import full_definition
 
 PARAMETERS = (
     ParameterSpec("namespaces", ["/line1/drive01"], "the drives' namespaces to serve"),
@@ -50,7 +54,6 @@ WIDTH_SCHEMA = {"type": "object", "properties": {
 
 
 def _message_class(type_name: str):
-    import importlib
     pkg, _, name = type_name.split("/")
     return getattr(importlib.import_module(f"{pkg}.msg"), name)
 
@@ -60,12 +63,11 @@ class LiveViewNode(Node):
         super().__init__("live_view", **overrides)
         p = declare_and_validate(self, PARAMETERS)
         try:
+            # deferred: optional: foxglove may be missing (the ImportError is handled here)
             import foxglove
         except ImportError:
             raise ParameterValueError("live_view needs the Foxglove SDK: pip install "
                                       "foxglove-sdk (an optional extra)") from None
-        from rclpy.qos import qos_profile_sensor_data
-        from backlash_monitor.bag.schema import full_definition
         namespaces = ["/" + ns.strip("/") for ns in p["namespaces"] if ns.strip("/")]
         if not namespaces:
             raise ParameterValueError("parameter 'namespaces' is empty; allowed: one or more "
@@ -74,6 +76,7 @@ class LiveViewNode(Node):
         self.server = foxglove.start_server(name="backlash_monitor", host=p["host"],
                                             port=p["port"])
         self.port = self.server.port
+        # deferred: nodes.model_watch (the watch core) costs ~470 ms at start-up (python -X importtime, 29 Nov); only its QoS is used here
         from backlash_monitor.nodes.model_watch import MODEL_FIT_QOS
         qos = {"sensor": qos_profile_sensor_data, "window": WINDOW_QOS, "estimate": ESTIMATE_QOS,
                "model_fit": MODEL_FIT_QOS}
@@ -115,7 +118,6 @@ class LiveViewNode(Node):
         self.create_subscription(_message_class(type_name), topic, callback, qos, raw=True)
 
     def _on_estimate(self, ns: str, data: bytes) -> None:
-        from rclpy.serialization import deserialize_message
         msg = deserialize_message(bytes(data), self.estimate_type)
         drive = ns.strip("/")
         self.width_channels[ns].log({
@@ -131,7 +133,6 @@ class LiveViewNode(Node):
         self.fleet_channel.log(dict(self.fleet_widths))
 
     def _on_model_fit(self, ns: str, data: bytes) -> None:
-        from rclpy.serialization import deserialize_message
         msg = deserialize_message(bytes(data), self.fit_type)
         self.fleet_fits[ns.strip("/")] = {"residual_over_noise": msg.residual_over_noise_overall,
                                           "level": "WARN" if msg.level == msg.WARN else "OK", "model": msg.model,

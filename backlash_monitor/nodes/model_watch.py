@@ -32,14 +32,21 @@ import time
 
 from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
+from backlash_monitor_msgs.msg import ModelFit, SignalChunk
 
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
-from backlash_monitor.ros.conversions import to_float64_array
+from backlash_monitor.ros.conversions import to_float64_array, time_from_seconds
 from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.ros.parameters import ParameterSpec, ParameterValueError, declare_and_validate
 from backlash_monitor.ros.qos import CHUNK_QOS_CHOICES, chunk_qos
 from backlash_monitor.ros.runtime import run_node
-from backlash_monitor.watch.alarm import load_config
+from backlash_monitor.watch.alarm import load_config, AlarmRule
+from backlash_monitor.workbench import reference as ref_mod
+from backlash_monitor.bag.cdr import Codec
+from backlash_monitor.chain.joiner import ChunkJoiner, pending_ranges_for
+from backlash_monitor.watch.core import ModelWatch
+from backlash_monitor.workbench.events import DC_SIGNALS, SEGMENT_SIGNALS
+from backlash_monitor.watch.snapshot import SIGNAL_CHUNK, SnapshotRecorder
 
 WATCHED = ("a1", "a2", "angle_difference")           # the streams every watch joins; with watch_omega1 also omega1
 PLANT_SIGNALS = ("a1", "a2", "omega1", "omega2", "angle_difference")
@@ -101,9 +108,9 @@ def _parameters():
 
 
 def _load_reference(p):
-    from backlash_monitor.workbench import reference as ref_mod
     path = p["reference"]
     if not path:
+        # deferred: the model (the simulator) costs ~500-1100 ms at start-up (python -X importtime, 29 Nov); only without a reference file
         from backlash_monitor.workbench.model import ModelError, load_model
         try:
             model = load_model(None, width_m=p["width_m"], eta_k=p["eta_k"], n1=p["n1"])
@@ -146,12 +153,6 @@ class ModelWatchNode(Node):
         self.executor_batch_s = p["batch_s"]          # run_node's executor batches the wake-ups (lean_executor)
         self.blas_threads = 1                          # run_node: its small products on one thread (process/blas)
         self.signals = tuple(n for n in PLANT_SIGNALS if n in p["snapshot_signals"])
-        from backlash_monitor.bag.cdr import Codec
-        from backlash_monitor.chain.joiner import ChunkJoiner, pending_ranges_for
-        from backlash_monitor.watch.alarm import AlarmRule
-        from backlash_monitor.watch.core import ModelWatch
-        from backlash_monitor.workbench.events import DC_SIGNALS, SEGMENT_SIGNALS
-        from backlash_monitor.watch.snapshot import SIGNAL_CHUNK, SnapshotRecorder
         self.reference = _load_reference(p)
         try:
             rule = AlarmRule(p["view_p"], p["residual_ratio"], p["persistence"], p["clear_after"],
@@ -187,7 +188,6 @@ class ModelWatchNode(Node):
         self.counts = {"chunks": 0, "events": 0, "evaluations": 0, "warnings": 0}
         self.last_chunk_s: dict = {}     # per signal: monotonic time of its last chunk (a watched stream missing)
         qos = chunk_qos(p["qos"])
-        from backlash_monitor_msgs.msg import ModelFit, SignalChunk
         self.fit_type = ModelFit
         self.topic_names = {n: self.resolve_topic_name(f"plant/{n}") for n in self.signals}
         for name in self.signals:
@@ -294,8 +294,6 @@ class ModelWatchNode(Node):
         return "; ".join(parts)
 
     def to_message(self, u):
-        from backlash_monitor.ros.conversions import time_from_seconds
-        from backlash_monitor.workbench.events import SEGMENT_SIGNALS
         ev = u.evaluation
         msg = self.fit_type()
         msg.header.stamp = time_from_seconds(self.stream_time(u.entry_sample_index))

@@ -23,8 +23,17 @@ import sys
 import time
 from dataclasses import dataclass, field
 
+from ament_index_python.packages import get_package_prefix
+from diagnostic_msgs.msg import DiagnosticArray
+from backlash_monitor_msgs.msg import BacklashEstimate, ModelFit
+
 from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
 from backlash_monitor.process.supervisor import RESTART_POLICIES, Supervisor
+from backlash_monitor.errors import DeprecatedSpelling, UsageError, out_of_range
+from backlash_monitor.files.registry import RegistryError, find
+from backlash_monitor.files.outputs import OutputError, check_outputs
+from backlash_monitor.ros.parameters import ParameterValueError, ros_parameter_args
+from backlash_monitor.ros.fast_dds import configure_fast_dds
 
 DEFAULTS = dict(width_m=0.005, eta_k=0.025, n1=0.89, seed=0, duration=10.0, rate_factor=1.0)
 
@@ -95,7 +104,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "and (unless given) its library, model version and watch reference (default: no drive of a registry)")
     parser.add_argument("--registry", default="drives.yaml", metavar="PATH",
                         help="the drive registry YAML (default: ./drives.yaml); with --drive")
-    from backlash_monitor.errors import DeprecatedSpelling
     parser.add_argument("--effects", dest="effects_files", action=DeprecatedSpelling, new="--effects-file",
                         append=True, metavar="FILE.py", help=argparse.SUPPRESS)
 
@@ -103,8 +111,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def apply_registry(args) -> None:
     """--drive: the drive's nominal conditions and hardware id, and its library, model and watch reference where
     none is given (files/registry.py)."""
-    from backlash_monitor.errors import UsageError
-    from backlash_monitor.files.registry import RegistryError, find
     try:
         entry = find(args.registry, args.drive)
     except RegistryError as exc:
@@ -119,7 +125,6 @@ def apply_registry(args) -> None:
 
 
 def validate(args) -> None:
-    from backlash_monitor.errors import UsageError, out_of_range
     if getattr(args, "drive", ""):
         apply_registry(args)
     if args.rate_factor == 0:
@@ -146,7 +151,6 @@ def validate(args) -> None:
     if args.library and not os.path.isfile(args.library):
         raise UsageError(f"--library {args.library}: no such file; give a pattern library (train --out LIB.npz)")
     if args.record:
-        from backlash_monitor.files.outputs import OutputError, check_outputs
         try:
             check_outputs([args.record], overwrite=args.overwrite, option="--record")
         except OutputError as error:
@@ -155,7 +159,6 @@ def validate(args) -> None:
 
 def set_at_entries(groups) -> list[str]:
     """--set-at TIME KEY=VALUE ... groups -> the plant_simulator's plant_set_at entries 'T_S:KEY=VALUE;...'."""
-    from backlash_monitor.errors import UsageError
     out = []
     for group in groups or []:
         if len(group) < 2:
@@ -221,8 +224,9 @@ def node_parameters(args) -> dict[str, dict]:
 def watch_reference(args, log=print) -> str:
     """--watch: the path of the drive's model reference (--library's LIB.watch.npz, else the model's from the
     cache, built there when missing)."""
-    from backlash_monitor.errors import UsageError
+    # deferred: the model (the simulator) costs ~800-1100 ms at start-up (python -X importtime, 29 Nov); only a model watch loads it
     from backlash_monitor.workbench import reference
+    # deferred: the model (the simulator) costs ~800-1100 ms at start-up (python -X importtime, 29 Nov); only a model watch loads it
     from backlash_monitor.workbench.model import ModelError, load_model
     if getattr(args, "registry_reference", ""):
         return args.registry_reference
@@ -430,7 +434,6 @@ class PipelineConsole:
 
 
 def _executable(name: str) -> str:
-    from ament_index_python.packages import get_package_prefix
     return os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor", name)
 
 
@@ -438,20 +441,22 @@ def run(args) -> int:
     validate(args)
     if args.watch:
         args.watch_reference = watch_reference(args)
+    # deferred: rclpy costs ~60-100 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     import rclpy
+    # deferred: rclpy costs ~60-100 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from rclpy.executors import ExternalShutdownException
+    # deferred: rclpy costs ~60-100 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from rclpy.parameter import Parameter
-    from diagnostic_msgs.msg import DiagnosticArray
-    from backlash_monitor_msgs.msg import BacklashEstimate
+    # deferred: ros.qos (rclpy) costs ~50-60 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from backlash_monitor.ros.qos import ESTIMATE_QOS
-    from backlash_monitor.ros.parameters import ParameterValueError
+    # deferred: ros.runtime (rclpy) costs ~75-120 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from backlash_monitor.ros.runtime import begin_shutdown, freeze_startup_objects, release_nodes
 
+    # deferred: estimation costs ~140 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from backlash_monitor.estimation import DEFAULT_MODE, default_signals
-    from backlash_monitor.ros.fast_dds import configure_fast_dds
+    # deferred: ros.lean_executor (rclpy) costs ~70-95 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from backlash_monitor.ros.lean_executor import make_executor
     configure_fast_dds()  # before rclpy.init; the child processes inherit it
-    from backlash_monitor.ros.parameters import ros_parameter_args
     params = node_parameters(args)
     order = WATCH_ORDER if args.watch else NODE_ORDER
     view = PipelineConsole(args.width_m, default_signals(args.mode or DEFAULT_MODE))
@@ -467,10 +472,11 @@ def run(args) -> int:
         monitor.create_subscription(BacklashEstimate, "estimate", view.on_estimate, ESTIMATE_QOS)
         monitor.create_subscription(DiagnosticArray, "/diagnostics", view.on_diagnostics, 10)
         if args.watch:
+            # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
             from backlash_monitor.nodes.model_watch import MODEL_FIT_QOS
-            from backlash_monitor_msgs.msg import ModelFit
             monitor.create_subscription(ModelFit, "model_fit", view.on_model_fit, MODEL_FIT_QOS)
         if args.record:
+            # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
             from backlash_monitor.nodes.record import RecordNode
             nodes.append(RecordNode(parameter_overrides=[Parameter("output", value=args.record),
                                                          Parameter("overwrite", value=args.overwrite)]))
@@ -482,13 +488,18 @@ def run(args) -> int:
                                     finishing=("plant_simulator",))
             supervisor.start()
         else:
+            # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
             from backlash_monitor.nodes.classifier import ClassifierNode
+            # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
             from backlash_monitor.nodes.denoise import DenoiseNode
+            # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
             from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode
+            # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
             from backlash_monitor.nodes.windowing import WindowingNode
             classes = [(ClassifierNode, "classifier"), (DenoiseNode, "denoise"),
                        (WindowingNode, "windowing"), (PlantSimulatorNode, "plant_simulator")]
             if args.watch:
+                # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
                 from backlash_monitor.nodes.model_watch import ModelWatchNode
                 classes.insert(0, (ModelWatchNode, "model_watch"))
             for cls, name in classes:
@@ -541,7 +552,6 @@ def run(args) -> int:
                     and (view.windowing or now - stream_ended_s > WINDOWING_STATUS_GRACE_S):
                 break
     except ParameterValueError as error:
-        from backlash_monitor.errors import UsageError
         raise UsageError(str(error)) from None
     except (KeyboardInterrupt, ExternalShutdownException):
         print("pipeline: interrupted", file=sys.stderr)
@@ -561,6 +571,7 @@ def run(args) -> int:
 
 def main(argv=None) -> int:
     """`ros2 run backlash_monitor pipeline [options]` (ROS arguments are passed through)."""
+    # deferred: ros.runtime (rclpy) costs ~75-120 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
     from backlash_monitor.ros.runtime import command_main
     return command_main("pipeline", __doc__, add_arguments, run, argv)
 

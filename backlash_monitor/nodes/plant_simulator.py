@@ -18,13 +18,16 @@ from rclpy.qos import QoSCompatibility, qos_check_compatible
 from std_msgs.msg import Float64
 
 from backlash_monitor.ros.conversions import SIGNAL_UNITS, stamp_of_sample, to_float64_array
-from backlash_monitor.ros.parameters import ParameterSpec, declare_and_validate
+from backlash_monitor.ros.parameters import ParameterSpec, declare_and_validate, ParameterValueError
 from backlash_monitor.ros.qos import LATCHED, chunk_qos
 from backlash_monitor.ros.runtime import run_node
-from backlash_monitor.plant import Scenario, PlantSimulator, load_plant_config
+from backlash_monitor.plant import Scenario, PlantSimulator, load_plant_config, builtin_catalogue
 from backlash_monitor.plant.integrator import BACKENDS
 from backlash_monitor.process.subscriber_wait import TopicState, fully_qualified, missing, parse_wanted
+from backlash_monitor.plant.config import parse_override
+from backlash_monitor.plant.simulate import check_runtime_change
 from backlash_monitor_msgs.msg import SignalChunk
+import rclpy
 
 TICK_PERIOD_S = 0.01      # the publishing timer; each tick publishes every chunk that is due
 MAX_CHUNKS_PER_TICK = 64  # bound on the catch-up after a stall
@@ -74,7 +77,6 @@ PARAMETERS = (
 
 def parse_set_at(entries) -> list:
     """['T_S:KEY=VALUE;KEY=VALUE', ...] -> [(T_S, {key: value})] in time order; ValueError naming a bad entry."""
-    from backlash_monitor.plant.config import parse_override
     out = []
     for entry in entries:
         if not entry.strip():
@@ -97,8 +99,6 @@ class PlantSimulatorNode(Node):
         p = declare_and_validate(self, PARAMETERS)
         self.params = p
         try:
-            from backlash_monitor.plant import builtin_catalogue
-            from backlash_monitor.plant.config import parse_override
             catalogue = builtin_catalogue().with_files(
                 [x.strip() for x in p["effects_files"].split(";") if x.strip()])
             overrides = dict(parse_override(t) for t in p["plant_set"].split(";") if t.strip())
@@ -119,11 +119,9 @@ class PlantSimulatorNode(Node):
             self.simulator = PlantSimulator([scenario], config=config, noise=p["noise"],
                                             outputs=tuple(SIGNAL_UNITS),
                                             backend=None if p["backend"] == "auto" else p["backend"])
-            from backlash_monitor.plant.simulate import check_runtime_change
             for _t, _changes, cfg in self.set_at_configs:
                 check_runtime_change(config, cfg)
         except ValueError as error:
-            from backlash_monitor.ros.parameters import ParameterValueError
             raise ParameterValueError(str(error)) from None
         self.sample_period_s = self.simulator.sample_period_s
         qos = chunk_qos(p["qos"])
@@ -140,7 +138,6 @@ class PlantSimulatorNode(Node):
             self.wanted = parse_wanted(p["wait_for_subscribers"], self.get_namespace(),
                                        SIGNAL_UNITS)
         except ValueError as error:
-            from backlash_monitor.ros.parameters import ParameterValueError
             raise ParameterValueError(f"parameter {error}") from None
         self.chunk_qos = qos
         self.wait_started = time.monotonic()
@@ -251,7 +248,6 @@ class PlantSimulatorNode(Node):
 
 def main(args=None):
     def spin(node, executor):
-        import rclpy
         while rclpy.ok() and not node.finished:
             executor.spin_once(timeout_sec=0.1)
     return run_node(PlantSimulatorNode, args=args, spin=spin)

@@ -21,6 +21,8 @@ from __future__ import annotations
 import struct
 import time
 
+import yaml
+
 import rclpy
 from rclpy.duration import Duration
 from rclpy.node import Node
@@ -60,8 +62,6 @@ def _publisher_qos(offered_yaml: str, mode: str, flow_control: bool) -> QoSProfi
                           reliability=ReliabilityPolicy.RELIABLE)
     reliable, latched, depth = True, False, 100
     try:
-        import yaml
-
         offers = yaml.safe_load(offered_yaml) or []
         if offers:
             reliable = all(o.get("reliability") == "reliable" for o in offers)

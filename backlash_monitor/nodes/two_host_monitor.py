@@ -10,14 +10,16 @@ import json
 import sys
 import time
 
+import rclpy
+from diagnostic_msgs.msg import DiagnosticArray
+from backlash_monitor_msgs.msg import BacklashEstimate
+
+from backlash_monitor.ros.qos import ESTIMATE_QOS
+
 
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     namespace, wall_limit_s = argv[0], float(argv[1])
-    import rclpy
-    from diagnostic_msgs.msg import DiagnosticArray
-    from backlash_monitor.ros.qos import ESTIMATE_QOS
-    from backlash_monitor_msgs.msg import BacklashEstimate
     rclpy.init()
     node = rclpy.create_node("two_host_monitor")
     onsets, windowing = set(), {}

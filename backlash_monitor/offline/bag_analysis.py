@@ -29,6 +29,28 @@ from dataclasses import dataclass
 import numpy as np
 
 from backlash_monitor.errors import RunFailure, UsageError
+from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_warning, load_library as load
+from backlash_monitor.windowing import default_window_offset, DEFAULTS
+from backlash_monitor.signals import SIGNAL_UNITS
+from backlash_monitor.windowing.faults import is_period
+from backlash_monitor.bag import (
+    BagError,
+    BagReader,
+    DamagedBagError,
+    TruncatedBagError,
+    Stamp,
+    SignalChunkRecord,
+    BACKLASH_ESTIMATE,
+    BagWriter,
+)
+from backlash_monitor.chain.block_feeder import BlockFeeder
+from backlash_monitor.chain.joiner import ChunkJoiner
+from backlash_monitor.chain.stage import WindowingStage
+from backlash_monitor.denoise import denoise_pairs
+from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator
+from backlash_monitor.files.outputs import OutputError, check_outputs, staged_outputs
+from backlash_monitor.process.memory import reuse_freed_memory
+from backlash_monitor.windowing.offset import implausible_offsets
 
 ESTIMATE_BATCH = 64   # onset windows per batched denoise + DriveEstimator.estimate_many call
 
@@ -79,8 +101,6 @@ class AnalyzeOptions:
 def load_library(options: AnalyzeOptions):
     """(pattern library, window offset [samples]) for these options; UsageError for a bad option or
     file. The fleet's workers load it once and pass it to every :func:`analyze_bag`."""
-    from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_warning, load_library as load
-    from backlash_monitor.windowing import default_window_offset
     offset = (default_window_offset(options.trigger) if options.window_offset_samples is None
               else options.window_offset_samples)
     if not 0 <= offset <= 65536:
@@ -140,7 +160,6 @@ class SourceCheck:
     recording's chunks repeat them, so the per-chunk cost is one tuple comparison."""
 
     def __init__(self, bag_path, library, faults):
-        from backlash_monitor.signals import SIGNAL_UNITS
         self.bag_path = bag_path
         self.library = library
         self.period_s = library.sample_period_s
@@ -172,7 +191,6 @@ class SourceCheck:
         return None
 
     def _check(self, m, name, key) -> bool:
-        from backlash_monitor.windowing.faults import is_period
         period = m.sample_period_s
         wrong_rate = is_period(period) and not math.isclose(float(period), self.period_s, rel_tol=1e-6)
         if wrong_rate and not self.accepted:
@@ -203,16 +221,6 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
     ``chunks_ahead``: the bag reader's decompression thread (BagReader; None: its default; 0: none,
     for a pool with a worker per core). Raises UsageError (one line) for anything wrong with the
     bag or the options."""
-    from backlash_monitor.bag import BagError, BagReader, DamagedBagError, TruncatedBagError
-    from backlash_monitor.chain.block_feeder import BlockFeeder
-    from backlash_monitor.chain.joiner import ChunkJoiner
-    from backlash_monitor.chain.stage import WindowingStage
-    from backlash_monitor.denoise import denoise_pairs
-    from backlash_monitor.classifier.patterns import PatternLibraryError
-    from backlash_monitor.estimation import DEFAULT_MODE, DriveEstimator
-    from backlash_monitor.files.outputs import OutputError, check_outputs, staged_outputs
-    from backlash_monitor.process.memory import reuse_freed_memory
-
     options.check()
     reuse_freed_memory()   # no page fault per freed-and-reallocated array (process/memory.py)
     bag_path = pathlib.Path(bag)
@@ -392,7 +400,6 @@ def _ranges_by_batch(batches, topics: dict, source: SourceCheck, joiner, first_a
     chunk seen. The rows of a range begun in the chunk before are added one by one until it is
     complete, and so are those of a range the next chunk completes; anything else that is not
     whole ranges one after the other goes one by one (the joiner counts what is wrong)."""
-    from backlash_monitor.bag import Stamp
     state = {"a1_topics": {t for t, n in topics.items() if n == "a1"}}
     signals = joiner.signals
     width = len(signals)
@@ -453,7 +460,6 @@ def _ranges_at_once(reader, topics: dict, source: SourceCheck, joiner, first_a1:
     chunks alike (one sample period, the right signal and unit: ``source`` checks each topic's
     first chunk, as it would, and passes the others, as it would), whole ranges one after the
     other. None otherwise (nothing done that chunk by chunk would not do alike)."""
-    from backlash_monitor.bag import SignalChunkRecord, Stamp
     columns = reader.signal_chunk_columns(list(topics))
     if columns is None:
         return None
@@ -498,8 +504,6 @@ def _first_sample_time(frame_id, sec, nanosec, first_sample_index, sample_period
 
 def _sensor_offsets(offsets: dict, periods: int, waiting: int) -> dict:
     """The drive's latest sensor offset estimate for OUT.json, judged against the plausible range."""
-    from backlash_monitor.windowing import DEFAULTS
-    from backlash_monitor.windowing.offset import implausible_offsets
     limit = float(DEFAULTS["sensor_offset"]["plausible_abs_m_s2"])
     return {**{f"{name}_m_s2": value for name, value in offsets.items()}, "periods": periods,
             "plausible_abs_m_s2": limit,
@@ -548,7 +552,6 @@ def _summary(rows, true_width):
 
 
 def _write_estimate_bag(path, estimates_msgs, true_width):
-    from backlash_monitor.bag import BACKLASH_ESTIMATE, BagWriter
     # written in one go at the end: chunks by size only (the 0.5 s chunk span of a live recording
     # bounds what a killed recorder loses; here it would only make one chunk per 0.5 s)
     with BagWriter(path, chunk_duration_s=None) as writer:

@@ -25,6 +25,7 @@ import hashlib
 import importlib.util
 import sys
 from pathlib import Path
+import importlib.metadata
 
 from .effects import CATALOGUE, ENTRY_POINT_GROUP, NOMINAL, Effect, term_source_or_none, validate_effect
 
@@ -82,9 +83,8 @@ class EffectCatalogue:
         """Register the effects of installed packages (entry-point group ``backlash_monitor.effects``;
         each entry point names an Effect subclass or a module holding them); returns their names."""
         self._check_mutable()
-        from importlib.metadata import entry_points
         names = []
-        for ep in entry_points(group=ENTRY_POINT_GROUP):
+        for ep in importlib.metadata.entry_points(group=ENTRY_POINT_GROUP):
             obj = ep.load()
             for c in [obj] if isinstance(obj, type) else _classes_in(obj):
                 self.register(c)

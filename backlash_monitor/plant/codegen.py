@@ -26,6 +26,8 @@ import sys
 import textwrap
 from dataclasses import dataclass
 from pathlib import Path
+import ast
+import tempfile
 
 import numpy as np
 
@@ -33,6 +35,8 @@ import backlash_monitor.plant.effects as _effects
 import backlash_monitor.plant.outputs as _outputs
 from backlash_monitor.plant._numba import HAVE_NUMBA, numba
 from backlash_monitor.plant.state import GLOBAL_NAMES, N_STATES, STATE_NAMES  # noqa: F401 (the kernels' layout)
+from backlash_monitor.plant.mathlib import NUMPY_NAMESPACE
+import backlash_monitor.plant.mathlib as mathlib
 BASE_ROWS = ("beta", "wheel_inertia_kgm2", "mass_kg",   # per-scenario model values every kernel reads (the motor's
              "rotor_resistance_pu", "supply_voltage_scale")  # two that drift with temperature and the grid among them)
 GENERATOR_VERSION = "8"
@@ -357,7 +361,6 @@ def _scalar_term_source(cls) -> str:
     """The term renamed ``_ts_<name>`` and calling mathlib's libm forms (``s_exp`` ...) instead of the
     polynomial ones: the scalar right-hand side is latency-bound, where one libm call is faster than a
     vectorisable polynomial (measured: numba-scalar 0.6-0.8x of the former kernel with the polynomials)."""
-    import ast
     tree = ast.parse(_effects.term_source(cls))
 
     class Rename(ast.NodeTransformer):
@@ -447,7 +450,6 @@ def generate_source(effect_classes) -> str:
 def generate_numpy(effect_classes):
     """The right-hand side on arrays (numpy backend, solve_ivp reference): f(y_list, ua, ub, load_pu, P, G,
     mode) -> (11 derivatives, (te, tc, f)); the same block, run in mathlib's numpy namespace."""
-    from backlash_monitor.plant.mathlib import NUMPY_NAMESPACE
     terms = "\n\n".join(_effects.term_source(c) for c in effect_classes)
     src = (terms + "\n\n\ndef rhs(y, ua, ub, load_pu, P, G, mode=0):\n" + _globals("    ") + "\n"
            + _binds(effect_classes, "y[{i}]", "P[{i}]", "    ") + "\n" + _body(effect_classes, "    ") + "\n"
@@ -466,7 +468,6 @@ def cache_dir() -> Path:
 
 
 def _cache_key(source: str) -> str:
-    import backlash_monitor.plant.mathlib as mathlib
     h = hashlib.sha256()
     h.update(source.encode())
     h.update(Path(mathlib.__file__).read_bytes())
@@ -508,7 +509,6 @@ def kernel_for(effect_classes) -> Kernel:
             probe.write_text("")
             probe.unlink()
         except OSError:                      # read-only home: a per-user directory under the temp dir
-            import tempfile
             d = Path(tempfile.gettempdir()) / f"backlash_monitor_kernels_{os.getuid() if hasattr(os, 'getuid') else 0}"
             d.mkdir(parents=True, exist_ok=True)
         path = d / f"kernel_{digest}.py"

@@ -18,6 +18,8 @@ from typing import Any, Mapping
 import yaml
 
 from backlash_monitor.files.config import closest, config_file
+from .effects import NOMINAL
+from .catalogue import builtin_catalogue
 
 # the packaged config/plant.yaml (files.config: the source tree's, else the installed one)
 DEFAULT_CONFIG_PATH = config_file("plant.yaml")
@@ -112,7 +114,6 @@ class EffectSwitches(dict):
     effect of the catalogue (``known``: its names; None: the built-in catalogue) reads as False."""
 
     def __init__(self, switches=None, known=None):
-        from .effects import NOMINAL
         data = {c.name: bool(c.nominal) for c in NOMINAL}
         for key, value in dict(switches or {}).items():
             if key in data or value:
@@ -123,7 +124,6 @@ class EffectSwitches(dict):
     def _is_known(self, key) -> bool:
         if self._known is not None:
             return key in self._known
-        from .catalogue import builtin_catalogue
         return key in builtin_catalogue()
 
     def __missing__(self, key):
@@ -183,7 +183,6 @@ class PlantConfig:
         ``catalogue``; default: the built-in one, backlash_monitor.plant.catalogue.builtin_catalogue)."""
         cat = self.__dict__.get("_catalogue")
         if cat is None:
-            from .catalogue import builtin_catalogue
             cat = builtin_catalogue()
         return cat
 
@@ -402,7 +401,6 @@ def config_from_dict(data: Mapping[str, Any] | None, catalogue=None) -> PlantCon
     ``catalogue``: the EffectCatalogue whose effects it may switch on and set (default: the built-in one);
     the config carries it (``cfg.catalogue``)."""
     if catalogue is None:
-        from .catalogue import builtin_catalogue
         catalogue = builtin_catalogue()
     data = dict(data or {})
     reg = catalogue

@@ -15,6 +15,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -73,7 +74,6 @@ def breakdown_slip(motor) -> float:
 
 @functools.lru_cache(maxsize=64)
 def _breakdown_slip(r_s_pu, x_s_pu, x_m_pu, r_r_pu, x_r_pu, supply_voltage_pu) -> float:
-    from types import SimpleNamespace
     motor = SimpleNamespace(r_s_pu=r_s_pu, x_s_pu=x_s_pu, x_m_pu=x_m_pu, r_r_pu=r_r_pu, x_r_pu=x_r_pu,
                             supply_voltage_pu=supply_voltage_pu)
     s = np.geomspace(1e-5, 1.0, 4000)

@@ -333,6 +333,7 @@ class PlantSimulator:
         sensors = sorted((c for c in self.effects if c.kind == "sensor"), key=lambda c: c.order)
         if not sensors:
             return
+        # deferred: scipy.signal costs ~1000 ms at start-up (python -X importtime, 29 Nov); only sensor effects use it
         from scipy.signal import lfilter
         h = self.sample_period_s
         for name in ("a1", "a2"):

@@ -34,6 +34,7 @@ from __future__ import annotations
 import inspect
 import threading
 import time
+import os
 
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.exceptions import InvalidHandle
@@ -297,7 +298,6 @@ def make_executor(context=None, batch_s: float = 0.0):
     doc), or rclpy's SingleThreadedExecutor when the environment variable
     BACKLASH_MONITOR_EXECUTOR=rclpy (a way back should an rclpy release change the internals
     LeanExecutor uses; it does not batch)."""
-    import os
     choice = os.environ.get(EXECUTOR_ENV, "lean") or "lean"
     if choice not in EXECUTORS:
         raise ParameterValueError(f"{EXECUTOR_ENV}={choice!r}; allowed: " + ", ".join(EXECUTORS))

@@ -6,6 +6,8 @@ No model watch in the namespace: no message, no caveat (the width reads as befor
 """
 from __future__ import annotations
 
+from backlash_monitor_msgs.msg import ModelFit
+
 from backlash_monitor.fleet.caveat import FitVerdict
 
 MODEL_FIT_TOPIC = "model_fit"
@@ -20,6 +22,5 @@ def verdict_from_message(msg) -> FitVerdict:
 
 def follow_model_fit(node, on_verdict) -> None:
     """Subscribe ``node`` to its namespace's ``model_fit``; ``on_verdict(FitVerdict)`` for each message."""
-    from backlash_monitor_msgs.msg import ModelFit
     node.create_subscription(ModelFit, MODEL_FIT_TOPIC, lambda msg: on_verdict(verdict_from_message(msg)),
                              MODEL_FIT_DEPTH)

@@ -20,6 +20,11 @@ import subprocess
 import uuid
 from contextlib import contextmanager
 from dataclasses import dataclass
+import json
+import time
+import sys
+
+from ament_index_python.packages import get_package_prefix
 
 from backlash_monitor.ros.fast_dds import WRITER_PROFILE_XML
 
@@ -81,7 +86,6 @@ class Host:
 
     def veth_bytes(self) -> int:
         """Bytes sent plus received on this host's end of the pair so far."""
-        import json
         out = subprocess.run(["ip", "-n", self.netns, "-s", "-j", "link", "show", self.veth],
                              capture_output=True, text=True).stdout
         stats = json.loads(out)[0]["stats64"]
@@ -110,8 +114,6 @@ def _wait_until_running(netns: str, dev: str, timeout_s: float = 10.0) -> None:
     """Wait until a veth end has carrier (operstate UP): `link set up` returns before the pair's
     carrier comes, and Fast DDS started earlier finds no usable interface for its whitelisted
     address ("All whitelist interfaces were filtered out") and never talks to the other host."""
-    import json
-    import time
     deadline = time.monotonic() + timeout_s
     while True:
         out = subprocess.run(["ip", "-n", netns, "-j", "link", "show", dev],
@@ -167,9 +169,6 @@ def run_two_hosts(workdir: str, base_env: dict, domain_id: int, duration_s: floa
     ``delivered`` = onset estimates received on A / onset windows captured on B that the
     classifier classifies (all but those before the sensor offset was known), and the hosts'
     outputs under ``logs``."""
-    import json
-    import sys
-    from ament_index_python.packages import get_package_prefix
     exe = os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor")
     drive = namespace.strip("/")
     ros = ["--ros-args", "-r", f"__ns:={namespace}", "-p", f"drive_name:={drive}",

@@ -21,6 +21,8 @@ import importlib
 import sys
 from pathlib import Path
 
+import yaml
+
 from backlash_monitor.files.config import nearest, yaml_error_line
 from backlash_monitor.ros.parameters import ParameterValueError
 
@@ -98,8 +100,6 @@ def _flatten(mapping, prefix=""):
 
 def check_params_file(path, nodes: NodeParameters | None = None) -> None:
     """Raise ParamsFileError naming the file (and line / key) if ``path`` is not a valid file."""
-    import yaml
-
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")

@@ -10,16 +10,21 @@ import os
 import signal
 import sys
 import threading
+import argparse
 
 import rclpy
 import rclpy.executors
 import rclpy.signals
+from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
+from rclpy.utilities import remove_ros_args
 
 from backlash_monitor.ros.fast_dds import configure_fast_dds
 from backlash_monitor.ros.lean_executor import make_executor
 from backlash_monitor.ros.parameters import ParameterValueError
 from backlash_monitor.process.blas import limit_blas_threads
 from backlash_monitor.process.parent_watch import start_watchdog
+from backlash_monitor.errors import HelpFormatter, RunFailure, UsageError, one_line
+from backlash_monitor.ros.params_file import check_params_files
 
 
 def freeze_startup_objects() -> None:
@@ -36,7 +41,6 @@ def is_shutdown_error(error: BaseException) -> bool:
     Ctrl-C/SIGTERM has already invalidated the context (the signal may arrive while it publishes:
     the plant publishes a burst of chunks per tick). That error is the shutdown, not a fault; the
     same error while the context is valid is."""
-    from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
     return isinstance(error, (_rclpy.RCLError, _rclpy.RMWError, _rclpy.InvalidHandle)) \
         and not rclpy.ok()
 
@@ -45,9 +49,6 @@ def command_main(prog: str, description: str, add_arguments, run, argv=None) -> 
     """``main()`` of an executable that takes options (``ros2 run backlash_monitor pipeline|fleet``):
     ROS arguments are passed through, a :class:`~backlash_monitor.errors.UsageError` is one line
     ``PROG: error: ...`` and exit code 2."""
-    import argparse
-    from rclpy.utilities import remove_ros_args
-    from backlash_monitor.errors import HelpFormatter, RunFailure, UsageError, one_line
     parser = argparse.ArgumentParser(prog=prog, description=description, formatter_class=HelpFormatter)
     add_arguments(parser)
     args = parser.parse_args(remove_ros_args(sys.argv if argv is None else argv)[1:])
@@ -154,7 +155,6 @@ def run_nodes(node_factories, args=None, spin=None) -> int:
     ``blas_threads``)."""
     start_watchdog()    # started by a supervisor (pipeline --processes): end with it
     configure_fast_dds()
-    from backlash_monitor.ros.params_file import check_params_files
     try:   # unknown keys and broken YAML in --params-file files: one line, not rclpy's traceback
         check_params_files(sys.argv if args is None else args)
     except ParameterValueError as error:

@@ -25,9 +25,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
+import os
 
 import numpy as np
 from scipy.special import chdtri     # chi^2's isf, as scipy.stats.chi2.isf computes it (scipy.stats costs ~1 s to import)
+from scipy.special import chdtrc     # chi^2 survival function (stats.chi2.sf without its overhead)
+from ament_index_python.packages import get_package_share_directory
+import yaml
 
 from backlash_monitor.workbench.consistency import predictive_p, predictive_t2_isf
 
@@ -85,7 +89,6 @@ class AlarmRule:
         """A view's p-value under the rule's law (the one ``view_p`` is compared with)."""
         if self.predictive and dof and name in dof:
             return predictive_p(t2, dimension, dof[name])
-        from scipy.special import chdtrc          # chi^2 survival function (stats.chi2.sf without its overhead)
         return float(chdtrc(dimension, t2))
 
     def limits(self, evaluation, dof: dict | None = None) -> dict:
@@ -128,17 +131,14 @@ class AlarmState:
 
 def config_path() -> str:
     """config/model_watch.yaml (the repository's, else the installed package's share)."""
-    import os
     here = os.path.join(os.path.dirname(__file__), "..", "..", "config", "model_watch.yaml")
     if os.path.isfile(here):
         return os.path.normpath(here)
-    from ament_index_python.packages import get_package_share_directory
     return os.path.join(get_package_share_directory("backlash_monitor"), "config", "model_watch.yaml")
 
 
 def load_config(path: str | None = None) -> dict:
     """The model watch's settings (config/model_watch.yaml): ValueError naming a missing or bad key."""
-    import yaml
     path = path or config_path()
     with open(path, encoding="utf-8") as f:
         cfg = yaml.safe_load(f) or {}

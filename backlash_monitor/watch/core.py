@@ -16,11 +16,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from backlash_monitor.workbench.events import DC_SIGNALS, SEGMENT_SIGNALS
-from backlash_monitor.workbench.reference import Evidence, ModelReference
+from backlash_monitor.workbench.events import DC_SIGNALS, SEGMENT_SIGNALS, POST_SAMPLES, PRE_SAMPLES
+from backlash_monitor.workbench.reference import Evidence, ModelReference, evidence_from_measurement
 
 from .alarm import AlarmRule, AlarmState, p_min, result_p_min
 from .events import LiveEvent, LiveEvents
+from backlash_monitor.workbench import spectral
+from backlash_monitor.workbench.analysis import quantisation_step, quantisation_psd
 
 DEFAULT_WINDOW_EVENTS = 16       # about a 4 s recording: the length the workbench is measured on
 NOISE_REBUILD_FACTOR = 1.5       # the views are rebuilt when the noise floor moved by more than this factor
@@ -115,8 +117,6 @@ class ModelWatch:
 
     def _noise_scale(self) -> np.ndarray:
         """Per signal: the model's weakest spectral band as a white PSD [(m/s^2)^2/Hz]."""
-        from backlash_monitor.workbench import spectral
-        from backlash_monitor.workbench.events import POST_SAMPLES, PRE_SAMPLES
         unit = spectral.noise_power(np.ones(len(SEGMENT_SIGNALS)), PRE_SAMPLES + POST_SAMPLES,
                                     self.reference.sample_period_s)
         return self.reference.base_bands.mean(axis=0).min(axis=-1) / unit
@@ -146,7 +146,6 @@ class ModelWatch:
         property of the sensor chain: found once, on the first full window's raw segments (~36,000 samples per
         signal; np.unique of them cost ~4 ms, a third of the watch's work when repeated)."""
         if self.quant_step is None:
-            from backlash_monitor.workbench.analysis import quantisation_step
             self.quant_step = np.array([quantisation_step(np.concatenate([e.raw[i] for e in self.events]))
                                         for i in range(len(SEGMENT_SIGNALS))])
         return self.quant_step
@@ -163,7 +162,6 @@ class ModelWatch:
         est = self.noise_floor()
         floor = NOISE_NEGLIGIBLE * self.noise_scale
         if self.views_quant is None:
-            from backlash_monitor.workbench.analysis import quantisation_psd
             quant = self.quantisation()
             self.views_quant = np.where(quantisation_psd(quant, self.reference.sample_period_s) < floor, 0.0, quant)
         new = np.where(est < floor, 0.0, est)
@@ -207,7 +205,6 @@ def evaluate_recording(meas, reference: ModelReference, rule: AlarmRule | None =
     onset events (fewer in a short recording, at least 3), the events and the noise floor taken as diagnose takes
     them (reference.evidence_from_measurement); WARN when the alarm rule's test exceeds (one evaluation: no
     persistence). -> {level, residual_over_noise, consistent, exceeding, width_m, phase, wavelet_level, events}."""
-    from backlash_monitor.workbench.reference import evidence_from_measurement
     rule = (rule or AlarmRule()).check()
     evidence = evidence_from_measurement(meas, reference, last_n=window_events, significant_noise=True)
     if evidence.n_events < 3:

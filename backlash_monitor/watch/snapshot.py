@@ -19,6 +19,8 @@ from collections import deque
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from backlash_monitor import bag
+
 SIGNAL_CHUNK = "backlash_monitor_msgs/msg/SignalChunk"
 
 
@@ -81,10 +83,9 @@ def snapshot_stem(drive_name: str, when_utc: _dt.datetime) -> str:
 
 def write_bag(path, chunks: list[RawChunk], types: dict, qos: dict | None = None) -> Path:
     """The chunks as a bag at ``path`` (via path.partial, linked when complete; never replaces a file)."""
-    from backlash_monitor.bag import BagWriter
     final = Path(path)
     partial = final.with_name(final.name + ".partial")
-    with BagWriter(partial, exclusive=True) as w:
+    with bag.BagWriter(partial, exclusive=True) as w:
         for topic in sorted({c.topic for c in chunks}):
             w.add_topic(topic, types.get(topic, SIGNAL_CHUNK), qos_profiles=(qos or {}).get(topic))
         for c in chunks:

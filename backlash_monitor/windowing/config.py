@@ -4,6 +4,8 @@ from __future__ import annotations
 import os
 from typing import Any, Mapping
 
+import yaml
+
 from backlash_monitor.files.config import config_file, nearest, yaml_error_line
 
 __all__ = ["DEFAULTS", "DEFAULT_CONFIG_PATH", "load_windowing_config", "TRIGGERS", "ANGLE_SOURCES",
@@ -72,8 +74,6 @@ def load_windowing_config(path: str | os.PathLike | None = None) -> dict[str, An
     Keys not known to DEFAULTS raise ValueError (a typo must not silently fall back to a default).
     Each value in the YAML is ``{value: ..., unit: ..., reason: ...}`` or a plain value.
     """
-    import yaml
-
     if path is None:
         path = DEFAULT_CONFIG_PATH if DEFAULT_CONFIG_PATH.is_file() else None
     cfg = {sec: dict(vals) for sec, vals in DEFAULTS.items()}

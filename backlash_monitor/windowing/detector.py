@@ -13,7 +13,7 @@ from typing import Mapping
 import numpy as np
 
 from .filters import first_excursion, window_range
-from .config import (ANGLE_SOURCES, DEFAULTS, INTEGRATION_RULES, KIND_ONSET, KIND_RETURN, TRIGGERS)
+from .config import ANGLE_SOURCES, DEFAULTS, INTEGRATION_RULES, KIND_ONSET, KIND_RETURN, TRIGGERS, load_windowing_config
 
 __all__ = ["BacklashEntry", "BacklashEntryDetector", "fit_departure", "integrate_relative_speed"]
 
@@ -296,8 +296,6 @@ class BacklashEntryDetector:
     def from_config(cls, cfg: Mapping | None = None, **overrides) -> "BacklashEntryDetector":
         """Build from ``load_windowing_config()["detector"]`` (or a dict like it), with overrides."""
         if cfg is None:
-            from .config import load_windowing_config
-
             cfg = load_windowing_config()["detector"]
         kw = dict(cfg)
         kw.update(overrides)

@@ -17,6 +17,8 @@ from __future__ import annotations
 import math
 from collections import Counter
 
+import numpy as np
+
 # reason -> what it means (the reaction is in docs/windowing.md)
 REASONS = {
     # chunks and joined sample ranges (ChunkJoiner, WindowingStage)
@@ -51,11 +53,7 @@ def is_index(value) -> bool:
     """A usable first_sample_index: an int (not bool), 0 <= index < 2**53."""
     if type(value) is int:     # the common case, once per chunk: no isinstance chain
         return 0 <= value < MAX_INDEX
-    try:
-        import numpy as np
-        integer = isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
-    except ImportError:  # pragma: no cover
-        integer = isinstance(value, int) and not isinstance(value, bool)
+    integer = isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
     return integer and 0 <= int(value) < MAX_INDEX
 
 

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 import pywt
 from scipy.special import chdtrc     # chi^2's sf, as scipy.stats.chi2.sf computes it (scipy.stats: ~1 s to import)
+from scipy import fft as scipy_fft
 
 from . import spectral
 from .events import (DC_BLOCKS, IMPACT_SETTLE_S, POST_SAMPLES, PRE_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet,
@@ -42,6 +43,7 @@ def recover_conditions(meas, model) -> dict:
                               f"model's pulse period is {period / fs * 1e3:.1f} ms; allowed: within 3 % "
                               f"(--set pulse_load.period_s={round(spacing) / fs:g})")
     # the model's delay from pulse start to onset entry (noise-free, nominal timing)
+    # deferred: the simulator (numba, scipy.optimize) costs ~700 ms at start-up (python -X importtime, 29 Nov)
     from . import plant_adapter      # the simulator (numba): imported where a model is simulated, not to evaluate
     runs = plant_adapter.simulate_sets(model, [{}], [0], int(round(1.0 * fs)), noise=False)
     sim_entries = onset_entries({k: v[0, 0] for k, v in runs.items()}, 1.0 / fs)
@@ -105,6 +107,7 @@ def build_comparison(meas, model, seeds=None) -> Comparison:
     conditions = recover_conditions(meas, model)
     dc_names = dc_signals(meas.signals)
     ev = event_set(meas.signals, meas.sample_period_s, dc_names)
+    # deferred: the simulator (numba, scipy.optimize) costs ~700 ms at start-up (python -X importtime, 29 Nov)
     from . import plant_adapter
     runs = plant_adapter.simulate_sets(model, [{}], seeds, meas.n_samples, conditions=conditions,
                                        signals=("a1", "a2", "omega1", "omega2", "angle_difference"))
@@ -182,9 +185,9 @@ def welch_psd(x, fs: float) -> tuple[np.ndarray, np.ndarray]:
     x = np.asarray(x, dtype=float)
     n = x.shape[-1] if x.ndim else 0
     if x.ndim == 0 or x.size == 0:
+        # deferred: scipy.signal costs ~1100 ms at start-up (python -X importtime, 29 Nov)
         from scipy import signal as sps     # scipy's own answer (and errors) for what has no segment
         return sps.welch(x, fs=fs, nperseg=min(SPECTRUM_NPERSEG, max(n, 1)), axis=-1)
-    from scipy import fft as scipy_fft
     nperseg = min(SPECTRUM_NPERSEG, n)
     win, f = _welch_plan(nperseg, float(fs))
     hop = nperseg - nperseg // 2
@@ -209,7 +212,6 @@ def _welch_plan(nperseg: int, fs: float) -> tuple[np.ndarray, np.ndarray]:
     ShortTimeFFT.fac_psd does."""
     plan = _WELCH_PLANS.get((nperseg, fs))
     if plan is None:
-        from scipy import fft as scipy_fft
         if len(_WELCH_PLANS) >= 16:
             _WELCH_PLANS.clear()
         if nperseg <= 1:

@@ -21,6 +21,7 @@ import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
+import re
 
 PREFIX = "cand_"     # the library's effect names: cand_<balance>_<what>
 
@@ -161,8 +162,8 @@ HEADER = ("from backlash_monitor.plant.effects import Effect, Parameter\n"
 
 
 def _variables(expr: str, extra=()) -> list:
+    # deferred: backlash_monitor.plant (numba) costs ~1000 ms at start-up (python -X importtime, 29 Nov)
     from backlash_monitor.plant.effects import MODEL_VARIABLES
-    import re
     names = set(re.findall(r"[A-Za-z_][A-Za-z_0-9]*", expr))
     return [v for v in MODEL_VARIABLES if v in names] + list(extra)
 
@@ -280,6 +281,7 @@ def proposal_source(pieces, name: str = "proposed_term") -> tuple[str, dict]:
                 body.append(f"{cn} * ({p.terms[0].expression})")
                 args |= set(_variables(p.terms[0].expression))
                 vals[cn] = p.coefficients[0]
+        # deferred: backlash_monitor.plant (numba) costs ~1000 ms at start-up (python -X importtime, 29 Nov)
         from backlash_monitor.plant.effects import MODEL_VARIABLES
         arglist = [v for v in MODEL_VARIABLES if v in args] + [q.split("'")[1] for q in params]
         law = proposal_law(pieces_b)

@@ -22,6 +22,7 @@ from functools import lru_cache
 
 import numpy as np
 from scipy.special import gammaincinv     # chi^2's ppf as scipy.stats.chi2.ppf computes it (scipy.stats: ~1 s to import)
+from scipy.special import fdtri, fdtrc
 
 from .events import dc_block_deviations, denoise
 
@@ -172,7 +173,6 @@ def predictive_t2_isf(p: float, dimension: int, dof: int) -> float:
     (``dof`` degrees of freedom of that covariance) and the recording is the model's: Hotelling's predictive law,
     T^2 ~ q dof / (dof - q + 1) F(q, dof - q + 1) -- not chi^2_q, whose far tail is 1e2-1e4 times too thin at
     dof 95 (docs/model_watch.md). ``dof`` <= q: no such law (inf)."""
-    from scipy.special import fdtri
     q, d2 = int(dimension), int(dof) - int(dimension) + 1
     if d2 < 1:
         return math.inf
@@ -181,7 +181,6 @@ def predictive_t2_isf(p: float, dimension: int, dof: int) -> float:
 
 def predictive_p(t2: float, dimension: int, dof: int) -> float:
     """The chance of a T^2 at least this large under :func:`predictive_t2_isf`'s law."""
-    from scipy.special import fdtrc
     q, d2 = int(dimension), int(dof) - int(dimension) + 1
     if d2 < 1:
         return 1.0

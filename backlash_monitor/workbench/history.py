@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+import html
 
 NOT_CHECKED = "not checked"
 
@@ -123,8 +124,10 @@ def version_rows(history: list[dict]) -> list[VersionRow]:
 def plot_history(rows: list[VersionRow], path, title: str = "") -> Path:
     """The error per version: residual over the noise floor (a1, a2; 1 = the floor) and fit % per version,
     and the monitor's width where it was measured. Versions never checked are marked on the axis."""
+    # deferred: matplotlib.pyplot costs ~700 ms at start-up (python -X importtime, 29 Nov)
     import matplotlib
     matplotlib.use("Agg")
+    # deferred: as matplotlib above
     import matplotlib.pyplot as plt
     labels = [f"{r.name} v{r.version}" for r in rows]
     x = list(range(len(rows)))
@@ -152,7 +155,6 @@ def plot_history(rows: list[VersionRow], path, title: str = "") -> Path:
 
 def write_html(rows: list[VersionRow], directory, title: str = "workbench history") -> Path:
     """index.html (the table) and history.png (the plot) in ``directory``."""
-    import html
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     plot_history(rows, d / "history.png", title)

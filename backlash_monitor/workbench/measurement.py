@@ -16,6 +16,11 @@ from pathlib import Path
 
 import numpy as np
 
+from backlash_monitor.windowing import DEFAULTS
+from backlash_monitor.windowing.saturation import SaturationCounter, SaturationSettings
+from backlash_monitor.bag import BagError, BagReader, DamagedBagError, TruncatedBagError
+from backlash_monitor.errors import RunFailure
+
 REQUIRED = ("a1", "a2")
 ANGLE_SOURCES = (("angle_difference",), ("omega1", "omega2"))
 KNOWN = ("a1", "a2", "angle_difference", "omega1", "omega2")
@@ -48,8 +53,6 @@ def saturation_of(signals: dict) -> dict:
     """A recording's accelerometers at their rail (clipped) or stuck at one value, counted in blocks of
     1 s as the windowing node and ``analyze`` count them (windowing/saturation.py):
     {"saturated": bool, "signals": {a1, a2: counts, shares, rails}, "messages": [one per fault]}."""
-    from backlash_monitor.windowing import DEFAULTS
-    from backlash_monitor.windowing.saturation import SaturationCounter, SaturationSettings
     counter = SaturationCounter(REQUIRED, SaturationSettings.from_config(DEFAULTS["saturation"]))
     counter.feed({s: signals[s] for s in REQUIRED})
     counter.flush()
@@ -102,7 +105,6 @@ def load_measurement(path, namespace: str | None = None, row: int = 0) -> Measur
 
 
 def _load_mcap(p: Path, namespace: str | None) -> Measurement:
-    from backlash_monitor.bag import BagError, BagReader, DamagedBagError, TruncatedBagError
     try:
         with BagReader(p) as reader:
             topics = list(reader.topics)
@@ -123,7 +125,6 @@ def _load_mcap(p: Path, namespace: str | None) -> Measurement:
                 raise MeasurementError(f"measurement {p}: no plant/a1 ... topics; it has {', '.join(topics)}")
             series = reader.read_signals(list(chosen.values()))
     except (TruncatedBagError, DamagedBagError) as exc:   # the data is damaged, not the command line
-        from backlash_monitor.errors import RunFailure
         raise RunFailure(f"measurement {p}: {exc}") from None
     except BagError as exc:
         raise MeasurementError(f"measurement {p}: {exc}") from None

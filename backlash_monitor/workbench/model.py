@@ -28,10 +28,12 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Mapping, Sequence
+import os
 
 import yaml
 
 from backlash_monitor.plant import PATTERN_ETA_K, builtin_catalogue, load_plant_config
+from backlash_monitor.plant.config import _merge, _unflatten
 
 FORMAT_VERSION = 1
 HISTORY_FILE = "workbench_history.jsonl"
@@ -75,7 +77,6 @@ class WorkbenchModel:
     def plant_config(self, extra: Mapping | None = None):
         """The validated PlantConfig of this model (``extra``: flat overrides on top, e.g. conditions); it
         carries the model's catalogue."""
-        from backlash_monitor.plant.config import _merge, _unflatten
         data = copy.deepcopy(self.plant)
         if extra:
             _merge(data, _unflatten(dict(extra)))
@@ -90,7 +91,6 @@ class WorkbenchModel:
                "parent": self.parent, "nominal": dict(self.nominal), "plant": copy.deepcopy(self.plant),
                "effects_added": copy.deepcopy(self.effects_added)}
         if self.effect_files:
-            import os
             out["effect_files"] = [os.path.relpath(f, directory) if directory else str(f)
                                    for f in self.effect_files]
         if self.provenance:

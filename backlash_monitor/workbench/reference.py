@@ -40,10 +40,13 @@ from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
+from scipy.special import chdtrc
 
 from . import analysis, consistency, spectral, tolerance
 from .events import (DC_BLOCKS, PRE_SAMPLES, POST_SAMPLES, SEGMENT_SIGNALS, Ensemble, EventSet, dc_block_deviations,
                      denoise, ensemble_from_runs, event_set)
+from .events import dc_signals
+from backlash_monitor.classifier.patterns import config_hash
 
 FORMAT_VERSION = 4                 # 2: the record mean of a1, a2 and omega1 (diagnose's record-mean view on wb);
                                    # 3: the model's own events at every grid width (width-local whitening);
@@ -111,7 +114,6 @@ def evidence_from_measurement(meas, reference: "ModelReference", last_n: int | N
     floor from the whole record's Welch spectrum against the model's); ``last_n``: only the last n events (the
     watch's window at the end of the recording); ``significant_noise``: the noise floor as the watch takes it
     (ModelReference.noise_floor)."""
-    from .events import dc_signals, event_set
     names = tuple(n for n in dc_signals(meas.signals) if n in reference.dc_names)
     ev = event_set(meas.signals, meas.sample_period_s, names)
     if ev.n_events == 0:
@@ -148,7 +150,6 @@ class Evaluation:
 
     def p_values(self) -> dict:
         """Per view: the chance of a T^2 this large from the model's own noise (chi^2 of the view's dimension)."""
-        from scipy.special import chdtrc
         return {n: float(chdtrc(v.dimension, v.t2)) for n, v in self.result.views.items()}
 
     def to_json(self) -> dict:
@@ -398,6 +399,7 @@ class ModelReference:
 
     def candidate_objects(self) -> dict:
         """The candidates as plant_adapter.CandidateEffect (what tolerance.py reads)."""
+        # deferred: the simulator (numba, scipy.optimize) costs ~600 ms at start-up (python -X importtime, 29 Nov)
         from .plant_adapter import CandidateEffect, EffectParameter
         out = {}
         for c in self.candidates:
@@ -693,6 +695,7 @@ BUILT_BY = ("diagnose.py", "analysis.py", "events.py", "spectral.py", "fitting.p
 def source_hash() -> str:
     """Hash of the code a reference's arrays are made by (plant, windowing, denoising, the workbench modules of
     BUILT_BY): a cached reference made by other code is not reused."""
+    # deferred: classifier.dataset (the simulator) costs ~600 ms at start-up (python -X importtime, 29 Nov)
     from backlash_monitor.classifier.dataset import source_hash as plant_source_hash
     h = hashlib.sha256(plant_source_hash().encode())
     here = Path(__file__).resolve().parent
@@ -705,8 +708,8 @@ def source_hash() -> str:
 def cache_path(model) -> Path:
     """Where the cached reference of ``model`` lives: .cache/watch/<name>_v<version>_<key>.watch.npz, the key a
     hash of the model's plant config and nominal conditions, the build settings and the code (source_hash)."""
+    # deferred: classifier.dataset (the simulator) costs ~600 ms at start-up (python -X importtime, 29 Nov)
     from backlash_monitor.classifier.dataset import CACHE_DIR
-    from backlash_monitor.classifier.patterns import config_hash
     parts = {"plant": config_hash(model.plant_config()), "nominal": dict(model.nominal), "label": model.label(),
              "format": FORMAT_VERSION, "record_mean_seeds": RECORD_MEAN_SEEDS, "duration_s": BUILD_DURATION_S, "seed": BUILD_SEED, "width_step": WIDTH_STEP,
              "width_range": WIDTH_RANGE, "code": source_hash()}
@@ -747,6 +750,7 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
     and length: then the reference evaluated on it is diagnose's test on it, to the last digit -- the tests check
     it, with ``record_mean_seeds`` 0). ``record_mean_seeds``: more noise seeds at the nominal width whose period means
     the record mean's noise is estimated from too (RECORD_MEAN_SEEDS)."""
+    # deferred: workbench.diagnose (the simulator) costs ~580 ms at start-up (python -X importtime, 29 Nov)
     from . import diagnose, synthetic
     t0 = time.perf_counter()
     meas = recording if recording is not None else synthetic.hidden_effect_recording(model, duration_s, BUILD_SEED)
@@ -765,6 +769,7 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
         changes = _width_grid(float(model.nominal["width_m"]), width_step)
         # the width grid: the ensemble (as Problem.evaluate makes it) and every run's own events
         sets = [{WIDTH_KEY: float(c)} for c in changes]
+        # deferred: the simulator (numba, scipy.optimize) costs ~600 ms at start-up (python -X importtime, 29 Nov)
         from . import plant_adapter   # the simulator (numba): not imported by a watch that only evaluates
         runs = plant_adapter.simulate_sets(model, p._merge(sets), p.seeds, p.n_samples, conditions=p.conditions)
         p.n_sets_simulated += len(sets)
@@ -793,6 +798,7 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
                 return ens, i
         raise RuntimeError(f"screening set {parameter_set} was not simulated")   # pragma: no cover
 
+    # deferred: the simulator (numba, scipy.optimize) costs ~600 ms at start-up (python -X importtime, 29 Nov)
     from .plant_adapter import apply_values
     candidates, jac_event, jac_dc, jac_bands, jac_step = [], [], [], [], []
     for name, info in run.scr.items():

@@ -6,11 +6,13 @@ import json
 import os
 import time
 from pathlib import Path
+import datetime
 
 import numpy as np
 
-from . import analysis, consistency, spectral, tolerance
-from .events import PRE_SAMPLES, SEGMENT_SIGNALS
+from . import analysis, consistency, spectral, tolerance, drive_terms
+from .events import PRE_SAMPLES, SEGMENT_SIGNALS, denoise
+from backlash_monitor import __version__
 
 UNITS = {"a1": "m/s²", "a2": "m/s²"}
 
@@ -89,8 +91,10 @@ def diagnosis_report(run, up, verdict, ripple_fit, spec, overall_before: float, 
 
 
 def _plt():
+    # deferred: matplotlib.pyplot costs ~450 ms at start-up (python -X importtime, 29 Nov)
     import matplotlib
     matplotlib.use("Agg")
+    # deferred: as matplotlib above
     import matplotlib.pyplot as plt
     return plt
 
@@ -192,7 +196,6 @@ def event_residuals(comp, model_mean=None) -> tuple[np.ndarray, list]:
     """Per onset event: the rms of its denoised segment minus the model's mean, in noise floors, per signal;
     (E, 2) for the recording and, per seed of the model's own ensemble, the same (E_k, 2) (the band a correct
     model's events fill)."""
-    from .events import denoise
     m = comp.model_mean if model_mean is None else model_mean
     w = comp.weights[None, :, None]
 
@@ -233,9 +236,6 @@ def _table(rows, header) -> str:
 
 def _header(result: dict, comp) -> list[str]:
     """The report's header: date, tool version, drive, model, nominal conditions and units."""
-    import datetime
-
-    from backlash_monitor import __version__
     cond = result.get("conditions") or {}
     nom = cond.get("nominal") or {}
     timing = cond.get("timing") or {}
@@ -259,7 +259,6 @@ def write_report(diagnosis, directory, json_path=None) -> Path:
     """index.html + PNGs in ``directory`` (created). ``diagnosis``: a diagnosis.Diagnosis (its comparison and the
     model mean after the update draw the figures; its JSON the tables); ``json_path``: the diagnosis JSON the page
     links (written beside the page as diagnosis.json when not given)."""
-    from . import drive_terms
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     result = diagnosis.to_json()

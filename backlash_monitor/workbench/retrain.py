@@ -21,6 +21,10 @@ from pathlib import Path
 import numpy as np
 
 from .diagnosis_result import MEASURAND_EFFECTS
+from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS
+from .width import monitor_widths
+from backlash_monitor.classifier.patterns import default_library_path
+from .measurement import MeasurementError, load_measurement
 
 AGREEMENT_M = 0.15e-3        # |retrained monitor - diagnosed width| allowed, + 2 x the diagnosis' uncertainty: the
                              # fused continuous width's own error on a drive of the right physics is 0.05 mm
@@ -46,9 +50,6 @@ def training_config(model):
 def _published_width(meas, library) -> float:
     """What the monitor publishes for the drive on that recording: the median of its fused continuous widths
     (a1+a2) once the fusion is full."""
-    from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS
-
-    from .width import monitor_widths
     trace = monitor_widths(meas, library)
     full = np.asarray(trace.fused_events) >= DEFAULT_FUSION_EVENTS
     vals = np.asarray(trace.fused_continuous_m, dtype=float)[full]
@@ -63,9 +64,6 @@ def check_library(library, models, previous=None) -> dict:
     """The retrained ``library`` (a PatternLibrary, or its path) against every model version's diagnosis, beside the
     ``previous`` library (a path; None: the packaged one). -> {"checked": [...], "flagged": bool, "worse": bool,
     "reasons": [...]}."""
-    from backlash_monitor.classifier.patterns import default_library_path
-
-    from .measurement import MeasurementError, load_measurement
     checked, reasons = [], []
     for m in models:
         prov = getattr(m, "provenance", None) or {}

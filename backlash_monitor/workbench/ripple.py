@@ -34,6 +34,7 @@ import math
 import numpy as np
 
 from . import analysis, plant_adapter
+from backlash_monitor.plant.catalogue import builtin_catalogue
 
 EFFECT = "torque_ripple"
 REF_AMPLITUDE_PU = 0.3
@@ -229,7 +230,6 @@ def as_discovery(fit: dict) -> dict:
     indistinguishable_from, ... (nominal values, units and description: the catalogue effect's own).
     ``delta_ic`` is None: its evidence is the spectral line (``line_z``), not the event-average
     information criterion."""
-    from backlash_monitor.plant.catalogue import builtin_catalogue
     effect = builtin_catalogue()[EFFECT]          # a built-in effect: in every model's catalogue
     fitted = [p for p in effect.parameters if p.name in fit["parameters"]]
     return {"effect": EFFECT, "candidate": EFFECT,
