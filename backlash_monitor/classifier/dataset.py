@@ -26,11 +26,9 @@ from ..plant import (ETA_K_VALUES, K2_WIDTHS_M, N1_VALUES, grid_scenarios, load_
 from ..windowing import TRIGGERS, default_window_offset, extract_windows_batch
 from ..windowing.offset import offset_removal_label, remove_offset
 from .patterns import config_hash
+from .training_defaults import DEFAULT_DURATION_S
 
 DATASET_VERSION = 2           # 2: sensor offsets removed, each drive's first onset window left out
-# 9 onset entries per scenario (4 per second, the first at ~0.05 s): the first has no sensor offset
-# estimate yet (no whole load period behind it), the monitor classifies the 8 after it
-DEFAULT_DURATION_S = 2.25
 CACHE_DIR = Path(os.environ.get("BACKLASH_MONITOR_CACHE", Path(__file__).resolve().parents[2] / ".cache"))
 DENOISING = f"{DEFAULT_WAVELET} level {DEFAULT_LEVEL}, details {','.join(map(str, DEFAULT_DETAILS_REMOVED))} removed, mode {DEFAULT_MODE}"
 

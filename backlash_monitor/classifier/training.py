@@ -19,9 +19,9 @@ from ..plant import ETA_K_VALUES, K2_WIDTHS_M, N1_VALUES, PATTERN_ETA_K
 from .cpn import CPN_VARIANTS, DEFAULT_EPOCHS, DEFAULT_L1, DEFAULT_L2, CounterPropagationNetwork, pattern_means
 from .dataset import DEFAULT_DURATION_S, WindowSet, collect_windows
 from .patterns import SIGNALS, PatternLibrary
+from .training_defaults import DEFAULT_TRAIN_SEEDS
 from .shape import (A1_JUMP, A1_OFFSETS, A2_DROP, A2_OFFSETS, DEFAULT_RIDGE, SHAPE, SHAPE_SIGNALS, ShapeModel)
 
-DEFAULT_TRAIN_SEEDS = tuple(range(1000, 1008))   # training noise seeds; evaluation uses 0..4
 M3_N1 = 0.89                                      # eq. 14: M3 from the n1 = 0.89 group
 
 

@@ -16,6 +16,7 @@ from backlash_monitor.commands._args import float_list, seed_list
 from backlash_monitor.signals import STREAM_SIGNALS
 from backlash_monitor.errors import DeprecatedSpelling
 from backlash_monitor.commands.vocabulary import deprecated
+from backlash_monitor.plant.scenarios import ETA_K_VALUES, K2_WIDTHS_M, N1_VALUES   # light: no simulator
 from backlash_monitor.files.outputs import missing_folder_message, OutputError, check_outputs, staged_outputs   # never over existing data
 
 NAME = "simulate"
@@ -34,8 +35,6 @@ SIGNALS = STREAM_SIGNALS
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    # deferred: backlash_monitor.plant costs ~690 ms at start-up (python -X importtime, 29 Nov); --help imports every command
-    from backlash_monitor.plant import ETA_K_VALUES, K2_WIDTHS_M, N1_VALUES
     join = lambda xs: ",".join(f"{x:g}" for x in xs)  # noqa: E731
     parser.add_argument("--widths", type=float_list, default=list(K2_WIDTHS_M), metavar="M[,M...]",
                         help=f"backlash widths b [m], 0 < b <= 1 (paper K2: {join(K2_WIDTHS_M)})")

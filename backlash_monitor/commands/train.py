@@ -17,6 +17,7 @@ from backlash_monitor.commands._args import seed_list
 from backlash_monitor.commands.vocabulary import deprecated
 from backlash_monitor.commands._workbench import add_drive_arguments, drive_entry
 from backlash_monitor.files.outputs import OutputError, check_outputs
+from backlash_monitor.classifier.training_defaults import DEFAULT_DURATION_S, DEFAULT_TRAIN_SEEDS
 from backlash_monitor.files.registry import register
 
 NAME = "train"
@@ -34,12 +35,8 @@ TRIGGERS = ("contact_loss", "paper")
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     # deferred: backlash_monitor.classifier.cpn costs ~120 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.cpn import DEFAULT_EPOCHS, DEFAULT_L1, DEFAULT_L2
-    # deferred: backlash_monitor.classifier.dataset costs ~880 ms at start-up (python -X importtime, 29 Nov); --help imports every command
-    from backlash_monitor.classifier.dataset import DEFAULT_DURATION_S
     # deferred: backlash_monitor.classifier.shape costs ~100 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.shape import DEFAULT_RIDGE
-    # deferred: backlash_monitor.classifier.training costs ~720 ms at start-up (python -X importtime, 29 Nov); --help imports every command
-    from backlash_monitor.classifier.training import DEFAULT_TRAIN_SEEDS
     deprecated(parser, "--out", "--output", "output", metavar="FILE.npz")
     parser.add_argument("-o", "--output", default=None, metavar="FILE.npz",
                         help="where to write the library (default: the packaged library of the trigger, "

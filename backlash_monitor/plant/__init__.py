@@ -5,16 +5,39 @@
     chunk = sim.run(5000)        # 0.1 s of every scenario at 50 kHz
 
 Equations and measured figures: docs/model.md.
-"""
-from .config import PlantConfig, load_plant_config, config_from_dict, DEFAULT_CONFIG_PATH
-from .effects import BALANCES, Effect, Parameter
-from .catalogue import EffectCatalogue, builtin_catalogue
-from .scenarios import (K2_WIDTHS_M, ETA_K_VALUES, N1_VALUES, PATTERN_ETA_K, Scenario, grid_scenarios,
-                        pattern_scenarios)
-from .simulate import PlantSimulator, SimulationChunk, simulate_batch, find_entries, ENTRY_ONSET, ENTRY_RETURN
 
-__all__ = ["PlantConfig", "load_plant_config", "config_from_dict", "DEFAULT_CONFIG_PATH", "BALANCES",
-           "Effect", "Parameter", "EffectCatalogue", "builtin_catalogue", "K2_WIDTHS_M", "ETA_K_VALUES",
-           "N1_VALUES", "PATTERN_ETA_K", "Scenario", "grid_scenarios",
-           "pattern_scenarios", "PlantSimulator", "SimulationChunk", "simulate_batch", "find_entries",
-           "ENTRY_ONSET", "ENTRY_RETURN"]
+The names below are loaded on first use (PEP 562): the simulator pulls in numba and scipy.optimize (~1 s at
+start-up, python -X importtime, 29 Nov), which a command's --help or the paper's grid constants
+(``plant.scenarios``) do not need.
+"""
+from __future__ import annotations
+
+import importlib
+
+# public name -> the module of this package that holds it
+_HOME = {
+    "PlantConfig": "config", "load_plant_config": "config", "config_from_dict": "config",
+    "DEFAULT_CONFIG_PATH": "config",
+    "BALANCES": "effects", "Effect": "effects", "Parameter": "effects",
+    "EffectCatalogue": "catalogue", "builtin_catalogue": "catalogue",
+    "K2_WIDTHS_M": "scenarios", "ETA_K_VALUES": "scenarios", "N1_VALUES": "scenarios",
+    "PATTERN_ETA_K": "scenarios", "Scenario": "scenarios", "grid_scenarios": "scenarios",
+    "pattern_scenarios": "scenarios",
+    "PlantSimulator": "simulate", "SimulationChunk": "simulate", "simulate_batch": "simulate",
+    "find_entries": "simulate", "ENTRY_ONSET": "simulate", "ENTRY_RETURN": "simulate",
+}
+
+__all__ = list(_HOME)
+
+
+def __getattr__(name: str):
+    home = _HOME.get(name)
+    if home is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{home}"), name)
+    globals()[name] = value          # the next lookup is a plain attribute
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))
