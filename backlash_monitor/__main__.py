@@ -27,8 +27,26 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     return parser
 
 
+# built by colcon into install/ (make setup) and put on the path by env.sh: a shell without them gets this line
+BUILT_PACKAGES = ("backlash_monitor_msgs",)
+NOT_SET_UP = ("the ROS 2 messages of this package ({name}) are not on the Python path: run `make setup`, then "
+              "`source env.sh` in this shell (README, quick start)")
+
+
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
+    try:
+        return _main(argv)
+    except ModuleNotFoundError as error:
+        if error.name not in BUILT_PACKAGES:
+            raise
+        command = argv[0] if argv and not argv[0].startswith("-") else ""
+        print(f"python -m backlash_monitor{' ' + command if command else ''}: error: "
+              + NOT_SET_UP.format(name=error.name), file=sys.stderr)
+        return 1
+
+
+def _main(argv: list) -> int:
     # Import only the command asked for (each command's imports cost start-up time).
     parser = build_parser(argv[0] if argv else None)
     args = parser.parse_args(argv)

@@ -27,8 +27,6 @@ import time
 from dataclasses import dataclass, field
 
 import yaml
-from diagnostic_msgs.msg import DiagnosticArray
-from backlash_monitor_msgs.msg import BacklashEstimate
 
 from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
 from backlash_monitor.errors import DeprecatedSpelling, UsageError, out_of_range
@@ -225,6 +223,10 @@ class FleetMonitor:
     def __init__(self, node, drives, aggregator_config: dict, rate_factor: float):
         # deferred: ros.qos (rclpy) costs ~50-60 ms at start-up (python -X importtime, 29 Nov); python -m backlash_monitor --help imports this module
         from backlash_monitor.ros.qos import DIAGNOSTICS_DEPTH, ESTIMATE_QOS
+        # deferred: backlash_monitor_msgs is built into install/: --help works before `source env.sh`
+        from backlash_monitor_msgs.msg import BacklashEstimate
+        # deferred: as above
+        from diagnostic_msgs.msg import DiagnosticArray
         self.rate_factor = rate_factor
         self.view = AggregatorView(aggregator_config, now_s=time.monotonic())
         self.tally = {d.hardware_id: DriveTally() for d in drives}

@@ -24,8 +24,6 @@ import time
 from dataclasses import dataclass, field
 
 from ament_index_python.packages import get_package_prefix
-from diagnostic_msgs.msg import DiagnosticArray
-from backlash_monitor_msgs.msg import BacklashEstimate, ModelFit
 
 from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
 from backlash_monitor.process.supervisor import RESTART_POLICIES, Supervisor
@@ -459,6 +457,10 @@ def run(args) -> int:
     configure_fast_dds()  # before rclpy.init; the child processes inherit it
     params = node_parameters(args)
     order = WATCH_ORDER if args.watch else NODE_ORDER
+    # deferred: backlash_monitor_msgs is built into install/: --help works before `source env.sh`
+    from backlash_monitor_msgs.msg import BacklashEstimate, ModelFit
+    # deferred: as above
+    from diagnostic_msgs.msg import DiagnosticArray
     view = PipelineConsole(args.width_m, default_signals(args.mode or DEFAULT_MODE))
     supervisor = None
     exit_code = 0
