@@ -89,4 +89,7 @@ def main() -> int:
 
 
 if __name__ == "__main__":
+    # no options: --help says what it measures instead of starting the run
+    import argparse
+    argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     sys.exit(main())
