@@ -102,6 +102,7 @@ def _body(effect_classes, indent: str, prefix: str = "_t_") -> str:
         "contact_sign = where(delta > 0.0, 1.0, -1.0)",
         "penetration = ad - beta",
         "approach_speed = contact_sign * rel_speed",
+        "load_moment_pu = load_pu",
     ]
     if clutch:
         lines += ["contact_stiffness_Nm_per_rad = " + _pname("backlash_clutch", "contact_stiffness_Nm_per_rad"),

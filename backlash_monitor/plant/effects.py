@@ -49,6 +49,7 @@ MODEL_VARIABLES = {
     "alpha2": "wheel angle [rad]", "z": "spring/absorber extension r*alpha2 - x [m]", "xdot": "mass speed [m/s]",
     "v": "rim-mass relative speed r*Omega2 - xdot [m/s]", "rel_speed": "Omega1 - Omega2 [rad/s]",
     "te": "electromagnetic torque [p.u.]",
+    "load_moment_pu": "the motor's load moment input [p.u.]: the load pulses (the press strokes) and any constant load",
     "penetration": "|Delta| - beta [rad] (>= 0 in contact)",
     "approach_speed": "sign(Delta)*(Omega1 - Omega2) [rad/s] (> 0: contact closing)",
     "beta": "half gap width/r [rad]", "wheel_radius_m": "r [m]", "wheel_inertia_kgm2": "J2 [kg*m^2]",

@@ -34,6 +34,7 @@ PENETRATION_SCALE_RAD = 3e-3                  # ~10 N*m / k_c: the jaw's penetra
 APPROACH_SCALE_RAD_S = 1.0                    # the contact's closing speed at entry: ~1 rad/s
 EXTENSION_SCALE_M = 0.3                       # the spring's static extension F0/k
 RIM_SPEED_SCALE_M_S = 0.1                     # r*Omega2 - xdot: the spring's rate, ~0.1 m/s
+PULSE_SCALE_PU = 1.6                          # the load pulse's height (config/plant.yaml pulse_load: 1.6 p.u.)
 # the balances: (unit of the coefficient, the screening's step = a small amount of the term in its balance, the
 # coefficient's bounds); the step ~ a tenth of the balance's own size (F0*r = 4.5 N*m at the rim, T_b = 20 N*m)
 BALANCES = {
@@ -42,11 +43,17 @@ BALANCES = {
     "rim_mass_force_N": ("N", 3.0, 200.0),
     "wheel_torque_Nm": ("N*m", 0.5, 20.0),
     "mass_force_N": ("N", 3.0, 200.0),
+    # a term the sensor adds to one accelerometer (recorded terms: computed on the recorded events, not simulated)
+    "sensor_a1_m_s2": ("m/s²", 0.5, 200.0),
+    "sensor_a2_m_s2": ("m/s²", 0.5, 200.0),
 }
+SIMULATED_BALANCES = ("motor_load_moment_pu", "clutch_torque_Nm", "rim_mass_force_N", "wheel_torque_Nm", "mass_force_N")
 BALANCE_WORDS = {"motor_load_moment_pu": "motor load moment", "clutch_torque_Nm": "clutch torque",
-                 "rim_mass_force_N": "rim force", "wheel_torque_Nm": "wheel torque", "mass_force_N": "mass force"}
+                 "rim_mass_force_N": "rim force", "wheel_torque_Nm": "wheel torque", "mass_force_N": "mass force",
+                 "sensor_a1_m_s2": "measured a1", "sensor_a2_m_s2": "measured a2"}
 SHORT = {"motor_load_moment_pu": "motor", "clutch_torque_Nm": "clutch", "rim_mass_force_N": "rim",
-         "wheel_torque_Nm": "wheel", "mass_force_N": "mass"}
+         "wheel_torque_Nm": "wheel", "mass_force_N": "mass", "sensor_a1_m_s2": "a1", "sensor_a2_m_s2": "a2"}
+RECORD_TIME = "t/T"          # the time in the record over its length (0 at sample 0, 1 at its end)
 
 
 @dataclass(frozen=True)
@@ -59,6 +66,14 @@ class Term:
     group: str           # terms selected together (a harmonic's sine and cosine)
     variables: tuple     # model variables f names
     harmonic: tuple | None = None     # (angle variable, order, "sin"/"cos")
+    recorded: tuple | None = None     # not simulated (event_design.py): ("sensor", signal, shape) with shape
+                                      # ("harmonic", angle, order, fn) | ("speed", speed) | ("time",); or ("time", the
+                                      # constant term it modulates) -- a slow change of a constant in its balance
+
+    @property
+    def simulated(self) -> bool:
+        """The term is a plug-in term the simulator runs (not a sensor's, not one of the time in the record)."""
+        return self.recorded is None
 
 
 def _speed_terms(balance, var, sym, scale_expr):
@@ -125,17 +140,55 @@ def library() -> tuple[Term, ...]:
     # the mass: its speed's powers and sign
     xs = f"(wheel_radius_m * {SPEED_REF})"
     t += _speed_terms("mass_force_N", "xdot", "ẋ", xs)
+    # the load pulse (the press stroke): a force or torque that comes and goes with it, in every balance but the
+    # clutch's (a lag behind the pulse's edges is a change of the event's shape the pulse's own column holds in part)
+    for balance, sym in (("motor_load_moment_pu", "m"), ("wheel_torque_Nm", "w"), ("mass_force_N", "x")):
+        b = SHORT[balance]
+        t.append(Term(f"{PREFIX}{b}_pulse", balance, f"load_moment_pu / {PULSE_SCALE_PU}",
+                      f"T_L/{PULSE_SCALE_PU:g}", "load pulse", f"{b}_pulse", ("load_moment_pu",)))
+    # a constant in each balance (a load, a torque, a force that does not depend on the states)
+    for balance, var in (("motor_load_moment_pu", "w1"), ("wheel_torque_Nm", "omega2"), ("mass_force_N", "xdot")):
+        b = SHORT[balance]
+        t.append(Term(f"{PREFIX}{b}_const", balance, f"1.0 + 0.0 * {var}", "1", "constant", f"{b}_const", (var,)))
     return tuple(t)
 
 
+def recorded_terms() -> tuple[Term, ...]:
+    """The terms computed on the recorded events instead of simulated (event_design.py): what a sensor adds to a1 or
+    a2 -- harmonics of both shafts' angles (orders 1, 2), the shafts' speeds, a drift with the time in the record --
+    and a slow change (linear in the time in the record) of each balance's constant."""
+    out: list[Term] = []
+    for sig in ("a1", "a2"):
+        balance = f"sensor_{sig}_m_s2"
+        b = SHORT[balance]
+        for var, sym in (("alpha1", "α₁"), ("alpha2", "α₂")):
+            for k in (1, 2):
+                for fn in ("sin", "cos"):
+                    out.append(Term(f"{PREFIX}{b}_{var}_{fn}{k}", balance, f"{fn}({k} * {var})",
+                                    f"{fn}({k if k != 1 else ''}{sym})", var, f"{b}_{var}_h{k}", (var,),
+                                    (var, k, fn), ("sensor", sig, ("harmonic", var, k, fn))))
+        for var, sym in (("omega1", "Ω₁"), ("omega2", "Ω₂")):
+            out.append(Term(f"{PREFIX}{b}_{var}", balance, f"({var} - mean) / {REL_SPEED_SCALE_RAD_S:g}",
+                            f"({sym}−mean)/{REL_SPEED_SCALE_RAD_S:g}", var, f"{b}_{var}", (var,), None,
+                            ("sensor", sig, ("speed", var))))
+        out.append(Term(f"{PREFIX}{b}_time", balance, RECORD_TIME, RECORD_TIME, "time", f"{b}_time", (), None,
+                        ("sensor", sig, ("time",))))
+    for c in library():
+        if c.state == "constant":
+            b = SHORT[c.balance]
+            out.append(Term(f"{PREFIX}{b}_time", c.balance, RECORD_TIME, RECORD_TIME, "time", f"{b}_time", (), None,
+                            ("time", c.name)))
+    return tuple(out)
+
+
 def by_name() -> dict:
-    return {t.name: t for t in library()}
+    return {t.name: t for t in library() + recorded_terms()}
 
 
-def groups() -> dict:
-    """group -> [term names], in library order."""
+def groups(terms=None) -> dict:
+    """group -> [term names], in library order (``terms``: default the simulated library)."""
     out: dict = {}
-    for t in library():
+    for t in (library() if terms is None else terms):
         out.setdefault(t.group, []).append(t.name)
     return out
 
@@ -207,6 +260,7 @@ class ProposedPiece:
     terms: tuple            # Term objects of the group
     coefficients: tuple     # fitted, one per term
     uncertainties: tuple
+    alike: tuple = ()       # the first Term of each group the data cannot tell from this one (proposal.alike_groups)
 
     @property
     def balance(self) -> str:
@@ -237,6 +291,12 @@ class ProposedPiece:
     def state(self) -> str:
         return self.terms[0].state
 
+    def alike_text(self) -> str:
+        """" (alike: ...)" naming the groups that would fit the events as well, or ""."""
+        if not self.alike:
+            return ""
+        return " (as well: " + ", ".join(f"{BALANCE_WORDS[t.balance]} · {t.symbol}" for t in self.alike) + ")"
+
 
 def proposal_law(pieces) -> str:
     """The law in words and symbols, one line per balance: "wheel torque += 2.9 N·m · sin(α₂ + 0.31)"."""
@@ -254,7 +314,10 @@ def proposal_source(pieces, name: str = "proposed_term") -> tuple[str, dict]:
     fitted values). -> (source, {effect name: {parameter: fitted value}})."""
     by: dict = {}
     for p in pieces:
-        by.setdefault(p.balance, []).append(p)
+        if p.terms[0].simulated:       # a sensor's term or one of the time in the record has no plug-in form yet
+            by.setdefault(p.balance, []).append(p)
+    if not by:
+        return "", {}
     parts = ['"""A term the workbench proposed from a residual (docs/workbench.md, "Proposing a missing term").\n'
              "Read it, edit it: each parameter is bounded, its default 0 does nothing; the fitted values are in the\n"
              'model version add-effect --accept-proposal writes."""\n' + HEADER]

@@ -112,11 +112,12 @@ def exact_law_source(order: int) -> str:
 # the proposal's balances and states (candidate_terms.Term) in the manifest's words (foreign_drives/outside.py
 # BALANCES, STATES); the rim force (between wheel and mass) is neither of the manifest's balances
 BALANCE_WORDS = {"motor_load_moment_pu": "motor_load_moment", "wheel_torque_Nm": "wheel_torque",
-                 "clutch_torque_Nm": "clutch_torque", "mass_force_N": "mass_force"}
+                 "clutch_torque_Nm": "clutch_torque", "mass_force_N": "mass_force", "sensor_a1_m_s2": "sensor",
+                 "sensor_a2_m_s2": "sensor"}
 STATE_WORDS = {"omega1": ("motor_speed",), "omega2": ("wheel_speed",), "xdot": ("mass_speed",), "v": ("rim_speed",),
                "rel_speed": ("motor_speed", "wheel_speed"), "penetration": ("clutch_penetration",),
                "penetration rate": ("clutch_penetration",), "z": ("spring_extension",), "alpha1": ("motor_angle",),
-               "alpha2": ("wheel_angle",), "te": ()}
+               "alpha2": ("wheel_angle",), "te": (), "time": ("time",), "constant": (), "load pulse": ("load_pulse",)}
 
 
 def _truth_of(spec, truth) -> tuple[set, set]:
@@ -134,9 +135,21 @@ def _truth_of(spec, truth) -> tuple[set, set]:
     return bal, st
 
 
+ANGLES = ("alpha1", "alpha2")
+
+
 def right_balance(terms, bal: set, st: set) -> bool:
-    """A proposed term acts in the truth's balance and depends on one of its states."""
-    return any(BALANCE_WORDS.get(t["balance"]) in bal and set(STATE_WORDS.get(t["state"], ())) & st for t in terms)
+    """A proposed term acts in the truth's balance and depends on one of its states. A harmonic of one shaft's angle
+    also counts for the other's when the proposal names that one as fitting the events as well (``alike``, in the
+    same balance): the two angles differ by at most the gap, no recording tells them apart. No other alike term
+    counts."""
+    def states(t):
+        out = set(STATE_WORDS.get(t["state"], ()))
+        for a in t.get("alike", ()):
+            if a["balance"] == t["balance"] and t["state"] in ANGLES and a["state"] in ANGLES:
+                out |= set(STATE_WORDS.get(a["state"], ()))
+        return out
+    return any(BALANCE_WORDS.get(t["balance"]) in bal and states(t) & st for t in terms)
 
 
 def run_outside(specs) -> list:

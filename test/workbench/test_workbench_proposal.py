@@ -15,7 +15,10 @@ from backlash_monitor.workbench import candidate_terms, proposal         # noqa:
 
 def test_the_library_is_generic_and_covers_every_balance_and_both_shafts_angles():
     lib = candidate_terms.library()
-    assert {t.balance for t in lib} == set(candidate_terms.BALANCES)
+    assert {t.balance for t in lib} == set(candidate_terms.SIMULATED_BALANCES)
+    recorded = candidate_terms.recorded_terms()        # a sensor's terms on a1 and a2, and slow changes in time
+    assert {t.balance for t in recorded} - {t.balance for t in lib} == {"sensor_a1_m_s2", "sensor_a2_m_s2"}
+    assert {t.state for t in recorded} >= {"alpha1", "alpha2", "omega1", "omega2", "time"}
     harm = {(t.harmonic[0], t.harmonic[1]) for t in lib if t.harmonic}
     assert ("alpha1", 1) in harm and ("alpha2", 1) in harm and ("alpha2", 2) in harm
     # a harmonic's sine and cosine are one group: selected together, linear in their coefficients
@@ -149,3 +152,44 @@ def test_no_term_is_proposed_on_a_clean_foreign_drive_even_when_asked():
     found = proposal.propose(run, up, "nothing_explains")
     assert found is not None and not found.proposed, found.law
     assert proposal.propose(run, up, "consistent") is None
+
+
+def test_a_term_locked_to_an_angle_is_found_event_by_event_with_its_phase_lined_up_with_the_recording():
+    """Each event starts at another angle, so the events' average of a term A sin(theta + phi) is ~0 and the shared
+    design cannot see it. With the per-event columns (event_design.angle_columns: the response U, V rotated by each
+    event's recorded angle) the pair is selected, stable, and its coefficients give A and phi."""
+    from backlash_monitor.workbench import event_design
+    rng = np.random.default_rng(11)
+    d, e = 40, 24
+    U, V = rng.normal(size=d) * 0.5, rng.normal(size=d) * 0.5
+    resp = event_design.AngleResponse(U, V, np.zeros(d), 100, 1.0)
+    psi = rng.uniform(0, 2 * np.pi, e)                 # the recorded angle at each event's entry
+    A, phi = 2.0, 0.7
+    # A sin(th + phi) = A cos(phi) sin(th) + A sin(phi) cos(th), each event's response rotated by its angle psi
+    truth = np.stack([A * np.cos(phi) * (np.cos(p) * U + np.sin(p) * V)
+                      + A * np.sin(phi) * (-np.sin(p) * U + np.cos(p) * V) for p in psi])
+    Y = truth + rng.normal(size=(e, d))
+    assert abs(truth.mean(axis=0)).max() < 0.5 * abs(truth).max()     # the events' average washes it out
+    shared = rng.normal(size=(d, 3)) * 0.4
+    G = np.concatenate([np.broadcast_to(shared[None], (e, d, 3)), event_design.angle_columns(resp, psi)], axis=-1)
+    groups = [[0], [1], [2], [3, 4]]
+    sel, steps = proposal.forward_select(G, Y, groups)
+    assert sel[:1] == [3]
+    assert proposal.stability(G, Y, groups, n=20)[3] >= proposal.STABILITY
+    GG, Gy, _ = proposal.gram(G, Y)
+    c = np.linalg.solve(GG[:, [3, 4]][:, :, [3, 4]].sum(0), Gy[:, [3, 4]].sum(0))
+    assert np.hypot(*c) == pytest.approx(A, rel=0.15) and np.arctan2(c[1], c[0]) == pytest.approx(phi, abs=0.15)
+    # the shared design alone (the events' average sensitivity of the pair: ~0) selects nothing
+    assert proposal.forward_select(G.mean(axis=0)[..., :3], Y, groups[:3])[0] == []
+
+
+def test_the_recorded_angles_are_the_integrated_speeds_from_sample_zero():
+    from backlash_monitor.workbench import event_design
+    dt = 2e-5
+    t = np.arange(50000) * dt
+    w1 = 150.0 + 3.0 * np.sin(2 * np.pi * 5 * t)
+    delta = 0.01 * np.sin(2 * np.pi * 10 * t)
+    a = event_design.recorded_angles({"omega1": w1, "angle_difference": delta}, dt)
+    exact1 = 150.0 * t + 3.0 * (1 - np.cos(2 * np.pi * 5 * t)) / (2 * np.pi * 5)
+    assert np.max(np.abs(a["alpha1"] - exact1)) < 1e-6
+    assert np.max(np.abs(a["alpha2"] - (exact1 - delta))) < 1e-6
