@@ -62,6 +62,7 @@ class Run:
     base_ic: float = 0.0
     before: consistency.ConsistencyResult | None = None
     fits: list = field(default_factory=list)
+    views: consistency.ConsistencyViews | None = None     # the views of the screening (screen_step)
 
     @property
     def inconsistent(self) -> bool:
@@ -118,18 +119,11 @@ def screen_step(run: Run, effects=None, progress=None) -> None:
     screened = [c for c in run.catalogue if c.name in allowed or (tolerance.SCALE > 0
                                                                    and np.any(tolerance.sigma_of(c) > 0))]
     run.scr = fitting.screen(p, screened, run.base_pred, progress=progress)
-    spans = []
-    for n, info in run.scr.items():
-        lo, hi = run.by_name[n].bounds()
-        spans.append(info["J"] * (hi - lo)[None, :])
-    z_all = consistency.model_event_vectors(run.comp, p)
-    p.basis, p.blocks = consistency.whiten(consistency.candidate_basis(spans, p), z_all)
-    p.complement = consistency.complement_basis(z_all, p)
-    tol = tolerance.directions(p, run.scr, run.by_name)
-    p.tolerance_z = p.basis.T @ tol
-    p.fit_basis = consistency.fit_basis(p)
+    run.views = consistency.ConsistencyViews.from_screening(p, run.scr, run.by_name,
+                                                            consistency.model_event_vectors(run.comp, p))
+    p = run.problem = p.with_views(run.views)
     run.base_ic = p.ic(run.base_pred, 0)
-    run.before = consistency.test(p, p.residual(run.base_pred))
+    run.before = consistency.test(run.views, p.residual(run.base_pred))
     # the linear estimates in the whitened views (generalised least squares), and their IC; a term locked to a
     # shaft's angle as a sine/cosine pair
     for n, info in run.scr.items():
@@ -181,7 +175,7 @@ def misfit_scale(problem, fit) -> float:
     """The a-posteriori variance factor of a fit: its T^2 per dimension over every view (>= 1). Where the drive's
     law differs from the catalogue's the fit leaves more than noise, and the recording's evidence between two
     candidates is overstated by this factor (generalised least squares with an unknown scale)."""
-    c = consistency.test(problem, problem.residual(fit.pred))
+    c = consistency.test(problem.views, problem.residual(fit.pred))
     t2 = sum(v.t2 for v in c.views.values())
     dims = sum(v.dimension for v in c.views.values())
     return max(1.0, t2 / max(dims, 1))
@@ -356,7 +350,7 @@ def width_measurement(run: Run, up: Update) -> WidthMeasurement:
     c = consistency.noise_scale(p.n_events, p.n_seeds)
     se = float(np.sqrt(c / jj))
     pred = up.after_pred if up.first is not None and up.after_pred is not None else run.base_pred
-    if held is None and consistency.test(p, p.residual(pred)).consistent:
+    if held is None and consistency.test(p.views, p.residual(pred)).consistent:
         return WidthMeasurement(nominal, float(np.hypot(se, form)), nominal, False)
     # a width that explains only part (held: fitted alone, not consistent in every view), or none fitted
     start, start_se = (float(held.values[0]), float(held.uncertainty[0])) if held is not None else (0.0, se)
@@ -567,7 +561,7 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
     second_json = (second.to_json() if second is not None
                    else ripple_entry if discovery is not None and ripple_entry is not None else None)
     ranked = _ranked(run, discovery)
-    after_view = (consistency.test(run.problem, run.problem.residual(up.after_pred)) if discovery is not None
+    after_view = (consistency.test(run.views, run.problem.residual(up.after_pred)) if discovery is not None
                   else run.before)
     report_dict = report.diagnosis_report(run, up, v, ripple_fit, spec, overall_before, _identifiability(run))
     report_dict["input_saturation"] = saturation

@@ -19,6 +19,7 @@ Per candidate (docs/workbench.md, "How a candidate is fitted"):
 """
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -82,10 +83,14 @@ class Problem:
     A *prediction* is one flat vector: the weighted denoised event average (w * m, 2 x L values) followed by
     the weighted spectral-shape features of the raw events (ws * s, workbench/spectral.py) and the weighted
     period means of a1, a2 (wdc * dc, events.period_means: the record-mean view). The measured
-    events give the same vector per event; their mean is the target."""
+    events give the same vector per event; their mean is the target.
+
+    ``views`` (consistency.ConsistencyViews): the whitened views the fits' metric and the IC look in; None before they
+    are known (the screening, whose Jacobians they are built from: the identity metric). A problem with them is made
+    whole by :meth:`with_views` (diagnose.screen_step)."""
 
     def __init__(self, model, measured_events, seeds, n_samples, sample_period_s, conditions, weights,
-                 spec_weights, dc_weights, spec_noise=None, dc_names=("a1", "a2"), base_sets=None):
+                 spec_weights, dc_weights, spec_noise=None, dc_names=("a1", "a2"), base_sets=None, views=None):
         self.model = model
         self.events = measured_events                         # EventSet (raw)
         self.target = measured_events.mean_denoised()         # (2, L)
@@ -101,11 +106,7 @@ class Problem:
         self.dc_names = tuple(dc_names)                       # the record-mean view's signals
         self.base = dict(base_sets or {})                     # parameter set of effects already added
         self.n_sets_simulated = 0
-        self.basis = None      # (N, q): the whitened directions the views look in (set by diagnose)
-        self.blocks = None     # [(name, slice of the basis' columns)]: event average, spectral shape, record mean
-        self.complement = None           # (n_event_coords, P): whitened noise directions outside the subspace
-        self.tolerance_z = None          # (q, m): the model-form tolerance in the basis' coordinates
-        self.fit_basis = None            # (N, q + P): basis and complement together, the fits' metric
+        self.views = views                                    # consistency.ConsistencyViews, or None
         e = self.event_denoised.shape[0]
         self.n_events = int(e)
         self.n_seeds = len(self.seeds)
@@ -118,6 +119,13 @@ class Problem:
         self.event_vecs = np.hstack([(self.event_denoised * self.w[None]).reshape(e, -1), spec * self.ws[None],
                                      measured_events.dc * self.wdc[None]])
         self.target_vec = self.event_vecs.mean(axis=0)
+
+    def with_views(self, views) -> "Problem":
+        """This problem with the whitened views (consistency.ConsistencyViews of its screening): the fits' metric and
+        the IC in them. The measured evidence and the machinery are shared, not copied."""
+        out = copy.copy(self)
+        out.views = views
+        return out
 
     def _merge(self, sets):
         out = []
@@ -163,12 +171,11 @@ class Problem:
 
     def project(self, r: np.ndarray) -> np.ndarray:
         """Coordinates of a weighted residual (or Jacobian) in the whitened views -- the candidates' subspace and
-        the noise directions outside it (``fit_basis``; identity before they are known): the generalised-least-
+        the noise directions outside it (``views.fit_basis``; identity before they are known): the generalised-least-
         squares metric of the fits. (Fitted in the subspace alone, a strong effect whose shape at its fitted value
         leaves the secants' subspace was matched inside it while the rest grew outside: measured on a foreign
         eta_k +60 %, 99.8 % explained inside, the outside view made worse.)"""
-        b = self.fit_basis if self.fit_basis is not None else self.basis
-        return r if b is None else b.T @ r
+        return r if self.views is None else self.views.fit_basis.T @ r
 
     def fit_residual(self, pred) -> np.ndarray:
         return self.project(self.residual(pred))
@@ -181,18 +188,18 @@ class Problem:
         excess. Identity before the views are known."""
         r0 = float(np.sum(np.asarray(r_before) ** 2))
         r1 = float(np.sum(np.asarray(r_after) ** 2))
-        if self.fit_basis is None:
+        if self.views is None:
             return 1.0 - r1 / max(r0, 1e-300)
         c = 1.0 / self.n_events + 1.0 / (self.n_events * max(self.n_seeds, 1))
-        noise = float(self.fit_basis.shape[1]) * c
+        noise = float(self.views.fit_basis.shape[1]) * c
         return (r0 - r1) / max(r0 - noise, 1e-3 * r0, 1e-300)
 
     def ic(self, pred, k: int) -> float:
         d = self.event_vecs - pred[None]
         e = d.shape[0]
-        if self.basis is not None:
+        if self.views is not None:
             # whitened candidate subspace: one Gaussian per direction, its variance estimated from the events
-            z = d @ self.basis
+            z = d @ self.views.basis
             return float(e * np.sum(np.log(np.mean(z ** 2, axis=0))) + k * np.log(e))
         loss = np.mean(d[:, :self.n_event_coords] ** 2, axis=1)
         return float(e * np.log(np.mean(loss)) + k * np.log(e))

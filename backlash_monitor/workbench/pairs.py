@@ -52,7 +52,7 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
     both is confident. -> (fit of the best pair, a, b, [(fit, c, d) of the passing pairs within DELTA_IC_TIE of
     it]) or None."""
     r1 = problem.residual(first.pred)
-    if consistency.test(problem, r1).consistent:
+    if consistency.test(problem.views, r1).consistent:
         return None
     r0 = problem.project(problem.residual(base_pred))
     r1g = problem.project(r1)
@@ -156,7 +156,7 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
 def greedy_second(problem, first, by_name, scr, order):
     """Every other candidate fitted on top of the first effect (fixed at its fitted values)."""
     r1 = problem.residual(first.pred)
-    if consistency.test(problem, r1).consistent:
+    if consistency.test(problem.views, r1).consistent:
         return None
     eff1 = by_name[first.effect]
     base_sets = plant_adapter.apply_values(eff1, first.values)

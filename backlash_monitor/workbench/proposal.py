@@ -214,7 +214,7 @@ def propose(run, up, verdict: str) -> Proposal | None:
     lin_expl = p.explained_share(p.project(p.residual(ref + S[:, cols] @ c_lin)), p.project(p.residual(ref)))
     fit = fitting.refine(p, cand, {"x_lin": c_lin, "h": steps[cols], "explained_lin": lin_expl}, ref, ref_ic,
                          max_nfev=REFINE_NFEV)
-    after = consistency.test(p, p.residual(fit.pred))
+    after = consistency.test(p.views, p.residual(fit.pred))
     pieces = []
     i = 0
     for g in stable:
