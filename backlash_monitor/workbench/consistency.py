@@ -188,26 +188,27 @@ class ConsistencyViews:
     n_event_coords: int           # the event average's share of the prediction vector (its first coordinates)
 
     @classmethod
-    def from_screening(cls, layout, screening: dict, candidates: dict, model_events: np.ndarray,
+    def from_screening(cls, layout, jacobians: dict, candidates: dict, model_events: np.ndarray,
                        more_rows: dict | None = None, complement: np.ndarray | None = None) -> "ConsistencyViews":
         """The views of a screening: the candidates' subspace spanned by every screened candidate's Jacobian over its
         fit range (candidate_basis), whitened by the model's own events (whiten), the complement's noise directions
         (complement_basis) and the model-form tolerance from the screening's Jacobians (tolerance.directions).
         ``layout``: the prediction vector's slices and weights (fitting.Problem, reference.WindowReference);
-        ``screening``: {candidate name: fitting.Linearisation}; ``candidates``: {name: plant_adapter.CandidateEffect}
+        ``jacobians``: the screening's, {candidate name: (N, k) d prediction / d parameter} (fitting.Linearisation's
+        jacobian); ``candidates``: {name: plant_adapter.CandidateEffect}
         (their fit ranges and tolerances); ``model_events``: (K*E, N) the model's own events less its prediction
         (model_event_vectors); ``more_rows``: whiten's; ``complement``: the complement when the caller has it for
         this layout's number of events (the reference computes it once per E)."""
         spans = []
-        for name, info in screening.items():
+        for name, jacobian in jacobians.items():
             lo, hi = candidates[name].bounds()
-            spans.append(info["J"] * (hi - lo)[None, :])
+            spans.append(jacobian * (hi - lo)[None, :])
         directions = candidate_basis(spans, layout)
         basis, blocks = whiten(directions, model_events, more_rows)
         if complement is None:
             complement = complement_basis(model_events, layout.n_event_coords, basis, blocks)
         return cls(tuple(directions), basis, tuple(blocks), complement,
-                   tolerance.directions(layout, screening, candidates), int(layout.n_events), int(layout.n_seeds),
+                   tolerance.directions(layout, jacobians, candidates), int(layout.n_events), int(layout.n_seeds),
                    int(layout.n_event_coords))
 
     @cached_property

@@ -212,7 +212,7 @@ def propose(run, up, verdict: str) -> Proposal | None:
     c_lin = np.clip(c_lin, lo * 0.999, hi * 0.999)
     ref_ic = p.ic(ref, 0)
     lin_expl = p.explained_share(p.project(p.residual(ref + S[:, cols] @ c_lin)), p.project(p.residual(ref)))
-    fit = fitting.refine(p, cand, {"x_lin": c_lin, "h": steps[cols], "explained_lin": lin_expl}, ref, ref_ic,
+    fit = fitting.refine(p, cand, fitting.Linearisation(S[:, cols], steps[cols], c_lin, lin_expl), ref, ref_ic,
                          max_nfev=REFINE_NFEV)
     after = consistency.test(p.views, p.residual(fit.pred))
     pieces = []

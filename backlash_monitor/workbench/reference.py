@@ -218,7 +218,7 @@ class WindowReference:
             cols.append(np.concatenate([(ref.jac_event[j].reshape(self.w.size, -1) * self.w[:, None]).ravel(),
                                         spec * self.ws, ref.jac_dc[j][dc_idx] * self.wdc]))
         jac = np.stack(cols, axis=1)
-        scr = {cand["name"]: {"J": jac[:, cand["columns"]]} for cand in ref.candidates}
+        jacobians = {cand["name"]: jac[:, cand["columns"]] for cand in ref.candidates}
         comp = SimpleNamespace(ensemble=SimpleNamespace(per_event=ref.seed_events,
                                                         dc_samples=lambda k: seed_dc[k]),
                                weights=self.w, model_event_spec=model_event_spec)
@@ -228,7 +228,7 @@ class WindowReference:
                 } if more_dc else None
         # the noise directions outside the subspace come from the event average alone (not from the noise floor,
         # which only the spectral block sees): computed once per number of events (an SVD of K*E x 4596: ~0.5 s)
-        self.views = consistency.ConsistencyViews.from_screening(self, scr, ref.candidate_objects(), z_all, more,
+        self.views = consistency.ConsistencyViews.from_screening(self, jacobians, ref.candidate_objects(), z_all, more,
                                                                  ref._complements.get(self.n_events))
         ref._complements.setdefault(self.n_events, self.views.complement)
         # the noise realisation's effect on each model event's spectral features (noisy minus the noise's power
@@ -790,13 +790,13 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
     # deferred: the simulator (numba, scipy.optimize) costs ~600 ms at start-up (python -X importtime, 29 Nov)
     from .plant_adapter import apply_values
     candidates, jac_event, jac_dc, jac_bands, jac_step = [], [], [], [], []
-    for name, info in run.scr.items():
+    for name, lin in run.screening.items():
         cand = run.by_name[name]
         x0 = cand.default_vector()
         cols = []
-        for i, h in enumerate(np.atleast_1d(info["h"])):
+        for i, h in enumerate(np.atleast_1d(lin.step)):
             ens, j = set_of(apply_values(cand, x0 + h * np.eye(len(x0))[i]))
-            J = info["J"][:, i]
+            J = lin.jacobian[:, i]
             cols.append(len(jac_step))
             jac_event.append((J[p.event_slice].reshape(n_sig, -1) / w[:, None]).ravel())
             jac_dc.append(J[p.dc_slice] / p.wdc)
