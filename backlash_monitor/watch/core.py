@@ -113,7 +113,7 @@ class ModelWatch:
         self.evaluations = 0
         self.dof = reference.view_dof()          # the views' whitening: degrees of freedom (the rule's p-values)
         self.last: WatchUpdate | None = None
-        reference.views(self.views_noise, window_events, self.record_mean)   # the views at zero noise, before the stream
+        reference.for_window(self.views_noise, window_events, self.record_mean)   # the views at zero noise, before the stream
 
     def _noise_scale(self) -> np.ndarray:
         """Per signal: the model's weakest spectral band as a white PSD [(m/s^2)^2/Hz]."""

@@ -18,12 +18,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 from scipy.special import gammaincinv     # chi^2's ppf as scipy.stats.chi2.ppf computes it (scipy.stats: ~1 s to import)
 from scipy.special import fdtri, fdtrc
 
+from . import tolerance
 from .events import dc_block_deviations, denoise
 
 SUBSPACE_ENERGY = 0.99       # share of the candidates' reach the subspace keeps
@@ -137,35 +138,95 @@ def whiten(blocks, z_all, more_rows: dict | None = None) -> tuple[np.ndarray, li
     return np.hstack(cols), names
 
 
-def complement_basis(z_all, problem) -> np.ndarray:
+def complement_basis(z_all, n_event_coords: int, basis: np.ndarray, blocks) -> np.ndarray:
     """The COMPLEMENT_DIM strongest directions of the model's own event noise in the event average that lie
-    outside the candidates' subspace, whitened: (n_event_coords, P)."""
-    ne = problem.n_event_coords
+    outside the candidates' subspace (the first of ``blocks``' columns of ``basis``), whitened: (n_event_coords, P)."""
+    ne = n_event_coords
     z = z_all[:, :ne]
-    q, _ = np.linalg.qr(problem.basis[:ne, problem.blocks[0][1]])
+    q, _ = np.linalg.qr(basis[:ne, blocks[0][1]])
     zc = z - (z @ q) @ q.T
     _, sv, vt = np.linalg.svd(zc, full_matrices=False)
     p = min(COMPLEMENT_DIM, len(sv))
     return vt[:p].T / np.maximum(sv[:p] / np.sqrt(max(z.shape[0] - 1, 1)), 1e-300)[None]
 
 
-def fit_basis(problem) -> np.ndarray:
+def fit_basis(views: "ConsistencyViews") -> np.ndarray:
     """(N, q + P): the fits' metric -- every view's whitened basis with its model-form tolerance folded in
     (basis_b (I + Z_b Z_b' / c)^(-1/2): generalised least squares with the noise and the tolerance, so a fit does not
     bend to explain what the tolerance allows) and the complement's directions."""
-    c = noise_scale(problem.n_events, problem.n_seeds)
+    c = noise_scale(views.n_events, views.n_seeds)
     cols = []
-    for _, sl in problem.blocks:
-        b = problem.basis[:, sl]
-        z = None if problem.tolerance_z is None else problem.tolerance_z[sl]
-        if z is None or not np.any(z):
+    for _, sl in views.blocks:
+        b = views.basis[:, sl]
+        z = views.tolerance_z[sl]
+        if not np.any(z):
             cols.append(b)
             continue
         vals, vecs = np.linalg.eigh(np.eye(z.shape[0]) + z @ z.T / c)
         cols.append(b @ (vecs / np.sqrt(vals)[None, :]) @ vecs.T)
-    outside = np.zeros((problem.basis.shape[0], problem.complement.shape[1]))
-    outside[problem.event_slice] = problem.complement
+    outside = np.zeros((views.basis.shape[0], views.complement.shape[1]))
+    outside[views.event_slice] = views.complement
     return np.hstack(cols + [outside])
+
+
+@dataclass(frozen=True, eq=False)
+class ConsistencyViews:
+    """The views the consistency test looks in, for one evidence layout (fitting.Problem's prediction vector: event
+    average, spectral shape, record mean) and one number of events E against K model seeds: built once, whole, from a
+    screening (:meth:`from_screening`). diagnose builds it per recording (screen_step), the model watch's reference per
+    window's noise floor and E (reference.WindowReference). N: the prediction vector's length; q: the views'
+    directions; P: the complement's; m: the model-form tolerance's."""
+    candidate_directions: tuple   # ((block name, (N, q_b)), ...): the candidates' orthonormal directions per block,
+                                  # before whitening (candidate_basis; a block without any: q_b 0)
+    basis: np.ndarray             # (N, q): the whitened directions the views look in (whiten)
+    blocks: tuple                 # ((view name, slice of basis' columns), ...): event_average, spectral_shape,
+                                  # record_mean (those with directions)
+    complement: np.ndarray        # (n_event_coords, P): whitened noise directions outside the subspace
+    tolerance_directions: np.ndarray   # (N, m): the model-form tolerance in the prediction space (tolerance.py)
+    n_events: int                 # E: the evidence's onset events (the noise of its mean)
+    n_seeds: int                  # K: the model mean's noise seeds
+    n_event_coords: int           # the event average's share of the prediction vector (its first coordinates)
+
+    @classmethod
+    def from_screening(cls, layout, jacobians: dict, candidates: dict, model_events: np.ndarray,
+                       more_rows: dict | None = None, complement: np.ndarray | None = None) -> "ConsistencyViews":
+        """The views of a screening: the candidates' subspace spanned by every screened candidate's Jacobian over its
+        fit range (candidate_basis), whitened by the model's own events (whiten), the complement's noise directions
+        (complement_basis) and the model-form tolerance from the screening's Jacobians (tolerance.directions).
+        ``layout``: the prediction vector's slices and weights (fitting.Problem, reference.WindowReference);
+        ``jacobians``: the screening's, {candidate name: (N, k) d prediction / d parameter} (fitting.Linearisation's
+        jacobian); ``candidates``: {name: plant_adapter.CandidateEffect}
+        (their fit ranges and tolerances); ``model_events``: (K*E, N) the model's own events less its prediction
+        (model_event_vectors); ``more_rows``: whiten's; ``complement``: the complement when the caller has it for
+        this layout's number of events (the reference computes it once per E)."""
+        spans = []
+        for name, jacobian in jacobians.items():
+            lo, hi = candidates[name].bounds()
+            spans.append(jacobian * (hi - lo)[None, :])
+        directions = candidate_basis(spans, layout)
+        basis, blocks = whiten(directions, model_events, more_rows)
+        if complement is None:
+            complement = complement_basis(model_events, layout.n_event_coords, basis, blocks)
+        return cls(tuple(directions), basis, tuple(blocks), complement,
+                   tolerance.directions(layout, jacobians, candidates), int(layout.n_events), int(layout.n_seeds),
+                   int(layout.n_event_coords))
+
+    @cached_property
+    def tolerance_z(self) -> np.ndarray:
+        """(q, m): the model-form tolerance in the basis' coordinates."""
+        return self.basis.T @ self.tolerance_directions
+
+    @cached_property
+    def fit_basis(self) -> np.ndarray:
+        """(N, q + P): the fits' metric (fit_basis; fitting.Problem.project)."""
+        return fit_basis(self)
+
+    @property
+    def event_slice(self) -> slice:
+        return slice(0, self.n_event_coords)
+
+    def event_part(self, r) -> np.ndarray:
+        return r[:self.n_event_coords]
 
 
 def predictive_t2_isf(p: float, dimension: int, dof: int) -> float:
@@ -215,9 +276,10 @@ def clipped_mean(u: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
     return (weights[:, None] * u).mean(axis=0), weights
 
 
-def test(problem, r: np.ndarray, with_tolerance: bool = True, event_residuals: np.ndarray | None = None,
-         clip_radius: dict | None = None, event_coords: dict | None = None) -> ConsistencyResult:
-    """The consistency of the weighted residual ``r`` (prediction space) in every view.
+def test(views: ConsistencyViews, r: np.ndarray, with_tolerance: bool = True,
+         event_residuals: np.ndarray | None = None, clip_radius: dict | None = None,
+         event_coords: dict | None = None) -> ConsistencyResult:
+    """The consistency of the weighted residual ``r`` (prediction space) in every view of ``views``.
 
     ``event_residuals`` (E, N), whose mean is ``r``, with ``clip_radius`` {view: radius}: in those views the
     residual is :func:`clipped_mean` of the events' whitened deviations instead of their mean (the live model
@@ -225,29 +287,29 @@ def test(problem, r: np.ndarray, with_tolerance: bool = True, event_residuals: n
     taken with the event-average view's weights. Without them (diagnose) the plain mean. ``event_coords``: {view:
     (E, q) event_residuals @ that view's basis columns} when the caller has projected them already (the same
     product, not made twice)."""
-    c = noise_scale(problem.n_events, problem.n_seeds)
-    z = problem.basis.T @ r
+    c = noise_scale(views.n_events, views.n_seeds)
+    z = views.basis.T @ r
     event_weights = None
     if event_residuals is not None and clip_radius:
-        for name, sl in problem.blocks:
+        for name, sl in views.blocks:
             if name in clip_radius:
                 u = event_coords.get(name) if event_coords else None
                 if u is None:
-                    u = event_residuals @ problem.basis[:, sl]
+                    u = event_residuals @ views.basis[:, sl]
                 z[sl], w = clipped_mean(u, clip_radius[name])
                 if name == "event_average":
                     event_weights = w
     if event_weights is not None and np.any(event_weights < 1.0):
         r = (event_weights[:, None] * event_residuals).mean(axis=0)
-    tol = problem.tolerance_z if with_tolerance else None
-    views = {}
-    for name, sl in problem.blocks:
+    tol = views.tolerance_z if with_tolerance else None
+    results = {}
+    for name, sl in views.blocks:
         tb = None if tol is None else tol[sl]
-        views[name] = ViewResult(name, _t2(z[sl], c, tb), chi2_limit(sl.stop - sl.start),
-                                 sl.stop - sl.start, _t2(z[sl], c, None))
+        results[name] = ViewResult(name, _t2(z[sl], c, tb), chi2_limit(sl.stop - sl.start),
+                                   sl.stop - sl.start, _t2(z[sl], c, None))
     # outside the candidates' subspace: no tolerance (the nominal parameters move the prediction inside it; what
     # lies outside is what no catalogue effect and no nominal error makes)
-    zc = problem.complement.T @ problem.event_part(r)
+    zc = views.complement.T @ views.event_part(r)
     t2c = _t2(zc, c, None)
-    views[OUTSIDE] = ViewResult(OUTSIDE, t2c, chi2_limit(int(zc.size)), int(zc.size), t2c)
-    return ConsistencyResult(views, float(np.sqrt(np.mean(problem.event_part(r) ** 2))))
+    results[OUTSIDE] = ViewResult(OUTSIDE, t2c, chi2_limit(int(zc.size)), int(zc.size), t2c)
+    return ConsistencyResult(results, float(np.sqrt(np.mean(views.event_part(r) ** 2))))

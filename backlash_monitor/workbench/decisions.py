@@ -62,8 +62,8 @@ def views_not_worse(problem, before_pred, after_pred) -> tuple[bool, list]:
     """Every view at least as good after the update as before: a view outside its band must not grow, a view
     inside must stay inside; per signal the event average's residual/noise must not grow beyond
     max(before, 1) x VIEW_WORSE_FACTOR. -> (ok, [names of the views made worse])."""
-    b = consistency.test(problem, problem.residual(before_pred))
-    a = consistency.test(problem, problem.residual(after_pred))
+    b = consistency.test(problem.views, problem.residual(before_pred))
+    a = consistency.test(problem.views, problem.residual(after_pred))
     worse = [n for n, v in a.views.items() if v.t2 > max(b.views[n].t2, b.views[n].limit) * (1 + 1e-9)]
     rb = per_signal_ratio(problem, before_pred)
     ra = per_signal_ratio(problem, after_pred)
@@ -84,8 +84,8 @@ def confident(problem, after_pred, base_pred) -> tuple[bool, dict]:
     the fits' whole metric (the effect's law differs from the catalogue's; the rest is reported). Always: the
     event-average residual within INCONSISTENT_RATIO of the noise floor, and no view made worse."""
     r = problem.residual(after_pred)
-    after = consistency.test(problem, r)
-    before = consistency.test(problem, problem.residual(base_pred))
+    after = consistency.test(problem.views, r)
+    before = consistency.test(problem.views, problem.residual(base_pred))
     explained = problem.explained_share(problem.project(r), problem.fit_residual(base_pred))
     inside = after.consistent
     # outside the candidates' subspace the effect must not leave what the model's noise does not account for

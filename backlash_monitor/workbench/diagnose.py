@@ -33,7 +33,8 @@ from .decisions import (DELTA_IC_DECISIVE, DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EX
 from .diagnosis_result import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOTHING_EXPLAINS, PARTIAL,
                         ROLE_DISCOVERY, ROLE_PARTIAL, ROLE_SECOND, Addition, Conditions, Diagnosis,
                         WidthMeasurement)
-from .measurement import saturation_of
+from .measurement import Measurement, saturation_of
+from .model import WorkbenchModel
 
 REFINE_TOP = 3               # singles refined first: the best 3 by explained share (model inconsistent)
 REFINE_EXTRA = 4             # more candidates refined when they may tie with the winner (the rim-force twins of a wheel
@@ -47,21 +48,23 @@ LAW_BALANCES = ("wheel_torque_Nm", "mass_force_N", "motor_load_moment_pu", "clut
 
 @dataclass
 class Run:
-    """The state of one diagnosis as it goes through the steps."""
-    meas: object
-    model: object
-    comp: object
-    problem: fitting.Problem
-    catalogue: list
-    by_name: dict
-    base_pred: np.ndarray
-    overrides: dict
-    t0: float
-    scr: dict = field(default_factory=dict)
-    order: list = field(default_factory=list)
-    base_ic: float = 0.0
-    before: consistency.ConsistencyResult | None = None
-    fits: list = field(default_factory=list)
+    """The state of one diagnosis as it goes through the steps. The prediction vectors (N values) are
+    fitting.Problem's: weighted, in units of each coordinate's noise floor."""
+    meas: Measurement
+    model: WorkbenchModel
+    comp: analysis.Comparison                     # the recording against the model's noise ensemble
+    problem: fitting.Problem                      # with the views once screened (screen_step)
+    catalogue: list[plant_adapter.CandidateEffect]
+    by_name: dict[str, plant_adapter.CandidateEffect]
+    base_pred: np.ndarray                         # (N,): the model's prediction as it is
+    overrides: dict                               # the command line's overrides the model was loaded with
+    t0: float                                     # time.perf_counter() at the start [s]
+    screening: dict[str, fitting.Linearisation] = field(default_factory=dict)   # every screened candidate's
+    order: list[str] = field(default_factory=list)      # the ranked candidates, by their linear explained share
+    base_ic: float = 0.0                          # the IC of the model as it is (in the views)
+    before: consistency.ConsistencyResult | None = None  # the model as it is, in the views
+    fits: list[fitting.FitResult] = field(default_factory=list)   # the refined candidates, best delta_ic first
+    views: consistency.ConsistencyViews | None = None     # the views of the screening (screen_step)
 
     @property
     def inconsistent(self) -> bool:
@@ -117,31 +120,24 @@ def screen_step(run: Run, effects=None, progress=None) -> None:
     # the requested candidates and those that carry a nominal tolerance (the null hypothesis needs them)
     screened = [c for c in run.catalogue if c.name in allowed or (tolerance.SCALE > 0
                                                                    and np.any(tolerance.sigma_of(c) > 0))]
-    run.scr = fitting.screen(p, screened, run.base_pred, progress=progress)
-    spans = []
-    for n, info in run.scr.items():
-        lo, hi = run.by_name[n].bounds()
-        spans.append(info["J"] * (hi - lo)[None, :])
-    z_all = consistency.model_event_vectors(run.comp, p)
-    p.basis, p.blocks = consistency.whiten(consistency.candidate_basis(spans, p), z_all)
-    p.complement = consistency.complement_basis(z_all, p)
-    tol = tolerance.directions(p, run.scr, run.by_name)
-    p.tolerance_z = p.basis.T @ tol
-    p.fit_basis = consistency.fit_basis(p)
+    screening = fitting.screen(p, screened, run.base_pred, progress=progress)
+    run.views = consistency.ConsistencyViews.from_screening(p, {n: s.jacobian for n, s in screening.items()},
+                                                            run.by_name, consistency.model_event_vectors(run.comp, p))
+    p = run.problem = p.with_views(run.views)
     run.base_ic = p.ic(run.base_pred, 0)
-    run.before = consistency.test(p, p.residual(run.base_pred))
+    run.before = consistency.test(run.views, p.residual(run.base_pred))
     # the linear estimates in the whitened views (generalised least squares), and their IC; a term locked to a
     # shaft's angle as a sine/cosine pair
-    for n, info in run.scr.items():
-        fitting.linear_estimate(p, run.by_name[n], info, run.base_pred, run.base_ic)
-    run.order = sorted(allowed, key=lambda k: -run.scr[k]["explained_lin"])
+    run.screening = {n: fitting.linear_estimate(p, run.by_name[n], s, run.base_pred, run.base_ic)
+                     for n, s in screening.items()}
+    run.order = sorted(allowed, key=lambda k: -run.screening[k].explained_lin)
 
 
 def refine_step(run: Run) -> list:
     """Bounded least squares on the simulator: the best REFINE_TOP by explained share (only the best one when the
     model is consistent: its value and uncertainty for the report), then every screened candidate whose
     linearised IC may tie with the best qualifying one (or, without one, may still qualify)."""
-    p, scr = run.problem, run.scr
+    p, scr = run.problem, run.screening
     first = run.order[:REFINE_TOP] if run.inconsistent else run.order[:1]
     fits = [fitting.refine(p, run.by_name[n], scr[n], run.base_pred, run.base_ic) for n in first]
     if run.inconsistent:
@@ -154,12 +150,10 @@ def refine_step(run: Run) -> list:
                  else -DELTA_IC_STRONG) + LINEAR_IC_MARGIN
 
         def lin_part(n):
-            return scr[n]["delta_ic_lin"] - len(run.by_name[n].parameters) * lnE
+            return scr[n].delta_ic_lin - len(run.by_name[n].parameters) * lnE
 
         def lin_distance(n):
-            x0 = run.by_name[n].default_vector()
-            pred = (scr[n]["pred_lin"] if "pred_lin" in scr[n]
-                    else run.base_pred + scr[n]["J"] @ (scr[n]["x_lin"] - x0))
+            pred = scr[n].linear_pred(run.base_pred, run.by_name[n].default_vector())
             return prediction_distance(p, best.pred, pred) / misfit_scale(p, best) if best is not None else np.inf
 
         near = {n for n in run.order if n not in first and lin_distance(n) < 4 * DELTA_IC_TIE}
@@ -181,7 +175,7 @@ def misfit_scale(problem, fit) -> float:
     """The a-posteriori variance factor of a fit: its T^2 per dimension over every view (>= 1). Where the drive's
     law differs from the catalogue's the fit leaves more than noise, and the recording's evidence between two
     candidates is overstated by this factor (generalised least squares with an unknown scale)."""
-    c = consistency.test(problem, problem.residual(fit.pred))
+    c = consistency.test(problem.views, problem.residual(fit.pred))
     t2 = sum(v.t2 for v in c.views.values())
     dims = sum(v.dimension for v in c.views.values())
     return max(1.0, t2 / max(dims, 1))
@@ -242,7 +236,7 @@ def second_effect_step(run: Run, decision: Decision, second: bool = True) -> Upd
     twins_of = {f.effect: [g.effect for g in decision.qualifying
                            if g is not f and _ties(run.problem, f, g, misfit_scale(run.problem, f))]
                 for f in decision.qualifying}
-    found = pairs.best_pair(run.problem, win, run.by_name, run.scr, run.order, run.base_pred, run.base_ic,
+    found = pairs.best_pair(run.problem, win, run.by_name, run.screening, run.order, run.base_pred, run.base_ic,
                             up.pairs_tried, twins_of, run.fits)
     if found is not None and anchor_only and found[0].explained_fraction < MIN_EXPLAINED:
         found = None
@@ -273,7 +267,7 @@ def second_effect_step(run: Run, decision: Decision, second: bool = True) -> Upd
         up.first, up.second = first, sec
         up.after_mean, up.after_pred, up.after_raw = fit2.model_mean, fit2.pred, fit2.model_mean_raw
         return up
-    sec = pairs.greedy_second(run.problem, win, run.by_name, run.scr, run.order)
+    sec = pairs.greedy_second(run.problem, win, run.by_name, run.screening, run.order)
     if sec is not None:
         up.second = sec
         up.after_mean, up.after_pred, up.after_raw = sec.model_mean, sec.pred, sec.model_mean_raw
@@ -340,23 +334,24 @@ def width_measurement(run: Run, up: Update) -> WidthMeasurement:
       noise, the fit's standard error is scaled by its Birge ratio sqrt(T^2 / dimension) (the residual's excess
       is not in the noise the error comes from), and the width is not called a drift (``drift_found`` False)."""
     nominal = float(run.model.nominal["width_m"])
-    info = run.scr.get("backlash_width_drift")
-    form = (tolerance.measurand_form_sigma(run.problem, run.scr, run.by_name, info["J"][:, 0])
-            if info is not None else 0.0)
+    width_lin = run.screening.get("backlash_width_drift")
+    form = (tolerance.measurand_form_sigma(run.problem, {n: s.jacobian for n, s in run.screening.items()},
+                                           run.by_name, width_lin.jacobian[:, 0])
+            if width_lin is not None else 0.0)
     held = next((f for f in (up.first, up.second) if up.confident and _is_measurand(f)), None)
     width_only = held is not None and all(_is_measurand(f) for f in (up.first, up.second) if f is not None)
     if held is not None and (not width_only or _width_alone_explains(up)):
         return WidthMeasurement(nominal + float(held.values[0]), float(np.hypot(held.uncertainty[0], form)), nominal,
                                 True)
-    if info is None:
+    if width_lin is None:
         return WidthMeasurement(nominal, float("nan"), nominal, False)
     p = run.problem
-    jz = p.project(info["J"][:, 0])
+    jz = p.project(width_lin.jacobian[:, 0])
     jj = max(float(jz @ jz), 1e-300)
     c = consistency.noise_scale(p.n_events, p.n_seeds)
     se = float(np.sqrt(c / jj))
     pred = up.after_pred if up.first is not None and up.after_pred is not None else run.base_pred
-    if held is None and consistency.test(p, p.residual(pred)).consistent:
+    if held is None and consistency.test(p.views, p.residual(pred)).consistent:
         return WidthMeasurement(nominal, float(np.hypot(se, form)), nominal, False)
     # a width that explains only part (held: fitted alone, not consistent in every view), or none fitted
     start, start_se = (float(held.values[0]), float(held.uncertainty[0])) if held is not None else (0.0, se)
@@ -567,7 +562,7 @@ def verdict_step(run: Run, decision: Decision, up: Update, ripple_fit, spec) -> 
     second_json = (second.to_json() if second is not None
                    else ripple_entry if discovery is not None and ripple_entry is not None else None)
     ranked = _ranked(run, discovery)
-    after_view = (consistency.test(run.problem, run.problem.residual(up.after_pred)) if discovery is not None
+    after_view = (consistency.test(run.views, run.problem.residual(up.after_pred)) if discovery is not None
                   else run.before)
     report_dict = report.diagnosis_report(run, up, v, ripple_fit, spec, overall_before, _identifiability(run))
     report_dict["input_saturation"] = saturation
@@ -611,14 +606,14 @@ def _near_ties(run: Run, discovery) -> list:
 
 
 def _ranked(run: Run, discovery) -> list:
-    scr, by_name = run.scr, run.by_name
+    scr, by_name = run.screening, run.by_name
     refined = {f.effect for f in run.fits}
-    ranked = [f.to_json() | {"delta_ic_linearised": float(scr[f.effect]["delta_ic_lin"])} for f in run.fits] + [
+    ranked = [f.to_json() | {"delta_ic_linearised": float(scr[f.effect].delta_ic_lin)} for f in run.fits] + [
         {"effect": n, "candidate": n,
-         "parameters": {pp.name: float(v) for pp, v in zip(by_name[n].parameters, scr[n]["x_lin"])},
-         "uncertainty": None, "delta_ic": None, "explained_fraction": float(scr[n]["explained_lin"]),
+         "parameters": {pp.name: float(v) for pp, v in zip(by_name[n].parameters, scr[n].x_lin)},
+         "uncertainty": None, "delta_ic": None, "explained_fraction": float(scr[n].explained_lin),
          "indistinguishable_from": [], "screening_only": True, "balance": by_name[n].balance,
-         "delta_ic_linearised": float(scr[n]["delta_ic_lin"])}
+         "delta_ic_linearised": float(scr[n].delta_ic_lin)}
         for n in run.order if n not in refined]
     for r in ranked:
         if discovery is not None and r["effect"] in discovery.indistinguishable_from:
@@ -635,7 +630,7 @@ def _identifiability(run: Run) -> dict:
     out = {}
     for n in run.order:
         lo, hi = run.by_name[n].bounds()
-        span = run.scr[n]["J"] * (hi - lo)[None, :]
+        span = run.screening[n].jacobian * (hi - lo)[None, :]
         reach_ev = float(np.max(np.sqrt(np.mean(span[p.event_slice] ** 2, axis=0))))
         reach_sp = float(np.max(np.sqrt(np.mean(span[p.spectral_slice] ** 2, axis=0))))
         reach_dc = float(np.max(np.sqrt(np.mean(span[p.dc_slice] ** 2, axis=0))))

@@ -19,7 +19,8 @@ Per candidate (docs/workbench.md, "How a candidate is fitted"):
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import copy
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import least_squares, lsq_linear
@@ -76,16 +77,42 @@ class FitResult:
                 "on_top_of": list(self.base), "description": self.description}
 
 
+@dataclass(frozen=True, eq=False)
+class Linearisation:
+    """One candidate's screening (:func:`screen`) and its linear estimate (:func:`linear_estimate`): the prediction's
+    Jacobian at the model's values and the bounded linear step on it. The prediction is Problem.pred's weighted vector
+    (N values, units of each coordinate's noise floor); k: the candidate's parameters."""
+    jacobian: np.ndarray          # (N, k): d prediction / d parameter [per parameter unit]: secants of ``step`` on the
+                                  # side that explains more; a sine/cosine pair's at x_lin (pair_estimate)
+    step: np.ndarray              # (k,): the secants' steps h [parameter units], signed (a pair's: the amplitudes' and
+                                  # the phase's, PAIR_PHASE_STEP_RAD); refine's forward differences and x_scale from it
+    x_lin: np.ndarray             # (k,): the linear estimate of the parameters [parameter units]
+    explained_lin: float          # the share of the residual's excess over the noise it removes (Problem.explained_share)
+    delta_ic_lin: float | None = None      # its IC against the model as is (linear_estimate: in the whitened views)
+    pred_lin: np.ndarray | None = None     # (N,): the prediction at x_lin, where it is not base + jacobian @ change
+                                           # (a sine/cosine pair)
+    pair_columns: np.ndarray | None = None  # (N, 2 m): a sine/cosine pair's responses (R0_i, R90_i) per amplitude i
+                                            # per unit step (pair_estimate); None for secants
+
+    def linear_pred(self, base_pred: np.ndarray, x0: np.ndarray) -> np.ndarray:
+        """(N,): the linearised prediction at x_lin (pred_lin when there is one)."""
+        return self.pred_lin if self.pred_lin is not None else base_pred + self.jacobian @ (self.x_lin - x0)
+
+
 class Problem:
     """The measurement's target and the shared-noise machinery to evaluate the model at parameter sets.
 
     A *prediction* is one flat vector: the weighted denoised event average (w * m, 2 x L values) followed by
     the weighted spectral-shape features of the raw events (ws * s, workbench/spectral.py) and the weighted
     period means of a1, a2 (wdc * dc, events.period_means: the record-mean view). The measured
-    events give the same vector per event; their mean is the target."""
+    events give the same vector per event; their mean is the target.
+
+    ``views`` (consistency.ConsistencyViews): the whitened views the fits' metric and the IC look in; None before they
+    are known (the screening, whose Jacobians they are built from: the identity metric). A problem with them is made
+    whole by :meth:`with_views` (diagnose.screen_step)."""
 
     def __init__(self, model, measured_events, seeds, n_samples, sample_period_s, conditions, weights,
-                 spec_weights, dc_weights, spec_noise=None, dc_names=("a1", "a2"), base_sets=None):
+                 spec_weights, dc_weights, spec_noise=None, dc_names=("a1", "a2"), base_sets=None, views=None):
         self.model = model
         self.events = measured_events                         # EventSet (raw)
         self.target = measured_events.mean_denoised()         # (2, L)
@@ -101,11 +128,7 @@ class Problem:
         self.dc_names = tuple(dc_names)                       # the record-mean view's signals
         self.base = dict(base_sets or {})                     # parameter set of effects already added
         self.n_sets_simulated = 0
-        self.basis = None      # (N, q): the whitened directions the views look in (set by diagnose)
-        self.blocks = None     # [(name, slice of the basis' columns)]: event average, spectral shape, record mean
-        self.complement = None           # (n_event_coords, P): whitened noise directions outside the subspace
-        self.tolerance_z = None          # (q, m): the model-form tolerance in the basis' coordinates
-        self.fit_basis = None            # (N, q + P): basis and complement together, the fits' metric
+        self.views = views                                    # consistency.ConsistencyViews, or None
         e = self.event_denoised.shape[0]
         self.n_events = int(e)
         self.n_seeds = len(self.seeds)
@@ -118,6 +141,13 @@ class Problem:
         self.event_vecs = np.hstack([(self.event_denoised * self.w[None]).reshape(e, -1), spec * self.ws[None],
                                      measured_events.dc * self.wdc[None]])
         self.target_vec = self.event_vecs.mean(axis=0)
+
+    def with_views(self, views) -> "Problem":
+        """This problem with the whitened views (consistency.ConsistencyViews of its screening): the fits' metric and
+        the IC in them. The measured evidence and the machinery are shared, not copied."""
+        out = copy.copy(self)
+        out.views = views
+        return out
 
     def _merge(self, sets):
         out = []
@@ -163,12 +193,11 @@ class Problem:
 
     def project(self, r: np.ndarray) -> np.ndarray:
         """Coordinates of a weighted residual (or Jacobian) in the whitened views -- the candidates' subspace and
-        the noise directions outside it (``fit_basis``; identity before they are known): the generalised-least-
+        the noise directions outside it (``views.fit_basis``; identity before they are known): the generalised-least-
         squares metric of the fits. (Fitted in the subspace alone, a strong effect whose shape at its fitted value
         leaves the secants' subspace was matched inside it while the rest grew outside: measured on a foreign
         eta_k +60 %, 99.8 % explained inside, the outside view made worse.)"""
-        b = self.fit_basis if self.fit_basis is not None else self.basis
-        return r if b is None else b.T @ r
+        return r if self.views is None else self.views.fit_basis.T @ r
 
     def fit_residual(self, pred) -> np.ndarray:
         return self.project(self.residual(pred))
@@ -181,18 +210,18 @@ class Problem:
         excess. Identity before the views are known."""
         r0 = float(np.sum(np.asarray(r_before) ** 2))
         r1 = float(np.sum(np.asarray(r_after) ** 2))
-        if self.fit_basis is None:
+        if self.views is None:
             return 1.0 - r1 / max(r0, 1e-300)
         c = 1.0 / self.n_events + 1.0 / (self.n_events * max(self.n_seeds, 1))
-        noise = float(self.fit_basis.shape[1]) * c
+        noise = float(self.views.fit_basis.shape[1]) * c
         return (r0 - r1) / max(r0 - noise, 1e-3 * r0, 1e-300)
 
     def ic(self, pred, k: int) -> float:
         d = self.event_vecs - pred[None]
         e = d.shape[0]
-        if self.basis is not None:
+        if self.views is not None:
             # whitened candidate subspace: one Gaussian per direction, its variance estimated from the events
-            z = d @ self.basis
+            z = d @ self.views.basis
             return float(e * np.sum(np.log(np.mean(z ** 2, axis=0))) + k * np.log(e))
         loss = np.mean(d[:, :self.n_event_coords] ** 2, axis=1)
         return float(e * np.log(np.mean(loss)) + k * np.log(e))
@@ -224,7 +253,7 @@ def screen(problem: Problem, effects, base_pred: np.ndarray, progress=None, two_
     """Every effect's parameters stepped by h from the model's values, all in ONE batch (per seed): the
     Jacobian columns and the linear (bounded) estimate of each effect. With ``two_sided``, a parameter with
     room on both sides is stepped by +h and -h (a secant on one side misses an effect that bends the other
-    way, e.g. a smaller pulse amplitude); the side whose secants explain more is kept. -> dict name -> info."""
+    way, e.g. a smaller pulse amplitude); the side whose secants explain more is kept. -> {name: Linearisation}."""
     r0 = problem.residual(base_pred)
     out = {}
     sets, owners = [], []
@@ -252,8 +281,7 @@ def screen(problem: Problem, effects, base_pred: np.ndarray, progress=None, two_
             h = _pair_steps(eff)
             cols = np.stack([(preds[(eff.name, j, "pair")] - base_pred) / h[i] for j, (i, _) in enumerate(pts)],
                             axis=1)
-            out[eff.name] = {"pair_columns": cols, "h": h}
-            out[eff.name].update(pair_estimate(problem, eff, out[eff.name], base_pred, lin_r0))
+            out[eff.name] = pair_estimate(problem, eff, cols, h, base_pred, lin_r0)
             if progress is not None:
                 progress(1)
             continue
@@ -274,8 +302,8 @@ def screen(problem: Problem, effects, base_pred: np.ndarray, progress=None, two_
             # linear bounded step: min ||r0 - J d||, x0 + d within bounds
             d = lsq_linear(jp, lin_r0, bounds=(lo - x0, hi - x0 + 1e-300)).x
             explained = problem.explained_share(lin_r0 - jp @ d, lin_r0)
-            if best is None or explained > best["explained_lin"]:
-                best = {"J": J, "x_lin": x0 + d, "explained_lin": explained, "h": h}
+            if best is None or explained > best.explained_lin:
+                best = Linearisation(J, h, x0 + d, explained)
         out[eff.name] = best
         if progress is not None:
             progress(1)
@@ -325,7 +353,8 @@ def pair_points(effect) -> list:
     return pts
 
 
-def pair_estimate(problem: Problem, effect, info: dict, base_pred: np.ndarray, r0g=None) -> dict:
+def pair_estimate(problem: Problem, effect, pair_columns: np.ndarray, step: np.ndarray, base_pred: np.ndarray,
+                  r0g=None) -> Linearisation:
     """The linear estimate of a sine/cosine pair (unbounded in its coefficients, then the amplitudes clipped to the
     bounds): x_lin, the linear prediction there, the share explained and the Jacobian at x_lin (amplitude columns
     along the fitted phase, the phase column at the fitted amplitude -- at least one step -- so that the views'
@@ -333,8 +362,8 @@ def pair_estimate(problem: Problem, effect, info: dict, base_pred: np.ndarray, r
     k = effect.phase_index
     x0 = effect.default_vector()
     lo, hi = effect.bounds()
-    h = info["h"]
-    cols = info["pair_columns"]                      # (N, 2 m): (R0_i, R90_i) per amplitude i
+    h = step
+    cols = pair_columns                              # (N, 2 m): (R0_i, R90_i) per amplitude i
     if r0g is None:
         r0g = problem.project(problem.residual(base_pred))
     g = problem.project(cols)
@@ -362,30 +391,30 @@ def pair_estimate(problem: Problem, effect, info: dict, base_pred: np.ndarray, r
     J[:, k] = (-np.sin(d) * r0c + np.cos(d) * r90c) @ (np.maximum(np.abs(amps), hs) / hs)
     pred = base_pred + shift
     explained = problem.explained_share(r0g - problem.project(shift), r0g)
-    return {"J": J, "x_lin": x, "explained_lin": explained, "pred_lin": pred}
+    return Linearisation(J, step, x, explained, pred_lin=pred, pair_columns=pair_columns)
 
 
-def linear_estimate(problem: Problem, effect, info: dict, base_pred: np.ndarray, base_ic: float) -> None:
-    """The linear estimate of ``effect`` in the problem's (whitened) metric, into ``info``: x_lin, explained_lin,
-    delta_ic_lin (diagnose.screen_step, once the views are known). A bounded linear step on the screening's
+def linear_estimate(problem: Problem, effect, screened: Linearisation, base_pred: np.ndarray,
+                    base_ic: float) -> Linearisation:
+    """The linear estimate of ``effect`` in the problem's (whitened) metric: ``screened`` with x_lin, explained_lin,
+    delta_ic_lin from it (diagnose.screen_step, once the views are known). A bounded linear step on the screening's
     secants; a term locked to a shaft's angle as a sine/cosine pair (pair_estimate)."""
     x0 = effect.default_vector()
-    if "pair_columns" in info:
-        info.update(pair_estimate(problem, effect, info, base_pred))
-        info["delta_ic_lin"] = problem.ic(info["pred_lin"], len(x0)) - base_ic
-        return
+    if screened.pair_columns is not None:
+        out = pair_estimate(problem, effect, screened.pair_columns, screened.step, base_pred)
+        return replace(out, delta_ic_lin=problem.ic(out.pred_lin, len(x0)) - base_ic)
     lo, hi = effect.bounds()
     r0g = problem.project(problem.residual(base_pred))
-    jg = problem.project(info["J"])
+    jg = problem.project(screened.jacobian)
     d = lsq_linear(jg, r0g, bounds=(lo - x0, hi - x0 + 1e-300)).x
-    info["x_lin"] = x0 + d
-    info["explained_lin"] = problem.explained_share(r0g - jg @ d, r0g)
-    info["delta_ic_lin"] = problem.ic(base_pred + info["J"] @ d, len(x0)) - base_ic
+    return replace(screened, x_lin=x0 + d, explained_lin=problem.explained_share(r0g - jg @ d, r0g),
+                   delta_ic_lin=problem.ic(base_pred + screened.jacobian @ d, len(x0)) - base_ic)
 
 
-def refine(problem: Problem, effect, screening: dict, base_pred: np.ndarray, base_ic: float,
+def refine(problem: Problem, effect, start: Linearisation, base_pred: np.ndarray, base_ic: float,
            max_nfev: int = 4) -> FitResult:
-    """Bounded least squares on the simulator (shared noise), starting at the linear estimate."""
+    """Bounded least squares on the simulator (shared noise), starting at the linear estimate ``start`` (its x_lin,
+    its steps for the forward differences and the scale)."""
     x0 = effect.default_vector()
     lo, hi = effect.bounds()
     cache: dict = {}
@@ -403,7 +432,7 @@ def refine(problem: Problem, effect, screening: dict, base_pred: np.ndarray, bas
         return [cache[tuple(np.round(x, 12))] for x in xs]
 
     cache[tuple(np.round(x0, 12))] = base_pred
-    h_abs = np.abs(screening["h"]) * 0.5
+    h_abs = np.abs(start.step) * 0.5
 
     def fun(x):
         return problem.fit_residual(preds_at([x])[0])
@@ -423,9 +452,9 @@ def refine(problem: Problem, effect, screening: dict, base_pred: np.ndarray, bas
         return -problem.project(last["J"])
 
     margin = 1e-3 * (hi - lo)   # strictly inside: trf's first trust radius scales with the start's distance
-    start = np.clip(screening["x_lin"], lo + margin, hi - margin)
-    res = least_squares(fun, start, jac=jac, bounds=(lo, hi + 1e-300), method="trf", max_nfev=max_nfev,
-                        x_scale=np.abs(screening["h"]))
+    x_start = np.clip(start.x_lin, lo + margin, hi - margin)
+    res = least_squares(fun, x_start, jac=jac, bounds=(lo, hi + 1e-300), method="trf", max_nfev=max_nfev,
+                        x_scale=np.abs(start.step))
     x = res.x
     p = preds_at([x])[0]
     key = tuple(np.round(x, 12))
@@ -448,7 +477,7 @@ def refine(problem: Problem, effect, screening: dict, base_pred: np.ndarray, bas
     tol = AT_BOUND_FRACTION * (hi - lo)
     at_bound = bool(np.any(((x - lo <= tol) & (np.abs(x0 - lo) > tol)) | ((hi - x <= tol) & (np.abs(hi - x0) > tol))))
     return FitResult(effect.name, [p_.name for p_ in effect.parameters], [p_.unit for p_ in effect.parameters], x,
-                     unc, x0, (lo, hi), explained, ic - base_ic, ic, m, screening["explained_lin"], len(cache),
+                     unc, x0, (lo, hi), explained, ic - base_ic, ic, m, start.explained_lin, len(cache),
                      effect.balance, effect.description, at_bound, model_mean_raw=m_raw, pred=p, jacobian=J_pred,
                      fixed=getattr(effect, "fixed_values", {}))
 

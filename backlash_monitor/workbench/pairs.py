@@ -52,13 +52,13 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
     both is confident. -> (fit of the best pair, a, b, [(fit, c, d) of the passing pairs within DELTA_IC_TIE of
     it]) or None."""
     r1 = problem.residual(first.pred)
-    if consistency.test(problem, r1).consistent:
+    if consistency.test(problem.views, r1).consistent:
         return None
     r0 = problem.project(problem.residual(base_pred))
     r1g = problem.project(r1)
     single = problem.explained_share(r1g, r0)
     twins_of = twins_of or {}
-    lin: dict = {}           # (a, b) -> (explained, x_lin, h, linearised IC)
+    lin: dict = {}           # (a, b) -> (explained, x_lin, h, linearised IC, Jacobian (N, k_a + k_b))
 
     singles = {f.effect: f for f in (singles or []) if f.jacobian is not None}
 
@@ -69,7 +69,7 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
         f = singles.get(n)
         if f is not None:
             return np.asarray(f.values, float), f.pred - base_pred, f.jacobian
-        return by_name[n].default_vector(), np.zeros_like(base_pred), scr[n]["J"]
+        return by_name[n].default_vector(), np.zeros_like(base_pred), scr[n].jacobian
 
     def linear(a, b):
         key = pair_key(a, b, order)
@@ -87,7 +87,7 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
             res = fitting.lsq_linear(J, rr, bounds=(lo - xe, hi - xe + 1e-300))
             expl = problem.explained_share(rr - J @ res.x, r0)
             ic = problem.ic(base_pred + shift + Jf @ res.x, len(xe))
-            lin[key] = (expl, xe + res.x, np.concatenate([scr[a]["h"], scr[b]["h"]]), ic)
+            lin[key] = (expl, xe + res.x, np.concatenate([scr[a].step, scr[b].step]), ic, Jf)
         return key
 
     # every pair (linear, on the screening Jacobians: cheap): the first of the best PAIR_FIRST singles, the
@@ -103,9 +103,9 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
 
     def run(key):
         a, b = key
-        expl, x_lin, h, _ = lin[key]
+        expl, x_lin, h, _, jacobian = lin[key]
         pair = combined(by_name[a], by_name[b])
-        fit = fitting.refine(problem, pair, {"x_lin": x_lin, "h": h, "explained_lin": expl}, base_pred, base_ic,
+        fit = fitting.refine(problem, pair, fitting.Linearisation(jacobian, h, x_lin, expl), base_pred, base_ic,
                              max_nfev=PAIR_MAX_NFEV)
         left = problem.explained_share(problem.fit_residual(fit.pred), r1g)
         na = len(by_name[a].parameters)
@@ -156,7 +156,7 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
 def greedy_second(problem, first, by_name, scr, order):
     """Every other candidate fitted on top of the first effect (fixed at its fitted values)."""
     r1 = problem.residual(first.pred)
-    if consistency.test(problem, r1).consistent:
+    if consistency.test(problem.views, r1).consistent:
         return None
     eff1 = by_name[first.effect]
     base_sets = plant_adapter.apply_values(eff1, first.values)
@@ -165,7 +165,7 @@ def greedy_second(problem, first, by_name, scr, order):
     for n in order:
         if n == first.effect:
             continue
-        J = problem.project(scr[n]["J"])
+        J = problem.project(scr[n].jacobian)
         r1g = problem.project(r1)
         eb = by_name[n]
         d = fitting.lsq_linear(J, r1g, bounds=(eb.bounds()[0] - eb.default_vector(),

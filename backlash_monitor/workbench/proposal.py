@@ -40,7 +40,6 @@ ALIKE_COSINE = 0.95    # two groups whose per-event columns span (almost) the sa
                        # smallest principal angle between them over every event's whitened coordinates. The data cannot
                        # tell them apart (the two shafts' angles differ by at most the gap; a speed's sign is 1 on a
                        # drive that never reverses), so they share their votes in the stability and are reported as one
-REFINE_NFEV = 5        # least-squares evaluations of the refinement on the simulator
 BOOTSTRAP_SEED = 31    # the resampling's seed: a diagnosis is reproducible
 BATCH_SETS = 6         # parameter sets simulated per batch (memory: a 4 s recording's set is ~0.2 GB over 8 seeds)
 
@@ -436,7 +435,7 @@ def propose(run, up, verdict: str) -> Proposal | None:
     explained = p.explained_share(r_after, r_before)
     k = len(cols)
     delta_ic = p.ic(pred_after, k) - p.ic(ref, 0)
-    after = consistency.test(p, p.residual(pred_after))
+    after = consistency.test(p.views, p.residual(pred_after))
     pieces = []
     i = 0
     for g in stable:

@@ -20,9 +20,9 @@ test needs:
 
 Two things depend on the recording and are applied when a reference is evaluated: the number of events E (the
 noise of an E-event mean; the weights scale with sqrt(E)) and the sensor noise floor (the spectral block's
-prediction and whitening include it, as diagnose's do). ``views(noise_psd, n_events)`` builds the views for them
-with consistency.py's own functions (``candidate_basis``, ``whiten``, ``complement_basis``,
-``model_event_vectors``) and tolerance.py's ``directions``; ``evaluate(evidence)`` runs ``consistency.test``.
+prediction and whitening include it, as diagnose's do). ``for_window(noise_psd, n_events)`` builds the views for them
+as diagnose does (consistency.ConsistencyViews.from_screening on the stored screening Jacobians and the model's own
+events); ``evaluate(evidence)`` runs ``consistency.test``.
 
 File: ``LIB.watch.npz`` beside a pattern library (``train --model``), or the cache (.cache/watch/) for the default
 model at a drive's nominal conditions. FORMAT_VERSION counts the layout; a file of another version is refused
@@ -164,10 +164,11 @@ class Evaluation:
                                                           "dominant_level": self.where["dominant_level"]}}
 
 
-class Views:
-    """What consistency.test reads of a fitting.Problem, for one (noise floor, number of events): the slices, the
-    weights, the views (basis, blocks, complement, tolerance) and the model's predictions at the width grid.
-    Built by ModelReference.views with consistency.py's own functions."""
+class WindowReference:
+    """The reference for one window's (noise floor, number of events): what fitting.Problem is to diagnose -- the
+    prediction vector's slices and weights, the model's predictions at the width grid -- and the views the
+    consistency test looks in (``views``: consistency.ConsistencyViews, built from the reference's screening as
+    diagnose's screen_step builds them). Made by ModelReference.for_window."""
 
     def __init__(self, ref: "ModelReference", noise_psd, n_events: int, dc_names=SEGMENT_SIGNALS, quant_step=None):
         self.noise_psd = np.asarray(noise_psd, dtype=float)
@@ -217,40 +218,29 @@ class Views:
             cols.append(np.concatenate([(ref.jac_event[j].reshape(self.w.size, -1) * self.w[:, None]).ravel(),
                                         spec * self.ws, ref.jac_dc[j][dc_idx] * self.wdc]))
         jac = np.stack(cols, axis=1)
-        scr, spans = {}, []
-        for cand in ref.candidates:
-            cj = jac[:, cand["columns"]]
-            scr[cand["name"]] = {"J": cj}
-            spans.append(cj * (np.array(cand["upper"]) - np.array(cand["lower"]))[None, :])
+        jacobians = {cand["name"]: jac[:, cand["columns"]] for cand in ref.candidates}
         comp = SimpleNamespace(ensemble=SimpleNamespace(per_event=ref.seed_events,
                                                         dc_samples=lambda k: seed_dc[k]),
                                weights=self.w, model_event_spec=model_event_spec)
-        self.basis = self.blocks = self.complement = self.tolerance_z = None
         z_all = consistency.model_event_vectors(comp, self)
-        self.raw_blocks = consistency.candidate_basis(spans, self)
         # the record-mean seeds' block deviations: rows (in the record-mean coordinates) for that view's whitening only
         more = {"record_mean": (self.dc_slice, np.vstack([dc_block_deviations(d) for d in more_dc]) * self.wdc[None])
                 } if more_dc else None
-        self.basis, self.blocks = consistency.whiten(self.raw_blocks, z_all, more)
         # the noise directions outside the subspace come from the event average alone (not from the noise floor,
         # which only the spectral block sees): computed once per number of events (an SVD of K*E x 4596: ~0.5 s)
-        complement = ref._complements.get(self.n_events)
-        if complement is None:
-            complement = ref._complements[self.n_events] = consistency.complement_basis(z_all, self)
-        self.complement = complement
-        self.tol = tolerance.directions(self, scr, ref.candidate_objects())
-        self.tolerance_z = self.basis.T @ self.tol
-        self.fit_basis = consistency.fit_basis(self)            # the fits' metric (fitting.Problem.project)
+        self.views = consistency.ConsistencyViews.from_screening(self, jacobians, ref.candidate_objects(), z_all, more,
+                                                                 ref._complements.get(self.n_events))
+        ref._complements.setdefault(self.n_events, self.views.complement)
         # the noise realisation's effect on each model event's spectral features (noisy minus the noise's power
         # only): added to the events of the other widths, whose raw segments the reference does not keep
         f0 = spectral.features_from_bands(ref.base_bands, self.spec_noise) * self.ws - self.base[self.spectral_slice]
         self.realisation = z_all[:, self.spectral_slice] - f0
         self.ref = ref
         self._local: dict = {}
-        self.grid_fit = self.grid @ self.fit_basis              # (G, q + P): the grid in that metric
+        self.grid_fit = self.grid @ self.views.fit_basis        # (G, q + P): the grid in the fits' metric
         self.profile_curves: dict = {}     # profile_width: per grid width g the cubic's points around it (81, q + P)
 
-    def local(self, g: int) -> SimpleNamespace:
+    def local_views(self, g: int) -> consistency.ConsistencyViews:
         """The views whitened by the model's own events at grid width ``g`` (the subspace and the complement's
         directions stay the nominal width's): what consistency.test reads, for a drive whose width moved. The
         whitening is consistency.whiten on the width's events projected on each block's directions (it is linear
@@ -258,13 +248,13 @@ class Views:
         out = self._local.get(g)
         if out is not None:
             return out
-        ref = self.ref
+        ref, views = self.ref, self.views
         if ref.local_zev is None:
-            return self
+            return views
         scale = math.sqrt(self.n_events / ref.build_events)
-        n = self.basis.shape[0]
+        n = views.basis.shape[0]
         cols, blocks, q0 = [], [], 0
-        for name, b in self.raw_blocks:
+        for name, b in views.candidate_directions:
             q = b.shape[1]
             if q == 0:
                 continue
@@ -279,7 +269,7 @@ class Views:
                 feats = feats + self.realisation[np.arange(len(feats)) % len(self.realisation)]
                 z = feats @ b[self.spectral_slice]
             else:           # the record mean: the width barely moves its noise; the nominal whitening
-                cols.append(self.basis[:, dict(self.blocks)[name]])
+                cols.append(views.basis[:, dict(views.blocks)[name]])
                 blocks.append((name, slice(q0, q0 + q)))
                 q0 += q
                 continue
@@ -289,9 +279,9 @@ class Views:
             q0 += q
         basis = np.hstack(cols)
         tc, _ = consistency.whiten([("outside", np.eye(ref.local_complement.shape[1]))], ref.local_zc[g] * scale)
-        out = SimpleNamespace(n_events=self.n_events, n_seeds=self.n_seeds, n_event_coords=self.n_event_coords,
-                              basis=basis, blocks=blocks, complement=ref.local_complement @ tc,
-                              tolerance_z=basis.T @ self.tol, event_part=self.event_part)
+        out = consistency.ConsistencyViews(views.candidate_directions, basis, tuple(blocks),
+                                           ref.local_complement @ tc, views.tolerance_directions, self.n_events,
+                                           self.n_seeds, self.n_event_coords)
         if len(self._local) >= 8:
             self._local.pop(next(iter(self._local)))
         self._local[g] = out
@@ -302,12 +292,9 @@ class Views:
                                spectral.features_from_bands(bands, self.spec_noise).mean(axis=0) * self.ws,
                                np.asarray(dc) * self.wdc])
 
-    # what consistency.py reads of a fitting.Problem
+    # what consistency.model_event_vectors reads of a fitting.Problem
     def pred_of(self, ens, i: int = 0) -> np.ndarray:
         return self.base
-
-    def event_part(self, r) -> np.ndarray:
-        return r[:self.n_event_coords]
 
     def denoised_events(self, evidence: Evidence) -> np.ndarray:
         """(E, 2, L) every event's denoised segment (the evidence's own, else denoised here)."""
@@ -364,8 +351,8 @@ class ModelReference:
     noise_band_psd: np.ndarray      # (2, F) the model's whole-record Welch PSD (mean over seeds)
     noise_band_f: np.ndarray        # (F,) its frequencies [Hz]
     # the model's own events at every grid width, projected on the nominal views' directions (width-local
-    # whitening, Views.local): the event-average block's directions (N_ev, q), the complement's unit directions
-    # (N_ev, P), per width the events' coordinates in them (weights of build_events)
+    # whitening, WindowReference.local_views): the event-average block's directions (N_ev, q), the complement's unit
+    # directions (N_ev, P), per width the events' coordinates in them (weights of build_events)
     local_event_basis: np.ndarray | None = None
     local_complement: np.ndarray | None = None
     local_zev: list | None = None
@@ -374,7 +361,7 @@ class ModelReference:
                                                          # period means at the nominal width, for the record mean's
                                                          # noise (its floor and whitening) beside seed_dc's
     path: Path | None = None
-    _views: dict = field(default_factory=dict, repr=False)
+    _windows: dict = field(default_factory=dict, repr=False)
     _complements: dict = field(default_factory=dict, repr=False)
     _profile_points: dict = field(default_factory=dict, repr=False)   # profile_width's positions per grid width
 
@@ -428,26 +415,28 @@ class ModelReference:
             floor = np.where(floor > (NOISE_SIGNIFICANT - 1.0) * model, floor, 0.0)
         return floor
 
-    def views(self, noise_psd, n_events: int, dc_names=SEGMENT_SIGNALS, quant_step=None) -> Views:
+    def for_window(self, noise_psd, n_events: int, dc_names=SEGMENT_SIGNALS, quant_step=None) -> WindowReference:
+        """The reference for a window's sensor noise floor (per signal [(m/s^2)^2/Hz]), number of events, record-mean
+        signals and ADC steps (cached: the last 8)."""
         quant = () if quant_step is None or not np.any(np.asarray(quant_step) > 0) \
             else tuple(float(x) for x in np.asarray(quant_step, dtype=float))
         key = (tuple(float(x) for x in np.asarray(noise_psd, dtype=float)), int(n_events), tuple(dc_names), quant)
-        v = self._views.get(key)
+        v = self._windows.get(key)
         if v is None:
-            if len(self._views) >= 8:
-                self._views.clear()
-            v = self._views[key] = Views(self, noise_psd, n_events, dc_names, quant or None)
+            if len(self._windows) >= 8:
+                self._windows.clear()
+            v = self._windows[key] = WindowReference(self, noise_psd, n_events, dc_names, quant or None)
         return v
 
     # -------------------------------------------------------------------------------------------- evaluation
-    def profile_width(self, views: Views, target: np.ndarray) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
+    def profile_width(self, window: WindowReference, target: np.ndarray) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
         """The width whose prediction fits the target best in the fits' metric (fitting.Problem.project: the
         whitened subspace and the noise outside it), the predictions cubic between the grid's widths (Lagrange
         through the four nearest: the event average moves with the width by a shift of the far-side impact, ~17
         samples per 2.5 % at 5 mm; linear interpolation left T^2 of 27 against 4-9 at the grid points around a
         5.8 mm drive). -> (width [m], prediction, denoised model mean (2, L), raw model mean (2, L))."""
-        t = views.fit_basis.T @ target
-        grid = views.grid_fit
+        t = window.views.fit_basis.T @ target
+        grid = window.grid_fit
         n = len(self.widths_m)
         cost = np.einsum("ij,ij->i", t[None, :] - grid, t[None, :] - grid)
         g = int(np.argmin(cost))
@@ -458,9 +447,9 @@ class ModelReference:
             xs = np.linspace(max(g - 1, 0), min(g + 1, n - 1), 81)
             points = self._profile_points[(g, n)] = (xs, *_lagrange_many(xs, n))    # (81, 4) each
         xs, idx, w = points
-        curve = views.profile_curves.get(g)
-        if curve is None:           # the grid's predictions at those points: per views and g, not per target
-            curve = views.profile_curves[g] = np.einsum("xk,xkq->xq", w, grid[idx])
+        curve = window.profile_curves.get(g)
+        if curve is None:           # the grid's predictions at those points: per window and g, not per target
+            curve = window.profile_curves[g] = np.einsum("xk,xkq->xq", w, grid[idx])
         r = t[None, :] - curve
         costs = np.einsum("xq,xq->x", r, r)
         i = int(np.argmin(costs))
@@ -472,7 +461,7 @@ class ModelReference:
                 best += 0.5 * (c0 - c2) / den * (xs[1] - xs[0])
         self._last_position = best
         idx, w = _lagrange(best, n)
-        return (float(w @ self.widths_m[idx]), w @ views.grid[idx], np.tensordot(w, self.grid_mean[idx], 1),
+        return (float(w @ self.widths_m[idx]), w @ window.grid[idx], np.tensordot(w, self.grid_mean[idx], 1),
                 np.tensordot(w, self.grid_raw[idx], 1))
 
     def view_dof(self) -> dict:
@@ -484,7 +473,7 @@ class ModelReference:
         return {"event_average": n - 1, "spectral_shape": n - 1, "outside": n - 1,
                 "record_mean": (len(self.seeds) + len(self.record_mean_dc)) * (DC_BLOCKS - 1)}
 
-    def clip_radius(self, views, clip_p: float) -> dict:
+    def clip_radius(self, views: consistency.ConsistencyViews, clip_p: float) -> dict:
         """Per clipped view: the length of one event's whitened deviation that the model's own events exceed with
         probability ``clip_p`` (consistency.predictive_t2_isf of one event against the n-event model mean)."""
         dof = self.view_dof()
@@ -504,28 +493,28 @@ class ModelReference:
         profiled again on the clipped evidence. None: the plain mean, diagnose's test to the last digit."""
         if evidence.n_events < 1:
             raise ValueError("no onset event to evaluate")
-        views = self.views(evidence.noise_psd, evidence.n_events, evidence.dc_names, evidence.quant_step)
+        window = self.for_window(evidence.noise_psd, evidence.n_events, evidence.dc_names, evidence.quant_step)
         plain_mean = mean_denoised(evidence)          # the target's, and the residual ratio's when nothing is clipped
-        target = views.target(evidence, plain_mean)
+        target = window.target(evidence, plain_mean)
         if profile_width:
-            width, pred, mean, raw = self.profile_width(views, target)
+            width, pred, mean, raw = self.profile_width(window, target)
             position = self._last_position
-            tested = views.local(int(round(position)))     # whitened by the model's events at that width
+            tested = window.local_views(int(round(position)))     # whitened by the model's events at that width
         else:
-            width, pred, mean, raw = self.nominal_width_m, views.base, self.base_mean, self.base_raw
+            width, pred, mean, raw = self.nominal_width_m, window.base, self.base_mean, self.base_raw
             position = None
-            tested = views
+            tested = window.views
         residuals, radius, weights, coords = None, None, None, None
         if clip_p is not None:
-            events = views.event_targets(evidence)
+            events = window.event_targets(evidence)
             radius = self.clip_radius(tested, clip_p)
             residuals = events - pred[None]
             weights, coords = _event_weights(tested, residuals, radius)
             if profile_width and np.any(weights < 1.0):
                 # the width the clipped evidence fits (an odd event pulls the plain mean's width too)
-                width, pred, mean, raw = self.profile_width(views, pred + (weights[:, None] * residuals).mean(0))
+                width, pred, mean, raw = self.profile_width(window, pred + (weights[:, None] * residuals).mean(0))
                 position = self._last_position
-                tested = views.local(int(round(position)))
+                tested = window.local_views(int(round(position)))
                 radius = self.clip_radius(tested, clip_p)
                 residuals = events - pred[None]
                 weights, coords = _event_weights(tested, residuals, radius)
@@ -533,13 +522,13 @@ class ModelReference:
         result = consistency.test(tested, target - pred, event_residuals=residuals, clip_radius=radius,
                                   event_coords=coords)
         if weights is not None and np.any(weights < 1.0):
-            dens = views.denoised_events(evidence)
+            dens = window.denoised_events(evidence)
             measured = mean + (weights[:, None, None] * (dens - mean[None])).mean(axis=0)
         else:
             measured = plain_mean
-        ratio = np.sqrt(np.mean((measured - mean) ** 2, axis=-1)) / views.floor_rms
+        ratio = np.sqrt(np.mean((measured - mean) ** 2, axis=-1)) / window.floor_rms
         out = Evaluation(result, width, dict(zip(SEGMENT_SIGNALS, map(float, ratio))), None, evidence.n_events,
-                         np.asarray(evidence.noise_psd, dtype=float), self.nominal_width_m, mean, raw, views.w,
+                         np.asarray(evidence.noise_psd, dtype=float), self.nominal_width_m, mean, raw, window.w,
                          position)
         if where:
             out.where = self.where(evidence, out)
@@ -801,13 +790,13 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
     # deferred: the simulator (numba, scipy.optimize) costs ~600 ms at start-up (python -X importtime, 29 Nov)
     from .plant_adapter import apply_values
     candidates, jac_event, jac_dc, jac_bands, jac_step = [], [], [], [], []
-    for name, info in run.scr.items():
+    for name, lin in run.screening.items():
         cand = run.by_name[name]
         x0 = cand.default_vector()
         cols = []
-        for i, h in enumerate(np.atleast_1d(info["h"])):
+        for i, h in enumerate(np.atleast_1d(lin.step)):
             ens, j = set_of(apply_values(cand, x0 + h * np.eye(len(x0))[i]))
-            J = info["J"][:, i]
+            J = lin.jacobian[:, i]
             cols.append(len(jac_step))
             jac_event.append((J[p.event_slice].reshape(n_sig, -1) / w[:, None]).ravel())
             jac_dc.append(J[p.dc_slice] / p.wdc)
@@ -851,11 +840,11 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
 
 
 def _add_local(ref: ModelReference, grid_events: list) -> None:
-    """The width-local whitening's data (Views.local): the model's own events at every grid width on the nominal
-    views' event-average and complement directions."""
-    v0 = Views(ref, np.zeros(len(SEGMENT_SIGNALS)), ref.build_events)
-    b_ev = dict(v0.raw_blocks)["event_average"][v0.event_slice]
-    comp = v0.complement / np.linalg.norm(v0.complement, axis=0)[None, :]
+    """The width-local whitening's data (WindowReference.local_views): the model's own events at every grid width on
+    the nominal views' event-average and complement directions."""
+    v0 = WindowReference(ref, np.zeros(len(SEGMENT_SIGNALS)), ref.build_events)
+    b_ev = dict(v0.views.candidate_directions)["event_average"][v0.event_slice]
+    comp = v0.views.complement / np.linalg.norm(v0.views.complement, axis=0)[None, :]
     zev, zc = [], []
     for g, per_seed in enumerate(grid_events):
         raw = np.concatenate([ev.raw for ev in per_seed], axis=0)

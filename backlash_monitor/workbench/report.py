@@ -38,11 +38,11 @@ def diagnosis_report(run, up, verdict, ripple_fit, spec, overall_before: float, 
         "pairs_tried": up.pairs_tried,
         "pair_alternatives": up.pair_alternatives if verdict.second is not None and discovery is not None else [],
         "model_inconsistent": bool(run.inconsistent),
-        "subspace": {"dimension": int(p.blocks[0][1].stop), "T2": gates["event_average"].t2,
+        "subspace": {"dimension": int(p.views.blocks[0][1].stop), "T2": gates["event_average"].t2,
                      "T2_limit_p01": gates["event_average"].limit,
                      "residual_over_noise": float(np.sqrt(gates["event_average"].t2_without_tolerance
                                                           * consistency.noise_scale(p.n_events, p.n_seeds)
-                                                          / max(p.blocks[0][1].stop, 1))),
+                                                          / max(p.views.blocks[0][1].stop, 1))),
                      "blocks": {n: {"dimension": v.dimension, "T2": v.t2, "T2_limit_p01": v.limit,
                                     "T2_without_tolerance": v.t2_without_tolerance}
                                 for n, v in gates.items() if n != consistency.OUTSIDE}},

@@ -54,17 +54,17 @@ SPEED_SIGMA_RAD_S = 0.3      # the motor's mean speed: its slip moves with the r
                              # measured: a foreign clean drive's mean speed differs from ours by up to ~0.05 rad/s
 
 
-def directions(problem, screening: dict, by_name: dict) -> np.ndarray:
+def directions(problem, jacobians: dict, by_name: dict) -> np.ndarray:
     """(N, m): the prediction-space directions of the model-form tolerance: the nominal parameters' spread,
-    J_j * sigma_j from the screening Jacobians (x SCALE), an independent discrepancy of SPECTRAL_SHAPE_SIGMA per
+    J_j * sigma_j from the screening Jacobians (``jacobians``: {candidate name: (N, k)}; x SCALE), an independent discrepancy of SPECTRAL_SHAPE_SIGMA per
     spectral-shape feature, and SPEED_SIGMA_RAD_S on the motor's mean speed."""
     n = problem.target_vec.size
     cols = []
-    for name, info in screening.items():
+    for name, jacobian in jacobians.items():
         sig = sigma_of(by_name[name]) * SCALE
         for i, s in enumerate(sig):
             if s > 0:
-                cols.append(info["J"][:, i] * s)
+                cols.append(jacobian[:, i] * s)
     sl = problem.spectral_slice
     for i in range(sl.start, sl.stop):
         c = np.zeros(n)
@@ -86,22 +86,22 @@ def beyond_tolerance(fit, candidate, factor: float = 2.0) -> bool:
     return bool(np.any((sig == 0) | (d > factor * sig)))
 
 
-def measurand_form_sigma(problem, screening: dict, by_name: dict, measurand_column: np.ndarray) -> float:
+def measurand_form_sigma(problem, jacobians: dict, by_name: dict, measurand_column: np.ndarray) -> float:
     """The model-form tolerance of a measurand fitted alone (the backlash width) [its unit]: how far the fitted value
     moves when the drive's nominal values are off by their sigma (NOMINAL_SIGMA; the whole sigma, not x SCALE: the
     width takes up what it can of a nominal error) and the model's spectral shape and mean speed by theirs. Per
     tolerance direction d: the shift (j'd)/(j'j) of the linear fit of the measurand's column j (projected); the
-    directions are independent: the root of the sum of squares. ``measurand_column``: the measurand's Jacobian
-    column in the prediction space."""
+    directions are independent: the root of the sum of squares. ``jacobians``: the screening's, {candidate name:
+    (N, k)}; ``measurand_column``: the measurand's Jacobian column in the prediction space."""
     j = problem.project(np.asarray(measurand_column, dtype=float))
     jj = float(j @ j)
     if not jj > 0:
         return float("nan")
     cols = []
-    for name, info in screening.items():
+    for name, jacobian in jacobians.items():
         for i, s in enumerate(sigma_of(by_name[name])):
             if s > 0:
-                cols.append(info["J"][:, i] * s)
+                cols.append(jacobian[:, i] * s)
     shifts = [float(j @ problem.project(c)) / jj for c in cols]
     rest = directions(problem, {}, by_name)        # the spectral shape's and the mean speed's (no nominal spread)
     if rest.shape[1]:

@@ -20,26 +20,27 @@ import numpy as np
 from scipy import stats
 
 
-def _event_vectors(ref, views):
+def _event_vectors(ref, window):
     from backlash_monitor.workbench import consistency, spectral
     comp = SimpleNamespace(ensemble=SimpleNamespace(per_event=ref.seed_events,
                                                     dc_samples=lambda k: np.asarray(ref.seed_dc[k])[:, :2]),
-                           weights=views.w,
+                           weights=window.w,
                            model_event_spec=spectral.sensor_chain(ref.seed_events, ref.sample_period_s,
-                                                                  views.noise_psd, views.quant_step)[0])
-    return consistency.model_event_vectors(comp, views)
+                                                                  window.noise_psd, window.quant_step)[0])
+    return consistency.model_event_vectors(comp, window)
 
 
 def reference_statistics(ref) -> dict:
-    views = ref.views(np.zeros(2), ref.build_events, ("a1", "a2"))
-    z = _event_vectors(ref, views)
+    window = ref.for_window(np.zeros(2), ref.build_events, ("a1", "a2"))
+    views = window.views
+    z = _event_vectors(ref, window)
     k = len(ref.seed_events)
     seed_of = np.repeat(np.arange(k), [s.shape[0] for s in ref.seed_events])
     out = {}
     for name, sl in views.blocks:
         if name == "record_mean":
             continue
-        raw_basis = dict(views.raw_blocks)[name]
+        raw_basis = dict(views.candidate_directions)[name]
         u = z @ views.basis[:, sl]
         q = u.shape[1]
         num = den = 0.0
@@ -76,10 +77,10 @@ def stream_tails(ref, grid, seed: int, stream_s: float) -> dict:
     for _ in range(int(round(stream_s / 0.02))):
         ch = sim.run(1000)
         events += live.feed(ch.first_sample_index, ch.a1[0], ch.a2[0], ch.angle_difference[0])
-    views = ref.views(np.zeros(2), ref.build_events, ("a1", "a2"))
-    sl = dict(views.blocks)["event_average"]
-    basis = views.basis[views.event_slice, sl]
-    dev = np.stack([(e.denoised * views.w[:, None]).ravel() for e in events]) - views.base[views.event_slice]
+    window = ref.for_window(np.zeros(2), ref.build_events, ("a1", "a2"))
+    sl = dict(window.views.blocks)["event_average"]
+    basis = window.views.basis[window.event_slice, sl]
+    dev = np.stack([(e.denoised * window.w[:, None]).ravel() for e in events]) - window.base[window.event_slice]
     d2 = np.sum((dev @ basis) ** 2, axis=1)
     q = basis.shape[1]
     radius2 = float(stats.chi2.isf(1e-4, q))

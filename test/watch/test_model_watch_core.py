@@ -120,8 +120,8 @@ def test_a_worn_clutch_is_the_measurand_not_a_model_error(model, ref):
 
 
 def _without_local_whitening(monkeypatch, ref):
-    monkeypatch.setattr(reference.Views, "local", lambda self, g: self)
-    for v in ref._views.values():
+    monkeypatch.setattr(reference.WindowReference, "local_views", lambda self, g: self.views)
+    for v in ref._windows.values():
         v._local = {}
 
 
@@ -261,17 +261,18 @@ def test_the_evaluations_shortcuts_compute_what_they_replace(model, ref):
     for e in events:
         watch.add_event(e)
     ev = watch.evidence()
-    views = ref.views(ev.noise_psd, ev.n_events, ev.dc_names, ev.quant_step)
-    targets = views.event_targets(ev)
-    assert np.array_equal(targets, np.hstack([(ev.denoised * views.w[None, :, None]).reshape(16, -1),
-                                              ev.spec * views.ws[None], ev.dc * views.wdc[None]]))
-    assert np.allclose(targets.mean(axis=0), views.target(ev), rtol=1e-12, atol=1e-12)
-    residuals = targets - views.base[None]
+    window = ref.for_window(ev.noise_psd, ev.n_events, ev.dc_names, ev.quant_step)
+    views = window.views
+    targets = window.event_targets(ev)
+    assert np.array_equal(targets, np.hstack([(ev.denoised * window.w[None, :, None]).reshape(16, -1),
+                                              ev.spec * window.ws[None], ev.dc * window.wdc[None]]))
+    assert np.allclose(targets.mean(axis=0), window.target(ev), rtol=1e-12, atol=1e-12)
+    residuals = targets - window.base[None]
     radius = ref.clip_radius(views, 1e-3)
     sl = dict(views.blocks)["event_average"]
     coords = residuals @ views.basis[:, sl]
     assert consistency.clipped_mean(coords, radius["event_average"])[1].min() < 1.0       # the odd event is clipped
-    r = views.target(ev) - views.base
+    r = window.target(ev) - window.base
     own = consistency.test(views, r, event_residuals=residuals, clip_radius=radius)
     given = consistency.test(views, r, event_residuals=residuals, clip_radius=radius,
                              event_coords={"event_average": coords})

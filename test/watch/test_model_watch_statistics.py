@@ -86,7 +86,7 @@ def test_clipping_changes_nothing_where_no_event_is_odd_and_bounds_an_odd_one(mo
     clipped = ref.evaluate(odd, where=False, clip_p=rule.event_clip_p)
     assert not rule.exceeds(clipped, dof)[0], {n: v.t2 for n, v in clipped.result.views.items()}
     # the bound: one event moves the whitened mean by at most its radius / E, so sqrt(T^2) by radius / sqrt(E c E)
-    radius = ref.clip_radius(ref.views(ev.noise_psd, 16, ev.dc_names), rule.event_clip_p)["event_average"]
+    radius = ref.clip_radius(ref.for_window(ev.noise_psd, 16, ev.dc_names).views, rule.event_clip_p)["event_average"]
     c = consistency.noise_scale(16, len(ref.seeds))
     bound = np.sqrt(ref.evaluate(reference.Evidence(np.delete(ev.raw, 7, 0), ev.dc[np.arange(16) != 7],
                                                     ev.spec[np.arange(16) != 7], ev.noise_psd, ev.entries[:15],

@@ -40,7 +40,7 @@ def test_the_pair_estimate_recovers_amplitude_and_phase_of_a_sine_law():
     eff = plant_adapter.effect_by_name(model, "wheel_angle_torque")
 
     class P:                                  # the identity metric of a problem before its views are known
-        fit_basis = basis = None
+        views = None
 
         def project(self, r):
             return r
@@ -57,10 +57,10 @@ def test_the_pair_estimate_recovers_amplitude_and_phase_of_a_sine_law():
     a_true, phi_true = 2.9, 0.31
     prob = P()
     prob.target = (a_true / h[0]) * (np.cos(phi_true) * r0 + np.sin(phi_true) * r90)
-    out = fitting.pair_estimate(prob, eff, {"pair_columns": np.stack([r0, r90], axis=1), "h": h}, np.zeros(40))
-    assert out["x_lin"][0] == pytest.approx(a_true, rel=1e-9)
-    assert out["x_lin"][1] == pytest.approx(phi_true, abs=1e-9)
-    assert out["explained_lin"] == pytest.approx(1.0)
+    out = fitting.pair_estimate(prob, eff, np.stack([r0, r90], axis=1), h, np.zeros(40))
+    assert out.x_lin[0] == pytest.approx(a_true, rel=1e-9)
+    assert out.x_lin[1] == pytest.approx(phi_true, abs=1e-9)
+    assert out.explained_lin == pytest.approx(1.0)
 
 
 @pytest.mark.slow

@@ -158,10 +158,10 @@ def test_the_measurand_form_tolerance_is_how_far_the_width_moves_with_the_nomina
     mass = SimpleNamespace(parameters=[SimpleNamespace(key="load_mass_drift.relative_change")])      # sigma 0.02
     spring = SimpleNamespace(parameters=[SimpleNamespace(key="spring_stiffness_drift.relative_change")])  # 0.05
     gain = SimpleNamespace(parameters=[SimpleNamespace(key="accelerometer_gain.a1_relative_change")])     # 0.02
-    screening = {"m": {"J": np.array([[3.0], [1.0], [0.0], [0.0]])},      # partly along the width: 3 per unit
-                 "k": {"J": np.array([[-2.0], [0.0], [5.0], [0.0]])},
-                 "g": {"J": np.array([[0.0], [0.0], [0.0], [7.0]])}}      # orthogonal to it
+    jacobians = {"m": np.array([[3.0], [1.0], [0.0], [0.0]]),      # partly along the width: 3 per unit
+                 "k": np.array([[-2.0], [0.0], [5.0], [0.0]]),
+                 "g": np.array([[0.0], [0.0], [0.0], [7.0]])}      # orthogonal to it
     by_name = {"m": mass, "k": spring, "g": gain}
-    sigma = tolerance.measurand_form_sigma(Toy(), screening, by_name, width_col)
+    sigma = tolerance.measurand_form_sigma(Toy(), jacobians, by_name, width_col)
     assert sigma == pytest.approx(np.hypot(3.0 * 0.02, -2.0 * 0.05))
-    assert tolerance.measurand_form_sigma(Toy(), {"g": screening["g"]}, by_name, width_col) == 0.0
+    assert tolerance.measurand_form_sigma(Toy(), {"g": jacobians["g"]}, by_name, width_col) == 0.0
