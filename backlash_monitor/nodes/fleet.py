@@ -224,6 +224,7 @@ class DriveTally:
     cpu_s: float = math.nan          # CPU share over the stream [%]
     stream_mark: tuple | None = None   # (monotonic, CPU seconds) when its first chunk was reported
     windowing_before: dict = field(default_factory=dict)   # counts of its chains before a rebuild (a new version)
+    last_estimate_wall_s: float = math.nan
     chain_restarts: int = 0          # windowing restarts seen (its counts started anew): a version picked up live
     versions_seen: dict = field(default_factory=dict)      # model version -> wall time its classifier first said it
 
@@ -263,6 +264,7 @@ class FleetMonitor:
             stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
             t.lags_s.append((time.monotonic(), time.time() - (stamp + WINDOW_END_S)))
         t.onsets_estimated.add(msg.entry_sample_index)
+        t.last_estimate_wall_s = time.time()
         t.fused_width_m = msg.fused_width_m
         if msg.signal_name == PRIMARY_SIGNAL:
             t.fused_continuous_width_m = msg.fused_continuous_width_m
@@ -330,7 +332,7 @@ class FleetMonitor:
                    "model_version": int(t.classifier.get("model_version", 0) or 0),
                    "library": t.classifier.get("library", ""),
                    "versions_seen_wall_s": {str(k): v for k, v in sorted(t.versions_seen.items())},
-                   "chain_restarts": t.chain_restarts}
+                   "chain_restarts": t.chain_restarts, "last_estimate_wall_s": t.last_estimate_wall_s}
             row["realtime"] = bool(
                 row["chunks"] >= expected_chunks and row["discarded"] == 0
                 and row["incomplete_chunks"] == 0 and onsets > 0
