@@ -1,0 +1,133 @@
+"""bench/fleet.py's part registry_loop: a live fleet picks up one drive's new model version (docs/registry.md).
+
+A fleet of ``n_drives`` simulated drives (layout process) runs from a registry file in a temporary folder. Before
+the fleet starts: ``add-effect wheel_coulomb_friction --value torque_Nm=1.2 --drive line1/drive05`` writes the
+drive's version 2 (an effect given on the command line, no diagnosis: the part measures the pickup, not the
+workbench), and ``train --model line1_drive05_v2.yaml -o warm.npz`` with the same seeds and duration fills the
+simulated-window cache (no registration). While the fleet runs: ``train --drive line1/drive05 --model
+line1_drive05_v2.yaml`` (niced: the fleet's drives keep their CPU) trains the library from the cache, builds the
+watch reference and registers the version; the fleet sees the registry change and swaps that drive's chain.
+
+registry_loop_pickup_s: the registry file written (its mtime) -> the drive's classifier status on /diagnostics
+  says model_version 2 (the fleet monitor's wall clock; the classifier publishes its status once a second).
+registry_loop_changed_drives: the drives the fleet swapped (must be exactly line1/drive05).
+registry_loop_other_drives_missed_onsets: over the other drives, onset windows classifiable but not estimated, plus
+  their chain restarts (goal 0); with whether each kept its library, reference and version in the registry.
+"""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import threading
+import time
+
+DRIVE = "line1/drive05"
+MODEL = "line1_drive05_v2.yaml"
+TRAIN = ["--seeds", "1000", "--duration", "1.0", "--no-progress"]   # one seed of 1 s per grid point: a small
+                                                                    # library; the pickup does not depend on it
+
+
+def log(*args):
+    print(*args, file=sys.stderr, flush=True)
+
+
+def command(args, cwd, nice=0, timeout=1800):
+    started = time.perf_counter()
+    proc = subprocess.run((["nice", "-n", str(nice)] if nice else []) + [sys.executable, "-m", "backlash_monitor", *args],
+                          cwd=cwd, capture_output=True, text=True, timeout=timeout)
+    seconds = time.perf_counter() - started
+    if proc.returncode != 0:
+        log(proc.stdout[-2000:], proc.stderr[-2000:])
+        raise RuntimeError(f"{' '.join(args[:3])} ... exited {proc.returncode}")
+    return proc, seconds
+
+
+def versions_of(reg):
+    from backlash_monitor.files import registry
+    return {d.hardware_id: (str(d.model or ""), str(d.library or ""), str(d.watch_reference or ""), d.version)
+            for d in registry.entries(reg)}
+
+
+def registry_loop(workdir, n_drives=8):
+    import yaml
+    folder = os.path.join(workdir, "registry_loop")
+    os.makedirs(folder, exist_ok=True)
+    reg = os.path.join(folder, "drives.yaml")
+    with open(reg, "w") as f:
+        yaml.safe_dump({"lines": {"line1": {f"drive{i:02d}": {"seed": i, "width_m": (0.005, 0.0075)[i % 2]}
+                                            for i in range(1, n_drives + 1)}}}, f)
+    # before the fleet: the new version's model file, and the simulated windows its training reads (the cache)
+    _, add_s = command(["add-effect", "wheel_coulomb_friction", "--value", "torque_Nm=1.2", "--drive", DRIVE,
+                        "--registry", reg], folder)
+    _, warm_s = command(["train", "--model", MODEL, "-o", "warm.npz", *TRAIN], folder, nice=5)
+    log(f"registry_loop: add-effect {add_s:.1f} s, the warm-up train (fills the cache) {warm_s:.0f} s")
+    before = versions_of(reg)
+    duration_s = max(60.0, round(warm_s * 1.5 + 40.0))   # the live train (cache warm) ends well inside the stream
+    summary = os.path.join(folder, "summary.json")
+    fleet = subprocess.Popen([sys.executable, "-m", "backlash_monitor", "fleet", "--config", reg,
+                              "--duration", str(duration_s), "--view-period", "0", "--json", summary],
+                             cwd=folder, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    lines, streaming = [], threading.Event()
+
+    def read():
+        for line in fleet.stderr:
+            lines.append(line)
+            if "drives streaming" in line:
+                streaming.set()
+    threading.Thread(target=read, daemon=True).start()
+    train = {}
+    try:
+        if not streaming.wait(300):
+            raise RuntimeError("the fleet did not start streaming: " + "".join(lines[-10:]))
+        time.sleep(3.0)
+        streaming_at = time.time()
+        proc, train["seconds"] = command(["train", "--drive", DRIVE, "--registry", reg, "--model", MODEL, *TRAIN],
+                                         folder, nice=10)
+        train["registered_wall_s"] = os.stat(reg).st_mtime
+        train["printed"] = [x for x in proc.stdout.splitlines() if x.startswith("registry")]
+        train["ended_before_stream_end_s"] = streaming_at - 3.0 + duration_s - time.time()
+        fleet.wait(timeout=duration_s * 3 + 300)
+    finally:
+        if fleet.poll() is None:
+            fleet.kill()
+            fleet.wait()
+    result = json.load(open(summary))
+    rows = {r["drive"]: r for r in result["drives"]}
+    after = versions_of(reg)
+    swapped = sorted({e["drive"] for e in result["registry_events"] if e["event"] == "swapped"})
+    others = [h for h in rows if h != DRIVE]
+    missed = {h: max(0, rows[h]["onset_windows"] - rows[h]["onsets_before_offset"] - rows[h]["onsets_estimated"])
+              for h in others}
+    seen = rows[DRIVE]["versions_seen_wall_s"].get("2")
+    swap = [e for e in result["registry_events"] if e["drive"] == DRIVE]
+    started = next((e["wall_s"] for e in swap if e["event"] == "swap started"), None)
+    done = next((e["wall_s"] for e in swap if e["event"] == "swapped"), None)
+    return {
+        "registry_loop_pickup_s": None if seen is None else seen - train["registered_wall_s"],
+        "registry_loop_changed_drives": swapped,
+        "registry_loop_other_drives_missed_onsets": sum(missed.values()),
+        "registry_loop_other_drives_chain_restarts": sum(rows[h]["chain_restarts"] for h in others),
+        "registry_loop_other_drives_registry_unchanged": all(after[h] == before[h] for h in others),
+        "registry_loop_other_drives_version": sorted({rows[h]["model_version"] for h in others}),
+        "registry_loop_other_drives_realtime": sum(rows[h]["realtime"] for h in others),
+        "registry_loop_other_drives_all_chunks": all(rows[h]["chunks"] == rows[h]["expected_chunks"] for h in others),
+        "registry_loop_drive": DRIVE,
+        "registry_loop_drive_version": rows[DRIVE]["model_version"],
+        "registry_loop_drive_library": os.path.basename(rows[DRIVE]["library"]),
+        "registry_loop_drive_registry": {"before": before[DRIVE], "after": after[DRIVE]},
+        "registry_loop_swap_s": None if started is None or done is None else done - started,
+        "registry_loop_detection_s": None if started is None else started - train["registered_wall_s"],
+        "registry_loop_drives": len(rows), "registry_loop_layout": result["layout"],
+        "registry_loop_stream_s": duration_s,
+        "registry_loop_live_train_s": train["seconds"], "registry_loop_live_train_end_before_stream_end_s":
+            train["ended_before_stream_end_s"], "registry_loop_warm_train_s": warm_s,
+        "registry_loop_train_said": train["printed"],
+        "registry_loop_events": result["registry_events"],
+        "registry_loop_missed_onsets_by_drive": missed,
+        "registry_loop_what_ran": ("before the fleet: add-effect wheel_coulomb_friction torque_Nm=1.2 --drive "
+                                   f"{DRIVE} (no diagnosis), train --model {MODEL} -o warm.npz {' '.join(TRAIN)} "
+                                   f"(cache); live: nice -n 10 train --drive {DRIVE} --model {MODEL} "
+                                   f"{' '.join(TRAIN)} (trains from the cache, builds the watch reference, registers)"),
+    }
