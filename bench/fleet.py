@@ -333,6 +333,8 @@ def main():
                              "default model, as before)")
     parser.add_argument("--registry-loop-drives", type=int, default=8,
                         help="registry_loop part: drives of the live fleet (one of them picks up a new version)")
+    parser.add_argument("--registry-loop-stream-s", type=float, default=420.0,
+                        help="registry_loop part: the fleet's stream [s]; must outlast the live train --drive")
     args = parser.parse_args()
     result = {"load_average_1min_start": os.getloadavg()[0], "cores": os.cpu_count(),
               "parts": args.parts,
@@ -383,7 +385,8 @@ def main():
         if "registry_loop" in args.parts:
             sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
             from _fleet.registry_loop import registry_loop
-            result.update(registry_loop(workdir, n_drives=args.registry_loop_drives))
+            result.update(registry_loop(workdir, n_drives=args.registry_loop_drives,
+                                        stream_s=args.registry_loop_stream_s))
         if "two_host" in args.parts:
             from backlash_monitor.ros.netns import can_make_namespaces, run_two_hosts
             reason = can_make_namespaces()

@@ -55,7 +55,8 @@ class Swap:
         self.future = None
         self.sent_at = 0.0
         self.step: Step | None = None
-        self.problem = ""
+        self.refusal = ""          # why the chain refused the new version (it went back to the old one)
+        self.problem = ""          # a request that failed or was not answered: the drive may be down
 
 
 class RegistryFollower:
@@ -151,7 +152,7 @@ class RegistryFollower:
         if swap.future is None:
             if not swap.steps:
                 return True
-            if not self.send(swap, now) and now - (swap.sent_at or now) > ANSWER_TIMEOUT_S:
+            if not self.send(swap, now) and swap.sent_at and now - swap.sent_at > ANSWER_TIMEOUT_S:
                 swap.problem = f"{swap.hardware_id}/chain's services not available"
                 return True
             swap.sent_at = swap.sent_at or now
@@ -168,7 +169,7 @@ class RegistryFollower:
         if not swap.going_back and step.transition in ("configure", "activate"):
             # the chain refused the new version's parameters: it is unconfigured (configure) or inactive
             # (activate); back to the old version
-            swap.going_back, swap.problem = True, (
+            swap.going_back, swap.refusal = True, (
                 f"the drive's chain refused it at {step.transition} (its log names the parameter)")
             swap.steps = ([Step(transition="cleanup")] if step.transition == "activate" else []) \
                 + back_steps(swap.old)
@@ -178,16 +179,16 @@ class RegistryFollower:
 
     def finish(self, swap: Swap) -> None:
         h = swap.hardware_id
-        if not swap.problem:
+        if not swap.problem and not swap.refusal:
             self.running[h] = swap.new
             self.event(h, "swapped", swap.new.version, swap.new.describe())
             self.status[h] = ("OK", f"runs {swap.new.describe()}, picked up live from the registry",
                               {"model_version": swap.new.version})
-        elif swap.going_back and not swap.steps:
-            self.refuse(h, swap.new, swap.problem)
+        elif not swap.problem:
+            self.refuse(h, swap.new, swap.refusal)
         else:
-            where = ("on its old version" if not swap.going_back and swap.step is not None
-                     and swap.step.transition == "deactivate" else "down")
+            untouched = swap.step is None or (not swap.going_back and swap.step.transition == "deactivate")
+            where = "on its old version" if untouched else "down"
             self.event(h, "swap failed", swap.new.version, f"{swap.problem}; the drive is {where}")
             self.status[h] = ("ERROR", f"taking version {swap.new.version} failed ({swap.problem}); the drive is "
                                        f"{where}: restart it", {"model_version": self.running[h].version})
