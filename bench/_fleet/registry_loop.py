@@ -3,11 +3,15 @@
 A fleet of ``n_drives`` simulated drives (layout process) runs from a registry file in a temporary folder. Before
 the fleet starts: ``add-effect wheel_coulomb_friction --value torque_Nm=1.2 --drive line1/drive05`` writes the
 drive's version 2 (an effect given on the command line, no diagnosis: the part measures the pickup, not the
-workbench). While the fleet runs: ``train --drive line1/drive05 --model line1_drive05_v2.yaml`` (niced: the fleet's
-drives keep their CPU; one seed of 0.5 s: a small library, ~2 min on a loaded machine, most of it the watch
-reference) trains the library, builds the watch reference and registers the version; the fleet sees the registry
-change and swaps that drive's chain. The stream (``stream_s``, default 420 s) must outlast the live train: the
-result says by how much it did (``registry_loop_live_train_end_before_stream_end_s``).
+workbench), and ``train --model line1_drive05_v2.yaml -o line1_drive05_v2.npz`` (one seed of 0.5 s: a small
+library; ~2 min, most of it the watch reference) writes its library and watch reference without registering them.
+While the fleet runs, 10 s after every drive streams, the loop's registering step: ``files.registry.register`` of
+that model, library and reference as the drive's new version (what ``train --drive`` does once its library is
+accepted). The fleet sees the registry change and swaps that drive's chain.
+
+``live_train=True`` runs the real ``train --drive line1/drive05 --model line1_drive05_v2.yaml`` live instead (niced,
+beside the fleet); the stream must outlast it: on 29 Nov at load 16 it took 533 s and a 420 s stream ended first
+(``registry_loop_live_train_end_before_stream_end_s``), so it is not the default.
 
 registry_loop_pickup_s: the registry file written (its mtime) -> the drive's classifier status on /diagnostics
   says model_version 2 (the fleet monitor's wall clock; the classifier publishes its status once a second).
@@ -51,7 +55,7 @@ def versions_of(reg):
             for d in registry.entries(reg)}
 
 
-def registry_loop(workdir, n_drives=8, stream_s=420.0):
+def registry_loop(workdir, n_drives=8, stream_s=60.0, live_train=False):
     import yaml
     folder = os.path.join(workdir, "registry_loop")
     os.makedirs(folder, exist_ok=True)
@@ -62,7 +66,11 @@ def registry_loop(workdir, n_drives=8, stream_s=420.0):
     # before the fleet: the new version's model file (no diagnosis: an effect given on the command line)
     _, add_s = command(["add-effect", "wheel_coulomb_friction", "--value", "torque_Nm=1.2", "--drive", DRIVE,
                         "--registry", reg], folder)
-    log(f"registry_loop: add-effect {add_s:.1f} s; the fleet of {n_drives} drives streams {stream_s:g} s")
+    prepared_s = None
+    if not live_train:
+        _, prepared_s = command(["train", "--model", MODEL, "-o", MODEL.replace(".yaml", ".npz"), *TRAIN], folder)
+    log(f"registry_loop: add-effect {add_s:.1f} s, train before the fleet {prepared_s} s; the fleet of {n_drives} "
+        f"drives streams {stream_s:g} s")
     before = versions_of(reg)
     duration_s = stream_s
     summary = os.path.join(folder, "summary.json")
@@ -82,12 +90,22 @@ def registry_loop(workdir, n_drives=8, stream_s=420.0):
         if not streaming.wait(300):
             raise RuntimeError("the fleet did not start streaming: " + "".join(lines[-10:]))
         streaming_at = time.time()
-        proc, train["seconds"] = command(["train", "--drive", DRIVE, "--registry", reg, "--model", MODEL, *TRAIN],
-                                         folder, nice=10)
+        if live_train:
+            proc, train["seconds"] = command(["train", "--drive", DRIVE, "--registry", reg, "--model", MODEL,
+                                              *TRAIN], folder, nice=10)
+            train["printed"] = [x for x in proc.stdout.splitlines() if x.startswith("registry")]
+        else:
+            from backlash_monitor.files import registry
+            time.sleep(10.0)
+            base = os.path.join(folder, MODEL[:-len(".yaml")])
+            t0 = time.perf_counter()
+            entry = registry.register(reg, DRIVE, model=base + ".yaml", library=base + ".npz",
+                                      watch_reference=base + ".watch.npz")
+            train["seconds"] = time.perf_counter() - t0
+            train["printed"] = [f"registered {entry.hardware_id} version {entry.version}"]
         train["registered_wall_s"] = os.stat(reg).st_mtime
-        train["printed"] = [x for x in proc.stdout.splitlines() if x.startswith("registry")]
         train["ended_before_stream_end_s"] = streaming_at + duration_s - time.time()
-        log(f"registry_loop: train --drive took {train['seconds']:.0f} s; waiting for the fleet's end")
+        log(f"registry_loop: the registering step took {train['seconds']:.1f} s; waiting for the fleet's end")
         fleet.wait(timeout=duration_s * 3 + 300)
     finally:
         if fleet.poll() is None:
@@ -121,13 +139,18 @@ def registry_loop(workdir, n_drives=8, stream_s=420.0):
         "registry_loop_detection_s": None if started is None else started - train["registered_wall_s"],
         "registry_loop_drives": len(rows), "registry_loop_layout": result["layout"],
         "registry_loop_stream_s": duration_s,
-        "registry_loop_live_train_s": train["seconds"], "registry_loop_live_train_end_before_stream_end_s":
-            train["ended_before_stream_end_s"],
+        "registry_loop_registering_s": train["seconds"], "registry_loop_live_train": live_train,
+        "registry_loop_train_before_fleet_s": prepared_s,
+        "registry_loop_live_train_end_before_stream_end_s": train["ended_before_stream_end_s"],
         "registry_loop_train_said": train["printed"],
         "registry_loop_events": result["registry_events"],
         "registry_loop_fleet_said": [x.strip() for x in lines if x.startswith("fleet:")][:20],
         "registry_loop_missed_onsets_by_drive": missed,
-        "registry_loop_what_ran": ("before the fleet: add-effect wheel_coulomb_friction torque_Nm=1.2 --drive "
-                                   f"{DRIVE} (no diagnosis); live, 0 s after every drive streamed: nice -n 10 train --drive {DRIVE} --model {MODEL} "
-                                   f"{' '.join(TRAIN)} (trains, builds the watch reference, registers)"),
+        "registry_loop_what_ran": (
+            f"before the fleet: add-effect wheel_coulomb_friction --value torque_Nm=1.2 --drive {DRIVE} (no diagnosis)"
+            + (f"; live, when every drive streamed: nice -n 10 train --drive {DRIVE} --model {MODEL} {' '.join(TRAIN)} "
+               "(trains, builds the watch reference, registers)" if live_train else
+               f", train --model {MODEL} -o {MODEL[:-5]}.npz {' '.join(TRAIN)} (library + watch reference, not "
+               f"registered); live, 10 s after every drive streamed: files.registry.register({DRIVE}, model, library, "
+               "watch reference), train --drive's registering step")),
     }
