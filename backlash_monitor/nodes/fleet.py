@@ -332,7 +332,8 @@ class FleetMonitor:
                    "model_version": int(t.classifier.get("model_version", 0) or 0),
                    "library": t.classifier.get("library", ""),
                    "versions_seen_wall_s": {str(k): v for k, v in sorted(t.versions_seen.items())},
-                   "chain_restarts": t.chain_restarts, "last_estimate_wall_s": t.last_estimate_wall_s}
+                   "chain_restarts": t.chain_restarts, "last_estimate_wall_s": t.last_estimate_wall_s,
+                   "joined_at_sample": int(t.windowing.get("joined_at_sample", 0))}
             row["realtime"] = bool(
                 row["chunks"] >= expected_chunks and row["discarded"] == 0
                 and row["incomplete_chunks"] == 0 and onsets > 0

@@ -146,6 +146,11 @@ def registry_loop(workdir, n_drives=8, stream_s=60.0, live_train=False):
         "registry_loop_events": result["registry_events"],
         "registry_loop_fleet_said": [x.strip() for x in lines if x.startswith("fleet:")][:20],
         "registry_loop_missed_onsets_by_drive": missed,
+        "registry_loop_by_drive": {h: {k: r.get(k) for k in (
+            "chunks", "expected_chunks", "joined_at_sample", "onset_windows", "onsets_before_offset", "onsets_estimated",
+            "lag_ms_median", "lag_ms_max", "realtime", "cpu_percent", "model_version", "chain_restarts")}
+            for h, r in rows.items()},
+        "registry_loop_fleet_wall_s": result.get("wall_s"),
         "registry_loop_what_ran": (
             f"before the fleet: add-effect wheel_coulomb_friction --value torque_Nm=1.2 --drive {DRIVE} (no diagnosis)"
             + (f"; live, when every drive streamed: nice -n 10 train --drive {DRIVE} --model {MODEL} {' '.join(TRAIN)} "
