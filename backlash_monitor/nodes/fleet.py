@@ -13,6 +13,9 @@ config/fleet_aggregator.yaml's analyzers (a table per drive, once a second; STAL
 heard for 3 s) and ends with a summary per drive: chunks, discarded windows, onset windows and
 estimates, the estimate's lag behind the stream, CPU, and whether the drive was monitored in real
 time (every chunk taken, no window discarded, every onset window classified, lag under 1 s).
+
+With ``--config`` the fleet follows its file (the drive registry, docs/registry.md): a drive whose version changes
+there while the fleet runs is swapped to it by lifecycle transitions of its chain only (nodes/registry_follower.py).
 """
 from __future__ import annotations
 
