@@ -28,9 +28,12 @@ measured on a busy machine is a lower bound.
     python bench/fleet.py --parts capacity --layouts process single --counts 8 10
     python bench/fleet.py --parts capacity --layouts process --watch both     # without and with the model watch
     python bench/fleet.py --parts model_fit [--compare-default]    # the registry's per-drive model fit
+    python bench/fleet.py --parts registry_loop                   # a live fleet picks up one drive's new version
 fleet_model_fit_false_warn / fleet_model_fit_detected: `analyze FOLDER --registry` on 12 healthy foreign drives of
   different nominal conditions and 6 foreign drives with effects, each registered at its own nominal (docs/registry.md):
   model-fit WARNs on the healthy ones, and the share of the others with a WARN.
+registry_loop_pickup_s / registry_loop_changed_drives / registry_loop_other_drives_missed_onsets: a live fleet of 8
+  drives picks up one drive's new version registered while it runs (bench/_fleet/registry_loop.py).
 """
 import argparse
 import json
@@ -263,7 +266,7 @@ def registry_model_fit(workdir, duration_s=5.0, compare_default=False):
     return out
 
 
-PARTS = ("capacity", "diagnostics", "analyze", "two_host", "model_fit")
+PARTS = ("capacity", "diagnostics", "analyze", "two_host", "model_fit", "registry_loop")
 
 
 def _autogroup() -> str:
@@ -328,6 +331,14 @@ def main():
     parser.add_argument("--compare-default", action="store_true",
                         help="model_fit part: also run the same bags without the registry (every drive against the "
                              "default model, as before)")
+    parser.add_argument("--registry-loop-drives", type=int, default=8,
+                        help="registry_loop part: drives of the live fleet (one of them picks up a new version)")
+    parser.add_argument("--registry-loop-stream-s", type=float, default=60.0,
+                        help="registry_loop part: the fleet's stream [s] (with --registry-loop-live-train it must "
+                             "outlast the live train --drive: 533 s at load 16)")
+    parser.add_argument("--registry-loop-live-train", action="store_true",
+                        help="registry_loop part: run the real train --drive live beside the fleet (default: the "
+                             "library is trained before the fleet, and the registering step runs live)")
     args = parser.parse_args()
     result = {"load_average_1min_start": os.getloadavg()[0], "cores": os.cpu_count(),
               "parts": args.parts,
@@ -375,6 +386,12 @@ def main():
                           fleet_model_fit_healthy_drives=fit["registry"]["healthy"],
                           fleet_model_fit_detected=fit["registry"]["detected"],
                           fleet_model_fit_effect_drives=fit["registry"]["sick"], fleet_model_fit=fit)
+        if "registry_loop" in args.parts:
+            sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+            from _fleet.registry_loop import registry_loop
+            result.update(registry_loop(workdir, n_drives=args.registry_loop_drives,
+                                        stream_s=args.registry_loop_stream_s,
+                                        live_train=args.registry_loop_live_train))
         if "two_host" in args.parts:
             from backlash_monitor.ros.netns import can_make_namespaces, run_two_hosts
             reason = can_make_namespaces()

@@ -90,6 +90,8 @@ class Drive:
                          width_m=float(plant["width_m"]) if trigger == "paper" else 0.0)
         classifier = {k: p[k] for k in CLASSIFIER_KEYS if k in p}
         classifier["drive_name"] = self.hardware_id
+        versions = p.get("versions")
+        classifier["model_version"] = len(versions) + 1 if isinstance(versions, list) else 1   # the registry's
         if p.get("library"):
             classifier["library"] = str(p["library"])
         width, eta_k, n1 = self.nominal()

@@ -65,6 +65,8 @@ PARAMETERS = (
                   "configured value (config/windowing.yaml capture.window_offset_samples: "
                   "contact_loss 200, paper 0)", -1, 65536),
     ParameterSpec("library", "", "pattern library file (empty: the packaged default)"),
+    ParameterSpec("model_version", 0, "the drive's model version in the registry (docs/registry.md), reported in "
+                  "/diagnostics so a new version's pickup is seen; 0: none given", 0, 1000000),
     ParameterSpec("fusion_events", DEFAULT_FUSION_EVENTS, "onset events fused into one estimate",
                   1, 1000),
     ParameterSpec("warn_width_m", 0.0075, "fused width from which the drive is WARN [m]",
@@ -97,6 +99,7 @@ class ClassifierNode(Node):
                                             fusion_events=p["fusion_events"])
         except (PatternLibraryError, ValueError) as error:
             raise ParameterValueError(str(error)) from None
+        self.library_path = str(library.path)
         self.publisher = self.create_publisher(BacklashEstimate, "estimate", ESTIMATE_QOS)
         self.create_subscription(BacklashWindow, "windows/denoised", self.on_window, WINDOW_QOS)
         self.classified = 0
@@ -241,6 +244,7 @@ class ClassifierNode(Node):
                                    if f != "none") or "none",
             repeated_windows_skipped=self.repeated.repeats, saturated_estimates=saturated[0],
             warn_width_m=p["warn_width_m"], error_width_m=p["error_width_m"],
+            model_version=p["model_version"], library=self.library_path,
             model_fit="" if self.model_fit is None else
             ("explains" if self.model_fit.explains else "does not explain"))
 

@@ -13,6 +13,9 @@ config/fleet_aggregator.yaml's analyzers (a table per drive, once a second; STAL
 heard for 3 s) and ends with a summary per drive: chunks, discarded windows, onset windows and
 estimates, the estimate's lag behind the stream, CPU, and whether the drive was monitored in real
 time (every chunk taken, no window discarded, every onset window classified, lag under 1 s).
+
+With ``--config`` the fleet follows its file (the drive registry, docs/registry.md): a drive whose version changes
+there while the fleet runs is swapped to it by lifecycle transitions of its chain only (nodes/registry_follower.py).
 """
 from __future__ import annotations
 
@@ -31,6 +34,7 @@ import yaml
 from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
 from backlash_monitor.errors import DeprecatedSpelling, UsageError, out_of_range
 from backlash_monitor.fleet.drives import drives_from_count, load_drives, Drive
+from backlash_monitor.fleet.registry_pickup import DriveVersion
 from backlash_monitor.files.outputs import missing_folder_message
 from backlash_monitor.fleet.aggregator import (
     AggregatorView,
@@ -48,6 +52,8 @@ DEFAULT_LAYOUT = "process"     # holds more drives in real time (docs/fleet.md)
 CHUNK_S = 1000 * 2e-5          # the plant's default chunk: 1000 samples at 50 kHz
 WINDOW_END_S = (200 + 2048) * 2e-5   # entry -> last sample of a contact_loss window
 WARMUP_S = 2.0                # after the last drive's stream started: see FleetMonitor.summary
+COUNTED = ("chunks", "discarded", "incomplete_chunks", "onsets", "onsets_before_offset")   # windowing's counts
+SAMPLES_PER_CHUNK = 1000       # CHUNK_S at 50 kHz
 REALTIME_LAG_S = 1.0           # a chain that keeps up answers within tens of ms; one that falls
                                # behind lags more with every second of stream
 
@@ -195,8 +201,13 @@ def drive_node_factories(drive, duration_s: float, rate_factor: float) -> list:
         nodes.insert(0, (ModelWatchNode, "model_watch"))
     for cls, name in nodes:
         overrides = [Parameter(k, value=v) for k, v in params[name].items()]
-        out.append(lambda cls=cls, overrides=overrides: cls(namespace=drive.namespace,
-                                                            parameter_overrides=overrides))
+
+        def build(cls=cls, overrides=overrides, parameter_overrides=()):
+            """The node; ``parameter_overrides`` (the chain's routed ones: a new model version) win."""
+            routed = {p.name for p in parameter_overrides}
+            return cls(namespace=drive.namespace, parameter_overrides=[
+                p for p in overrides if p.name not in routed] + list(parameter_overrides))
+        out.append((name, build))
     return out
 
 
@@ -215,6 +226,19 @@ class DriveTally:
     status_times: list = field(default_factory=list)   # wall times of the classifier's statuses
     cpu_s: float = math.nan          # CPU share over the stream [%]
     stream_mark: tuple | None = None   # (monotonic, CPU seconds) when its first chunk was reported
+    windowing_before: dict = field(default_factory=dict)   # counts of its chains before a rebuild (a new version)
+    last_estimate_wall_s: float = math.nan
+    chain_restarts: int = 0          # windowing restarts seen (its counts started anew): a version picked up live
+    versions_seen: dict = field(default_factory=dict)      # model version -> wall time its classifier first said it
+
+    def windowing_counts(self) -> dict:
+        """The windowing's counts summed over the drive's chains (a chain rebuilt for a new model version starts
+        them anew; the counts of the last second before the rebuild, not yet reported, are missing); ``position``:
+        the chunks of the stream the windowing has reached (where the running chain joined it, plus its chunks)."""
+        w = self.windowing
+        out = {k: int(w.get(k, 0)) + int(self.windowing_before.get(k, 0)) for k in COUNTED}
+        out["position"] = int(w.get("joined_at_sample", 0)) // SAMPLES_PER_CHUNK + int(w.get("chunks", 0))
+        return out
 
 
 class FleetMonitor:
@@ -243,6 +267,7 @@ class FleetMonitor:
             stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
             t.lags_s.append((time.monotonic(), time.time() - (stamp + WINDOW_END_S)))
         t.onsets_estimated.add(msg.entry_sample_index)
+        t.last_estimate_wall_s = time.time()
         t.fused_width_m = msg.fused_width_m
         if msg.signal_name == PRIMARY_SIGNAL:
             t.fused_continuous_width_m = msg.fused_continuous_width_m
@@ -260,18 +285,23 @@ class FleetMonitor:
                 continue
             if status.name.endswith("classifier: backlash width"):
                 t.classifier = values
+                if values.get("model_version"):
+                    t.versions_seen.setdefault(int(values["model_version"]), time.time())
                 t.level = LEVEL_NAMES[min(level, 3)]
                 t.status_times.append(time.time())
             elif status.name.endswith("windowing: windowing"):
+                if int(values.get("chunks", 0)) < int(t.windowing.get("chunks", 0)):   # a new chain (new version)
+                    t.chain_restarts += 1
+                    t.windowing_before = {k: int(t.windowing.get(k, 0)) + int(t.windowing_before.get(k, 0))
+                                          for k in COUNTED}
                 t.windowing = values
             elif status.name.endswith("model_watch: model fit"):
                 t.model_fit = f"{LEVEL_NAMES[min(level, 3)]}: {status.message}"
 
     def drive_done(self, hardware_id: str, expected_chunks: int) -> bool:
         t = self.tally[hardware_id]
-        w = t.windowing
-        return (int(w.get("chunks", 0)) >= expected_chunks
-                and len(t.onsets_estimated) >= _classifiable_onsets(w))
+        w = t.windowing_counts()
+        return w["position"] >= expected_chunks and len(t.onsets_estimated) >= _classifiable_onsets(w)
 
     def summary(self, drives, expected_chunks: int) -> list[dict]:
         """Per drive; the lag counts from WARMUP_S after every drive's stream has started (while
@@ -282,7 +312,7 @@ class FleetMonitor:
         rows = []
         for d in drives:
             t = self.tally[d.hardware_id]
-            w = t.windowing
+            w = t.windowing_counts()
             lags = sorted(lag for at, lag in t.lags_s if at >= steady_from)
             startup = [lag for at, lag in t.lags_s if at < steady_from]
             onsets = int(w.get("onsets", 0))
@@ -301,7 +331,12 @@ class FleetMonitor:
                    "lag_ms_max": lags[-1] * 1e3 if lags else math.nan,
                    "lag_ms_max_startup": max(startup) * 1e3 if startup else math.nan,
                    "steady_estimates": len(lags),
-                   "cpu_percent": t.cpu_s, "status_times": t.status_times}
+                   "cpu_percent": t.cpu_s, "status_times": t.status_times,
+                   "model_version": int(t.classifier.get("model_version", 0) or 0),
+                   "library": t.classifier.get("library", ""),
+                   "versions_seen_wall_s": {str(k): v for k, v in sorted(t.versions_seen.items())},
+                   "chain_restarts": t.chain_restarts, "last_estimate_wall_s": t.last_estimate_wall_s,
+                   "joined_at_sample": int(t.windowing.get("joined_at_sample", 0))}
             row["realtime"] = bool(
                 row["chunks"] >= expected_chunks and row["discarded"] == 0
                 and row["incomplete_chunks"] == 0 and onsets > 0
@@ -356,9 +391,12 @@ def managed_drive(drive, duration_s: float, rate_factor: float) -> list:
     """The drive's chain and plant as lifecycle nodes ``<namespace>/chain`` and
     ``<namespace>/plant`` (nodes/lifecycle.py): a supervisor can take one drive down and up."""
     # deferred: a node module costs 60-1300 ms at start-up (python -X importtime, 29 Nov); only the nodes this run starts are imported
-    from backlash_monitor.nodes.lifecycle import ManagedNodes
+    from backlash_monitor.nodes.lifecycle import CHAIN_ROUTES, ManagedNodes
     factories = drive_node_factories(drive, duration_s, rate_factor)
-    return [ManagedNodes("chain", factories[:-1], namespace=drive.namespace),
+    # the chain holds the drive's model version as its parameters (docs/registry.md, live pickup)
+    version = DriveVersion.of(drive).chain_parameters()
+    routes = {k: (node, target, version[k]) for k, (node, target, _) in CHAIN_ROUTES.items()}
+    return [ManagedNodes("chain", factories[:-1], namespace=drive.namespace, routes=routes),
             ManagedNodes("plant", factories[-1:], namespace=drive.namespace)]
 
 
@@ -415,7 +453,7 @@ def run(args) -> int:
     configure_fast_dds()   # before rclpy.init; the drives' processes inherit it
     expected_chunks = int(round(args.duration / CHUNK_S))
     children: dict[str, subprocess.Popen] = {}
-    nodes, executor = [], None
+    nodes, executor, follower = [], None, None
     rclpy.init()
     started = time.monotonic()
     try:
@@ -443,6 +481,13 @@ def run(args) -> int:
         for node in nodes:
             executor.add_node(node)
         activate([n for n in nodes if hasattr(n, "trigger_activate")], executor)
+        if args.config:
+            # deferred: the follower (lifecycle and parameter services) only with a fleet file
+            from backlash_monitor.nodes.registry_follower import RegistryFollower
+            follower = RegistryFollower(monitor_node, args.config, drives,
+                                        log=lambda text: print(text, file=sys.stderr, flush=True))
+            print(f"fleet: following {args.config}: a drive's new model version is picked up live "
+                  "(docs/registry.md)", file=sys.stderr, flush=True)
         freeze_startup_objects()
 
         def cpu_of(hardware_id: str) -> float:
@@ -455,10 +500,12 @@ def run(args) -> int:
               flush=True)
         wall_limit = args.duration / args.rate_factor + 60.0 + 2.0 * len(drives)
         next_view = time.monotonic() + args.view_period
-        done_since = None
+        done_since, streaming = None, False
         while rclpy.ok() and time.monotonic() - started < wall_limit:
             executor.spin_once(timeout_sec=0.05)
             now = time.monotonic()
+            if follower is not None:
+                follower.tick(now)
             if args.view_period and now >= next_view:
                 next_view = now + args.view_period
                 print(("\x1b[H\x1b[2J" if sys.stdout.isatty() else "")
@@ -466,6 +513,9 @@ def run(args) -> int:
             for h, t in monitor.tally.items():   # CPU is counted from the stream's start
                 if t.stream_mark is None and int(t.windowing.get("chunks", 0)) > 0:
                     t.stream_mark = (now, cpu_of(h))
+            if not streaming and all(t.stream_mark is not None for t in monitor.tally.values()):
+                streaming = True
+                print(f"fleet: all {len(drives)} drives streaming", file=sys.stderr, flush=True)
             if all(monitor.drive_done(d.hardware_id, expected_chunks) for d in drives):
                 done_since = done_since or now
                 if now - done_since > 1.5:    # one more status from every drive
@@ -506,7 +556,8 @@ def run(args) -> int:
     if args.summary_json:
         with open(args.summary_json, "w", encoding="utf-8") as f:
             json.dump({"layout": args.layout, "duration_s": args.duration,
-                       "rate_factor": args.rate_factor, "wall_s": wall, "drives": rows}, f)
+                       "rate_factor": args.rate_factor, "wall_s": wall, "drives": rows,
+                       "registry_events": follower.events if follower is not None else []}, f)
     return 0 if rows and all(r["onsets_estimated"] for r in rows) else 1
 
 

@@ -6,6 +6,13 @@
     ros2 lifecycle set /line1/drive07/chain deactivate    # they are gone: no subscription, no work
     ros2 lifecycle set /line1/drive07/chain cleanup
 
+A new model version (docs/registry.md, live pickup; what ``fleet`` does when the registry changes):
+
+    ros2 param set /line1/drive07/chain library /data/line1_drive07_v3.npz    # taken at the next configure
+    ros2 param set /line1/drive07/chain model_version 3                       # the classifier reports it
+    ros2 lifecycle set /line1/drive07/chain deactivate && ros2 lifecycle set /line1/drive07/chain cleanup
+    ros2 lifecycle set /line1/drive07/chain configure && ros2 lifecycle set /line1/drive07/chain activate
+
 A lifecycle node (rclpy.lifecycle, the standard ``<node>/change_state`` and ``get_state``
 services) owns the drive's ordinary nodes: ``configure`` builds them once to check their
 parameters (the same checks and one-line errors as the plain executables; a bad value makes the
@@ -23,6 +30,7 @@ from __future__ import annotations
 import sys
 
 from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
+from rclpy.parameter import Parameter
 import rclpy
 from rclpy.utilities import remove_ros_args
 
@@ -33,17 +41,30 @@ from backlash_monitor.ros.runtime import is_shutdown_error, run_nodes
 class ManagedNodes(LifecycleNode):
     """A lifecycle node whose active state is a set of ordinary nodes on the same executor."""
 
-    def __init__(self, name: str, factories, executor=None, **kwargs):
+    def __init__(self, name: str, factories, executor=None, routes=None, **kwargs):
+        """``factories``: builders of the owned nodes, each a callable or ``(node name, callable)``.
+        ``routes``: {own parameter: (owned node name, its parameter, initial value)}: this node declares the
+        parameter, and each build of the named node gets its current value (``parameter_overrides``), so a new
+        value set while active takes effect at the next configure (deactivate, cleanup, configure, activate)."""
         super().__init__(name, **kwargs)
-        self.factories = list(factories)
+        self.factories = [f if isinstance(f, tuple) else ("", f) for f in factories]
+        self.routes = dict(routes or {})
+        for parameter, (_, _, initial) in self.routes.items():
+            self.declare_parameter(parameter, initial)
         self.executor_ref = executor
         self.owned = []
+
+    def routed_parameters(self, node_name: str) -> list:
+        """The owned node ``node_name``'s parameters from this node's (its routes)."""
+        return [Parameter(target, value=self.get_parameter(own).value)
+                for own, (node, target, _) in self.routes.items() if node_name and node == node_name]
 
     def _build(self) -> list:
         nodes = []
         try:
-            for factory in self.factories:
-                nodes.append(factory())
+            for node_name, factory in self.factories:
+                routed = self.routed_parameters(node_name)
+                nodes.append(factory(parameter_overrides=routed) if routed else factory())
         except BaseException:
             for node in nodes:
                 node.destroy_node()
@@ -143,7 +164,14 @@ def chain_factories():
     from backlash_monitor.nodes.width_trend import WidthTrendNode
     # deferred: the chain's node modules cost ~250 ms each at start-up (python -X importtime, 29 Nov); managed_plant does not run them
     from backlash_monitor.nodes.windowing import WindowingNode
-    return [WidthTrendNode, ClassifierNode, DenoiseNode, WindowingNode]   # downstream first
+    return [("width_trend", WidthTrendNode), ("classifier", ClassifierNode), ("denoise", DenoiseNode),
+            ("windowing", WindowingNode)]   # downstream first
+
+
+# the chain's parameters that hold the drive's model version (docs/registry.md, live pickup):
+# {chain parameter: (owned node, its parameter, initial value)}
+CHAIN_ROUTES = {"library": ("classifier", "library", ""), "model_version": ("classifier", "model_version", 0),
+                "watch_reference": ("model_watch", "reference", "")}
 
 
 def plant_factories():
@@ -152,7 +180,7 @@ def plant_factories():
     return [PlantSimulatorNode]
 
 
-def run_managed(name: str, factories, args=None) -> int:
+def run_managed(name: str, factories, args=None, routes=None) -> int:
     """Spin one ManagedNodes until shut down; ``--activate`` (before --ros-args) configures and
     activates it at start."""
     argv = sys.argv if args is None else args
@@ -160,7 +188,7 @@ def run_managed(name: str, factories, args=None) -> int:
     holder = {}
 
     def build():
-        holder["node"] = ManagedNodes(name, factories)
+        holder["node"] = ManagedNodes(name, factories, routes=routes)
         return holder["node"]
 
     def spin(nodes, executor):
@@ -174,7 +202,7 @@ def run_managed(name: str, factories, args=None) -> int:
 
 
 def main_chain(args=None) -> int:
-    return run_managed("chain", chain_factories(), args)
+    return run_managed("chain", chain_factories(), args, routes=CHAIN_ROUTES)
 
 
 def main_plant(args=None) -> int:

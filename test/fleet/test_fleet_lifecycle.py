@@ -147,3 +147,48 @@ def test_a_bad_parameter_fails_the_configure_transition_with_one_clear_line(ros)
         out = end_all([proc])[0]
     assert "configure failed: parameter 'n1'" in out and "allowed: 0.5 <= n1 <= 1.5" in out, out
     assert "Traceback" not in out
+
+
+@pytest.mark.process
+@pytest.mark.ros
+def test_by_hand_a_new_library_is_taken_at_the_next_configure(ros, tmp_path):
+    """What `ros2 param set` and `ros2 lifecycle set` do by hand (docs/registry.md, live pickup): the chain's
+    library and model_version parameters reach its classifier when the chain is configured again."""
+    import shutil
+    from diagnostic_msgs.msg import DiagnosticArray
+    from lifecycle_msgs.msg import Transition
+    from lifecycle_msgs.srv import ChangeState
+    from rcl_interfaces.srv import SetParameters
+    from rclpy.parameter import Parameter
+    from backlash_monitor.classifier.patterns import TRIGGER_LIBRARY_PATHS
+    node, executor = ros
+    library = tmp_path / "drive08_v3.npz"
+    shutil.copy(TRIGGER_LIBRARY_PATHS["contact_loss"], library)
+    said = []     # (model_version, library) of the classifier's statuses
+    node.create_subscription(DiagnosticArray, "/diagnostics", lambda msg: said.extend(
+        (v.get("model_version"), v.get("library", "")) for v in (
+            {kv.key: kv.value for kv in s.values} for s in msg.status
+            if s.name.startswith("line1/drive08/classifier"))), 50)
+    procs = [start("managed_chain", "drive08", activate=True),
+             start("managed_plant", "drive08", "-p", "duration_s:=60.0", "-p", "wait_for_subscriptions:=3",
+                   activate=True)]
+
+    def spin_until(condition, timeout_s=30.0):
+        end = time.monotonic() + timeout_s
+        while not condition() and time.monotonic() < end:
+            executor.spin_once(timeout_sec=0.05)
+        return condition()
+    try:
+        assert spin_until(lambda: ("0", str(TRIGGER_LIBRARY_PATHS["contact_loss"])) in said), said[-3:]
+        result = call(node, executor, SetParameters, "/line1/drive08/chain/set_parameters", SetParameters.Request(
+            parameters=[Parameter("library", value=str(library)).to_parameter_msg(),
+                        Parameter("model_version", value=3).to_parameter_msg()]))
+        assert all(r.successful for r in result.results)
+        for transition in (Transition.TRANSITION_DEACTIVATE, Transition.TRANSITION_CLEANUP,
+                           Transition.TRANSITION_CONFIGURE, Transition.TRANSITION_ACTIVATE):
+            assert call(node, executor, ChangeState, "/line1/drive08/chain/change_state",
+                        ChangeState.Request(transition=Transition(id=transition))).success
+        assert spin_until(lambda: ("3", str(library)) in said), said[-3:]
+    finally:
+        outputs = end_all(procs)
+    assert all("Traceback" not in out for out in outputs), outputs
