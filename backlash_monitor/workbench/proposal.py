@@ -120,16 +120,20 @@ def cv_errors(G: np.ndarray, Y: np.ndarray, cols) -> np.ndarray:
     return cv_errors_gram(*gram(G, Y), cols)
 
 
-def _forward_gram(GG, Gy, yy, groups: list, z: float, max_groups: int):
+def _forward_gram(GG, Gy, yy, groups: list, z: float, max_groups: int, alike: list | None = None):
+    """forward_select on the events' normal equations; ``alike`` (alike_groups): a group the data cannot tell from
+    one already selected is the same term and does not enter beside it (two of them together fit their small
+    difference, a term of another shape: measured, sin α₂ and sin α₁ on a2 at opposite coefficients)."""
     sel: list = []
     cols: list = []
     err = cv_errors_gram(GG, Gy, yy, cols)
     steps = []
     e = yy.shape[0]
+    taken: set = set()
     while len(sel) < max_groups:
         best = None
         for gi, g in enumerate(groups):
-            if gi in sel:
+            if gi in sel or gi in taken:
                 continue
             d = err - cv_errors_gram(GG, Gy, yy, cols + list(g))
             m, s = float(d.mean()), float(d.std(ddof=1)) / np.sqrt(e)
@@ -139,6 +143,7 @@ def _forward_gram(GG, Gy, yy, groups: list, z: float, max_groups: int):
         if best is None:
             break
         sel.append(best[0])
+        taken |= set(alike[best[0]]) if alike is not None else set()
         cols += list(groups[best[0]])
         err = cv_errors_gram(GG, Gy, yy, cols)
         steps.append(best)
@@ -186,7 +191,7 @@ def stability(G: np.ndarray, Y: np.ndarray, groups: list, n: int = BOOTSTRAP, se
         idx = rng.integers(0, e, e)
         if len(np.unique(idx)) < 3:
             continue
-        sel, _ = _forward_gram(GG[idx], Gy[idx], yy[idx], groups, CV_Z, MAX_GROUPS)
+        sel, _ = _forward_gram(GG[idx], Gy[idx], yy[idx], groups, CV_Z, MAX_GROUPS, alike)
         hit = np.zeros(len(groups), dtype=bool)
         hit[sel] = True
         if alike is not None:
@@ -201,6 +206,40 @@ def _library_model(model):
     lib.effect_files = list(model.effect_files) + [candidate_terms.library_file()]
     lib.effects_added = list(model.effects_added)
     return lib
+
+
+SECANT_ITERATIONS = 3  # re-estimations of an angle-locked pair's response at its fitted amplitude
+SECANT_TOLERANCE = 0.05  # stop when no coefficient moves by more than this share of the largest
+MIN_COEFFICIENT_Z = 2.0  # a proposed group's largest coefficient over its jackknife uncertainty, at least
+
+
+def _fit(GG, Gy, cols) -> tuple:
+    """The least-squares coefficients of ``cols`` over every event and their jackknife standard errors over the
+    events (from the leave-one-out fits)."""
+    A, b = GG[:, cols][:, :, cols].sum(axis=0), Gy[:, cols].sum(axis=0)
+    coef = np.linalg.lstsq(A, b, rcond=None)[0]
+    c_loo, _, _ = _loo_coefficients(GG, Gy, cols)
+    e = GG.shape[0]
+    return coef, np.sqrt((e - 1) / e * np.sum((c_loo - c_loo.mean(axis=0)) ** 2, axis=0))
+
+
+def _evaluate_each(p, sets) -> list:
+    """The prediction of every parameter set, in batches (a batch's raw runs are sets x seeds x samples); a set whose
+    simulated runs give no onset window (a term at its step that stops the drive crossing its backlash) -> None
+    (that batch again one set at a time)."""
+    preds: list = []
+    for i in range(0, len(sets), BATCH_SETS):
+        batch = sets[i:i + BATCH_SETS]
+        try:
+            ens = p.evaluate(batch)
+            preds += [p.pred_of(ens, j) for j in range(len(batch))]
+        except ValueError:
+            for one in batch:
+                try:
+                    preds.append(p.pred_of(p.evaluate([one]), 0))
+                except ValueError:
+                    preds.append(None)
+    return preds
 
 
 def _base_sets(run, up) -> tuple[dict, list]:
@@ -356,13 +395,13 @@ def propose(run, up, verdict: str) -> Proposal | None:
     steps = {t.name: candidate_terms.BALANCES[t.balance][1] for t in terms}
     # 1. the shared sensitivities: the reference and every plain term at a small coefficient (common random numbers)
     sets = [{}] + [{key[t.name]: float(steps[t.name])} for t in shared]
-    preds = []
-    for i in range(0, len(sets), BATCH_SETS):        # in batches: a batch's raw runs are sets x seeds x samples
-        ens = p.evaluate(sets[i:i + BATCH_SETS])
-        preds += [p.pred_of(ens, j) for j in range(len(sets[i:i + BATCH_SETS]))]
-        del ens
+    preds = _evaluate_each(p, sets)
+    if preds[0] is None:
+        return Proposal(False, "the model (with the partial explanation) gives no onset window in a simulated run: "
+                               "nothing to fit a term to", cpu_seconds=time.process_time() - t0)
     ref = preds[0]
-    S = np.stack([(preds[j + 1] - ref) / steps[t.name] for j, t in enumerate(shared)], axis=1)
+    S = np.stack([np.zeros_like(ref) if preds[j + 1] is None else (preds[j + 1] - ref) / steps[t.name]
+                  for j, t in enumerate(shared)], axis=1)
     Y = p.project((p.event_vecs - ref[None]).T).T
     d = design(p, run, terms, steps, S, ref)
     group_names = list(d.groups)
@@ -371,13 +410,14 @@ def propose(run, up, verdict: str) -> Proposal | None:
     # are selected on top of it and, the same design, instead of it (a catalogue effect can take up part of a
     # mechanism it is not: measured, a band brake on the wheel read as 82 % wheel inertia); the one whose selection
     # leaves the smaller held-out error over the events is kept
+    alike = alike_groups(d.G, groups)
     variants = [(Y, ref, on_top)]
     if on_top:
         variants.append((p.project((p.event_vecs - run.base_pred[None]).T).T, run.base_pred, []))
     best = None
     for Yv, refv, top in variants:
         GGv, Gyv, yyv = gram(d.G, Yv)
-        selv, stepsv = _forward_gram(GGv, Gyv, yyv, groups, CV_Z, MAX_GROUPS)
+        selv, stepsv = _forward_gram(GGv, Gyv, yyv, groups, CV_Z, MAX_GROUPS, alike)
         score = float(cv_errors_gram(GGv, Gyv, yyv, [c for g in selv for c in groups[g]]).sum())
         if best is None or (selv and score < best[0]):
             best = (score, Yv, refv, top, GGv, Gyv, yyv, selv, stepsv)
@@ -386,7 +426,6 @@ def propose(run, up, verdict: str) -> Proposal | None:
     if replaced:
         on_top = []
         p.base = dict(p0.base)
-    alike = alike_groups(d.G, groups)
     freq = stability(d.G, Y, groups, alike=alike)
     stab = {group_names[i]: float(freq[i]) for i in np.argsort(-freq) if freq[i] > 0}
     cv = [{"group": group_names[g], "held_out_gain": m, "z": z} for g, m, z in cv_steps]
@@ -401,12 +440,45 @@ def propose(run, up, verdict: str) -> Proposal | None:
         return out
     cols = [c for g in stable for c in groups[g]]
     # 4. the coefficients on every event (least squares of the per-event design), their uncertainty the jackknife
-    # over the events (the leave-one-out fits the selection made)
-    A, b = GG[:, cols][:, :, cols].sum(axis=0), Gy[:, cols].sum(axis=0)
-    coef = np.linalg.lstsq(A, b, rcond=None)[0]
-    c_loo, _, _ = _loo_coefficients(GG, Gy, cols)
-    e = yy.shape[0]
-    unc = np.sqrt((e - 1) / e * np.sum((c_loo - c_loo.mean(axis=0)) ** 2, axis=0))
+    # over the events (the leave-one-out fits the selection made); an angle-locked pair's response re-estimated at
+    # its fitted amplitude (a secant: a torque of the working torque's size changes the crossing it acts on, its
+    # response is not the tangent's at amplitude 0: measured, 8 N*m on the wheel fitted as 5.4 on the tangent)
+    coef, unc = _fit(GG, Gy, cols)
+    angles = event_design.recorded_angles(run.meas.signals, p.dt)
+    entries = np.asarray(p.events.entries)
+    for _ in range(SECANT_ITERATIONS):
+        moved = False
+        for g in stable:
+            sin_t = d.terms[groups[g][0]]
+            if not (sin_t.simulated and sin_t.harmonic is not None) or sin_t.harmonic[0] not in angles:
+                continue
+            i0 = cols.index(groups[g][0])
+            amp = float(np.hypot(coef[i0], coef[i0 + 1]))
+            if amp < 2.0 * steps[sin_t.name]:
+                continue
+            resp = event_design.angle_responses(p, [sin_t], {sin_t.name: amp}, p.project).get(sin_t.name)
+            if resp is None:
+                continue
+            var, k, _ = sin_t.harmonic
+            psi = k * angles[var][entries]
+            d.G[..., groups[g]] = event_design.angle_columns(resp, psi, p.project)
+            d.mean_cols[:, groups[g]] = event_design.angle_columns(resp, psi).mean(axis=0)
+            moved = True
+        if not moved:
+            break
+        GG, Gy, yy = gram(d.G, Y)
+        before = coef
+        coef, unc = _fit(GG, Gy, cols)
+        if np.max(np.abs(coef - before)) < SECANT_TOLERANCE * max(float(np.max(np.abs(coef))), 1e-12):
+            break
+    # a group whose fitted coefficients are all within MIN_COEFFICIENT_Z of their uncertainty from 0 leaves the
+    # proposal (it entered beside a term whose response was still the tangent's)
+    keep = [g for g in stable if np.max(np.abs(coef[[cols.index(c) for c in groups[g]]])
+                                        / np.maximum(unc[[cols.index(c) for c in groups[g]]], 1e-300)) >= MIN_COEFFICIENT_Z]
+    if keep and len(keep) < len(stable):
+        stable = keep
+        cols = [c for g in stable for c in groups[g]]
+        coef, unc = _fit(GG, Gy, cols)
     chosen = [d.terms[c] for c in cols]
     lo = np.array([-candidate_terms.BALANCES[t.balance][2] for t in chosen])
     coef = np.clip(coef, lo * 0.999, -lo * 0.999)
@@ -421,7 +493,14 @@ def propose(run, up, verdict: str) -> Proposal | None:
     rec_cols = [i for i, t in enumerate(chosen) if not t.simulated]
     harm_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is not None]
     sets_after = ([sim_set] if sim_set else []) + ([{**sim_set, **harm_set}] if harm_set else [])
-    ens = p.evaluate(sets_after) if sets_after else None
+    try:
+        ens = p.evaluate(sets_after) if sets_after else None
+    except ValueError as error:        # the terms at these values stop the drive crossing its backlash
+        out.reason = ("the fitted terms stop the model crossing its backlash "
+                      f"({str(error).splitlines()[0]}): nothing proposed")
+        out.cpu_seconds = time.process_time() - t0
+        out.simulated_sets = p.n_sets_simulated - n_before
+        return out
     pred_after = p.pred_of(ens, 0) if sim_set else ref.copy()
     if rec_cols:
         pred_after = pred_after + d.mean_cols[:, [cols[i] for i in rec_cols]] @ coef[rec_cols]
