@@ -264,7 +264,7 @@ def summary(rows, explained, angle) -> dict:
 
 
 def run_all(sealed: bool = False, only=(), skip_explained: bool = False, skip_angle: bool = False,
-            skip_outside: bool = False):
+            skip_outside: bool = False, explained_every: int = 1):
     """(outside rows, explained rows, angle-locked rows) of the chosen suite."""
     specs = [s for s in suite_rows(sealed) if not only or s.label in only]
     outside = [] if skip_outside else run_outside(specs)
@@ -272,7 +272,7 @@ def run_all(sealed: bool = False, only=(), skip_explained: bool = False, skip_an
     if not skip_explained:
         from foreign_drives.suites import suite
         explained = run_explained([s for s in suite("bench") if s.kind in ("clean", "one")
-                                   and (not only or s.label in only)])
+                                   and (not only or s.label in only)][::max(1, explained_every)])
     angle = [] if skip_angle else run_angle_locked([r for r in angle_rows(suite_rows(sealed))
                                                     if not only or r[0].label in only])
     return outside, explained, angle
@@ -285,11 +285,15 @@ def main(argv=None):
     ap.add_argument("--only", action="append", default=[], metavar="LABEL", help="only these rows (repeatable)")
     ap.add_argument("--skip-explained", action="store_true",
                     help="skip the foreign bench's clean and one-effect rows (proposals_on_explained: null)")
+    ap.add_argument("--explained-every", type=int, default=1, metavar="K",
+                    help="only every K-th of the foreign bench's clean and one-effect rows (default 1: all 38)")
     ap.add_argument("--skip-angle", action="store_true", help="skip the angle-locked plug-in rows")
     ap.add_argument("--skip-outside", action="store_true", help="skip the proposals on the outside rows")
     args = ap.parse_args(argv)
     t0 = time.perf_counter()
-    out = summary(*run_all(args.sealed, args.only, args.skip_explained, args.skip_angle, args.skip_outside))
+    out = summary(*run_all(args.sealed, args.only, args.skip_explained, args.skip_angle, args.skip_outside,
+                           args.explained_every))
+    out["explained_every"] = args.explained_every
     out["suite"] = "outside_sealed" if args.sealed else "outside_dev"
     out["wall_seconds"] = time.perf_counter() - t0
     print(json.dumps(out, default=float))
