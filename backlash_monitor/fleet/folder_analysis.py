@@ -19,6 +19,7 @@ import glob
 import json
 import math
 import os
+import resource
 import statistics
 import time
 from dataclasses import dataclass, replace
@@ -176,9 +177,11 @@ def registry_libraries(options, watch: WatchOptions) -> dict:
     return loaded
 
 
-def library_text(path: str) -> str:
-    """A bag's library as the table shows it: its file name, or 'packaged'."""
-    return Path(path).name if path else "packaged"
+def library_text(row: dict) -> str:
+    """A bag's library as the table shows it: its file name, or 'packaged' ('-': none, its analysis failed first)."""
+    if row.get("library_from") == "packaged":
+        return "packaged"
+    return Path(row["library"]).name if row.get("library") else "-"
 
 
 def analyze_one(job: dict) -> dict:
@@ -238,7 +241,7 @@ def analyze_one(job: dict) -> dict:
                onsets=len({r["entry_sample_index"] for r in mine}),
                discarded=len(result["discarded"]),
                seconds=time.perf_counter() - started, signal=primary)
-    if watch.enabled:
+    if watch.enabled and job.get("fit", True):     # (False: the pool's model-fit stage fits it, FitStage)
         row.update(model_fit(job["bag"], job["options"], watch, row))
     offsets = result.get("sensor_offsets", {})      # the drive's latest sensor offset estimate
     row.update(a1_offset_m_s2=offsets.get("a1_m_s2", math.nan),
@@ -406,6 +409,24 @@ def runs_parallel_here(fleet: FleetOptions) -> bool:
     return fleet.engine == "local" and fleet.workers() > 1
 
 
+class _NoBar:
+    def update(self, n: int = 1) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
+def progress_bar(total: int, progress: bool):
+    """A progress bar over the bags on stderr when it is a terminal (as tqdm's own default: no bar written into a
+    log or a pipe), else one that draws nothing (and tqdm, ~55-80 ms of imports, not imported)."""
+    if not progress or not sys.stderr.isatty():
+        return _NoBar()
+    # deferred: tqdm costs ~55 ms at start-up (python -X importtime, 29 Nov); every --help imports this module
+    from tqdm import tqdm
+    return tqdm(total=total, unit="bag", desc="analyze")
+
+
 def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
               threads_limited: bool | None = None, libraries: dict | None = None) -> list[dict]:
     """The bags on this machine: --jobs 1 one after the other in this process; otherwise a pool of
@@ -414,9 +435,7 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
     their rows collected as they finish."""
     rows = []
     if n_jobs == 1:
-        # deferred: tqdm costs ~55 ms at start-up (python -X importtime, 29 Nov); every --help imports this module
-        from tqdm import tqdm
-        bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
+        bar = progress_bar(len(jobs), progress)
         if jobs:
             init_worker(jobs[0]["options"], library, libraries)
         for job in jobs:
@@ -442,28 +461,96 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
         context.set_forkserver_preload(modules)
         library = libraries = None          # loaded by each worker
     options = jobs[0]["options"] if jobs else None
+    # the model fits in a stage of their own (FitStage) where the workers are forked: its one-time work (its
+    # modules, alarm rule, references and their views: ~1 s of a core) done once here, beside the analyses,
+    # instead of once in every worker before its first fit
+    fits = FitStage(n_jobs, context) if context.get_start_method() == "fork" and any(
+        (j.get("watch") or WatchOptions()).enabled for j in jobs) else None
     with ProcessPoolExecutor(max_workers=n_jobs, mp_context=context, initializer=init_worker,
                              initargs=(options, library, libraries)) as pool:
-        # at most two bags per worker queued: a worker never waits for its next bag, and the
-        # rows stream back while the rest are handed out
-        pending, todo = set(), iter(jobs)
-        for job in todo:
-            pending.add(pool.submit(analyze_one, job))
-            if len(pending) >= 2 * n_jobs:
-                break
-        # deferred: tqdm costs ~55 ms at start-up (python -X importtime, 29 Nov); every --help imports this module
-        from tqdm import tqdm     # imported while the workers start: not on the serial path
-        bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
+        # every bag handed to the pool at once (its manager thread feeds the workers: one bag at a
+        # time each, so none is idle while bags remain, also while this process fits a bag)
+        futures = {pool.submit(analyze_one, {**job, "fit": fits is None}): job for job in jobs}
+        if fits is not None:
+            fits.prepare()
+        bar = progress_bar(len(jobs), progress)   # (while the workers start)
+        pending = set(futures)
         while pending:
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
             for future in done:
                 rows.append(future.result())
                 bar.update()
-                job = next(todo, None)
-                if job is not None:
-                    pending.add(pool.submit(analyze_one, job))
+                if fits is not None:
+                    fits.add(rows[-1], futures[future], analysing=len(pending))
     bar.close()
+    if fits is not None:
+        fits.finish()
     return rows
+
+
+def fit_one(job: dict) -> dict:
+    """One bag's model fit (a FitStage worker's task: its bag, AnalyzeOptions, WatchOptions and the row fields the
+    fit reads); the model-fit fields of its row."""
+    return model_fit(job["bag"], job["options"], job["watch"], job["row"])
+
+
+class FitStage:
+    """The model fits of a pool's bags (--jobs N, forked workers), beside the analyses: this process fits the
+    first bag of each reference itself as its row comes (importing the fit's modules while the analyses start,
+    loading the alarm rule, the reference and its views once), then forks ``n_jobs`` workers that inherit all of
+    it and fit the rest. Without it each analysis worker imported, loaded and built the same before its first fit:
+    ~1 s of a core per worker (python bench/fleet.py --parts analyze, docs/fleet.md). A reference first met after
+    the fork is loaded by the workers that need it (as before)."""
+
+    def __init__(self, n_jobs: int, context):
+        self.n_jobs, self.context = n_jobs, context
+        self.warm: set[str] = set()         # the references this process has fitted a bag against
+        self.waiting: list[tuple] = []      # (row, job) whose fit waits for the workers
+        self.futures: dict = {}
+        self.pool = None
+
+    def prepare(self) -> None:
+        """The fit's modules imported here (while the analysis workers start)."""
+        for name in ("backlash_monitor.watch.core", "backlash_monitor.watch.alarm",
+                     "backlash_monitor.workbench.reference", "backlash_monitor.workbench.measurement",
+                     "backlash_monitor.workbench.model"):
+            importlib.import_module(name)
+
+    def add(self, row: dict, job: dict, analysing: int) -> None:
+        """A bag's row from the analysis: fitted here when its reference is new (before the fork), else handed
+        to the workers; they start once there are a few bags to fit per worker or no analysis is left."""
+        watch = job.get("watch") or WatchOptions()
+        if row["error"] or not watch.enabled:
+            return
+        if self.pool is None:
+            width = row["width_m"] if row["width_m"] == row["width_m"] else row["fused_width_m"]
+            path = reference_for_bag(job["options"], watch, width, row)
+            if path not in self.warm:
+                self.warm.add(path)
+                row.update(model_fit(job["bag"], job["options"], watch, row))
+                return
+        self.waiting.append((row, job))
+        if self.pool is None and (len(self.waiting) >= 2 * self.n_jobs or not analysing):
+            self.pool = ProcessPoolExecutor(max_workers=self.n_jobs, mp_context=self.context)
+        if self.pool is not None:
+            for row, job in self.waiting:
+                fields = {k: row.get(k) for k in ("width_m", "fused_width_m", "drive", "namespace")}
+                self.futures[self.pool.submit(fit_one, {"bag": job["bag"], "options": job["options"],
+                                                        "watch": job.get("watch") or WatchOptions(),
+                                                        "row": fields})] = row
+            self.waiting = []
+
+    def finish(self) -> None:
+        """Every fit handed out, done: its fields in its row."""
+        if self.waiting:
+            self.pool = self.pool or ProcessPoolExecutor(max_workers=self.n_jobs, mp_context=self.context)
+            self.add(*self.waiting.pop(), analysing=0)
+        try:
+            for future, row in self.futures.items():
+                row.update(future.result())
+        finally:
+            if self.pool is not None:
+                self.pool.shutdown()
 
 
 def run_dask(jobs: list[dict], n_jobs: int, scheduler: str, progress=True) -> list[dict]:
@@ -531,7 +618,7 @@ def format_rows(rows: list[dict]) -> list[tuple]:
                             FitVerdict.from_recording(r.get("model_fit")))
         version = f"v{r['drive_version']}" if r.get("drive_version") else "-"    # its registered drive's
         out.append((r["drive"] or "?", when, width, mm(r["fused_width_m"]), trend,
-                    r["level"], model_fit_text(r), version, library_text(r.get("library", "")),
+                    r["level"], model_fit_text(r), version, library_text(r),
                     Path(r["bag"]).name))
     return out
 
@@ -554,6 +641,9 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     watch = fleet.watch
     jobs = _jobs(options, bags, out_dir, watch)
     started = time.perf_counter()
+    # this process's CPU before, during and after the bags, and its workers' (children's): the serial part
+    # (before + after) and the parallel part of the run (bench/fleet.py --parts analyze reports them)
+    cpu_before = time.process_time()
     if fleet.engine == "dask":
         rows = run_dask(jobs, n_jobs, fleet.scheduler, progress=fleet.progress)
     else:
@@ -563,6 +653,7 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
         from backlash_monitor.offline.bag_analysis import load_library
         rows = run_local(jobs, n_jobs, library=load_library(options), progress=fleet.progress,
                          threads_limited=threads_limited, libraries=registry_libraries(options, watch))
+    cpu_during = time.process_time() - cpu_before
     if watch.enabled:
         for r in missing_references(rows, options, watch):
             r.update(model_fit(r["bag"], options, watch, r))
@@ -583,9 +674,13 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
         writer.writerow(columns)
         for r in rows:
             writer.writerow([r.get(c, "") for c in columns])
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)     # the pools' workers, ended and waited for
+    cpu_s = {"this_process_before_bags": cpu_before, "this_process_during_bags": cpu_during,
+             "this_process_after_bags": time.process_time() - cpu_before - cpu_during,   # (until this file)
+             "workers": children.ru_utime + children.ru_stime}
     with open(out_dir / "fleet.json", "w", encoding="utf-8") as f:
         f.write(json.dumps({"bags": len(bags), "engine": fleet.engine, "jobs": n_jobs,
-                            "seconds": wall, "rows": rows,
+                            "seconds": wall, "cpu_s": cpu_s, "rows": rows,
                             "trends": {d: t.__dict__ for d, t in trends.items()}}))
     plots = [] if not fleet.plots or not points else plot_trends(points, trends, rule, out_dir)
     table = [TABLE] + format_rows(rows)

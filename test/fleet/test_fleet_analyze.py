@@ -118,6 +118,17 @@ def test_the_model_fit_column_holds_each_bag_against_the_drives_model(tmp_path):
     fleet_csv = list(csv.DictReader((out / "fleet.csv").open()))
     assert {r["bag"].rsplit("/", 1)[1].split("_")[0]: r["width_caveat"] for r in fleet_csv}["friction"] \
         == rows["friction"]["width_caveat"]
+    # two workers: the fits in their own stage (the first bag of the reference fitted by the command itself, the
+    # other by a worker forked after it): the same fits, the same verdicts
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(bags), "--out-dir",
+                           str(tmp_path / "two"), "--jobs", "2", "--no-plots"], capture_output=True, text=True,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    two = {r["bag"].rsplit("/", 1)[1].split("_")[0]: r for r in json.loads((tmp_path / "two" / "fleet.json").read_text())["rows"]}
+    for k, r in rows.items():     # (BLAS of one thread in the workers: the last digits may differ)
+        assert two[k]["model_fit"]["level"] == r["model_fit"]["level"]
+        assert two[k]["model_fit"]["exceeding"] == r["model_fit"]["exceeding"]
+        assert two[k]["model_fit"]["residual_over_noise"] == pytest.approx(r["model_fit"]["residual_over_noise"], rel=1e-9)
 
 
 def test_the_model_fit_reference_is_the_one_given_else_the_librarys_else_the_default_models_nearest_width(tmp_path):
