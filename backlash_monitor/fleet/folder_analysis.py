@@ -15,6 +15,7 @@ than the configured rate, before it reaches the limit), with a plot per drive an
 from __future__ import annotations
 
 import csv
+import gc
 import glob
 import json
 import math
@@ -456,6 +457,7 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
         for name in modules:
             importlib.import_module(name)
         context = multiprocessing.get_context("fork")
+        gc.freeze()     # (the workers' garbage collector leaves what they inherit alone: no page copied for it)
     else:
         context = multiprocessing.get_context("forkserver")
         context.set_forkserver_preload(modules)
@@ -510,7 +512,12 @@ class FitStage:
         self.pool = None
 
     def prepare(self) -> None:
-        """The fit's modules imported here (while the analysis workers start)."""
+        """The fit's modules imported here (while the analysis workers start), and the allocator's setting of the
+        analyses (process/memory.py: freed blocks reused, not a page fault per 4 KiB of the next bag's arrays) made
+        here, so that the fit workers inherit it as a worker fitting after its analysis had it."""
+        # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
+        from backlash_monitor.process.memory import reuse_freed_memory
+        reuse_freed_memory()
         for name in ("backlash_monitor.watch.core", "backlash_monitor.watch.alarm",
                      "backlash_monitor.workbench.reference", "backlash_monitor.workbench.measurement",
                      "backlash_monitor.workbench.model"):
@@ -531,7 +538,7 @@ class FitStage:
                 return
         self.waiting.append((row, job))
         if self.pool is None and (len(self.waiting) >= 2 * self.n_jobs or not analysing):
-            self.pool = ProcessPoolExecutor(max_workers=self.n_jobs, mp_context=self.context)
+            self.start()
         if self.pool is not None:
             for row, job in self.waiting:
                 fields = {k: row.get(k) for k in ("width_m", "fused_width_m", "drive", "namespace")}
@@ -540,10 +547,17 @@ class FitStage:
                                                         "row": fields})] = row
             self.waiting = []
 
+    def start(self) -> None:
+        """The fit workers forked: this process's objects frozen first (gc.freeze: the workers' garbage collector
+        leaves the inherited ones alone, and does not copy every page that holds one by writing to it)."""
+        gc.freeze()
+        self.pool = ProcessPoolExecutor(max_workers=self.n_jobs, mp_context=self.context)
+
     def finish(self) -> None:
         """Every fit handed out, done: its fields in its row."""
         if self.waiting:
-            self.pool = self.pool or ProcessPoolExecutor(max_workers=self.n_jobs, mp_context=self.context)
+            if self.pool is None:
+                self.start()
             self.add(*self.waiting.pop(), analysing=0)
         try:
             for future, row in self.futures.items():
