@@ -215,7 +215,7 @@ def analyze_one(job: dict) -> dict:
     try:
         library = bag_library(options, library_path)
     except UsageError as error:     # (only a registry's library: --library was loaded before any bag)
-        row["error"] = f"drive {drive.hardware_id}'s library: {error}"
+        row.update(drive=drive.hardware_id, error=f"drive {drive.hardware_id}'s library: {error}")
         return row
     row.update(library=library[0].path, library_created_utc=library[0].created_utc)
     try:
@@ -729,8 +729,9 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     if watch.drives:
         unmatched = [r for r in rows if not r["error"] and not r.get("registry_drive")]
         if unmatched:
-            print(f"{len(unmatched)} bags matched no drive of the registry (held against the default model, "
-                  f"widths from {options.library or 'the packaged library'}): "
+            print(f"{len(unmatched)} bags matched no drive of the registry (widths from "
+                  f"{options.library or 'the packaged library'}"
+                  f"{', model fit against the default model' if watch.enabled else ''}): "
                   + ", ".join(f"{Path(r['bag']).name} (drive {r['drive']!r}, namespace {r.get('namespace') or '/'!r})"
                               for r in unmatched))
     print(f"analysed {len(bags)} bags of {len(points)} drives in {wall:.1f} s on {n_jobs} "

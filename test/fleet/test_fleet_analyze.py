@@ -259,3 +259,15 @@ def test_each_bag_takes_its_registered_drives_library_and_an_explicit_library_ov
     assert rows["driveB"]["width_m"] == rows["driveA"]["width_m"] == a["width_m"]
     assert rows["driveB"]["library"] == str(default_library_path()) and rows["driveB"]["library_from"] == "--library"
     assert "every bag's widths from it, not from the registry's libraries of 1 drives (line1/driveB)" in stdout
+
+    # a drive's library that is not there: its bags' rows are errors naming the drive and the file (exit 1); the
+    # other bags are analysed
+    wider.rename(tmp_path / "moved.npz")
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(bags[0].parent), "--out-dir",
+                           str(tmp_path / "missing"), "--no-plots", "--no-model-fit", "--jobs", "1", "--registry",
+                           str(registry)], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 1 and "Traceback" not in proc.stderr
+    rows = {r["drive"]: r for r in json.loads((tmp_path / "missing" / "fleet.json").read_text())["rows"]}
+    assert rows["line1/driveB"]["error"].startswith("drive line1/driveB's library: pattern library ")
+    assert "line1_driveB_v2.npz does not exist" in rows["line1/driveB"]["error"]
+    assert not rows["line1/driveA"]["error"] and rows["line1/driveA"]["width_m"] == a["width_m"]
