@@ -10,13 +10,15 @@ drives_realtime: the most 50 kHz simulated drives `fleet` runs in real time with
 diagnostics_complete: over a 60 s window of a run of that many drives, the share of
   (drive, second) pairs for which the drive's classifier status arrived on /diagnostics (each
   drive's 1 Hz status at its own phase, within +-0.5 s of its second: status_share).
-fleet_analyze_speedup: `analyze FOLDER` on 100 recorded bags (3 s each, simulated: 12 onsets
-  per bag), `--jobs 1` pinned to ONE CPU (os.sched_setaffinity: one core is one core; unpinned,
+fleet_analyze_speedup: `analyze FOLDER` (its model fit on, the references built before) on 100 recorded bags
+  (3 s each, simulated: 12 onsets per bag), `--jobs 1` pinned to ONE CPU (os.sched_setaffinity: one core is one core; unpinned,
   the bag reader's decompression thread would use the second) vs `--jobs <cores>` on all CPUs,
   each the whole command with its start-up, alternated --analyze-repeats times: the median of the
   side-by-side pairs' ratios (each pair within seconds: this VM's capacity moves from minute to
   minute, two pinned busy loops get 1.3-2.1x of one), with the ratio of the best times of each side
-  (fleet_analyze_speedup_best_of), each pair's ratio and the load average before each run.
+  (fleet_analyze_speedup_best_of), each pair's ratio and the load average before each run. From CPU accounting
+  (the command's fleet.json cpu_s): fleet_analyze_serial_fraction (the many-worker run's CPU outside the bags over
+  the one-core run's CPU), the parallel run's extra CPU and the speed-up both allow on idle cores.
 two_host_estimates_delivered: plant and monitor in one network namespace, the chain in another
   (veth pair, DDS on exactly those two addresses): onset estimates received back / onset windows.
 
@@ -166,6 +168,13 @@ def analyze_speedup(workdir, n_bags=100, repeats=7, bag_s=3.0):
     started = time.perf_counter()
     write_fleet_bags(bag_dir, recordings, duration_s=bag_s)
     log(f"wrote {n_bags} bags of {bag_s:g} s in {time.perf_counter() - started:.1f} s")
+    # the model fit's references (the default model's at each width, the cache) built before the timed runs: a
+    # missing one is built by the command once, serially (~30 s each), which is not the analysis measured here
+    from backlash_monitor.workbench import reference
+    from backlash_monitor.workbench.model import load_model
+    for w in sorted(set(widths)):
+        reference.cached(load_model(None, width_m=w, eta_k=0.025, n1=0.89),
+                         log=lambda text: log(f"reference: {text}"))
     cpus = sorted(os.sched_getaffinity(0))
     cores = len(cpus)
     import resource
@@ -188,21 +197,44 @@ def analyze_speedup(workdir, n_bags=100, repeats=7, bag_s=3.0):
             wall = time.perf_counter() - started
             after = resource.getrusage(resource.RUSAGE_CHILDREN)
             cpu = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+            # the command's own CPU accounting (fleet.json cpu_s): its process before and after the bags (with the
+            # interpreter's start and what follows fleet.json: the serial part) and during them, its workers
+            try:
+                split = json.load(open(os.path.join(out, "fleet.json")))["cpu_s"]
+            except (OSError, KeyError, ValueError):
+                split = {}
+            parallel = split.get("this_process_during_bags", 0.0) + split.get("workers", 0.0)
+            serial = cpu - parallel if n_jobs > 1 and split else None
             runs[label].append({"wall_s": wall, "cpu_s": cpu, "cores_busy": cpu / wall,
                                 "cpu": "all" if cpu_pin is None else cpu_pin,
-                                "load_average_1min": load, "exit": proc.returncode})
+                                "load_average_1min": load, "exit": proc.returncode,
+                                "command_cpu_s": split, "serial_cpu_s": serial})
             log(f"analyze {n_bags} bags, --jobs {n_jobs} on "
                 f"{'CPU ' + str(cpu_pin) if cpu_pin is not None else str(cores) + ' CPUs'}: "
-                f"{wall:.2f} s, CPU {cpu:.2f} s ({cpu / wall:.2f} cores busy), exit "
-                f"{proc.returncode}, load {load:.2f}")
+                f"{wall:.2f} s, CPU {cpu:.2f} s ({cpu / wall:.2f} cores busy)"
+                + (f", serial CPU {serial:.2f} s" if serial is not None else "")
+                + f", exit {proc.returncode}, load {load:.2f}")
             if proc.returncode != 0:
                 log(proc.stdout[-2000:], proc.stderr[-2000:])
     best = {k: min(r["wall_s"] for r in v) for k, v in runs.items()}
     pairs = [a["wall_s"] / b["wall_s"] for a, b in zip(runs["one_core"], runs["cores"])]
     import statistics
+    # Amdahl from CPU accounting, pair by pair: the serial fraction f = the many-worker run's serial CPU (its
+    # command process outside the bags) over the one-core run's CPU; the extra CPU the parallel run spends
+    # (work done in every worker, contention of the cores); the speed-up they allow on idle cores:
+    # T1 / (serial + (T1 - serial + extra) / cores)
+    serial_fraction = [b["serial_cpu_s"] / a["cpu_s"] for a, b in zip(runs["one_core"], runs["cores"])
+                       if b["serial_cpu_s"] is not None]
+    extra = [(b["cpu_s"] - a["cpu_s"]) / a["cpu_s"] for a, b in zip(runs["one_core"], runs["cores"])]
+    bound = [a["cpu_s"] / (b["serial_cpu_s"] + (b["cpu_s"] - b["serial_cpu_s"]) / cores)
+             for a, b in zip(runs["one_core"], runs["cores"]) if b["serial_cpu_s"] is not None]
+    med = statistics.median
     return statistics.median(pairs), {"runs": runs, "pair_ratios": pairs,
                                       "best_of": best["one_core"] / best["cores"],
-                                      "machine_parallel_work_ratio": work_ratio}, cores
+                                      "machine_parallel_work_ratio": work_ratio,
+                                      "serial_fraction": med(serial_fraction) if serial_fraction else None,
+                                      "parallel_extra_cpu_fraction": med(extra),
+                                      "speedup_from_cpu_accounting": med(bound) if bound else None}, cores
 
 
 # the registry's model fit (fleet_model_fit_false_warn, fleet_model_fit_detected): foreign drives (foreign_drives/,
@@ -379,6 +411,7 @@ def main():
             result.update(fleet_analyze_speedup=speedup, fleet_analyze=times,
                           fleet_analyze_speedup_best_of=times["best_of"],
                           fleet_analyze_bags=n_bags, fleet_analyze_bag_s=3.0,
+                          fleet_analyze_serial_fraction=times["serial_fraction"],
                           fleet_analyze_cores=cores)
         if "model_fit" in args.parts:
             fit = registry_model_fit(workdir, compare_default=args.compare_default)

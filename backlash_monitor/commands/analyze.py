@@ -64,7 +64,10 @@ def add_arguments(parser) -> None:
                         help="classifier mode: paper, paper_corrected or shape (default: shape)")
     parser.add_argument("--n1", type=float, default=0.89,
                         help="absorber flow index n1 [-] (the paper modes use this n1's patterns)")
-    parser.add_argument("--library", default="", metavar="LIB.npz", help="pattern library (default: the packaged one)")
+    parser.add_argument("--library", default="", metavar="LIB.npz",
+                        help="pattern library (default: the packaged one; a folder with --registry: each drive's "
+                             "registered library, the packaged one for a drive without one; --library given: that "
+                             "one for every bag, over the registry's)")
     parser.add_argument("--fusion-events", type=int, default=8, metavar="N",
                         help="onset events fused into one estimate")
     parser.add_argument("--recover", action="store_true",
@@ -104,9 +107,10 @@ def _add_many_arguments(parser) -> None:
                             "built there once when missing; docs/model_watch.md)")
     group.add_argument("--registry", default="", metavar="PATH",
                        help="the drive registry (docs/registry.md; e.g. drives.yaml, or the fleet file): each bag's "
-                            "model fit is held against its own drive's current version (matched by the bag's "
-                            "namespace /LINE/DRIVE or recorded drive name LINE/DRIVE; its watch_reference, else the "
-                            "default model at its nominal width, eta_k, n1); bags that match no drive are named")
+                            "widths come from its own drive's library and its model fit is held against the "
+                            "drive's current version (matched by the bag's namespace /LINE/DRIVE or recorded drive "
+                            "name LINE/DRIVE; its watch_reference, else the default model at its nominal width, "
+                            "eta_k, n1); bags that match no drive are named")
     group.add_argument("--no-model-fit", action="store_true",
                        help="no model-fit column (the model watch's test on each bag's last onset events)")
 
@@ -139,11 +143,16 @@ def fleet_options_from_args(args) -> FleetOptions:
 
 
 def registry_drives(args) -> tuple:
-    """(hardware_id, reference, (width_m, eta_k, n1)) of every drive of --registry (empty without one)."""
+    """A RegisteredDrive (hardware id, reference, (width_m, eta_k, n1), library, model, version) of every drive of
+    --registry (empty without one)."""
     if not getattr(args, "registry", ""):
         return ()
+    # deferred: backlash_monitor.fleet.folder_analysis costs ~100 ms at start-up (python -X importtime, 29 Nov); --help imports every command
+    from backlash_monitor.fleet.folder_analysis import RegisteredDrive
     try:
-        return tuple((d.hardware_id, str(d.watch_reference or ""), tuple(d.nominal[k] for k in ("width_m", "eta_k", "n1")))
+        return tuple(RegisteredDrive(d.hardware_id, str(d.watch_reference or ""),
+                                     tuple(d.nominal[k] for k in ("width_m", "eta_k", "n1")),
+                                     library=str(d.library or ""), model=str(d.model or ""), version=d.version)
                      for d in entries(args.registry))
     except RegistryError as exc:
         raise UsageError(str(exc)) from None

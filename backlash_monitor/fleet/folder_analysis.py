@@ -15,16 +15,18 @@ than the configured rate, before it reaches the limit), with a plot per drive an
 from __future__ import annotations
 
 import csv
+import gc
 import glob
 import json
 import math
 import os
+import resource
 import statistics
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from datetime import datetime, timezone
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 import multiprocessing
 import sys
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
@@ -43,6 +45,19 @@ THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"
 ESTIMATES_SUFFIX = ".estimates.mcap"   # what analyze writes: never an input
 
 
+class RegisteredDrive(NamedTuple):
+    """One drive of the registry (--registry, docs/registry.md) as the bags are held against it: its hardware id
+    (LINE/DRIVE), its model watch's reference ("" = the default model's at its nominal, from the cache), its
+    nominal (width_m, eta_k, n1), its pattern library ("" = the packaged one), its model file ("" = the default
+    model at its nominal) and its version (len(versions) + 1)."""
+    hardware_id: str
+    reference: str
+    nominal: tuple
+    library: str = ""
+    model: str = ""
+    version: int = 1
+
+
 @dataclass(frozen=True)
 class WatchOptions:
     """The model-fit column's options (the model watch's test on each bag's last onset events,
@@ -53,8 +68,9 @@ class WatchOptions:
     the default model's at the pattern width nearest the drive's measured width, from the cache)."""
     enabled: bool = True
     reference: str = ""
-    drives: tuple = ()      # the drive registry's drives (--registry, docs/registry.md): (hardware_id, reference
-                            # path or "", (width_m, eta_k, n1)) each; a bag is held against its own drive's version
+    drives: tuple = ()      # the drive registry's drives (--registry, docs/registry.md): RegisteredDrive each; a bag
+                            # is held against its own drive's version: its library's widths (unless --library is
+                            # given: then that one for every bag) and, with the model fit on, its reference
 
 
 @dataclass(frozen=True)
@@ -109,12 +125,13 @@ def expand_bags(spec: str) -> list[Path]:
 _WORKER: dict = {}   # this process's worker state: the options' pattern library, loaded once
 
 
-def init_worker(options, library=None) -> None:
+def init_worker(options, library=None, libraries=None) -> None:
     """A worker's start (ProcessPoolExecutor/Dask initializer, and the --jobs 1 loop): one core's
     worth of threads (BLAS, OpenMP and numba pools of one thread: the pool already has a worker
     per core; no bag decompression thread in a pool worker or on one CPU) and the pattern library
     loaded once for all its bags. ``library``: already loaded
-    (inherited by a forked worker)."""
+    (inherited by a forked worker); ``libraries``: the registry's drives' libraries already loaded
+    ({path: (library, offset)}, :func:`registry_libraries`), the others loaded when a bag needs them."""
     for var in THREAD_VARIABLES:
         os.environ[var] = "1"
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
@@ -125,6 +142,47 @@ def init_worker(options, library=None) -> None:
     chunks_ahead = 0 if multiprocessing.parent_process() is not None else None
     _WORKER.update(pid=os.getpid(), options=options, chunks_ahead=chunks_ahead,
                    library=library or load_library(options))
+    _WORKER.setdefault("libraries", {}).update(libraries or {})
+
+
+def library_for_bag(options, drive: RegisteredDrive | None) -> str:
+    """The pattern library a bag's widths come from: --library when it is given (for every bag, over the
+    registry's: the user named one), else its registered drive's ``library``, else "" (the packaged one)."""
+    if options.library:
+        return options.library
+    return drive.library if drive is not None else ""
+
+
+def bag_library(options, path: str):
+    """(library, window offset) for ``path`` in this worker: the options' own (loaded at its start) or one
+    of the registry's, loaded once per process; UsageError naming a library that cannot be used."""
+    if path == options.library:
+        return _WORKER["library"]
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
+    from backlash_monitor.offline.bag_analysis import load_library
+    return _kept("libraries", path, lambda: load_library(replace(options, library=path)))
+
+
+def registry_libraries(options, watch: WatchOptions) -> dict:
+    """The registry's drives' libraries that load ({path: (library, offset)}), loaded once in the parent: forked
+    workers inherit them. None without a registry or with --library (it overrides them); a library that does not
+    load is left to the bags of its drive (their rows name the error)."""
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
+    from backlash_monitor.offline.bag_analysis import load_library
+    loaded = {}
+    for path in sorted({d.library for d in watch.drives if d.library}) if not options.library else ():
+        try:
+            loaded[path] = load_library(replace(options, library=path))
+        except UsageError:
+            pass
+    return loaded
+
+
+def library_text(row: dict) -> str:
+    """A bag's library as the table shows it: its file name, or 'packaged' ('-': none, its analysis failed first)."""
+    if row.get("library_from") == "packaged":
+        return "packaged"
+    return Path(row["library"]).name if row.get("library") else "-"
 
 
 def analyze_one(job: dict) -> dict:
@@ -134,14 +192,34 @@ def analyze_one(job: dict) -> dict:
     from backlash_monitor.classifier.fusion import median_standard_error
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.offline.bag_analysis import analyze_bag
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
+    from backlash_monitor.offline.bag_analysis import recorded_drive
     if _WORKER.get("options") != job["options"] or _WORKER.get("pid") != os.getpid():
         init_worker(job["options"])      # a worker started without the initializer (Dask)
     started = time.perf_counter()
+    options = job["options"]
+    watch = job.get("watch") or WatchOptions()
     row = {"bag": job["bag"], "drive": "", "time_s": math.nan, "width_m": math.nan,
            "fused_width_m": math.nan, "true_width_m": math.nan, "onsets": 0, "discarded": 0,
            "error": ""}
+    # the bag's registered drive, known before its analysis (its topics' namespace, its first a1 chunk's drive
+    # name): the drive's library gives its widths
+    drive = None
+    if watch.drives:
+        namespace, name = recorded_drive(job["bag"], options.namespace, options.recover)
+        drive = registered_drive(watch, {"namespace": namespace, "drive": name or Path(job["bag"]).stem})
+    library_path = library_for_bag(options, drive)
+    row.update(registry_drive=drive.hardware_id if drive else "", drive_version=drive.version if drive else "",
+               drive_model=(drive.model or "default") if drive else "", library=library_path,
+               library_from=("--library" if options.library else "registry" if library_path else "packaged"))
     try:
-        result = analyze_bag(job["bag"], job["out"], job["options"], library=_WORKER["library"],
+        library = bag_library(options, library_path)
+    except UsageError as error:     # (only a registry's library: --library was loaded before any bag)
+        row.update(drive=drive.hardware_id, error=f"drive {drive.hardware_id}'s library: {error}")
+        return row
+    row.update(library=library[0].path, library_created_utc=library[0].created_utc)
+    try:
+        result = analyze_bag(job["bag"], job["out"], options, library=library,
                              chunks_ahead=_WORKER["chunks_ahead"])
     except UsageError as error:
         row["error"] = str(error)
@@ -164,8 +242,7 @@ def analyze_one(job: dict) -> dict:
                onsets=len({r["entry_sample_index"] for r in mine}),
                discarded=len(result["discarded"]),
                seconds=time.perf_counter() - started, signal=primary)
-    watch = job.get("watch") or WatchOptions()
-    if watch.enabled:
+    if watch.enabled and job.get("fit", True):     # (False: the pool's model-fit stage fits it, FitStage)
         row.update(model_fit(job["bag"], job["options"], watch, row))
     offsets = result.get("sensor_offsets", {})      # the drive's latest sensor offset estimate
     row.update(a1_offset_m_s2=offsets.get("a1_m_s2", math.nan),
@@ -333,19 +410,35 @@ def runs_parallel_here(fleet: FleetOptions) -> bool:
     return fleet.engine == "local" and fleet.workers() > 1
 
 
+class _NoBar:
+    def update(self, n: int = 1) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
+def progress_bar(total: int, progress: bool):
+    """A progress bar over the bags on stderr when it is a terminal (as tqdm's own default: no bar written into a
+    log or a pipe), else one that draws nothing (and tqdm, ~55-80 ms of imports, not imported)."""
+    if not progress or not sys.stderr.isatty():
+        return _NoBar()
+    # deferred: tqdm costs ~55 ms at start-up (python -X importtime, 29 Nov); every --help imports this module
+    from tqdm import tqdm
+    return tqdm(total=total, unit="bag", desc="analyze")
+
+
 def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
-              threads_limited: bool | None = None) -> list[dict]:
+              threads_limited: bool | None = None, libraries: dict | None = None) -> list[dict]:
     """The bags on this machine: --jobs 1 one after the other in this process; otherwise a pool of
     ``n_jobs`` worker processes, started once (each with its library, :func:`init_worker`), handed
     one bag at a time (a worker takes the next bag when it is done: no idle core while bags remain),
     their rows collected as they finish."""
     rows = []
     if n_jobs == 1:
-        # deferred: tqdm costs ~55 ms at start-up (python -X importtime, 29 Nov); every --help imports this module
-        from tqdm import tqdm
-        bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
+        bar = progress_bar(len(jobs), progress)
         if jobs:
-            init_worker(jobs[0]["options"], library)
+            init_worker(jobs[0]["options"], library, libraries)
         for job in jobs:
             rows.append(analyze_one(job))
             bar.update()
@@ -364,33 +457,114 @@ def run_local(jobs: list[dict], n_jobs: int, library=None, progress=True,
         for name in modules:
             importlib.import_module(name)
         context = multiprocessing.get_context("fork")
+        gc.freeze()     # (the workers' garbage collector leaves what they inherit alone: no page copied for it)
     else:
         context = multiprocessing.get_context("forkserver")
         context.set_forkserver_preload(modules)
-        library = None          # loaded by each worker
+        library = libraries = None          # loaded by each worker
     options = jobs[0]["options"] if jobs else None
+    # the model fits in a stage of their own (FitStage) where the workers are forked: its one-time work (its
+    # modules, alarm rule, references and their views: ~1 s of a core) done once here, beside the analyses,
+    # instead of once in every worker before its first fit
+    fits = FitStage(n_jobs, context) if context.get_start_method() == "fork" and any(
+        (j.get("watch") or WatchOptions()).enabled for j in jobs) else None
     with ProcessPoolExecutor(max_workers=n_jobs, mp_context=context, initializer=init_worker,
-                             initargs=(options, library)) as pool:
-        # at most two bags per worker queued: a worker never waits for its next bag, and the
-        # rows stream back while the rest are handed out
-        pending, todo = set(), iter(jobs)
-        for job in todo:
-            pending.add(pool.submit(analyze_one, job))
-            if len(pending) >= 2 * n_jobs:
-                break
-        # deferred: tqdm costs ~55 ms at start-up (python -X importtime, 29 Nov); every --help imports this module
-        from tqdm import tqdm     # imported while the workers start: not on the serial path
-        bar = tqdm(total=len(jobs), unit="bag", disable=not progress, desc="analyze")
+                             initargs=(options, library, libraries)) as pool:
+        # every bag handed to the pool at once (its manager thread feeds the workers: one bag at a
+        # time each, so none is idle while bags remain, also while this process fits a bag)
+        futures = {pool.submit(analyze_one, {**job, "fit": fits is None}): job for job in jobs}
+        if fits is not None:
+            fits.prepare()
+        bar = progress_bar(len(jobs), progress)   # (while the workers start)
+        pending = set(futures)
         while pending:
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
             for future in done:
                 rows.append(future.result())
                 bar.update()
-                job = next(todo, None)
-                if job is not None:
-                    pending.add(pool.submit(analyze_one, job))
+                if fits is not None:
+                    fits.add(rows[-1], futures[future], analysing=len(pending))
     bar.close()
+    if fits is not None:
+        fits.finish()
     return rows
+
+
+def fit_one(job: dict) -> dict:
+    """One bag's model fit (a FitStage worker's task: its bag, AnalyzeOptions, WatchOptions and the row fields the
+    fit reads); the model-fit fields of its row."""
+    return model_fit(job["bag"], job["options"], job["watch"], job["row"])
+
+
+class FitStage:
+    """The model fits of a pool's bags (--jobs N, forked workers), beside the analyses: this process fits the
+    first bag of each reference itself as its row comes (importing the fit's modules while the analyses start,
+    loading the alarm rule, the reference and its views once), then forks ``n_jobs`` workers that inherit all of
+    it and fit the rest. Without it each analysis worker imported, loaded and built the same before its first fit:
+    ~1 s of a core per worker (python bench/fleet.py --parts analyze, docs/fleet.md). A reference first met after
+    the fork is loaded by the workers that need it (as before)."""
+
+    def __init__(self, n_jobs: int, context):
+        self.n_jobs, self.context = n_jobs, context
+        self.warm: set[str] = set()         # the references this process has fitted a bag against
+        self.waiting: list[tuple] = []      # (row, job) whose fit waits for the workers
+        self.futures: dict = {}
+        self.pool = None
+
+    def prepare(self) -> None:
+        """The fit's modules imported here (while the analysis workers start), and the allocator's setting of the
+        analyses (process/memory.py: freed blocks reused, not a page fault per 4 KiB of the next bag's arrays) made
+        here, so that the fit workers inherit it as a worker fitting after its analysis had it."""
+        # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
+        from backlash_monitor.process.memory import reuse_freed_memory
+        reuse_freed_memory()
+        for name in ("backlash_monitor.watch.core", "backlash_monitor.watch.alarm",
+                     "backlash_monitor.workbench.reference", "backlash_monitor.workbench.measurement",
+                     "backlash_monitor.workbench.model"):
+            importlib.import_module(name)
+
+    def add(self, row: dict, job: dict, analysing: int) -> None:
+        """A bag's row from the analysis: fitted here when its reference is new (before the fork), else handed
+        to the workers; they start once there are a few bags to fit per worker or no analysis is left."""
+        watch = job.get("watch") or WatchOptions()
+        if row["error"] or not watch.enabled:
+            return
+        if self.pool is None:
+            width = row["width_m"] if row["width_m"] == row["width_m"] else row["fused_width_m"]
+            path = reference_for_bag(job["options"], watch, width, row)
+            if path not in self.warm:
+                self.warm.add(path)
+                row.update(model_fit(job["bag"], job["options"], watch, row))
+                return
+        self.waiting.append((row, job))
+        if self.pool is None and (len(self.waiting) >= 2 * self.n_jobs or not analysing):
+            self.start()
+        if self.pool is not None:
+            for row, job in self.waiting:
+                fields = {k: row.get(k) for k in ("width_m", "fused_width_m", "drive", "namespace")}
+                self.futures[self.pool.submit(fit_one, {"bag": job["bag"], "options": job["options"],
+                                                        "watch": job.get("watch") or WatchOptions(),
+                                                        "row": fields})] = row
+            self.waiting = []
+
+    def start(self) -> None:
+        """The fit workers forked: this process's objects frozen first (gc.freeze: the workers' garbage collector
+        leaves the inherited ones alone, and does not copy every page that holds one by writing to it)."""
+        gc.freeze()
+        self.pool = ProcessPoolExecutor(max_workers=self.n_jobs, mp_context=self.context)
+
+    def finish(self) -> None:
+        """Every fit handed out, done: its fields in its row."""
+        if self.waiting:
+            if self.pool is None:
+                self.start()
+            self.add(*self.waiting.pop(), analysing=0)
+        try:
+            for future, row in self.futures.items():
+                row.update(future.result())
+        finally:
+            if self.pool is not None:
+                self.pool.shutdown()
 
 
 def run_dask(jobs: list[dict], n_jobs: int, scheduler: str, progress=True) -> list[dict]:
@@ -441,7 +615,7 @@ def add_trends(rows: list[dict], rule) -> dict:
     return points, trends
 
 
-TABLE = ("drive", "time", "width", "fused width", "trend", "level", "model fit", "bag")
+TABLE = ("drive", "time", "width", "fused width", "trend", "level", "model fit", "version", "library", "bag")
 
 
 def format_rows(rows: list[dict]) -> list[tuple]:
@@ -456,8 +630,10 @@ def format_rows(rows: list[dict]) -> list[tuple]:
         # the width with its uncertainty and, when the bag's model fit fails, the caveat in the same cell
         width = with_caveat(width_text(r["width_m"], r.get("width_uncertainty_m", math.nan)),
                             FitVerdict.from_recording(r.get("model_fit")))
+        version = f"v{r['drive_version']}" if r.get("drive_version") else "-"    # its registered drive's
         out.append((r["drive"] or "?", when, width, mm(r["fused_width_m"]), trend,
-                    r["level"], model_fit_text(r), Path(r["bag"]).name))
+                    r["level"], model_fit_text(r), version, library_text(r),
+                    Path(r["bag"]).name))
     return out
 
 
@@ -479,6 +655,9 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     watch = fleet.watch
     jobs = _jobs(options, bags, out_dir, watch)
     started = time.perf_counter()
+    # this process's CPU before, during and after the bags, and its workers' (children's): the serial part
+    # (before + after) and the parallel part of the run (bench/fleet.py --parts analyze reports them)
+    cpu_before = time.process_time()
     if fleet.engine == "dask":
         rows = run_dask(jobs, n_jobs, fleet.scheduler, progress=fleet.progress)
     else:
@@ -487,7 +666,8 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
         # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
         from backlash_monitor.offline.bag_analysis import load_library
         rows = run_local(jobs, n_jobs, library=load_library(options), progress=fleet.progress,
-                         threads_limited=threads_limited)
+                         threads_limited=threads_limited, libraries=registry_libraries(options, watch))
+    cpu_during = time.process_time() - cpu_before
     if watch.enabled:
         for r in missing_references(rows, options, watch):
             r.update(model_fit(r["bag"], options, watch, r))
@@ -497,7 +677,10 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     points, trends = add_trends(rows, rule)
     columns = ("drive", "time_s", "width_m", "fused_width_m", "trend_m_per_day", "level",
                "reason", "model_fit_level", "model_fit_ratio", "true_width_m", "onsets", "discarded", "bag",
-               "a1_offset_m_s2", "a2_offset_m_s2", "width_uncertainty_m", "width_caveat")
+               "a1_offset_m_s2", "a2_offset_m_s2", "width_uncertainty_m", "width_caveat",
+               # what the bag was held against: its registered drive and version, the model and library
+               "registry_drive", "drive_version", "drive_model", "library", "library_created_utc", "library_from",
+               "model_fit_reference")
     for r in rows:
         r["width_caveat"] = caveat(FitVerdict.from_recording(r.get("model_fit")))
     with open(out_dir / "fleet.csv", "w", newline="", encoding="utf-8") as f:
@@ -505,9 +688,13 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
         writer.writerow(columns)
         for r in rows:
             writer.writerow([r.get(c, "") for c in columns])
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)     # the pools' workers, ended and waited for
+    cpu_s = {"this_process_before_bags": cpu_before, "this_process_during_bags": cpu_during,
+             "this_process_after_bags": time.process_time() - cpu_before - cpu_during,   # (until this file)
+             "workers": children.ru_utime + children.ru_stime}
     with open(out_dir / "fleet.json", "w", encoding="utf-8") as f:
         f.write(json.dumps({"bags": len(bags), "engine": fleet.engine, "jobs": n_jobs,
-                            "seconds": wall, "rows": rows,
+                            "seconds": wall, "cpu_s": cpu_s, "rows": rows,
                             "trends": {d: t.__dict__ for d, t in trends.items()}}))
     plots = [] if not fleet.plots or not points else plot_trends(points, trends, rule, out_dir)
     table = [TABLE] + format_rows(rows)
@@ -534,10 +721,17 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
             print(f"{Path(r['bag']).name}: WARN: sensor offset {signal} "
                   f"{r[signal + '_offset_m_s2']:+.2f} m/s^2 beyond what a MEMS sensor shows "
                   "(config/windowing.yaml sensor_offset): check the sensor (the widths are offset-free)")
-    if watch.enabled and watch.drives:
-        unmatched = [r for r in rows if not r["error"] and registered_drive(watch, r) is None]
+    if watch.drives and options.library:
+        overridden = sorted({d.hardware_id for d in watch.drives if d.library})
+        if overridden:
+            print(f"--library {options.library}: every bag's widths from it, not from the registry's libraries of "
+                  f"{len(overridden)} drives ({', '.join(overridden)}); without --library each bag takes its drive's")
+    if watch.drives:
+        unmatched = [r for r in rows if not r["error"] and not r.get("registry_drive")]
         if unmatched:
-            print(f"{len(unmatched)} bags matched no drive of the registry (held against the default model): "
+            print(f"{len(unmatched)} bags matched no drive of the registry (widths from "
+                  f"{options.library or 'the packaged library'}"
+                  f"{', model fit against the default model' if watch.enabled else ''}): "
                   + ", ".join(f"{Path(r['bag']).name} (drive {r['drive']!r}, namespace {r.get('namespace') or '/'!r})"
                               for r in unmatched))
     print(f"analysed {len(bags)} bags of {len(points)} drives in {wall:.1f} s on {n_jobs} "

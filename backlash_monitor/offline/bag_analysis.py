@@ -151,6 +151,22 @@ def find_topic(available, namespace, name):
     return None
 
 
+def recorded_drive(bag, namespace: str = "", recover: bool = False) -> tuple[str, str]:
+    """(the namespace of the drive's topics, the first a1 chunk's frame_id: its recorded drive name) of a bag, read
+    before its analysis: the fleet picks the drive's pattern library by them (fleet/folder_analysis.py). One chunk
+    is read. ("", "") where the bag cannot be read this way: its analysis then says what is wrong with it."""
+    try:
+        with BagReader(pathlib.Path(bag), recover=recover, chunks_ahead=0) as reader:
+            available = set(reader.topics)
+            found = namespace or drive_namespace(available, bag)
+            topic = find_topic(available, found, "a1")
+            for m in reader.signal_chunks([topic], copy=False) if topic else ():
+                return found, m.frame_id
+            return found, ""
+    except (BagError, UsageError, ValueError, OSError):
+        return "", ""
+
+
 class SourceCheck:
     """What makes a bag the wrong input (refused, never counted as faults): a chunk sampled at
     another rate than the pattern library's, or a topic carrying another signal (or unit) than its

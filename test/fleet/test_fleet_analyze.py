@@ -118,6 +118,17 @@ def test_the_model_fit_column_holds_each_bag_against_the_drives_model(tmp_path):
     fleet_csv = list(csv.DictReader((out / "fleet.csv").open()))
     assert {r["bag"].rsplit("/", 1)[1].split("_")[0]: r["width_caveat"] for r in fleet_csv}["friction"] \
         == rows["friction"]["width_caveat"]
+    # two workers: the fits in their own stage (the first bag of the reference fitted by the command itself, the
+    # other by a worker forked after it): the same fits, the same verdicts
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(bags), "--out-dir",
+                           str(tmp_path / "two"), "--jobs", "2", "--no-plots"], capture_output=True, text=True,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    two = {r["bag"].rsplit("/", 1)[1].split("_")[0]: r for r in json.loads((tmp_path / "two" / "fleet.json").read_text())["rows"]}
+    for k, r in rows.items():     # (BLAS of one thread in the workers: the last digits may differ)
+        assert two[k]["model_fit"]["level"] == r["model_fit"]["level"]
+        assert two[k]["model_fit"]["exceeding"] == r["model_fit"]["exceeding"]
+        assert two[k]["model_fit"]["residual_over_noise"] == pytest.approx(r["model_fit"]["residual_over_noise"], rel=1e-9)
 
 
 def test_the_model_fit_reference_is_the_one_given_else_the_librarys_else_the_default_models_nearest_width(tmp_path):
@@ -188,3 +199,75 @@ def test_the_dask_engine_gives_the_same_table_on_a_local_cluster(fleet_bags, tmp
     assert len(rows) == 5
     assert {r["drive"] for r in rows} == {"line1/driveA", "line1/driveB"}
     assert all(r["fused_width_m"] == r["true_width_m"] for r in rows)
+
+
+def _wider_library(path, extra_m: float):
+    """The packaged library made to read every window ``extra_m`` wider: its shape regressions' intercepts
+    (the width at the mean features) moved by ``extra_m`` (a stand-in for a drive's own trained library)."""
+    import dataclasses
+    from backlash_monitor.classifier.patterns import load_library
+    packaged = load_library()
+    arrays = dict(packaged.arrays)
+    for key in [k for k in arrays if k.startswith("shape/") and k.endswith("/scalars")]:
+        arrays[key] = arrays[key].copy()
+        arrays[key][0] += extra_m       # (intercept, sigma, sample period, ridge)
+    return dataclasses.replace(packaged, arrays=arrays, created_utc="2026-11-29T00:00:00+00:00").save(path)
+
+
+@pytest.mark.process
+def test_each_bag_takes_its_registered_drives_library_and_an_explicit_library_overrides_them(tmp_path):
+    """Two drives record the same 5 mm run (same seed); the registry gives drive B a library that reads 1 mm
+    wider, drive A none (the packaged one). With --registry, B's width is A's + 1 mm and each row names the
+    library and the drive version it was held against; a bag of no registered drive takes the packaged library
+    and is named. With --library given, that one library gives every bag's width (said in the output)."""
+    import yaml
+    from backlash_monitor.classifier.patterns import default_library_path
+    bags = write_fleet_bags(tmp_path / "bags", [("line1/driveA", 0, 0.005, 7), ("line1/driveB", 0, 0.005, 7),
+                                                ("line9/stranger", 0, 0.005, 7)], duration_s=1.2)
+    wider = _wider_library(tmp_path / "line1_driveB_v2.npz", 0.001)
+    registry = tmp_path / "drives.yaml"
+    registry.write_text(yaml.safe_dump({"lines": {"line1": {
+        "driveA": {"width_m": 0.005},
+        "driveB": {"width_m": 0.005, "library": "line1_driveB_v2.npz",
+                   "versions": [{"version": 1, "model": None, "library": None, "watch_reference": None}]}}}}))
+
+    def analyze(out, *extra):
+        proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(bags[0].parent),
+                               "--out-dir", str(tmp_path / out), "--no-plots", "--no-model-fit", "--registry",
+                               str(registry), *extra], capture_output=True, text=True, timeout=300)
+        assert proc.returncode == 0, proc.stdout + proc.stderr
+        rows = json.loads((tmp_path / out / "fleet.json").read_text())["rows"]
+        return {r["drive"].split("/")[1]: r for r in rows}, proc.stdout
+
+    rows, stdout = analyze("own", "--jobs", "2")
+    a, b, stranger = rows["driveA"], rows["driveB"], rows["stranger"]
+    assert abs(a["width_m"] - 0.005) < 3e-4                          # the packaged library on a 5 mm drive
+    assert b["width_m"] - a["width_m"] == pytest.approx(0.001, abs=1e-9)    # the same windows, its own library
+    assert stranger["width_m"] == a["width_m"]
+    assert a["library"] == stranger["library"] == str(default_library_path())
+    assert b["library"] == str(wider) and b["library_created_utc"] == "2026-11-29T00:00:00+00:00"
+    assert (a["registry_drive"], a["drive_version"], b["registry_drive"], b["drive_version"]) == \
+        ("line1/driveA", 1, "line1/driveB", 2)
+    assert (a["library_from"], b["library_from"], stranger["library_from"]) == ("packaged", "registry", "packaged")
+    assert stranger["registry_drive"] == "" and "matched no drive" in stdout and "line9_stranger_day000" in stdout
+    by_csv = {r["bag"].rsplit("/", 1)[1]: r for r in csv.DictReader((tmp_path / "own" / "fleet.csv").open())}
+    assert by_csv[bags[1].name]["library"] == str(wider) and by_csv[bags[1].name]["drive_version"] == "2"
+    b_line = next(line for line in stdout.splitlines() if bags[1].name in line)
+    assert " v2 " in b_line and "line1_driveB_v2.npz" in b_line
+
+    rows, stdout = analyze("given", "--jobs", "1", "--library", str(default_library_path()))
+    assert rows["driveB"]["width_m"] == rows["driveA"]["width_m"] == a["width_m"]
+    assert rows["driveB"]["library"] == str(default_library_path()) and rows["driveB"]["library_from"] == "--library"
+    assert "every bag's widths from it, not from the registry's libraries of 1 drives (line1/driveB)" in stdout
+
+    # a drive's library that is not there: its bags' rows are errors naming the drive and the file (exit 1); the
+    # other bags are analysed
+    wider.rename(tmp_path / "moved.npz")
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(bags[0].parent), "--out-dir",
+                           str(tmp_path / "missing"), "--no-plots", "--no-model-fit", "--jobs", "1", "--registry",
+                           str(registry)], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 1 and "Traceback" not in proc.stderr
+    rows = {r["drive"]: r for r in json.loads((tmp_path / "missing" / "fleet.json").read_text())["rows"]}
+    assert rows["line1/driveB"]["error"].startswith("drive line1/driveB's library: pattern library ")
+    assert "line1_driveB_v2.npz does not exist" in rows["line1/driveB"]["error"]
+    assert not rows["line1/driveA"]["error"] and rows["line1/driveA"]["width_m"] == a["width_m"]
