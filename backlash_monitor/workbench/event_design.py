@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import spectral
+from .candidate_terms import coefficient_name
 from .events import denoise, event_set, period_means, SEGMENT_SIGNALS, PRE_SAMPLES, POST_SAMPLES
 
 MATCH_SAMPLES = 50        # a simulated event of a set matches the reference set's event within 1 ms (same seed)
@@ -190,6 +191,4 @@ SENSOR_STEP_M_S2 = 0.5     # the secant's size of a sensor column: a small share
 
 
 def _coefficient_key(term) -> str:
-    # deferred: candidate_terms imports this module's users; the coefficient's name lives there
-    from .candidate_terms import coefficient_name
     return coefficient_name(term)
