@@ -106,7 +106,7 @@ def angle_responses(problem, terms: list, steps: dict, project) -> dict:
     seg_signals = ("a1", "a2", "omega1", "angle_difference")
     changes = {t.name: ([], []) for t in terms}      # name -> (rows of projected change / h, [cos, sin] of psi)
     per_batch = max(1, problem.sets_per_batch())
-    refs = None                                      # per seed: (the reference's events, their vectors)
+    refs = []                                        # per seed: (the reference's events, their vectors)
     order = [None] + list(terms)                     # the reference first, simulated once
     for b in range(0, len(order), per_batch):
         chunk = order[b:b + per_batch]
@@ -118,7 +118,7 @@ def angle_responses(problem, terms: list, steps: dict, project) -> dict:
             for j in range(len(problem.seeds)):
                 ev = event_set({s: runs[s][i, j] for s in seg_signals}, problem.dt, problem.dc_names)
                 if t is None:
-                    refs = (refs or []) + [(ev, event_vectors(problem, ev.raw, ev.dc) if ev.n_events else None)]
+                    refs.append((ev, event_vectors(problem, ev.raw, ev.dc) if ev.n_events else None))
                     continue
                 ref, ref_vec = refs[j]
                 pairs = _match(ref.entries, ev.entries) if ref.n_events else []

@@ -183,7 +183,12 @@ def stability(G: np.ndarray, Y: np.ndarray, groups: list, n: int = BOOTSTRAP, se
               alike: list | None = None) -> np.ndarray:
     """Share of ``n`` resamples of the events (with replacement) in which each group is selected -- or, with
     ``alike`` (alike_groups), one of the groups the data cannot tell from it."""
-    GG, Gy, yy = gram(G, Y)
+    return _stability_gram(*gram(G, Y), groups, n, seed, alike)
+
+
+def _stability_gram(GG, Gy, yy, groups: list, n: int = BOOTSTRAP, seed: int = BOOTSTRAP_SEED,
+                    alike: list | None = None) -> np.ndarray:
+    """stability on the events' normal equations (gram())."""
     rng = np.random.default_rng(seed)
     e = yy.shape[0]
     counts = np.zeros(len(groups))
@@ -279,6 +284,7 @@ class Design:
     G: np.ndarray
     mean_cols: np.ndarray
     groups: dict
+    angles: dict          # the recording's shaft angles from its speeds (event_design.recorded_angles)
 
 
 def design(p, run, terms, steps, S, ref) -> Design:
@@ -315,8 +321,9 @@ def design(p, run, terms, steps, S, ref) -> Design:
             cols_mean.append(mean[:, c])
             names.append(term)
     # the recorded terms: a sensor's (computed on the recorded events), a balance's constant changing with time
+    recorded = candidate_terms.recorded_terms()
     shapes = {}
-    for t in candidate_terms.recorded_terms():
+    for t in recorded:
         if t.recorded[0] == "sensor":
             shape = _sensor_shape(t, angles, run.meas.signals, p.n_samples)
             if shape is not None:
@@ -324,7 +331,7 @@ def design(p, run, terms, steps, S, ref) -> Design:
     sens = event_design.sensor_columns(p, shapes, p.project, unprojected=True)
     t_rel = entries / float(p.n_samples)
     const_index = {t.name: j for j, t in enumerate(shared)}
-    for t in candidate_terms.recorded_terms():
+    for t in recorded:
         if t.name in sens:
             pe, mean = sens[t.name]
             cols_pe.append(pe)
@@ -339,7 +346,7 @@ def design(p, run, terms, steps, S, ref) -> Design:
     groups: dict = {}
     for i, t in enumerate(names):
         groups.setdefault(t.group, []).append(i)
-    return Design(names, G, np.stack(cols_mean, axis=-1), groups)
+    return Design(names, G, np.stack(cols_mean, axis=-1), groups, angles)
 
 
 TIE_SHARE = 0.05       # alike groups within this share of the best's held-out gain are tied: a simulated term's per-event
@@ -426,7 +433,7 @@ def propose(run, up, verdict: str) -> Proposal | None:
     if replaced:
         on_top = []
         p.base = dict(p0.base)
-    freq = stability(d.G, Y, groups, alike=alike)
+    freq = _stability_gram(GG, Gy, yy, groups, alike=alike)
     stab = {group_names[i]: float(freq[i]) for i in np.argsort(-freq) if freq[i] > 0}
     cv = [{"group": group_names[g], "held_out_gain": m, "z": z} for g, m, z in cv_steps]
     stable = _preferred(GG, Gy, yy, groups, [g for g in sel if freq[g] >= STABILITY], alike, d.terms)
@@ -444,7 +451,7 @@ def propose(run, up, verdict: str) -> Proposal | None:
     # its fitted amplitude (a secant: a torque of the working torque's size changes the crossing it acts on, its
     # response is not the tangent's at amplitude 0: measured, 8 N*m on the wheel fitted as 5.4 on the tangent)
     coef, unc = _fit(GG, Gy, cols)
-    angles = event_design.recorded_angles(run.meas.signals, p.dt)
+    angles = d.angles
     entries = np.asarray(p.events.entries)
     for _ in range(SECANT_ITERATIONS):
         moved = False

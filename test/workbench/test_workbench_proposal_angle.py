@@ -9,18 +9,7 @@ import pytest
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 from backlash_monitor.workbench import proposal                          # noqa: E402
-
-
-def _run_steps(meas, width):
-    from backlash_monitor.workbench import diagnose as dg
-    from backlash_monitor.workbench.model import load_model
-    run = dg.prepare(meas, load_model(None, width_m=width, eta_k=0.025, n1=0.89))
-    dg.screen_step(run)
-    dg.refine_step(run)
-    decision = dg.decide_step(run)
-    up = dg.second_effect_step(run, decision)
-    dg.confidence_step(run, up, decision)
-    return run, up
+from test_workbench_proposal import _run_steps                            # noqa: E402
 
 
 @pytest.mark.slow
