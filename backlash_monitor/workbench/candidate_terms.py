@@ -53,6 +53,7 @@ BALANCE_WORDS = {"motor_load_moment_pu": "motor load moment", "clutch_torque_Nm"
                  "sensor_a1_m_s2": "measured a1", "sensor_a2_m_s2": "measured a2"}
 SHORT = {"motor_load_moment_pu": "motor", "clutch_torque_Nm": "clutch", "rim_mass_force_N": "rim",
          "wheel_torque_Nm": "wheel", "mass_force_N": "mass", "sensor_a1_m_s2": "a1", "sensor_a2_m_s2": "a2"}
+CHANNEL_SCALE_M_S2 = 10.0                     # the other accelerometer's signal by this: its event swing, ~10-50 m/s^2
 RECORD_TIME = "t/T"          # the time in the record over its length (0 at sample 0, 1 at its end)
 
 
@@ -67,7 +68,8 @@ class Term:
     variables: tuple     # model variables f names
     harmonic: tuple | None = None     # (angle variable, order, "sin"/"cos")
     recorded: tuple | None = None     # not simulated (event_design.py): ("sensor", signal, shape) with shape
-                                      # ("harmonic", angle, order, fn) | ("speed", speed) | ("time",); or ("time", the
+                                      # ("harmonic", angle, order, fn) | ("speed", speed) | ("time",) | ("channel",
+                                      # the other accelerometer); or ("time", the
                                       # constant term it modulates) -- a slow change of a constant in its balance
 
     @property
@@ -155,8 +157,8 @@ def library() -> tuple[Term, ...]:
 
 def recorded_terms() -> tuple[Term, ...]:
     """The terms computed on the recorded events instead of simulated (event_design.py): what a sensor adds to a1 or
-    a2 -- harmonics of both shafts' angles (orders 1, 2), the shafts' speeds, a drift with the time in the record --
-    and a slow change (linear in the time in the record) of each balance's constant."""
+    a2 -- harmonics of both shafts' angles (orders 1, 2), the shafts' speeds, a drift with the time in the record, the
+    other channel's signal (crosstalk) -- and a slow change (linear in the time in the record) of each balance's constant."""
     out: list[Term] = []
     for sig in ("a1", "a2"):
         balance = f"sensor_{sig}_m_s2"
@@ -173,6 +175,12 @@ def recorded_terms() -> tuple[Term, ...]:
                             ("sensor", sig, ("speed", var))))
         out.append(Term(f"{PREFIX}{b}_time", balance, RECORD_TIME, RECORD_TIME, "time", f"{b}_time", (), None,
                         ("sensor", sig, ("time",))))
+        # the other channel leaking into this one (a shared cable, a multiplexed ADC, a cross-axis sensitivity)
+        other = "a2" if sig == "a1" else "a1"
+        sym = "a₂" if other == "a2" else "a₁"
+        out.append(Term(f"{PREFIX}{b}_from_{other}", balance, f"{other} / {CHANNEL_SCALE_M_S2:g}",
+                        f"{sym}/{CHANNEL_SCALE_M_S2:g}", other, f"{b}_from_{other}", (), None,
+                        ("sensor", sig, ("channel", other))))
     for c in library():
         if c.state == "constant":
             b = SHORT[c.balance]

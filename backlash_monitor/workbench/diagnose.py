@@ -22,12 +22,12 @@ One recording, followed through the named steps (docs/workbench.md, "Diagnose: t
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from . import (analysis, consistency, drive_terms, fitting, pairs, plant_adapter, proposal, report, ripple,
-               separation, tolerance)
+from . import (analysis, angle_locked, consistency, drive_terms, fitting, pairs, plant_adapter, proposal, report,
+               ripple, separation, tolerance)
 from .decisions import (DELTA_IC_DECISIVE, DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EXPLAINED, confident, identical_to,
                         likelihood_part, qualifies, significant)
 from .diagnosis_result import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOTHING_EXPLAINS, PARTIAL,
@@ -65,6 +65,8 @@ class Run:
     before: consistency.ConsistencyResult | None = None  # the model as it is, in the views
     fits: list[fitting.FitResult] = field(default_factory=list)   # the refined candidates, best delta_ic first
     views: consistency.ConsistencyViews | None = None     # the views of the screening (screen_step)
+    event_fits: dict[str, fitting.FitResult] = field(default_factory=dict)   # the terms locked to a shaft's angle,
+                                                  # fitted event by event (angle_locked.py) in place of refine
 
     @property
     def inconsistent(self) -> bool:
@@ -130,6 +132,14 @@ def screen_step(run: Run, effects=None, progress=None) -> None:
     # shaft's angle as a sine/cosine pair
     run.screening = {n: fitting.linear_estimate(p, run.by_name[n], s, run.base_pred, run.base_ic)
                      for n, s in screening.items()}
+    # a term locked to a shaft's angle, fitted on the events at the recording's own angles (its event average washes
+    # out): its screening's estimate is that fit's
+    for n in allowed:
+        f = angle_locked.fit(run, run.by_name[n]) if run.inconsistent else None
+        if f is not None:
+            run.event_fits[n] = f
+            run.screening[n] = replace(run.screening[n], x_lin=f.values, explained_lin=f.explained_fraction,
+                                       pred_lin=f.pred, delta_ic_lin=f.delta_ic)
     run.order = sorted(allowed, key=lambda k: -run.screening[k].explained_lin)
 
 
@@ -139,7 +149,7 @@ def refine_step(run: Run) -> list:
     linearised IC may tie with the best qualifying one (or, without one, may still qualify)."""
     p, scr = run.problem, run.screening
     first = run.order[:REFINE_TOP] if run.inconsistent else run.order[:1]
-    fits = [fitting.refine(p, run.by_name[n], scr[n], run.base_pred, run.base_ic) for n in first]
+    fits = [_refined(run, n) for n in first]
     if run.inconsistent:
         # in the recording's evidence (the IC without its parameter penalty): a two-parameter law may tie with a
         # one-parameter one that fits as well (decisions.likelihood_part); with the best's misfit scale
@@ -165,10 +175,17 @@ def refine_step(run: Run) -> list:
             near |= {n for n in run.order if n not in first and run.by_name[n].balance == best.balance}
         extra = sorted((n for n in run.order if n not in first and (lin_part(n) <= reach or n in near)),
                        key=lambda n: (n not in near, lin_part(n)))[:REFINE_EXTRA]
-        fits += [fitting.refine(p, run.by_name[n], scr[n], run.base_pred, run.base_ic) for n in extra]
+        fits += [_refined(run, n) for n in extra]
     fits.sort(key=lambda f: f.delta_ic)
     run.fits = fits
     return fits
+
+
+def _refined(run: Run, name: str) -> fitting.FitResult:
+    """A candidate's fit on the simulator (fitting.refine), or its event-by-event fit (angle_locked.py)."""
+    if name in run.event_fits:
+        return run.event_fits[name]
+    return fitting.refine(run.problem, run.by_name[name], run.screening[name], run.base_pred, run.base_ic)
 
 
 def misfit_scale(problem, fit) -> float:

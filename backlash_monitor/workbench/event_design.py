@@ -92,32 +92,34 @@ def _match(ref_entries: np.ndarray, entries: np.ndarray) -> list:
     return out
 
 
-def angle_responses(problem, terms: list, steps: dict, project) -> dict:
-    """{term name: AngleResponse} for the ``terms`` (candidate_terms.Term with ``harmonic`` = (angle, k, "sin")), each
-    simulated at its ``steps[name]`` coefficient beside the reference on the problem's seeds (common random numbers),
-    with the simulated angles recorded. The responses are in the prediction space (unprojected); ``project`` (the
-    map to the selection's whitened coordinates) weighs the regression's share explained."""
-    # deferred: the simulator (numba) is loaded only when a proposal simulates
+ANGLE_SIGNALS = ("alpha1", "alpha2")
+
+
+def matched_changes(problem, sets: list) -> list:
+    """Per parameter set of ``sets`` (each merged over ``problem.base``): (D (n, N) each matched simulated event's change
+    of its vector against the reference's same event, {"alpha1", "alpha2": (n,)} the set's own simulated shaft angles
+    at that event's entry, and "seed": (n,) the index of the seed it was simulated on). The reference (``problem.base`` alone) and the sets run on the problem's seeds (common random numbers); a
+    set's event matches the reference's within MATCH_SAMPLES. A set whose runs give no matched event -> (None, None)."""
+    # deferred: the simulator (numba) is loaded only when a proposal or an angle-locked fit simulates
     from . import plant_adapter
-    keys = {t.name: f"{t.name}.{_coefficient_key(t)}" for t in terms}
     base = dict(problem.base)
-    term_sets = [{**base, keys[t.name]: float(steps[t.name])} for t in terms]
-    signals = ("a1", "a2", "omega1", "angle_difference", "alpha1", "alpha2")
+    merged = [{**base, **s} for s in sets]
+    signals = ("a1", "a2", "omega1", "angle_difference") + ANGLE_SIGNALS
     seg_signals = ("a1", "a2", "omega1", "angle_difference")
-    changes = {t.name: ([], []) for t in terms}      # name -> (rows of projected change / h, [cos, sin] of psi)
+    out = [([], {v: [] for v in ANGLE_SIGNALS + ("seed",)}) for _ in sets]
     per_batch = max(1, problem.sets_per_batch())
     refs = []                                        # per seed: (the reference's events, their vectors)
-    order = [None] + list(terms)                     # the reference first, simulated once
+    order = [None] + list(range(len(sets)))          # the reference first, simulated once
     for b in range(0, len(order), per_batch):
         chunk = order[b:b + per_batch]
-        batch_sets = [base if t is None else term_sets[terms.index(t)] for t in chunk]
-        runs = plant_adapter.simulate_sets(problem.model, batch_sets, problem.seeds, problem.n_samples,
-                                           conditions=problem.conditions, signals=signals)
-        problem.n_sets_simulated += len(batch_sets)
-        for i, t in enumerate(chunk):
+        runs = plant_adapter.simulate_sets(problem.model, [base if i is None else merged[i] for i in chunk],
+                                           problem.seeds, problem.n_samples, conditions=problem.conditions,
+                                           signals=signals)
+        problem.n_sets_simulated += len(chunk)
+        for c, i in enumerate(chunk):
             for j in range(len(problem.seeds)):
-                ev = event_set({s: runs[s][i, j] for s in seg_signals}, problem.dt, problem.dc_names)
-                if t is None:
+                ev = event_set({s: runs[s][c, j] for s in seg_signals}, problem.dt, problem.dc_names)
+                if i is None:
                     refs.append((ev, event_vectors(problem, ev.raw, ev.dc) if ev.n_events else None))
                     continue
                 ref, ref_vec = refs[j]
@@ -125,26 +127,71 @@ def angle_responses(problem, terms: list, steps: dict, project) -> dict:
                 if not pairs:
                     continue
                 vec = event_vectors(problem, ev.raw, ev.dc)
-                var, k, _ = t.harmonic
-                angle = runs[var][i, j]
-                h = float(steps[t.name])
-                for a, c in pairs:
-                    psi = k * float(angle[int(ev.entries[c])])
-                    changes[t.name][0].append((vec[c] - ref_vec[a]) / h)
-                    changes[t.name][1].append((np.cos(psi), np.sin(psi)))
+                for a, k in pairs:
+                    out[i][0].append(vec[k] - ref_vec[a])
+                    for v in ANGLE_SIGNALS:
+                        out[i][1][v].append(float(runs[v][c, j][int(ev.entries[k])]))
+                    out[i][1]["seed"].append(j)
         del runs
+    return [(np.asarray(d), {v: np.asarray(x) for v, x in a.items()}) if d else (None, None) for d, a in out]
+
+
+def angle_responses(problem, terms: list, steps: dict, project) -> dict:
+    """{term name: AngleResponse} for the ``terms`` (candidate_terms.Term with ``harmonic`` = (angle, k, "sin")), each
+    simulated at its ``steps[name]`` coefficient beside the reference on the problem's seeds (common random numbers),
+    with the simulated angles recorded. The responses are in the prediction space (unprojected); ``project`` (the
+    map to the selection's whitened coordinates) weighs the regression's share explained."""
+    keys = {t.name: f"{t.name}.{_coefficient_key(t)}" for t in terms}
     out = {}
-    for t in terms:
-        rows, cs = changes[t.name]
-        if len(rows) < MIN_MATCHED:
+    changes = matched_changes(problem, [{keys[t.name]: float(steps[t.name])} for t in terms])
+    for t, (D, a) in zip(terms, changes):
+        if D is None or len(D) < MIN_MATCHED:
             continue
-        D = np.asarray(rows)
-        X = np.column_stack([np.asarray(cs), np.ones(len(cs))])
+        var, k, _ = t.harmonic
+        psi = k * a[var]
+        D = D / float(steps[t.name])
+        X = np.column_stack([np.cos(psi), np.sin(psi), np.ones(len(psi))])
         coef, *_ = np.linalg.lstsq(X, D, rcond=None)
         Dp, fitp = project(D.T).T, project((X @ coef).T).T
         r2 = 1.0 - float(np.sum((Dp - fitp) ** 2)) / max(float(np.sum(Dp ** 2)), 1e-300)
-        out[t.name] = AngleResponse(coef[0], coef[1], coef[2], len(rows), r2)
+        out[t.name] = AngleResponse(coef[0], coef[1], coef[2], len(D), r2)
     return out
+
+
+@dataclass(frozen=True)
+class FourierResponse:
+    """The per-event change of one simulated parameter set as a function of the event's shaft angle at entry θ, in the
+    prediction space: C (1 + 2 len(orders), N) on the basis [1, cos kθ, sin kθ for k in orders] (fourier_basis). A
+    law locked to the angle with those harmonics has such a response; ``n_events``, ``r2`` as AngleResponse's."""
+    C: np.ndarray
+    orders: tuple
+    n_events: int
+    r2: float
+
+
+def fourier_basis(theta: np.ndarray, orders) -> np.ndarray:
+    """(n, 1 + 2 len(orders)): 1, cos kθ, sin kθ for each order k."""
+    theta = np.asarray(theta, dtype=float)
+    cols = [np.ones_like(theta)]
+    for k in orders:
+        cols += [np.cos(k * theta), np.sin(k * theta)]
+    return np.column_stack(cols)
+
+
+def fourier_response(D: np.ndarray, angles: np.ndarray, orders, project) -> FourierResponse:
+    """The least-squares FourierResponse of the changes ``D`` (n, N) of events entered at ``angles``; r2 in the
+    ``project``-ed coordinates. (A drive's events come at a steady pulse rate: the seeds' events enter at nearly the
+    same angles, so only the law's own orders are fitted, never a full series.)"""
+    X = fourier_basis(angles, orders)
+    C, *_ = np.linalg.lstsq(X, D, rcond=None)
+    Dp, fitp = project(D.T).T, project((X @ C).T).T
+    r2 = 1.0 - float(np.sum((Dp - fitp) ** 2)) / max(float(np.sum(Dp ** 2)), 1e-300)
+    return FourierResponse(C, tuple(orders), len(D), r2)
+
+
+def fourier_columns(resp: FourierResponse, theta: np.ndarray) -> np.ndarray:
+    """(E, N): the response at each recorded event's angle at entry ``theta``."""
+    return fourier_basis(theta, resp.orders) @ resp.C
 
 
 def angle_columns(resp: AngleResponse, psi: np.ndarray, project=None) -> np.ndarray:

@@ -266,6 +266,9 @@ def _sensor_shape(term, angles: dict, signals: dict, n: int) -> np.ndarray | Non
         if var not in angles:
             return None
         return (np.sin if fn == "sin" else np.cos)(k * angles[var])
+    if kind[0] == "channel":
+        x = signals.get(kind[1])
+        return None if x is None else np.asarray(x, dtype=float) / candidate_terms.CHANNEL_SCALE_M_S2
     if kind[0] == "speed":
         w = signals.get(kind[1])
         if w is None:

@@ -117,7 +117,8 @@ BALANCE_WORDS = {"motor_load_moment_pu": "motor_load_moment", "wheel_torque_Nm":
 STATE_WORDS = {"omega1": ("motor_speed",), "omega2": ("wheel_speed",), "xdot": ("mass_speed",), "v": ("rim_speed",),
                "rel_speed": ("motor_speed", "wheel_speed"), "penetration": ("clutch_penetration",),
                "penetration rate": ("clutch_penetration",), "z": ("spring_extension",), "alpha1": ("motor_angle",),
-               "alpha2": ("wheel_angle",), "te": (), "time": ("time",), "constant": (), "load pulse": ("load_pulse",)}
+               "alpha2": ("wheel_angle",), "te": (), "time": ("time",), "constant": (), "load pulse": ("load_pulse",),
+               "a1": ("motor_acceleration",), "a2": ()}   # a1 = r dOmega1/dt: the motor acceleration
 
 
 def _truth_of(spec, truth) -> tuple[set, set]:

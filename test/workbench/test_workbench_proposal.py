@@ -18,7 +18,7 @@ def test_the_library_is_generic_and_covers_every_balance_and_both_shafts_angles(
     assert {t.balance for t in lib} == set(candidate_terms.SIMULATED_BALANCES)
     recorded = candidate_terms.recorded_terms()        # a sensor's terms on a1 and a2, and slow changes in time
     assert {t.balance for t in recorded} - {t.balance for t in lib} == {"sensor_a1_m_s2", "sensor_a2_m_s2"}
-    assert {t.state for t in recorded} >= {"alpha1", "alpha2", "omega1", "omega2", "time"}
+    assert {t.state for t in recorded} >= {"alpha1", "alpha2", "omega1", "omega2", "time", "a1", "a2"}
     harm = {(t.harmonic[0], t.harmonic[1]) for t in lib if t.harmonic}
     assert ("alpha1", 1) in harm and ("alpha2", 1) in harm and ("alpha2", 2) in harm
     # a harmonic's sine and cosine are one group: selected together, linear in their coefficients

@@ -1,0 +1,346 @@
+"""A user's term locked to a shaft's angle, fitted event by event (issue 31; docs/workbench.md, "A term locked to a
+shaft's angle").
+
+A plug-in f(alpha; p) of one shaft's angle (a wheel's cam, an unbalance, a crank, a mesh; plant_adapter.
+angle_phase_index finds its phase parameter) changes every backlash event differently, because every event starts
+at another angle: its event average washes out, and a fit on the average sees almost nothing (measured: the exact
+law of an 8 N*m wheel torque fitted at 7e-20 N*m, 0 % explained). Here it is fitted on the events themselves:
+
+1. **the law's harmonics.** The term is evaluated on numpy over one revolution: f(alpha; p) = a_0(p) +
+   sum_k [b_k(p) sin(k alpha) + a_k(p) cos(k alpha)], orders 1..MAX_ORDER (``law_orders``: those the law has).
+2. **the response to each harmonic, on the simulator.** A probe c sin(k alpha) per order, and a constant c, in the
+   term's balance (``harmonics_file``: a generated plug-in), each at a small amplitude beside the model without it,
+   on the same seeds (common random numbers). Each simulated event's change of its vector is regressed on
+   cos(k psi), sin(k psi) of that event's own simulated angle at entry psi: the response to sin(k alpha) is
+   cos(k psi) U_k + sin(k psi) V_k, to cos(k alpha) = sin(k alpha + pi/2) it is cos(k psi) V_k - sin(k psi) U_k.
+3. **lined up with the recording.** The recording gives its angle up to a constant: theta(t) = the integral of its
+   speed from sample 0 (event_design.recorded_angles). Event e's predicted change is sum_k b_k(p) (cos k theta_e U_k
+   + sin k theta_e V_k) + a_k(p) (cos k theta_e V_k - sin k theta_e U_k) + a_0(p) R_0; p is fitted by bounded least
+   squares over every event's vector in the whitened views (the fitted phase is the law's phase in that angle),
+   from starts around the phase circle.
+4. **a secant.** A torque of the working torque's size changes the crossing it acts on: the probes are simulated
+   again at the fitted harmonics' own amplitudes (up to SECANT_ITERATIONS times).
+5. **uncertainty** -- the jackknife over the recorded events (their noise; the events are the independent units)
+   and, in quadrature, over the simulated seeds (the responses' regression on the model's own runs).
+6. **the model with it.** Its event average is the change of the recorded events at their own angles; its spectral
+   shape (a power: phase-free, of second order) is simulated at the fitted values; its evidence (the IC) is the
+   events' own likelihood about their per-event predictions, the same formula as the model's without it.
+
+The result is a fitting.FitResult like any refined candidate: the diagnosis ranks, decides and tests it as it does
+the others. A term that reads another state besides its angle is not fitted here (its harmonics depend on that
+state).
+"""
+from __future__ import annotations
+
+import copy
+import hashlib
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from . import candidate_terms, event_design, fitting, plant_adapter
+from .proposal import gram
+
+MAX_ORDER = 4              # the largest harmonic of the angle a law is fitted with (per revolution)
+ORDER_SHARE = 0.05         # a harmonic of the law whose amplitude is under this share of its largest is left out
+GRID = 256                 # points of one revolution the law is evaluated on
+SECANT_ITERATIONS = 2      # re-simulations of the responses at the fitted values
+SECANT_TOLERANCE = 0.05    # stop when no parameter moves by more than this share of its range
+PHASE_STARTS = 8           # starts of the fit around the phase circle
+REF_STEP = 0.15            # the law's shape and the fit's start: each parameter this share of its range into it
+REF_HARMONIC = 4.0         # the probes' amplitude: this many of the balance's small step (candidate_terms.BALANCES:
+                           # 2 N*m on the wheel, 0.08 p.u. on the motor): small, so that the response is linear in it
+                           # (measured: the cam's own law as the probe, at 13 N*m in its first harmonic, fitted 0.13
+                           # N*m for 4)
+
+
+def angle_variable(model, effect) -> str | None:
+    """"alpha1" or "alpha2": the shaft angle a candidate's term reads when it reads nothing else but its parameters,
+    else None."""
+    if getattr(effect, "phase_index", -1) < 0 or not fitting.angle_pair(effect):
+        return None
+    from backlash_monitor.plant import effects as plant_effects
+    try:
+        args = plant_effects.term_arguments(model.catalogue[effect.effect])
+    except (KeyError, ValueError, TypeError, OSError, SyntaxError):
+        return None
+    names = {q.name for q in effect.parameters}
+    angles = [a for a in args if a in plant_adapter.ANGLE_VARIABLES]
+    others = [a for a in args if a not in names and a not in plant_adapter.ANGLE_VARIABLES]
+    return angles[0] if len(angles) == 1 and not others else None
+
+
+class Law:
+    """A term f(alpha; p) on numpy: its harmonics' coefficients at any parameter vector."""
+
+    def __init__(self, model, effect, var: str):
+        from backlash_monitor.plant import effects as plant_effects
+        from backlash_monitor.plant.mathlib import NUMPY_NAMESPACE
+        cls = model.catalogue[effect.effect]
+        ns = dict(NUMPY_NAMESPACE)
+        exec(compile(plant_effects.term_source(cls), "<angle-locked term>", "exec"), ns)  # noqa: S102
+        self._fn = ns[f"_t_{cls.name}"]
+        self._args = plant_effects.term_arguments(cls)
+        self._names = [q.name for q in effect.parameters]
+        self._var = var
+        self._grid = np.arange(GRID) * (2.0 * np.pi / GRID)
+
+    def values(self, x) -> np.ndarray:
+        """f over one revolution (GRID points) at the parameter vector x."""
+        args = [self._grid if a == self._var else float(x[self._names.index(a)]) for a in self._args]
+        return np.broadcast_to(np.asarray(self._fn(*args), dtype=float), self._grid.shape)
+
+    def harmonics(self, x) -> tuple[float, np.ndarray, np.ndarray]:
+        """(a_0, b (MAX_ORDER,), a (MAX_ORDER,)): f = a_0 + sum_k b_k sin(k alpha) + a_k cos(k alpha)."""
+        c = np.fft.rfft(self.values(x)) / GRID
+        return float(c[0].real), -2.0 * c[1:MAX_ORDER + 1].imag, 2.0 * c[1:MAX_ORDER + 1].real
+
+
+def law_orders(law: Law, x) -> tuple:
+    """The harmonics the law has at x: orders whose amplitude is at least ORDER_SHARE of the largest."""
+    _, b, a = law.harmonics(x)
+    amp = np.hypot(a, b)
+    if not np.all(np.isfinite(amp)) or amp.max() <= 0.0:
+        return ()
+    return tuple(int(k) + 1 for k in np.flatnonzero(amp >= ORDER_SHARE * amp.max()))
+
+
+@dataclass(frozen=True)
+class Responses:
+    """Per order k of ``orders``, in the prediction space per unit amplitude: an event entering at the angle psi
+    changes by cos(k psi) U_k + sin(k psi) V_k under sin(k alpha) in the balance; R0 (N,) its change under a constant."""
+    orders: tuple
+    U: np.ndarray
+    V: np.ndarray
+    R0: np.ndarray
+
+
+def harmonics_file(balance: str, var: str, orders) -> Path:
+    """A plug-in file (in the proposals' cache, named by its content) with the probes of the responses: c * sin(k var)
+    for each order and a constant c, in ``balance``."""
+    parts = ['"""The probes of an angle-locked term\'s responses (workbench/angle_locked.py), generated."""\n'
+             + candidate_terms.HEADER]
+    param = "Parameter('coefficient', '-', 0.0, (-1e6, 1e6), 'c')"
+    for k in orders:
+        arg = var if k == 1 else f"{k} * {var}"
+        parts.append(candidate_terms._class_source(f"Probe{k}", probe_name(balance, var, k), balance,
+                                                   f"c * sin({arg})", [param], [var, "coefficient"],
+                                                   f"coefficient * sin({arg})"))
+    parts.append(candidate_terms._class_source("Probe0", probe_name(balance, var, 0), balance, "c", [param],
+                                               [var, "coefficient"], f"coefficient * (1.0 + 0.0 * {var})"))
+    src = "\n\n".join(parts)
+    path = candidate_terms.cache_dir() / f"angle_probes_{hashlib.sha256(src.encode()).hexdigest()[:16]}.py"
+    if not path.exists():
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_text(src)
+        os.replace(tmp, path)
+    return path
+
+
+def probe_name(balance: str, var: str, k: int) -> str:
+    return f"probe_{balance}_{var}_{'const' if k == 0 else f'sin{k}'}"
+
+
+def _probe_problem(p, balance, var, orders):
+    """A copy of the problem whose model holds the probes (harmonics_file)."""
+    q = copy.copy(p)
+    q.model = copy.copy(p.model)
+    q.model.effect_files = list(p.model.effect_files) + [harmonics_file(balance, var, orders)]
+    q.model.effects_added = list(p.model.effects_added)
+    return q
+
+
+def _probe_amplitudes(balance, orders, coef=None) -> dict:
+    """Per order (0: the constant) the probe's amplitude: REF_HARMONIC of the balance's small step, or the fitted
+    harmonic's own amplitude (a secant) when that is larger."""
+    step = candidate_terms.BALANCES.get(balance, (None, 1.0))[1]
+    out = {}
+    for j, k in enumerate((0,) + tuple(orders)):
+        a = REF_HARMONIC * step
+        if coef is not None:
+            size = abs(coef[0]) if k == 0 else float(np.hypot(coef[2 * j - 1], coef[2 * j]))
+            a = max(a, size)
+        out[k] = a
+    return out
+
+
+def _solve_responses(changes, amps, var, orders, drop_seed=None) -> Responses | None:
+    """The responses per unit of each probe (the constant first, then sin k alpha per order): each simulated event's
+    change regressed on 1, cos k psi, sin k psi of its own angle at entry -> U_k, V_k (and R0: the constant probe's
+    mean change)."""
+    n = None
+    U, V, R0 = [], [], None
+    for (D, a), k in zip(changes, (0,) + tuple(orders)):
+        if D is None:
+            return None
+        keep = np.ones(len(D), bool) if drop_seed is None else np.asarray(a["seed"]) != drop_seed
+        if keep.sum() < event_design.MIN_MATCHED:
+            return None
+        Dk = D[keep] / amps[k]
+        if k == 0:
+            R0 = Dk.mean(axis=0)
+            continue
+        X = event_design.fourier_basis(a[var][keep] * k, (1,))
+        C, *_ = np.linalg.lstsq(X, Dk, rcond=None)
+        n = C.shape[1]
+        U.append(C[1])
+        V.append(C[2])
+    return Responses(tuple(orders), np.asarray(U).reshape(len(orders), n), np.asarray(V).reshape(len(orders), n), R0)
+
+
+def _columns(resp: Responses, theta: np.ndarray) -> np.ndarray:
+    """(E, N, 1 + 2K): each recorded event's change per unit a_0, then per order b_k, a_k."""
+    e = len(theta)
+    cols = [np.broadcast_to(resp.R0[None], (e, resp.R0.size))]
+    for j, k in enumerate(resp.orders):
+        c, s = np.cos(k * theta)[:, None], np.sin(k * theta)[:, None]
+        cols.append(c * resp.U[j][None] + s * resp.V[j][None])        # sin(k alpha)
+        cols.append(-s * resp.U[j][None] + c * resp.V[j][None])       # cos(k alpha) = sin(k alpha + pi/2)
+    return np.stack(cols, axis=-1)
+
+
+def _coefficients(law, x, orders) -> np.ndarray:
+    a0, b, a = law.harmonics(x)
+    return np.concatenate([[a0]] + [[b[k - 1], a[k - 1]] for k in orders])
+
+
+def _fit_values(law, orders, A, bvec, x_start, lo, hi, k_phase, multi: bool) -> np.ndarray:
+    """The parameter vector minimising c(x)' A c(x) - 2 b' c(x) (the events' squared error in the whitened views) in
+    the bounds; from ``x_start`` and, with ``multi``, from PHASE_STARTS phases around the circle."""
+    w, Q = np.linalg.eigh(0.5 * (A + A.T))
+    w = np.maximum(w, 1e-12 * max(float(w.max()), 1e-300))
+    L = Q * np.sqrt(w)[None]                                          # A = L L'
+    target = (Q / np.sqrt(w)[None]).T @ bvec                           # L^-1 b
+
+    def res(x):
+        return L.T @ _coefficients(law, x, orders) - target
+    starts = [np.clip(x_start, lo, hi)]
+    if multi:
+        for ph in np.linspace(-np.pi, np.pi, PHASE_STARTS, endpoint=False):
+            v = np.array(starts[0])
+            v[k_phase] = float(np.clip(ph, lo[k_phase], hi[k_phase]))
+            starts.append(v)
+    best = None
+    span = np.maximum(hi - lo, 1e-12)
+    for x0 in starts:
+        r = least_squares(res, np.clip(x0, lo + 1e-9 * span, hi - 1e-9 * span), bounds=(lo, hi + 1e-300),
+                          x_scale=span, method="trf")
+        if best is None or r.cost < best.cost:
+            best = r
+    return best.x
+
+
+def _jackknife(rows: np.ndarray) -> np.ndarray:
+    n = len(rows)
+    return np.sqrt((n - 1) / n * np.sum((rows - rows.mean(axis=0)) ** 2, axis=0))
+
+
+def _unwrap_phase(rows: np.ndarray, k: int, ref: float) -> np.ndarray:
+    rows = np.array(rows, dtype=float)
+    rows[:, k] = ref + fitting._wrap(rows[:, k] - ref)
+    return rows
+
+
+def fit(run, effect) -> fitting.FitResult | None:
+    """The event-by-event fit of ``effect`` (a CandidateEffect locked to one shaft's angle: angle_variable) on the
+    diagnosis ``run``; None when it does not apply (not such a term, no recorded speed, too few events, a law with no
+    harmonic at its reference)."""
+    p = run.problem
+    var = angle_variable(run.model, effect)
+    if var is None or p.n_events < 6:
+        return None
+    angles = event_design.recorded_angles(run.meas.signals, p.dt)
+    if var not in angles:
+        return None
+    try:
+        law = Law(run.model, effect, var)
+    except Exception:          # a user's term that does not run on numpy: not fitted here  # noqa: BLE001
+        return None
+    theta = angles[var][np.asarray(p.events.entries)]
+    k = effect.phase_index
+    x0 = effect.default_vector()
+    lo, hi = effect.bounds()
+    x_start = x0 + np.where(np.arange(len(x0)) == k, 0.0, REF_STEP * (hi - lo))
+    orders = law_orders(law, x_start)
+    if not orders:
+        return None
+    base = run.base_pred
+    Y = p.project((p.event_vecs - base[None]).T).T                     # (E, D)
+    q = _probe_problem(p, effect.balance, var, orders)
+    n_before = p.n_sets_simulated + q.n_sets_simulated
+    probes = (0,) + tuple(orders)
+    keys = {o: f"{probe_name(effect.balance, var, o)}.coefficient" for o in probes}
+    amps = _probe_amplitudes(effect.balance, orders)
+    x = None
+    for it in range(1 + SECANT_ITERATIONS):
+        changes = event_design.matched_changes(q, [{keys[o]: amps[o]} for o in probes])
+        resp_new = _solve_responses(changes, amps, var, orders)
+        if resp_new is None:
+            break
+        resp, used = resp_new, (changes, dict(amps))
+        G = _columns(resp, theta)                                      # (E, N, M)
+        Gp = np.stack([p.project(G[..., c].T).T for c in range(G.shape[-1])], axis=-1)
+        GG, Gy, _ = gram(Gp, Y)
+        A, bvec = GG.sum(axis=0), Gy.sum(axis=0)
+        x_new = _fit_values(law, orders, A, bvec, x_start if x is None else x, lo, hi, k, multi=x is None)
+        moved = x is None or np.max(np.abs(x_new - x) / np.maximum(hi - lo, 1e-12)) > SECANT_TOLERANCE
+        x = x_new
+        if not moved or it == SECANT_ITERATIONS:
+            break
+        # the next responses at the fitted harmonics' own amplitudes (a secant)
+        new_amps = _probe_amplitudes(effect.balance, orders, _coefficients(law, x, orders))
+        if all(abs(new_amps[o] - amps[o]) <= SECANT_TOLERANCE * amps[o] for o in amps):
+            break
+        amps = new_amps
+    if x is None:
+        return None
+    # the uncertainty: leave-one-event-out and leave-one-seed-out refits from the fitted values
+    loo = [_fit_values(law, orders, A - GG[i], bvec - Gy[i], x, lo, hi, k, multi=False) for i in range(len(GG))]
+    spread = _jackknife(_unwrap_phase(np.array(loo), k, x[k]))
+    by_seed = []
+    for s in range(len(p.seeds)):
+        rs = _solve_responses(used[0], used[1], var, orders, drop_seed=s)
+        if rs is None:
+            continue
+        Gs = _columns(rs, theta)
+        GGs, Gys, _ = gram(np.stack([p.project(Gs[..., c].T).T for c in range(Gs.shape[-1])], axis=-1), Y)
+        by_seed.append(_fit_values(law, orders, GGs.sum(axis=0), Gys.sum(axis=0), x, lo, hi, k, multi=False))
+    if len(by_seed) >= 2:
+        spread = np.hypot(spread, _jackknife(_unwrap_phase(np.array(by_seed), k, x[k])))
+    per_event = G @ _coefficients(law, x, orders)                      # (E, N): each event's change, lined up
+    # the model after: the recorded events' own change on average; the spectral shape simulated at the fitted values
+    ens = p.evaluate([plant_adapter.apply_values(effect, x)])
+    pred = base + per_event.mean(axis=0)
+    sp = p.spectral_slice
+    pred[sp] = p.pred_of(ens, 0)[sp]
+    explained = p.explained_share(p.fit_residual(pred), p.fit_residual(base))
+    ic = _event_ic(p, base[None] + per_event, len(x0))
+    # the Jacobian (prediction space) at the fitted values, by differences of the law's coefficients
+    c_fit = _coefficients(law, x, orders)
+    J = np.zeros((len(base), len(x0)))
+    for i in range(len(x0)):
+        hstep = 1e-4 * max(hi[i] - lo[i], 1e-12)
+        xs = np.array(x)
+        xs[i] = xs[i] + hstep if xs[i] + hstep <= hi[i] else xs[i] - hstep
+        J[:, i] = (G @ ((_coefficients(law, xs, orders) - c_fit) / (xs[i] - x[i]))).mean(axis=0)
+    tol = fitting.AT_BOUND_FRACTION * (hi - lo)
+    at_bound = bool(np.any([(x[i] - lo[i] <= tol[i] and abs(x0[i] - lo[i]) > tol[i])
+                            or (hi[i] - x[i] <= tol[i] and abs(hi[i] - x0[i]) > tol[i])
+                            for i in range(len(x0)) if i != k]))
+    return fitting.FitResult(effect.name, [q.name for q in effect.parameters], [q.unit for q in effect.parameters],
+                             x, spread, x0, (lo, hi), explained, ic - run.base_ic, ic, ens.mean_denoised(0), explained,
+                             p.n_sets_simulated + q.n_sets_simulated - n_before, effect.balance, effect.description, at_bound,
+                             model_mean_raw=ens.mean_raw(0), pred=pred, jacobian=J,
+                             fixed=getattr(effect, "fixed_values", {}))
+
+
+def _event_ic(p, per_event_pred: np.ndarray, k: int) -> float:
+    """fitting.Problem.ic with a prediction per event (E, N): the events' likelihood in the whitened candidate
+    subspace about their own predictions (the same formula as the model's IC about its one mean)."""
+    d = p.event_vecs - per_event_pred
+    e = d.shape[0]
+    z = d @ p.views.basis
+    return float(e * np.sum(np.log(np.mean(z ** 2, axis=0))) + k * np.log(e))
