@@ -166,3 +166,26 @@ def test_sensor_mechanisms_change_only_their_channel():
     z = tilt.internal["spring_extension"]
     assert np.max(np.abs(tilt.signals["a2"] - tilt.internal["a2_physical"] - 19.6 * (z - 0.29))) < 1e-9
     assert np.array_equal(tilt.signals["a1"], clean().signals["a1"])
+
+
+# ------------------------------------------------------------------ the outside bench's sets and its loop's guard
+def _outside_bench():
+    import importlib.util
+    from pathlib import Path
+    path = Path(__file__).resolve().parents[2] / "bench" / "_workbench" / "outside.py"
+    spec = importlib.util.spec_from_file_location("outside_bench_under_test", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_outside_bench_knows_both_sets_and_never_loops_on_the_unspent_sealed_half(capsys):
+    bench = _outside_bench()
+    assert [s.label for s in bench.suite_rows(False, 2)] == [s.label for s in suites.suite("outside_dev2")]
+    assert bench.suite_name(True, 2) == "outside_sealed2" and bench.suite_name(True, 1) == "outside_sealed"
+    assert "outside_sealed2" not in bench.LOOP_DEVELOPMENT_SUITES
+    with pytest.raises(ValueError, match="allowed: 1, 2"):
+        bench.suite_name(False, 3)
+    with pytest.raises(SystemExit) as e:
+        bench.main(["--loop", "--loop-suites", "outside_sealed2"])
+    assert e.value.code == 2 and "only with --sealed" in capsys.readouterr().err
