@@ -10,7 +10,7 @@ from pathlib import Path
 from . import forms as F
 from .spec import manifest
 
-SUITE_CHOICES = ("bench", "widthloop", "test", "outside_dev", "outside_sealed")
+SUITE_CHOICES = ("bench", "widthloop", "test", "outside_dev", "outside_sealed", "outside_dev2", "outside_sealed2")
 
 DESCRIPTION = """\
 Foreign drives: recordings of the drive made by a second, independent simulator (docs/foreign_drives.md),
@@ -48,7 +48,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="bench: >= 30 recordings of 4 s (seeds 5000+) for bench/workbench.py; widthloop: the "
                         "hidden-effect drives whose monitor width is checked before/after retraining (seeds 6000+); "
                         "test: short recordings the tests use (seeds 100-199); outside_dev / outside_sealed: "
-                        "mechanisms outside the catalogue, development and sealed half (seeds 7000+ / 7100+)")
+                        "mechanisms outside the catalogue, development and sealed half (seeds 7000+ / 7100+); "
+                        "outside_dev2 / outside_sealed2: a second set of other kinds (seeds 7300+ / 7400+)")
     w.add_argument("--out", required=True, metavar="DIR", help="output directory (created if missing)")
     w.add_argument("--only", action="append", metavar="LABEL", default=None,
                    help="write only this recording (repeatable); the manifest then lists only these")
@@ -146,7 +147,7 @@ def cmd_list(args) -> int:
 def cmd_forms(args) -> int:
     for f in F.FORMS.values():
         params = ", ".join(f"{p.name} [{p.unit}]" if p.unit else p.name for p in f.parameters)
-        if getattr(f, "half", "") == "sealed":       # the sealed half's laws are not shown (issue 31 part 4)
+        if getattr(f, "half", "").startswith("sealed"):       # the sealed half's laws are not shown (issue 31 part 4)
             print(f"{f.name}  family=None  outside (sealed)  balance={f.balance}\n    law withheld: the sealed "
                   "half of the outside mechanisms")
             continue

@@ -96,6 +96,14 @@ def apply_sensor_chain(spec: RecordingSpec, accel: dict, t: np.ndarray, fs: floa
     return sig
 
 
+def pulse_indicator(t: np.ndarray, pulse_first_s: float) -> np.ndarray:
+    """The load pulse's indicator (1 while a pulse is on, else 0) at the sample times ``t`` [s] (t = 0 at sample 0),
+    on the inputs' 0.2 ms segment grid exactly as the kernel holds it."""
+    seg = np.floor(np.asarray(t) / N.SEGMENT_S + 1e-9).astype(np.int64)
+    s0 = int(seg.min())
+    return N.pulse_train(s0, int(seg.max()) - s0 + 1, 1.0, pulse_first_s)[seg - s0]
+
+
 def measured_angle_difference(alpha1: np.ndarray, alpha2: np.ndarray, counts_per_rev: int, offset_rad: float):
     """alpha1 - alpha2 as two shaft encoders give it: each angle floored to its encoder's count (0 = exact),
     plus the encoders' zero offset. The angles come re-referenced by the same whole turns (integrator), which
@@ -122,7 +130,9 @@ def make_recording(spec: RecordingSpec, tol_scale: float = 1.0) -> Recording:
     accel = {"a1": run.signal("a1", pre_roll=True), "a2": run.signal("a2", pre_roll=True)}
     states = {"alpha1": run.signal("alpha1", pre_roll=True), "alpha2": run.signal("alpha2", pre_roll=True),
               "omega1": run.signal("omega1", pre_roll=True),
-              "a1_physical": accel["a1"], "a2_physical": accel["a2"]}
+              "a1_physical": accel["a1"], "a2_physical": accel["a2"],
+              "spring_extension": run.signal("spring_extension", pre_roll=True),
+              "pulse": pulse_indicator(t, spec.pulse_first_s)}
     sensed = apply_sensor_chain(spec, accel, t, fs, states=states)
     sig = {"a1": sensed["a1"][n_pre:], "a2": sensed["a2"][n_pre:],
            "omega1": run.signal("omega1").copy(), "omega2": run.signal("omega2").copy(),

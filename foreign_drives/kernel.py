@@ -126,7 +126,8 @@ XB_OFF, XB_MOTOR_LOAD, XB_WHEEL, XB_CLUTCH, XB_MASS = range(5)
  XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
  XS_SIGN_OMEGA2, XS_JAW_ANGLE) = range(18)
 # shapes of a factor f(x; a, b, c)
-(XF_ONE, XF_X, XF_POWER, XF_SIN, XF_SIN_POSITIVE, XF_EXCESS_POWER, XF_RAMP, XF_TANH, XF_RISE, XF_COS) = range(10)
+(XF_ONE, XF_X, XF_POWER, XF_SIN, XF_SIN_POSITIVE, XF_EXCESS_POWER, XF_RAMP, XF_TANH, XF_RISE, XF_COS,
+ XF_RISE_AFTER) = range(11)
 
 
 @njit(cache=True, inline="always")
@@ -248,6 +249,8 @@ def _shaped(shape, x, a, b, c):
         return 1.0 - math.exp(-x / a) if x >= 0.0 else 0.0
     if shape == XF_COS:
         return math.cos(a * x + b)
+    if shape == XF_RISE_AFTER:                   # a first-order rise of time constant a from x = b (0 before)
+        return 1.0 - math.exp(-(x - b) / a) if x >= b else 0.0
     return 0.0
 
 

@@ -11,7 +11,8 @@ TRUTH for a bench that checks a proposed term:
   plug-in's source (else None).
 
 The development half is :mod:`outside_dev`; the sealed half :mod:`outside_sealed` (not to be read by whoever
-tunes the proposal).
+tunes the proposal; run once, so now development data too). The second set: :mod:`outside_dev2` (development) and
+:mod:`outside_sealed2` (sealed: not to be read by whoever tunes the proposal).
 
 Physics terms act through the compiled kernel's generic OUTSIDE slots (kernel.outside_terms): each slot adds
 ``amplitude * f1(x1) * f2(x2)`` to one balance, x a drive quantity (kernel.XS_*), f a shape (kernel.XF_*). A
@@ -39,7 +40,7 @@ class OutsideForm(Form):
     family = None
     balance = ""                 # one of BALANCES
     depends_on: tuple = ()       # names of STATES
-    half = ""                    # "dev" | "sealed"
+    half = ""                    # "dev" | "sealed" | "dev2" | "sealed2"
     uses_states = False          # a sensor form that reads the run's internal signals
 
     def law(self, p: dict) -> str:

@@ -202,11 +202,42 @@ OUTSIDE_DEV_ROWS = [
     ("od_clean_w8.7_eta0.018_n0.94", "clean", 0.0087, 0.018, 0.94, []),
 ]
 
+# ---- issue 31 part 4, second set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev2;
+# the second sealed half's rows are in foreign_drives.outside_sealed2). Seeds 7300+.
+OUTSIDE_DEV2_ROWS = [
+    ("od2_clean_w5.8_eta0.028_n0.91", "clean", 0.0058, 0.028, 0.91, []),
+    # dry friction on the jaw faces: a hysteresis in the penetration (mu = 0.15 of the contact stiffness)
+    ("od2_clutch_jaw_dry_friction", "outside", 0.006, 0.025, 0.90,
+     [E("clutch_jaw_dry_friction", {"coefficient_Nm_per_rad": 450.0, "sign_speed_rad_s": 0.2})]),
+    # a force on the mass locked to the WHEEL angle (exact law: a plug-in)
+    ("od2_mass_eccentric_roller_4N", "outside", 0.0075, 0.03, 0.93,
+     [E("mass_eccentric_roller", {"amplitude_N": 4.0, "phase_rad": -0.8})]),
+    # the spring extension beyond a threshold brakes the motor (exact law: a plug-in)
+    ("od2_motor_overload_band_brake", "outside", 0.005, 0.02, 0.89,
+     [E("motor_overload_band_brake", {"coefficient_Nm_per_m": 300.0, "threshold_m": 0.295})]),
+    ("od2_wheel_timed_brake_3Nm", "outside", 0.0085, 0.035, 0.95,
+     [E("wheel_timed_brake", {"torque_Nm": 3.0, "start_s": 1.7, "build_up_s": 0.1})]),
+    ("od2_mass_floor_vibration_3N", "outside", 0.0065, 0.04, 0.92,
+     [E("mass_floor_vibration", {"amplitude_N": 3.0, "frequency_hz": 37.0, "phase_rad": 0.3})]),
+    ("od2_a1_soft_saturation", "outside", 0.0045, 0.025, 0.94, [E("a1_soft_saturation", {"gain_inverse_limit_s2_per_m": 0.01})]),
+    ("od2_a2_bracket_tilt", "outside", 0.007, 0.0175, 0.90,
+     [E("a2_bracket_tilt", {"gain_m_s2_per_m": 19.6, "centre_m": 0.29})]),
+    # width changes beside a mechanism (the true width is nominal + change)
+    ("od2_width_5.5_to_6.5+dry_friction", "outside", 0.0055, 0.025, 0.91,
+     [E("drift_width", {"change": 0.001}),
+      E("clutch_jaw_dry_friction", {"coefficient_Nm_per_rad": 400.0, "sign_speed_rad_s": 0.2})]),
+    ("od2_width_8.0_to_8.9+eccentric_roller", "outside", 0.008, 0.025, 0.89,
+     [E("drift_width", {"change": 0.0009}), E("mass_eccentric_roller", {"amplitude_N": 3.5, "phase_rad": 2.0})]),
+    ("od2_clean_w3.6_eta0.045_n0.95", "clean", 0.0036, 0.045, 0.95, []),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
 OUTSIDE_DEV = _suite(OUTSIDE_DEV_ROWS, 7000, 4.0)
-SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV}
+OUTSIDE_DEV2 = _suite(OUTSIDE_DEV2_ROWS, 7300, 4.0)
+SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
+          "outside_dev2": OUTSIDE_DEV2}
 
 
 def _outside_sealed():
@@ -215,12 +246,20 @@ def _outside_sealed():
     return _suite(suite_rows(), 7100, 4.0)
 
 
-SUITE_NAMES = tuple(SUITES) + ("outside_sealed",)
+def _outside_sealed2():
+    """The second sealed half's suite, made from foreign_drives.outside_sealed2 on first use (its rows live there)."""
+    from .outside_sealed2 import suite_rows
+    return _suite(suite_rows(), 7400, 4.0)
+
+
+SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2")
 
 
 def suite(name: str) -> list:
     if name == "outside_sealed":
         return _outside_sealed()
+    if name == "outside_sealed2":
+        return _outside_sealed2()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])

@@ -1,7 +1,8 @@
 """Proposing the missing term on drives with mechanisms outside the catalogue (issue 31), and a user's exact-law plug-in
 on drives with a torque locked to a shaft's angle.
 
-    python bench/_workbench/outside.py [--sealed] [--only LABEL ...] [--skip-explained]
+    python bench/_workbench/outside.py [--set 1|2] [--sealed] [--only LABEL ...] [--skip-explained]
+    python bench/_workbench/outside.py --loop [--loop-suites SUITE,...] [--only LABEL ...]
     (or: python bench/workbench.py --parts outside [--sealed])
 
 Goals (docs/workbench.md "Proposing a missing term"):
@@ -16,7 +17,14 @@ Goals (docs/workbench.md "Proposing a missing term"):
 - proposal_cpu_seconds: the proposal's own CPU time per recording (on top of diagnose), one core.
 
 The development suite is ``foreign_drives.suites.suite("outside_dev")`` when it exists, else DEV_ROWS below; the
-sealed one only with ``--sealed`` (run once, by others, at the end). Each recording is diagnosed in this process at the
+sealed one only with ``--sealed`` (run once, by others, at the end). ``--set 2``: the second set, outside_dev2 and
+(with ``--sealed``) outside_sealed2; set 1's sealed half has been run once and is development data now.
+
+The outside loop (``--loop``, goals outside_loop_width_error_after_mm and outside_loop_worse_count): the README's
+loop through the CLI on each development outside recording (old dev, old sealed, dev2; never the unspent sealed2
+unless ``--sealed``), the width error |fused width - true width| before and after; *worse*: after > before + the
+after's stated uncertainty. Its rows carry the proposal's fields too (verdict, law, right balance, consistent), from
+the CLI's diagnosis at the nominal conditions. Each recording is diagnosed in this process at the
 drive's nominal values (NUMBA_NUM_THREADS=1); the proposal's CPU time is its own (proposal.Proposal.cpu_seconds).
 """
 from __future__ import annotations
@@ -31,6 +39,7 @@ from pathlib import Path
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "bench"))          # _workbench.foreign (the loop's CLI runner) when run as a script
 
 import numpy as np                                                      # noqa: E402
 
@@ -235,12 +244,26 @@ def run_angle_locked(rows) -> list:
     return out
 
 
-def suite_rows(sealed: bool) -> list:
+# the outside suites by set: (development, sealed). Set 1's sealed half has been run once (its labels are known): it is
+# development data now. Set 2's sealed half (foreign_drives/outside_sealed2.py) is run once, at the end, by others.
+SETS = {1: ("outside_dev", "outside_sealed"), 2: ("outside_dev2", "outside_sealed2")}
+# the suites the outside loop runs on by default: every development one, never the unspent sealed half
+LOOP_DEVELOPMENT_SUITES = ("outside_dev", "outside_sealed", "outside_dev2")
+
+
+def suite_name(sealed: bool, set_: int = 1) -> str:
+    if set_ not in SETS:
+        raise ValueError(f"--set {set_!r}: unknown set of outside mechanisms; allowed: {', '.join(map(str, SETS))}")
+    return SETS[set_][1 if sealed else 0]
+
+
+def suite_rows(sealed: bool, set_: int = 1) -> list:
     from foreign_drives import suites
-    if sealed:          # made on first use from foreign_drives/outside_sealed.py (not in SUITES)
-        return suites.suite("outside_sealed")
-    if "outside_dev" in getattr(suites, "SUITES", {}):
-        return suites.suite("outside_dev")
+    name = suite_name(sealed, set_)
+    if sealed:          # made on first use from foreign_drives/outside_sealed*.py (not in SUITES)
+        return suites.suite(name)
+    if name in getattr(suites, "SUITES", {}):
+        return suites.suite(name)
     return list(DEV_ROWS)
 
 
@@ -265,24 +288,166 @@ def summary(rows, explained, angle) -> dict:
 
 
 def run_all(sealed: bool = False, only=(), skip_explained: bool = False, skip_angle: bool = False,
-            skip_outside: bool = False, explained_every: int = 1):
+            skip_outside: bool = False, explained_every: int = 1, set_: int = 1):
     """(outside rows, explained rows, angle-locked rows) of the chosen suite."""
-    specs = [s for s in suite_rows(sealed) if not only or s.label in only]
+    specs = [s for s in suite_rows(sealed, set_) if not only or s.label in only]
     outside = [] if skip_outside else run_outside(specs)
     explained = []
     if not skip_explained:
         from foreign_drives.suites import suite
         explained = run_explained([s for s in suite("bench") if s.kind in ("clean", "one")
                                    and (not only or s.label in only)][::max(1, explained_every)])
-    angle = [] if skip_angle else run_angle_locked([r for r in angle_rows(suite_rows(sealed))
+    angle = [] if skip_angle else run_angle_locked([r for r in angle_rows(suite_rows(sealed, set_))
                                                     if not only or r[0].label in only])
     return outside, explained, angle
+
+
+# ------------------------------------------------------------------------------------------------- the outside loop
+# The README's loop as a user runs it, through the CLI, on each outside recording (bench/_workbench/foreign.py runs
+# the same commands): diagnose BAG at the drive's nominal conditions -> add-effect --accept-proposal when diagnose
+# proposes a term, else add-effect when diagnose names a catalogue effect (its ``additions``), else nothing (the
+# monitor keeps the packaged library) -> train --model -> analyze BAG --library, against analyze BAG before.
+# Training kept short (LOOP_TRAIN_SEEDS, LOOP_TRAIN_DURATION_S) so that a row costs a few CPU-minutes: one seed of the
+# 120-scenario grid is 8 windows per scenario at --duration 2.25 (the default); 1.25 s gives 4 per scenario.
+LOOP_TRAIN_SEEDS = "1000,1001"
+LOOP_TRAIN_DURATION_S = 1.25
+
+
+def _width_error(analyze_json: Path, truth_m: float) -> dict:
+    """|fused continuous width (a1+a2) - true width| over the onset windows whose fusion is full (foreign.py's
+    measure), and its uncertainty: the mean of the fused widths' own stated uncertainties over the same windows
+    (analyze's ``fused_width_uncertainty_m``: the spread of the windows each fuses)."""
+    from _workbench.foreign import FUSION_EVENTS, monitor_error_mm
+    out = monitor_error_mm(analyze_json, truth_m)
+    est = [e for e in json.loads(analyze_json.read_text())["estimates"]
+           if e["signal"] == "a1+a2" and e.get("entry_kind", "onset") == "onset" and e["fused_events"] >= FUSION_EVENTS
+           and e["fused_continuous_width_m"] is not None and np.isfinite(e["fused_continuous_width_m"])]
+    u = [e.get("fused_width_uncertainty_m") for e in est]
+    u = [x for x in u if x is not None and np.isfinite(x)]
+    out["uncertainty_mm"] = float(np.mean(u) * 1e3) if u else None
+    return out
+
+
+def loop_row(spec, workdir: Path, suite: str) -> dict:
+    """One outside recording through the README's loop (module comment above); also the proposal's row fields."""
+    from _workbench.foreign import _cli
+    from foreign_drives.files import write_bag
+    rec = make_recording(spec)
+    truth = rec.truth
+    d = workdir / spec.label
+    d.mkdir(parents=True, exist_ok=True)
+    bag = d / "drive.mcap"
+    write_bag(spec, bag, recording=rec)
+    bal, st = _truth_of(spec, truth)
+    row = {"label": spec.label, "suite": suite, "kind": spec.kind, "outside": bool(bal),
+           "true_width_mm": truth.true_width_m * 1e3, "truth_balance": sorted(bal), "truth_state": sorted(st)}
+    cpu = {}
+    rc, out, _, cpu["diagnose"] = _cli(["diagnose", bag, "--width-m", spec.width_m, "--eta-k", spec.eta_k, "--n1",
+                                        spec.n1, "--json", d / "d.json", "--no-history"], d)
+    if rc != 0:
+        row["error"] = "diagnose: " + out[-1500:]
+        return row
+    diag = json.loads((d / "d.json").read_text())
+    prop = diag.get("proposal") or {}
+    terms = prop.get("terms") or []
+    row.update({"verdict": diag["verdict"], "proposed": bool(prop.get("proposed")), "law": prop.get("law"),
+                "consistent": bool(prop.get("consistent")),
+                "right_balance": bool(prop.get("proposed")) and right_balance(terms, bal, st),
+                "terms": [(t["balance"], t["state"], t["group"]) for t in terms],
+                "additions": [(a["candidate"], a["role"]) for a in diag.get("additions") or []],
+                "diagnose_message": diag["message"][:400]})
+    rc, out, _, cpu["analyze_before"] = _cli(["analyze", bag, "--out", d / "before"], d)
+    if rc != 0:
+        row["error"] = "analyze before: " + out[-1000:]
+        return row
+    row["before"] = _width_error(d / "before.json", truth.true_width_m)
+    if row["proposed"]:
+        row["added"] = "proposal"
+        rc, out, _, cpu["add_effect"] = _cli(["add-effect", d / "d.json", "--accept-proposal", "-o", d / "v2.yaml"], d)
+    else:
+        row["added"] = "catalogue"
+        rc, out, _, cpu["add_effect"] = _cli(["add-effect", d / "d.json", "-o", d / "v2.yaml"], d)
+    if rc != 0:          # nothing to add (or refused): the monitor keeps its library
+        row["added"] = "nothing"
+        row["add_effect_said"] = (out.strip().splitlines() or [""])[-1][:300]
+        row["after"] = dict(row["before"])
+    else:
+        rc, out, _, cpu["train"] = _cli(["train", "--model", d / "v2.yaml", "--output", d / "lib.npz", "--seeds",
+                                         LOOP_TRAIN_SEEDS, "--duration", LOOP_TRAIN_DURATION_S, "--no-progress"], d)
+        if rc != 0:
+            # train writes the library before the live model watch's reference; when only the reference fails (seen:
+            # "the model does not cross its backlash" on an accepted proposal) the user has the library: go on, say so
+            row["train_error"] = out.strip().splitlines()[-1][:400] if out.strip() else f"exit {rc}"
+            if not (d / "lib.npz").exists():
+                row["error"] = "train: " + out[-1000:]
+                return row
+        rc, out, _, cpu["analyze_after"] = _cli(["analyze", bag, "--library", d / "lib.npz", "--out", d / "after"], d)
+        if rc != 0:
+            row["error"] = "analyze after: " + out[-1000:]
+            return row
+        row["after"] = _width_error(d / "after.json", truth.true_width_m)
+    b, a = row["before"]["mean_abs_mm"], row["after"]["mean_abs_mm"]
+    u = row["after"].get("uncertainty_mm") or 0.0
+    row["worse"] = bool(a is not None and b is not None and a > b + u)
+    row["cpu_seconds"] = cpu
+    row["row_cpu_seconds"] = float(sum(cpu.values()))
+    return row
+
+
+def run_loop(suites=LOOP_DEVELOPMENT_SUITES, only=(), workdir=None) -> list:
+    from foreign_drives import suites as S
+    rows = []
+    with tempfile.TemporaryDirectory(dir=workdir) as tmp:
+        for name in suites:
+            for spec in S.suite(name):
+                if only and spec.label not in only:
+                    continue
+                row = loop_row(spec, Path(tmp), name)
+                log(json.dumps(row, default=float))
+                rows.append(row)
+    return rows
+
+
+def loop_summary(rows) -> dict:
+    """The loop's goals: outside_loop_width_error_after_mm (mean over the outside recordings), outside_loop_worse_count
+    (every recording, the clean ones too)."""
+    def mean(rs, key):
+        v = [r[key]["mean_abs_mm"] for r in rs if key in r and r[key]["mean_abs_mm"] is not None]
+        return float(np.mean(v)) if v else None
+    done = [r for r in rows if "after" in r]
+    outside = [r for r in done if r["outside"]]
+    by_suite = {}
+    for name in dict.fromkeys(r["suite"] for r in rows):
+        rs = [r for r in outside if r["suite"] == name]
+        by_suite[name] = {"recordings": len(rs), "before_mm": mean(rs, "before"), "after_mm": mean(rs, "after"),
+                          "worse": int(sum(r["worse"] for r in done if r["suite"] == name))}
+    return {"outside_loop_recordings": len(outside), "outside_loop_clean_recordings": len(done) - len(outside),
+            "outside_loop_errors": [r["label"] for r in rows if "error" in r],
+            "outside_loop_width_error_before_mm": mean(outside, "before"),
+            "outside_loop_width_error_after_mm": mean(outside, "after"),
+            "outside_loop_worse_count": int(sum(r["worse"] for r in done)),
+            "outside_loop_worse_labels": [r["label"] for r in done if r["worse"]],
+            "outside_loop_added": {k: int(sum(r.get("added") == k for r in done))
+                                   for k in ("proposal", "catalogue", "nothing")},
+            "outside_loop_by_suite": by_suite,
+            "outside_loop_row_cpu_seconds_max": max((r["row_cpu_seconds"] for r in done), default=None),
+            "outside_loop_train": {"seeds": LOOP_TRAIN_SEEDS, "duration_s": LOOP_TRAIN_DURATION_S},
+            "outside_loop_per_recording": rows}
 
 
 def main(argv=None):
     import argparse
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--sealed", action="store_true", help="run the sealed outside suite (once, at the end)")
+    ap.add_argument("--set", dest="set_", type=int, default=1, choices=sorted(SETS),
+                    help="the set of outside mechanisms: 1 = outside_dev / outside_sealed (spent: both development "
+                         "data now), 2 = outside_dev2 / outside_sealed2 (default 1)")
+    ap.add_argument("--loop", action="store_true",
+                    help="instead of the proposal rows: the README's loop through the CLI (diagnose, add-effect "
+                         "[--accept-proposal], train --model, analyze --library) on every development outside suite "
+                         f"({', '.join(LOOP_DEVELOPMENT_SUITES)}); with --loop-suites, on those")
+    ap.add_argument("--loop-suites", default=None, metavar="SUITE[,SUITE...]",
+                    help="with --loop: these suites (outside_sealed2 only together with --sealed: once, at the end)")
     ap.add_argument("--only", action="append", default=[], metavar="LABEL", help="only these rows (repeatable)")
     ap.add_argument("--skip-explained", action="store_true",
                     help="skip the foreign bench's clean and one-effect rows (proposals_on_explained: null)")
@@ -292,10 +457,25 @@ def main(argv=None):
     ap.add_argument("--skip-outside", action="store_true", help="skip the proposals on the outside rows")
     args = ap.parse_args(argv)
     t0 = time.perf_counter()
+    if args.loop:
+        from foreign_drives.suites import SUITE_NAMES
+        names = tuple(x.strip() for x in args.loop_suites.split(",") if x.strip()) if args.loop_suites else \
+            LOOP_DEVELOPMENT_SUITES
+        bad = [n for n in names if n not in SUITE_NAMES or not n.startswith("outside")]
+        if bad:
+            ap.error(f"--loop-suites: unknown outside suite {bad[0]!r}; allowed: "
+                     + ", ".join(n for n in SUITE_NAMES if n.startswith("outside")))
+        if "outside_sealed2" in names and not args.sealed:
+            ap.error("--loop-suites: outside_sealed2 is the unspent sealed half; allowed only with --sealed (once, "
+                     "at the end)")
+        out = loop_summary(run_loop(names, args.only))
+        out["wall_seconds"] = time.perf_counter() - t0
+        print(json.dumps(out, default=float))
+        return
     out = summary(*run_all(args.sealed, args.only, args.skip_explained, args.skip_angle, args.skip_outside,
-                           args.explained_every))
+                           args.explained_every, args.set_))
     out["explained_every"] = args.explained_every
-    out["suite"] = "outside_sealed" if args.sealed else "outside_dev"
+    out["suite"] = suite_name(args.sealed, args.set_)
     out["wall_seconds"] = time.perf_counter() - t0
     print(json.dumps(out, default=float))
 
