@@ -53,6 +53,7 @@ BALANCE_WORDS = {"motor_load_moment_pu": "motor load moment", "clutch_torque_Nm"
                  "sensor_a1_m_s2": "measured a1", "sensor_a2_m_s2": "measured a2"}
 SHORT = {"motor_load_moment_pu": "motor", "clutch_torque_Nm": "clutch", "rim_mass_force_N": "rim",
          "wheel_torque_Nm": "wheel", "mass_force_N": "mass", "sensor_a1_m_s2": "a1", "sensor_a2_m_s2": "a2"}
+CUBIC_SCALE_M_S2 = 50.0                       # an accelerometer's own signal by this in its cube: the jaw's impacts, ~50 m/s^2
 CHANNEL_SCALE_M_S2 = 10.0                     # the other accelerometer's signal by this: its event swing, ~10-50 m/s^2
 RECORD_TIME = "t/T"          # the time in the record over its length (0 at sample 0, 1 at its end)
 
@@ -69,7 +70,7 @@ class Term:
     harmonic: tuple | None = None     # (angle variable, order, "sin"/"cos")
     recorded: tuple | None = None     # not simulated (event_design.py): ("sensor", signal, shape) with shape
                                       # ("harmonic", angle, order, fn) | ("speed", speed) | ("time",) | ("channel",
-                                      # the other accelerometer); or ("time", the
+                                      # the other accelerometer) | ("cubic", itself); or ("time", the
                                       # constant term it modulates) -- a slow change of a constant in its balance
 
     @property
@@ -142,6 +143,7 @@ def library() -> tuple[Term, ...]:
     # the mass: its speed's powers and sign
     xs = f"(wheel_radius_m * {SPEED_REF})"
     t += _speed_terms("mass_force_N", "xdot", "ẋ", xs)
+    t += _harmonics("mass_force_N", "alpha2", "α₂", (1,))    # a roller or a link driven off the wheel shaft
     # the load pulse (the press stroke): a force or torque that comes and goes with it, in every balance but the
     # clutch's (a lag behind the pulse's edges is a change of the event's shape the pulse's own column holds in part)
     for balance, sym in (("motor_load_moment_pu", "m"), ("wheel_torque_Nm", "w"), ("mass_force_N", "x")):
@@ -158,7 +160,7 @@ def library() -> tuple[Term, ...]:
 def recorded_terms() -> tuple[Term, ...]:
     """The terms computed on the recorded events instead of simulated (event_design.py): what a sensor adds to a1 or
     a2 -- harmonics of both shafts' angles (orders 1, 2), the shafts' speeds, a drift with the time in the record, the
-    other channel's signal (crosstalk) -- and a slow change (linear in the time in the record) of each balance's constant."""
+    other channel's signal (crosstalk), the channel's own cube (a compressing sensor) -- and a slow change (linear in the time in the record) of each balance's constant."""
     out: list[Term] = []
     for sig in ("a1", "a2"):
         balance = f"sensor_{sig}_m_s2"
@@ -181,6 +183,10 @@ def recorded_terms() -> tuple[Term, ...]:
         out.append(Term(f"{PREFIX}{b}_from_{other}", balance, f"{other} / {CHANNEL_SCALE_M_S2:g}",
                         f"{sym}/{CHANNEL_SCALE_M_S2:g}", other, f"{b}_from_{other}", (), None,
                         ("sensor", sig, ("channel", other))))
+        # the channel's own odd nonlinearity (a sensing element or an amplifier compressing large accelerations)
+        own = "a₁" if sig == "a1" else "a₂"
+        out.append(Term(f"{PREFIX}{b}_cubed", balance, f"({sig} / {CUBIC_SCALE_M_S2:g})^3",
+                        f"({own}/{CUBIC_SCALE_M_S2:g})³", sig, f"{b}_cubed", (), None, ("sensor", sig, ("cubic", sig))))
     for c in library():
         if c.state == "constant":
             b = SHORT[c.balance]

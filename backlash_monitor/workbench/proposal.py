@@ -266,6 +266,9 @@ def _sensor_shape(term, angles: dict, signals: dict, n: int) -> np.ndarray | Non
         if var not in angles:
             return None
         return (np.sin if fn == "sin" else np.cos)(k * angles[var])
+    if kind[0] == "cubic":
+        x = signals.get(kind[1])
+        return None if x is None else (np.asarray(x, dtype=float) / candidate_terms.CUBIC_SCALE_M_S2) ** 3
     if kind[0] == "channel":
         x = signals.get(kind[1])
         return None if x is None else np.asarray(x, dtype=float) / candidate_terms.CHANNEL_SCALE_M_S2
@@ -355,7 +358,7 @@ def design(p, run, terms, steps, S, ref) -> Design:
 TIE_SHARE = 0.05       # alike groups within this share of the best's held-out gain are tied: a simulated term's per-event
                        # columns carry the noise of their regression on the model's runs, a recorded term's none, which
                        # costs the simulated one a few per cent of its gain (measured: 1.5 % on a 6 N*m wheel-angle torque)
-OWN_ANGLE = {"motor_load_moment_pu": "alpha1", "wheel_torque_Nm": "alpha2"}   # the angle of a balance's own shaft
+OWN_ANGLE = {"motor_load_moment_pu": "alpha1", "wheel_torque_Nm": "alpha2", "mass_force_N": "alpha2"}  # the shaft driving the balance
 
 
 def _preferred(GG, Gy, yy, groups: list, chosen: list, alike: list, terms: list) -> list:
