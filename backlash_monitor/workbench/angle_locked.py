@@ -19,7 +19,9 @@ law of an 8 N*m wheel torque fitted at 7e-20 N*m, 0 % explained). Here it is fit
    squares over every event's vector in the whitened views (the fitted phase is the law's phase in that angle),
    from starts around the phase circle.
 4. **a secant.** A torque of the working torque's size changes the crossing it acts on: the probes are simulated
-   again at the fitted harmonics' own amplitudes (up to SECANT_ITERATIONS times).
+   again at the fitted harmonics' own amplitudes (up to SECANT_ITERATIONS times); then the law itself at the fitted
+   values, its simulated events' change against the probes' prediction at their own angles, gives one gain for
+   what separate small probes miss (the harmonics acting together), and the fit is redone with it.
 5. **uncertainty** -- the jackknife over the recorded events (their noise; the events are the independent units)
    and, in quadrature, over the simulated seeds (the responses' regression on the model's own runs).
 6. **the model with it.** Its event average is the change of the recorded events at their own angles; its spectral
@@ -49,6 +51,8 @@ ORDER_SHARE = 0.05         # a harmonic of the law whose amplitude is under this
 GRID = 256                 # points of one revolution the law is evaluated on
 SECANT_ITERATIONS = 2      # re-simulations of the responses at the fitted values
 SECANT_TOLERANCE = 0.05    # stop when no parameter moves by more than this share of its range
+GAIN_ITERATIONS = 2        # the whole law simulated at the fitted values: its response over the probes' (a gain)
+GAIN_RANGE = (0.25, 4.0)   # a gain outside: the probes do not describe the law's response, none applied
 PHASE_STARTS = 8           # starts of the fit around the phase circle
 REF_STEP = 0.15            # the law's shape and the fit's start: each parameter this share of its range into it
 REF_HARMONIC = 4.0         # the probes' amplitude: this many of the balance's small step (candidate_terms.BALANCES:
@@ -297,6 +301,24 @@ def fit(run, effect) -> fitting.FitResult | None:
         amps = new_amps
     if x is None:
         return None
+    # the law as a whole at the fitted values: its simulated events' change against the probes' linear prediction at
+    # those events' own angles -- one gain for what separate small probes miss (a torque of the working torque's size,
+    # its harmonics acting together), the fit redone with it
+    gain = 1.0
+    for _ in range(GAIN_ITERATIONS):
+        (D, a), = event_design.matched_changes(p, [plant_adapter.apply_values(effect, x)])
+        if D is None or len(D) < event_design.MIN_MATCHED:
+            break
+        lin = _columns(resp, a[var]) @ _coefficients(law, x, orders)
+        Dp, Lp = p.project(D.T), p.project(lin.T)
+        g = float(np.sum(Dp * Lp) / max(float(np.sum(Lp ** 2)), 1e-300))
+        if not GAIN_RANGE[0] <= g <= GAIN_RANGE[1] or abs(g - gain) <= SECANT_TOLERANCE * gain:
+            break
+        gain = g
+        G = gain * _columns(resp, theta)
+        GG, Gy, _ = gram(np.stack([p.project(G[..., c].T).T for c in range(G.shape[-1])], axis=-1), Y)
+        A, bvec = GG.sum(axis=0), Gy.sum(axis=0)
+        x = _fit_values(law, orders, A, bvec, x, lo, hi, k, multi=False)
     # the uncertainty: leave-one-event-out and leave-one-seed-out refits from the fitted values
     loo = [_fit_values(law, orders, A - GG[i], bvec - Gy[i], x, lo, hi, k, multi=False) for i in range(len(GG))]
     spread = _jackknife(_unwrap_phase(np.array(loo), k, x[k]))
@@ -305,7 +327,7 @@ def fit(run, effect) -> fitting.FitResult | None:
         rs = _solve_responses(used[0], used[1], var, orders, drop_seed=s)
         if rs is None:
             continue
-        Gs = _columns(rs, theta)
+        Gs = gain * _columns(rs, theta)
         GGs, Gys, _ = gram(np.stack([p.project(Gs[..., c].T).T for c in range(Gs.shape[-1])], axis=-1), Y)
         by_seed.append(_fit_values(law, orders, GGs.sum(axis=0), Gys.sum(axis=0), x, lo, hi, k, multi=False))
     if len(by_seed) >= 2:
