@@ -146,4 +146,7 @@ def summarize(rows: list, rule, watch_rule) -> dict:
                                             + [round(float(ratio.max()), 3)],
             "warned": [{"condition": r["condition"], "label": r.get("label", ""), "ratio": round(r["ratio"], 3),
                         "p_min": p_min(r, rule, r["dof"])} for r in warn]}
+    if len(out) == 2:
+        n, k = sum(v["pieces"] for v in out.values()), sum(v["folder_rule_warns"] for v in out.values())
+        out["all"] = {"pieces": n, "folder_rule_warns": k, "folder_rule_false_warn_rate_upper_95": round(upper_95(k, n), 4)}
     return out

@@ -1,7 +1,7 @@
 """analyze FOLDER's one-off model fit (config/folder_model_fit.yaml; docs/registry.md, "The folder's rule"): one
 evaluation of a bag's last 16 onset events, judged by a rule sized for one test per bag, not for the live watch's
-14,400 overlapping tests an hour. The rule's false-WARN rate is stated from Hotelling's predictive law (each view's
-p-value) and measured on many healthy pieces by bench/fleet.py --parts model_fit_null; here: clean drives of the
+14,400 overlapping tests an hour. Its false-WARN rate is measured on 270 healthy bags of both simulators by
+bench/fleet.py --parts model_fit_null (0; 95 % upper bound 1.1 % per bag); here: clean drives of the
 project's simulator stay OK, and a drive whose spring is 50 % stiffer (made by the independent foreign simulator)
 WARNs on its event average, where the live watch's per-view level (1e-6) does not reach."""
 import dataclasses
@@ -31,22 +31,20 @@ def ref(model):
 
 
 def test_the_folder_rule_is_a_one_off_level_of_the_watchs_test():
-    """One evaluation decides (no persistence) on the watch's 16-event window, its clipped event average and the
-    predictive law; only the level differs: a view's T^2 limit at the folder's level lies well below the live
-    watch's (q 8 on 95 degrees of freedom: 31.6 against 57.0), and 3 views x view_p (the law's bound on a healthy
-    bag's chance of a view WARN) stays below 1 %."""
+    """One evaluation decides (no persistence) on the watch's 16-event window, with its clipped event average, its
+    predictive law and its leave-one-out; only the level differs: a view's T^2 limit at the folder's level lies far
+    below the live watch's (q 8 on 95 degrees of freedom: 23.5 at 1e-2 against 57.0 at 1e-6)."""
     folder, watch, cfg = load_folder_rule(), load_rule(), load_folder_config()
     assert folder.persistence == 1 and folder.predictive and folder.event_clip_p == watch.event_clip_p
-    assert cfg["window_events"] == 16
-    assert folder.limit("event_average", 8, {"event_average": 95}) < 0.6 * watch.limit("event_average", 8,
+    assert folder.robust == watch.robust and cfg["window_events"] == 16
+    assert folder.limit("event_average", 8, {"event_average": 95}) < 0.5 * watch.limit("event_average", 8,
                                                                                          {"event_average": 95})
-    assert 3 * folder.view_p < 0.01
 
 
 def test_clean_drives_stay_ok_in_the_folder(model, ref):
     """A clean drive of the project's simulator cut into four bags (disjoint pieces: four independent tests): no
-    WARN (under the law each piece's chance is at most 3 x view_p = 3e-3; the four together ~1 %), and every view's
-    p-value is far from the level (the consistency test's model-form tolerance makes it conservative)."""
+    WARN, and every view's p-value above the level (bench/fleet.py --parts model_fit_null: the smallest over 150 own
+    healthy bags 2.6e-2; the consistency test's model-form tolerance makes the views conservative)."""
     rule, cfg = load_folder_rule(), load_folder_config()
     meas = synthetic.hidden_effect_recording(model, 1.0 + 4 * PIECE_S, seed=4711)
     n = int(round(PIECE_S / meas.sample_period_s))
@@ -57,14 +55,14 @@ def test_clean_drives_stay_ok_in_the_folder(model, ref):
         fit = evaluate_recording(piece, ref, rule, window_events=cfg["window_events"])
         assert fit["events"] == 16
         assert fit["level"] == "OK", (k, fit)
-        assert fit["p_min"] > 10 * rule.view_p and fit["residual_over_noise"] < rule.residual_ratio
+        assert fit["p_min"] > rule.view_p and fit["residual_over_noise"] < rule.residual_ratio
 
 
 def test_a_stiffer_spring_warns_in_the_folder(model, ref):
     """The foreign simulator's drive (foreign_drives/: not the model's code) with its spring 50 % stiffer: the
     change moves the slow spring-mass mode, which the model's own events vary in, so its event-average T^2 is modest
-    (the view's p-value ~1e-4 .. 1e-2 on 16 events, seed to seed) -- beyond the live watch's 1e-6, inside the
-    folder's level for this seed: WARN on the event average."""
+    (the view's p-value 4e-8 .. 7e-3 on 16 events over three seeds at 5 mm) -- short of the live watch's 1e-6 for
+    this seed, inside the folder's level, and with any one event left out too: WARN on the event average."""
     from foreign_drives.drive import make_recording
     from foreign_drives.suites import suite
     spring = next(s for s in suite("bench") if s.label == "spring_+0.5")
