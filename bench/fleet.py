@@ -30,10 +30,15 @@ measured on a busy machine is a lower bound.
     python bench/fleet.py --parts capacity --layouts process single --counts 8 10
     python bench/fleet.py --parts capacity --layouts process --watch both     # without and with the model watch
     python bench/fleet.py --parts model_fit [--compare-default]    # the registry's per-drive model fit
+    python bench/fleet.py --parts model_fit_null [--null-own-s 45 --null-foreign-s 45]   # the folder rule on healthy bags
     python bench/fleet.py --parts registry_loop                   # a live fleet picks up one drive's new version
 fleet_model_fit_false_warn / fleet_model_fit_detected: `analyze FOLDER --registry` on 12 healthy foreign drives of
   different nominal conditions and 6 foreign drives with effects, each registered at its own nominal (docs/registry.md):
   model-fit WARNs on the healthy ones, and the share of the others with a WARN.
+model_fit_null (--parts model_fit_null): the folder rule's false-WARN rate (config/folder_model_fit.yaml): healthy
+  own-simulator drives at the model_fit part's 15 nominal conditions and its 12 healthy foreign rows on other seeds,
+  cut into disjoint 4.5 s bags (one test each; bench/_fleet/model_fit_null.py), with the WARNs, their 95 % bound and
+  the statistics' null distribution; --null-rows-out keeps every bag's statistics for any other rule.
 registry_loop_pickup_s / registry_loop_changed_drives / registry_loop_other_drives_missed_onsets: a live fleet of 8
   drives picks up one drive's new version registered while it runs (bench/_fleet/registry_loop.py).
 """
