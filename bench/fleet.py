@@ -30,10 +30,15 @@ measured on a busy machine is a lower bound.
     python bench/fleet.py --parts capacity --layouts process single --counts 8 10
     python bench/fleet.py --parts capacity --layouts process --watch both     # without and with the model watch
     python bench/fleet.py --parts model_fit [--compare-default]    # the registry's per-drive model fit
+    python bench/fleet.py --parts model_fit_null [--null-own-s 45 --null-foreign-s 45]   # the folder rule on healthy bags
     python bench/fleet.py --parts registry_loop                   # a live fleet picks up one drive's new version
 fleet_model_fit_false_warn / fleet_model_fit_detected: `analyze FOLDER --registry` on 12 healthy foreign drives of
   different nominal conditions and 6 foreign drives with effects, each registered at its own nominal (docs/registry.md):
   model-fit WARNs on the healthy ones, and the share of the others with a WARN.
+model_fit_null (--parts model_fit_null): the folder rule's false-WARN rate (config/folder_model_fit.yaml): healthy
+  own-simulator drives at the model_fit part's 15 nominal conditions and its 12 healthy foreign rows on other seeds,
+  cut into disjoint 4.5 s bags (one test each; bench/_fleet/model_fit_null.py), with the WARNs, their 95 % bound and
+  the statistics' null distribution; --null-rows-out keeps every bag's statistics for any other rule.
 registry_loop_pickup_s / registry_loop_changed_drives / registry_loop_other_drives_missed_onsets: a live fleet of 8
   drives picks up one drive's new version registered while it runs (bench/_fleet/registry_loop.py).
 """
@@ -256,10 +261,10 @@ def registry_model_fit(workdir, duration_s=5.0, compare_default=False):
     from foreign_drives.files import write_bag
     from foreign_drives.suites import suite
     bench = {s.label: s for s in suite("bench")}
-    healthy = [s for s in bench.values() if s.kind == "clean"]
-    healthy += [dataclasses.replace(healthy[0], label=label, width_m=w, eta_k=e, n1=n, seed=7700 + i)
-                for i, (label, w, e, n) in enumerate(EXTRA_HEALTHY)]
+    healthy = _healthy_specs()
     sick = [bench[label] for label in EFFECT_LABELS]
+    # healthy and sick by the recordings' truth (the effects simulated), not by what the rule says
+    assert all(not s.effects for s in healthy) and all(s.effects for s in sick)
     bag_dir = os.path.join(workdir, "registry_bags")
     os.makedirs(bag_dir, exist_ok=True)
     lines, kinds = {"fleetA": {}}, {}
@@ -284,7 +289,10 @@ def registry_model_fit(workdir, duration_s=5.0, compare_default=False):
         log(proc.stdout[-3000:], proc.stderr[-1500:])
         rows = json.load(open(os.path.join(out, "fleet.json")))["rows"]
         per = {r["drive"]: {"label": kinds.get(r["drive"], ("?", "?"))[0], "kind": kinds.get(r["drive"], ("?", "?"))[1],
-                            "level": r.get("model_fit_level") or "", "ratio": r.get("model_fit_ratio")}
+                            "level": r.get("model_fit_level") or "", "ratio": r.get("model_fit_ratio"),
+                            "p_min": (r["model_fit"].get("p_min") if isinstance(r.get("model_fit"), dict) else None),
+                            "exceeding": (r["model_fit"].get("exceeding") if isinstance(r.get("model_fit"), dict)
+                                          else None)}
                for r in rows}
         healthy_rows = [v for v in per.values() if v["kind"] == "healthy"]
         sick_rows = [v for v in per.values() if v["kind"] == "effect"]
@@ -298,7 +306,62 @@ def registry_model_fit(workdir, duration_s=5.0, compare_default=False):
     return out
 
 
-PARTS = ("capacity", "diagnostics", "analyze", "two_host", "model_fit", "registry_loop")
+def _healthy_specs():
+    """The model_fit part's 12 healthy foreign drives: the bench suite's clean rows and EXTRA_HEALTHY."""
+    import dataclasses
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    from foreign_drives.suites import suite
+    healthy = [s for s in suite("bench") if s.kind == "clean"]
+    return healthy + [dataclasses.replace(healthy[0], label=label, width_m=w, eta_k=e, n1=n, seed=7700 + i)
+                      for i, (label, w, e, n) in enumerate(EXTRA_HEALTHY)]
+
+
+def model_fit_null(own_s, foreign_s, rows_out="", sources=("own", "foreign")):
+    """The folder rule's false-WARN rate on healthy drives (bench/_fleet/model_fit_null.py): the model_fit part's
+    healthy conditions and the effect rows' nominal ones (own simulator), and its healthy rows on other seeds
+    (foreign drives), cut into disjoint pieces, one test each."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from _fleet import model_fit_null as null
+    from backlash_monitor.watch.alarm import load_folder_rule, load_rule
+    from backlash_monitor.workbench import reference
+    from backlash_monitor.workbench.model import load_model
+    healthy = _healthy_specs()
+    from foreign_drives.suites import suite
+    rule, watch_rule = load_folder_rule(), load_rule()
+    refs = {}
+
+    def reference_for(w, e, n1):
+        if (w, e, n1) not in refs:
+            ref = reference.cached(load_model(None, width_m=w, eta_k=e, n1=n1), log=log)
+            refs[(w, e, n1)] = (ref, ref.view_dof())
+        return refs[(w, e, n1)]
+    bench = {s.label: s for s in suite("bench")}
+    conditions = list(dict.fromkeys([(s.width_m, s.eta_k, s.n1) for s in healthy]
+                                    + [(bench[x].width_m, bench[x].eta_k, bench[x].n1) for x in EFFECT_LABELS]))
+    started = time.perf_counter()
+    rows = []
+    # one condition at a time, the rows written after each (a long run's statistics are kept as they come); the
+    # own conditions in reverse (another run building the same references from the front meets this one midway)
+    for i, c in enumerate(conditions[::-1] if "own" in sources else []):
+        rows += null.own_pieces([c], reference_for, own_s, rule.event_clip_p, seed0=91_000 + i, log=log)
+        if rows_out:
+            with open(rows_out, "w") as f:
+                json.dump(rows, f)
+    for i, s in enumerate(healthy if "foreign" in sources else []):
+        rows += null.foreign_pieces([s], reference_for, foreign_s, rule.event_clip_p, seed0=92_000 + i, log=log)
+        if rows_out:
+            with open(rows_out, "w") as f:
+                json.dump(rows, f)
+    return {"model_fit_null": null.summarize(rows, rule, watch_rule),
+            "model_fit_null_rule": dataclasses_asdict(rule), "model_fit_null_seconds": time.perf_counter() - started}
+
+
+def dataclasses_asdict(x):
+    import dataclasses
+    return dataclasses.asdict(x)
+
+
+PARTS = ("capacity", "diagnostics", "analyze", "two_host", "model_fit", "model_fit_null", "registry_loop")
 
 
 def _autogroup() -> str:
@@ -363,6 +426,16 @@ def main():
     parser.add_argument("--compare-default", action="store_true",
                         help="model_fit part: also run the same bags without the registry (every drive against the "
                              "default model, as before)")
+    parser.add_argument("--null-own-s", type=float, default=45.0,
+                        help="model_fit_null part: seconds of clean own-simulator drive per nominal condition (cut "
+                             "into disjoint 4.5 s pieces: one folder test each)")
+    parser.add_argument("--null-foreign-s", type=float, default=45.0,
+                        help="model_fit_null part: seconds of clean foreign drive per healthy row's condition")
+    parser.add_argument("--null-sources", nargs="+", choices=("own", "foreign"), default=["own", "foreign"],
+                        help="model_fit_null part: the simulators of the healthy drives (default: both)")
+    parser.add_argument("--null-rows-out", default="",
+                        help="model_fit_null part: write every piece's statistics (views' T^2, residual ratio, "
+                             "leave-one-out windows) to this JSON file (any rule can be applied to them later)")
     parser.add_argument("--registry-loop-drives", type=int, default=8,
                         help="registry_loop part: drives of the live fleet (one of them picks up a new version)")
     parser.add_argument("--registry-loop-stream-s", type=float, default=60.0,
@@ -419,6 +492,8 @@ def main():
                           fleet_model_fit_healthy_drives=fit["registry"]["healthy"],
                           fleet_model_fit_detected=fit["registry"]["detected"],
                           fleet_model_fit_effect_drives=fit["registry"]["sick"], fleet_model_fit=fit)
+        if "model_fit_null" in args.parts:
+            result.update(model_fit_null(args.null_own_s, args.null_foreign_s, args.null_rows_out, args.null_sources))
         if "registry_loop" in args.parts:
             sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
             from _fleet.registry_loop import registry_loop

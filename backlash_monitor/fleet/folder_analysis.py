@@ -314,10 +314,11 @@ def default_model(n1: float, width_m: float):
 
 
 def model_fit(bag: str, options, watch: WatchOptions, row: dict) -> dict:
-    """The bag's model fit (watch/core.evaluate_recording) against its reference; a missing reference or a bag
+    """The bag's model fit (watch/core.evaluate_recording) against its reference, judged by the folder's one-off
+    rule (watch/alarm.load_folder_rule; docs/registry.md, "The folder's rule"); a missing reference or a bag
     that cannot be evaluated gives the reason instead. ``options``: the bag's AnalyzeOptions."""
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
-    from backlash_monitor.watch.alarm import load_rule
+    from backlash_monitor.watch.alarm import load_folder_config, load_folder_rule_from
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.watch.core import evaluate_recording
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
@@ -332,10 +333,12 @@ def model_fit(bag: str, options, watch: WatchOptions, row: dict) -> dict:
     except reference.ReferenceError as error:
         out["model_fit"] = "no reference" if not Path(path).exists() else str(error)
         return out
-    rule = _kept("alarm_rules", None, load_rule)          # (its YAML: ~5 ms a bag)
+    # the one-off rule (config/folder_model_fit.yaml: one test per bag, not the live watch's 14,400 an hour)
+    cfg = _kept("folder_model_fit", None, load_folder_config)      # (its YAML: ~5 ms a bag)
+    rule = _kept("alarm_rules", None, lambda: load_folder_rule_from(cfg))
     try:
         meas = load_measurement(bag, options.namespace or None)
-        fit = evaluate_recording(meas, ref, rule)
+        fit = evaluate_recording(meas, ref, rule, window_events=cfg["window_events"])
     except (MeasurementError, ValueError) as error:
         out["model_fit"] = f"not evaluated: {error}"
         return out

@@ -33,6 +33,7 @@ from scipy.special import chdtrc     # chi^2 survival function (stats.chi2.sf wi
 from ament_index_python.packages import get_package_share_directory
 import yaml
 
+from backlash_monitor.files.config import config_file
 from backlash_monitor.workbench.consistency import predictive_p, predictive_t2_isf
 
 ALARM_VIEWS = ("event_average", "spectral_shape", "record_mean")     # consistency.ConsistencyResult.consistent's
@@ -161,6 +162,54 @@ def load_config(path: str | None = None) -> dict:
         out[key] = kind(v)
     load_rule_from(out)
     return out
+
+
+FOLDER_CONFIG = "folder_model_fit.yaml"
+
+
+def folder_config_path() -> str:
+    """config/folder_model_fit.yaml (files.config.config_file: the source tree's, else the installed package's)."""
+    return str(config_file(FOLDER_CONFIG))
+
+
+def load_folder_config(path: str | None = None) -> dict:
+    """The one-off model fit's settings (``analyze FOLDER``: one test per bag; config/folder_model_fit.yaml):
+    ValueError naming a missing or bad key."""
+    path = path or folder_config_path()
+    with open(path, encoding="utf-8") as f:
+        cfg = yaml.safe_load(f) or {}
+    want = {"window_events": int, "view_p": float, "residual_ratio": float, "robust": bool, "event_clip_p": float,
+            "predictive": bool}
+    out = {}
+    for key, kind in want.items():
+        if key not in cfg:
+            raise ValueError(f"{path}: missing key {key!r}; allowed keys: {', '.join(want)}")
+        v = cfg[key]
+        if key == "event_clip_p" and v is None:
+            out[key] = None
+        elif kind is bool:
+            if not isinstance(v, bool):
+                raise ValueError(f"{path}: {key} = {v!r}; allowed: true or false")
+            out[key] = v
+        elif isinstance(v, bool) or not isinstance(v, (int, float)) or (kind is int and not isinstance(v, int)):
+            raise ValueError(f"{path}: {key} = {v!r} is not {'an integer' if kind is int else 'a number'}")
+        else:
+            out[key] = kind(v)
+    if out["window_events"] < 3:
+        raise ValueError(f"{path}: window_events = {out['window_events']!r}; allowed: an integer >= 3")
+    load_folder_rule_from(out)
+    return out
+
+
+def load_folder_rule_from(c: dict) -> AlarmRule:
+    """One evaluation decides (no persistence, nothing to clear)."""
+    return AlarmRule(c["view_p"], c["residual_ratio"], 1, 1, c["robust"], c.get("event_clip_p"),
+                     c.get("predictive", True)).check()
+
+
+def load_folder_rule(path: str | None = None) -> AlarmRule:
+    """The rule of a one-off model fit (``analyze FOLDER``'s column): config/folder_model_fit.yaml."""
+    return load_folder_rule_from(load_folder_config(path))
 
 
 def load_rule_from(c: dict) -> AlarmRule:
