@@ -51,10 +51,11 @@ ORDER_SHARE = 0.05         # a harmonic of the law whose amplitude is under this
 GRID = 256                 # points of one revolution the law is evaluated on
 SECANT_ITERATIONS = 2      # re-simulations of the responses at the fitted values
 SECANT_TOLERANCE = 0.05    # stop when no parameter moves by more than this share of its range
+PARSEVAL_SHARE = 0.95      # the law's orders up to MAX_ORDER hold at least this share of its power, else not fitted here
+MAX_CONCENTRATION = 0.5    # the events' angles at entry: |mean exp(i k angle)| under this on every order
 GAIN_ITERATIONS = 2        # the whole law simulated at the fitted values: its response over the probes' (a gain)
 GAIN_RANGE = (0.25, 4.0)   # a gain outside: the probes do not describe the law's response, none applied
 PHASE_STARTS = 8           # starts of the fit around the phase circle
-REF_STEP = 0.15            # the law's shape and the fit's start: each parameter this share of its range into it
 REF_HARMONIC = 4.0         # the probes' amplitude: this many of the balance's small step (candidate_terms.BALANCES:
                            # 2 N*m on the wheel, 0.08 p.u. on the motor): small, so that the response is linear in it
                            # (measured: the cam's own law as the probe, at 13 N*m in its first harmonic, fitted 0.13
@@ -104,12 +105,25 @@ class Law:
 
 
 def law_orders(law: Law, x) -> tuple:
-    """The harmonics the law has at x: orders whose amplitude is at least ORDER_SHARE of the largest."""
-    _, b, a = law.harmonics(x)
+    """The harmonics the law has at x: orders whose amplitude is at least ORDER_SHARE of the largest; () when the
+    law is not such a sum (its orders up to MAX_ORDER hold less than PARSEVAL_SHARE of its power: a mesh at 20 per
+    revolution, a law not periodic in one revolution) or is not finite."""
+    v = law.values(x)
+    a0, b, a = law.harmonics(x)
     amp = np.hypot(a, b)
-    if not np.all(np.isfinite(amp)) or amp.max() <= 0.0:
+    if not (np.all(np.isfinite(v)) and np.all(np.isfinite(amp))) or amp.max() <= 0.0:
+        return ()
+    power = float(np.mean(v ** 2))
+    if a0 ** 2 + 0.5 * float(np.sum(amp ** 2)) < PARSEVAL_SHARE * power:
         return ()
     return tuple(int(k) + 1 for k in np.flatnonzero(amp >= ORDER_SHARE * amp.max()))
+
+
+def spread_enough(angles: np.ndarray, orders) -> bool:
+    """The events' angles at entry cover each order's circle: |mean exp(i k angle)| below MAX_CONCENTRATION (events
+    that all enter at one angle -- a pulse locked to the shaft -- cannot tell the harmonics' sine from their cosine)."""
+    angles = np.asarray(angles, dtype=float)
+    return bool(len(angles) > 0 and all(abs(np.mean(np.exp(1j * k * angles))) < MAX_CONCENTRATION for k in orders))
 
 
 @dataclass(frozen=True)
@@ -153,7 +167,6 @@ def _probe_problem(p, balance, var, orders):
     q = copy.copy(p)
     q.model = copy.copy(p.model)
     q.model.effect_files = list(p.model.effect_files) + [harmonics_file(balance, var, orders)]
-    q.model.effects_added = list(p.model.effects_added)
     return q
 
 
@@ -184,6 +197,10 @@ def _solve_responses(changes, amps, var, orders, drop_seed=None) -> Responses | 
         if keep.sum() < event_design.MIN_MATCHED:
             return None
         Dk = D[keep] / amps[k]
+        if not np.all(np.isfinite(Dk)):
+            return None
+        if k > 0 and not spread_enough(a[var][keep], (k,)):
+            return None
         if k == 0:
             R0 = Dk.mean(axis=0)
             continue
@@ -230,7 +247,7 @@ def _fit_values(law, orders, A, bvec, x_start, lo, hi, k_phase, multi: bool) -> 
     best = None
     span = np.maximum(hi - lo, 1e-12)
     for x0 in starts:
-        r = least_squares(res, np.clip(x0, lo + 1e-9 * span, hi - 1e-9 * span), bounds=(lo, hi + 1e-300),
+        r = least_squares(res, np.clip(x0, lo + 1e-9 * span, hi - 1e-9 * span), bounds=(lo, np.maximum(hi, lo + span)),
                           x_scale=span, method="trf")
         if best is None or r.cost < best.cost:
             best = r
@@ -249,6 +266,15 @@ def _unwrap_phase(rows: np.ndarray, k: int, ref: float) -> np.ndarray:
 
 
 def fit(run, effect) -> fitting.FitResult | None:
+    """:func:`fit_event_by_event`, or None when a user's term does not run on numpy arrays, gives values that are not
+    finite, or its responses cannot be solved (its candidate is then refined on the event average as any other)."""
+    try:
+        return fit_event_by_event(run, effect)
+    except (TypeError, ValueError, ArithmeticError, NameError, AttributeError, np.linalg.LinAlgError):
+        return None
+
+
+def fit_event_by_event(run, effect) -> fitting.FitResult | None:
     """The event-by-event fit of ``effect`` (a CandidateEffect locked to one shaft's angle: angle_variable) on the
     diagnosis ``run``; None when it does not apply (not such a term, no recorded speed, too few events, a law with no
     harmonic at its reference)."""
@@ -259,22 +285,20 @@ def fit(run, effect) -> fitting.FitResult | None:
     angles = event_design.recorded_angles(run.meas.signals, p.dt)
     if var not in angles:
         return None
-    try:
-        law = Law(run.model, effect, var)
-    except Exception:          # a user's term that does not run on numpy: not fitted here  # noqa: BLE001
-        return None
+    law = Law(run.model, effect, var)
     theta = angles[var][np.asarray(p.events.entries)]
     k = effect.phase_index
     x0 = effect.default_vector()
     lo, hi = effect.bounds()
-    x_start = x0 + np.where(np.arange(len(x0)) == k, 0.0, REF_STEP * (hi - lo))
+    x_start = x0 + np.where(np.arange(len(x0)) == k, 0.0, fitting._step(effect))   # 15 % into the range
     orders = law_orders(law, x_start)
-    if not orders:
+    if not orders or not spread_enough(theta, orders):
         return None
     base = run.base_pred
     Y = p.project((p.event_vecs - base[None]).T).T                     # (E, D)
     q = _probe_problem(p, effect.balance, var, orders)
-    n_before = p.n_sets_simulated + q.n_sets_simulated
+    q_before = q.n_sets_simulated
+    n_before = p.n_sets_simulated
     probes = (0,) + tuple(orders)
     keys = {o: f"{probe_name(effect.balance, var, o)}.coefficient" for o in probes}
     amps = _probe_amplitudes(effect.balance, orders)
@@ -348,13 +372,14 @@ def fit(run, effect) -> fitting.FitResult | None:
         xs = np.array(x)
         xs[i] = xs[i] + hstep if xs[i] + hstep <= hi[i] else xs[i] - hstep
         J[:, i] = (G @ ((_coefficients(law, xs, orders) - c_fit) / (xs[i] - x[i]))).mean(axis=0)
+    p.n_sets_simulated += q.n_sets_simulated - q_before        # the probes' runs count in the diagnosis's total
     tol = fitting.AT_BOUND_FRACTION * (hi - lo)
     at_bound = bool(np.any([(x[i] - lo[i] <= tol[i] and abs(x0[i] - lo[i]) > tol[i])
                             or (hi[i] - x[i] <= tol[i] and abs(hi[i] - x0[i]) > tol[i])
                             for i in range(len(x0)) if i != k]))
     return fitting.FitResult(effect.name, [q.name for q in effect.parameters], [q.unit for q in effect.parameters],
                              x, spread, x0, (lo, hi), explained, ic - run.base_ic, ic, ens.mean_denoised(0), explained,
-                             p.n_sets_simulated + q.n_sets_simulated - n_before, effect.balance, effect.description, at_bound,
+                             p.n_sets_simulated - n_before, effect.balance, effect.description, at_bound,
                              model_mean_raw=ens.mean_raw(0), pred=pred, jacobian=J,
                              fixed=getattr(effect, "fixed_values", {}))
 

@@ -158,17 +158,6 @@ def angle_responses(problem, terms: list, steps: dict, project) -> dict:
     return out
 
 
-@dataclass(frozen=True)
-class FourierResponse:
-    """The per-event change of one simulated parameter set as a function of the event's shaft angle at entry θ, in the
-    prediction space: C (1 + 2 len(orders), N) on the basis [1, cos kθ, sin kθ for k in orders] (fourier_basis). A
-    law locked to the angle with those harmonics has such a response; ``n_events``, ``r2`` as AngleResponse's."""
-    C: np.ndarray
-    orders: tuple
-    n_events: int
-    r2: float
-
-
 def fourier_basis(theta: np.ndarray, orders) -> np.ndarray:
     """(n, 1 + 2 len(orders)): 1, cos kθ, sin kθ for each order k."""
     theta = np.asarray(theta, dtype=float)
@@ -176,22 +165,6 @@ def fourier_basis(theta: np.ndarray, orders) -> np.ndarray:
     for k in orders:
         cols += [np.cos(k * theta), np.sin(k * theta)]
     return np.column_stack(cols)
-
-
-def fourier_response(D: np.ndarray, angles: np.ndarray, orders, project) -> FourierResponse:
-    """The least-squares FourierResponse of the changes ``D`` (n, N) of events entered at ``angles``; r2 in the
-    ``project``-ed coordinates. (A drive's events come at a steady pulse rate: the seeds' events enter at nearly the
-    same angles, so only the law's own orders are fitted, never a full series.)"""
-    X = fourier_basis(angles, orders)
-    C, *_ = np.linalg.lstsq(X, D, rcond=None)
-    Dp, fitp = project(D.T).T, project((X @ C).T).T
-    r2 = 1.0 - float(np.sum((Dp - fitp) ** 2)) / max(float(np.sum(Dp ** 2)), 1e-300)
-    return FourierResponse(C, tuple(orders), len(D), r2)
-
-
-def fourier_columns(resp: FourierResponse, theta: np.ndarray) -> np.ndarray:
-    """(E, N): the response at each recorded event's angle at entry ``theta``."""
-    return fourier_basis(theta, resp.orders) @ resp.C
 
 
 def angle_columns(resp: AngleResponse, psi: np.ndarray, project=None) -> np.ndarray:

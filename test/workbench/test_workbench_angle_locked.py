@@ -211,3 +211,49 @@ def test_a_users_exact_law_plugin_is_named_on_a_foreign_wheel_angle_torque():
     a, s = fit["parameters"]["amplitude_Nm"], fit["uncertainty"]["amplitude_Nm"]
     assert 0 < s < a / 3
     assert abs(a - 8.0) <= 3 * s
+
+
+class Mesh20(Effect):
+    """A gear mesh at 20 per revolution: beyond the harmonics fitted here."""
+    name = "test_mesh20"
+    balance = "wheel_torque_Nm"
+    description = "A*sin(20*a2+phi)"
+    parameters = (Parameter("amplitude_Nm", "N*m", 0.0, (0.0, 50.0), "A"),
+                  Parameter("phase_rad", "rad", 0.0, (-np.pi, np.pi), "phi"))
+
+    @staticmethod
+    def term(alpha2, amplitude_Nm, phase_rad):
+        return amplitude_Nm * sin(20.0 * alpha2 + phase_rad)
+
+
+class Branchy(Effect):
+    """A term written with a Python branch: it runs compiled per sample, not on numpy arrays."""
+    name = "test_branchy"
+    balance = "wheel_torque_Nm"
+    description = "A if sin(a2+phi) > 0 else 0"
+    parameters = (Parameter("amplitude_Nm", "N*m", 0.0, (0.0, 50.0), "A"),
+                  Parameter("phase_rad", "rad", 0.0, (-np.pi, np.pi), "phi"))
+
+    @staticmethod
+    def term(alpha2, amplitude_Nm, phase_rad):
+        if sin(alpha2 + phase_rad) > 0.0:
+            return amplitude_Nm
+        return 0.0
+
+
+def test_a_law_beyond_the_fitted_harmonics_or_not_on_arrays_is_left_to_the_average():
+    """A mesh at 20 per revolution has no power in orders 1-4 (Parseval): not fitted here; a term with a Python
+    branch does not run on arrays: the fit returns None instead of failing the diagnosis."""
+    law = al.Law(_model(Mesh20), _candidate(Mesh20), "alpha2")
+    assert al.law_orders(law, np.array([2.0, 0.0])) == ()
+    with pytest.raises(ValueError):
+        al.Law(_model(Branchy), _candidate(Branchy), "alpha2").values(np.array([2.0, 0.0]))
+    problem = types.SimpleNamespace(n_events=20, dt=1e-3, events=types.SimpleNamespace(entries=np.arange(0, 1000, 50)))
+    run = types.SimpleNamespace(model=_model(Branchy), problem=problem,
+                                meas=types.SimpleNamespace(signals={"omega2": np.full(1000, 3.0)}))
+    assert al.fit(run, _candidate(Branchy)) is None
+
+
+def test_events_that_all_enter_at_one_angle_cannot_tell_sine_from_cosine():
+    assert al.spread_enough(np.linspace(0, 40, 30), (1, 2))
+    assert not al.spread_enough(np.full(30, 1.3) + 2 * np.pi * np.arange(30), (1,))
