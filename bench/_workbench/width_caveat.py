@@ -40,11 +40,12 @@ from foreign_drives.spec import RecordingSpec  # noqa: E402
 from _workbench.foreign import _cli, log, score  # noqa: E402
 
 
-def _spec(i: int, label: str, nominal_m: float, width_change_m: float, effect: E, eta_k=0.025, n1=0.89):
+def _spec(i: int, label: str, nominal_m: float, width_change_m: float, effect: E, eta_k=0.025, n1=0.89,
+          first_seed: int = 7100):
     """A 4 s foreign recording of a drive at ``nominal_m`` whose width grew by ``width_change_m`` and that has
-    ``effect`` besides (seeds 7100+: no other suite uses them)."""
+    ``effect`` besides (seed ``first_seed`` + i)."""
     return RecordingSpec(label=label, kind="two", width_m=nominal_m, eta_k=eta_k, n1=n1,
-                         effects=(E("drift_width", {"change": width_change_m}), effect), seed=7100 + i,
+                         effects=(E("drift_width", {"change": width_change_m}), effect), seed=first_seed + i,
                          duration_s=4.0, pulse_first_s=(0.05, 0.1176, 0.0308, 0.2192)[i % 4],
                          drive_name=f"wpe{i}").check()
 
@@ -65,8 +66,29 @@ WIDTH_PLUS_EFFECT = [
     _spec(6, "wpe_w4.4+0.9_gain_a1_+0.12", 0.0044, 0.0009, E("gain_constant", _sig("a1", relative_change=0.12))),
     _spec(7, "wpe_w7.0+0.6_bias_a1_+1.0", 0.007, 0.0006, E("bias_constant", _sig("a1", bias_m_s2=1.0))),
 ]
+# The first sealed half (odd rows above) was run once on 28 Nov (0.75 named); spent since: development data now.
+# Written 29 Nov 2026 07:55 UTC before any change to diagnose (session 38): six more, other effects, widths and
+# conditions, seeds 7600+ (no suite uses them); the split fixed here (even: development, odd: the new sealed half).
+WIDTH_PLUS_EFFECT_2 = [
+    _spec(8, "wpe2_w6.0+0.9_mass_rail_friction_10N", 0.006, 0.0009,
+          E("mass_rail_friction", {"force_N": 10.0, "smoothing_speed_m_s": 0.05}), eta_k=0.03, n1=0.91,
+          first_seed=7600),
+    _spec(9, "wpe2_w5.0+1.0_motor_fan_load_3Nm", 0.005, 0.0010,
+          E("motor_fan_load", {"torque_Nm": 3.0, "reference_speed_rad_s": 151.4}), first_seed=7600),
+    _spec(10, "wpe2_w8.0+0.6_wheel_drag_quadratic_1.2Nm", 0.008, 0.0006,
+          E("wheel_drag_power", {"coefficient": 1.2 / 151.4 ** 2, "exponent": 2.0}), eta_k=0.02, n1=0.93,
+          first_seed=7600),
+    _spec(11, "wpe2_w6.5+0.8_wheel_inertia_+0.35", 0.0065, 0.0008,
+          E("drift_wheel_inertia", {"relative_change": 0.35}), eta_k=0.0375, n1=0.93, first_seed=7600),
+    _spec(12, "wpe2_w4.5+1.0_gain_a2_+0.12", 0.0045, 0.0010, E("gain_constant", _sig("a2", relative_change=0.12)),
+          eta_k=0.02, n1=0.93, first_seed=7600),
+    _spec(13, "wpe2_w5.5+1.1_absorber_eta_+0.5", 0.0055, 0.0011, E("drift_eta_k", {"relative_change": 0.5}),
+          first_seed=7600),
+]
 DEVELOPMENT = [s for i, s in enumerate(WIDTH_PLUS_EFFECT) if i % 2 == 0]
-SEALED = [s for i, s in enumerate(WIDTH_PLUS_EFFECT) if i % 2 == 1]
+SEALED = [s for i, s in enumerate(WIDTH_PLUS_EFFECT) if i % 2 == 1]          # spent: run once on 28 Nov
+DEVELOPMENT_2 = [s for i, s in enumerate(WIDTH_PLUS_EFFECT_2) if i % 2 == 0]
+SEALED_2 = [s for i, s in enumerate(WIDTH_PLUS_EFFECT_2) if i % 2 == 1]       # the new sealed half: run once, last
 
 
 def width_plus_effect_row(spec, workdir: Path) -> dict:
@@ -244,7 +266,9 @@ def _alarm_row(r: dict, out_dir: Path, truth: dict, rule, warn_c: float, error_c
 if __name__ == "__main__":
     import argparse
     ap = argparse.ArgumentParser(description="never a confident wrong width: the foreign checks (one JSON object)")
-    ap.add_argument("--parts", default="alarms,development", help="alarms, development, sealed (comma separated)")
+    ap.add_argument("--parts", default="alarms,development",
+                    help="alarms, development, sealed (the first sealed half: spent, reported as development data), "
+                         "development2, sealed2 (the new sealed half: run once, last) (comma separated)")
     ap.add_argument("--only", action="append")
     ap.add_argument("--suites", help="the alarm check's suites, comma separated (default: " + ",".join(ALARM_SUITES)
                     + " where they exist)")
@@ -261,4 +285,10 @@ if __name__ == "__main__":
     if "sealed" in parts:
         out.update(width_plus_effect([s for s in SEALED if not a.only or s.label in a.only],
                                      "width_plus_effect_sealed_"))
+    if "development2" in parts:
+        out.update(width_plus_effect([s for s in DEVELOPMENT_2 if not a.only or s.label in a.only],
+                                     "width_plus_effect_development2_"))
+    if "sealed2" in parts:
+        out.update(width_plus_effect([s for s in SEALED_2 if not a.only or s.label in a.only],
+                                     "width_plus_effect_sealed2_"))
     print(json.dumps(out, default=float))
