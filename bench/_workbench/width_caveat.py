@@ -102,7 +102,7 @@ def width_plus_effect_row(spec, workdir: Path) -> dict:
     write_bag(spec, bag, recording=rec)
     row = {"label": spec.label, "true_width_m": truth["true_width_m"], "families": truth["families"]}
     rc, out, wall, cpu = _cli(["diagnose", bag, "--width-m", spec.width_m, "--eta-k", spec.eta_k, "--n1", spec.n1,
-                               "--json", d / "d.json", "--no-record"], d)
+                               "--json", d / "d.json", "--no-history"], d)
     if rc != 0:
         row["error"] = out[-2000:]
         return row
