@@ -366,8 +366,13 @@ def main(argv=None):
         out.update(width_caveat.confident_wrong_width_alarms())
         dev = width_caveat.width_plus_effect(width_caveat.DEVELOPMENT, "width_plus_effect_development_")
         sealed = width_caveat.width_plus_effect(width_caveat.SEALED, "width_plus_effect_sealed_")
-        out.update(dev | sealed)
-        rows = dev["width_plus_effect_development_per_recording"] + sealed["width_plus_effect_sealed_per_recording"]
+        dev2 = width_caveat.width_plus_effect(width_caveat.DEVELOPMENT_2, "width_plus_effect_development2_")
+        sealed2 = width_caveat.width_plus_effect(width_caveat.SEALED_2, "width_plus_effect_sealed2_")
+        out.update(dev | sealed | dev2 | sealed2)
+        rows = [r for part, prefix in ((dev, "development"), (sealed, "sealed"), (dev2, "development2"),
+                                       (sealed2, "sealed2"))
+                for r in part[f"width_plus_effect_{prefix}_per_recording"]]
+        out["width_plus_effect_recordings"] = len(rows)
         ok = [r for r in rows if "error" not in r]
         out["width_plus_effect_named_rate"] = sum(r["other_named"] for r in ok) / len(rows) if rows else None
         out["width_plus_effect_width_error_sigma_max"] = max((r["width_error_sigma"] for r in ok), default=None)

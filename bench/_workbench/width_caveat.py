@@ -2,13 +2,18 @@
 simulator), run through the commands as a user runs them.
 
 1. ``confident_wrong_width_alarms``: every recording of the foreign bench suite (``python -m foreign_drives write
-   --suite bench``) through one ``analyze DIR`` (the fleet table, with its model fit against the default model at the
-   measured width, as the command gives it); each recording under a drive name of its own (the suite's recordings
-   share names, and the fleet's trend is per drive; the physics and the seed are the suite's). A *confident wrong width alarm*: the row's level is WARN with the
-   true width below the trend's warn_width_m, or ERROR with it below error_width_m (config/trend.yaml), and neither
-   the row's reason nor its width cell says that the model does not explain the drive (fleet/caveat.py). The live
-   classifier's own alarm (its last fused width against config/diagnostics.yaml's thresholds) is counted the same
-   way from analyze's estimates, with the caveat the classifier adds from the same model fit.
+   --suite bench``) and of every outside suite (outside_dev, outside_sealed, and outside_dev2/outside_sealed2 where
+   foreign_drives has them: mechanisms outside the catalogue), simulated in a pool of 2 processes, then through ONE
+   ``analyze DIR --jobs 2`` (the fleet table, with its model fit against the default model at the measured width, as
+   the command gives it); each recording under a drive name of its own (the suites' recordings share names, and the
+   fleet's trend is per drive; the physics and the seed are the suite's). A *confident wrong width alarm*: the row's
+   level is WARN with the true width below the trend's warn_width_m, or ERROR with it below error_width_m
+   (config/trend.yaml), and neither the row's reason nor its width cell says that the model does not explain the
+   drive (fleet/caveat.py). The live classifier's own alarm (its last fused width against config/diagnostics.yaml's
+   thresholds) is counted the same way from analyze's estimates, with the caveat the classifier adds from the same
+   model fit. Cost (profiled 29 Nov): the simulation (~8-16 s a recording) and the model fit's references (one per
+   pattern width nearest a measured width, ~60 s of one core each, built once into .cache/watch); analyze's own
+   work is ~1 s a recording.
 
 2. ``width_plus_effect_*``: foreign drives whose width changed together with another effect. Defined before any
    tuning (below), half of them SEALED: run once, at the end, reported as they come out. Per recording ``diagnose
@@ -35,11 +40,12 @@ from foreign_drives.spec import RecordingSpec  # noqa: E402
 from _workbench.foreign import _cli, log, score  # noqa: E402
 
 
-def _spec(i: int, label: str, nominal_m: float, width_change_m: float, effect: E, eta_k=0.025, n1=0.89):
+def _spec(i: int, label: str, nominal_m: float, width_change_m: float, effect: E, eta_k=0.025, n1=0.89,
+          first_seed: int = 7100):
     """A 4 s foreign recording of a drive at ``nominal_m`` whose width grew by ``width_change_m`` and that has
-    ``effect`` besides (seeds 7100+: no other suite uses them)."""
+    ``effect`` besides (seed ``first_seed`` + i)."""
     return RecordingSpec(label=label, kind="two", width_m=nominal_m, eta_k=eta_k, n1=n1,
-                         effects=(E("drift_width", {"change": width_change_m}), effect), seed=7100 + i,
+                         effects=(E("drift_width", {"change": width_change_m}), effect), seed=first_seed + i,
                          duration_s=4.0, pulse_first_s=(0.05, 0.1176, 0.0308, 0.2192)[i % 4],
                          drive_name=f"wpe{i}").check()
 
@@ -60,8 +66,29 @@ WIDTH_PLUS_EFFECT = [
     _spec(6, "wpe_w4.4+0.9_gain_a1_+0.12", 0.0044, 0.0009, E("gain_constant", _sig("a1", relative_change=0.12))),
     _spec(7, "wpe_w7.0+0.6_bias_a1_+1.0", 0.007, 0.0006, E("bias_constant", _sig("a1", bias_m_s2=1.0))),
 ]
+# The first sealed half (odd rows above) was run once on 28 Nov (0.75 named); spent since: development data now.
+# Written 29 Nov 2026 07:55 UTC before any change to diagnose (session 38): six more, other effects, widths and
+# conditions, seeds 7600+ (no suite uses them); the split fixed here (even: development, odd: the new sealed half).
+WIDTH_PLUS_EFFECT_2 = [
+    _spec(8, "wpe2_w6.0+0.9_mass_rail_friction_10N", 0.006, 0.0009,
+          E("mass_rail_friction", {"force_N": 10.0, "smoothing_speed_m_s": 0.05}), eta_k=0.03, n1=0.91,
+          first_seed=7600),
+    _spec(9, "wpe2_w5.0+1.0_motor_fan_load_3Nm", 0.005, 0.0010,
+          E("motor_fan_load", {"torque_Nm": 3.0, "reference_speed_rad_s": 151.4}), first_seed=7600),
+    _spec(10, "wpe2_w8.0+0.6_wheel_drag_quadratic_1.2Nm", 0.008, 0.0006,
+          E("wheel_drag_power", {"coefficient": 1.2 / 151.4 ** 2, "exponent": 2.0}), eta_k=0.02, n1=0.93,
+          first_seed=7600),
+    _spec(11, "wpe2_w6.5+0.8_wheel_inertia_+0.35", 0.0065, 0.0008,
+          E("drift_wheel_inertia", {"relative_change": 0.35}), eta_k=0.0375, n1=0.93, first_seed=7600),
+    _spec(12, "wpe2_w4.5+1.0_gain_a2_+0.12", 0.0045, 0.0010, E("gain_constant", _sig("a2", relative_change=0.12)),
+          eta_k=0.02, n1=0.93, first_seed=7600),
+    _spec(13, "wpe2_w5.5+1.1_absorber_eta_+0.5", 0.0055, 0.0011, E("drift_eta_k", {"relative_change": 0.5}),
+          first_seed=7600),
+]
 DEVELOPMENT = [s for i, s in enumerate(WIDTH_PLUS_EFFECT) if i % 2 == 0]
-SEALED = [s for i, s in enumerate(WIDTH_PLUS_EFFECT) if i % 2 == 1]
+SEALED = [s for i, s in enumerate(WIDTH_PLUS_EFFECT) if i % 2 == 1]          # spent: run once on 28 Nov
+DEVELOPMENT_2 = [s for i, s in enumerate(WIDTH_PLUS_EFFECT_2) if i % 2 == 0]
+SEALED_2 = [s for i, s in enumerate(WIDTH_PLUS_EFFECT_2) if i % 2 == 1]       # the new sealed half: run once, last
 
 
 def width_plus_effect_row(spec, workdir: Path) -> dict:
@@ -75,7 +102,7 @@ def width_plus_effect_row(spec, workdir: Path) -> dict:
     write_bag(spec, bag, recording=rec)
     row = {"label": spec.label, "true_width_m": truth["true_width_m"], "families": truth["families"]}
     rc, out, wall, cpu = _cli(["diagnose", bag, "--width-m", spec.width_m, "--eta-k", spec.eta_k, "--n1", spec.n1,
-                               "--json", d / "d.json", "--no-record"], d)
+                               "--json", d / "d.json", "--no-history"], d)
     if rc != 0:
         row["error"] = out[-2000:]
         return row
@@ -112,47 +139,96 @@ def _alarm(level: str, true_width_m: float, warn_m: float, error_m: float) -> bo
     return (level == "WARN" and true_width_m < warn_m) or (level == "ERROR" and true_width_m < error_m)
 
 
-def confident_wrong_width_alarms(workdir=None, only=None, jobs: int = 2, batch: int = 6) -> dict:
-    """Every foreign bench recording through one ``analyze DIR`` (each recording its own drive name: the suite's
-    recordings share names, and a fleet's trend is per drive): the confident wrong width alarms (module docstring)."""
+ALARM_SUITES = ("bench", "outside_dev", "outside_sealed", "outside_dev2", "outside_sealed2")
+
+
+def alarm_suites() -> list[str]:
+    """The suites the alarm check covers: the foreign bench and every outside set foreign_drives has (the second
+    outside sets only where they exist: written after this check)."""
+    from foreign_drives.suites import SUITE_NAMES
+    return [n for n in ALARM_SUITES if n in SUITE_NAMES]
+
+
+def _write_one(job) -> tuple[str, float]:
+    """Simulate and write one recording (a pool worker): (bag name, true width [m]). An existing bag with its truth
+    beside it is taken as it is (the simulation is deterministic for a spec)."""
+    from foreign_drives.drive import make_recording
+    from foreign_drives.files import write_bag
+    spec, bag = job
+    bag = Path(bag)
+    truth_file = bag.with_suffix(".truth.json")
+    if bag.is_file() and truth_file.is_file():
+        return bag.stem, float(json.loads(truth_file.read_text())["true_width_m"])
+    rec = make_recording(spec)
+    write_bag(spec, bag, recording=rec, overwrite=True)
+    truth_file.write_text(json.dumps(rec.truth.to_json(), default=float))
+    return bag.stem, float(rec.truth.true_width_m)
+
+
+def confident_wrong_width_alarms(workdir=None, only=None, jobs: int = 2, suites=None, bags_dir=None) -> dict:
+    """Every recording of ``suites`` (default alarm_suites()) through ONE ``analyze DIR --jobs JOBS`` (its pool; each
+    recording its own drive name: the suites' recordings share names, and a fleet's trend is per drive): the confident
+    wrong width alarms (module docstring). The recordings are simulated first in a pool of ``jobs`` processes;
+    ``bags_dir``: keep them there (and take those already there) instead of a temporary folder."""
     import dataclasses
+    import time
+    from multiprocessing import get_context
 
     import yaml
 
     from backlash_monitor.fleet.trend import load_rule
-    from foreign_drives.drive import make_recording
-    from foreign_drives.files import write_bag
     from foreign_drives.suites import suite
     rule = load_rule(None)
     cls = yaml.safe_load((ROOT / "config" / "diagnostics.yaml").read_text())["/**"]["ros__parameters"]
     warn_c, error_c = float(cls["warn_width_m"]), float(cls["error_width_m"])
-    specs = [s for s in suite("bench") if not only or s.label in only]
-    rows = []
-    wall = 0.0
-    for first in range(0, len(specs), batch):     # a batch per analyze DIR: rows come in as the batches end
-        with tempfile.TemporaryDirectory(dir=workdir) as tmp:
-            bags, out_dir = Path(tmp) / "bags", Path(tmp) / "out"
-            bags.mkdir()
-            truth = {}
-            for i, spec in enumerate(specs[first:first + batch], start=first):
-                spec = dataclasses.replace(spec, drive_name=f"foreign{i:02d}")   # the physics and its seed unchanged
-                rec = make_recording(spec)
-                write_bag(spec, bags / f"{spec.label}.mcap", recording=rec)
-                truth[spec.label] = float(rec.truth.true_width_m)
-            rc, out, seconds, cpu = _cli(["analyze", bags, "--out", out_dir, "--jobs", jobs, "--no-plots"], tmp)
-            wall += seconds
-            if not (out_dir / "fleet.json").exists():
-                rows += [{"label": label, "error": out[-1000:]} for label in truth]
-                continue
+    suites = list(suites or alarm_suites())
+    with tempfile.TemporaryDirectory(dir=workdir) as tmp:
+        bags = Path(bags_dir) if bags_dir else Path(tmp) / "bags"
+        out_dir = Path(tmp) / "out"
+        bags.mkdir(parents=True, exist_ok=True)
+        work, suite_of = [], {}
+        for name in suites:
+            for i, spec in enumerate(suite(name)):
+                if only and spec.label not in only:
+                    continue
+                # the physics and its seed unchanged; a drive name of its own
+                spec = dataclasses.replace(spec, drive_name=f"{name.replace('_', '')}{i:02d}")
+                stem = f"{name}__{spec.label}"
+                work.append((spec, str(bags / f"{stem}.mcap")))
+                suite_of[stem] = name
+        t0 = time.perf_counter()
+        with get_context("fork").Pool(max(1, jobs)) as pool:
+            truth = dict(pool.imap_unordered(_write_one, work))
+        simulate_s = time.perf_counter() - t0
+        log(f"[alarms] {len(truth)} recordings of {', '.join(suites)} written in {simulate_s:.0f} s")
+        for stale in set(p.stem for p in bags.glob("*.mcap")) - set(truth):     # a kept folder: only this run's bags
+            raise SystemExit(f"width_caveat: {bags} holds {stale}.mcap, not one of this run's recordings; "
+                             f"use an empty folder")
+        rc, out, wall, cpu = _cli(["analyze", bags, "--out", out_dir, "--jobs", jobs, "--no-plots"], tmp)
+        log(f"[alarms] analyze of {len(truth)} recordings: exit {rc}, {wall:.0f} s wall, {cpu:.0f} s CPU")
+        rows = []
+        if not (out_dir / "fleet.json").exists():
+            rows = [{"label": label, "suite": suite_of[label], "error": out[-1000:]} for label in truth]
+        else:
             for r in json.loads((out_dir / "fleet.json").read_text())["rows"]:
-                rows.append(_alarm_row(r, out_dir, truth, rule, warn_c, error_c))
+                row = _alarm_row(r, out_dir, truth, rule, warn_c, error_c)
+                row["suite"] = suite_of.get(row["label"], "?")
+                rows.append(row)
     ok = [r for r in rows if "error" not in r]
+    per_suite = {name: {"recordings": sum(r["suite"] == name for r in rows),
+                        "confident_wrong_width_alarms": sum(r["confident_wrong"] for r in ok if r["suite"] == name),
+                        "wrong_width_alarms": sum(r["wrong_trend_alarm"] or r["wrong_classifier_alarm"]
+                                                  for r in ok if r["suite"] == name)}
+                 for name in suites}
     return {"confident_wrong_width_alarms": sum(r["confident_wrong"] for r in ok),
             "confident_wrong_width_alarm_labels": [r["label"] for r in ok if r["confident_wrong"]],
             "wrong_width_alarms_with_caveat": sum((r["wrong_trend_alarm"] or r["wrong_classifier_alarm"])
                                                   and not r["confident_wrong"] for r in ok),
+            "wrong_width_alarm_labels": [r["label"] for r in ok if r["wrong_trend_alarm"] or r["wrong_classifier_alarm"]],
+            "width_alarm_suites": suites, "width_alarm_per_suite": per_suite,
             "width_alarm_recordings": len(rows), "width_alarm_errors": [r["label"] for r in rows if "error" in r],
-            "width_alarm_analyze_seconds": wall, "width_alarm_per_recording": rows}
+            "width_alarm_simulate_seconds": simulate_s, "width_alarm_analyze_seconds": wall,
+            "width_alarm_analyze_cpu_seconds": cpu, "width_alarm_per_recording": rows}
 
 
 def _alarm_row(r: dict, out_dir: Path, truth: dict, rule, warn_c: float, error_c: float) -> dict:
@@ -190,17 +266,29 @@ def _alarm_row(r: dict, out_dir: Path, truth: dict, rule, warn_c: float, error_c
 if __name__ == "__main__":
     import argparse
     ap = argparse.ArgumentParser(description="never a confident wrong width: the foreign checks (one JSON object)")
-    ap.add_argument("--parts", default="alarms,development", help="alarms, development, sealed (comma separated)")
+    ap.add_argument("--parts", default="alarms,development",
+                    help="alarms, development, sealed (the first sealed half: spent, reported as development data), "
+                         "development2, sealed2 (the new sealed half: run once, last) (comma separated)")
     ap.add_argument("--only", action="append")
+    ap.add_argument("--suites", help="the alarm check's suites, comma separated (default: " + ",".join(ALARM_SUITES)
+                    + " where they exist)")
+    ap.add_argument("--bags", help="keep the alarm check's recordings in this folder (and take those already there)")
     a = ap.parse_args()
     parts = {p.strip() for p in a.parts.split(",")}
     out = {}
     if "alarms" in parts:
-        out.update(confident_wrong_width_alarms(only=a.only))
+        out.update(confident_wrong_width_alarms(only=a.only, suites=a.suites.split(",") if a.suites else None,
+                                                bags_dir=a.bags))
     if "development" in parts:
         out.update(width_plus_effect([s for s in DEVELOPMENT if not a.only or s.label in a.only],
                                      "width_plus_effect_development_"))
     if "sealed" in parts:
         out.update(width_plus_effect([s for s in SEALED if not a.only or s.label in a.only],
                                      "width_plus_effect_sealed_"))
+    if "development2" in parts:
+        out.update(width_plus_effect([s for s in DEVELOPMENT_2 if not a.only or s.label in a.only],
+                                     "width_plus_effect_development2_"))
+    if "sealed2" in parts:
+        out.update(width_plus_effect([s for s in SEALED_2 if not a.only or s.label in a.only],
+                                     "width_plus_effect_sealed2_"))
     print(json.dumps(out, default=float))
