@@ -430,7 +430,8 @@ def loop_summary(rows) -> dict:
             "outside_loop_added": {k: int(sum(r.get("added") == k for r in done))
                                    for k in ("proposal", "catalogue", "nothing")},
             "outside_loop_by_suite": by_suite,
-            "outside_loop_row_cpu_seconds_max": max((r["row_cpu_seconds"] for r in done), default=None),
+            "outside_loop_row_cpu_seconds_max": max((r["row_cpu_seconds"] for r in done if "row_cpu_seconds" in r),
+                                                    default=None),
             "outside_loop_train": {"seeds": LOOP_TRAIN_SEEDS, "duration_s": LOOP_TRAIN_DURATION_S},
             "outside_loop_per_recording": rows}
 
