@@ -194,7 +194,14 @@ def run(args) -> int:
         # deferred: backlash_monitor.workbench.reference costs ~750 ms at start-up (python -X importtime, 29 Nov); --help imports every command
         from backlash_monitor.workbench.reference import build as build_reference, reference_path_for_library
         t_ref = time.time()
-        ref_path = build_reference(models[0]).save(reference_path_for_library(path))
+        try:
+            ref_path = build_reference(models[0]).save(reference_path_for_library(path))
+        except ValueError as exc:
+            # (a model whose simulated drive does not cross its backlash has no events for the watch to test)
+            print(f"error: pattern library written: {path}; but the model watch's reference of {args.model[0]} could "
+                  f"not be built: {str(exc).splitlines()[0]}; nothing registered (check the model's added terms: "
+                  "diagnose it, or add-effect with other values)", file=sys.stderr)
+            return 1
         ref_seconds = time.time() - t_ref
     if check is not None:
         _record_monitor_widths(models, check, path, rejected, args.previous_library)

@@ -677,7 +677,9 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
         found = proposal.propose(run, up, result.verdict)
         result.report["proposal"] = None if found is None else found.to_json()
         if found is not None and found.proposed:
-            result.message += f"; proposed term outside the catalogue: {found.reason} (add-effect --accept-proposal)"
+            result.message += (f"; proposed term outside the catalogue: {found.reason} "
+                               + ("(add-effect --accept-proposal)" if found.plugin_source else
+                                  "(a sensor's term or a change in time: check the sensor, nothing to add to the model)"))
     return result
 
 

@@ -118,6 +118,16 @@ def test_add_effect_takes_a_proposal_only_when_asked_and_writes_its_plugin_file(
     nothing, _ = _diagnosis_with_proposal(tmp_path / ".." / tmp_path.name, proposed=False)
     assert main(["add-effect", str(nothing), "-o", str(tmp_path / "v3.yaml"), "--accept-proposal"]) == 2
     assert "proposes no term" in capsys.readouterr().err
+    # a sensor's term has no plug-in form: refused, saying what to check instead (not "names no effect")
+    import json
+    (tmp_path / "s").mkdir()
+    sensor = json.loads(_diagnosis_with_proposal(tmp_path / "s")[0].read_text())
+    sensor["proposal"].update(plugin_source="", plugin_values={}, law="measured a2 += 0.4 m/s² · sin(α₂ + 1.8)")
+    sensor_path = tmp_path / "sensor.json"
+    sensor_path.write_text(json.dumps(sensor))
+    assert main(["add-effect", str(sensor_path), "-o", str(tmp_path / "v4.yaml"), "--accept-proposal"]) == 2
+    err = capsys.readouterr().err
+    assert "no plug-in form" in err and "check that sensor" in err and "Traceback" not in err
 
 
 def _foreign(label, kind, seed, effects, width):
