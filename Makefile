@@ -57,8 +57,10 @@ lint: setup  ## the architecture's contracts (import-linter: .importlinter) and 
 	$(ACTIVATE) && lint-imports --no-cache && ruff check --no-cache .
 
 # The tests not marked ros (the cores, the CLI, the workbench: CPU-bound) on TEST_WORKERS pytest-xdist workers,
-# each test file on one worker (its module fixtures built once), at nice 10; beside them, at the same time, the
-# ros tests (nodes, DDS, the process faults: mostly waiting on real-time streams) one at a time at normal
+# each test file on one worker (its module fixtures built once), the files handed out in test/conftest.py's order
+# (the long workbench files first; --no-loadscope-reorder: xdist's own order, by number of tests, left the files of
+# one long test to the end, one worker running them while the other idled), at nice 10; beside them, at the same
+# time, the ros tests (nodes, DDS, the process faults: mostly waiting on real-time streams) one at a time at normal
 # priority. The ros tests so run on a loaded machine, as the monitor does beside a robot's own software
 # (issue 34: their timeouts have the headroom for it), and take the CPU they need first. The cores' output goes
 # to log/test-cores.txt and is printed when both are done; the target fails if either fails.
@@ -66,7 +68,7 @@ TEST_WORKERS ?= 2
 test: setup chromium lint  ## the contracts and ruff, then the whole test suite (non-ros tests on TEST_WORKERS=2 workers at nice 10, the ros tests beside them)
 	@$(ACTIVATE) && rc=0 \
 	  && echo "test: the tests not marked ros run in the background (log/test-cores.txt); the ros tests here" \
-	  && { nice -n 10 python -m pytest test -q --run-slow -m "not ros" -n $(TEST_WORKERS) --dist loadfile \
+	  && { nice -n 10 python -m pytest test -q --run-slow -m "not ros" -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder \
 	         --durations=15 > log/test-cores.txt 2>&1 & } && cores=$$! \
 	  && trap 'kill $$cores 2>/dev/null || true' INT TERM \
 	  && { python -m pytest test -q --run-slow -m ros --durations=10 || rc=$$?; } \

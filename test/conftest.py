@@ -91,9 +91,10 @@ def _skip_slow_unless_wanted(config, items) -> None:
 
 
 def _order_files_with_slow_tests_first(items) -> None:
-    """Files with the most ``slow`` tests first, each file's own order kept. pytest-xdist (make test) hands
-    whole files to its workers in this order, so the long workbench files start early and do not end the
-    run on one worker while the other idles; a run on one process only changes its order of files."""
+    """Files with the most ``slow`` tests first, each file's own order kept. pytest-xdist (make test: --dist loadfile
+    --no-loadscope-reorder; by default xdist re-sorts the files by their number of tests) hands whole files to its
+    workers in this order, so the long workbench files start early and do not end the run on one worker while the
+    other idles; a run on one process only changes its order of files."""
     slow_per_file: dict = {}
     for item in items:
         slow_per_file.setdefault(item.path, 0)
