@@ -3,6 +3,7 @@ import itertools
 import os
 import pathlib
 import sys
+import time
 
 import pytest
 
@@ -68,6 +69,36 @@ def pytest_addoption(parser):
         help="also run the tests marked slow (whole diagnoses, the watch's references, the handoff's training: "
              "minutes of CPU). `make test` and CI pass it; without it they are skipped, so "
              "`pytest -m \"not ros and not process\"` runs the cores' other tests alone in well under a minute.")
+
+
+    parser.addoption(
+        "--cpu-log", default=None, metavar="FILE",
+        help="append one line per test to FILE: its node id, the CPU seconds of the test process and of the child "
+             "processes it waited for (setup, call and teardown), and its wall seconds -- a test's cost that does "
+             "not grow with the machine's load, as --durations' wall times do (make test writes log/test-cpu.tsv).")
+
+
+_CPU_LOG: list = []          # the --cpu-log file, absolute (a test may change the working directory)
+
+
+def pytest_configure(config):
+    if config.getoption("--cpu-log"):
+        _CPU_LOG[:] = [os.path.abspath(config.getoption("--cpu-log"))]
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_protocol(item, nextitem):
+    if not _CPU_LOG:
+        yield
+        return
+    before, wall = os.times(), time.monotonic()
+    yield
+    after = os.times()
+    own = (after.user - before.user) + (after.system - before.system)
+    children = (after.children_user - before.children_user) + (after.children_system - before.children_system)
+    line = f"{item.nodeid}\t{own:.2f}\t{children:.2f}\t{time.monotonic() - wall:.2f}\n"
+    with open(_CPU_LOG[0], "a") as log:          # one short append per test: the xdist workers' lines do not interleave
+        log.write(line)
 
 
 def _slow_tests_wanted(config) -> bool:
