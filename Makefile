@@ -57,21 +57,28 @@ lint: setup  ## the architecture's contracts (import-linter: .importlinter) and 
 	$(ACTIVATE) && lint-imports --no-cache && ruff check --no-cache .
 
 # The tests not marked ros (the cores, the CLI, the workbench: CPU-bound) on TEST_WORKERS pytest-xdist workers,
-# each test file on one worker (its module fixtures built once), at nice 10; beside them, at the same time, the
-# ros tests (nodes, DDS, the process faults: mostly waiting on real-time streams) one at a time at normal
+# each test file on one worker (its module fixtures built once), the files handed out in test/conftest.py's order
+# (the long workbench files first; --no-loadscope-reorder: xdist's own order, by number of tests, left the files of
+# one long test to the end, one worker running them while the other idled), at nice 10; beside them, at the same
+# time, the ros tests (nodes, DDS, the process faults: mostly waiting on real-time streams) one at a time at normal
 # priority. The ros tests so run on a loaded machine, as the monitor does beside a robot's own software
 # (issue 34: their timeouts have the headroom for it), and take the CPU they need first. The cores' output goes
-# to log/test-cores.txt and is printed when both are done; the target fails if either fails.
+# to log/test-cores.txt and is printed when both are done; the target fails if either fails. Every test's CPU
+# seconds (its process's and its waited-for children's: a cost that does not grow with the machine's load, as the
+# --durations wall times do) go to log/test-cpu.tsv (conftest's --cpu-log), summed at the end.
 TEST_WORKERS ?= 2
 test: setup chromium lint  ## the contracts and ruff, then the whole test suite (non-ros tests on TEST_WORKERS=2 workers at nice 10, the ros tests beside them)
 	@$(ACTIVATE) && rc=0 \
 	  && echo "test: the tests not marked ros run in the background (log/test-cores.txt); the ros tests here" \
-	  && { nice -n 10 python -m pytest test -q --run-slow -m "not ros" -n $(TEST_WORKERS) --dist loadfile \
-	         --durations=15 > log/test-cores.txt 2>&1 & } && cores=$$! \
+	  && rm -f log/test-cpu.tsv \
+	  && { nice -n 10 python -m pytest test -q --run-slow -m "not ros" -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder \
+	         --durations=15 --cpu-log log/test-cpu.tsv > log/test-cores.txt 2>&1 & } && cores=$$! \
 	  && trap 'kill $$cores 2>/dev/null || true' INT TERM \
-	  && { python -m pytest test -q --run-slow -m ros --durations=10 || rc=$$?; } \
+	  && { python -m pytest test -q --run-slow -m ros --durations=10 --cpu-log log/test-cpu.tsv || rc=$$?; } \
 	  && { wait $$cores || rc=$$?; } \
 	  && echo "--- the tests not marked ros (log/test-cores.txt):" && cat log/test-cores.txt \
+	  && { awk -F'\t' '{ s += $$2 + $$3 } END { printf "test: %d tests, %.0f CPU s (log/test-cpu.tsv)\n", NR, s }' \
+	         log/test-cpu.tsv || true; } \
 	  && exit $$rc
 
 bench: setup  ## run every bench/*.py into bench/results.json

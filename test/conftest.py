@@ -3,6 +3,7 @@ import itertools
 import os
 import pathlib
 import sys
+import time
 
 import pytest
 
@@ -70,6 +71,36 @@ def pytest_addoption(parser):
              "`pytest -m \"not ros and not process\"` runs the cores' other tests alone in well under a minute.")
 
 
+    parser.addoption(
+        "--cpu-log", default=None, metavar="FILE",
+        help="append one line per test to FILE: its node id, the CPU seconds of the test process and of the child "
+             "processes it waited for (setup, call and teardown), and its wall seconds -- a test's cost that does "
+             "not grow with the machine's load, as --durations' wall times do (make test writes log/test-cpu.tsv).")
+
+
+_CPU_LOG: list = []          # the --cpu-log file, absolute (a test may change the working directory)
+
+
+def pytest_configure(config):
+    if config.getoption("--cpu-log"):
+        _CPU_LOG[:] = [os.path.abspath(config.getoption("--cpu-log"))]
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_protocol(item, nextitem):
+    if not _CPU_LOG:
+        yield
+        return
+    before, wall = os.times(), time.monotonic()
+    yield
+    after = os.times()
+    own = (after.user - before.user) + (after.system - before.system)
+    children = (after.children_user - before.children_user) + (after.children_system - before.children_system)
+    line = f"{item.nodeid}\t{own:.2f}\t{children:.2f}\t{time.monotonic() - wall:.2f}\n"
+    with open(_CPU_LOG[0], "a") as log:          # one short append per test: the xdist workers' lines do not interleave
+        log.write(line)
+
+
 def _slow_tests_wanted(config) -> bool:
     """--run-slow, or a marker expression that names `slow` itself (`-m slow`, `-m "slow and not ros"`)."""
     return bool(config.getoption("--run-slow")) or "slow" in (config.getoption("markexpr") or "").replace(
@@ -91,9 +122,10 @@ def _skip_slow_unless_wanted(config, items) -> None:
 
 
 def _order_files_with_slow_tests_first(items) -> None:
-    """Files with the most ``slow`` tests first, each file's own order kept. pytest-xdist (make test) hands
-    whole files to its workers in this order, so the long workbench files start early and do not end the
-    run on one worker while the other idles; a run on one process only changes its order of files."""
+    """Files with the most ``slow`` tests first, each file's own order kept. pytest-xdist (make test: --dist loadfile
+    --no-loadscope-reorder; by default xdist re-sorts the files by their number of tests) hands whole files to its
+    workers in this order, so the long workbench files start early and do not end the run on one worker while the
+    other idles; a run on one process only changes its order of files."""
     slow_per_file: dict = {}
     for item in items:
         slow_per_file.setdefault(item.path, 0)

@@ -85,9 +85,9 @@ def test_the_model_fit_column_holds_each_bag_against_the_drives_model(tmp_path):
     lacks: the fleet table's model-fit column says OK for the first and WARN (with where the residual sits) for
     the second, and the command names the bag to run diagnose on. The reference is the default model's at the
     pattern width nearest the measured width (5 mm: the cache)."""
-    from backlash_monitor.workbench import reference
     from backlash_monitor.workbench.model import load_model
-    reference.cached(load_model(None, width_m=0.005))
+    from shared_cache import watch_reference
+    watch_reference(load_model(None, width_m=0.005))
     bags = tmp_path / "bags"
     for name, sets in (("clean", []), ("friction", ["effects.wheel_coulomb_friction=true",
                                                      "wheel_coulomb_friction.torque_Nm=2.5"])):

@@ -12,10 +12,10 @@ from rclpy.parameter import Parameter
 
 from backlash_monitor.nodes.model_watch import MODEL_FIT_QOS, ModelWatchNode
 from backlash_monitor.nodes.plant_simulator import PlantSimulatorNode
-from backlash_monitor.workbench import reference
 from backlash_monitor.workbench.measurement import load_measurement
 from backlash_monitor.workbench.model import load_model
 from backlash_monitor_msgs.msg import ModelFit
+import shared_cache                                             # test/: built by one process, the others wait
 
 EXECUTABLE = os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor", "model_watch")
 NS = "/line1/drive7"
@@ -24,7 +24,7 @@ NS = "/line1/drive7"
 @pytest.fixture(scope="module")
 def ref_path():
     """The default model's reference at 5 mm (the cache; built there once, ~30 s)."""
-    return str(reference.cached(load_model(None, width_m=0.005)).path)
+    return str(shared_cache.watch_reference(load_model(None, width_m=0.005)).path)
 
 
 @pytest.mark.ros

@@ -11,6 +11,7 @@ from backlash_monitor.watch.events import LiveEvents, SampleRing
 from backlash_monitor.workbench import diagnose, plant_adapter, reference, synthetic
 from backlash_monitor.workbench.events import DC_SIGNALS, SEGMENT_SIGNALS, event_set
 from backlash_monitor.workbench.model import load_model
+import shared_cache                                             # test/: built by one process, the others wait
 
 SEEDS = [0, 1, 2]          # a small ensemble keeps the tests fast; diagnose is given the same
 WIDTH_M = 0.005
@@ -26,7 +27,7 @@ def model():
 def ref(model):
     """The default model's reference at 5 mm as the watch uses it (6 seeds, a 4 s build recording, a 2.5 % width
     grid; from the cache, built there once: ~30 s), loaded from its file."""
-    return reference.load(reference.cached(model).path)
+    return reference.load(shared_cache.watch_reference(model).path)
 
 
 def _diagnose_before(meas, model, seeds=None):

@@ -9,6 +9,7 @@ from scipy import stats
 from backlash_monitor.watch.alarm import AlarmRule
 from backlash_monitor.workbench import consistency, reference, synthetic
 from backlash_monitor.workbench.model import load_model
+import shared_cache                                             # test/: built by one process, the others wait
 
 
 def _t2_with_estimated_covariance(rng, n_model: int, q: int, n_window: int) -> float:
@@ -63,7 +64,7 @@ def model():
 
 @pytest.fixture(scope="module")
 def ref(model):
-    return reference.load(reference.cached(model).path)
+    return reference.load(shared_cache.watch_reference(model).path)
 
 
 def test_clipping_changes_nothing_where_no_event_is_odd_and_bounds_an_odd_one(model, ref):
