@@ -43,6 +43,9 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import least_squares
 
+from backlash_monitor.plant import effects as plant_effects
+from backlash_monitor.plant.mathlib import NUMPY_NAMESPACE
+
 from . import candidate_terms, event_design, fitting, plant_adapter
 from .proposal import gram
 
@@ -68,7 +71,6 @@ def angle_variable(model, effect) -> str | None:
     else None."""
     if getattr(effect, "phase_index", -1) < 0 or not fitting.angle_pair(effect):
         return None
-    from backlash_monitor.plant import effects as plant_effects
     try:
         args = plant_effects.term_arguments(model.catalogue[effect.effect])
     except (KeyError, ValueError, TypeError, OSError, SyntaxError):
@@ -83,8 +85,6 @@ class Law:
     """A term f(alpha; p) on numpy: its harmonics' coefficients at any parameter vector."""
 
     def __init__(self, model, effect, var: str):
-        from backlash_monitor.plant import effects as plant_effects
-        from backlash_monitor.plant.mathlib import NUMPY_NAMESPACE
         cls = model.catalogue[effect.effect]
         ns = dict(NUMPY_NAMESPACE)
         exec(compile(plant_effects.term_source(cls), "<angle-locked term>", "exec"), ns)  # noqa: S102
