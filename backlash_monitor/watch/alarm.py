@@ -138,14 +138,11 @@ def config_path() -> str:
     return os.path.join(get_package_share_directory("backlash_monitor"), "config", "model_watch.yaml")
 
 
-def load_config(path: str | None = None) -> dict:
-    """The model watch's settings (config/model_watch.yaml): ValueError naming a missing or bad key."""
-    path = path or config_path()
+def _typed_keys(path: str, want: dict) -> dict:
+    """The YAML file's keys ``want`` (name -> int, float or bool), each checked: ValueError naming a missing or bad
+    key and what is allowed (``event_clip_p`` may be null)."""
     with open(path, encoding="utf-8") as f:
         cfg = yaml.safe_load(f) or {}
-    want = {"window_events": int, "view_p": float, "residual_ratio": float, "persistence": int, "clear_after": int,
-            "robust": bool, "event_clip_p": float, "predictive": bool, "snapshot_before_s": float,
-            "snapshot_after_s": float}
     out = {}
     for key, kind in want.items():
         if key not in cfg:
@@ -160,6 +157,15 @@ def load_config(path: str | None = None) -> dict:
         elif isinstance(v, bool) or not isinstance(v, (int, float)) or (kind is int and not isinstance(v, int)):
             raise ValueError(f"{path}: {key} = {v!r} is not {'an integer' if kind is int else 'a number'}")
         out[key] = kind(v)
+    return out
+
+
+def load_config(path: str | None = None) -> dict:
+    """The model watch's settings (config/model_watch.yaml): ValueError naming a missing or bad key."""
+    path = path or config_path()
+    out = _typed_keys(path, {"window_events": int, "view_p": float, "residual_ratio": float, "persistence": int,
+                             "clear_after": int, "robust": bool, "event_clip_p": float, "predictive": bool,
+                             "snapshot_before_s": float, "snapshot_after_s": float})
     load_rule_from(out)
     return out
 
@@ -176,25 +182,8 @@ def load_folder_config(path: str | None = None) -> dict:
     """The one-off model fit's settings (``analyze FOLDER``: one test per bag; config/folder_model_fit.yaml):
     ValueError naming a missing or bad key."""
     path = path or folder_config_path()
-    with open(path, encoding="utf-8") as f:
-        cfg = yaml.safe_load(f) or {}
-    want = {"window_events": int, "view_p": float, "residual_ratio": float, "robust": bool, "event_clip_p": float,
-            "predictive": bool}
-    out = {}
-    for key, kind in want.items():
-        if key not in cfg:
-            raise ValueError(f"{path}: missing key {key!r}; allowed keys: {', '.join(want)}")
-        v = cfg[key]
-        if key == "event_clip_p" and v is None:
-            out[key] = None
-        elif kind is bool:
-            if not isinstance(v, bool):
-                raise ValueError(f"{path}: {key} = {v!r}; allowed: true or false")
-            out[key] = v
-        elif isinstance(v, bool) or not isinstance(v, (int, float)) or (kind is int and not isinstance(v, int)):
-            raise ValueError(f"{path}: {key} = {v!r} is not {'an integer' if kind is int else 'a number'}")
-        else:
-            out[key] = kind(v)
+    out = _typed_keys(path, {"window_events": int, "view_p": float, "residual_ratio": float, "robust": bool,
+                             "event_clip_p": float, "predictive": bool})
     if out["window_events"] < 3:
         raise ValueError(f"{path}: window_events = {out['window_events']!r}; allowed: an integer >= 3")
     load_folder_rule_from(out)
