@@ -224,8 +224,10 @@ def biased_bag(tmp_path_factory):
 @pytest.mark.process
 @pytest.mark.ros
 def test_fleet_analyze_lists_the_offsets_and_warns_for_the_bag(biased_bag, tmp_path, ros_env):
+    """The offsets are the windowing's, not the model fit's (--no-model-fit: the fit would build the default model's
+    watch reference at 7.5 mm, ~60 s of CPU that no other test needs; test/watch/test_folder_model_fit.py tests it)."""
     out = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(biased_bag.parent),
-                          "--out", str(tmp_path / "fleet"), "--jobs", "1", "--no-plots"],
+                          "--out", str(tmp_path / "fleet"), "--jobs", "1", "--no-plots", "--no-model-fit"],
                          env=dict(ros_env), capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stdout + out.stderr
     assert f"{biased_bag.name}: WARN: sensor offset a1 +" in out.stdout, out.stdout
