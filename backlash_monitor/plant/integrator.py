@@ -24,6 +24,7 @@ import contextlib
 
 import numpy as np
 
+from . import codegen
 from ._numba import HAVE_NUMBA
 from .state import N_STATES, STATE_NAMES  # noqa: F401 (re-exported: the layout beside the S_* indices)
 
@@ -82,6 +83,20 @@ def _compile_errors(kernel):
         raise
 
 
+def _first_call_compiles(kernel, x, common, out, states, record_states, record_outputs, sel) -> None:
+    """This process's first call of the kernel, on one scenario and one sample of the same types (dimensions, dtype,
+    layout) as the real call, under codegen.compile_lock: it compiles the kernel, or loads what another process
+    compiled meanwhile, and leaves the real arrays untouched."""
+    load, ua, ub, phase, u_amp, P, G, h = common
+    n = min(1, load.shape[1])
+    tiny = (np.array(x[:1]), np.ascontiguousarray(load[:1, :n]), np.ascontiguousarray(ua[:n]),
+            np.ascontiguousarray(ub[:n]), np.ascontiguousarray(phase[:n]), u_amp, np.ascontiguousarray(P[:, :1]), G, h)
+    out1 = np.empty((out.shape[0], 1, n)) if out.shape[1] else np.empty(out.shape)
+    states1 = np.empty((states.shape[0], 1, n)) if states.shape[1] else np.empty(states.shape)
+    with codegen.compile_lock(kernel):
+        kernel.module.rk4_simd(*tiny, out1, states1, bool(record_states), bool(record_outputs), sel)
+
+
 BACKENDS = ("auto", "numba", "numba-scalar", "numpy")
 
 
@@ -118,6 +133,8 @@ def rk4_advance(backend, kernel, x, load, ua, ub, phase, u_amp, P, G, h, record_
         out = np.empty((sel.size, n_scen, n)) if record_outputs else np.empty((sel.size, 0, 0))
         states = np.empty((N_STATES, n_scen, n)) if record_states else np.empty((N_STATES, 0, 0))
         with _compile_errors(kernel):
+            if not kernel.module.rk4_simd.signatures:
+                _first_call_compiles(kernel, x, common, out, states, record_states, record_outputs, sel)
             kernel.module.rk4_simd(x, *common, out, states, bool(record_states), bool(record_outputs), sel)
         return (out if record_outputs else None), (states if record_states else None)
     out = np.empty((N_OUTPUTS, n_scen, n))
