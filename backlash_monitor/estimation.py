@@ -65,6 +65,27 @@ class WidthEstimate:
     fused_continuous_width_m: float = math.nan   # median continuous width of the fused events
     fused_width_uncertainty_m: float = math.nan  # its robust standard error over them (fusion.py)
 
+    @property
+    def level_width_m(self) -> float:
+        """The width the drive's level follows: level_width(fused continuous, fused class)."""
+        return level_width(self.fused_continuous_width_m, self.fused_width_m)
+
+
+def level_width(fused_continuous_width_m: float, fused_width_m: float) -> float:
+    """The fused width a drive's level (OK/WARN/ERROR against warn_width_m/error_width_m) and its trend follow [m]:
+    the fused continuous width (the median of the fused events' continuous widths) where the mode gives one, else the
+    fused class width (NaN: the mode gives none; 0: the message default of a publisher that does not set it). The
+    class width is the nearest of the pattern widths (2.5, 3.75, 5, 7.5, 9, 10 mm): a healthy 6.3 mm drive's class
+    is 7.5 mm, an 8.3 mm drive's 9 mm, so a level from it was WARN or ERROR on drives below the thresholds."""
+    if math.isfinite(fused_continuous_width_m) and fused_continuous_width_m > 0:
+        return float(fused_continuous_width_m)
+    return float(fused_width_m)
+
+
+def width_level(width_m: float, warn_width_m: float, error_width_m: float) -> str:
+    """'ERROR' from error_width_m on, 'WARN' from warn_width_m on, else 'OK' (config/diagnostics.yaml)."""
+    return "ERROR" if width_m >= error_width_m else "WARN" if width_m >= warn_width_m else "OK"
+
 
 def default_signals(mode: str) -> tuple[str, ...]:
     return ("a1", "a2", "a1+a2") if mode == SHAPE else ("a1", "a2")

@@ -36,7 +36,7 @@ from rclpy.node import Node
 
 from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_warning, load_library
 from backlash_monitor.fleet.caveat import width_text, with_caveat
-from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator
+from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator, width_level
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
 from backlash_monitor.ros.conversions import from_float64_field, to_float64_array
 from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
@@ -189,14 +189,12 @@ class ClassifierNode(Node):
 
     def set_width(self, estimate):
         p = self.params
-        width = estimate.fused_width_m
-        level = ("ERROR" if width >= p["error_width_m"] else
-                 "WARN" if width >= p["warn_width_m"] else "OK")
+        level = width_level(estimate.level_width_m, p["warn_width_m"], p["error_width_m"])
         cont = width_text(estimate.fused_continuous_width_m, estimate.fused_width_uncertainty_m)
-        self.width_state = (level, f"backlash {width * 1e3:.2f} mm (fused over "
-                                   f"{estimate.fused_events} events" +
-                            ("" if cont == "-" else f"; continuous {cont}") + ")", dict(
-            fused_width_m=f"{width:.5f}", last_width_m=f"{estimate.width_m:.5f}",
+        shown = f"{estimate.fused_width_m * 1e3:.2f} mm" if cont == "-" else cont
+        self.width_state = (level, f"backlash {shown} (fused over {estimate.fused_events} events; nearest "
+                                   f"pattern width {estimate.fused_width_m * 1e3:.2f} mm)", dict(
+            fused_width_m=f"{estimate.fused_width_m:.5f}", last_width_m=f"{estimate.width_m:.5f}",
             continuous_width_m="" if math.isnan(estimate.continuous_width_m)
             else f"{estimate.continuous_width_m:.5f}",
             fused_continuous_width_m="" if math.isnan(estimate.fused_continuous_width_m)

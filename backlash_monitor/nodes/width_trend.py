@@ -25,6 +25,7 @@ import sys
 
 from rclpy.node import Node
 
+from backlash_monitor.estimation import level_width
 from backlash_monitor.fleet.caveat import with_caveat
 from backlash_monitor.fleet.trend import (PRIMARY_SIGNAL, LiveTrend, load_live_points, load_rule,
                                           save_live_points)
@@ -88,8 +89,7 @@ class WidthTrendNode(Node):
             return
         # the continuous width: wear shows as it grows, not as a jump from one candidate width to the next
         # (NaN: the mode gives none; 0: the message default of a publisher that does not set it)
-        width = (msg.fused_continuous_width_m if math.isfinite(msg.fused_continuous_width_m)
-                 and msg.fused_continuous_width_m > 0 else msg.fused_width_m)
+        width = level_width(msg.fused_continuous_width_m, msg.fused_width_m)
         self.trend.add(msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9, width)
         if self.state_file and len(self.trend.points) != self.saved_points:
             self.save_state()        # a point closed: once per live_point_period_s

@@ -243,8 +243,12 @@ def _alarm_row(r: dict, out_dir: Path, truth: dict, rule, warn_c: float, error_c
     fit = FitVerdict.from_recording(r.get("model_fit"))
     est = json.loads((out_dir / f"{label}.estimates.json").read_text())["estimates"]
     mine = [e for e in est if e["signal"] == "a1+a2"]
-    fused = mine[-1]["fused_width_m"] if mine else math.nan
-    cls_level = "ERROR" if fused >= error_c else "WARN" if fused >= warn_c else "OK"
+    from backlash_monitor.estimation import level_width, width_level
+    # the width the classifier node's level follows (estimation.level_width: the fused continuous width; the class
+    # width only where the mode gives none)
+    fused = level_width(mine[-1].get("fused_continuous_width_m", math.nan), mine[-1]["fused_width_m"]) if mine \
+        else math.nan
+    cls_level = width_level(fused, warn_c, error_c)
     cls_line = with_caveat(f"backlash {fused * 1e3:.2f} mm", fit)      # as the classifier node writes it
     t = truth[label]
     trend_wrong = _alarm(r["level"], t, rule.warn_width_m, rule.error_width_m)

@@ -12,7 +12,7 @@ import pytest
 def test_two_drives_each_report_their_own_estimates_and_diagnostics(ros_env, tmp_path, layout):
     summary = tmp_path / "summary.json"
     proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "fleet", "--drives", "2",
-                           "--width-m", "0.0075", "--duration", "2.5", "--layout", layout,
+                           "--width-m", "0.008", "--duration", "2.5", "--layout", layout,
                            "--view-period", "0", "--json", str(summary),
                            "--trend-state-dir", str(tmp_path / "trend")],
                           env=ros_env, capture_output=True, text=True, timeout=150)
@@ -26,12 +26,14 @@ def test_two_drives_each_report_their_own_estimates_and_diagnostics(ros_env, tmp
         assert row["discarded"] == 0
         assert row["onset_windows"] == 10 and row["onsets_before_offset"] == 1, row
         assert row["onsets_estimated"] == 9, row
-        assert row["true_width_m"] == 0.0075
-        assert row["level"] == "WARN"      # fused 7.5 mm >= warn_width_m (config/diagnostics.yaml)
+        assert row["true_width_m"] == 0.008
+        # the fused continuous width ~8.0 mm >= warn_width_m 7.5 mm, < error_width_m 9 mm (config/diagnostics.yaml;
+        # the class width, the nearest pattern width, would be 7.5 mm)
+        assert row["level"] == "WARN"
         assert row["status_times"], row    # its classifier's status reached /diagnostics
     assert "line1/drive02" in proc.stdout and "Traceback" not in proc.stderr
     # each drive's live trend was kept at shutdown, under its own name, with its own widths (the
-    # fused continuous width near 7.5 mm). Trend periods are wall-clock minutes, so a 2.5 s run
+    # fused continuous width near 8 mm). Trend periods are wall-clock minutes, so a 2.5 s run
     # closes at most one point (when it straddles a minute boundary); the period being collected
     # always holds the latest estimates.
     for drive in rows:
@@ -39,4 +41,4 @@ def test_two_drives_each_report_their_own_estimates_and_diagnostics(ros_env, tmp
         assert state["drive"] == drive and len(state["points"]) <= 1, state
         assert len(state["open"]) >= (5 if not state["points"] else 1), state
         widths = [w for _, w in state["points"] + state["open"]]
-        assert all(abs(w - 0.0075) < 5e-4 for w in widths), state
+        assert all(abs(w - 0.008) < 5e-4 for w in widths), state

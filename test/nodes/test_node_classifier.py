@@ -124,11 +124,15 @@ def test_estimates_and_namespaced_diagnostics(ros_env):
     assert status.name == "line1/drive7/classifier: backlash width"
     assert status.hardware_id == "drive7"
     assert {kv.key: kv.value for kv in status.values}["windows_waiting_for_offset"] == "1"
-    # 9 mm is at the ERROR threshold of config/diagnostics.yaml when the fused estimate finds it.
-    fused = est.fused_width_m
+    # 9 mm is at the ERROR threshold of config/diagnostics.yaml: the level follows the fused continuous width (the
+    # class width, the nearest pattern width, only where the mode gives no continuous width), and the message shows it
+    # with its uncertainty and the class beside it
+    fused = est.fused_continuous_width_m
     expected = (DiagnosticStatus.ERROR if fused >= 0.009 else
                 DiagnosticStatus.WARN if fused >= 0.0075 else DiagnosticStatus.OK)
     assert status.level == expected
+    assert status.message.startswith(f"backlash {fused * 1e3:.2f} ± ") and \
+        f"nearest pattern width {est.fused_width_m * 1e3:.2f} mm" in status.message, status.message
 
 
 @pytest.mark.process
