@@ -281,7 +281,13 @@ def _outside_sealed2():
     return _suite(suite_rows(), 7400, 4.0)
 
 
-SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2")
+def _outside_sealed3():
+    """The third sealed half's suite, made from foreign_drives.outside_sealed3 on first use (its rows live there)."""
+    from .outside_sealed3 import suite_rows
+    return _suite(suite_rows(), 7900, 4.0)
+
+
+SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3")
 
 
 def suite(name: str) -> list:
@@ -289,6 +295,8 @@ def suite(name: str) -> list:
         return _outside_sealed()
     if name == "outside_sealed2":
         return _outside_sealed2()
+    if name == "outside_sealed3":
+        return _outside_sealed3()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])

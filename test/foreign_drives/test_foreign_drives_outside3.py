@@ -56,7 +56,7 @@ def clean(duration=DURATION_S):
 
 def _suite_effect(name):
     """The set-3 suite's use of a mechanism (its parameters at the suite's strength)."""
-    for sname in ("outside_dev3",):
+    for sname in ("outside_dev3", "outside_sealed3"):
         for s in suites.suite(sname):
             for e in s.effects:
                 if e.form == name:
@@ -76,9 +76,10 @@ def _outside_bench():
 
 # ------------------------------------------------------------------ registry and truth vocabulary
 def test_third_set_is_seven_and_seven_each_half_over_every_balance_in_the_benchs_words():
-    from foreign_drives import outside_dev3
+    from foreign_drives import outside_dev3, outside_sealed3
     assert {c.name for c in outside_dev3.FORM_CLASSES} == set(DEV3) and len(DEV3) == 7
-    for half in (DEV3,):
+    assert {c.name for c in outside_sealed3.FORM_CLASSES} == set(SEALED3) and len(SEALED3) == 7
+    for half in (DEV3, SEALED3):
         assert {f.balance for f in half.values()} == set(O.BALANCES)
     bench = _outside_bench()
     known_states = {w for ws in bench.STATE_WORDS.values() for w in ws}
@@ -235,12 +236,34 @@ def test_stroke_ringing_is_on_a2_only_and_starts_with_each_pulse():
     assert np.array_equal(rec.signals["a1"], clean().signals["a1"])
 
 
+# ------------------------------------------------------------------ the sealed half: in its balance only
+@pytest.mark.parametrize("name", sorted(SEALED3))
+def test_sealed3_mechanism_acts_in_its_recorded_balance_only(name):
+    rec = make_recording(_spec([_suite_effect(name)]))
+    base = clean()
+    off = {"motor_load_moment": np.max(np.abs(_motor_term_Nm(rec))),
+           "wheel_torque": np.max(np.abs(_wheel_term_Nm(rec))), "mass_force": np.max(np.abs(_mass_term_N(rec)))}
+    f = SEALED3[name]
+    if f.balance == "sensor":
+        assert max(off.values()) < 1e-6
+        assert any(np.max(np.abs(rec.signals[k] - base.signals[k])) > 0.05 for k in ("a1", "a2"))
+        assert np.array_equal(rec.internal["a1_physical"], base.internal["a1_physical"])
+        return
+    if f.balance == "clutch_torque":
+        assert max(off.values()) < 1e-6
+        assert np.max(np.abs(rec.internal["clutch_torque_Nm"] - base.internal["clutch_torque_Nm"])) > 0.5
+        return
+    for bal, v in off.items():
+        assert (v > 0.5) if bal == f.balance else (v < 1e-6), (name, bal, v)
+
+
 # ------------------------------------------------------------------ suites and the bench
 def test_set3_suites_have_one_row_per_mechanism_and_a_clean_control():
-    dev, sealed = suites.suite("outside_dev3"), []
-    assert "outside_dev3" in suites.SUITES
+    dev, sealed = suites.suite("outside_dev3"), suites.suite("outside_sealed3")
+    assert "outside_dev3" in suites.SUITES and "outside_sealed3" not in suites.SUITES
+    assert "outside_sealed3" in suites.SUITE_NAMES
     others = [s for n in suites.SUITES if n != "outside_dev3" for s in suites.suite(n)]
-    for s_, names, half in ((dev, DEV3, "dev3"),):
+    for s_, names, half in ((dev, DEV3, "dev3"), (sealed, SEALED3, "sealed3")):
         assert [s.kind for s in s_].count("clean") == 1 and len(s_) == len(names) + 1
         outside = [s for s in s_ if s.kind == "outside"]
         assert sorted(e.form for s in outside for e in s.effects) == sorted(names)    # one mechanism per row
@@ -261,16 +284,16 @@ def test_outside_bench_knows_set_3_and_never_loops_on_its_sealed_half(capsys):
     assert bench.suite_name(True, 3) == "outside_sealed3"
     assert "outside_dev3" in bench.LOOP_DEVELOPMENT_SUITES and "outside_sealed3" not in bench.LOOP_DEVELOPMENT_SUITES
     with pytest.raises(SystemExit) as e:
-        bench.main(["--loop", "--loop-suites", "outside_dev2,outside_sealed2"])
-    assert e.value.code == 2 and "outside_sealed2 is an unspent sealed half" in capsys.readouterr().err
+        bench.main(["--loop", "--loop-suites", "outside_dev3,outside_sealed3"])
+    assert e.value.code == 2 and "outside_sealed3 is an unspent sealed half" in capsys.readouterr().err
     # the truth of every set-3 row scores in the bench's words: a proposal in its balance on its state is right
-    for s in suites.suite("outside_dev3"):
+    for s in suites.suite("outside_dev3") + suites.suite("outside_sealed3"):
         bal, st = bench._truth_of(s, s.truth())
         assert bool(bal) == (s.kind == "outside") and (not bal or st)
 
 
 def test_a_row_of_each_half_simulates_at_its_own_conditions_and_crosses_the_backlash():
-    for name in ("outside_dev3",):
+    for name in ("outside_dev3", "outside_sealed3"):
         spec = dataclasses.replace(next(s for s in suites.suite(name) if s.kind == "outside"), duration_s=DURATION_S)
         rec = make_recording(spec)
         assert all(np.all(np.isfinite(rec.signals[k])) for k in rec.signals)
