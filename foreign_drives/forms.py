@@ -820,12 +820,12 @@ FORMS = {cls.name: cls() for cls in FORM_CLASSES}
 
 
 def _register_outside() -> None:
-    """The mechanisms outside the catalogue of issue 31 (foreign_drives.outside_dev, .outside_sealed, and the second
-    set .outside_dev2, .outside_sealed2) join FORMS. Imported here, at the end, because they build on Form and Param
+    """The mechanisms outside the catalogue of issue 31 (foreign_drives.outside_dev, .outside_sealed, the second set
+    .outside_dev2, .outside_sealed2 and the third .outside_dev3, .outside_sealed3) join FORMS. Imported here, at the end, because they build on Form and Param
     above."""
-    from . import outside_dev, outside_dev2, outside_sealed, outside_sealed2
+    from . import outside_dev, outside_dev2, outside_dev3, outside_sealed, outside_sealed2, outside_sealed3
     for cls in (outside_dev.FORM_CLASSES + outside_sealed.FORM_CLASSES + outside_dev2.FORM_CLASSES
-                + outside_sealed2.FORM_CLASSES):
+                + outside_sealed2.FORM_CLASSES + outside_dev3.FORM_CLASSES + outside_sealed3.FORM_CLASSES):
         FORMS[cls.name] = cls()
 
 

@@ -99,7 +99,18 @@ PARAM_NAMES = (
     # OUTSIDE_SLOTS slots of OUTSIDE_STRIDE values each (see outside_terms)
     "outside_active",
 ) + tuple(f"x{i}_{k}" for i in range(6) for k in ("balance", "amplitude", "nonperiodic", "sel1", "shape1", "a1",
-                                                    "b1", "c1", "sel2", "shape2", "a2", "b2", "c2"))
+                                                    "b1", "c1", "sel2", "shape2", "a2", "b2", "c2")) + (
+    # the third set of outside mechanisms (foreign_drives.outside_dev3/_sealed3):
+    # - a kinematic transmission error between the drive half and the jaw (a Cardan shaft at an angle, a misaligned
+    #   coupling): the jaw's angle difference is D - A*sin(n*alpha_drive + phi) [rad] (0 = off);
+    # - whether the terms that are not periodic with the pulse train act (set by run_segments from its ``timevar``;
+    #   the transmission error reads it where no timevar is passed: implied_mode);
+    # - the whole turns the integrator took off alpha2 since the run-in began (the wheel angle unwrapped);
+    # - a relay (two-point switch with hysteresis) scanned at every 0.2 ms segment: the selector it reads (XS_*, 0 =
+    #   none), on when the quantity rises above ``relay_on_above``, off when it falls below ``relay_off_below``, its
+    #   state (0/1)
+    "te_amplitude", "te_order", "te_phase", "timevar_on", "alpha2_turns", "relay_sel", "relay_on_above",
+    "relay_off_below", "relay_state")
 N_PARAMS = len(PARAM_NAMES)
 PI = {name: i for i, name in enumerate(PARAM_NAMES)}
 (P_RS, P_RR, P_XS, P_XR, P_XM, P_U, P_OMB, P_OMMB, P_TB, P_J1,
@@ -121,13 +132,16 @@ P_X0 = PARAM_NAMES.index("x0_balance")
 (X_BAL, X_AMP, X_NP, X_S1, X_F1, X_A1, X_B1, X_C1, X_S2, X_F2, X_A2, X_B2, X_C2) = range(OUTSIDE_STRIDE)
 # balances of an outside slot: the balance its term is added to
 XB_OFF, XB_MOTOR_LOAD, XB_WHEEL, XB_CLUTCH, XB_MASS = range(5)
+(P_TEA, P_TEN, P_TEP, P_TV, P_A2TURNS, P_RLYSEL, P_RLYON, P_RLYOFF, P_RLYSTATE) = (
+    PI[k] for k in ("te_amplitude", "te_order", "te_phase", "timevar_on", "alpha2_turns", "relay_sel",
+                    "relay_on_above", "relay_off_below", "relay_state"))
 # selectors: the drive quantity a factor reads
 (XS_ONE, XS_OMEGA1, XS_OMEGA2, XS_RIM_SPEED, XS_MASS_SPEED, XS_PENETRATION, XS_SPRING_EXTENSION, XS_ALPHA1,
  XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
- XS_SIGN_OMEGA2, XS_JAW_ANGLE) = range(18)
+ XS_SIGN_OMEGA2, XS_JAW_ANGLE, XS_PULSE_PHASE, XS_GAP_DISTANCE, XS_ALPHA2_UNWRAPPED, XS_RELAY) = range(22)
 # shapes of a factor f(x; a, b, c)
 (XF_ONE, XF_X, XF_POWER, XF_SIN, XF_SIN_POSITIVE, XF_EXCESS_POWER, XF_RAMP, XF_TANH, XF_RISE, XF_COS,
- XF_RISE_AFTER) = range(11)
+ XF_RISE_AFTER, XF_ABS, XF_SIGMOID, XF_DECAY_AFTER, XF_CUSHION, XF_PERIODIC_GATE) = range(16)
 
 
 @njit(cache=True, inline="always")
@@ -154,10 +168,27 @@ def contact_torque(pen, pen_rate, k, P):
 @njit(cache=True, inline="always")
 def clutch_angles(y, P):
     """(angle difference across the jaw [rad], its rate [rad/s]): drive half = hub if there is a shaft, else the
-    motor."""
+    motor; less a kinematic transmission error A*sin(n*alpha_drive + phi) between the drive half and the jaw when
+    one is set and the non-periodic terms act (P_TV)."""
     if P[P_KS] > 0.0:
-        return y[S_AH] - y[S_A2], y[S_WH] - y[S_W2]
-    return y[S_A1] - y[S_A2], y[S_W1] - y[S_W2]
+        d, dd, ad, wd = y[S_AH] - y[S_A2], y[S_WH] - y[S_W2], y[S_AH], y[S_WH]
+    else:
+        d, dd, ad, wd = y[S_A1] - y[S_A2], y[S_W1] - y[S_W2], y[S_A1], y[S_W1]
+    if P[P_TEA] != 0.0 and P[P_TV] != 0.0:
+        arg = P[P_TEN] * ad + P[P_TEP]
+        d -= P[P_TEA] * math.sin(arg)
+        dd -= P[P_TEA] * P[P_TEN] * wd * math.cos(arg)
+    return d, dd
+
+
+@njit(cache=True, inline="always")
+def transmission_ratio(y, P):
+    """d(jaw angle)/d(drive half angle) with a transmission error (1 without): the jaw's torque reaches the drive
+    half multiplied by it (virtual work)."""
+    if P[P_TEA] != 0.0 and P[P_TV] != 0.0:
+        ad = y[S_AH] if P[P_KS] > 0.0 else y[S_A1]
+        return 1.0 + P[P_TEA] * P[P_TEN] * math.cos(P[P_TEN] * ad + P[P_TEP])
+    return 1.0
 
 
 @njit(cache=True)
@@ -220,6 +251,14 @@ def _selected(sel, t, y, P, mode, pen, tcc):
         return _sgn(y[S_W2])
     if sel == XS_JAW_ANGLE:
         return (y[S_AH] if P[P_KS] > 0.0 else y[S_A1]) - y[S_A2]
+    if sel == XS_PULSE_PHASE:                    # time since the latest pulse began, on or off [s]
+        return t - P[P_PT0]
+    if sel == XS_GAP_DISTANCE:                   # while free: the distance to the nearer jaw face [rad]; -1 in contact
+        return P[P_BETA] - abs(clutch_angles(y, P)[0]) if mode == 0 else -1.0
+    if sel == XS_ALPHA2_UNWRAPPED:               # alpha2 with the whole turns taken off since the run-in began
+        return y[S_A2] + 2.0 * math.pi * P[P_A2TURNS]
+    if sel == XS_RELAY:
+        return P[P_RLYSTATE]
     return 0.0
 
 
@@ -251,6 +290,17 @@ def _shaped(shape, x, a, b, c):
         return math.cos(a * x + b)
     if shape == XF_RISE_AFTER:                   # a first-order rise of time constant a from x = b (0 before)
         return 1.0 - math.exp(-(x - b) / a) if x >= b else 0.0
+    if shape == XF_ABS:
+        return abs(x)
+    if shape == XF_SIGMOID:                      # a smooth step from 0 to 1 at x = b, width a (a < 0: 1 to 0)
+        return 0.5 * (1.0 + math.tanh((x - b) / a))
+    if shape == XF_DECAY_AFTER:                  # a first-order decay of time constant a from x = b (0 before)
+        return math.exp(-(x - b) / a) if x >= b else 0.0
+    if shape == XF_CUSHION:                      # (a/(x + a))^b for x >= 0, else 0 (a film ~ 1/h^b, finite at 0)
+        return (a / (x + a)) ** b if x >= 0.0 else 0.0
+    if shape == XF_PERIODIC_GATE:                # 1 while (x - b) mod a < c, else 0 (a timer's window)
+        q = (x - b) - a * math.floor((x - b) / a)
+        return 1.0 if q < c else 0.0
     return 0.0
 
 
@@ -353,12 +403,13 @@ def rhs(t, y, mode, load_pu, P, timevar, dy):
         tc += xs[2]
         xw = xs[1]
         xf = xs[3]
+    tcd = tc if P[P_TEA] == 0.0 else tc * transmission_ratio(y, P)     # the jaw's torque on the drive half
     if P[P_KS] > 0.0:
         dy[S_W1] = (tb * te - tshaft - tload) / P[P_J1]
-        dy[S_WH] = (tshaft - tc) / P[P_JH]
+        dy[S_WH] = (tshaft - tcd) / P[P_JH]
         dy[S_AH] = y[S_WH]
     else:
-        dy[S_W1] = (tb * te - tc - tload) / P[P_J1]
+        dy[S_W1] = (tb * te - tcd - tload) / P[P_J1]
         dy[S_WH] = 0.0
         dy[S_AH] = 0.0
     dy[S_A1] = w1
@@ -501,7 +552,7 @@ def _record(out, row, y, dy, tc, te, f, mode, P):
     out[row, 8] = y[S_A1]
     out[row, 9] = y[S_A2]
     out[row, 10] = mode
-    out[row, 11] = y[S_AH] - y[S_A2] if P[P_KS] > 0.0 else y[S_A1] - y[S_A2]
+    out[row, 11] = clutch_angles(y, P)[0]
     out[row, 12] = dy[S_W2]
     out[row, 13] = y[S_V]
     out[row, 14] = P[P_R] * (y[S_AR] if P[P_KW] > 0.0 else y[S_A2]) - y[S_X]
@@ -539,6 +590,7 @@ def run_segments(y, mode, seg0, loads, seg_samples, dt, P, timevar, atol, rtol, 
     nrej = 0
     nev = 0
     nf = 0
+    P[P_TV] = timevar
     for j in range(loads.size):
         tj = (seg0 + j) * seg_dt
         u = loads[j]
@@ -549,6 +601,7 @@ def run_segments(y, mode, seg0, loads, seg_samples, dt, P, timevar, atol, rtol, 
             P[P_PT0] = (seg0 + j - q) * seg_dt
         turns = math.floor(y[S_A2] / two_pi)
         if turns != 0.0:
+            P[P_A2TURNS] += turns
             shift = turns * two_pi
             y[S_A1] -= shift
             y[S_A2] -= shift
@@ -557,6 +610,12 @@ def run_segments(y, mode, seg0, loads, seg_samples, dt, P, timevar, atol, rtol, 
             if P[P_KW] > 0.0:
                 y[S_AR] -= shift
             y[S_X] -= P[P_R] * shift
+        if P[P_RLYSEL] > 0.0:         # the relay, scanned once per segment (a two-point switch with hysteresis)
+            xr = _selected(int(P[P_RLYSEL]), tj, y, P, mode, 0.0, 0.0)
+            if P[P_RLYSTATE] == 0.0 and xr > P[P_RLYON]:
+                P[P_RLYSTATE] = 1.0
+            elif P[P_RLYSTATE] != 0.0 and xr < P[P_RLYOFF]:
+                P[P_RLYSTATE] = 0.0
         tc, te, f = rhs(tj, y, mode, u, P, timevar, k[0])
         nf += 1
         if record:

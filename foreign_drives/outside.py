@@ -12,7 +12,8 @@ TRUTH for a bench that checks a proposed term:
 
 The development half is :mod:`outside_dev`; the sealed half :mod:`outside_sealed` (not to be read by whoever
 tunes the proposal; run once, so now development data too). The second set: :mod:`outside_dev2` (development) and
-:mod:`outside_sealed2` (sealed: not to be read by whoever tunes the proposal).
+:mod:`outside_sealed2` (sealed: run once, development data now). The third set: :mod:`outside_dev3` (development)
+and :mod:`outside_sealed3` (sealed: not to be read by whoever tunes the proposal).
 
 Physics terms act through the compiled kernel's generic OUTSIDE slots (kernel.outside_terms): each slot adds
 ``amplitude * f1(x1) * f2(x2)`` to one balance, x a drive quantity (kernel.XS_*), f a shape (kernel.XF_*). A
@@ -28,9 +29,10 @@ from .forms import Form
 
 # the five balances of the workbench's proposal (issue 31): exactly these names
 BALANCES = ("motor_load_moment", "wheel_torque", "clutch_torque", "mass_force", "sensor")
-# the drive states a term may depend on; motor_acceleration only for sensor terms (a1 = r*dOmega1/dt)
+# the drive states a term may depend on; motor_acceleration and mass_acceleration only for sensor terms that read
+# a1 (= r*dOmega1/dt) or a2 (= dv/dt) themselves
 STATES = ("motor_speed", "wheel_speed", "rim_speed", "mass_speed", "clutch_penetration", "spring_extension",
-          "motor_angle", "wheel_angle", "load_pulse", "time", "motor_acceleration")
+          "motor_angle", "wheel_angle", "load_pulse", "time", "motor_acceleration", "mass_acceleration")
 _BALANCE_CODE = {"motor_load_moment": K.XB_MOTOR_LOAD, "wheel_torque": K.XB_WHEEL, "clutch_torque": K.XB_CLUTCH,
                  "mass_force": K.XB_MASS}
 
@@ -40,7 +42,7 @@ class OutsideForm(Form):
     family = None
     balance = ""                 # one of BALANCES
     depends_on: tuple = ()       # names of STATES
-    half = ""                    # "dev" | "sealed" | "dev2" | "sealed2"
+    half = ""                    # "dev" | "sealed" | "dev2" | "sealed2" | "dev3" | "sealed3"
     uses_states = False          # a sensor form that reads the run's internal signals
 
     def law(self, p: dict) -> str:

@@ -23,8 +23,8 @@ from scipy.optimize import brentq
 
 from . import constants as C
 from . import noise as N
-from .kernel import (N_OUT, N_STATES, OUT_NAMES, P_BETA, P_F0, P_K, P_KCD, P_KS, P_KW, P_PDUR, P_PFIRST, P_PPER,
-                     P_R, P_RR, P_RS, P_U, P_XM, P_XR, P_XS, S_A1, S_A2, S_AH, S_AR, S_ISD, S_ISQ, S_PRD, S_PRQ, S_V, S_W1, S_W2, S_WH, S_WR,
+from .kernel import (N_OUT, N_STATES, OUT_NAMES, P_A2TURNS, P_BETA, P_F0, P_K, P_KCD, P_KS, P_KW, P_PDUR,
+                     P_PFIRST, P_PPER, P_RLYSTATE, P_TV, P_R, P_RR, P_RS, P_U, P_XM, P_XR, P_XS, S_A1, S_A2, S_AH, S_AR, S_ISD, S_ISQ, S_PRD, S_PRQ, S_V, S_W1, S_W2, S_WH, S_WR,
                      S_X, implied_mode, run_segments)
 
 # tolerances of the DOPRI5 error control (per state; angles and the mass position absolute only)
@@ -213,6 +213,11 @@ def simulate(P, *, duration_s: float, seed: int, noise: bool = True, pulse_ampli
     rng = N.streams(seed)
     set_pulse_timing(P, pulse_first_s)
     y, info = periodic_orbit(P, pulse_amplitude_pu, pulse_first_s)
+    # the run with every term: the non-periodic ones act from here (the transmission error in implied_mode too); the
+    # wheel angle is unwrapped and the relay starts off from the run-in's first segment (kernel: alpha2_turns, relay)
+    P[P_TV] = 1.0
+    P[P_A2TURNS] = 0.0
+    P[P_RLYSTATE] = 0.0
     mode = implied_mode(y, P)
     loads_run = N.pulse_train(-n_run, n_run, pulse_amplitude_pu, pulse_first_s)
     loads_rec = N.pulse_train(0, n_rec, pulse_amplitude_pu, pulse_first_s)

@@ -231,13 +231,42 @@ OUTSIDE_DEV2_ROWS = [
     ("od2_clean_w3.6_eta0.045_n0.95", "clean", 0.0036, 0.045, 0.95, []),
 ]
 
+# ---- issue 31 part 4, third set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev3;
+# the third sealed half's rows are in foreign_drives.outside_sealed3). One mechanism per row at its own nominal
+# conditions, one clean control. Seeds 7800+ (7600+ are bench/_workbench/width_caveat.py's).
+OUTSIDE_DEV3_ROWS = [
+    # a load on the motor after each stroke's end, decaying (a pump recharging the accumulator)
+    ("od3_motor_accumulator_recharge", "outside", 0.006, 0.03, 0.92,
+     [E("motor_accumulator_recharge", {"torque_Nm": 4.0, "decay_s": 0.04})]),
+    # a brake on the wheel gated by the jaw's angle difference (engaged while the load runs ahead)
+    ("od3_wheel_weston_brake", "outside", 0.0075, 0.02, 0.90,
+     [E("wheel_weston_brake", {"torque_Nm": 4.0, "engage_width_rad": 0.003})]),
+    # the backlash's boundaries moving with the motor angle at order 2 (a Cardan shaft at ~3.2 degrees; at 4e-3 rad,
+    # 7 degrees, the jaw rattled: 117 onsets in 4 s; at 1.2e-3 one entry re-triggered)
+    ("od3_clutch_cardan_error", "outside", 0.0085, 0.035, 0.94,
+     [E("clutch_cardan_error", {"amplitude_rad": 0.0008, "order": 2, "phase_rad": 0.7})]),
+    # a force on the carriage following the pulse 20 ms late with a 10 ms lag
+    ("od3_mass_pneumatic_holdback", "outside", 0.005, 0.025, 0.89,
+     [E("mass_pneumatic_holdback", {"force_N": 12.0, "delay_s": 0.02, "lag_s": 0.01})]),
+    ("od3_clean_w7.8_eta0.04_n0.95", "clean", 0.0078, 0.04, 0.95, []),
+    ("od3_a2_transmitter_deadband", "outside", 0.0065, 0.0175, 0.91,
+     [E("a2_transmitter_deadband", {"deadband_m_s2": 0.4})]),
+    # a relay with hysteresis on the motor speed (a two-point switch every 0.2 ms); noise-free it switches on and off
+    # once per pulse period, on 70 % of the time (at 153/150 rad/s: on 4 %)
+    ("od3_motor_speed_relay_load", "outside", 0.0045, 0.045, 0.96,
+     [E("motor_speed_relay_load", {"torque_Nm": 3.0, "on_above_rad_s": 152.0, "off_below_rad_s": 149.0})]),
+    ("od3_a2_stroke_ringing", "outside", 0.0095, 0.0225, 0.89,
+     [E("a2_stroke_ringing", {"amplitude_m_s2": 2.0, "frequency_hz": 173.0, "decay_s": 0.02})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
 OUTSIDE_DEV = _suite(OUTSIDE_DEV_ROWS, 7000, 4.0)
 OUTSIDE_DEV2 = _suite(OUTSIDE_DEV2_ROWS, 7300, 4.0)
+OUTSIDE_DEV3 = _suite(OUTSIDE_DEV3_ROWS, 7800, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
-          "outside_dev2": OUTSIDE_DEV2}
+          "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3}
 
 
 def _outside_sealed():
@@ -252,7 +281,13 @@ def _outside_sealed2():
     return _suite(suite_rows(), 7400, 4.0)
 
 
-SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2")
+def _outside_sealed3():
+    """The third sealed half's suite, made from foreign_drives.outside_sealed3 on first use (its rows live there)."""
+    from .outside_sealed3 import suite_rows
+    return _suite(suite_rows(), 7900, 4.0)
+
+
+SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3")
 
 
 def suite(name: str) -> list:
@@ -260,6 +295,8 @@ def suite(name: str) -> list:
         return _outside_sealed()
     if name == "outside_sealed2":
         return _outside_sealed2()
+    if name == "outside_sealed3":
+        return _outside_sealed3()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])

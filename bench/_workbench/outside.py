@@ -18,11 +18,12 @@ Goals (docs/workbench.md "Proposing a missing term"):
 
 The development suite is ``foreign_drives.suites.suite("outside_dev")`` when it exists, else DEV_ROWS below; the
 sealed one only with ``--sealed`` (run once, by others, at the end). ``--set 2``: the second set, outside_dev2 and
-(with ``--sealed``) outside_sealed2; set 1's sealed half has been run once and is development data now.
+(with ``--sealed``) outside_sealed2; ``--set 3``: the third, outside_dev3 and (with ``--sealed``) outside_sealed3; set
+1's sealed half has been run once and is development data now.
 
 The outside loop (``--loop``, goals outside_loop_width_error_after_mm and outside_loop_worse_count): the README's
-loop through the CLI on each development outside recording (old dev, old sealed, dev2; never the unspent sealed2
-unless ``--sealed``), the width error |fused width - true width| before and after; *worse*: after > before + the
+loop through the CLI on each development outside recording (old dev, old sealed, dev2, dev3; never an unspent sealed
+half unless ``--sealed``), the width error |fused width - true width| before and after; *worse*: after > before + the
 after's stated uncertainty. Its rows carry the proposal's fields too (verdict, law, right balance, consistent), from
 the CLI's diagnosis at the nominal conditions. Each recording is diagnosed in this process at the
 drive's nominal values (NUMBA_NUM_THREADS=1); the proposal's CPU time is its own (proposal.Proposal.cpu_seconds).
@@ -127,7 +128,7 @@ STATE_WORDS = {"omega1": ("motor_speed",), "omega2": ("wheel_speed",), "xdot": (
                "rel_speed": ("motor_speed", "wheel_speed"), "penetration": ("clutch_penetration",),
                "penetration rate": ("clutch_penetration",), "z": ("spring_extension",), "alpha1": ("motor_angle",),
                "alpha2": ("wheel_angle",), "te": (), "time": ("time",), "constant": (), "load pulse": ("load_pulse",),
-               "a1": ("motor_acceleration",), "a2": ()}   # a1 = r dOmega1/dt: the motor acceleration
+               "a1": ("motor_acceleration",), "a2": ("mass_acceleration",)}   # a1 = r dOmega1/dt, a2 = dv/dt
 
 
 def _truth_of(spec, truth) -> tuple[set, set]:
@@ -246,9 +247,11 @@ def run_angle_locked(rows) -> list:
 
 # the outside suites by set: (development, sealed). Set 1's sealed half has been run once (its labels are known): it is
 # development data now. Set 2's sealed half (foreign_drives/outside_sealed2.py) is run once, at the end, by others.
-SETS = {1: ("outside_dev", "outside_sealed"), 2: ("outside_dev2", "outside_sealed2")}
+SETS = {1: ("outside_dev", "outside_sealed"), 2: ("outside_dev2", "outside_sealed2"), 3: ("outside_dev3", "outside_sealed3")}
+# the sealed halves not to be run but once, at the end (only with --sealed)
+UNSPENT_SEALED = ("outside_sealed2", "outside_sealed3")
 # the suites the outside loop runs on by default: every development one, never the unspent sealed half
-LOOP_DEVELOPMENT_SUITES = ("outside_dev", "outside_sealed", "outside_dev2")
+LOOP_DEVELOPMENT_SUITES = ("outside_dev", "outside_sealed", "outside_dev2", "outside_dev3")
 
 
 def suite_name(sealed: bool, set_: int = 1) -> str:
@@ -442,13 +445,15 @@ def main(argv=None):
     ap.add_argument("--sealed", action="store_true", help="run the sealed outside suite (once, at the end)")
     ap.add_argument("--set", dest="set_", type=int, default=1, choices=sorted(SETS),
                     help="the set of outside mechanisms: 1 = outside_dev / outside_sealed (spent: both development "
-                         "data now), 2 = outside_dev2 / outside_sealed2 (default 1)")
+                         "data now), 2 = outside_dev2 / outside_sealed2, 3 = outside_dev3 / outside_sealed3 (the "
+                         "sealed halves only with --sealed; default 1)")
     ap.add_argument("--loop", action="store_true",
                     help="instead of the proposal rows: the README's loop through the CLI (diagnose, add-effect "
                          "[--accept-proposal], train --model, analyze --library) on every development outside suite "
                          f"({', '.join(LOOP_DEVELOPMENT_SUITES)}); with --loop-suites, on those")
     ap.add_argument("--loop-suites", default=None, metavar="SUITE[,SUITE...]",
-                    help="with --loop: these suites (outside_sealed2 only together with --sealed: once, at the end)")
+                    help="with --loop: these suites (outside_sealed2, outside_sealed3 only together with --sealed: "
+                         "once, at the end)")
     ap.add_argument("--only", action="append", default=[], metavar="LABEL", help="only these rows (repeatable)")
     ap.add_argument("--skip-explained", action="store_true",
                     help="skip the foreign bench's clean and one-effect rows (proposals_on_explained: null)")
@@ -466,8 +471,9 @@ def main(argv=None):
         if bad:
             ap.error(f"--loop-suites: unknown outside suite {bad[0]!r}; allowed: "
                      + ", ".join(n for n in SUITE_NAMES if n.startswith("outside")))
-        if "outside_sealed2" in names and not args.sealed:
-            ap.error("--loop-suites: outside_sealed2 is the unspent sealed half; allowed only with --sealed (once, "
+        unspent = [n for n in names if n in UNSPENT_SEALED]
+        if unspent and not args.sealed:
+            ap.error(f"--loop-suites: {unspent[0]} is an unspent sealed half; allowed only with --sealed (once, "
                      "at the end)")
         out = loop_summary(run_loop(names, args.only))
         out["wall_seconds"] = time.perf_counter() - t0

@@ -103,7 +103,8 @@ def _zero(form):
     p = {}
     for q in form.parameters:
         lo, hi = q.bounds
-        if q.name.startswith(("amplitude", "torque", "force", "damping", "coefficient", "gain", "relative", "stiffness")):
+        if q.name.startswith(("amplitude", "torque", "force", "damping", "coefficient", "gain", "relative", "stiffness",
+                              "deadband", "corner")):
             p[q.name] = 0.0
         else:
             p[q.name] = float(min(max(0.5 * (lo + hi) if math.isfinite(hi - lo) else 1.0, lo), hi))
