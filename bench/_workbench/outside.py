@@ -196,8 +196,15 @@ def run_explained(specs) -> list:
         model = load_model(None, width_m=spec.width_m, eta_k=spec.eta_k, n1=spec.n1)
         d = diagnose(meas, model).to_json()
         prop = d.get("proposal") or {}
+        # a row that reached the proposal (verdict partial / nothing_explains) carries why it proposed or did not: the
+        # selection's steps, the groups' stability over the event resamples, diagnose's message
         row = {"label": spec.label, "kind": spec.kind, "verdict": d["verdict"],
                "proposed": bool(prop.get("proposed")), "law": prop.get("law")}
+        if prop:
+            row.update({"reason": prop.get("reason"), "stability": prop.get("stability"),
+                        "selection": prop.get("selection"), "explained_fraction": prop.get("explained_fraction"),
+                        "terms": [(t["balance"], t["state"], t["group"]) for t in prop.get("terms") or []],
+                        "message": d["message"]})
         log(json.dumps(row))
         rows.append(row)
     return rows
