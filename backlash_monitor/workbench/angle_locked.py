@@ -43,7 +43,7 @@ from __future__ import annotations
 import copy
 import hashlib
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -142,6 +142,16 @@ class Responses:
     U: np.ndarray
     V: np.ndarray
     R0: np.ndarray
+
+
+@dataclass(frozen=True)
+class Beside:
+    """A shared effect fitted together with an angle-locked term (a pair): its linear model about ``x`` -- the
+    prediction there ``shift`` (N,) over the model's, and its Jacobian (N, k), the same on every event."""
+    effect: object
+    x: np.ndarray
+    shift: np.ndarray
+    jacobian: np.ndarray
 
 
 def harmonics_file(balance: str, var: str, orders) -> Path:
@@ -249,7 +259,7 @@ def phase_steps(orders) -> int:
     return n
 
 
-def law_prediction(p, effect, law: Law, x, var: str, theta: np.ndarray, orders) -> np.ndarray | None:
+def law_prediction(p, effect, law: Law, x, var: str, theta: np.ndarray, orders, extra=None) -> np.ndarray | None:
     """(E, N): each recorded event's change under the whole law at ``x``, at its recorded angle ``theta``, from the
     simulator -- not linearised. The law is simulated at phase_steps phases around the circle (common random numbers):
     the model's events enter at nearly the same angles on every seed (its speeds are the same), so one phase would
@@ -257,7 +267,8 @@ def law_prediction(p, effect, law: Law, x, var: str, theta: np.ndarray, orders) 
     wheel unbalance, its 16 events at 1.7-4.4 rad, the model's at -1.0-1.3 rad). A phase step is a shift of the law's
     angle (angle_shift): each simulated event's change is taken at its angle plus that shift, regressed on the
     harmonics of the law's orders' common divisor up to its largest order, and evaluated at the recorded angles.
-    None when too few events matched or their angles do not cover the circle."""
+    ``extra``: values of other effects simulated with it (a shared effect beside it). None when too few events
+    matched or their angles do not cover the circle."""
     k = effect.phase_index
     lo, hi = effect.bounds()
     x = np.asarray(x, dtype=float)
@@ -270,7 +281,7 @@ def law_prediction(p, effect, law: Law, x, var: str, theta: np.ndarray, orders) 
             continue
         xs = np.array(x)
         xs[k] = ph
-        sets.append(plant_adapter.apply_values(effect, xs))
+        sets.append(plant_adapter.apply_values(effect, xs) | dict(extra or {}))
         shifts.append(tau)
     if not sets:
         return None
@@ -306,16 +317,18 @@ def _coefficients(law, x, orders) -> np.ndarray:
     return np.concatenate([[a0]] + [[b[k - 1], a[k - 1]] for k in orders])
 
 
-def _fit_values(law, orders, A, bvec, x_start, lo, hi, k_phase, multi: bool) -> np.ndarray:
+def _fit_values(law, orders, A, bvec, x_start, lo, hi, k_phase, multi: bool, coef=None) -> np.ndarray:
     """The parameter vector minimising c(x)' A c(x) - 2 b' c(x) (the events' squared error in the whitened views) in
-    the bounds; from ``x_start`` and, with ``multi``, from PHASE_STARTS phases around the circle."""
+    the bounds; from ``x_start`` and, with ``multi``, from PHASE_STARTS phases around the circle. ``coef``: c(x) when
+    it is not the law's coefficients alone (a shared effect beside it)."""
+    coef = coef or (lambda xv: _coefficients(law, xv, orders))
     w, Q = np.linalg.eigh(0.5 * (A + A.T))
     w = np.maximum(w, 1e-12 * max(float(w.max()), 1e-300))
     L = Q * np.sqrt(w)[None]                                          # A = L L'
     target = (Q / np.sqrt(w)[None]).T @ bvec                           # L^-1 b
 
     def res(x):
-        return L.T @ _coefficients(law, x, orders) - target
+        return L.T @ coef(x) - target
     starts = [np.clip(x_start, lo, hi)]
     if multi:
         for ph in np.linspace(-np.pi, np.pi, PHASE_STARTS, endpoint=False):
@@ -366,19 +379,49 @@ def _unwrap_phase(rows: np.ndarray, k: int, ref: float) -> np.ndarray:
     return rows
 
 
-def fit(run, effect) -> fitting.FitResult | None:
+def fit(run, effect, beside: Beside | None = None) -> fitting.FitResult | None:
     """:func:`fit_event_by_event`, or None when a user's term does not run on numpy arrays, gives values that are not
     finite, or its responses cannot be solved (its candidate is then refined on the event average as any other)."""
     try:
-        return fit_event_by_event(run, effect)
+        return fit_event_by_event(run, effect, beside)
     except (TypeError, ValueError, ArithmeticError, NameError, AttributeError, np.linalg.LinAlgError):
         return None
 
 
-def fit_event_by_event(run, effect) -> fitting.FitResult | None:
+def fit_pair(run, a: str, b: str) -> fitting.FitResult | None:
+    """The pair (a, b) when exactly one of them is a term locked to a shaft's angle that the diagnosis fitted event by
+    event: that term fitted event by event beside the other, a shared effect, linearised at its single-effect fit when
+    there is one (else at the model's values, on its screening secant). Its parameters in the order a's, b's (as
+    pairs.combined holds them); its evidence the events' own likelihood about their per-event predictions, as the
+    term's alone (comparable with it). None when it does not apply (the pair is then refined on the event average)."""
+    locked = [n for n in (a, b) if n in run.event_fits]
+    if len(locked) != 1:
+        return None
+    name = locked[0]
+    other = b if name == a else a
+    eff = run.by_name[other]
+    single = next((f for f in run.fits if f.effect == other and f.jacobian is not None and f.pred is not None), None)
+    if single is not None:
+        beside = Beside(eff, np.asarray(single.values, float), single.pred - run.base_pred, single.jacobian)
+    else:
+        beside = Beside(eff, eff.default_vector(), np.zeros_like(run.base_pred), run.screening[other].jacobian)
+    f = fit(run, run.by_name[name], beside)
+    if f is None or name == a:
+        return f
+    nl = len(run.by_name[name].parameters)
+    perm = np.r_[np.arange(nl, len(f.values)), np.arange(nl)]
+    return replace(f, effect=f"{other}+{name}", parameter_names=[f.parameter_names[i] for i in perm],
+                   units=[f.units[i] for i in perm], values=f.values[perm], uncertainty=f.uncertainty[perm],
+                   nominal=f.nominal[perm], bounds=(f.bounds[0][perm], f.bounds[1][perm]),
+                   jacobian=f.jacobian[:, perm], balance=eff.balance,
+                   groups=tuple((len(f.values) - nl + a0, len(f.values) - nl + b0, z) for a0, b0, z in f.groups))
+
+
+def fit_event_by_event(run, effect, beside: Beside | None = None) -> fitting.FitResult | None:
     """The event-by-event fit of ``effect`` (a CandidateEffect locked to one shaft's angle: angle_variable) on the
     diagnosis ``run``; None when it does not apply (not such a term, no recorded speed, too few events, a law with no
-    harmonic at its reference)."""
+    harmonic at its reference). ``beside``: a shared effect fitted together with it (its parameters after the
+    term's; pairs.py's second effect)."""
     p = run.problem
     var = angle_variable(run.model, effect)
     if var is None or p.n_events < 6:
@@ -393,10 +436,32 @@ def fit_event_by_event(run, effect) -> fitting.FitResult | None:
     lo, hi = effect.bounds()
     x_start = x0 + np.where(np.arange(len(x0)) == k, 0.0, fitting._step(effect))   # 15 % into the range
     orders = law_orders(law, x_start)
+    nl = len(x0)
+    if beside is not None:
+        x0 = np.concatenate([x0, beside.effect.default_vector()])
+        lo = np.concatenate([lo, beside.effect.bounds()[0]])
+        hi = np.concatenate([hi, beside.effect.bounds()[1]])
+        x_start = np.concatenate([x_start, beside.x])
+
+    def coef(xv):
+        c = _coefficients(law, xv[:nl], orders)
+        return c if beside is None else np.concatenate([c, xv[nl:] - beside.x])
+
+    def joint(Gl):
+        """(E, N, M [+ k_S]): the law's columns, and the shared effect's Jacobian the same on every event."""
+        if beside is None:
+            return Gl
+        return np.concatenate([Gl, np.broadcast_to(beside.jacobian[None], (Gl.shape[0],) + beside.jacobian.shape)],
+                              axis=-1)
+
+    def extra(xv):
+        return {} if beside is None else plant_adapter.apply_values(beside.effect, xv[nl:])
     if not orders or not spread_enough(theta, orders):
         return None
     base = run.base_pred
-    Y = p.project((p.event_vecs - base[None]).T).T                     # (E, D)
+    shift = 0.0 if beside is None else beside.shift                    # the shared effect at its expansion point
+    Y0 = p.project((p.event_vecs - base[None]).T).T                    # (E, D)
+    Y = Y0 - (0.0 if beside is None else p.project(shift)[None])
     q = _probe_problem(p, effect.balance, var, orders)
     q_before = q.n_sets_simulated
     n_before = p.n_sets_simulated
@@ -410,17 +475,17 @@ def fit_event_by_event(run, effect) -> fitting.FitResult | None:
         if resp_new is None:
             break
         resp, used = resp_new, (changes, dict(amps))
-        G = _columns(resp, theta)                                      # (E, N, M)
+        G = joint(_columns(resp, theta))                               # (E, N, M)
         Gp = np.stack([p.project(G[..., c].T).T for c in range(G.shape[-1])], axis=-1)
         GG, Gy, _ = gram(Gp, Y)
         A, bvec = GG.sum(axis=0), Gy.sum(axis=0)
-        x_new = _fit_values(law, orders, A, bvec, x_start if x is None else x, lo, hi, k, multi=x is None)
+        x_new = _fit_values(law, orders, A, bvec, x_start if x is None else x, lo, hi, k, multi=x is None, coef=coef)
         moved = x is None or np.max(np.abs(x_new - x) / np.maximum(hi - lo, 1e-12)) > SECANT_TOLERANCE
         x = x_new
         if not moved or it == SECANT_ITERATIONS:
             break
         # the next responses at the fitted harmonics' own amplitudes (a secant)
-        new_amps = _probe_amplitudes(effect.balance, orders, _coefficients(law, x, orders))
+        new_amps = _probe_amplitudes(effect.balance, orders, _coefficients(law, x[:nl], orders))
         if all(abs(new_amps[o] - amps[o]) <= SECANT_TOLERANCE * amps[o] for o in amps):
             break
         amps = new_amps
@@ -430,60 +495,72 @@ def fit_event_by_event(run, effect) -> fitting.FitResult | None:
     # the working torque's size, its harmonics acting together) is a defect, and the fit is redone with it taken off
     # the events (law_steps: a step is kept only when the law simulated at its values lowers the events' error)
     def defect_of(xv, P):
-        return p.project((P - G @ _coefficients(law, xv, orders)).T).T
+        return p.project((P - shift - G @ coef(xv)).T).T
 
     def refit(xv, P):
         GGd, Gyd, _ = gram(Gp, Y - defect_of(xv, P))
-        return _fit_values(law, orders, GGd.sum(axis=0), Gyd.sum(axis=0), xv, lo, hi, k, multi=False)
+        return _fit_values(law, orders, GGd.sum(axis=0), Gyd.sum(axis=0), xv, lo, hi, k, multi=False, coef=coef)
 
-    stepped = law_steps(x, lambda xv: law_prediction(p, effect, law, xv, var, theta, orders), refit,
-                        lambda P: float(np.sum((Y - p.project(P.T).T) ** 2)), hi - lo)
+    stepped = law_steps(x, lambda xv: law_prediction(p, effect, law, xv[:nl], var, theta, orders, extra(xv)), refit,
+                        lambda P: float(np.sum((Y0 - p.project(P.T).T) ** 2)), hi - lo)
     if stepped is None:
-        per_event, defect = G @ _coefficients(law, x, orders), np.zeros_like(Y)    # the linear prediction, lined up
+        per_event, defect = shift + G @ coef(x), np.zeros_like(Y)    # the linear prediction, lined up
     else:
         x, per_event = stepped
         defect = defect_of(x, per_event)
         GG, Gy, _ = gram(Gp, Y - defect)
         A, bvec = GG.sum(axis=0), Gy.sum(axis=0)
     # the uncertainty: leave-one-event-out and leave-one-seed-out refits from the fitted values
-    loo = [_fit_values(law, orders, A - GG[i], bvec - Gy[i], x, lo, hi, k, multi=False) for i in range(len(GG))]
+    loo = [_fit_values(law, orders, A - GG[i], bvec - Gy[i], x, lo, hi, k, multi=False, coef=coef)
+           for i in range(len(GG))]
+
+    def size(xv):                                     # the law's harmonics' size (its balance's unit)
+        return float(np.sqrt(np.sum(_coefficients(law, xv[:nl], orders) ** 2)))
+    size_spread = _jackknife(np.array([[size(v)] for v in loo]))[0]
     spread = _jackknife(_unwrap_phase(np.array(loo), k, x[k]))
     by_seed = []
     for s in range(len(p.seeds)):
         rs = _solve_responses(used[0], used[1], var, orders, drop_seed=s)
         if rs is None:
             continue
-        Gs = _columns(rs, theta)
+        Gs = joint(_columns(rs, theta))
         GGs, Gys, _ = gram(np.stack([p.project(Gs[..., c].T).T for c in range(Gs.shape[-1])], axis=-1),
                            Y - defect)
-        by_seed.append(_fit_values(law, orders, GGs.sum(axis=0), Gys.sum(axis=0), x, lo, hi, k, multi=False))
+        by_seed.append(_fit_values(law, orders, GGs.sum(axis=0), Gys.sum(axis=0), x, lo, hi, k, multi=False,
+                                   coef=coef))
     if len(by_seed) >= 2:
         spread = np.hypot(spread, _jackknife(_unwrap_phase(np.array(by_seed), k, x[k])))
+        size_spread = float(np.hypot(size_spread, _jackknife(np.array([[size(v)] for v in by_seed]))[0]))
+    size_z = size(x) / max(size_spread, 1e-300)
     # the model after: the recorded events' own change on average; the spectral shape simulated at the fitted values
-    ens = p.evaluate([plant_adapter.apply_values(effect, x)])
+    ens = p.evaluate([plant_adapter.apply_values(effect, x[:nl]) | extra(x)])
     pred = base + per_event.mean(axis=0)
     sp = p.spectral_slice
     pred[sp] = p.pred_of(ens, 0)[sp]
     explained = p.explained_share(p.fit_residual(pred), p.fit_residual(base))
     ic = _event_ic(p, base[None] + per_event, len(x0))
     # the Jacobian (prediction space) at the fitted values, by differences of the law's coefficients
-    c_fit = _coefficients(law, x, orders)
+    c_fit = coef(x)
     J = np.zeros((len(base), len(x0)))
     for i in range(len(x0)):
         hstep = 1e-4 * max(hi[i] - lo[i], 1e-12)
         xs = np.array(x)
         xs[i] = xs[i] + hstep if xs[i] + hstep <= hi[i] else xs[i] - hstep
-        J[:, i] = (G @ ((_coefficients(law, xs, orders) - c_fit) / (xs[i] - x[i]))).mean(axis=0)
+        J[:, i] = (G @ ((coef(xs) - c_fit) / (xs[i] - x[i]))).mean(axis=0)
     p.n_sets_simulated += q.n_sets_simulated - q_before        # the probes' runs count in the diagnosis's total
     tol = fitting.AT_BOUND_FRACTION * (hi - lo)
     at_bound = bool(np.any([(x[i] - lo[i] <= tol[i] and abs(x0[i] - lo[i]) > tol[i])
                             or (hi[i] - x[i] <= tol[i] and abs(hi[i] - x0[i]) > tol[i])
                             for i in range(len(x0)) if i != k]))
-    return fitting.FitResult(effect.name, [q.name for q in effect.parameters], [q.unit for q in effect.parameters],
+    members = [effect] if beside is None else [effect, beside.effect]
+    name = effect.name if beside is None else f"{effect.name}+{beside.effect.name}"
+    return fitting.FitResult(name, [q.name for e in members for q in e.parameters],
+                             [q.unit for e in members for q in e.parameters],
                              x, spread, x0, (lo, hi), explained, ic - run.base_ic, ic, ens.mean_denoised(0), explained,
                              p.n_sets_simulated - n_before, effect.balance, effect.description, at_bound,
                              model_mean_raw=ens.mean_raw(0), pred=pred, jacobian=J,
-                             fixed=getattr(effect, "fixed_values", {}))
+                             fixed={k: v for e in members for k, v in getattr(e, "fixed_values", {}).items()},
+                             groups=((0, nl, float(size_z)),))
 
 
 def _event_ic(p, per_event_pred: np.ndarray, k: int) -> float:

@@ -348,3 +348,39 @@ def test_a_law_step_is_kept_only_when_it_lowers_the_events_error():
     x, P = al.law_steps(x0, lambda x: law(x[0]), refit(-1.0), error, np.array([10.0]), iterations=8)
     assert x[0] == x0[0] and error(P) == error(law(x0[0]))
     assert al.law_steps(x0, lambda x: None, refit(0.6), error, np.array([10.0])) is None
+
+
+def test_a_shared_effect_beside_the_term_is_fitted_with_it_on_the_events():
+    """Synthetic events (the linear picture): the cam at A = 3, q = 0.3, phi = -2.0 at each event's own angle and a
+    shared effect (a width change: one column, the same on every event) at 0.8 of its unit. Fitted together (the
+    coefficient vector the law's harmonics, then the shared effect's values: angle_locked.Beside) both come back (the
+    first harmonic A(1 + q); A and q apart only as the second harmonic allows). Their significance: the term's
+    parameters together, by its harmonics' size (a lift ratio at its nominal 0 is no evidence against the term)."""
+    from backlash_monitor.workbench.decisions import significant
+    from backlash_monitor.workbench.proposal import gram
+    rng = np.random.default_rng(8)
+    n, e = 30, 40
+    U, V = rng.normal(size=(2, n)), rng.normal(size=(2, n))
+    resp = al.Responses((1, 2), U, V, rng.normal(size=n))
+    js = rng.normal(size=(n, 1))
+    eff = _candidate(Cam)
+    law = al.Law(_model(Cam), eff, "alpha2")
+    theta = rng.uniform(0, 200, e)
+    G = al._columns(resp, theta)
+    x_true = np.array([3.0, 0.3, -2.0, 0.8])
+    Y = G @ al._coefficients(law, x_true[:3], (1, 2)) + js[:, 0] * 0.8 + 0.3 * rng.normal(size=(e, n))
+    Gj = np.concatenate([G, np.broadcast_to(js[None], (e, n, 1))], axis=-1)
+
+    def coef(xv):
+        return np.concatenate([al._coefficients(law, xv[:3], (1, 2)), xv[3:]])
+    GG, Gy, _ = gram(Gj, Y)
+    lo, hi = np.r_[eff.bounds()[0], -5.0], np.r_[eff.bounds()[1], 5.0]
+    x = al._fit_values(law, (1, 2), GG.sum(0), Gy.sum(0), np.array([7.5, 0.75, 0.0, 0.0]), lo, hi, 2, multi=True,
+                       coef=coef)
+    assert abs(x[3] - 0.8) < 0.1 and abs(x[0] * (1 + x[1]) - 3.9) < 0.3, x
+    # the lift ratio's own uncertainty may be wide, the term's size decides
+    fit = types.SimpleNamespace(values=np.array([3.0, 0.01, -2.0, 0.8]), nominal=np.zeros(4),
+                                uncertainty=np.array([0.5, 0.3, 0.05, 0.1]), groups=((0, 3, 12.0),))
+    assert significant(fit)
+    assert not significant(types.SimpleNamespace(**{**vars(fit), "groups": ()}))
+    assert not significant(types.SimpleNamespace(**{**vars(fit), "groups": ((0, 3, 1.5),)}))
