@@ -384,3 +384,19 @@ def test_a_shared_effect_beside_the_term_is_fitted_with_it_on_the_events():
     assert significant(fit)
     assert not significant(types.SimpleNamespace(**{**vars(fit), "groups": ()}))
     assert not significant(types.SimpleNamespace(**{**vars(fit), "groups": ((0, 3, 1.5),)}))
+
+
+def test_a_term_locked_to_an_angle_is_evidence_on_the_events_when_decisive_and_significant():
+    """The views look at the event average, where such a term washes out: its event-by-event fit decides whether the
+    model is consistent with its events (diagnose.events_evidence). Decisive (delta_ic <= -10) and its harmonics' size
+    significant: the model is inconsistent, that term first; weak or insignificant ones are not evidence."""
+    from backlash_monitor.workbench.diagnose import events_evidence
+
+    def fit(name, dic, z):
+        return types.SimpleNamespace(effect=name, delta_ic=dic, values=np.array([4.7, -1.8]), nominal=np.zeros(2),
+                                     uncertainty=np.array([0.3, 0.08]), groups=((0, 2, z),))
+    assert events_evidence([fit("mesh2", -104.0, 16.4), fit("cam", -30.0, 5.0)]) == "mesh2"
+    assert events_evidence([fit("mesh2", 3.9, 1.9)]) is None           # measured on a clean foreign recording
+    assert events_evidence([fit("mesh2", -40.0, 1.5)]) is None         # decisive but its size not significant
+    assert events_evidence([fit("mesh2", -8.0, 9.0)]) is None          # not decisive
+    assert events_evidence([]) is None
