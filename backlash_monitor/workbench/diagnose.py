@@ -269,7 +269,8 @@ def second_effect_step(run: Run, decision: Decision, second: bool = True) -> Upd
                 for f in decision.qualifying}
     found = pairs.best_pair(run.problem, win, run.by_name, run.screening, run.order, run.base_pred, run.base_ic,
                             up.pairs_tried, twins_of, run.fits,
-                            refine_pair=(lambda a, b: angle_locked.fit_pair(run, a, b)) if run.event_fits else None)
+                            refine_pair=(lambda a, b: angle_locked.fit_pair(run, a, b)) if run.event_fits else None,
+                            event_locked=list(run.event_fits))
     if found is not None and anchor_only and found[0].explained_fraction < MIN_EXPLAINED:
         found = None
     if found is None and anchor_only:

@@ -36,7 +36,7 @@ def pair_key(a, b, order):
 
 
 def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=None, twins_of=None,
-              singles=None, refine_pair=None):
+              singles=None, refine_pair=None, event_locked=()):
     """Two effects at once. Every pair (one of the best PAIR_FIRST screened singles + any other candidate) is
     fitted linearly together on the screening Jacobians (cheap, no simulation) and ranked by its linearised
     IC. Then on the simulator (bounded least squares, common random numbers):
@@ -51,7 +51,9 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
     significant, its second effect explains >= MIN_EXPLAINED_SECOND of what the first left, and the model with
     both is confident. -> (fit of the best pair, a, b, [(fit, c, d) of the passing pairs within DELTA_IC_TIE of
     it]) or None. ``refine_pair(a, b)``: a pair's own fit where it has one (a term locked to a shaft's angle fitted
-    event by event beside the other: angle_locked.fit_pair), else None: refined on the event average."""
+    event by event beside the other: angle_locked.fit_pair), else None: refined on the event average. ``event_locked``:
+    those terms (names); the first effect's pair with each of them is refined besides the ranked ones (the event
+    average's linearisation cannot rank it: the term washes out there)."""
     r1 = problem.residual(first.pred)
     if consistency.test(problem.views, r1).consistent:
         return None
@@ -136,6 +138,13 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
         used |= set(key)
         if run(key) or len(done) == PAIR_REFINE:
             break
+    # the first effect with a term locked to a shaft's angle: fitted event by event (refine_pair), measured: a crank
+    # pump beside a width change, the width + crank pair not among the ranked (one disjoint pair per member)
+    for n in event_locked:
+        if refine_pair is not None and n != first.effect and n in order and first.effect in order:
+            key = linear(first.effect, n)
+            if key not in done:
+                run(key)
     passed = [k for k, (f, ok) in done.items() if ok]
     if not passed:
         return None

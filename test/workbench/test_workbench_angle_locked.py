@@ -257,6 +257,11 @@ def test_a_law_beyond_the_fitted_harmonics_or_not_on_arrays_is_left_to_the_avera
 def test_events_that_all_enter_at_one_angle_cannot_tell_sine_from_cosine():
     assert al.spread_enough(np.linspace(0, 40, 30), (1, 2))
     assert not al.spread_enough(np.full(30, 1.3) + 2 * np.pi * np.arange(30), (1,))
+    # recorded events on an arc of 0.85 rad (0.97 on order 1, measured beside a width change): fitted, the responses'
+    # shapes tell sine from cosine and the jackknife says how well; all at one angle: not
+    arc = np.linspace(5.16, 6.01, 16)
+    assert not al.spread_enough(arc, (1,)) and al.spread_enough(arc, (1,), al.RECORDED_CONCENTRATION)
+    assert not al.spread_enough(np.full(16, 5.5), (1,), al.RECORDED_CONCENTRATION)
 
 
 class TwoPart(Effect):
