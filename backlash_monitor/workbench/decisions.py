@@ -42,9 +42,13 @@ VIEW_WORSE_FACTOR = 1.3      # per signal: residual/noise may not grow beyond ma
 
 
 def significant(fit) -> bool:
-    """Every fitted value differs from the model's by more than SIGNIFICANCE x its (jackknife) uncertainty."""
+    """Every fitted value differs from the model's by more than SIGNIFICANCE x its (jackknife) uncertainty; the
+    parameters of one of the fit's ``groups`` together (their z above SIGNIFICANCE)."""
     d = np.abs(np.asarray(fit.values) - np.asarray(fit.nominal))
-    return bool(np.all(d > SIGNIFICANCE * np.asarray(fit.uncertainty)))
+    alone = d > SIGNIFICANCE * np.asarray(fit.uncertainty)
+    for start, stop, z in getattr(fit, "groups", ()):
+        alone[start:stop] = z > SIGNIFICANCE
+    return bool(np.all(alone))
 
 
 def qualifies(fit, candidate, min_explained: float = MIN_EXPLAINED) -> bool:

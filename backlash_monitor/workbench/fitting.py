@@ -63,6 +63,9 @@ class FitResult:
     pred: np.ndarray | None = None             # the prediction vector at the fitted values (Problem.pred)
     jacobian: np.ndarray | None = None         # (N, k) d pred / d values at the fitted values (forward difference)
     fixed: dict = field(default_factory=dict)  # the candidate's fixed form parameters (e.g. {"a1_sections": 2.0})
+    groups: tuple = ()                         # ((start, stop, z), ...): parameters significant together, not one by
+    # one (a term locked to a shaft's angle: its harmonics' size over its jackknife uncertainty; a shape parameter of
+    # its law, a lift ratio, may sit at its nominal while the term is there: angle_locked.py)
 
     def to_json(self) -> dict:
         return {"effect": self.effect.split("[")[0], "candidate": self.effect,

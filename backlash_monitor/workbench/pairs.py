@@ -36,7 +36,7 @@ def pair_key(a, b, order):
 
 
 def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=None, twins_of=None,
-              singles=None):
+              singles=None, refine_pair=None, event_locked=()):
     """Two effects at once. Every pair (one of the best PAIR_FIRST screened singles + any other candidate) is
     fitted linearly together on the screening Jacobians (cheap, no simulation) and ranked by its linearised
     IC. Then on the simulator (bounded least squares, common random numbers):
@@ -50,7 +50,10 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
     A pair passes when it beats the single winner by DELTA_IC_STRONG, is not pinned, its values are
     significant, its second effect explains >= MIN_EXPLAINED_SECOND of what the first left, and the model with
     both is confident. -> (fit of the best pair, a, b, [(fit, c, d) of the passing pairs within DELTA_IC_TIE of
-    it]) or None."""
+    it]) or None. ``refine_pair(a, b)``: a pair's own fit where it has one (a term locked to a shaft's angle fitted
+    event by event beside the other: angle_locked.fit_pair), else None: refined on the event average. ``event_locked``:
+    those terms (names); the first effect's pair with each of them is refined besides the ranked ones (the event
+    average's linearisation cannot rank it: the term washes out there)."""
     r1 = problem.residual(first.pred)
     if consistency.test(problem.views, r1).consistent:
         return None
@@ -104,9 +107,10 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
     def run(key):
         a, b = key
         expl, x_lin, h, _, jacobian = lin[key]
-        pair = combined(by_name[a], by_name[b])
-        fit = fitting.refine(problem, pair, fitting.Linearisation(jacobian, h, x_lin, expl), base_pred, base_ic,
-                             max_nfev=PAIR_MAX_NFEV)
+        fit = refine_pair(a, b) if refine_pair is not None else None
+        if fit is None:
+            fit = fitting.refine(problem, combined(by_name[a], by_name[b]), fitting.Linearisation(jacobian, h, x_lin, expl),
+                                 base_pred, base_ic, max_nfev=PAIR_MAX_NFEV)
         left = problem.explained_share(problem.fit_residual(fit.pred), r1g)
         na = len(by_name[a].parameters)
         checks = {"beats_first_by_2": bool(fit.delta_ic <= first.delta_ic - DELTA_IC_STRONG),
@@ -134,6 +138,13 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
         used |= set(key)
         if run(key) or len(done) == PAIR_REFINE:
             break
+    # the first effect with a term locked to a shaft's angle: fitted event by event (refine_pair), measured: a crank
+    # pump beside a width change, the width + crank pair not among the ranked (one disjoint pair per member)
+    for n in event_locked:
+        if refine_pair is not None and n != first.effect and n in order and first.effect in order:
+            key = linear(first.effect, n)
+            if key not in done:
+                run(key)
     passed = [k for k, (f, ok) in done.items() if ok]
     if not passed:
         return None

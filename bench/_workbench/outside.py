@@ -241,7 +241,10 @@ def run_angle_locked(rows) -> list:
             d = diagnose(meas, model, propose=False).to_json()
             named = name in (d.get("indistinguishable") or []) or d.get("discovery") == name or any(
                 name == (e or {}).get("effect") for e in [d.get("second_effect")])
-            fit = next((r for r in d["ranked"] if r["effect"] == name), None)
+            # the plug-in's fit as the diagnosis names it (the discovery's or the second effect's: in a pair, fitted
+            # beside the other), else its single fit in the ranking
+            fit = next((r for r in [d.get("discovery_parameters"), d.get("second_effect")] + list(d["ranked"])
+                        if r and r.get("effect") == name), None)
             a = fit["parameters"][pname] if fit else None
             s = (fit.get("uncertainty") or {}).get(pname) if fit else None
             within = a is not None and s is not None and abs(a - truth) <= 3 * s

@@ -257,3 +257,151 @@ def test_a_law_beyond_the_fitted_harmonics_or_not_on_arrays_is_left_to_the_avera
 def test_events_that_all_enter_at_one_angle_cannot_tell_sine_from_cosine():
     assert al.spread_enough(np.linspace(0, 40, 30), (1, 2))
     assert not al.spread_enough(np.full(30, 1.3) + 2 * np.pi * np.arange(30), (1,))
+    # recorded events on an arc of 0.85 rad (0.97 on order 1, measured beside a width change): fitted, the responses'
+    # shapes tell sine from cosine and the jackknife says how well; all at one angle: not
+    arc = np.linspace(5.16, 6.01, 16)
+    assert not al.spread_enough(arc, (1,)) and al.spread_enough(arc, (1,), al.RECORDED_CONCENTRATION)
+    assert not al.spread_enough(np.full(16, 5.5), (1,), al.RECORDED_CONCENTRATION)
+
+
+class TwoPart(Effect):
+    """A phase that moves one part of the law and not the other: not a shift of the law's angle."""
+    name = "test_two_part"
+    balance = "wheel_torque_Nm"
+    description = "A*sin(a2) + A*sin(2*a2+phi)"
+    parameters = (Parameter("amplitude_Nm", "N*m", 0.0, (0.0, 50.0), "A"),
+                  Parameter("phase_rad", "rad", 0.0, (-np.pi, np.pi), "phi"))
+
+    @staticmethod
+    def term(alpha2, amplitude_Nm, phase_rad):
+        return amplitude_Nm * (sin(alpha2) + sin(2.0 * alpha2 + phase_rad))
+
+
+def test_a_phase_step_is_a_shift_of_the_laws_angle_or_none():
+    """The cam's phase shifts its angle (f(alpha; phi + s) = f(alpha + s)); a phase that moves one part of a law
+    only is no shift of it. The phases the law is simulated at: a prime above the largest order over the orders'
+    common divisor, so that each order's circle gets as many distinct points."""
+    law = al.Law(_model(Cam), _candidate(Cam), "alpha2")
+    x = np.array([3.0, 1.2, -2.0])
+    grid = law._grid
+    for ph in (-2.0, -0.5, 1.0, 3.0):
+        tau = al.angle_shift(law, x, 2, ph)
+        xs = x.copy()
+        xs[2] = ph
+        shifted = np.interp(grid + tau, grid, law.values(x), period=2 * np.pi)
+        assert np.max(np.abs(law.values(xs) - shifted)) < 2e-3 * np.max(np.abs(law.values(x)))
+    two = al.Law(_model(TwoPart), _candidate(TwoPart), "alpha2")
+    assert al.angle_shift(two, np.array([2.0, 0.0]), 1, 1.0) is None
+    assert [al.phase_steps(o) for o in [(1,), (1, 2), (1, 2, 4), (2,), (2, 4), (3,)]] == [3, 3, 5, 3, 3, 3]
+
+
+def test_the_whole_law_is_predicted_at_recorded_angles_its_simulated_events_never_reached(monkeypatch):
+    """The model's events enter on an arc (-1.0 .. 1.3 rad) at every phase; the recording's on the other side of
+    the circle. A nonlinear per-event change h(angle + phase) (harmonics 0..2 of the law's angle): the law simulated
+    at phase_steps phases, each event taken at its angle plus the phase's shift, gives h at the recorded angles."""
+    rng = np.random.default_rng(11)
+    eff = _candidate(Cam)
+    law = al.Law(_model(Cam), eff, "alpha2")
+    x = np.array([3.0, 1.2, -2.0])
+
+    def h(u):
+        return np.stack([np.cos(u), np.sin(u) + 0.4 * np.cos(2 * u), 0.3 + 0.2 * np.sin(2 * u)], axis=-1)
+
+    def sim(u):                                      # with a little beyond the fitted orders, and noise
+        return h(u) + 0.05 * np.cos(4 * u)[:, None] + 0.02 * rng.normal(size=(len(u), 3))
+
+    def fake_changes(problem, sets):
+        out = []
+        for s in sets:
+            phase = s["test_cam.phase_rad"]
+            ang = rng.uniform(-1.0, 1.3, 60)
+            out.append((sim(ang + phase), {"alpha2": ang, "seed": np.arange(60) % 6}))
+        return out
+    monkeypatch.setattr(event_design, "matched_changes", fake_changes)
+    theta = rng.uniform(2.0, 4.5, 16)
+    P = al.law_prediction(None, eff, law, x, "alpha2", theta, (1, 2))
+    assert np.max(np.abs(P - h(theta + x[2]))) < 0.1
+    # one phase only (the arc): the same regression extrapolates off the arc and misses
+    ang = rng.uniform(-1.0, 1.3, 180)
+    C, *_ = np.linalg.lstsq(event_design.fourier_basis(ang, (1, 2)), sim(ang + x[2]), rcond=None)
+    assert np.max(np.abs(event_design.fourier_basis(theta, (1, 2)) @ C - h(theta + x[2]))) > 0.3
+
+
+def test_a_law_step_is_kept_only_when_it_lowers_the_events_error():
+    """Defect correction (law_steps) of a linear model whose gain is off by 40 %: the steps converge on the truth of a
+    nonlinear law (a step that overshoots is halved). A refit that steps away (a wrong linear model's sign) raises the
+    error at every step: the start is kept."""
+    t = np.linspace(0.0, 1.0, 50)
+    truth = 2.0
+
+    def law(a):                                      # the whole law: not linear in its amplitude
+        return a * np.sin(3 * t) + 0.1 * a ** 2 * np.cos(t)
+    y = law(truth)
+
+    def error(P):
+        return float(np.sum((y - P) ** 2))
+
+    def refit(gain):
+        def f(x, P):
+            lin = gain * np.sin(3 * t)
+            defect = P - lin * x[0]
+            return np.array([float(lin @ (y - defect) / (lin @ lin))])
+        return f
+    x0 = np.array([1.2])
+    x, P = al.law_steps(x0, lambda x: law(x[0]), refit(0.6), error, np.array([10.0]), iterations=8)
+    assert abs(x[0] - truth) < 0.05 and error(P) < 1e-3 * error(law(x0[0]))
+    x, P = al.law_steps(x0, lambda x: law(x[0]), refit(-1.0), error, np.array([10.0]), iterations=8)
+    assert x[0] == x0[0] and error(P) == error(law(x0[0]))
+    assert al.law_steps(x0, lambda x: None, refit(0.6), error, np.array([10.0])) is None
+
+
+def test_a_shared_effect_beside_the_term_is_fitted_with_it_on_the_events():
+    """Synthetic events (the linear picture): the cam at A = 3, q = 0.3, phi = -2.0 at each event's own angle and a
+    shared effect (a width change: one column, the same on every event) at 0.8 of its unit. Fitted together (the
+    coefficient vector the law's harmonics, then the shared effect's values: angle_locked.Beside) both come back (the
+    first harmonic A(1 + q); A and q apart only as the second harmonic allows). Their significance: the term's
+    parameters together, by its harmonics' size (a lift ratio at its nominal 0 is no evidence against the term)."""
+    from backlash_monitor.workbench.decisions import significant
+    from backlash_monitor.workbench.proposal import gram
+    rng = np.random.default_rng(8)
+    n, e = 30, 40
+    U, V = rng.normal(size=(2, n)), rng.normal(size=(2, n))
+    resp = al.Responses((1, 2), U, V, rng.normal(size=n))
+    js = rng.normal(size=(n, 1))
+    eff = _candidate(Cam)
+    law = al.Law(_model(Cam), eff, "alpha2")
+    theta = rng.uniform(0, 200, e)
+    G = al._columns(resp, theta)
+    x_true = np.array([3.0, 0.3, -2.0, 0.8])
+    Y = G @ al._coefficients(law, x_true[:3], (1, 2)) + js[:, 0] * 0.8 + 0.3 * rng.normal(size=(e, n))
+    Gj = np.concatenate([G, np.broadcast_to(js[None], (e, n, 1))], axis=-1)
+
+    def coef(xv):
+        return np.concatenate([al._coefficients(law, xv[:3], (1, 2)), xv[3:]])
+    GG, Gy, _ = gram(Gj, Y)
+    lo, hi = np.r_[eff.bounds()[0], -5.0], np.r_[eff.bounds()[1], 5.0]
+    x = al._fit_values(law, (1, 2), GG.sum(0), Gy.sum(0), np.array([7.5, 0.75, 0.0, 0.0]), lo, hi, 2, multi=True,
+                       coef=coef)
+    assert abs(x[3] - 0.8) < 0.1 and abs(x[0] * (1 + x[1]) - 3.9) < 0.3, x
+    # the lift ratio's own uncertainty may be wide, the term's size decides
+    fit = types.SimpleNamespace(values=np.array([3.0, 0.01, -2.0, 0.8]), nominal=np.zeros(4),
+                                uncertainty=np.array([0.5, 0.3, 0.05, 0.1]), groups=((0, 3, 12.0),))
+    assert significant(fit)
+    assert not significant(types.SimpleNamespace(**{**vars(fit), "groups": ()}))
+    assert not significant(types.SimpleNamespace(**{**vars(fit), "groups": ((0, 3, 1.5),)}))
+
+
+def test_a_term_locked_to_an_angle_is_evidence_on_the_events_when_decisive_and_significant():
+    """The views look at the event average, where such a term washes out: its event-by-event fit decides whether the
+    model is consistent with its events (diagnose.events_evidence). Decisive (delta_ic <= -10) and its harmonics' size
+    significant: the model is inconsistent, that term first; weak or insignificant ones are not evidence."""
+    from backlash_monitor.workbench.diagnose import events_evidence
+
+    def fit(name, dic, z):
+        return types.SimpleNamespace(effect=name, delta_ic=dic, values=np.array([4.7, -1.8]), nominal=np.zeros(2),
+                                     uncertainty=np.array([0.3, 0.08]), groups=((0, 2, z),))
+    assert events_evidence([fit("mesh2", -104.0, 16.4), fit("cam", -30.0, 5.0)]) == "mesh2"
+    assert events_evidence([fit("mesh2", 3.9, 1.9)]) is None           # measured on a clean foreign recording
+    assert events_evidence([fit("mesh2", -40.0, 1.5)]) is None         # decisive but its size not significant
+    assert events_evidence([fit("mesh2", -8.0, 9.0)]) is None          # not decisive
+    assert events_evidence([]) is None
