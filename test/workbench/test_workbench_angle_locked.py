@@ -188,6 +188,7 @@ def test_recorded_angles_and_fourier_basis_agree():
     assert np.allclose(X[:, 1], np.cos(2 * w * t)) and np.allclose(X[:, 2], np.sin(2 * w * t))
 
 
+@pytest.mark.heavy      # make test-all (CI time); bench/_workbench/outside.py measures this row by row
 @pytest.mark.slow
 def test_a_users_exact_law_plugin_is_named_on_a_foreign_wheel_angle_torque():
     """foreign_drives: A = 8 N*m sin(alpha2 + 0.31) on the wheel, 3 s. Among the whole catalogue, the plug-in

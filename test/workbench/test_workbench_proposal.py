@@ -153,6 +153,7 @@ def _run_steps(meas, width):
     return run, up
 
 
+@pytest.mark.heavy      # make test-all (CI time); bench/_workbench/outside.py measures this row by row
 @pytest.mark.slow
 def test_no_term_is_proposed_on_a_clean_foreign_drive_even_when_asked():
     """A clean drive made by foreign_drives (3 s, 12 events): the proposal, forced as if nothing explained it, selects

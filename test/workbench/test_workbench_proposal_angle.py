@@ -12,6 +12,7 @@ from backlash_monitor.workbench import proposal                          # noqa:
 from test_workbench_proposal import _run_steps                            # noqa: E402
 
 
+@pytest.mark.heavy      # make test-all (CI time); bench/_workbench/outside.py measures this row by row
 @pytest.mark.slow
 def test_a_wheel_torque_locked_to_the_wheel_angle_is_proposed_with_its_amplitude_on_a_foreign_drive():
     """Issue 31's law on a drive made by foreign_drives (another simulator, its own angles and phase): a torque
