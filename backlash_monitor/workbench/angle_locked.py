@@ -306,13 +306,9 @@ def law_prediction(p, effect, law: Law, x, var: str, theta: np.ndarray, orders, 
 
 def _columns(resp: Responses, theta: np.ndarray) -> np.ndarray:
     """(E, N, 1 + 2K): each recorded event's change per unit a_0, then per order b_k, a_k."""
-    e = len(theta)
-    cols = [np.broadcast_to(resp.R0[None], (e, resp.R0.size))]
-    for j, k in enumerate(resp.orders):
-        c, s = np.cos(k * theta)[:, None], np.sin(k * theta)[:, None]
-        cols.append(c * resp.U[j][None] + s * resp.V[j][None])        # sin(k alpha)
-        cols.append(-s * resp.U[j][None] + c * resp.V[j][None])       # cos(k alpha) = sin(k alpha + pi/2)
-    return np.stack(cols, axis=-1)
+    const = np.broadcast_to(resp.R0[None, :, None], (len(theta), resp.R0.size, 1))
+    return np.concatenate([const] + [event_design.rotated_columns(resp.U[j], resp.V[j], k * theta)   # sin, cos(k a)
+                                     for j, k in enumerate(resp.orders)], axis=-1)
 
 
 def _coefficients(law, x, orders) -> np.ndarray:

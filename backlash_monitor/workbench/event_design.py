@@ -172,6 +172,13 @@ def angle_columns(resp: AngleResponse, psi: np.ndarray, project=None) -> np.ndar
     sin(kθ) -> cos ψ U + sin ψ V; cos(kθ) = sin(kθ + π/2) -> -sin ψ U + cos ψ V (``project`` applied to U and V
     first; without it, in U and V's own space)."""
     U, V = (resp.U, resp.V) if project is None else (project(resp.U), project(resp.V))
+    return rotated_columns(U, V, psi)
+
+
+def rotated_columns(U: np.ndarray, V: np.ndarray, psi: np.ndarray) -> np.ndarray:
+    """(E, D, 2): the responses U (to sin θ) and V (to cos θ) of a term locked to an angle, rotated by each event's
+    angle ``psi`` at entry: the columns of sin(θ + ψ) = cos ψ sin θ + sin ψ cos θ -> cos ψ U + sin ψ V, and of
+    cos(θ + ψ) -> -sin ψ U + cos ψ V."""
     c, s = np.cos(psi)[:, None], np.sin(psi)[:, None]
     col_s = c * U[None] + s * V[None]
     col_c = -s * U[None] + c * V[None]
