@@ -18,14 +18,12 @@ from foreign_drives import constants as C
 from foreign_drives import forms as F
 from foreign_drives import outside as O
 from foreign_drives import suites
-from foreign_drives.drive import build_parameters, make_recording, pulse_indicator
+from foreign_drives.drive import build_parameters, make_recording
 from foreign_drives.spec import EffectSpec as E
 from foreign_drives.spec import RecordingSpec
+from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 
-W = C.WHEEL_RADIUS_M
 T_B = C.BASE_TORQUE_NM
-J1 = C.MOTOR_INERTIA_KGM2
-J2 = C.WHEEL_INERTIA_KGM2
 
 OUTSIDE = {n: f for n, f in F.FORMS.items() if isinstance(f, O.OutsideForm)}
 DEV2 = {n: f for n, f in OUTSIDE.items() if f.half == "dev2"}
@@ -99,35 +97,17 @@ def test_sealed2_suite_builds_without_showing_its_laws():
 
 
 # ------------------------------------------------------------------ the development laws on the drive's balances
-def _motor_term_Nm(rec):
-    """T_x on the motor's load: J1 dOmega1/dt = T_b t_e - T_c - T_b*pulse - T_x (noise off)."""
-    i = rec.internal
-    t = np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
-    pulse = i["pulse_amplitude_pu"] * pulse_indicator(t, rec.spec.pulse_first_s)
-    return T_B * i["te_pu"] - i["clutch_torque_Nm"] - J1 * i["a1_physical"] / W - T_B * pulse
-
-
-def _wheel_term_Nm(rec):
-    i = rec.internal
-    return J2 * i["wheel_acceleration"] - i["clutch_torque_Nm"] + W * i["rim_force_N"]
-
-
-def _mass_term_N(rec):
-    i = rec.internal
-    return C.MASS_KG * i["a2_physical"] - i["rim_force_N"] + C.WORKING_RESISTANCE_N
-
-
 def test_eccentric_roller_is_its_law_on_the_mass_only():
     rec = rec_of("mass_eccentric_roller", amplitude_N=4.0, phase_rad=-0.8)
     law = 4.0 * np.cos(rec.internal["alpha2"] - 0.8)
-    assert np.max(np.abs(_mass_term_N(rec) - law)) < 1e-6 * 4.0
-    assert np.max(np.abs(_wheel_term_Nm(rec))) < 1e-6 and np.max(np.abs(_motor_term_Nm(rec))) < 1e-6
+    assert np.max(np.abs(mass_term_N(rec) - law)) < 1e-6 * 4.0
+    assert np.max(np.abs(wheel_term_Nm(rec))) < 1e-6 and np.max(np.abs(motor_term_Nm(rec))) < 1e-6
 
 
 def test_overload_brake_acts_on_the_motor_only_beyond_its_threshold():
     rec = rec_of("motor_overload_band_brake", coefficient_Nm_per_m=300.0, threshold_m=0.295)
     z = rec.internal["spring_extension"]
-    tx = _motor_term_Nm(rec)
+    tx = motor_term_Nm(rec)
     assert np.max(np.abs(tx - 300.0 * np.maximum(0.0, z - 0.295))) < 1e-6 * T_B
     assert (z > 0.295).any() and (z < 0.295).any() and tx.min() > -1e-6      # a brake: never drives the motor
 
@@ -136,7 +116,7 @@ def test_timed_brake_is_zero_before_its_instant_and_rises_after():
     rec = rec_of("wheel_timed_brake", torque_Nm=3.0, start_s=0.3, build_up_s=0.05)
     t = np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
     law = np.where(t >= 0.3, -3.0 * (1.0 - np.exp(-(t - 0.3) / 0.05)), 0.0)
-    assert np.max(np.abs(_wheel_term_Nm(rec) - law)) < 1e-6 * 3.0
+    assert np.max(np.abs(wheel_term_Nm(rec) - law)) < 1e-6 * 3.0
     assert np.array_equal(rec.signals["a1"][:1000], clean().signals["a1"][:1000])
 
 

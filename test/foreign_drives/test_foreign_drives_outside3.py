@@ -23,11 +23,9 @@ from foreign_drives import suites
 from foreign_drives.drive import make_recording, pulse_indicator
 from foreign_drives.spec import EffectSpec as E
 from foreign_drives.spec import RecordingSpec
+from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 
 W = C.WHEEL_RADIUS_M
-T_B = C.BASE_TORQUE_NM
-J1 = C.MOTOR_INERTIA_KGM2
-J2 = C.WHEEL_INERTIA_KGM2
 
 OUTSIDE = {n: f for n, f in F.FORMS.items() if isinstance(f, O.OutsideForm)}
 DEV3 = {n: f for n, f in OUTSIDE.items() if f.half == "dev3"}
@@ -137,43 +135,25 @@ def _pulse_phase(rec):
     return pulse_phase_s(t, pulse_indicator(t, rec.spec.pulse_first_s))
 
 
-def _motor_term_Nm(rec):
-    """T_x on the motor's load: J1 dOmega1/dt = T_b t_e - T_c - T_b*pulse - T_x (noise off)."""
-    i = rec.internal
-    t = np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
-    pulse = i["pulse_amplitude_pu"] * pulse_indicator(t, rec.spec.pulse_first_s)
-    return T_B * i["te_pu"] - i["clutch_torque_Nm"] - J1 * i["a1_physical"] / W - T_B * pulse
-
-
-def _wheel_term_Nm(rec):
-    i = rec.internal
-    return J2 * i["wheel_acceleration"] - i["clutch_torque_Nm"] + W * i["rim_force_N"]
-
-
-def _mass_term_N(rec):
-    i = rec.internal
-    return C.MASS_KG * i["a2_physical"] - i["rim_force_N"] + C.WORKING_RESISTANCE_N
-
-
 def test_accumulator_recharge_loads_the_motor_from_each_pulses_end_only():
     p = {"torque_Nm": 4.0, "decay_s": 0.04}
     rec = rec_of("motor_accumulator_recharge", **p)
     ph = _pulse_phase(rec)
-    tx = _motor_term_Nm(rec)
+    tx = motor_term_Nm(rec)
     assert np.max(np.abs(tx - DEV3["motor_accumulator_recharge"].torque(ph, p))) < 1e-6 * 4.0
     assert np.max(np.abs(tx[ph < C.PULSE_DURATION_S - 1e-4])) < 1e-6 and tx.max() > 3.9     # nothing while it is on
-    assert np.max(np.abs(_wheel_term_Nm(rec))) < 1e-6 and np.max(np.abs(_mass_term_N(rec))) < 1e-6
+    assert np.max(np.abs(wheel_term_Nm(rec))) < 1e-6 and np.max(np.abs(mass_term_N(rec))) < 1e-6
 
 
 def test_weston_brake_holds_the_wheel_while_the_load_runs_ahead():
     p = {"torque_Nm": 4.0, "engage_width_rad": 0.003}
     rec = rec_of("wheel_weston_brake", **p)
     d = rec.internal["jaw_angle_difference"]
-    tx = _wheel_term_Nm(rec)
+    tx = wheel_term_Nm(rec)
     assert np.max(np.abs(tx - DEV3["wheel_weston_brake"].torque(d, rec.signals["omega2"], p))) < 1e-6 * 4.0
     assert np.all(tx <= 1e-9)                                      # a brake: never drives the wheel
     assert tx[d < -0.01].max() < -3.9 and np.max(np.abs(tx[d > 0.01])) < 0.01     # engaged only with D < 0
-    assert np.max(np.abs(_motor_term_Nm(rec))) < 1e-6
+    assert np.max(np.abs(motor_term_Nm(rec))) < 1e-6
 
 
 def test_cardan_error_moves_the_backlash_boundaries_with_twice_the_motor_angle():
@@ -196,15 +176,15 @@ def test_pneumatic_holdback_follows_the_pulse_late_and_lagged():
     p = {"force_N": 12.0, "delay_s": 0.02, "lag_s": 0.01}
     rec = rec_of("mass_pneumatic_holdback", **p)
     ph = _pulse_phase(rec)
-    fx = _mass_term_N(rec)
+    fx = mass_term_N(rec)
     assert np.max(np.abs(fx - DEV3["mass_pneumatic_holdback"].force(ph, p))) < 1e-6 * 12.0
     assert np.max(np.abs(fx[ph < 0.02 - 1e-4])) < 1e-9 and fx.min() < -11.0        # nothing before the delay
-    assert np.max(np.abs(_wheel_term_Nm(rec))) < 1e-6 and np.max(np.abs(_motor_term_Nm(rec))) < 1e-6
+    assert np.max(np.abs(wheel_term_Nm(rec))) < 1e-6 and np.max(np.abs(motor_term_Nm(rec))) < 1e-6
 
 
 def test_speed_relay_switches_the_motor_load_with_hysteresis():
     rec = rec_of("motor_speed_relay_load", torque_Nm=3.0, on_above_rad_s=152.0, off_below_rad_s=149.0)
-    tx = _motor_term_Nm(rec)
+    tx = motor_term_Nm(rec)
     on = tx > 1.5
     assert np.max(np.abs(tx - 3.0 * on)) < 1e-6 * 3.0                 # 0 or T, nothing between
     w = rec.signals["omega1"]
@@ -241,8 +221,8 @@ def test_stroke_ringing_is_on_a2_only_and_starts_with_each_pulse():
 def test_sealed3_mechanism_acts_in_its_recorded_balance_only(name):
     rec = make_recording(_spec([_suite_effect(name)]))
     base = clean()
-    off = {"motor_load_moment": np.max(np.abs(_motor_term_Nm(rec))),
-           "wheel_torque": np.max(np.abs(_wheel_term_Nm(rec))), "mass_force": np.max(np.abs(_mass_term_N(rec)))}
+    off = {"motor_load_moment": np.max(np.abs(motor_term_Nm(rec))),
+           "wheel_torque": np.max(np.abs(wheel_term_Nm(rec))), "mass_force": np.max(np.abs(mass_term_N(rec)))}
     f = SEALED3[name]
     if f.balance == "sensor":
         assert max(off.values()) < 1e-6
