@@ -253,6 +253,13 @@ def analyze_one(job: dict) -> dict:
 
 # ------------------------------------------------------------------------------------------- model fit
 
+def recording_width_m(row: dict) -> float:
+    """A bag's width [m]: the median continuous width of its windows where the mode gives one (wear shows as it
+    grows), else its last fused class width (the paper's modes). The model fit's reference, the trend and the table
+    read this one."""
+    return row["width_m"] if row["width_m"] == row["width_m"] else row["fused_width_m"]
+
+
 def _kept(kind: str, key, make):
     """What this worker process made once for ``key`` (``make()``), kept in its state: the model fit's references,
     default models and alarm rule, shared by all the worker's bags."""
@@ -325,7 +332,7 @@ def model_fit(bag: str, options, watch: WatchOptions, row: dict) -> dict:
     from backlash_monitor.workbench import reference
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.workbench.measurement import MeasurementError, load_measurement
-    width = row["width_m"] if row["width_m"] == row["width_m"] else row["fused_width_m"]
+    width = recording_width_m(row)
     path = reference_for_bag(options, watch, width, row)
     out = {"model_fit_reference": path, "model_fit": "", "model_fit_level": "", "model_fit_ratio": math.nan}
     try:
@@ -367,7 +374,7 @@ def missing_references(rows: list[dict], options, watch: WatchOptions, log=print
         if r.get("model_fit") == "no reference" and not watch.reference:
             # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
             from backlash_monitor.workbench import reference     # (only then: ~0.2 s of imports)
-            width = r["width_m"] if r["width_m"] == r["width_m"] else r["fused_width_m"]
+            width = recording_width_m(r)
             drive = registered_drive(watch, r) if watch.drives else None
             model = drive_model(drive[2]) if drive is not None else default_model(options.n1, width)
             path = str(reference.cache_path(model))
@@ -533,7 +540,7 @@ class FitStage:
         if row["error"] or not watch.enabled:
             return
         if self.pool is None:
-            width = row["width_m"] if row["width_m"] == row["width_m"] else row["fused_width_m"]
+            width = recording_width_m(row)
             path = reference_for_bag(job["options"], watch, width, row)
             if path not in self.warm:
                 self.warm.add(path)
@@ -607,7 +614,7 @@ def add_trends(rows: list[dict], rule) -> dict:
         if not r["error"]:
             # the recording's width (median continuous width of its windows) where the mode gives one:
             # wear shows as it grows, not as a jump between candidate widths
-            width = r["width_m"] if r["width_m"] == r["width_m"] else r["fused_width_m"]
+            width = recording_width_m(r)
             points.setdefault(r["drive"], []).append((r["time_s"], width))
     trends = {drive: drive_trend(pts, rule) for drive, pts in points.items()}
     for r in rows:

@@ -353,7 +353,9 @@ def _classifiable_onsets(windowing: dict) -> int:
 
 
 def format_summary(rows: list[dict]) -> str:
-    head = ("drive", "true", "fused", "continuous", "level", "model fit", "chunks", "discarded", "onsets",
+    # width: the fused continuous width with its uncertainty (what the level follows); nearest pattern: the
+    # fused class, one of the pattern widths (it jumps between them as the drive wears)
+    head = ("drive", "true", "width", "nearest pattern", "level", "model fit", "chunks", "discarded", "onsets",
             "estimated", "lag p50/max", "CPU", "real time")
     table = [head]
     for r in rows:
@@ -361,9 +363,9 @@ def format_summary(rows: list[dict]) -> str:
             return "-" if x != x else f"{x * 1e3:.2f} mm"
         fit = r.get("model_fit", "-")
         level, _, text = fit.partition(": ")
-        table.append((r["drive"], mm(r["true_width_m"]), mm(r["fused_width_m"]),
+        table.append((r["drive"], mm(r["true_width_m"]),
                       width_text(r.get("fused_continuous_width_m", math.nan),
-                                 r.get("fused_width_uncertainty_m", math.nan)), r["level"],
+                                 r.get("fused_width_uncertainty_m", math.nan)), mm(r["fused_width_m"]), r["level"],
                       short_model_fit(text) if text else level,
                       f"{r['chunks']}/{r['expected_chunks']}", str(r["discarded"]),
                       str(r["onset_windows"]), str(r["onsets_estimated"]),

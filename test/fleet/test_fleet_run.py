@@ -32,6 +32,13 @@ def test_two_drives_each_report_their_own_estimates_and_diagnostics(ros_env, tmp
         assert row["level"] == "WARN"
         assert row["status_times"], row    # its classifier's status reached /diagnostics
     assert "line1/drive02" in proc.stdout and "Traceback" not in proc.stderr
+    # the summary table's width is the fused continuous width with its uncertainty (what the level follows); the
+    # class width is the column beside it, named for what it is
+    lines = proc.stdout.splitlines()
+    at = next(i for i, line in enumerate(lines) if line.split()[:4] == ["drive", "true", "width", "nearest"])
+    for line in lines[at + 2:at + 2 + len(rows)]:      # the header, its rule, a row per drive
+        true, width = line.split()[1:3], line.split()[3:6]
+        assert true == ["8.00", "mm"] and width[1] == "±", line
     # each drive's live trend was kept at shutdown, under its own name, with its own widths (the
     # fused continuous width near 8 mm). Trend periods are wall-clock minutes, so a 2.5 s run
     # closes at most one point (when it straddles a minute boundary); the period being collected
