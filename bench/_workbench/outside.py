@@ -7,7 +7,9 @@ on drives with a torque locked to a shaft's angle.
 
 Goals (docs/workbench.md "Proposing a missing term"):
 - outside_proposal_consistent_rate: on the outside recordings, the model with the proposed term passes diagnose's
-  consistency test (a recording without a proposal counts as a failure);
+  consistency test (a recording without a proposal counts as a failure; ``outside_visible_*``: the same rates over the
+  recordings the nominal model does not explain, verdict not ``consistent`` -- an invisible mechanism leaves nothing
+  to propose);
 - outside_proposal_right_balance_rate: the proposed term acts in the truth's balance and depends on its state (the
   manifest's ``balance`` and ``state`` of the outside effect; for the forms of foreign_drives/forms.py, OUTSIDE_TRUTH);
 - proposals_on_explained: terms proposed on a clean drive or a drive one catalogue effect explains (the foreign
@@ -287,10 +289,16 @@ def summary(rows, explained, angle) -> dict:
     outside = [r for r in rows if r.get("outside", True)]
     explained = list(explained) + [r for r in rows if not r.get("outside", True)]
     cpu = [r["proposal_cpu_seconds"] for r in rows if r["proposal_cpu_seconds"] is not None]
+    # a mechanism the nominal model already explains within its noise band and form tolerance (verdict consistent)
+    # leaves nothing to propose: the goals count it as a failure; beside them, the rates over the others
+    visible = [r for r in outside if r["verdict"] != "consistent"]
     return {"outside_recordings": len(outside),
             "outside_proposed_rate": rate(outside, "proposed"),
             "outside_proposal_consistent_rate": rate(outside, "consistent"),
             "outside_proposal_right_balance_rate": rate(outside, "right_balance"),
+            "outside_visible_recordings": len(visible),
+            "outside_visible_proposal_consistent_rate": rate(visible, "consistent"),
+            "outside_visible_right_balance_rate": rate(visible, "right_balance"),
             "proposals_on_explained": int(sum(r["proposed"] for r in explained)) if explained else None,
             "explained_recordings": len(explained),
             "angle_locked_plugin_named_rate": (float(np.mean([r["named"] and r["within_3_sigma"] for r in angle]))
