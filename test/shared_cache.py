@@ -2,22 +2,7 @@
 pytest-xdist workers and the ros tests beside them, three processes that on a clean clone would each build the same
 cached file (the default model's watch reference at 5 mm: ~30 s of one core) at the same time. Each builder takes an
 exclusive lock on a file beside the cache entry first; the others wait, then read what it wrote."""
-import contextlib
-import fcntl
-from pathlib import Path
-
-
-@contextlib.contextmanager
-def exclusive(lock_path):
-    """Hold an exclusive lock (flock: released when the process ends, also if it is killed) on ``lock_path``."""
-    lock_path = Path(lock_path)
-    lock_path.parent.mkdir(parents=True, exist_ok=True)
-    with open(lock_path, "a") as handle:
-        fcntl.flock(handle, fcntl.LOCK_EX)
-        try:
-            yield
-        finally:
-            fcntl.flock(handle, fcntl.LOCK_UN)
+from backlash_monitor.files.locks import exclusive
 
 
 def watch_reference(model):

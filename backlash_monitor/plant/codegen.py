@@ -19,7 +19,6 @@ Parameters are run-time values: one row per parameter of a per-scenario array ``
 """
 from __future__ import annotations
 
-import contextlib
 import hashlib
 import importlib.util
 import os
@@ -30,13 +29,10 @@ from pathlib import Path
 import ast
 import tempfile
 
-try:
-    import fcntl                  # POSIX: the kernels' compile lock (compile_lock)
-except ImportError:               # elsewhere each process compiles a kernel it needs
-    fcntl = None
 
 import numpy as np
 
+from backlash_monitor.files.locks import exclusive
 import backlash_monitor.plant.effects as _effects
 import backlash_monitor.plant.outputs as _outputs
 from backlash_monitor.plant._numba import HAVE_NUMBA, numba
@@ -499,25 +495,13 @@ class Kernel:
 _KERNELS: dict = {}
 
 
-@contextlib.contextmanager
 def compile_lock(kernel: Kernel):
     """Hold an exclusive lock beside the kernel's file while its first call compiles it (or loads numba's cache):
     processes that start on a cold cache at once (analyze FOLDER --jobs N, a fleet's drive processes, pytest's
     workers) compile each kernel once, ~10 s of one core; the others wait, then load it (~0.6 s). Released when the
-    process ends, also if it is killed (flock). Without fcntl or a writable directory: no lock."""
-    try:
-        handle = open(kernel.path.with_name(kernel.path.name + ".lock"), "a")   # noqa: SIM115 (held to the end)
-    except (OSError, AttributeError):
-        handle = None
-    if fcntl is None or handle is None:
-        yield
-        return
-    with handle:
-        fcntl.flock(handle, fcntl.LOCK_EX)
-        try:
-            yield
-        finally:
-            fcntl.flock(handle, fcntl.LOCK_UN)
+    process ends, also if it is killed (files/locks.py: without fcntl or a writable directory, no lock)."""
+    return exclusive(kernel.path.with_name(kernel.path.name + ".lock"))
+
 
 def kernel_for(effect_classes) -> Kernel:
     """The (memoised) backends for a tuple of term effect classes: generated, written, imported."""
