@@ -19,6 +19,7 @@ Parameters are run-time values: one row per parameter of a per-scenario array ``
 """
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import importlib.util
 import os
@@ -500,6 +501,8 @@ def compile_lock(kernel: Kernel):
     processes that start on a cold cache at once (analyze FOLDER --jobs N, a fleet's drive processes, pytest's
     workers) compile each kernel once, ~10 s of one core; the others wait, then load it (~0.6 s). Released when the
     process ends, also if it is killed (files/locks.py: without fcntl or a writable directory, no lock)."""
+    if kernel.path is None:                   # no numba: nothing is compiled
+        return contextlib.nullcontext()
     return exclusive(kernel.path.with_name(kernel.path.name + ".lock"))
 
 
