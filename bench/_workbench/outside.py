@@ -376,6 +376,7 @@ def loop_row(spec, workdir: Path, suite: str) -> dict:
                 "right_balance": bool(prop.get("proposed")) and right_balance(terms, bal, st),
                 "terms": [(t["balance"], t["state"], t["group"]) for t in terms],
                 "additions": [(a["candidate"], a["role"]) for a in diag.get("additions") or []],
+                "proposal_cpu_seconds": prop.get("cpu_seconds"),
                 "diagnose_message": diag["message"][:400]})
     rc, out, _, cpu["analyze_before"] = _cli(["analyze", bag, "--out", d / "before"], d)
     if rc != 0:
