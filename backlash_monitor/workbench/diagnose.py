@@ -406,8 +406,8 @@ def width_models(run: Run, up: Update) -> list:
     its prediction): the width refined alone (refine_step); every pair with the width refined on the simulator (the
     pair search); a greedy second effect that is the width (fitted on top of the first); and, where the update holds
     no width, the width's linear fit on top of the update (Gauss-Newton from it, its error scaled by the residual's
-    Birge ratio sqrt(T^2 / dimension): the excess is not the noise the error comes from). Fits pinned at a bound of
-    their range are left out (their error is no fit's error)."""
+    Birge ratio sqrt(T^2 / dimension): the excess is not the noise the error comes from; also when no other model
+    holds the width). Fits pinned at a bound of their range are left out (their error is no fit's error)."""
     p, lnE = run.problem, np.log(max(run.problem.n_events, 2))
     out, seen = [], set()
 
@@ -427,7 +427,10 @@ def width_models(run: Run, up: Update) -> list:
         # a greedy second effect (pairs.greedy_second): its IC counted the first effect's parameters as fixed
         add(up.second.values[0], up.second.uncertainty[0], up.second.ic + len(up.first.values) * lnE, up.second.pred,
             f"{up.first.effect}+{up.second.effect}")
-    if not any(_is_measurand(f) for f in (up.first, up.second)) and (up.first is not None or not out):
+    inside = next((f for f in (up.first, up.second) if _is_measurand(f)), None)
+    if (inside is None and up.first is not None) or not out:
+        # (a width in the update that took no part -- pinned -- is the start: the step measures only the rest)
+        start = float(inside.values[0]) if inside is not None else 0.0
         width_lin = run.screening[WIDTH_CANDIDATE]
         pred = up.after_pred if up.first is not None and up.after_pred is not None else run.base_pred
         j = width_lin.jacobian[:, 0]
@@ -436,10 +439,10 @@ def width_models(run: Run, up: Update) -> list:
         c = consistency.noise_scale(p.n_events, p.n_seeds)
         rz = p.project(p.residual(pred))
         lo, hi = run.by_name[WIDTH_CANDIDATE].bounds()
-        change = float(np.clip((jz @ rz) / jj, lo[0], hi[0]))
+        change = float(np.clip(start + (jz @ rz) / jj, lo[0], hi[0]))
         birge = float(np.sqrt(max(1.0, float(rz @ rz) / c / max(rz.size, 1))))
-        k = sum(len(f.values) for f in (up.first, up.second) if f is not None) + 1
-        after = pred + j * change
+        k = sum(len(f.values) for f in (up.first, up.second) if f is not None) + (inside is None)
+        after = pred + j * (change - start)
         label = "+".join([f.effect for f in (up.first, up.second) if f is not None] + ["width (linear)"])
         add(change, np.sqrt(c / jj) * birge, p.ic(after, k), after, label)
     return out
