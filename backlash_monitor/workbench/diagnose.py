@@ -26,8 +26,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from . import (analysis, angle_locked, consistency, drive_terms, fitting, pairs, plant_adapter, proposal, report,
-               ripple, separation, tolerance)
+from . import (analysis, angle_locked, consistency, drive_terms, fitting, model_average, pairs, plant_adapter,
+               proposal, report, ripple, separation, tolerance)
 from .decisions import (DELTA_IC_DECISIVE, DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EXPLAINED, confident, identical_to,
                         likelihood_part, qualifies, significant)
 from .diagnosis_result import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOTHING_EXPLAINS, PARTIAL,
@@ -44,6 +44,7 @@ LINEAR_IC_MARGIN = pairs.LINEAR_IC_MARGIN
 # sensor effects and parameter drifts are told apart by their signal and their linearisation holds. The rim balance
 # (spring, absorber) is not among them: the own and foreign suites were measured without it
 LAW_BALANCES = ("wheel_torque_Nm", "mass_force_N", "motor_load_moment_pu", "clutch_torque_Nm")
+WIDTH_CANDIDATE = next(iter(MEASURAND_EFFECTS))   # the catalogue's candidate of the measurand: the width drift
 
 
 @dataclass
@@ -87,6 +88,8 @@ class Update:
     first: fitting.FitResult | None
     second: fitting.FitResult | None = None
     pairs_tried: list = field(default_factory=list)
+    pair_fits: list = field(default_factory=list)   # every pair refined on the simulator: (fit, a, b)
+    greedy: bool = False                          # the second effect fitted on top of the fixed first (greedy_second)
     pair_alternatives: list = field(default_factory=list)
     after_mean: np.ndarray | None = None
     after_pred: np.ndarray | None = None
@@ -206,10 +209,7 @@ def misfit_scale(problem, fit) -> float:
     """The a-posteriori variance factor of a fit: its T^2 per dimension over every view (>= 1). Where the drive's
     law differs from the catalogue's the fit leaves more than noise, and the recording's evidence between two
     candidates is overstated by this factor (generalised least squares with an unknown scale)."""
-    c = consistency.test(problem.views, problem.residual(fit.pred))
-    t2 = sum(v.t2 for v in c.views.values())
-    dims = sum(v.dimension for v in c.views.values())
-    return max(1.0, t2 / max(dims, 1))
+    return misfit_scale_of(problem, fit.pred)
 
 
 def prediction_distance(problem, pred_a, pred_b) -> float:
@@ -270,11 +270,12 @@ def second_effect_step(run: Run, decision: Decision, second: bool = True) -> Upd
     found = pairs.best_pair(run.problem, win, run.by_name, run.screening, run.order, run.base_pred, run.base_ic,
                             up.pairs_tried, twins_of, run.fits,
                             refine_pair=(lambda a, b: angle_locked.fit_pair(run, a, b)) if run.event_fits else None,
-                            event_locked=list(run.event_fits))
+                            event_locked=list(run.event_fits), measurand=WIDTH_CANDIDATE,
+                            partners=[f.effect for f in decision.qualifying] or [win.effect], fits=up.pair_fits)
     if found is not None and anchor_only and found[0].explained_fraction < MIN_EXPLAINED:
         found = None
     if found is None and anchor_only:
-        return Update(None, pairs_tried=up.pairs_tried)
+        return Update(None, pairs_tried=up.pairs_tried, pair_fits=up.pair_fits)
     if found is not None:
         fit2, a, b, ties = found
         na = len(run.by_name[a].parameters)
@@ -302,7 +303,7 @@ def second_effect_step(run: Run, decision: Decision, second: bool = True) -> Upd
         return up
     sec = pairs.greedy_second(run.problem, win, run.by_name, run.screening, run.order)
     if sec is not None:
-        up.second = sec
+        up.second, up.greedy = sec, True
         up.after_mean, up.after_pred, up.after_raw = sec.model_mean, sec.pred, sec.model_mean_raw
     return up
 
@@ -360,14 +361,16 @@ def width_measurement(run: Run, up: Update) -> WidthMeasurement:
     """The backlash width the recording shows, with an uncertainty that includes the model-form tolerance
     (tolerance.measurand_form_sigma: how far the width moves when the nominal values are off by their sigma):
     - the nominal plus the width drift a confident update holds (its fitted uncertainty, with the form's), when
-      the width explains the recording alone or beside a found effect (_width_alone_explains);
-    - else the nominal plus the width drift's linear fit to the residual that the update (or the model as it is)
-      leaves, in the views: a width change beside another effect is measured, not reported as the nominal (issue
-      31: 5.0 +- 0.024 mm reported on a 6.2 mm drive with an a2 offset). Where that residual is not the model's
-      noise, the fit's standard error is scaled by its Birge ratio sqrt(T^2 / dimension) (the residual's excess
-      is not in the noise the error comes from), and the width is not called a drift (``drift_found`` False)."""
+      the width explains the recording alone or beside a found effect (_width_alone_explains): no averaging;
+    - the nominal (the width direction's linear standard error, with the form's) where the update (or the model as it
+      is) leaves the recording consistent;
+    - else, the model does not hold: the width averaged over the plausible models that hold it (width_models: the
+      width fitted alone, beside each second effect fitted with it, and on top of the update), its uncertainty the
+      unconditional standard error over them (model_average.py: it covers what a missing effect moves the width by
+      between the models, not only each fit's variance), with the form's; ``drift_found`` False (issue 31: 5.0 +-
+      0.024 mm reported on a 6.2 mm drive with an a2 offset)."""
     nominal = float(run.model.nominal["width_m"])
-    width_lin = run.screening.get("backlash_width_drift")
+    width_lin = run.screening.get(WIDTH_CANDIDATE)
     form = (tolerance.measurand_form_sigma(run.problem, {n: s.jacobian for n, s in run.screening.items()},
                                            run.by_name, width_lin.jacobian[:, 0])
             if width_lin is not None else 0.0)
@@ -375,24 +378,74 @@ def width_measurement(run: Run, up: Update) -> WidthMeasurement:
     width_only = held is not None and all(_is_measurand(f) for f in (up.first, up.second) if f is not None)
     if held is not None and (not width_only or _width_alone_explains(up)):
         return WidthMeasurement(nominal + float(held.values[0]), float(np.hypot(held.uncertainty[0], form)), nominal,
-                                True)
+                                True, form)
     if width_lin is None:
         return WidthMeasurement(nominal, float("nan"), nominal, False)
     p = run.problem
     jz = p.project(width_lin.jacobian[:, 0])
-    jj = max(float(jz @ jz), 1e-300)
-    c = consistency.noise_scale(p.n_events, p.n_seeds)
-    se = float(np.sqrt(c / jj))
+    se = float(np.sqrt(consistency.noise_scale(p.n_events, p.n_seeds) / max(float(jz @ jz), 1e-300)))
     pred = up.after_pred if up.first is not None and up.after_pred is not None else run.base_pred
     if held is None and consistency.test(p.views, p.residual(pred)).consistent:
-        return WidthMeasurement(nominal, float(np.hypot(se, form)), nominal, False)
-    # a width that explains only part (held: fitted alone, not consistent in every view), or none fitted
-    start, start_se = (float(held.values[0]), float(held.uncertainty[0])) if held is not None else (0.0, se)
-    rz = p.project(p.residual(pred))
-    lo, hi = run.by_name["backlash_width_drift"].bounds()
-    change = float(np.clip(start + (jz @ rz) / jj, lo[0], hi[0]))
-    birge = float(np.sqrt(max(1.0, float(rz @ rz) / c / max(rz.size, 1))))
-    return WidthMeasurement(nominal + change, float(np.hypot(start_se * birge, form)), nominal, False)
+        return WidthMeasurement(nominal, float(np.hypot(se, form)), nominal, False, form)
+    members = width_models(run, up)
+    best_pred = min(members, key=lambda m: m[0].ic)[1]
+    avg = model_average.average([m for m, _ in members], misfit_scale_of(p, best_pred))
+    over = tuple({"model": m.label, "width_m": nominal + m.value, "uncertainty_m": m.sd, "weight": w}
+                 for m, w in zip(avg.members, avg.weights))
+    return WidthMeasurement(nominal + avg.value, float(np.hypot(avg.sd, form)), nominal, False, form, over)
+
+
+def misfit_scale_of(problem, pred) -> float:
+    """misfit_scale of a prediction (T^2 per dimension over every view, >= 1)."""
+    c = consistency.test(problem.views, problem.residual(pred))
+    return max(1.0, sum(v.t2 for v in c.views.values()) / max(sum(v.dimension for v in c.views.values()), 1))
+
+
+def width_models(run: Run, up: Update) -> list:
+    """The fitted models that hold the width (the measurand), each as (model_average.Member of the width change [m],
+    its prediction): the width refined alone (refine_step); every pair with the width refined on the simulator (the
+    pair search); a greedy second effect that is the width (fitted on top of the first); and, where the update holds
+    no width, the width's linear fit on top of the update (Gauss-Newton from it, its error scaled by the residual's
+    Birge ratio sqrt(T^2 / dimension): the excess is not the noise the error comes from; also when no other model
+    holds the width). Fits pinned at a bound of their range are left out (their error is no fit's error)."""
+    p, lnE = run.problem, np.log(max(run.problem.n_events, 2))
+    out, seen = [], set()
+
+    def add(value, sd, ic, pred, label):
+        if ic not in seen:
+            seen.add(ic)
+            out.append((model_average.Member(float(value), float(sd), float(ic), label), pred))
+
+    for f in run.fits:
+        if _is_measurand(f) and not f.at_bound:
+            add(f.values[0], f.uncertainty[0], f.ic, f.pred, f.effect)
+    for fit, a, b in up.pair_fits:
+        if WIDTH_CANDIDATE in (a, b) and not fit.at_bound:
+            i = 0 if a == WIDTH_CANDIDATE else len(run.by_name[a].parameters)
+            add(fit.values[i], fit.uncertainty[i], fit.ic, fit.pred, f"{a}+{b}")
+    if up.greedy and _is_measurand(up.second) and not up.second.at_bound:
+        # a greedy second effect (pairs.greedy_second): its IC counted the first effect's parameters as fixed
+        add(up.second.values[0], up.second.uncertainty[0], up.second.ic + len(up.first.values) * lnE, up.second.pred,
+            f"{up.first.effect}+{up.second.effect}")
+    inside = next((f for f in (up.first, up.second) if _is_measurand(f)), None)
+    if (inside is None and up.first is not None) or not out:
+        # (a width in the update that took no part -- pinned -- is the start: the step measures only the rest)
+        start = float(inside.values[0]) if inside is not None else 0.0
+        width_lin = run.screening[WIDTH_CANDIDATE]
+        pred = up.after_pred if up.first is not None and up.after_pred is not None else run.base_pred
+        j = width_lin.jacobian[:, 0]
+        jz = p.project(j)
+        jj = max(float(jz @ jz), 1e-300)
+        c = consistency.noise_scale(p.n_events, p.n_seeds)
+        rz = p.project(p.residual(pred))
+        lo, hi = run.by_name[WIDTH_CANDIDATE].bounds()
+        change = float(np.clip(start + (jz @ rz) / jj, lo[0], hi[0]))
+        birge = float(np.sqrt(max(1.0, float(rz @ rz) / c / max(rz.size, 1))))
+        k = sum(len(f.values) for f in (up.first, up.second) if f is not None) + (inside is None)
+        after = pred + j * (change - start)
+        label = "+".join([f.effect for f in (up.first, up.second) if f is not None] + ["width (linear)"])
+        add(change, np.sqrt(c / jj) * birge, p.ic(after, k), after, label)
+    return out
 
 
 # -------------------------------------------------------------------------------------------------- verdict

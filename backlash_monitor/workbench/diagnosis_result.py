@@ -93,10 +93,14 @@ class WidthMeasurement:
     uncertainty_m: float
     nominal_width_m: float
     drift_found: bool                 # True: the recording is at another width than the model's nominal
+    form_sigma_m: float = float("nan")   # the model-form tolerance in the uncertainty (tolerance.measurand_form_sigma)
+    averaged_over: tuple = ()         # where the model does not hold: the models the width was averaged over
+                                      # (model_average.py), each {"model", "width_m", "uncertainty_m", "weight"}
 
     def to_json(self) -> dict:
         return {"width_m": self.width_m, "uncertainty_m": self.uncertainty_m,
-                "nominal_width_m": self.nominal_width_m, "differs_from_nominal": self.drift_found}
+                "nominal_width_m": self.nominal_width_m, "differs_from_nominal": self.drift_found,
+                "form_tolerance_m": self.form_sigma_m, "averaged_over": [dict(m) for m in self.averaged_over]}
 
 
 @dataclass

@@ -19,8 +19,17 @@ PAIR_REFINE = 3              # pairs (no member in common) refined on the simula
 PAIR_EXTRA = 1               # more pairs refined when their linearised IC may tie with the best refined pair
                              # (besides its members' single-effect twins substituted; measured: 6 pairs within
                              # reach on a friction + inertia recording, each refinement ~9 simulated sets)
+MEASURAND_SUBSTITUTES = 2    # then the width beside the best 2 other candidates, linearised at the width of its best
+                             # refined pair (measured, 29 Nov: a 1.5 N*m wheel friction beside 7.5 -> 8.3 mm, the
+                             # friction 7th alone and not refined; width + mass force refined -298.7, width + wheel
+                             # Coulomb friction -309.5: the truth, 8.32 mm and 1.58 N*m)
 PAIR_FIRST = 6               # pairs: the first effect among the best 6 screened singles, the second any
 LINEAR_IC_MARGIN = 2.0       # how far the linearised IC may be off the refined one
+MEASURAND_PARTNERS = 3       # the width refined beside each of the best 3 qualifying singles (by their refined IC),
+                             # whatever the linear ranking says: the width is the measurand, it may have moved on any
+                             # drive, and its pairs' linearisation is far off (measured on four foreign width + effect
+                             # drives, 29 Nov: the right pair's linearised IC -190, -173 (not among the best 15), -219
+                             # against refined -260, -210, -283; each passed once refined, none had been refined)
 
 
 def combined(a, b):
@@ -36,13 +45,16 @@ def pair_key(a, b, order):
 
 
 def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=None, twins_of=None,
-              singles=None, refine_pair=None, event_locked=()):
+              singles=None, refine_pair=None, event_locked=(), measurand=None, partners=(), fits=None):
     """Two effects at once. Every pair (one of the best PAIR_FIRST screened singles + any other candidate) is
     fitted linearly together on the screening Jacobians (cheap, no simulation) and ranked by its linearised
     IC. Then on the simulator (bounded least squares, common random numbers):
     A member refined as a single effect is linearised at its fitted values (simulated prediction and Jacobian
     there), any other at the model's values (screening secant): the pairs' start values and linearised ICs.
-    1. the best pairs with no member in common, in that order, until one passes (at most PAIR_REFINE);
+    1. the best pairs with no member in common, in that order, until one passes (at most PAIR_REFINE); and the
+       ``measurand`` (the width) beside each of ``partners`` (the best MEASURAND_PARTNERS qualifying singles but the
+       measurand itself): the width may have moved on any drive, and a pair with it is linearised badly (the width is
+       strongly nonlinear: the gap times the impacts), so the ranking cannot be trusted to reach it;
     2. the pairs that may tie with the best passing one: each member replaced by its single-effect twins
        (the candidates the single-effect analysis calls indistinguishable from it), and any other pair whose
        linearised IC comes within DELTA_IC_TIE + LINEAR_IC_MARGIN of the best refined IC (the singles' rule;
@@ -50,7 +62,8 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
     A pair passes when it beats the single winner by DELTA_IC_STRONG, is not pinned, its values are
     significant, its second effect explains >= MIN_EXPLAINED_SECOND of what the first left, and the model with
     both is confident. -> (fit of the best pair, a, b, [(fit, c, d) of the passing pairs within DELTA_IC_TIE of
-    it]) or None. ``refine_pair(a, b)``: a pair's own fit where it has one (a term locked to a shaft's angle fitted
+    it]) or None. ``fits``: a list that receives every refined pair as (fit, a, b) (the measured width's model
+    average, diagnose.width_measurement). ``refine_pair(a, b)``: a pair's own fit where it has one (a term locked to a shaft's angle fitted
     event by event beside the other: angle_locked.fit_pair), else None: refined on the event average. ``event_locked``:
     those terms (names); the first effect's pair with each of them is refined besides the ranked ones (the event
     average's linearisation cannot rank it: the term washes out there)."""
@@ -126,7 +139,49 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
                       "delta_ic": float(fit.delta_ic), "delta_ic_linearised": float(lin[key][3] - base_ic),
                       "checks": checks, "passed": ok})
         done[key] = (fit, ok)
+        if fits is not None:
+            fits.append((fit, a, b))
         return ok
+
+    def substitutes(m):
+        """The pairs of ``m`` not refined yet, ranked by their IC linearised at m's value in its best refined pair (the
+        other member removed linearly): a strongly nonlinear member (the width) is linearised where it is, not at the
+        nominal or its single fit. Their lin entries are replaced by that linearisation."""
+        mine = [k for k in done if m in k and done[k][0].jacobian is not None]
+        if not mine:
+            return []
+        k0 = min(mine, key=lambda k: done[k][0].delta_ic)
+        fit = done[k0][0]
+        other = k0[1] if k0[0] == m else k0[0]
+        na = len(by_name[k0[0]].parameters)
+        im, io = (slice(0, na), slice(na, None)) if k0[0] == m else (slice(na, None), slice(0, na))
+        jm = fit.jacobian[:, im]
+        xm = np.asarray(fit.values[im], float)
+        pred_m = fit.pred - fit.jacobian[:, io] @ (np.asarray(fit.values[io], float) - by_name[other].default_vector())
+        rr = problem.project(problem.residual(pred_m))
+        scored = []
+        for n in order:
+            key = pair_key(m, n, order)
+            if n == m or key in done:
+                continue
+            first_m = key[0] == m
+            em, en = by_name[m], by_name[n]
+            parts = [(jm, xm, em.bounds(), scr[m].step), (scr[n].jacobian, en.default_vector(), en.bounds(), scr[n].step)]
+            if not first_m:
+                parts.reverse()
+            Jf = np.hstack([q[0] for q in parts])
+            xe = np.concatenate([q[1] for q in parts])
+            lo = np.concatenate([q[2][0] for q in parts])
+            hi = np.concatenate([q[2][1] for q in parts])
+            # the prediction at xe is pred_m (the candidate at its nominal)
+            res = fitting.lsq_linear(problem.project(Jf), rr, bounds=(lo - xe, hi - xe + 1e-300))
+            expl = problem.explained_share(rr - problem.project(Jf) @ res.x, r0)
+            ic = problem.ic(pred_m + Jf @ res.x, len(xe))
+            scored.append((ic, key, (expl, np.clip(xe + res.x, lo, hi), np.concatenate([q[3] for q in parts]), ic, Jf)))
+        scored.sort(key=lambda t: t[0])
+        for _, key, entry in scored:
+            lin[key] = entry
+        return [key for _, key, _ in scored]
 
     # 1. many pairs fit about equally well linearly (measured: the 12 best pairs of a friction + inertia
     # recording within 3 of each other's linearised IC; the right one 8th), and only the simulator tells them
@@ -138,6 +193,16 @@ def best_pair(problem, first, by_name, scr, order, base_pred, base_ic, tried=Non
         used |= set(key)
         if run(key) or len(done) == PAIR_REFINE:
             break
+    # the width beside the best qualifying singles (measured, 29 Nov: a 10 N rail friction beside 6.0 -> 6.9 mm, the
+    # width first at -153.9; width + mass force linearised -190, 5th, behind width + motor load at -207; refined
+    # -260.4, 99 % explained and consistent in every view, never refined: the width's one disjoint pair was the other)
+    if measurand is not None and measurand in order:
+        for n in [n for n in partners if n != measurand and n in order][:MEASURAND_PARTNERS]:
+            key = linear(measurand, n)
+            if key not in done:
+                run(key)
+        for key in substitutes(measurand)[:MEASURAND_SUBSTITUTES]:
+            run(key)
     # the first effect with a term locked to a shaft's angle: fitted event by event (refine_pair), measured: a crank
     # pump beside a width change, the width + crank pair not among the ranked (one disjoint pair per member)
     for n in event_locked:

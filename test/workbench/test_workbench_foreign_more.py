@@ -63,6 +63,9 @@ def test_a_width_drift_is_reported_as_the_measurement_and_never_added():
     w = d["measured_width"]
     assert w["differs_from_nominal"] and w["width_m"] == pytest.approx(truth.true_width_m, abs=0.2e-3)
     assert d["additions"] == []
+    # the width alone explains: its own fit's error with the form's, not inflated by a model average (issue 31)
+    fitted = d["discovery_parameters"]["uncertainty"]["change"]
+    assert w["averaged_over"] == [] and w["uncertainty_m"] == pytest.approx(np.hypot(fitted, w["form_tolerance_m"]))
 
 
 @pytest.mark.slow
