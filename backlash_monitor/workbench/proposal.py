@@ -359,14 +359,21 @@ TIE_SHARE = 0.05       # alike groups within this share of the best's held-out g
                        # columns carry the noise of their regression on the model's runs, a recorded term's none, which
                        # costs the simulated one a few per cent of its gain (measured: 1.5 % on a 6 N*m wheel-angle torque)
 OWN_ANGLE = {"motor_load_moment_pu": "alpha1", "wheel_torque_Nm": "alpha2", "mass_force_N": "alpha2"}  # the shaft driving the balance
+# the states of the body each balance acts on (its own speed and angle): among terms the events cannot tell apart, a
+# load on a body that depends on that body's own motion is the simpler physical hypothesis (a pump, a fan, a brake on
+# the motor shaft reads the motor's speed, not the carriage's); measured on a speed relay loading the motor: ẋ/(rΩ_mb)
+# and t_e chosen over Ω₁ that fitted the events as well
+OWN_STATES = {"motor_load_moment_pu": ("omega1", "alpha1"), "wheel_torque_Nm": ("omega2", "alpha2"),
+              "mass_force_N": ("xdot", "alpha2"), "clutch_torque_Nm": ("penetration", "penetration rate"),
+              "rim_mass_force_N": ("z", "v")}
 
 
 def _preferred(GG, Gy, yy, groups: list, chosen: list, alike: list, terms: list) -> list:
     """The selected groups, each replaced by the one of its alike groups (alike_groups) that the events cannot tell
     from the best (its held-out gain, with the others selected, less than one standard error of the paired
     difference below the best's) and that comes first in: a term the simulator runs before a sensor's or a slow
-    change's (it has the model's physics and a plug-in form); a harmonic of its balance's own shaft's angle; the
-    larger gain. The others stay named as alike."""
+    change's (it has the model's physics and a plug-in form); a harmonic of its balance's own shaft's angle, or a term
+    of the own body's state (OWN_STATES); the larger gain. The others stay named as alike."""
     out = list(chosen)
     for pos, g in enumerate(chosen):
         rest = [c for h in out if h != g for c in groups[h]]
@@ -381,7 +388,8 @@ def _preferred(GG, Gy, yy, groups: list, chosen: list, alike: list, terms: list)
 
         def rank(a):
             t = terms[groups[a][0]]
-            own = t.harmonic is not None and OWN_ANGLE.get(t.balance) == t.harmonic[0]
+            own = (t.harmonic is not None and OWN_ANGLE.get(t.balance) == t.harmonic[0]) or (
+                t.harmonic is None and t.state in OWN_STATES.get(t.balance, ()))
             return (t.simulated, own, float(gains[a].mean()))
         out[pos] = max((a for a in gains if tied(a)), key=rank)
     return out

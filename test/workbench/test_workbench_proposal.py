@@ -21,6 +21,12 @@ def test_the_library_is_generic_and_covers_every_balance_and_both_shafts_angles(
     assert {t.state for t in recorded} >= {"alpha1", "alpha2", "omega1", "omega2", "time", "a1", "a2"}
     harm = {(t.harmonic[0], t.harmonic[1]) for t in lib if t.harmonic}
     assert ("alpha1", 1) in harm and ("alpha2", 1) in harm and ("alpha2", 2) in harm
+    # the clutch's contact locked to the motor's angle (its gap's boundaries moving with it), orders 1 and 2
+    assert {(t.harmonic[0], t.harmonic[1]) for t in lib if t.harmonic and t.balance == "clutch_torque_Nm"} == {
+        ("alpha1", 1), ("alpha1", 2)}
+    # a gate on the jaw's side in every balance of a body (the load side ahead of its drive), one group each
+    gates = [t for t in lib if "delta" in t.variables]
+    assert {t.balance for t in gates} == {"motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N"}
     # a harmonic's sine and cosine are one group: selected together, linear in their coefficients
     for g, names in candidate_terms.groups().items():
         kinds = {candidate_terms.by_name()[n].harmonic is not None for n in names}
@@ -51,6 +57,48 @@ def test_forward_selection_finds_the_term_in_the_events_and_nothing_in_noise():
         noise = np.random.default_rng(100 + k).normal(size=(e, d))
         false += len(proposal.forward_select(G, noise, groups)[0])
     assert false <= 1
+
+
+def test_the_overrun_gate_is_one_while_the_load_side_runs_ahead_of_its_drive_and_zero_while_driven():
+    """The gate's expression on the plant's own maths (plant.mathlib): 1 while the jaw is off its drive side (Δ·sgn Ω₁
+    < 0, either direction of running), 0 while the motor drives it (Δ·sgn Ω₁ > 0), from a few smoothing widths on."""
+    from backlash_monitor.plant import mathlib
+    gate = next(t for t in candidate_terms.library() if t.name == "cand_wheel_overrun")
+    w = 10 * candidate_terms.JAW_SIDE_SMOOTHING_RAD
+
+    def f(delta, omega1):
+        return eval(gate.expression, {"smooth_sign": mathlib.smooth_sign, "delta": delta, "omega1": omega1})
+    for omega1 in (150.0, -150.0):
+        s = np.sign(omega1)
+        assert f(-s * w, omega1) == pytest.approx(1.0, abs=0.01)      # the load side ahead: engaged
+        assert f(s * w, omega1) == pytest.approx(0.0, abs=0.01)       # driven: off
+        assert f(0.0, omega1) == pytest.approx(0.5)                   # mid-gap: half
+
+
+def test_among_terms_the_events_cannot_tell_apart_the_one_of_the_loaded_bodys_own_state_is_proposed():
+    """Two columns of the motor's load moment nearly alike over the events (a term of the carriage's speed and one of
+    the motor's own; on a drive that never reverses they move together): whichever the data favour by less than the
+    noise, the proposal names the term of the motor's own state -- and one that clearly fits better is kept."""
+    by = candidate_terms.by_name()
+    terms = [by["cand_motor_xdot"], by["cand_motor_omega1_1"], by["cand_wheel_const"]]
+    groups = [[0], [1], [2]]
+    rng = np.random.default_rng(3)
+    d, e = 40, 20
+    base = rng.normal(size=d)
+    G = np.stack([base, base + 0.05 * rng.normal(size=d), rng.normal(size=d)], axis=1)
+    alike = proposal.alike_groups(G, groups)
+    assert 1 in alike[0] and 2 not in alike[0]
+    for truth_col in (0, 1):
+        Y = 1.5 * G[:, truth_col][None] + rng.normal(size=(e, d))
+        GG, Gy, yy = proposal.gram(G, Y)
+        sel, _ = proposal._forward_gram(GG, Gy, yy, groups, proposal.CV_Z, proposal.MAX_GROUPS, alike)
+        assert proposal._preferred(GG, Gy, yy, groups, sel[:1], alike, terms) == [1]
+    # a clearly different column of the other body's state stays: the preference acts only among the tied
+    G2 = np.stack([base, rng.normal(size=d), rng.normal(size=d)], axis=1)
+    alike2 = proposal.alike_groups(G2, groups)
+    Y = 1.5 * G2[:, 0][None] + rng.normal(size=(e, d))
+    GG, Gy, yy = proposal.gram(G2, Y)
+    assert proposal._preferred(GG, Gy, yy, groups, [0], alike2, terms) == [0]
 
 
 def test_the_proposal_is_written_as_a_plugin_that_loads_with_its_fitted_values(tmp_path):
