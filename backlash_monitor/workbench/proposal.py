@@ -216,6 +216,7 @@ def _library_model(model):
 SECANT_ITERATIONS = 3  # re-estimations of an angle-locked pair's response at its fitted amplitude
 SECANT_TOLERANCE = 0.05  # stop when no coefficient moves by more than this share of the largest
 MIN_COEFFICIENT_Z = 2.0  # a proposed group's largest coefficient over its jackknife uncertainty, at least
+REFIT_ITERATIONS = 2     # Gauss-Newton steps of the plain terms' coefficients on the simulator after the per-event fit
 
 
 def _fit(GG, Gy, cols) -> tuple:
@@ -509,28 +510,53 @@ def propose(run, up, verdict: str) -> Proposal | None:
     # -- except in the spectral shape, a power: there the angle-locked terms are simulated at their fitted values too
     # (the shape does not depend on the phase; its change is of second order in the amplitude, which no secant at
     # amplitude 0 holds)
-    sim_set = {key[t.name]: float(c) for t, c in zip(chosen, coef) if t.simulated and t.harmonic is None}
-    harm_set = {key[t.name]: float(c) for t, c in zip(chosen, coef) if t.simulated and t.harmonic is not None}
     rec_cols = [i for i, t in enumerate(chosen) if not t.simulated]
     harm_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is not None]
-    sets_after = ([sim_set] if sim_set else []) + ([{**sim_set, **harm_set}] if harm_set else [])
-    try:
+    plain_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is None]
+
+    def model_after(coef):
+        sim_set = {key[chosen[i].name]: float(coef[i]) for i in plain_cols}
+        harm_set = {key[chosen[i].name]: float(coef[i]) for i in harm_cols}
+        sets_after = ([sim_set] if sim_set else []) + ([{**sim_set, **harm_set}] if harm_set else [])
         ens = p.evaluate(sets_after) if sets_after else None
+        pred = p.pred_of(ens, 0) if sim_set else ref.copy()
+        if rec_cols:
+            pred = pred + d.mean_cols[:, [cols[i] for i in rec_cols]] @ coef[rec_cols]
+        if harm_cols:
+            lined_up = d.mean_cols[:, [cols[i] for i in harm_cols]] @ coef[harm_cols]
+            lined_up[p.spectral_slice] = 0.0
+            pred = pred + lined_up
+            sp = p.spectral_slice
+            pred[sp] += p.pred_of(ens, len(sets_after) - 1)[sp] - (p.pred_of(ens, 0)[sp] if sim_set else ref[sp])
+        return pred
+    try:
+        pred_after = model_after(coef)
     except ValueError as error:        # the terms at these values stop the drive crossing its backlash
         out.reason = ("the fitted terms stop the model crossing its backlash "
                       f"({str(error).splitlines()[0]}): nothing proposed")
         out.cpu_seconds = time.process_time() - t0
         out.simulated_sets = p.n_sets_simulated - n_before
         return out
-    pred_after = p.pred_of(ens, 0) if sim_set else ref.copy()
-    if rec_cols:
-        pred_after = pred_after + d.mean_cols[:, [cols[i] for i in rec_cols]] @ coef[rec_cols]
-    if harm_cols:
-        lined_up = d.mean_cols[:, [cols[i] for i in harm_cols]] @ coef[harm_cols]
-        lined_up[p.spectral_slice] = 0.0
-        pred_after = pred_after + lined_up
-        sp = p.spectral_slice
-        pred_after[sp] += p.pred_of(ens, len(sets_after) - 1)[sp] - (p.pred_of(ens, 0)[sp] if sim_set else ref[sp])
+    # the plain terms' coefficients refined on the simulator (Gauss-Newton on the events' mean in the views' metric,
+    # the tangent columns as the Jacobian): the per-event fit holds each term's change at its small screening step, a
+    # term of the balance's own size bends it (a brake that slows the crossing it acts on). A step is kept only when
+    # it lowers the mean's residual; the jackknife uncertainty stays the per-event fit's
+    if plain_cols:
+        J = p.project(d.mean_cols[:, [cols[i] for i in plain_cols]])
+        norm = float(np.sum(p.project(p.residual(pred_after)) ** 2))
+        for _ in range(REFIT_ITERATIONS):
+            r = p.project(p.residual(pred_after))
+            trial = coef.copy()
+            trial[plain_cols] = np.clip(coef[plain_cols] + np.linalg.lstsq(J, r, rcond=None)[0],
+                                        lo[plain_cols] * 0.999, -lo[plain_cols] * 0.999)
+            try:
+                pred_trial = model_after(trial)
+            except ValueError:
+                break
+            n_trial = float(np.sum(p.project(p.residual(pred_trial)) ** 2))
+            if n_trial >= norm:
+                break
+            coef, pred_after, norm = trial, pred_trial, n_trial
     r_before, r_after = p.project(p.residual(ref)), p.project(p.residual(pred_after))
     explained = p.explained_share(r_after, r_before)
     k = len(cols)
