@@ -252,3 +252,30 @@ def test_the_recorded_angles_are_the_integrated_speeds_from_sample_zero():
     exact1 = 150.0 * t + 3.0 * (1 - np.cos(2 * np.pi * 5 * t)) / (2 * np.pi * 5)
     assert np.max(np.abs(a["alpha1"] - exact1)) < 1e-6
     assert np.max(np.abs(a["alpha2"] - (exact1 - delta))) < 1e-6
+
+
+@pytest.mark.heavy      # make test-all (CI time); bench/_workbench/outside.py measures this row by row
+@pytest.mark.slow
+def test_a_load_brake_that_holds_the_wheel_while_the_load_runs_ahead_is_proposed_as_a_gate_on_the_jaws_side():
+    """A Weston-type load brake made by foreign_drives (not our simulator): -4 N*m on the wheel while the jaw's angle
+    difference is negative (the load side ahead of its drive), 0 while the motor drives it -- a mechanism outside the
+    catalogue (the third set's development row, 4 s). The proposal names a wheel torque gated on the jaw's side, of
+    the brake's sign and size, and the model with it is consistent. (On another seed of the same brake, seed 3317,
+    diagnose named the catalogue's wheel viscous friction + a pulse drift instead, 98 % explained: no proposal runs.)"""
+    from foreign_drives.drive import make_recording
+    from foreign_drives.suites import suite
+
+    from backlash_monitor.workbench.diagnose import diagnose
+    from backlash_monitor.workbench.measurement import Measurement
+    from backlash_monitor.workbench.model import load_model
+    spec = next(s for s in suite("outside_dev3") if s.label == "od3_wheel_weston_brake")
+    assert [(e.form, e.parameters["torque_Nm"]) for e in spec.effects] == [("wheel_weston_brake", 4.0)]
+    rec = make_recording(spec)
+    meas = Measurement("foreign:weston", rec.sample_period_s, {k: np.asarray(v) for k, v in rec.signals.items()})
+    d = diagnose(meas, load_model(None, width_m=spec.width_m, eta_k=spec.eta_k, n1=spec.n1)).to_json()
+    prop = d["proposal"]
+    assert prop and prop["proposed"], d["message"]
+    gate = [t for t in prop["terms"] if t["balance"] == "wheel_torque_Nm" and t["group"] == "wheel_overrun"]
+    assert gate, prop["law"]
+    assert -6.0 < gate[0]["coefficients"][0] < -2.0          # the brake's -4 N*m, of its sign and size
+    assert prop["consistent"], prop["reason"]
