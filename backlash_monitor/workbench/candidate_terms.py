@@ -34,6 +34,8 @@ PENETRATION_SCALE_RAD = 3e-3                  # ~10 N*m / k_c: the jaw's penetra
 APPROACH_SCALE_RAD_S = 1.0                    # the contact's closing speed at entry: ~1 rad/s
 EXTENSION_SCALE_M = 0.3                       # the spring's static extension F0/k
 RIM_SPEED_SCALE_M_S = 0.1                     # r*Omega2 - xdot: the spring's rate, ~0.1 m/s
+JAW_SIDE_SMOOTHING_RAD = 1e-3                 # the jaw's side sgn(Δ) smoothed over this angle: a third of the working
+                                              # penetration (PENETRATION_SCALE_RAD), small against the gap (β ~ 0.05 rad)
 PULSE_SCALE_PU = 1.6                          # the load pulse's height (config/plant.yaml pulse_load: 1.6 p.u.)
 # the balances: (unit of the coefficient, the screening's step = a small amount of the term in its balance, the
 # coefficient's bounds); the step ~ a tenth of the balance's own size (F0*r = 4.5 N*m at the rim, T_b = 20 N*m)
@@ -130,6 +132,18 @@ def library() -> tuple[Term, ...]:
                "clutch_rate", ("approach_speed",)),
           Term(f"{PREFIX}clutch_pen_rate", "clutch_torque_Nm", f"{p} * {q}", "(p/p₀)·(ṗ/ṗ₀)", "penetration rate",
                "clutch_pen_rate", ("penetration", "approach_speed"))]
+    # the clutch's contact locked to a shaft's angle: a torque in contact that comes and goes with the angle (the
+    # gap's boundaries moving with it: a shaft at an angle, an eccentric jaw, a tooth of uneven pitch)
+    t += _harmonics("clutch_torque_Nm", "alpha1", "α₁")
+    # the load side ahead of its drive (a gate on the clutch's angle difference Δ: 1 while the jaw is off its drive
+    # side, Δ·sgn Ω₁ < 0, crossing the gap or bearing on its far side; 0 while the motor drives it): a torque or force
+    # that switches with the side the jaw bears on -- a load brake, a latch, a one-way clutch, a pawl. One-sided, so
+    # that one group holds it (beside the balance's constant, sgn Δ would need two)
+    for balance in ("motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N"):
+        b = SHORT[balance]
+        t.append(Term(f"{PREFIX}{b}_overrun", balance,
+                      f"0.5 * (1.0 - smooth_sign(delta, {JAW_SIDE_SMOOTHING_RAD!r}) * smooth_sign(omega1, 1.0))",
+                      "[Δ·sgnΩ₁ < 0]", "penetration", f"{b}_overrun", ("delta", "omega1")))
     # the rim force (spring and absorber between wheel and mass): the extension's powers, its rate
     z = f"(z / {EXTENSION_SCALE_M})"
     v = f"(v / {RIM_SPEED_SCALE_M_S})"

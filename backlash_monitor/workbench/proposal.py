@@ -216,6 +216,7 @@ def _library_model(model):
 SECANT_ITERATIONS = 3  # re-estimations of an angle-locked pair's response at its fitted amplitude
 SECANT_TOLERANCE = 0.05  # stop when no coefficient moves by more than this share of the largest
 MIN_COEFFICIENT_Z = 2.0  # a proposed group's largest coefficient over its jackknife uncertainty, at least
+REFIT_ITERATIONS = 2     # Gauss-Newton steps of the plain terms' coefficients on the simulator after the per-event fit
 
 
 def _fit(GG, Gy, cols) -> tuple:
@@ -359,14 +360,21 @@ TIE_SHARE = 0.05       # alike groups within this share of the best's held-out g
                        # columns carry the noise of their regression on the model's runs, a recorded term's none, which
                        # costs the simulated one a few per cent of its gain (measured: 1.5 % on a 6 N*m wheel-angle torque)
 OWN_ANGLE = {"motor_load_moment_pu": "alpha1", "wheel_torque_Nm": "alpha2", "mass_force_N": "alpha2"}  # the shaft driving the balance
+# the states of the body each balance acts on (its own speed and angle): among terms the events cannot tell apart, a
+# load on a body that depends on that body's own motion is the simpler physical hypothesis (a pump, a fan, a brake on
+# the motor shaft reads the motor's speed, not the carriage's); measured on a speed relay loading the motor: ẋ/(rΩ_mb)
+# and t_e chosen over Ω₁ that fitted the events as well
+OWN_STATES = {"motor_load_moment_pu": ("omega1", "alpha1"), "wheel_torque_Nm": ("omega2", "alpha2"),
+              "mass_force_N": ("xdot", "alpha2"), "clutch_torque_Nm": ("penetration", "penetration rate"),
+              "rim_mass_force_N": ("z", "v")}
 
 
 def _preferred(GG, Gy, yy, groups: list, chosen: list, alike: list, terms: list) -> list:
     """The selected groups, each replaced by the one of its alike groups (alike_groups) that the events cannot tell
     from the best (its held-out gain, with the others selected, less than one standard error of the paired
     difference below the best's) and that comes first in: a term the simulator runs before a sensor's or a slow
-    change's (it has the model's physics and a plug-in form); a harmonic of its balance's own shaft's angle; the
-    larger gain. The others stay named as alike."""
+    change's (it has the model's physics and a plug-in form); a harmonic of its balance's own shaft's angle, or a term
+    of the own body's state (OWN_STATES); the larger gain. The others stay named as alike."""
     out = list(chosen)
     for pos, g in enumerate(chosen):
         rest = [c for h in out if h != g for c in groups[h]]
@@ -381,7 +389,8 @@ def _preferred(GG, Gy, yy, groups: list, chosen: list, alike: list, terms: list)
 
         def rank(a):
             t = terms[groups[a][0]]
-            own = t.harmonic is not None and OWN_ANGLE.get(t.balance) == t.harmonic[0]
+            own = (t.harmonic is not None and OWN_ANGLE.get(t.balance) == t.harmonic[0]) or (
+                t.harmonic is None and t.state in OWN_STATES.get(t.balance, ()))
             return (t.simulated, own, float(gains[a].mean()))
         out[pos] = max((a for a in gains if tied(a)), key=rank)
     return out
@@ -501,28 +510,53 @@ def propose(run, up, verdict: str) -> Proposal | None:
     # -- except in the spectral shape, a power: there the angle-locked terms are simulated at their fitted values too
     # (the shape does not depend on the phase; its change is of second order in the amplitude, which no secant at
     # amplitude 0 holds)
-    sim_set = {key[t.name]: float(c) for t, c in zip(chosen, coef) if t.simulated and t.harmonic is None}
-    harm_set = {key[t.name]: float(c) for t, c in zip(chosen, coef) if t.simulated and t.harmonic is not None}
     rec_cols = [i for i, t in enumerate(chosen) if not t.simulated]
     harm_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is not None]
-    sets_after = ([sim_set] if sim_set else []) + ([{**sim_set, **harm_set}] if harm_set else [])
-    try:
+    plain_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is None]
+
+    def model_after(coef):
+        sim_set = {key[chosen[i].name]: float(coef[i]) for i in plain_cols}
+        harm_set = {key[chosen[i].name]: float(coef[i]) for i in harm_cols}
+        sets_after = ([sim_set] if sim_set else []) + ([{**sim_set, **harm_set}] if harm_set else [])
         ens = p.evaluate(sets_after) if sets_after else None
+        pred = p.pred_of(ens, 0) if sim_set else ref.copy()
+        if rec_cols:
+            pred = pred + d.mean_cols[:, [cols[i] for i in rec_cols]] @ coef[rec_cols]
+        if harm_cols:
+            lined_up = d.mean_cols[:, [cols[i] for i in harm_cols]] @ coef[harm_cols]
+            lined_up[p.spectral_slice] = 0.0
+            pred = pred + lined_up
+            sp = p.spectral_slice
+            pred[sp] += p.pred_of(ens, len(sets_after) - 1)[sp] - (p.pred_of(ens, 0)[sp] if sim_set else ref[sp])
+        return pred
+    try:
+        pred_after = model_after(coef)
     except ValueError as error:        # the terms at these values stop the drive crossing its backlash
         out.reason = ("the fitted terms stop the model crossing its backlash "
                       f"({str(error).splitlines()[0]}): nothing proposed")
         out.cpu_seconds = time.process_time() - t0
         out.simulated_sets = p.n_sets_simulated - n_before
         return out
-    pred_after = p.pred_of(ens, 0) if sim_set else ref.copy()
-    if rec_cols:
-        pred_after = pred_after + d.mean_cols[:, [cols[i] for i in rec_cols]] @ coef[rec_cols]
-    if harm_cols:
-        lined_up = d.mean_cols[:, [cols[i] for i in harm_cols]] @ coef[harm_cols]
-        lined_up[p.spectral_slice] = 0.0
-        pred_after = pred_after + lined_up
-        sp = p.spectral_slice
-        pred_after[sp] += p.pred_of(ens, len(sets_after) - 1)[sp] - (p.pred_of(ens, 0)[sp] if sim_set else ref[sp])
+    # the plain terms' coefficients refined on the simulator (Gauss-Newton on the events' mean in the views' metric,
+    # the tangent columns as the Jacobian): the per-event fit holds each term's change at its small screening step, a
+    # term of the balance's own size bends it (a brake that slows the crossing it acts on). A step is kept only when
+    # it lowers the mean's residual; the jackknife uncertainty stays the per-event fit's
+    if plain_cols:
+        J = p.project(d.mean_cols[:, [cols[i] for i in plain_cols]])
+        norm = float(np.sum(p.project(p.residual(pred_after)) ** 2))
+        for _ in range(REFIT_ITERATIONS):
+            r = p.project(p.residual(pred_after))
+            trial = coef.copy()
+            trial[plain_cols] = np.clip(coef[plain_cols] + np.linalg.lstsq(J, r, rcond=None)[0],
+                                        lo[plain_cols] * 0.999, -lo[plain_cols] * 0.999)
+            try:
+                pred_trial = model_after(trial)
+            except ValueError:
+                break
+            n_trial = float(np.sum(p.project(p.residual(pred_trial)) ** 2))
+            if n_trial >= norm:
+                break
+            coef, pred_after, norm = trial, pred_trial, n_trial
     r_before, r_after = p.project(p.residual(ref)), p.project(p.residual(pred_after))
     explained = p.explained_share(r_after, r_before)
     k = len(cols)

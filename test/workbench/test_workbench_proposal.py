@@ -21,6 +21,12 @@ def test_the_library_is_generic_and_covers_every_balance_and_both_shafts_angles(
     assert {t.state for t in recorded} >= {"alpha1", "alpha2", "omega1", "omega2", "time", "a1", "a2"}
     harm = {(t.harmonic[0], t.harmonic[1]) for t in lib if t.harmonic}
     assert ("alpha1", 1) in harm and ("alpha2", 1) in harm and ("alpha2", 2) in harm
+    # the clutch's contact locked to the motor's angle (its gap's boundaries moving with it), orders 1 and 2
+    assert {(t.harmonic[0], t.harmonic[1]) for t in lib if t.harmonic and t.balance == "clutch_torque_Nm"} == {
+        ("alpha1", 1), ("alpha1", 2)}
+    # a gate on the jaw's side in every balance of a body (the load side ahead of its drive), one group each
+    gates = [t for t in lib if "delta" in t.variables]
+    assert {t.balance for t in gates} == {"motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N"}
     # a harmonic's sine and cosine are one group: selected together, linear in their coefficients
     for g, names in candidate_terms.groups().items():
         kinds = {candidate_terms.by_name()[n].harmonic is not None for n in names}
@@ -51,6 +57,48 @@ def test_forward_selection_finds_the_term_in_the_events_and_nothing_in_noise():
         noise = np.random.default_rng(100 + k).normal(size=(e, d))
         false += len(proposal.forward_select(G, noise, groups)[0])
     assert false <= 1
+
+
+def test_the_overrun_gate_is_one_while_the_load_side_runs_ahead_of_its_drive_and_zero_while_driven():
+    """The gate's expression on the plant's own maths (plant.mathlib): 1 while the jaw is off its drive side (Δ·sgn Ω₁
+    < 0, either direction of running), 0 while the motor drives it (Δ·sgn Ω₁ > 0), from a few smoothing widths on."""
+    from backlash_monitor.plant import mathlib
+    gate = next(t for t in candidate_terms.library() if t.name == "cand_wheel_overrun")
+    w = 10 * candidate_terms.JAW_SIDE_SMOOTHING_RAD
+
+    def f(delta, omega1):
+        return eval(gate.expression, {"smooth_sign": mathlib.smooth_sign, "delta": delta, "omega1": omega1})
+    for omega1 in (150.0, -150.0):
+        s = np.sign(omega1)
+        assert f(-s * w, omega1) == pytest.approx(1.0, abs=0.01)      # the load side ahead: engaged
+        assert f(s * w, omega1) == pytest.approx(0.0, abs=0.01)       # driven: off
+        assert f(0.0, omega1) == pytest.approx(0.5)                   # mid-gap: half
+
+
+def test_among_terms_the_events_cannot_tell_apart_the_one_of_the_loaded_bodys_own_state_is_proposed():
+    """Two columns of the motor's load moment nearly alike over the events (a term of the carriage's speed and one of
+    the motor's own; on a drive that never reverses they move together): whichever the data favour by less than the
+    noise, the proposal names the term of the motor's own state -- and one that clearly fits better is kept."""
+    by = candidate_terms.by_name()
+    terms = [by["cand_motor_xdot"], by["cand_motor_omega1_1"], by["cand_wheel_const"]]
+    groups = [[0], [1], [2]]
+    rng = np.random.default_rng(3)
+    d, e = 40, 20
+    base = rng.normal(size=d)
+    G = np.stack([base, base + 0.05 * rng.normal(size=d), rng.normal(size=d)], axis=1)
+    alike = proposal.alike_groups(G, groups)
+    assert 1 in alike[0] and 2 not in alike[0]
+    for truth_col in (0, 1):
+        Y = 1.5 * G[:, truth_col][None] + rng.normal(size=(e, d))
+        GG, Gy, yy = proposal.gram(G, Y)
+        sel, _ = proposal._forward_gram(GG, Gy, yy, groups, proposal.CV_Z, proposal.MAX_GROUPS, alike)
+        assert proposal._preferred(GG, Gy, yy, groups, sel[:1], alike, terms) == [1]
+    # a clearly different column of the other body's state stays: the preference acts only among the tied
+    G2 = np.stack([base, rng.normal(size=d), rng.normal(size=d)], axis=1)
+    alike2 = proposal.alike_groups(G2, groups)
+    Y = 1.5 * G2[:, 0][None] + rng.normal(size=(e, d))
+    GG, Gy, yy = proposal.gram(G2, Y)
+    assert proposal._preferred(GG, Gy, yy, groups, [0], alike2, terms) == [0]
 
 
 def test_the_proposal_is_written_as_a_plugin_that_loads_with_its_fitted_values(tmp_path):
@@ -204,3 +252,30 @@ def test_the_recorded_angles_are_the_integrated_speeds_from_sample_zero():
     exact1 = 150.0 * t + 3.0 * (1 - np.cos(2 * np.pi * 5 * t)) / (2 * np.pi * 5)
     assert np.max(np.abs(a["alpha1"] - exact1)) < 1e-6
     assert np.max(np.abs(a["alpha2"] - (exact1 - delta))) < 1e-6
+
+
+@pytest.mark.heavy      # make test-all (CI time); bench/_workbench/outside.py measures this row by row
+@pytest.mark.slow
+def test_a_load_brake_that_holds_the_wheel_while_the_load_runs_ahead_is_proposed_as_a_gate_on_the_jaws_side():
+    """A Weston-type load brake made by foreign_drives (not our simulator): -4 N*m on the wheel while the jaw's angle
+    difference is negative (the load side ahead of its drive), 0 while the motor drives it -- a mechanism outside the
+    catalogue (the third set's development row, 4 s). The proposal names a wheel torque gated on the jaw's side, of
+    the brake's sign and size, and the model with it is consistent. (On another seed of the same brake, seed 3317,
+    diagnose named the catalogue's wheel viscous friction + a pulse drift instead, 98 % explained: no proposal runs.)"""
+    from foreign_drives.drive import make_recording
+    from foreign_drives.suites import suite
+
+    from backlash_monitor.workbench.diagnose import diagnose
+    from backlash_monitor.workbench.measurement import Measurement
+    from backlash_monitor.workbench.model import load_model
+    spec = next(s for s in suite("outside_dev3") if s.label == "od3_wheel_weston_brake")
+    assert [(e.form, e.parameters["torque_Nm"]) for e in spec.effects] == [("wheel_weston_brake", 4.0)]
+    rec = make_recording(spec)
+    meas = Measurement("foreign:weston", rec.sample_period_s, {k: np.asarray(v) for k, v in rec.signals.items()})
+    d = diagnose(meas, load_model(None, width_m=spec.width_m, eta_k=spec.eta_k, n1=spec.n1)).to_json()
+    prop = d["proposal"]
+    assert prop and prop["proposed"], d["message"]
+    gate = [t for t in prop["terms"] if t["balance"] == "wheel_torque_Nm" and t["group"] == "wheel_overrun"]
+    assert gate, prop["law"]
+    assert -6.0 < gate[0]["coefficients"][0] < -2.0          # the brake's -4 N*m, of its sign and size
+    assert prop["consistent"], prop["reason"]
