@@ -1,5 +1,5 @@
 """What an outside mechanism adds to each balance of a foreign recording (noise off), from its internal signals: the
-balance's other terms subtracted (test_foreign_drives_outside2.py and outside3.py check each mechanism's law so)."""
+balance's other terms subtracted (test_foreign_drives_outside.py, outside2.py and outside3.py check each mechanism's law so)."""
 import numpy as np
 
 from foreign_drives import constants as C

@@ -20,11 +20,10 @@ from foreign_drives import outside as O
 from foreign_drives.drive import make_recording
 from foreign_drives.spec import EffectSpec as E
 from foreign_drives.spec import RecordingSpec
+from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/: the balances solved for the outside term
 
 W = C.WHEEL_RADIUS_M
 T_B = C.BASE_TORQUE_NM
-J1 = C.MOTOR_INERTIA_KGM2
-J2 = C.WHEEL_INERTIA_KGM2
 
 OUTSIDE = {n: f for n, f in F.FORMS.items() if isinstance(f, O.OutsideForm)}
 DEV = {n: f for n, f in OUTSIDE.items() if f.half == "dev"}
@@ -56,25 +55,6 @@ def pulse_per_sample(rec):
     n_seg = rec.n_samples // N.SEGMENT_SAMPLES
     return np.repeat(N.pulse_train(0, n_seg, rec.internal["pulse_amplitude_pu"], rec.spec.pulse_first_s),
                      N.SEGMENT_SAMPLES)
-
-
-# the balances, solved for the outside term from the recorded (exact, noise-free) states
-def motor_term_Nm(rec):
-    """T_x on the motor's load: J1 dOmega1/dt = T_b t_e - T_c - T_b*load - T_x."""
-    i = rec.internal
-    return T_B * i["te_pu"] - i["clutch_torque_Nm"] - J1 * i["a1_physical"] / W - T_B * pulse_per_sample(rec)
-
-
-def wheel_term_Nm(rec):
-    """T_x on the wheel (+ drives it): J2 dOmega2/dt = T_c - r F + T_x."""
-    i = rec.internal
-    return J2 * i["wheel_acceleration"] - i["clutch_torque_Nm"] + W * i["rim_force_N"]
-
-
-def mass_term_N(rec):
-    """F_x on the mass (+ along x): m a2 = F - F0 + F_x."""
-    i = rec.internal
-    return C.MASS_KG * i["a2_physical"] - i["rim_force_N"] + C.WORKING_RESISTANCE_N
 
 
 # --------------------------------------------------------------------------------------------- the registry
