@@ -384,7 +384,7 @@ def width_measurement(run: Run, up: Update) -> WidthMeasurement:
     p = run.problem
     jz = p.project(width_lin.jacobian[:, 0])
     se = float(np.sqrt(consistency.noise_scale(p.n_events, p.n_seeds) / max(float(jz @ jz), 1e-300)))
-    pred = up.after_pred if up.first is not None and up.after_pred is not None else run.base_pred
+    pred = _update_pred(run, up)
     if held is None and consistency.test(p.views, p.residual(pred)).consistent:
         return WidthMeasurement(nominal, float(np.hypot(se, form)), nominal, False, form)
     members = width_models(run, up)
@@ -393,6 +393,11 @@ def width_measurement(run: Run, up: Update) -> WidthMeasurement:
     over = tuple({"model": m.label, "width_m": nominal + m.value, "uncertainty_m": m.sd, "weight": w}
                  for m, w in zip(avg.members, avg.weights))
     return WidthMeasurement(nominal + avg.value, float(np.hypot(avg.sd, form)), nominal, False, form, over)
+
+
+def _update_pred(run: Run, up: Update) -> np.ndarray:
+    """The prediction of the model with the update's effects, or the model's own when the update holds none."""
+    return up.after_pred if up.first is not None and up.after_pred is not None else run.base_pred
 
 
 def misfit_scale_of(problem, pred) -> float:
@@ -432,7 +437,7 @@ def width_models(run: Run, up: Update) -> list:
         # (a width in the update that took no part -- pinned -- is the start: the step measures only the rest)
         start = float(inside.values[0]) if inside is not None else 0.0
         width_lin = run.screening[WIDTH_CANDIDATE]
-        pred = up.after_pred if up.first is not None and up.after_pred is not None else run.base_pred
+        pred = _update_pred(run, up)
         j = width_lin.jacobian[:, 0]
         jz = p.project(j)
         jj = max(float(jz @ jz), 1e-300)
