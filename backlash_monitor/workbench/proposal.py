@@ -359,8 +359,7 @@ def design(p, run, terms, steps, S, ref) -> Design:
 TIE_SHARE = 0.05       # alike groups within this share of the best's held-out gain are tied: a simulated term's per-event
                        # columns carry the noise of their regression on the model's runs, a recorded term's none, which
                        # costs the simulated one a few per cent of its gain (measured: 1.5 % on a 6 N*m wheel-angle torque)
-OWN_ANGLE = {"motor_load_moment_pu": "alpha1", "wheel_torque_Nm": "alpha2", "mass_force_N": "alpha2"}  # the shaft driving the balance
-# the states of the body each balance acts on (its own speed and angle): among terms the events cannot tell apart, a
+# the states of the body each balance acts on (its own speed and angle: the shaft driving it, for a harmonic): among terms the events cannot tell apart, a
 # load on a body that depends on that body's own motion is the simpler physical hypothesis (a pump, a fan, a brake on
 # the motor shaft reads the motor's speed, not the carriage's); measured on a speed relay loading the motor: ẋ/(rΩ_mb)
 # and t_e chosen over Ω₁ that fitted the events as well
@@ -373,7 +372,7 @@ def _preferred(GG, Gy, yy, groups: list, chosen: list, alike: list, terms: list)
     """The selected groups, each replaced by the one of its alike groups (alike_groups) that the events cannot tell
     from the best (its held-out gain, with the others selected, less than one standard error of the paired
     difference below the best's) and that comes first in: a term the simulator runs before a sensor's or a slow
-    change's (it has the model's physics and a plug-in form); a harmonic of its balance's own shaft's angle, or a term
+    change's (it has the model's physics and a plug-in form); a harmonic of its balance's own shaft's angle or a term
     of the own body's state (OWN_STATES); the larger gain. The others stay named as alike."""
     out = list(chosen)
     for pos, g in enumerate(chosen):
@@ -389,8 +388,7 @@ def _preferred(GG, Gy, yy, groups: list, chosen: list, alike: list, terms: list)
 
         def rank(a):
             t = terms[groups[a][0]]
-            own = (t.harmonic is not None and OWN_ANGLE.get(t.balance) == t.harmonic[0]) or (
-                t.harmonic is None and t.state in OWN_STATES.get(t.balance, ()))
+            own = t.state in OWN_STATES.get(t.balance, ())      # a harmonic's state is its angle
             return (t.simulated, own, float(gains[a].mean()))
         out[pos] = max((a for a in gains if tied(a)), key=rank)
     return out
