@@ -26,8 +26,6 @@ from backlash_monitor.workbench.model import load_model  # noqa: E402
 from bench._workbench.outside import _measurement  # noqa: E402
 
 
-STRICT_SKIP = True
-
 
 def probe(spec) -> dict:
     meas, _ = _measurement(spec)
@@ -59,7 +57,6 @@ def probe(spec) -> dict:
     views = ch.pop("views_after", {}).get("views", {})
     row["checks"] = {k: v for k, v in ch.items()}
     row["views_after"] = {n: [round(v["T2"], 1), round(v["T2_limit_p01"], 1)] for n, v in views.items()}
-    row["views_before"] = {n: [round(v.t2, 1), round(v.limit, 1)] for n, v in run.before.views.items()}
     row["per_signal_after"] = decisions.per_signal_ratio(p, up.after_pred).tolist()
     row["per_signal_before"] = decisions.per_signal_ratio(p, run.base_pred).tolist()
     fits = []
@@ -79,7 +76,7 @@ def probe(spec) -> dict:
                      else None, "balance": f.balance})
     row["fits"] = fits
     # the proposal on top of the update (as for a partial explanation); only where the update is not strict
-    if STRICT_SKIP and ch.get("consistent_in_every_view") and ch.get("outside_subspace_ok"):
+    if ch.get("consistent_in_every_view") and ch.get("outside_subspace_ok"):
         return row
     t1 = time.process_time()
     prop = proposal.propose(run, up, "partial")
