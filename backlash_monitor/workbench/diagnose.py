@@ -578,12 +578,12 @@ def verdict_message(run: Run, up: Update, v: Verdict, width: WidthMeasurement, r
                    f"(residual {overall_before:.2f} x the noise floor), but not with the raw spectrum")
     elif verdict == NOTHING_EXPLAINS:
         message = (f"nothing in the catalogue explains the residual (best: {best.effect}, explains "
-                   f"{best.explained_fraction:.0%}, delta_ic {best.delta_ic:.1f}"
+                   f"{drive_terms.explained_percent(best.explained_fraction)}, delta_ic {best.delta_ic:.1f}"
                    + (", at the bound of its range" if best.at_bound else "") + f"); {where_text}")
     elif verdict == PARTIAL:
         names = " + ".join(f.effect for f in partial)
         message = (f"partial explanation, no confident discovery: {names} explains "
-                   f"{up.checks.get('explained', partial[-1].explained_fraction):.0%} of the residual but "
+                   f"{drive_terms.explained_percent(up.checks.get('explained', partial[-1].explained_fraction))} of the residual but "
                    f"{_left_where(run, up) or 'leaves it outside the noise band'} (an effect outside the catalogue, "
                    "or a catalogue effect in another form?); add-effect takes it only with --accept-partial")
     else:
@@ -600,7 +600,7 @@ def verdict_message(run: Run, up: Update, v: Verdict, width: WidthMeasurement, r
                              f"washes out there), delta_ic {discovery.delta_ic:.1f}")
             else:
                 parts.append(f"missing effect: {drive_terms.effect_text(discovery.to_json(), run.model)}, explains "
-                             f"{discovery.explained_fraction:.0%} of the residual, delta_ic {discovery.delta_ic:.1f}")
+                             f"{drive_terms.explained_percent(discovery.explained_fraction)} of the residual, delta_ic {discovery.delta_ic:.1f}")
             if discovery.indistinguishable_from:
                 parts[-1] += ("; not distinguishable from this recording from "
                               + ", ".join(discovery.indistinguishable_from))
@@ -634,9 +634,9 @@ def verdict_message(run: Run, up: Update, v: Verdict, width: WidthMeasurement, r
             # the spectral line is explained, the event average not (proposal_basis: the proposal runs on it)
             parts.append("the event average is not explained by a catalogue effect"
                          + (f" ({' + '.join(f.effect for f in partial)} explains "
-                            f"{up.checks.get('explained', partial[-1].explained_fraction):.0%} of it but "
+                            f"{drive_terms.explained_percent(up.checks.get('explained', partial[-1].explained_fraction))} of it but "
                             f"{_left_where(run, up) or 'leaves it outside the noise band'})" if partial else
-                            f" (best: {best.effect}, explains {best.explained_fraction:.0%})" if best is not None
+                            f" (best: {best.effect}, explains {drive_terms.explained_percent(best.explained_fraction)})" if best is not None
                             else ""))
         elif v.ripple_entry is not None:
             parts.append("nothing to discover in the event average")
@@ -767,7 +767,7 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
         if found is not None and found.proposed:
             lead = ("; proposed term outside the catalogue: " if result.verdict == basis else
                     f"; {up.first.effect}" + (f" + {up.second.effect}" if up.second is not None else "")
-                    + f" explains {up.checks.get('explained', 0.0):.0%} of the residual only within the model-form "
+                    + f" explains {drive_terms.explained_percent(up.checks.get('explained', 0.0))} of the residual only within the model-form "
                     "tolerance of its law (its model is outside the noise band in "
                     + ", ".join(n.replace("_", " ") for n, v in up.checks.get("views_after", {}).get("views", {}).items()
                                 if v.get("outside_band")) + "); what is left is proposed as a term outside the "

@@ -298,7 +298,7 @@ def write_report(diagnosis, directory, json_path=None) -> Path:
             f"{k} = {v:.4g}" for k, v in r["parameters"].items())
         rank_rows.append((cand, r.get("description") or "", values,
                           "screened only" if r["delta_ic"] is None else f"{r['delta_ic']:.1f}",
-                          f"{r['explained_fraction']:.0%}", tie))
+                          drive_terms.explained_percent(r['explained_fraction']), tie))
     summary = "".join(f"<li style='margin-left:{(len(line) - len(line.lstrip())) * 0.6:.1f}em'>"
                       f"{html.escape(line.strip())}</li>" for line in drive_terms.summary_lines(result, model)[1:]
                       if line not in (drive_terms.DELTA_IC_LINE, drive_terms.T2_LINE, drive_terms.UNITLESS_LINE))

@@ -100,3 +100,13 @@ def test_diagnosed_n1_drift_message_reads_in_drive_terms():
     assert " -)" not in message and "change =" not in message
     # the fit finds the drive's n1 (measured: change 0.0479 ± 0.0013 for the recorded 0.05, seed 7)
     assert abs(change - N1_CHANGE) < 0.1 * N1_CHANGE, (change, unc)
+
+
+def test_an_explained_share_above_one_is_shown_as_all_of_it(model):
+    """The share is of the residual's excess over the noise (fitting.Problem.explained_share): a fit into the noise of
+    a nearly clean drive scores above 1 (measured 1.20); the message never says "explains 120 %", the JSON keeps it."""
+    assert drive_terms.explained_percent(1.2) == "100%"
+    assert drive_terms.explained_percent(0.958) == "96%"
+    entry = _entry("backlash_width_drift", "change", 1e-4, 1e-4, unit="m", explained_fraction=1.2)
+    text = "\n".join(drive_terms.effect_lines(entry, model))
+    assert "explains 100% of the residual" in text and "120" not in text
