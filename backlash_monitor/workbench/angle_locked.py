@@ -409,7 +409,7 @@ def fit_pair(run, a: str, b: str) -> fitting.FitResult | None:
     nl = len(run.by_name[name].parameters)
     f = fit(run, run.by_name[name], beside)
     # the shared effect linearised again where the pair put it: a width moves every crossing's timing, and its
-    # linearisation at its single fit is off at the pair's value (measured, 30 Nov: a crank pump beside a width
+    # linearisation at its single fit is off at the pair's value (measured, 29 Nov: a crank pump beside a width
     # grown 4.0 -> 5.0 mm, the pair at +0.885 mm and 0.17 p.u. linearised at the single fit's +0.784 mm)
     for _ in range(BESIDE_ITERATIONS):
         if f is None or other not in run.screening:
