@@ -266,9 +266,9 @@ def suite_rows():
          [E("mass_air_kicker", {"force_N": 15.0, "rate_per_s": 1.5, "push_s": 0.03, "sequence": 4711})]),
         ("os4_clean_w8.8_eta0.045_n0.94", "clean", 0.0088, 0.045, 0.94, []),
         ("os4_a1_piezo_zero_shift", "outside", 0.0065, 0.02, 0.97,
-         [E("a1_piezo_zero_shift", {"threshold_m_s2": 80.0, "gain_per_s": 5.0, "bleed_time_s": 0.2})]),
+         [E("a1_piezo_zero_shift", {"threshold_m_s2": 80.0, "gain_per_s": 14.0, "bleed_time_s": 0.2})]),
         ("os4_a2_clock_lag_drift", "outside", 0.0095, 0.03, 0.91, [E("a2_clock_lag_drift", {"lag_growth": 0.001})]),
         ("os4_wheel_phase_lock_trim", "outside", 0.0052, 0.025, 0.93,
-         [E("wheel_phase_lock_trim", {"stiffness_Nm_per_rad": 5.0, "reference_speed_rad_s": 151.9, "phase_rad": 0.0,
-                                      "limit_Nm": 5.0})]),
+         [E("wheel_phase_lock_trim", {"stiffness_Nm_per_rad": 10.0, "reference_speed_rad_s": 151.41, "phase_rad": 0.0,
+                                      "limit_Nm": 10.0})]),
     ]

@@ -267,12 +267,14 @@ OUTSIDE_DEV4_ROWS = [
     # an extra load on every third stroke (a piercing station working on every third part)
     ("od4_motor_nth_stroke_pierce", "outside", 0.0065, 0.03, 0.91,
      [E("motor_nth_stroke_pierce", {"torque_Nm": 8.0, "every_n": 3, "station": 1})]),
-    # a flywheel behind a sprag clutch on the wheel shaft: dragged up above its speed, coasting below
+    # a flywheel behind a sprag clutch on the wheel shaft: dragged up above its speed, coasting below (3 N*m*s/rad
+    # moved a2 by 0.025 m/s^2 rms: x3)
     ("od4_wheel_freewheel_flywheel", "outside", 0.0085, 0.02, 0.94,
-     [E("wheel_freewheel_flywheel", {"coefficient_Nms_per_rad": 3.0, "lock_time_s": 0.02, "coast_time_s": 20.0})]),
-    # a viscoelastic jaw insert: a Maxwell branch of 2/3 the contact stiffness relaxing in 10 ms
+     [E("wheel_freewheel_flywheel", {"coefficient_Nms_per_rad": 9.0, "lock_time_s": 0.02, "coast_time_s": 20.0})]),
+    # a viscoelastic jaw insert: a Maxwell branch of twice the contact stiffness relaxing in 10 ms (2000 N*m/rad moved
+    # a2 by 0.024 m/s^2 rms: x3)
     ("od4_clutch_viscoelastic_insert", "outside", 0.005, 0.04, 0.90,
-     [E("clutch_viscoelastic_insert", {"stiffness_Nm_per_rad": 2000.0, "relaxation_time_s": 0.01})]),
+     [E("clutch_viscoelastic_insert", {"stiffness_Nm_per_rad": 6000.0, "relaxation_time_s": 0.01})]),
     # a rail clamp fired for 30 ms when the spring stretches through 0.31 m (it runs 0.28-0.32 m)
     ("od4_mass_spring_switch_clamp", "outside", 0.0075, 0.025, 0.93,
      [E("mass_spring_switch_clamp", {"force_N": 10.0, "trigger_extension_m": 0.31, "hold_s": 0.03})]),
@@ -283,9 +285,9 @@ OUTSIDE_DEV4_ROWS = [
     # a1 held over 0.5 rad of each motor revolution (3.3 ms in 42 ms)
     ("od4_a1_telemetry_shadow_hold", "outside", 0.009, 0.015, 0.92,
      [E("a1_telemetry_shadow_hold", {"window_rad": 0.5, "start_rad": 1.0})]),
-    # a speed loop on the carriage, 1 ms scan, 3 ms dead time, v_ref = the clean drive's mean mass speed
+    # a speed loop on the carriage, 1 ms scan, 3 ms dead time, v_ref = the clean drive's mean mass speed (same seed)
     ("od4_mass_servo_assist_sampled", "outside", 0.004, 0.035, 0.95,
-     [E("mass_servo_assist_sampled", {"gain_Ns_per_m": 60.0, "reference_speed_m_s": 22.7, "scan_s": 0.001,
+     [E("mass_servo_assist_sampled", {"gain_Ns_per_m": 60.0, "reference_speed_m_s": 22.717, "scan_s": 0.001,
                                       "latency_scans": 3})]),
 ]
 
