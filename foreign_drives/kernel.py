@@ -119,7 +119,10 @@ PARAM_NAMES = (
     #   memory_scan): its kind (MK_*), the selector it reads, three parameters, whether it has been initialised, its
     #   output (XS_MEMORY), the input at the previous scan, a time, a counter, and a ring of MEMORY_RING values
     "pulse_count", "contact_t0", "clock_rate", "clock_t0", "mem_kind", "mem_sel", "mem_a", "mem_b", "mem_c",
-    "mem_init", "mem_state", "mem_prev", "mem_t0", "mem_n") + tuple(f"mem_r{i}" for i in range(64))
+    "mem_init", "mem_state", "mem_prev", "mem_t0", "mem_n",
+    # - a Maxwell branch in the jaw's contact law (a viscoelastic insert): its stiffness [N*m/rad]; it adds
+    #   k_m*(p - q) to the law, q the memory element's output (the relaxed penetration); 0 = off
+    "maxwell_stiffness") + tuple(f"mem_r{i}" for i in range(64))
 N_PARAMS = len(PARAM_NAMES)
 PI = {name: i for i, name in enumerate(PARAM_NAMES)}
 (P_RS, P_RR, P_XS, P_XR, P_XM, P_U, P_OMB, P_OMMB, P_TB, P_J1,
@@ -145,9 +148,9 @@ XB_OFF, XB_MOTOR_LOAD, XB_WHEEL, XB_CLUTCH, XB_MASS = range(5)
     PI[k] for k in ("te_amplitude", "te_order", "te_phase", "timevar_on", "alpha2_turns", "relay_sel",
                     "relay_on_above", "relay_off_below", "relay_state"))
 (P_PCOUNT, P_CT0, P_CLKRATE, P_CLKT0, P_MEMKIND, P_MEMSEL, P_MEMA, P_MEMB, P_MEMC, P_MEMINIT, P_MEMSTATE, P_MEMPREV,
- P_MEMT0, P_MEMN, P_MEMR0) = (PI[k] for k in ("pulse_count", "contact_t0", "clock_rate", "clock_t0", "mem_kind",
-                                               "mem_sel", "mem_a", "mem_b", "mem_c", "mem_init", "mem_state",
-                                               "mem_prev", "mem_t0", "mem_n", "mem_r0"))
+ P_MEMT0, P_MEMN, P_MAXK, P_MEMR0) = (PI[k] for k in ("pulse_count", "contact_t0", "clock_rate", "clock_t0", "mem_kind",
+                                                     "mem_sel", "mem_a", "mem_b", "mem_c", "mem_init", "mem_state",
+                                                     "mem_prev", "mem_t0", "mem_n", "maxwell_stiffness", "mem_r0"))
 MEMORY_RING = 64
 # memory kinds: a lag with a rise and a fall time constant (c = 1: falling towards 0 instead of towards the input); a
 # sampled delay line (a = scan in segments, b = delay in scans); a one-shot (a = threshold the input rises through,
@@ -157,7 +160,8 @@ MK_OFF, MK_LAG, MK_DELAY, MK_ONESHOT, MK_SCHEDULE = range(5)
 (XS_ONE, XS_OMEGA1, XS_OMEGA2, XS_RIM_SPEED, XS_MASS_SPEED, XS_PENETRATION, XS_SPRING_EXTENSION, XS_ALPHA1,
  XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
  XS_SIGN_OMEGA2, XS_JAW_ANGLE, XS_PULSE_PHASE, XS_GAP_DISTANCE, XS_ALPHA2_UNWRAPPED, XS_RELAY, XS_PULSE_COUNT,
- XS_CONTACT_AGE, XS_SIGNED_PENETRATION, XS_MEMORY, XS_MEMORY_EXCESS, XS_ALPHA2_MINUS_CLOCK) = range(28)
+ XS_CONTACT_AGE, XS_SIGNED_PENETRATION, XS_MEMORY, XS_MEMORY_EXCESS, XS_ALPHA2_MINUS_CLOCK, XS_PENETRATION_DEPTH) = (
+    range(29))
 # shapes of a factor f(x; a, b, c)
 (XF_ONE, XF_X, XF_POWER, XF_SIN, XF_SIN_POSITIVE, XF_EXCESS_POWER, XF_RAMP, XF_TANH, XF_RISE, XF_COS,
  XF_RISE_AFTER, XF_ABS, XF_SIGMOID, XF_DECAY_AFTER, XF_CUSHION, XF_PERIODIC_GATE, XF_CLIP) = range(17)
@@ -167,7 +171,8 @@ MK_OFF, MK_LAG, MK_DELAY, MK_ONESHOT, MK_SCHEDULE = range(5)
 def contact_torque(pen, pen_rate, k, P):
     """Torque [N*m] the jaw contact law gives at penetration ``pen`` [rad] (>= 0 where it acts) and
     penetration rate ``pen_rate`` [rad/s]:
-    T_pre*(1 - exp(-p/p_s)) + k*p_ref*(p/p_ref)^n*(1 + (p/p0)^2) + (d + lambda*p)*p'.
+    T_pre*(1 - exp(-p/p_s)) + k*p_ref*(p/p_ref)^n*(1 + (p/p0)^2) + k_m*(p - q) + (d + lambda*p)*p' (k_m*(p - q): a
+    Maxwell branch, q the memory element's relaxed penetration, only with the non-periodic terms on).
     The nominal law (n = 1, T_pre = 0, p0 = 0, lambda = 0) is k*p + d*p' (SPEC)."""
     pp = pen if pen > 0.0 else 0.0
     n = P[P_CEXP]
@@ -181,6 +186,8 @@ def contact_torque(pen, pen_rate, k, P):
         el = el * (1.0 + q * q)
     if P[P_CPRE] != 0.0:
         el += P[P_CPRE] * (1.0 - math.exp(-pp / P[P_CPRS]))
+    if P[P_MAXK] != 0.0 and P[P_TV] != 0.0:      # a Maxwell branch, q its relaxed penetration (memory element)
+        el += P[P_MAXK] * (pp - P[P_MEMSTATE])
     return el + (P[P_DC] + P[P_HCL] * pp) * pen_rate
 
 
@@ -284,6 +291,8 @@ def _quantity(sel, t, y, P, mode, pen, tcc):
         return t - P[P_CT0] if mode != 0 else -1.0
     if sel == XS_SIGNED_PENETRATION:             # the penetration, + on the drive side, - on the far side; 0 free [rad]
         return clutch_angles(y, P)[0] - P[P_BETA] * mode if mode != 0 else 0.0
+    if sel == XS_PENETRATION_DEPTH:              # in contact, the penetration on either side [rad] (>= 0); 0 free
+        return abs(clutch_angles(y, P)[0]) - P[P_BETA] if mode != 0 else 0.0
     if sel == XS_MEMORY:                         # the memory element's output (memory_scan)
         return P[P_MEMSTATE]
     if sel == XS_ALPHA2_MINUS_CLOCK:             # the unwrapped wheel angle less a clock's angle [rad]
