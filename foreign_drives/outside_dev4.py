@@ -48,7 +48,6 @@ import math
 
 import numpy as np
 
-from . import constants as C
 from . import kernel as K
 from . import noise as N
 from .forms import Param

@@ -192,7 +192,7 @@ def _nominal_contact_Nm(rec):
     return np.where(mode > 0, k * (d - beta) + c * dd, np.where(mode < 0, -(k * (-d - beta) - c * dd), 0.0))
 
 
-def test_viscoelastic_insert_adds_a_relaxing_branch_in_contact_only():
+def test_viscoelastic_insert_adds_a_relaxing_branch_to_the_contact_law():
     p = {"stiffness_Nm_per_rad": 6000.0, "relaxation_time_s": 0.01}
     rec = rec_of("clutch_viscoelastic_insert", **p)
     i = rec.internal
@@ -200,18 +200,23 @@ def test_viscoelastic_insert_adds_a_relaxing_branch_in_contact_only():
     mode = i["mode"]
     assert np.all(extra[mode == 0] == 0.0) and np.max(np.abs(extra)) > 5.0      # nothing in the gap
     beta = rec.truth.true_width_m / W
-    ps = np.where(mode != 0, i["jaw_angle_difference"] - beta * mode, 0.0)        # the signed penetration
-    # q: p through a first-order lag, advanced at each segment's start; from q = 0 at sample 0, compared after 10 tau
+    depth = np.where(mode != 0, np.abs(i["jaw_angle_difference"]) - beta, 0.0)   # the penetration on either side
+    # q: the depth through a first-order lag, advanced at each segment's start; from q = 0 at sample 0, compared after
+    # 10 tau (the start's error has decayed by e^-10 by then)
     q = np.empty(rec.n_samples)
     qj, a = 0.0, math.exp(-N.SEGMENT_S / 0.01)
     for j in range(rec.n_samples // SEG):
-        x = ps[j * SEG]
+        x = depth[j * SEG]
         qj = x + (qj - x) * a if j else qj
         q[j * SEG:(j + 1) * SEG] = qj
-    law = np.where(mode != 0, 6000.0 * (ps - q), 0.0)
+    law = mode * 6000.0 * (depth - q)                                             # N*m, the far side's negative
     late = slice(int(0.1 / C.SAMPLE_PERIOD_S), None)
     assert np.max(np.abs(extra[late] - law[late])) < 0.05
-    # relaxation: held in contact the branch fades; entering it, the branch pushes back (stiffer than the law)
+    # the contact holds exactly while the whole law (with the branch) pushes
+    total = i["clutch_torque_Nm"]
+    assert np.all(total[mode > 0] > -1e-9) and np.all(total[mode < 0] < 1e-9)
+    # relaxation: pressing into the face the branch pushes back (stiffer than the law); held, it fades
+    assert (mode * extra)[late].max() > 5.0 and (mode * extra)[late].min() < 0.0
     assert np.max(np.abs(wheel_term_Nm(rec))) < 1e-6 and np.max(np.abs(mass_term_N(rec))) < 1e-6
 
 
