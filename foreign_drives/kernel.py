@@ -110,7 +110,19 @@ PARAM_NAMES = (
     #   none), on when the quantity rises above ``relay_on_above``, off when it falls below ``relay_off_below``, its
     #   state (0/1)
     "te_amplitude", "te_order", "te_phase", "timevar_on", "alpha2_turns", "relay_sel", "relay_on_above",
-    "relay_off_below", "relay_state")
+    "relay_off_below", "relay_state",
+    # the fourth set (foreign_drives.outside_dev4/_sealed4):
+    # - the number of the current load pulse (0 = the first pulse at or after sample 0; set per segment);
+    # - the time the current contact began [s] (set at a switch into a contact mode from the gap; XS_CONTACT_AGE);
+    # - a clock the wheel's unwrapped angle is compared with: its rate [rad/s] and its start [s] (XS_ALPHA2_MINUS_CLOCK);
+    # - one MEMORY element per recording, advanced once per 0.2 ms segment from the state at the segment's start (see
+    #   memory_scan): its kind (MK_*), the selector it reads, three parameters, whether it has been initialised, its
+    #   output (XS_MEMORY), the input at the previous scan, a time, a counter, and a ring of MEMORY_RING values
+    "pulse_count", "contact_t0", "clock_rate", "clock_t0", "mem_kind", "mem_sel", "mem_a", "mem_b", "mem_c",
+    "mem_init", "mem_state", "mem_prev", "mem_t0", "mem_n",
+    # - a Maxwell branch in the jaw's contact law (a viscoelastic insert): its stiffness [N*m/rad]; it adds
+    #   k_m*(p - q) to the law, q the memory element's output (the relaxed penetration); 0 = off
+    "maxwell_stiffness") + tuple(f"mem_r{i}" for i in range(64))
 N_PARAMS = len(PARAM_NAMES)
 PI = {name: i for i, name in enumerate(PARAM_NAMES)}
 (P_RS, P_RR, P_XS, P_XR, P_XM, P_U, P_OMB, P_OMMB, P_TB, P_J1,
@@ -135,20 +147,32 @@ XB_OFF, XB_MOTOR_LOAD, XB_WHEEL, XB_CLUTCH, XB_MASS = range(5)
 (P_TEA, P_TEN, P_TEP, P_TV, P_A2TURNS, P_RLYSEL, P_RLYON, P_RLYOFF, P_RLYSTATE) = (
     PI[k] for k in ("te_amplitude", "te_order", "te_phase", "timevar_on", "alpha2_turns", "relay_sel",
                     "relay_on_above", "relay_off_below", "relay_state"))
+(P_PCOUNT, P_CT0, P_CLKRATE, P_CLKT0, P_MEMKIND, P_MEMSEL, P_MEMA, P_MEMB, P_MEMC, P_MEMINIT, P_MEMSTATE, P_MEMPREV,
+ P_MEMT0, P_MEMN, P_MAXK, P_MEMR0) = (PI[k] for k in ("pulse_count", "contact_t0", "clock_rate", "clock_t0", "mem_kind",
+                                                     "mem_sel", "mem_a", "mem_b", "mem_c", "mem_init", "mem_state",
+                                                     "mem_prev", "mem_t0", "mem_n", "maxwell_stiffness", "mem_r0"))
+MEMORY_RING = 64
+# memory kinds: a lag with a rise and a fall time constant (c = 1: falling towards 0 instead of towards the input); a
+# sampled delay line (a = scan in segments, b = delay in scans); a one-shot (a = threshold the input rises through,
+# b = hold time [s]); a schedule (on for b seconds from each of the mem_n times in the ring)
+MK_OFF, MK_LAG, MK_DELAY, MK_ONESHOT, MK_SCHEDULE = range(5)
 # selectors: the drive quantity a factor reads
 (XS_ONE, XS_OMEGA1, XS_OMEGA2, XS_RIM_SPEED, XS_MASS_SPEED, XS_PENETRATION, XS_SPRING_EXTENSION, XS_ALPHA1,
  XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
- XS_SIGN_OMEGA2, XS_JAW_ANGLE, XS_PULSE_PHASE, XS_GAP_DISTANCE, XS_ALPHA2_UNWRAPPED, XS_RELAY) = range(22)
+ XS_SIGN_OMEGA2, XS_JAW_ANGLE, XS_PULSE_PHASE, XS_GAP_DISTANCE, XS_ALPHA2_UNWRAPPED, XS_RELAY, XS_PULSE_COUNT,
+ XS_CONTACT_AGE, XS_SIGNED_PENETRATION, XS_MEMORY, XS_MEMORY_EXCESS, XS_ALPHA2_MINUS_CLOCK, XS_PENETRATION_DEPTH) = (
+    range(29))
 # shapes of a factor f(x; a, b, c)
 (XF_ONE, XF_X, XF_POWER, XF_SIN, XF_SIN_POSITIVE, XF_EXCESS_POWER, XF_RAMP, XF_TANH, XF_RISE, XF_COS,
- XF_RISE_AFTER, XF_ABS, XF_SIGMOID, XF_DECAY_AFTER, XF_CUSHION, XF_PERIODIC_GATE) = range(16)
+ XF_RISE_AFTER, XF_ABS, XF_SIGMOID, XF_DECAY_AFTER, XF_CUSHION, XF_PERIODIC_GATE, XF_CLIP) = range(17)
 
 
 @njit(cache=True, inline="always")
 def contact_torque(pen, pen_rate, k, P):
     """Torque [N*m] the jaw contact law gives at penetration ``pen`` [rad] (>= 0 where it acts) and
     penetration rate ``pen_rate`` [rad/s]:
-    T_pre*(1 - exp(-p/p_s)) + k*p_ref*(p/p_ref)^n*(1 + (p/p0)^2) + (d + lambda*p)*p'.
+    T_pre*(1 - exp(-p/p_s)) + k*p_ref*(p/p_ref)^n*(1 + (p/p0)^2) + k_m*(p - q) + (d + lambda*p)*p' (k_m*(p - q): a
+    Maxwell branch, q the memory element's relaxed penetration, only with the non-periodic terms on).
     The nominal law (n = 1, T_pre = 0, p0 = 0, lambda = 0) is k*p + d*p' (SPEC)."""
     pp = pen if pen > 0.0 else 0.0
     n = P[P_CEXP]
@@ -162,6 +186,8 @@ def contact_torque(pen, pen_rate, k, P):
         el = el * (1.0 + q * q)
     if P[P_CPRE] != 0.0:
         el += P[P_CPRE] * (1.0 - math.exp(-pp / P[P_CPRS]))
+    if P[P_MAXK] != 0.0 and P[P_TV] != 0.0:      # a Maxwell branch, q its relaxed penetration (memory element)
+        el += P[P_MAXK] * (pp - P[P_MEMSTATE])
     return el + (P[P_DC] + P[P_HCL] * pp) * pen_rate
 
 
@@ -212,7 +238,7 @@ def _sgn(x):
 
 
 @njit(cache=True)
-def _selected(sel, t, y, P, mode, pen, tcc):
+def _quantity(sel, t, y, P, mode, pen, tcc):
     """The drive quantity an outside factor reads (XS_*), SI units."""
     r = P[P_R]
     if sel == XS_ONE:
@@ -259,7 +285,83 @@ def _selected(sel, t, y, P, mode, pen, tcc):
         return y[S_A2] + 2.0 * math.pi * P[P_A2TURNS]
     if sel == XS_RELAY:
         return P[P_RLYSTATE]
+    if sel == XS_PULSE_COUNT:                    # the current load pulse's number (0: the first at or after sample 0)
+        return P[P_PCOUNT]
+    if sel == XS_CONTACT_AGE:                    # in contact: the time since it began from the gap [s]; -1 in the gap
+        return t - P[P_CT0] if mode != 0 else -1.0
+    if sel == XS_SIGNED_PENETRATION:             # the penetration, + on the drive side, - on the far side; 0 free [rad]
+        return clutch_angles(y, P)[0] - P[P_BETA] * mode if mode != 0 else 0.0
+    if sel == XS_PENETRATION_DEPTH:              # in contact, the penetration on either side [rad] (>= 0); 0 free
+        return abs(clutch_angles(y, P)[0]) - P[P_BETA] if mode != 0 else 0.0
+    if sel == XS_MEMORY:                         # the memory element's output (memory_scan)
+        return P[P_MEMSTATE]
+    if sel == XS_ALPHA2_MINUS_CLOCK:             # the unwrapped wheel angle less a clock's angle [rad]
+        return y[S_A2] + 2.0 * math.pi * P[P_A2TURNS] - P[P_CLKRATE] * (t - P[P_CLKT0])
     return 0.0
+
+
+@njit(cache=True)
+def _selected(sel, t, y, P, mode, pen, tcc):
+    """The drive quantity an outside factor reads (XS_*), SI units; XS_MEMORY_EXCESS: the memory element's input now
+    less its output."""
+    if sel == XS_MEMORY_EXCESS:
+        return _quantity(int(P[P_MEMSEL]), t, y, P, mode, pen, tcc) - P[P_MEMSTATE]
+    return _quantity(sel, t, y, P, mode, pen, tcc)
+
+
+@njit(cache=True)
+def memory_scan(t, y, P, mode, seg_dt):
+    """Advance the memory element by one 0.2 ms segment from the state ``y`` at the segment's start ``t``:
+    - MK_LAG: m -> x + (m - x)*exp(-dt/a) while x > m, else x + (m - x)*exp(-dt/b) (c = 1: m*exp(-dt/b));
+    - MK_DELAY: every a-th segment x is sampled into the ring and m becomes the sample taken b scans before;
+    - MK_ONESHOT: m -> 1 when x rises through a (from at or below a at the previous scan) while m = 0, back to 0 b
+      seconds later;
+    - MK_SCHEDULE: m = 1 within b seconds from any of the mem_n times in the ring, else 0.
+    The first scan initialises it (m = x; the ring filled with x; the one-shot off)."""
+    kind = int(P[P_MEMKIND])
+    a, b = P[P_MEMA], P[P_MEMB]
+    if kind == MK_SCHEDULE:
+        on = 0.0
+        for i in range(int(P[P_MEMN])):
+            s = P[P_MEMR0 + i]
+            if s - 1e-12 <= t < s + b - 1e-12:
+                on = 1.0
+        P[P_MEMSTATE] = on
+        return
+    x = _quantity(int(P[P_MEMSEL]), t, y, P, mode, 0.0, 0.0)
+    if P[P_MEMINIT] == 0.0:
+        P[P_MEMINIT] = 1.0
+        P[P_MEMSTATE] = 0.0 if kind == MK_ONESHOT else x
+        P[P_MEMPREV] = x
+        P[P_MEMN] = 0.0
+        for i in range(MEMORY_RING):
+            P[P_MEMR0 + i] = x
+        if kind != MK_DELAY:
+            return
+    if kind == MK_LAG:
+        m = P[P_MEMSTATE]
+        if x > m:
+            m = x + (m - x) * math.exp(-seg_dt / a)
+        elif P[P_MEMC] == 0.0:
+            m = x + (m - x) * math.exp(-seg_dt / b)
+        else:
+            m = m * math.exp(-seg_dt / b)
+        P[P_MEMSTATE] = m
+    elif kind == MK_DELAY:
+        n = int(P[P_MEMN])
+        scan = int(a)
+        if n % scan == 0:
+            k = n // scan
+            P[P_MEMR0 + k % MEMORY_RING] = x
+            P[P_MEMSTATE] = P[P_MEMR0 + (k - int(b)) % MEMORY_RING]
+        P[P_MEMN] = n + 1.0
+    elif kind == MK_ONESHOT:
+        if P[P_MEMSTATE] != 0.0 and t - P[P_MEMT0] >= b - 1e-12:
+            P[P_MEMSTATE] = 0.0
+        if P[P_MEMSTATE] == 0.0 and P[P_MEMPREV] <= a < x:
+            P[P_MEMSTATE] = 1.0
+            P[P_MEMT0] = t
+        P[P_MEMPREV] = x
 
 
 @njit(cache=True)
@@ -301,6 +403,9 @@ def _shaped(shape, x, a, b, c):
     if shape == XF_PERIODIC_GATE:                # 1 while (x - b) mod a < c, else 0 (a timer's window)
         q = (x - b) - a * math.floor((x - b) / a)
         return 1.0 if q < c else 0.0
+    if shape == XF_CLIP:                         # x + b limited to [-a, a]
+        q = x + b
+        return -a if q < -a else (a if q > a else q)
     return 0.0
 
 
@@ -599,6 +704,7 @@ def run_segments(y, mode, seg0, loads, seg_samples, dt, P, timevar, atol, rtol, 
             q = ja - P[P_PPER] * math.floor(ja / P[P_PPER])
             P[P_PON] = 1.0 if q < P[P_PDUR] else 0.0
             P[P_PT0] = (seg0 + j - q) * seg_dt
+            P[P_PCOUNT] = math.floor(ja / P[P_PPER])
         turns = math.floor(y[S_A2] / two_pi)
         if turns != 0.0:
             P[P_A2TURNS] += turns
@@ -616,6 +722,8 @@ def run_segments(y, mode, seg0, loads, seg_samples, dt, P, timevar, atol, rtol, 
                 P[P_RLYSTATE] = 1.0
             elif P[P_RLYSTATE] != 0.0 and xr < P[P_RLYOFF]:
                 P[P_RLYSTATE] = 0.0
+        if P[P_MEMKIND] > 0.0:        # the memory element, scanned once per segment
+            memory_scan(tj, y, P, mode, seg_dt)
         tc, te, f = rhs(tj, y, mode, u, P, timevar, k[0])
         nf += 1
         if record:
@@ -696,6 +804,10 @@ def run_segments(y, mode, seg0, loads, seg_samples, dt, P, timevar, atol, rtol, 
             nacc += 1
             if new_mode != mode:
                 mode = new_mode
+                # a contact begins from the gap (XS_CONTACT_AGE): the jaw at a face; a re-touch with the faces still
+                # pressed (the law's torque back above 0 after it fell to 0) continues the contact that was
+                if mode != 0 and abs(abs(clutch_angles(y, P)[0]) - P[P_BETA]) < 1e-6:
+                    P[P_CT0] = tj + tau
                 rhs(tj + tau, y, mode, u, P, timevar, k[0])
                 nf += 1
             else:

@@ -23,7 +23,8 @@ from scipy.optimize import brentq
 
 from . import constants as C
 from . import noise as N
-from .kernel import (N_OUT, N_STATES, OUT_NAMES, P_A2TURNS, P_BETA, P_F0, P_K, P_KCD, P_KS, P_KW, P_PDUR,
+from .kernel import (N_OUT, N_STATES, OUT_NAMES, P_A2TURNS, P_BETA, P_CLKT0, P_CT0, P_F0, P_K, P_KCD, P_KS, P_KW,
+                     P_MEMINIT, P_PDUR,
                      P_PFIRST, P_PPER, P_RLYSTATE, P_TV, P_R, P_RR, P_RS, P_U, P_XM, P_XR, P_XS, S_A1, S_A2, S_AH, S_AR, S_ISD, S_ISQ, S_PRD, S_PRQ, S_V, S_W1, S_W2, S_WH, S_WR,
                      S_X, implied_mode, run_segments)
 
@@ -218,6 +219,10 @@ def simulate(P, *, duration_s: float, seed: int, noise: bool = True, pulse_ampli
     P[P_TV] = 1.0
     P[P_A2TURNS] = 0.0
     P[P_RLYSTATE] = 0.0
+    # the fourth set: the memory element starts afresh at the run-in's first scan, a contact in progress and the
+    # clock the wheel's angle is compared with begin with the run-in (kernel: mem_*, contact_t0, clock_t0)
+    P[P_MEMINIT] = 0.0
+    P[P_CT0] = P[P_CLKT0] = -n_run * N.SEGMENT_S
     mode = implied_mode(y, P)
     loads_run = N.pulse_train(-n_run, n_run, pulse_amplitude_pu, pulse_first_s)
     loads_rec = N.pulse_train(0, n_rec, pulse_amplitude_pu, pulse_first_s)

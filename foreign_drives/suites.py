@@ -259,14 +259,47 @@ OUTSIDE_DEV3_ROWS = [
      [E("a2_stroke_ringing", {"amplitude_m_s2": 2.0, "frequency_hz": 173.0, "decay_s": 0.02})]),
 ]
 
+# ---- issue 31 part 4, fourth set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev4;
+# the fourth sealed half's rows are in foreign_drives.outside_sealed4). One mechanism per row at its own nominal
+# conditions, one clean control. Seeds 8000+. Each strength set by one simulation against the clean drive of the same
+# seed (docs/foreign_drives.md "The fourth set").
+OUTSIDE_DEV4_ROWS = [
+    # an extra load on every third stroke (a piercing station working on every third part)
+    ("od4_motor_nth_stroke_pierce", "outside", 0.0065, 0.03, 0.91,
+     [E("motor_nth_stroke_pierce", {"torque_Nm": 8.0, "every_n": 3, "station": 1})]),
+    # a flywheel behind a sprag clutch on the wheel shaft: dragged up above its speed, coasting below (3 N*m*s/rad
+    # moved a2 by 0.025 m/s^2 rms: x3)
+    ("od4_wheel_freewheel_flywheel", "outside", 0.0085, 0.02, 0.94,
+     [E("wheel_freewheel_flywheel", {"coefficient_Nms_per_rad": 9.0, "lock_time_s": 0.02, "coast_time_s": 20.0})]),
+    # a viscoelastic jaw insert: a Maxwell branch of twice the contact stiffness relaxing in 10 ms (2000 N*m/rad moved
+    # a2 by 0.024 m/s^2 rms: x3)
+    ("od4_clutch_viscoelastic_insert", "outside", 0.005, 0.04, 0.90,
+     [E("clutch_viscoelastic_insert", {"stiffness_Nm_per_rad": 6000.0, "relaxation_time_s": 0.01})]),
+    # a rail clamp fired for 30 ms when the spring stretches through 0.31 m (it runs 0.28-0.32 m)
+    ("od4_mass_spring_switch_clamp", "outside", 0.0075, 0.025, 0.93,
+     [E("mass_spring_switch_clamp", {"force_N": 10.0, "trigger_extension_m": 0.31, "hold_s": 0.03})]),
+    ("od4_clean_w6.2_eta0.0175_n0.96", "clean", 0.0062, 0.0175, 0.96, []),
+    # a slew-rate limit of 1.5e6 m/s^3 (the jaw's impacts reach ~8e6 m/s^3 on a1)
+    ("od4_a1_isolation_amp_slew", "outside", 0.0055, 0.045, 0.89,
+     [E("a1_isolation_amp_slew", {"slew_rate_m_s3": 1.5e6})]),
+    # a1 held over 0.5 rad of each motor revolution (3.3 ms in 42 ms)
+    ("od4_a1_telemetry_shadow_hold", "outside", 0.009, 0.015, 0.92,
+     [E("a1_telemetry_shadow_hold", {"window_rad": 0.5, "start_rad": 1.0})]),
+    # a speed loop on the carriage, 1 ms scan, 3 ms dead time, v_ref = the clean drive's mean mass speed (same seed)
+    ("od4_mass_servo_assist_sampled", "outside", 0.004, 0.035, 0.95,
+     [E("mass_servo_assist_sampled", {"gain_Ns_per_m": 60.0, "reference_speed_m_s": 22.717, "scan_s": 0.001,
+                                      "latency_scans": 3})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
 OUTSIDE_DEV = _suite(OUTSIDE_DEV_ROWS, 7000, 4.0)
 OUTSIDE_DEV2 = _suite(OUTSIDE_DEV2_ROWS, 7300, 4.0)
 OUTSIDE_DEV3 = _suite(OUTSIDE_DEV3_ROWS, 7800, 4.0)
+OUTSIDE_DEV4 = _suite(OUTSIDE_DEV4_ROWS, 8000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
-          "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3}
+          "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4}
 
 
 def _outside_sealed():
@@ -287,7 +320,13 @@ def _outside_sealed3():
     return _suite(suite_rows(), 7900, 4.0)
 
 
-SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3")
+def _outside_sealed4():
+    """The fourth sealed half's suite, made from foreign_drives.outside_sealed4 on first use (its rows live there)."""
+    from .outside_sealed4 import suite_rows
+    return _suite(suite_rows(), 8100, 4.0)
+
+
+SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4")
 
 
 def suite(name: str) -> list:
@@ -297,6 +336,8 @@ def suite(name: str) -> list:
         return _outside_sealed2()
     if name == "outside_sealed3":
         return _outside_sealed3()
+    if name == "outside_sealed4":
+        return _outside_sealed4()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])

@@ -98,8 +98,8 @@ def main():
     ap.add_argument("--every", type=int, default=1)
     ap.add_argument("--start", type=int, default=0)
     a = ap.parse_args()
-    if a.suite in ("outside_sealed3",):
-        raise SystemExit("never the unspent sealed set 3")
+    if a.suite in ("outside_sealed4",):
+        raise SystemExit("never the unspent sealed set 4")
     from foreign_drives.suites import suite
     specs = suite(a.suite)
     if a.kinds:
