@@ -279,3 +279,40 @@ def test_a_load_brake_that_holds_the_wheel_while_the_load_runs_ahead_is_proposed
     assert gate, prop["law"]
     assert -6.0 < gate[0]["coefficients"][0] < -2.0          # the brake's -4 N*m, of its sign and size
     assert prop["consistent"], prop["reason"]
+
+
+def test_the_library_holds_the_contact_torques_products_outside_the_clutchs_own_balance():
+    """|T_c|·sgn Ω of the own shaft in the motor's and the wheel's balance, T_c in the mass's; never in the clutch's
+    (its terms make T_c); each a valid model variable's expression."""
+    lib = candidate_terms.library()
+    prod = [t for t in lib if "contact_torque_Nm" in t.variables]
+    assert {t.balance for t in prod} == {"motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N"}
+    own = {"motor_load_moment_pu": "omega1", "wheel_torque_Nm": "omega2"}
+    for t in prod:
+        assert t.state == "penetration" and set(t.variables) <= set(MODEL_VARIABLES)
+        if t.balance in own:
+            assert own[t.balance] in t.variables and "fabs(contact_torque_Nm)" in t.expression
+
+
+def test_the_sensor_dynamics_column_is_the_residual_of_an_ac_coupled_channel():
+    """A first-order high-pass (scipy's bilinear Butterworth, not our code) of an accelerometer-like signal: its
+    residual against the flat signal, y - a, is -(1/tau) times the running integral of the recorded y, for corners of
+    0.5 and 3 Hz -- the library's column times its coefficient -(0.1 s / tau) * 10 m/s^2."""
+    from scipy.signal import butter, lfilter
+    fs = 50_000.0
+    t = np.arange(200_000) / fs
+    a = 3.0 * np.sin(2 * np.pi * 4.0 * t) + 2.0 * np.sign(np.sin(2 * np.pi * 4.0 * t + 0.3)) \
+        + 5.0 * np.sin(2 * np.pi * 60.0 * t)
+    a -= a.mean()
+    term = [x for x in candidate_terms.recorded_terms() if x.recorded == ("sensor", "a1", ("integral", "a1"))]
+    assert len(term) == 1
+    for fc in (0.5, 3.0):
+        tau = 1.0 / (2 * np.pi * fc)
+        b, den = butter(1, fc, btype="highpass", fs=fs)
+        pad = np.tile(a[:12_500], 8)                       # the amplifier settled on 2 s of the periodic signal
+        y = lfilter(b, den, np.concatenate([pad, a]))[pad.size:]
+        col = proposal._sensor_shape(term[0], {}, {"a1": y}, len(y), 1.0 / fs)
+        c = -(candidate_terms.INTEGRAL_TIME_SCALE_S / tau) * candidate_terms.CHANNEL_SCALE_M_S2
+        resid = y - a
+        assert np.std(resid) > 0.3                          # the high-pass does something
+        assert np.std(resid - c * col) < 0.05 * np.std(resid)
