@@ -6,8 +6,10 @@ wheel torque [N*m], the mass force [N]. f is dimensionless and of order 1 at the
 by the scale below), so the coefficient carries the balance's unit. The library is not a list of known faults: it is
 the powers and signs of the speeds, the clutch's penetration and its rate (and their product), the spring
 extension's powers, the harmonics of both shafts' angles (integer orders 1 and 2, as sine/cosine pairs that are
-linear in their coefficients: a pair is one group, selected together, reported as amplitude and phase), and the
-electromagnetic torque. Not in it (no model variable carries them to a term): the load pulse and its edges, time
+linear in their coefficients: a pair is one group, selected together, reported as amplitude and phase), the
+electromagnetic torque, and products of the clutch's contact torque (the model variable ``contact_torque_Nm``) with
+a speed's sign in the balances after the clutch's (_contact_torque_products); the recorded terms add a sensor's own
+dynamics (_sensor_dynamics). Not in it (no model variable carries them to a term): the load pulse and its edges, time
 within the record.
 
 The library is written as a plug-in file (the documented ``--effects-file`` form): every term one Effect class with
