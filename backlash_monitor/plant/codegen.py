@@ -116,6 +116,7 @@ def _body(effect_classes, indent: str, prefix: str = "_t_") -> str:
                   "tc = where(engaged, contact_sign * fmax(raw, 0.0), 0.0)"]
     else:
         lines += ["contact_stiffness_Nm_per_rad = 0.0", "contact_damping_Nms_per_rad = 0.0", "tc = 0.0 * delta"]
+    lines.append("contact_torque_Nm = tc")     # the model variable: every balance after the clutch's may name it
     rim = total("rim_mass_force_N")
     lines.append("f = " + (rim if rim else "0.0 * z"))
     lm, tw, fm = total("motor_load_moment_pu"), total("wheel_torque_Nm"), total("mass_force_N")

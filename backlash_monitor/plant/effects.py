@@ -56,7 +56,10 @@ MODEL_VARIABLES = {
     "mass_kg": "m [kg]", "base_torque_Nm": "T_b [N*m]", "base_mechanical_speed_rad_s": "Omega_mb [rad/s]",
     "contact_stiffness_Nm_per_rad": "the clutch's k_c [N*m/rad]",
     "contact_damping_Nms_per_rad": "the clutch's d_c [N*m*s/rad]",
+    "contact_torque_Nm": "T_c, the clutch's contact torque on the wheel [N*m] (signed as Delta; 0 in the gap); "
+                         "not in the clutch_torque_Nm balance, whose terms make it",
 }
+CLUTCH_MADE = ("contact_torque_Nm",)     # variables the clutch balance's own terms make: not arguments of them
 
 
 @dataclass(frozen=True)
@@ -442,6 +445,11 @@ def validate_effect(cls) -> None:
         if cls.balance not in BALANCES:
             raise ValueError(f"effect {name}: a term acts on one of {', '.join(BALANCES)}, not {cls.balance!r}")
         args = term_arguments(cls)
+        made = [a for a in args if a in CLUTCH_MADE and a not in seen]
+        if cls.balance == "clutch_torque_Nm" and made:
+            raise ValueError(f"effect {name}: term argument {made[0]!r} is the clutch torque its own balance makes; "
+                             "allowed in a clutch_torque_Nm term: its parameters and the model variables but "
+                             + ", ".join(CLUTCH_MADE))
         for a in args:
             if a not in seen and a not in MODEL_VARIABLES:
                 near = difflib.get_close_matches(a, list(seen) + list(MODEL_VARIABLES), n=1)

@@ -6,8 +6,10 @@ wheel torque [N*m], the mass force [N]. f is dimensionless and of order 1 at the
 by the scale below), so the coefficient carries the balance's unit. The library is not a list of known faults: it is
 the powers and signs of the speeds, the clutch's penetration and its rate (and their product), the spring
 extension's powers, the harmonics of both shafts' angles (integer orders 1 and 2, as sine/cosine pairs that are
-linear in their coefficients: a pair is one group, selected together, reported as amplitude and phase), and the
-electromagnetic torque. Not in it (no model variable carries them to a term): the load pulse and its edges, time
+linear in their coefficients: a pair is one group, selected together, reported as amplitude and phase), the
+electromagnetic torque, and products of the clutch's contact torque (the model variable ``contact_torque_Nm``) with
+a speed's sign in the balances after the clutch's (_contact_torque_products); the recorded terms add a sensor's own
+dynamics (_sensor_dynamics). Not in it (no model variable carries them to a term): the load pulse and its edges, time
 within the record.
 
 The library is written as a plug-in file (the documented ``--effects-file`` form): every term one Effect class with
@@ -168,13 +170,46 @@ def library() -> tuple[Term, ...]:
     for balance, var in (("motor_load_moment_pu", "w1"), ("wheel_torque_Nm", "omega2"), ("mass_force_N", "xdot")):
         b = SHORT[balance]
         t.append(Term(f"{PREFIX}{b}_const", balance, f"1.0 + 0.0 * {var}", "1", "constant", f"{b}_const", (var,)))
+    t += _contact_torque_products()
     return tuple(t)
+
+
+# ------------------------------------------------------------------ products of the contact torque (issue 31, part 2)
+CONTACT_SIGN_SPEED_RAD_S = 1.0    # sgn(Ω) smoothed over this speed, as the overrun gate's: the drive runs at > 140
+
+
+def _contact_torque_products() -> list:
+    """The clutch's contact torque T_c (the model variable ``contact_torque_Nm``, by T_b: ~0.5-1.75 at the operating
+    point) in the balances after the clutch's -- products of the contact (penetration and its rate, through the
+    contact law) with a speed's sign, where the units allow:
+
+    - the motor's and the wheel's: |T_c|/T_b · sgn(Ω) of the balance's own shaft -- a friction that the transmitted
+      torque presses on (a thrust bearing under the jaw's axial push, a seal or a spline loaded by the torque); its
+      magnitude follows the contact, its sign opposes the own shaft's motion. The other shaft's sign is left out: the
+      drive never reverses within a record, so sgn Ω₁ = sgn Ω₂ and the data cannot tell them apart (they would only
+      add to the selection's multiple tests);
+    - the mass's: T_c/T_b, signed -- the torque's reaction through the frame the mass runs on (a frame that twists
+      under the clutch's torque and pushes the carriage).
+
+    Not in the clutch's own balance (its terms make T_c) nor the rim force's (between wheel and mass, a spring's:
+    no mechanism presses it by the clutch's torque). A small set on purpose: each group costs the selection a test."""
+    tc = "(fabs(contact_torque_Nm) / base_torque_Nm)"
+    out = []
+    for balance, speed, sym in (("motor_load_moment_pu", "omega1", "Ω₁"), ("wheel_torque_Nm", "omega2", "Ω₂")):
+        b = SHORT[balance]
+        out.append(Term(f"{PREFIX}{b}_contact_{speed}_sign", balance,
+                        f"{tc} * smooth_sign({speed}, {CONTACT_SIGN_SPEED_RAD_S!r})", f"|T_c|/T_b·sgn({sym})",
+                        "penetration", f"{b}_contact_{speed}_sign", ("contact_torque_Nm", "base_torque_Nm", speed)))
+    out.append(Term(f"{PREFIX}mass_contact", "mass_force_N", "contact_torque_Nm / base_torque_Nm", "T_c/T_b",
+                    "penetration", "mass_contact", ("contact_torque_Nm", "base_torque_Nm")))
+    return out
 
 
 def recorded_terms() -> tuple[Term, ...]:
     """The terms computed on the recorded events instead of simulated (event_design.py): what a sensor adds to a1 or
     a2 -- harmonics of both shafts' angles (orders 1, 2), the shafts' speeds, a drift with the time in the record, the
-    other channel's signal (crosstalk), the channel's own cube (a compressing sensor) -- and a slow change (linear in the time in the record) of each balance's constant."""
+    other channel's signal (crosstalk), the channel's own cube (a compressing sensor), its own running integral
+    (an AC-coupled sensor's residual) -- and a slow change (linear in the time in the record) of each balance's constant."""
     out: list[Term] = []
     for sig in ("a1", "a2"):
         balance = f"sensor_{sig}_m_s2"
@@ -201,12 +236,37 @@ def recorded_terms() -> tuple[Term, ...]:
         own = "a₁" if sig == "a1" else "a₂"
         out.append(Term(f"{PREFIX}{b}_cubed", balance, f"({sig} / {CUBIC_SCALE_M_S2:g})^3",
                         f"({own}/{CUBIC_SCALE_M_S2:g})³", sig, f"{b}_cubed", (), None, ("sensor", sig, ("cubic", sig))))
+        out += _sensor_dynamics(sig)
     for c in library():
         if c.state == "constant":
             b = SHORT[c.balance]
             out.append(Term(f"{PREFIX}{b}_time", c.balance, RECORD_TIME, RECORD_TIME, "time", f"{b}_time", (), None,
                             ("time", c.name)))
     return tuple(out)
+
+
+# ------------------------------------------------------------------ a sensor's own dynamics (issue 31, part 2)
+INTEGRAL_TIME_SCALE_S = 0.1   # the running integral of a channel by this time [s]: the corner of an AC-coupled sensor
+                              # (piezoelectric charge amplifiers, IEPE couplers: 0.5-5 Hz, tau = 1/(2 pi f_c) = 0.03-0.3 s)
+
+
+def _sensor_dynamics(sig: str) -> list:
+    """A sensor that does not read its acceleration flat: a first-order high-pass (AC coupling) of corner
+    f_c = 1/(2 pi tau) reads y = a - LP_tau(a), and y' = a' - y/tau gives a = y + (1/tau) ∫y dt (+ a constant): the
+    residual it leaves against the model, y - a, is -(1/tau) times the running integral of the RECORDED signal, for any
+    corner, linear in the one coefficient -1/tau (by INTEGRAL_TIME_SCALE_S and CHANNEL_SCALE_M_S2 here). Exact on the
+    recorded signal, where a low-pass of fixed time constants is not: the low-pass acts on what the sensor saw, which
+    the recording does not hold (measured on a 1.5 Hz charge amplifier: a grid of three time constants on the recorded
+    a1 named the right channel, 97 % explained, but outside the noise band -- LP(y) = LP(a) - LP(LP(a)), ~35 % off
+    at the 4 Hz pulse train). The integral's mean and linear trend over the record are removed: the high-pass passes
+    no DC, so a ramp can only come from an offset or a drift of the channel, which other terms hold."""
+    balance = f"sensor_{sig}_m_s2"
+    b = SHORT[balance]
+    own = "a₁" if sig == "a1" else "a₂"
+    return [Term(f"{PREFIX}{b}_integral", balance,
+                 f"∫{sig} dt / ({INTEGRAL_TIME_SCALE_S:g} s · {CHANNEL_SCALE_M_S2:g})",
+                 f"∫{own}dt/({INTEGRAL_TIME_SCALE_S:g}s·{CHANNEL_SCALE_M_S2:g})", sig, f"{b}_integral", (), None,
+                 ("sensor", sig, ("integral", sig)))]
 
 
 def by_name() -> dict:

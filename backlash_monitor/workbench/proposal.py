@@ -259,9 +259,24 @@ def _base_sets(run, up) -> tuple[dict, list]:
     return sets, names
 
 
-def _sensor_shape(term, angles: dict, signals: dict, n: int) -> np.ndarray | None:
+def running_integral(x: np.ndarray, dt_s: float) -> np.ndarray:
+    """∫x dt from sample 0 (trapezoid) [unit of x * s], its mean and linear trend over the record removed
+    (candidate_terms._sensor_dynamics: a high-passed channel has no DC; a ramp is an offset's, not the filter's)."""
+    x = np.asarray(x, dtype=float)
+    y = np.zeros_like(x)
+    y[1:] = np.cumsum(0.5 * (x[1:] + x[:-1])) * float(dt_s)
+    t = np.linspace(-1.0, 1.0, len(x))
+    A = np.column_stack([np.ones_like(t), t])
+    return y - A @ np.linalg.lstsq(A, y, rcond=None)[0]
+
+
+def _sensor_shape(term, angles: dict, signals: dict, n: int, dt_s: float | None = None) -> np.ndarray | None:
     """The whole-record shape a sensor term adds to its signal (per unit coefficient), from the recording's states."""
     kind = term.recorded[2]
+    if kind[0] == "integral":
+        x = signals.get(kind[1])
+        return None if x is None or dt_s is None else running_integral(x, dt_s) / (
+            candidate_terms.INTEGRAL_TIME_SCALE_S * candidate_terms.CHANNEL_SCALE_M_S2)
     if kind[0] == "harmonic":
         _, var, k, fn = kind
         if var not in angles:
@@ -332,7 +347,7 @@ def design(p, run, terms, steps, S, ref) -> Design:
     shapes = {}
     for t in recorded:
         if t.recorded[0] == "sensor":
-            shape = _sensor_shape(t, angles, run.meas.signals, p.n_samples)
+            shape = _sensor_shape(t, angles, run.meas.signals, p.n_samples, p.dt)
             if shape is not None:
                 shapes[t.name] = (t.recorded[1], shape)
     sens = event_design.sensor_columns(p, shapes, p.project, unprojected=True)

@@ -279,3 +279,90 @@ def test_a_load_brake_that_holds_the_wheel_while_the_load_runs_ahead_is_proposed
     assert gate, prop["law"]
     assert -6.0 < gate[0]["coefficients"][0] < -2.0          # the brake's -4 N*m, of its sign and size
     assert prop["consistent"], prop["reason"]
+
+
+def test_the_library_holds_the_contact_torques_products_outside_the_clutchs_own_balance():
+    """|T_c|·sgn Ω of the own shaft in the motor's and the wheel's balance, T_c in the mass's; never in the clutch's
+    (its terms make T_c); each a valid model variable's expression."""
+    lib = candidate_terms.library()
+    prod = [t for t in lib if "contact_torque_Nm" in t.variables]
+    assert {t.balance for t in prod} == {"motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N"}
+    own = {"motor_load_moment_pu": "omega1", "wheel_torque_Nm": "omega2"}
+    for t in prod:
+        assert t.state == "penetration" and set(t.variables) <= set(MODEL_VARIABLES)
+        if t.balance in own:
+            assert own[t.balance] in t.variables and "fabs(contact_torque_Nm)" in t.expression
+
+
+def test_the_sensor_dynamics_column_is_the_residual_of_an_ac_coupled_channel():
+    """A first-order high-pass (scipy's bilinear Butterworth, not our code) of an accelerometer-like signal: its
+    residual against the flat signal, y - a, is -(1/tau) times the running integral of the recorded y, for corners of
+    0.5 and 3 Hz -- the library's column times its coefficient -(0.1 s / tau) * 10 m/s^2."""
+    from scipy.signal import butter, lfilter
+    fs = 50_000.0
+    t = np.arange(200_000) / fs
+    a = 3.0 * np.sin(2 * np.pi * 4.0 * t) + 2.0 * np.sign(np.sin(2 * np.pi * 4.0 * t + 0.3)) \
+        + 5.0 * np.sin(2 * np.pi * 60.0 * t)
+    a -= a.mean()
+    term = [x for x in candidate_terms.recorded_terms() if x.recorded == ("sensor", "a1", ("integral", "a1"))]
+    assert len(term) == 1
+    for fc in (0.5, 3.0):
+        tau = 1.0 / (2 * np.pi * fc)
+        b, den = butter(1, fc, btype="highpass", fs=fs)
+        pad = np.tile(a[:12_500], 8)                       # the amplifier settled on 2 s of the periodic signal
+        y = lfilter(b, den, np.concatenate([pad, a]))[pad.size:]
+        col = proposal._sensor_shape(term[0], {}, {"a1": y}, len(y), 1.0 / fs)
+        c = -(candidate_terms.INTEGRAL_TIME_SCALE_S / tau) * candidate_terms.CHANNEL_SCALE_M_S2
+        resid = y - a
+        assert np.std(resid) > 0.3                          # the high-pass does something
+        assert np.std(resid - c * col) < 0.05 * np.std(resid)
+
+
+def _spent_sealed3(label):
+    """A row of the third sealed set, run once and SPENT (development data since; foreign_drives, not our simulator),
+    diagnosed at its drive's nominal values."""
+    from foreign_drives.drive import make_recording
+    from foreign_drives.suites import suite
+
+    from backlash_monitor.workbench.diagnose import diagnose
+    from backlash_monitor.workbench.measurement import Measurement
+    from backlash_monitor.workbench.model import load_model
+    spec = next(s for s in suite("outside_sealed3") if s.label == label)
+    rec = make_recording(spec)
+    meas = Measurement(f"foreign:{label}", rec.sample_period_s, {k: np.asarray(v) for k, v in rec.signals.items()})
+    return spec, diagnose(meas, load_model(None, width_m=spec.width_m, eta_k=spec.eta_k, n1=spec.n1)).to_json()
+
+
+@pytest.mark.heavy      # make test-all (CI time); ~3 min CPU
+@pytest.mark.slow
+def test_a_thrust_bearing_pressed_by_the_contact_torque_is_proposed_as_its_product_in_the_motor_balance():
+    """foreign_drives' thrust-bearing drag (motor load += 0.12*|T_c|*sign(Omega1) [N*m], T_c the jaw's contact torque):
+    the proposal names |T_c|/T_b*sgn(Omega1) in the motor's balance, of the bearing's sign and size (0.12 in p.u. of
+    T_b), and the model with it is consistent. (Before the contact torque was a model variable: +0.079 p.u. *
+    sgn(Omega1), the wrong state, inconsistent.)"""
+    spec, d = _spent_sealed3("os3_motor_thrust_bearing_drag")
+    assert [(e.form, e.parameters["coefficient"]) for e in spec.effects] == [("motor_thrust_bearing_drag", 0.12)]
+    prop = d["proposal"]
+    assert prop and prop["proposed"], d["message"]
+    prod = [t for t in prop["terms"] if t["group"] == "motor_contact_omega1_sign"]
+    assert prod, prop["law"]
+    assert 0.08 < prod[0]["coefficients"][0] < 0.16                # 0.12, within a third
+    assert prop["consistent"], prop["reason"]
+
+
+@pytest.mark.heavy      # make test-all (CI time); ~3 min CPU
+@pytest.mark.slow
+def test_an_ac_coupled_accelerometer_is_proposed_as_its_channels_own_integral():
+    """foreign_drives' charge amplifier on a1 (a first-order high-pass, 1.5 Hz, bilinear): the proposal names a1's
+    running integral, its coefficient giving the corner (f_c = -c / (2 pi * 0.1 s * 10 m/s^2)) within 1-2 Hz, the
+    model with it consistent. (Before: a1 += c*(Omega1 - mean), inconsistent.)"""
+    spec, d = _spent_sealed3("os3_a1_charge_amplifier_highpass")
+    assert [(e.form, e.parameters["corner_hz"]) for e in spec.effects] == [("a1_charge_amplifier_highpass", 1.5)]
+    prop = d["proposal"]
+    assert prop and prop["proposed"], d["message"]
+    term = [t for t in prop["terms"] if t["group"] == "a1_integral"]
+    assert term, prop["law"]
+    fc = -term[0]["coefficients"][0] / (2 * np.pi * candidate_terms.INTEGRAL_TIME_SCALE_S
+                                        * candidate_terms.CHANNEL_SCALE_M_S2)
+    assert 1.0 < fc < 2.0, fc
+    assert prop["consistent"], prop["reason"]
