@@ -29,14 +29,17 @@ def test_the_library_is_generic_and_covers_every_balance_and_both_shafts_angles(
     assert {t.balance for t in gates} == {"motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N"}
     # a harmonic's sine and cosine are one group: selected together, linear in their coefficients; so are the decays
     # after one edge of the load pulse in one balance; every other group is one term
-    edges = {g for g, names in candidate_terms.groups().items() if candidate_terms.by_name()[names[0]].state
-             == "load pulse" and len(names) > 1}
-    for g, names in candidate_terms.groups().items():
-        kinds = {candidate_terms.by_name()[n].harmonic is not None for n in names}
+    # (the edges' groups: written, not in the default library, candidate_terms.EDGES_IN_LIBRARY)
+    with_edges = candidate_terms.library(edges=True)
+    by = {t.name: t for t in with_edges}
+    edges = {g for g, names in candidate_terms.groups(with_edges).items() if by[names[0]].state == "load pulse"
+             and len(names) > 1}
+    for g, names in candidate_terms.groups(with_edges).items():
+        kinds = {by[n].harmonic is not None for n in names}
         assert len(kinds) == 1
         assert len(names) == (2 if kinds.pop() else len(candidate_terms.EDGE_DECAYS_S) if g in edges else 1)
     # the responses after both edges of the load pulse, in the motor, wheel and mass balances, on the pulse clock
-    assert {(t.balance, t.variables) for t in lib if t.group in edges} == {
+    assert {(t.balance, t.variables) for t in with_edges if t.group in edges} == {
         (b, (v,)) for b in ("motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N")
         for v in ("pulse_time_s", "pulse_off_time_s")}
     for t in lib:
@@ -139,7 +142,7 @@ def test_a_response_after_the_pulses_falling_edge_is_written_as_a_plugin_that_ru
     from backlash_monitor.plant.disturbances import pulse_load_pu
     from backlash_monitor.plant.scenarios import Scenario
     from backlash_monitor.plant.simulate import PlantSimulator
-    fall = [t for t in candidate_terms.library() if t.group == "motor_fall"]
+    fall = [t for t in candidate_terms.edge_terms("motor_load_moment_pu") if t.group == "motor_fall"]
     assert [t.variables for t in fall] == [("pulse_off_time_s",)] * len(candidate_terms.EDGE_DECAYS_S)
     coef = (0.05, -0.03)
     piece = candidate_terms.ProposedPiece(tuple(fall), coef, (0.01, 0.01))
@@ -332,3 +335,4 @@ def test_a_load_brake_that_holds_the_wheel_while_the_load_runs_ahead_is_proposed
     assert gate, prop["law"]
     assert -6.0 < gate[0]["coefficients"][0] < -2.0          # the brake's -4 N*m, of its sign and size
     assert prop["consistent"], prop["reason"]
+
