@@ -42,7 +42,7 @@ from backlash_monitor.plant.mathlib import NUMPY_NAMESPACE
 import backlash_monitor.plant.mathlib as mathlib
 BASE_ROWS = ("beta", "wheel_inertia_kgm2", "mass_kg",   # per-scenario model values every kernel reads (the motor's
              "rotor_resistance_pu", "supply_voltage_scale")  # two that drift with temperature and the grid among them)
-GENERATOR_VERSION = "8"
+GENERATOR_VERSION = "9"
 
 
 def global_vector(cfg) -> np.ndarray:
@@ -65,8 +65,9 @@ def param_rows(effect_classes) -> tuple:
 
 
 def _body(effect_classes, indent: str, prefix: str = "_t_") -> str:
-    """The right-hand side as straight-line code; reads the state names, ua, ub, load_pu, mode, the g_*
-    globals and the P rows bound to their local names; defines d0..d10, te, tc, f."""
+    """The right-hand side as straight-line code; reads the state names, ua, ub, load_pu, the pulse clock
+    (pulse_time_s, pulse_off_time_s: held over the step like load_pu), mode, the g_* globals and the P rows bound to
+    their local names; defines d0..d10, te, tc, f."""
     by_balance = {b: [c for c in effect_classes if c.balance == b] for b in _effects.BALANCES}
     names = {c.name for c in effect_classes}
     clutch = "backlash_clutch" in names
@@ -143,10 +144,11 @@ def _globals(indent: str) -> str:
 
 _KERNEL_TEMPLATE = '''
 @numba.njit(**_TJIT)
-def stage(WS, ry, rk, ua, ub, G, nl):
+def stage(WS, ry, rk, ua, ub, pulse_time_s, pulse_off_time_s, G, nl):
     """One RK4 stage for the nl scenarios of a tile (nl a multiple of W): K = f(Y) with Y the N_STATES rows of
     the workspace from row ``ry``, K those from row ``rk``, T_c into row R_TC; inlined where it is called, so
-    the rows are constants and every access is the workspace's base plus a constant plus s. The inner loop
+    the rows are constants and every access is the workspace's base plus a constant plus s (the pulse clock, like
+    ua and ub, is one value of the step for every scenario: the pulse train is the config's). The inner loop
     over one block of W scenarios becomes one vector per operation (no run-time alias check, no scalar
     remainder); the outer loop runs the nl / W blocks (docs/effects.md, "Backends": the tiles)."""
 {globals}
@@ -165,7 +167,7 @@ def stage(WS, ry, rk, ua, ub, G, nl):
 
 
 @numba.njit(**_JIT)
-def f_scalar(y, ua, ub, load_pu, ps, G, mode, out):
+def f_scalar(y, ua, ub, load_pu, pulse_time_s, pulse_off_time_s, ps, G, mode, out):
     """The right-hand side of one scenario (ps: its column of P); writes out, returns T_c.
     mode: 0 = the zone test decides, 1 = in contact, 2 = in the zone (forced, at a located crossing)."""
 {globals_1}
@@ -177,7 +179,7 @@ def f_scalar(y, ua, ub, load_pu, ps, G, mode, out):
 
 
 @numba.njit(**_JIT)
-def f_tuple(y0, y1, y2, y3, y4, y5, y6, y7, y8, y9, y10, ua, ub, load_pu, ps, G, mode):
+def f_tuple(y0, y1, y2, y3, y4, y5, y6, y7, y8, y9, y10, ua, ub, load_pu, pulse_time_s, pulse_off_time_s, ps, G, mode):
     """The right-hand side on named scalars (the numba-scalar loop keeps its state in registers)."""
 {globals_1}
 {binds_tuple}
@@ -187,31 +189,31 @@ def f_tuple(y0, y1, y2, y3, y4, y5, y6, y7, y8, y9, y10, ua, ub, load_pu, ps, G,
 
 _LOOPS = '''
 @numba.njit(**_JIT)
-def _derivs_at(y, tau, phase, u_amp, ld, ps, G, mode, out):
+def _derivs_at(y, tau, phase, u_amp, ld, pt, po, ps, G, mode, out):
     ph = phase + G[6] * tau
-    return f_scalar(y, u_amp * math.cos(ph), u_amp * math.sin(ph), ld, ps, G, mode, out)
+    return f_scalar(y, u_amp * math.cos(ph), u_amp * math.sin(ph), ld, pt, po, ps, G, mode, out)
 
 
 @numba.njit(**_JIT)
-def _rk4_substep(y, hs, tau0, phase, u_amp, ld, ps, G, mode):
+def _rk4_substep(y, hs, tau0, phase, u_amp, ld, pt, po, ps, G, mode):
     k1 = np.empty(N_STATES); k2 = np.empty(N_STATES); k3 = np.empty(N_STATES); k4 = np.empty(N_STATES)
     tmp = np.empty(N_STATES)
-    _derivs_at(y, tau0, phase, u_amp, ld, ps, G, mode, k1)
+    _derivs_at(y, tau0, phase, u_amp, ld, pt, po, ps, G, mode, k1)
     for i in range(N_STATES):
         tmp[i] = y[i] + 0.5 * hs * k1[i]
-    _derivs_at(tmp, tau0 + 0.5 * hs, phase, u_amp, ld, ps, G, mode, k2)
+    _derivs_at(tmp, tau0 + 0.5 * hs, phase, u_amp, ld, pt, po, ps, G, mode, k2)
     for i in range(N_STATES):
         tmp[i] = y[i] + 0.5 * hs * k2[i]
-    _derivs_at(tmp, tau0 + 0.5 * hs, phase, u_amp, ld, ps, G, mode, k3)
+    _derivs_at(tmp, tau0 + 0.5 * hs, phase, u_amp, ld, pt, po, ps, G, mode, k3)
     for i in range(N_STATES):
         tmp[i] = y[i] + hs * k3[i]
-    _derivs_at(tmp, tau0 + hs, phase, u_amp, ld, ps, G, mode, k4)
+    _derivs_at(tmp, tau0 + hs, phase, u_amp, ld, pt, po, ps, G, mode, k4)
     for i in range(N_STATES):
         y[i] += hs / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
 
 
 @numba.njit(**_JIT)
-def crossing_step(y0, y1, h, phase, u_amp, ld, ps, G):
+def crossing_step(y0, y1, h, phase, u_amp, ld, pt, po, ps, G):
     """Redo a step in which Delta crossed |Delta| = beta: locate the crossing on the cubic Hermite
     interpolant of Delta, RK4 to it with the start side's law and on with the other side's (docs/model.md).
     Returns the crossing's fraction of the step."""
@@ -242,14 +244,14 @@ def crossing_step(y0, y1, h, phase, u_amp, ld, ps, G):
     for i in range(N_STATES):
         y1[i] = y0[i]
     if th > 0.0:
-        _rk4_substep(y1, th * h, 0.0, phase, u_amp, ld, ps, G, mode0)
+        _rk4_substep(y1, th * h, 0.0, phase, u_amp, ld, pt, po, ps, G, mode0)
     if th < 1.0:
-        _rk4_substep(y1, (1.0 - th) * h, th * h, phase, u_amp, ld, ps, G, mode1)
+        _rk4_substep(y1, (1.0 - th) * h, th * h, phase, u_amp, ld, pt, po, ps, G, mode1)
     return th
 
 
 @numba.njit(**_JIT)
-def rk4_simd(x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states, record_outputs, sel):
+def rk4_simd(x, load, clock, ua, ub, phase, u_amp, P, G, h, out, states, record_states, record_outputs, sel):
     """Scenarios in tiles of nl = up to WR (a multiple of W, a run-time count), samples inner per tile; each
     tile's state, stages, parameters and load in one workspace whose rows are WR apart. The loops over a
     tile's scenarios run to the run-time nl: LLVM keeps them loops of whole vectors (loops of a constant 8
@@ -288,7 +290,7 @@ def rk4_simd(x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states,
                 # the right-hand side at the trial state T, into K; the stage's weight into the sum A; the
                 # next trial state. One inlined stage in a loop (not four): a quarter of the compile time
                 c = (st + 1) // 2
-                stage(WS, R_T, R_K, ua[k, c], ub[k, c], G, nl)
+                stage(WS, R_T, R_K, ua[k, c], ub[k, c], clock[k, 0], clock[k, 1], G, nl)
                 if st == 0 and record_outputs:
                     b = k % OUT_BLOCK
                     for j in range(nsel):
@@ -317,7 +319,7 @@ def rk4_simd(x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states,
                             y0[i] = WS[(R_Y + i) * WR + s]; y1[i] = WS[(R_T + i) * WR + s]
                         for j in range(N_PARAMS):
                             ps[j] = WS[(R_P + j) * WR + s]
-                        crossing_step(y0, y1, h, phase[k], u_amp, WS[R_LD * WR + s], ps, G)
+                        crossing_step(y0, y1, h, phase[k], u_amp, WS[R_LD * WR + s], clock[k, 0], clock[k, 1], ps, G)
                         for i in range(N_STATES):
                             WS[(R_T + i) * WR + s] = y1[i]
             for i in range(N_STATES):
@@ -401,11 +403,11 @@ def _scalar_loop() -> str:
     def stage(tag, src, coef, col):
         args = ", ".join(f"y{i} + {coef} * {src}{i}" for i in range(N)) if src else ys
         outs = ", ".join(f"{tag}{i}" for i in range(N))
-        return f"            {outs}, tc = f_tuple({args}, ua[k, {col}], ub[k, {col}], ld, ps, G, 0)"
+        return f"            {outs}, tc = f_tuple({args}, ua[k, {col}], ub[k, {col}], ld, pt, po, ps, G, 0)"
 
     lines = [
         "@numba.njit(**_JIT)",
-        "def rk4_scalar(x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states):",
+        "def rk4_scalar(x, load, clock, ua, ub, phase, u_amp, P, G, h, out, states, record_states):",
         '    """Scenarios outer, samples inner (the numba-scalar backend)."""',
         "    n_scen = x.shape[0]", "    n = load.shape[1]", _globals("    "),
         "    hh = 0.5 * h", "    h6 = h / 6.0",
@@ -415,7 +417,7 @@ def _scalar_loop() -> str:
         "        for j in range(P.shape[0]):", "            ps[j] = P[j, s]",
         "        bs = ps[0]",
         "        for k in range(n):",
-        "            ld = load[s, k]",
+        "            ld = load[s, k]; pt = clock[k, 0]; po = clock[k, 1]",
         "            if record_states:",
         "                " + "; ".join(f"states[{i}, s, k] = y{i}" for i in range(N)),
         stage("a", None, None, 0),
@@ -425,7 +427,7 @@ def _scalar_loop() -> str:
         "            " + "; ".join(f"n{i} = y{i} + h6 * (a{i} + 2.0 * b{i} + 2.0 * c{i} + e{i})" for i in range(N)),
         "            if CLUTCH and ((abs(y5) < bs) != (abs(n5) < bs)):",
         "                " + "; ".join(f"y0a[{i}] = y{i}; y1a[{i}] = n{i}" for i in range(N)),
-        "                crossing_step(y0a, y1a, h, phase[k], u_amp, ld, ps, G)",
+        "                crossing_step(y0a, y1a, h, phase[k], u_amp, ld, pt, po, ps, G)",
         "                " + "; ".join(f"n{i} = y1a[{i}]" for i in range(N)),
         "            " + "; ".join(f"y{i} = n{i}" for i in range(N)),
         "        " + "; ".join(f"x[s, {i}] = y{i}" for i in range(N)),
@@ -453,10 +455,10 @@ def generate_source(effect_classes) -> str:
 
 
 def generate_numpy(effect_classes):
-    """The right-hand side on arrays (numpy backend, solve_ivp reference): f(y_list, ua, ub, load_pu, P, G,
-    mode) -> (11 derivatives, (te, tc, f)); the same block, run in mathlib's numpy namespace."""
+    """The right-hand side on arrays (numpy backend, solve_ivp reference): f(y_list, ua, ub, load_pu, pulse_time_s,
+    pulse_off_time_s, P, G, mode) -> (11 derivatives, (te, tc, f)); the same block, run in mathlib's numpy namespace."""
     terms = "\n\n".join(_effects.term_source(c) for c in effect_classes)
-    src = (terms + "\n\n\ndef rhs(y, ua, ub, load_pu, P, G, mode=0):\n" + _globals("    ") + "\n"
+    src = (terms + "\n\n\ndef rhs(y, ua, ub, load_pu, pulse_time_s, pulse_off_time_s, P, G, mode=0):\n" + _globals("    ") + "\n"
            + _binds(effect_classes, "y[{i}]", "P[{i}]", "    ") + "\n" + _body(effect_classes, "    ") + "\n"
            + "    return (d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10), (te, tc, f)\n")
     ns = dict(NUMPY_NAMESPACE)

@@ -28,6 +28,35 @@ def pulse_load_pu(first_sample: int, n_samples: int, cfg) -> np.ndarray:
     return np.where(on, pl.amplitude_pu, 0.0)
 
 
+NO_PULSE_S = 1.0e6   # the pulse clock without a load pulse [s]: "never", so every exp(-t/tau) response to an edge is 0
+
+
+def pulse_clock_s(first_sample: int, n_samples: int, cfg) -> np.ndarray:
+    """The pulse clock of samples first_sample .. first_sample+n-1, held over each step like the load: (n, 2), column 0
+    the time since the latest load pulse began (its rising edge) [s], column 1 the time since it ended (its falling
+    edge, ``duration_s`` after the rise) [s]; both in [0, period_s). The model variables ``pulse_time_s`` and
+    ``pulse_off_time_s`` (plant/effects.py MODEL_VARIABLES).
+
+    The same train as :func:`pulse_load_pu`: the rises at k0 + j*P for every integer j (before k0 the train extended
+    periodically backwards, as in the run-in), so a term of these lines up with the model's pulses and, through the
+    recovered ``pulse_load.first_s`` (workbench/analysis.recover_conditions), with the recording's. One exception the
+    load has and the clock does not: a pulse that the settled start cuts at sample 0 (its rise before 0 and its end
+    after) ends at sample 0 in the load but at rise + duration on the clock (the workbench starts its model runs
+    before such a pulse: plant_adapter.pulse_lead_samples). With the pulse load switched off both are NO_PULSE_S."""
+    if not cfg.effects.pulse_load:
+        return np.full((n_samples, 2), NO_PULSE_S)
+    fs = cfg.simulation.sample_rate_hz
+    pl = cfg.pulse_load
+    k0 = int(round(pl.first_s * fs))
+    period = int(round(pl.period_s * fs))
+    duration = int(round(pl.duration_s * fs))
+    k = np.arange(first_sample, first_sample + n_samples, dtype=np.int64)
+    out = np.empty((n_samples, 2))
+    out[:, 0] = np.mod(k - k0, period) / fs
+    out[:, 1] = np.mod(k - k0 - duration, period) / fs
+    return out
+
+
 class HeldSequence:
     """A random sequence whose values are held for ``hold_samples`` samples each.
 

@@ -50,6 +50,10 @@ MODEL_VARIABLES = {
     "v": "rim-mass relative speed r*Omega2 - xdot [m/s]", "rel_speed": "Omega1 - Omega2 [rad/s]",
     "te": "electromagnetic torque [p.u.]",
     "load_moment_pu": "the motor's load moment input [p.u.]: the load pulses (the press strokes) and any constant load",
+    "pulse_time_s": "the time since the latest load pulse began, its rising edge [s] (0 <= t < the pulse period; held "
+                    "over each sample step like load_moment_pu; the recording's pulse train in the workbench)",
+    "pulse_off_time_s": "the time since the latest load pulse ended, its falling edge [s] (0 <= t < the pulse period; "
+                        "held like pulse_time_s)",
     "penetration": "|Delta| - beta [rad] (>= 0 in contact)",
     "approach_speed": "sign(Delta)*(Omega1 - Omega2) [rad/s] (> 0: contact closing)",
     "beta": "half gap width/r [rad]", "wheel_radius_m": "r [m]", "wheel_inertia_kgm2": "J2 [kg*m^2]",

@@ -8,7 +8,7 @@ Three backends, same scheme, all generated from the enabled effects' terms (:mod
   ``rk4_scalar``/``f_tuple``, terms with libm exp/log/sin; ``f_scalar`` for the zone-crossing step);
 - ``numpy``: the step vectorised over the scenarios with numpy calls (the same block on arrays).
 
-Per step k (state x_k at t_k = k*h, held load L_k, supply u evaluated at t_k, t_k+h/2, t_k+h):
+Per step k (state x_k at t_k = k*h, held load L_k and pulse clock c_k, supply u evaluated at t_k, t_k+h/2, t_k+h):
     k1 = f(x_k, u(t_k)), k2 = f(x_k + h/2 k1, u(t_k+h/2)), k3 = f(x_k + h/2 k2, u(t_k+h/2)),
     k4 = f(x_k + h k3, u(t_k+h)),  x_{k+1} = x_k + h/6 (k1 + 2 k2 + 2 k3 + k4).
 The recorded sample k holds x_k and the exact derivatives k1; the outputs (a1 = r*Omega_mb*dw1/dt,
@@ -25,6 +25,7 @@ import contextlib
 import numpy as np
 
 from . import codegen
+from .disturbances import NO_PULSE_S
 from ._numba import HAVE_NUMBA
 from .state import N_STATES, STATE_NAMES  # noqa: F401 (re-exported: the layout beside the S_* indices)
 
@@ -34,7 +35,7 @@ S_PSA, S_PSB, S_PRA, S_PRB, S_W1, S_DELTA, S_ALPHA1, S_ALPHA2, S_OMEGA2, S_Z, S_
 from .outputs import N_OUTPUTS, OUTPUT_NAMES, numpy_outputs  # noqa: E402, F401 (OUTPUT_NAMES re-exported)
 
 
-def _rk4_numpy(kernel, x, load, ua, ub, phase, u_amp, P, G, h, out, states, record_states):
+def _rk4_numpy(kernel, x, load, clock, ua, ub, phase, u_amp, P, G, h, out, states, record_states):
     """Same scheme, vectorised over the scenarios with numpy calls (the state is advanced in place)."""
     n = load.shape[1]
     rhs = kernel.rhs_numpy
@@ -43,22 +44,23 @@ def _rk4_numpy(kernel, x, load, ua, ub, phase, u_amp, P, G, h, out, states, reco
     beta = P[0]
     for k in range(n):
         ld = load[:, k]
+        pt, po = clock[k, 0], clock[k, 1]
         if record_states:
             for i in range(N_STATES):
                 states[i, :, k] = y[i]
-        f1, aux = rhs(y, ua[k, 0], ub[k, 0], ld, P, G)
+        f1, aux = rhs(y, ua[k, 0], ub[k, 0], ld, pt, po, P, G)
         for j, v in enumerate(numpy_outputs(y, f1, aux[1], G)):
             out[j, :, k] = v
-        f2, _ = rhs([y[i] + 0.5 * h * f1[i] for i in range(N_STATES)], ua[k, 1], ub[k, 1], ld, P, G)
-        f3, _ = rhs([y[i] + 0.5 * h * f2[i] for i in range(N_STATES)], ua[k, 1], ub[k, 1], ld, P, G)
-        f4, _ = rhs([y[i] + h * f3[i] for i in range(N_STATES)], ua[k, 2], ub[k, 2], ld, P, G)
+        f2, _ = rhs([y[i] + 0.5 * h * f1[i] for i in range(N_STATES)], ua[k, 1], ub[k, 1], ld, pt, po, P, G)
+        f3, _ = rhs([y[i] + 0.5 * h * f2[i] for i in range(N_STATES)], ua[k, 1], ub[k, 1], ld, pt, po, P, G)
+        f4, _ = rhs([y[i] + h * f3[i] for i in range(N_STATES)], ua[k, 2], ub[k, 2], ld, pt, po, P, G)
         y_new = [y[i] + (h / 6.0) * (f1[i] + 2.0 * f2[i] + 2.0 * f3[i] + f4[i]) for i in range(N_STATES)]
         if clutch:
             crossed = np.flatnonzero((np.abs(y[S_DELTA]) < beta) != (np.abs(y_new[S_DELTA]) < beta))
             for s in crossed:   # rare: the same located crossing step as the compiled kernel
                 y0 = np.array([y[i][s] for i in range(N_STATES)])
                 y1 = np.array([y_new[i][s] for i in range(N_STATES)])
-                kernel.module.crossing_step(y0, y1, h, phase[k], u_amp, float(ld[s]),
+                kernel.module.crossing_step(y0, y1, h, phase[k], u_amp, float(ld[s]), float(pt), float(po),
                                             np.ascontiguousarray(P[:, s]), G)
                 for i in range(N_STATES):
                     y_new[i][s] = y1[i]
@@ -87,9 +89,9 @@ def _first_call_compiles(kernel, x, common, out, states, record_states, record_o
     """This process's first call of the kernel, on one scenario and one sample of the same types (dimensions, dtype,
     layout) as the real call, under codegen.compile_lock: it compiles the kernel, or loads what another process
     compiled meanwhile, and leaves the real arrays untouched."""
-    load, ua, ub, phase, u_amp, P, G, h = common
+    load, clock, ua, ub, phase, u_amp, P, G, h = common
     n = min(1, load.shape[1])
-    tiny = (np.array(x[:1]), np.ascontiguousarray(load[:1, :n]), np.ascontiguousarray(ua[:n]),
+    tiny = (np.array(x[:1]), np.ascontiguousarray(load[:1, :n]), np.ascontiguousarray(clock[:n]), np.ascontiguousarray(ua[:n]),
             np.ascontiguousarray(ub[:n]), np.ascontiguousarray(phase[:n]), u_amp, np.ascontiguousarray(P[:, :1]), G, h)
     out1 = np.empty((out.shape[0], 1, n)) if out.shape[1] else np.empty(out.shape)
     states1 = np.empty((states.shape[0], 1, n)) if states.shape[1] else np.empty(states.shape)
@@ -113,21 +115,31 @@ def resolve_backend(name: str) -> str:
 
 
 def rk4_advance(backend, kernel, x, load, ua, ub, phase, u_amp, P, G, h, record_states=False,
-                record_outputs=True, outputs=None):
+                record_outputs=True, outputs=None, pulse_clock=None):
     """Advance ``x`` (n_scen, N_STATES) in place by ``load.shape[1]`` steps with the backends of ``kernel``
     (:func:`codegen.kernel_for`); ``P``: (len(kernel.param_rows), n_scen) per-scenario parameters, ``G``:
     global motor constants. Return (outputs (n_out, n_scen, n) or None when ``record_outputs`` is false
     (numba backend only), states (N_STATES, n_scen, n) or None).
 
     ``outputs``: indices into OUTPUT_NAMES of the outputs to record, in that order (None: all N_OUTPUTS);
-    the numba kernel writes only those, the other backends compute all and return the selected rows."""
+    the numba kernel writes only those, the other backends compute all and return the selected rows.
+
+    ``pulse_clock``: (n, 2) the held pulse clock of each step [s] (disturbances.pulse_clock_s: the time since the
+    latest load pulse began, since it ended; the model variables pulse_time_s, pulse_off_time_s), one for every
+    scenario; None: no load pulse (both NO_PULSE_S, so every response to an edge is 0)."""
     n_scen, n = load.shape
     sel = np.arange(N_OUTPUTS, dtype=np.int64) if outputs is None else np.asarray(outputs, dtype=np.int64)
     if sel.ndim != 1 or np.any((sel < 0) | (sel >= N_OUTPUTS)):
         raise ValueError(f"rk4_advance: outputs = {outputs!r}; allowed: indices 0..{N_OUTPUTS - 1} into OUTPUT_NAMES")
     P = np.ascontiguousarray(P, dtype=np.float64)
     G = np.ascontiguousarray(G, dtype=np.float64)
-    common = (np.ascontiguousarray(load), np.ascontiguousarray(ua), np.ascontiguousarray(ub),
+    if pulse_clock is None:
+        pulse_clock = np.full((n, 2), NO_PULSE_S)
+    pulse_clock = np.ascontiguousarray(pulse_clock, dtype=np.float64)
+    if pulse_clock.shape != (n, 2):
+        raise ValueError(f"rk4_advance: pulse_clock has shape {pulse_clock.shape}; allowed: ({n}, 2), the held "
+                         "(time since the pulse began, since it ended) of each step")
+    common = (np.ascontiguousarray(load), pulse_clock, np.ascontiguousarray(ua), np.ascontiguousarray(ub),
               np.ascontiguousarray(phase, dtype=np.float64), float(u_amp), P, G, float(h))
     if backend == "numba":
         out = np.empty((sel.size, n_scen, n)) if record_outputs else np.empty((sel.size, 0, 0))

@@ -11,6 +11,7 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from .disturbances import pulse_clock_s
 from .drivetrain import N_STATES
 from .outputs import OUTPUT_NAMES, numpy_outputs
 
@@ -39,10 +40,12 @@ def reference_run(sim, index: int, load_pu: np.ndarray, method: str = "DOP853", 
     n = len(load_pu)
     x = (sim.state[index] if state0 is None else state0).astype(np.float64).copy()
     t0 = first_sample_index * h
+    clock = pulse_clock_s(first_sample_index, n, cfg)     # held over each sample step, as in the simulator
 
     def rhs(t, y, ld):
         ph = omega_b * t
-        der, _ = rhs_np(list(y), u_amp * math.cos(ph), u_amp * math.sin(ph), ld, P, G)
+        c = clock[min(max(int((t - t0) / h), 0), n - 1)]
+        der, _ = rhs_np(list(y), u_amp * math.cos(ph), u_amp * math.sin(ph), ld, c[0], c[1], P, G)
         der = np.array(der, dtype=np.float64)
         if extra is not None:
             der = der + extra(t, y, der)
@@ -66,7 +69,8 @@ def reference_run(sim, index: int, load_pu: np.ndarray, method: str = "DOP853", 
     k = first_sample_index + np.arange(n)
     ph = omega_b * k * h
     Pn = np.repeat(P[:, None], n, axis=1)
-    der, aux = rhs_np([states[:, i] for i in range(N_STATES)], u_amp * np.cos(ph), u_amp * np.sin(ph), load_pu, Pn, G)
+    der, aux = rhs_np([states[:, i] for i in range(N_STATES)], u_amp * np.cos(ph), u_amp * np.sin(ph), load_pu,
+                      clock[:, 0], clock[:, 1], Pn, G)
     der = [np.broadcast_to(d, (n,)) for d in der]
     if extra is not None:
         corr = np.array([extra(float(t0 + k_ * h), states[k_], None) for k_ in range(n)])

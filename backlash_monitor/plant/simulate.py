@@ -8,7 +8,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from .config import PlantConfig, load_plant_config
-from .disturbances import MotorLoadInput, motor_load_batch, pulse_load_pu
+from .disturbances import MotorLoadInput, motor_load_batch, pulse_clock_s, pulse_load_pu
 from .drivetrain import absorber_coefficient
 from .codegen import global_vector, kernel_for
 from .state import STATE_NAMES
@@ -277,7 +277,7 @@ class PlantSimulator:
             pulse = self._pulse(k0, m)
             load = motor_load_batch(run_in_inputs, k0 + n, m, self.noise, pulse=pulse, constants=self._constants)
             rk4_advance(self.backend, self.kernel, self.state, load, ua, ub, phase, cfg.motor.supply_voltage_pu,
-                        self.P, self.G, self.sample_period_s, record_outputs=False)
+                        self.P, self.G, self.sample_period_s, record_outputs=False, pulse_clock=pulse_clock_s(k0, m, cfg))
 
     def _pulse(self, k0: int, n: int):
         pulse = pulse_load_pu(k0, n, self.config)
@@ -311,7 +311,8 @@ class PlantSimulator:
         ua, ub, phase = self._supply(k0, n)
         out, states = rk4_advance(self.backend, self.kernel, self.state, load, ua, ub, phase,
                                   self.config.motor.supply_voltage_pu, self.P, self.G, self.sample_period_s,
-                                  self.record_states, outputs=self._output_index)
+                                  self.record_states, outputs=self._output_index,
+                                  pulse_clock=pulse_clock_s(k0, n, self.config))
         sig = dict.fromkeys(OUTPUT_NAMES)
         sig.update(zip(self.outputs, out))
         self.sensor_stage(sig)

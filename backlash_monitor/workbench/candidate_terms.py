@@ -7,10 +7,11 @@ by the scale below), so the coefficient carries the balance's unit. The library 
 the powers and signs of the speeds, the clutch's penetration and its rate (and their product), the spring
 extension's powers, the harmonics of both shafts' angles (integer orders 1 and 2, as sine/cosine pairs that are
 linear in their coefficients: a pair is one group, selected together, reported as amplitude and phase), the
-electromagnetic torque, and products of the clutch's contact torque (the model variable ``contact_torque_Nm``) with
-a speed's sign in the balances after the clutch's (_contact_torque_products); the recorded terms add a sensor's own
-dynamics (_sensor_dynamics). Not in it (no model variable carries them to a term): the load pulse and its edges, time
-within the record.
+electromagnetic torque, the load pulse (the responses after its edges, on the pulse clock pulse_time_s,
+pulse_off_time_s, are written -- edge_terms -- but not in the default library: EDGES_IN_LIBRARY), and products of
+the clutch's contact torque (the model variable ``contact_torque_Nm``) with a speed's sign in the balances after the
+clutch's (_contact_torque_products); computed on the recorded events instead of simulated (recorded_terms), a
+sensor's terms, its own dynamics (_sensor_dynamics) and a slow change with the time in the record.
 
 The library is written as a plug-in file (the documented ``--effects-file`` form): every term one Effect class with
 one bounded coefficient, default 0 (neutral), so that the model's simulator screens all of them on common random
@@ -39,6 +40,26 @@ RIM_SPEED_SCALE_M_S = 0.1                     # r*Omega2 - xdot: the spring's ra
 JAW_SIDE_SMOOTHING_RAD = 1e-3                 # the jaw's side sgn(Δ) smoothed over this angle: a third of the working
                                               # penetration (PENETRATION_SCALE_RAD), small against the gap (β ~ 0.05 rad)
 PULSE_SCALE_PU = 1.6                          # the load pulse's height (config/plant.yaml pulse_load: 1.6 p.u.)
+# the responses after the load pulse's edges: exp(-t/tau), t the time since the rising (pulse_time_s) or the falling
+# edge (pulse_off_time_s), at these FIXED decay times [s]: a geometric ladder (factor 4) over the pulse's length D =
+# 60 ms, D/6 and 2D/3. 10 ms is a quarter of an event's segment (2048 samples, ~41 ms: a fast transient there, a
+# valve, a pressure wave, is seen); 40 ms is the pulse's own scale and dies within the pause (190 ms: e^(-190/40) =
+# 0.009, so the clock's restart at the next pulse cuts nothing). A first-order response between ~5 and ~100 ms is a
+# combination of the two and the pulse term (the infinite decay: a step over the pulse); a response delayed and
+# lagged behind the pulse is the pulse term less these. Ungated: a linear response after an edge goes on across the
+# next edge (superposition). Each edge in each balance is ONE group of the two (selected together): 6 groups, each one
+# more hypothesis the selection tests; two decays, not three: measured on the pneumatic hold-back (outside_dev3 #7),
+# a ladder of three (5, 20, 80 ms) fitted alternating coefficients of 50-75 N, at the bounds in another balance, and
+# cost 18 simulated sets
+EDGE_DECAYS_S = (0.01, 0.04)
+# NOT in the default library (measured on outside_dev3, `bench/_workbench/outside.py --set 3`, 29 Nov): with them the
+# three rows that need them gained nothing (the accumulator recharge stays invisible, verdict consistent; the
+# pneumatic hold-back and the stroke ringing got wrong-balance proposals: the wheel's falling-edge pair at its bounds,
+# +-20 N*m -- after the fall both decays have died before the next event, so the pair is a free kick in the pause),
+# the deadband row lost its right balance, and the proposal's CPU rose from 33-44 s to 58-61 s a recording (12 more
+# simulated sets). Switched on, a user or a later library gets them (library(edges=True))
+EDGES_IN_LIBRARY = False
+EDGE_EXP_CAP = 600.0                          # exp(-min(t/tau, 600)): inside mathlib's exp range (y > -690), e^-600 = 0
 # the balances: (unit of the coefficient, the screening's step = a small amount of the term in its balance, the
 # coefficient's bounds); the step ~ a tenth of the balance's own size (F0*r = 4.5 N*m at the rim, T_b = 20 N*m)
 BALANCES = {
@@ -104,8 +125,9 @@ def _harmonics(balance, var, sym, orders=(1, 2)):
     return out
 
 
-def library() -> tuple[Term, ...]:
-    """The candidate terms, in a fixed order."""
+def library(edges: bool = EDGES_IN_LIBRARY) -> tuple[Term, ...]:
+    """The candidate terms, in a fixed order (``edges``: with the responses after the load pulse's edges,
+    edge_terms)."""
     ms, ws = f"({SPEED_REF})", f"({SPEED_REF})"
     t: list[Term] = []
     # the motor's load moment: its speed, the torque it delivers, both shafts' angles
@@ -166,6 +188,11 @@ def library() -> tuple[Term, ...]:
         b = SHORT[balance]
         t.append(Term(f"{PREFIX}{b}_pulse", balance, f"load_moment_pu / {PULSE_SCALE_PU}",
                       f"T_L/{PULSE_SCALE_PU:g}", "load pulse", f"{b}_pulse", ("load_moment_pu",)))
+    # the responses after the load pulse's edges (EDGE_DECAYS_S): in the same balances as the pulse itself -- a pump
+    # that recharges an accumulator after each stroke, a cylinder switched by the press's valve, a hydraulic line's
+    # pressure wave
+    for balance in (("motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N") if edges else ()):
+        t += edge_terms(balance)
     # a constant in each balance (a load, a torque, a force that does not depend on the states)
     for balance, var in (("motor_load_moment_pu", "w1"), ("wheel_torque_Nm", "omega2"), ("mass_force_N", "xdot")):
         b = SHORT[balance]
@@ -202,6 +229,22 @@ def _contact_torque_products() -> list:
                         "penetration", f"{b}_contact_{speed}_sign", ("contact_torque_Nm", "base_torque_Nm", speed)))
     out.append(Term(f"{PREFIX}mass_contact", "mass_force_N", "contact_torque_Nm / base_torque_Nm", "T_c/T_b",
                     "penetration", "mass_contact", ("contact_torque_Nm", "base_torque_Nm")))
+    return out
+
+
+EDGES = (("rise", "pulse_time_s", "t_r"), ("fall", "pulse_off_time_s", "t_f"))
+
+
+def edge_terms(balance: str) -> list:
+    """The responses after each edge of the load pulse in ``balance``: per edge one group, exp(-t/tau) for every tau of
+    EDGE_DECAYS_S (t the time since that edge, a model variable held over each step)."""
+    b = SHORT[balance]
+    out = []
+    for edge, var, sym in EDGES:
+        for tau in EDGE_DECAYS_S:
+            out.append(Term(f"{PREFIX}{b}_{edge}_{tau * 1e3:g}ms", balance,
+                            f"exp(-fmin({var} / {tau!r}, {EDGE_EXP_CAP!r}))", f"e^(−{sym}/{tau * 1e3:g} ms)",
+                            "load pulse", f"{b}_{edge}", (var,)))
     return out
 
 
@@ -299,7 +342,7 @@ def _class_source(cls_name, name, balance, description, params, args, body) -> s
 
 
 HEADER = ("from backlash_monitor.plant.effects import Effect, Parameter\n"
-          "from backlash_monitor.plant.mathlib import cos, fabs, sin, smooth_sign  # noqa: F401\n\n\n")
+          "from backlash_monitor.plant.mathlib import cos, exp, fabs, fmin, sin, smooth_sign  # noqa: F401\n\n\n")
 
 
 def _variables(expr: str, extra=()) -> list:
@@ -343,7 +386,7 @@ def library_file() -> Path:
 # --------------------------------------------------------------------------------------------- a proposal's forms
 @dataclass
 class ProposedPiece:
-    """One selected group with its fitted coefficients: a plain term (one coefficient) or a harmonic (amplitude and
+    """One selected group with its fitted coefficients: plain terms (one coefficient each) or a harmonic (amplitude and
     phase from its sine/cosine pair: c_s sin(k a) + c_c cos(k a) = A sin(k a + phi))."""
     terms: tuple            # Term objects of the group
     coefficients: tuple     # fitted, one per term
@@ -374,7 +417,7 @@ class ProposedPiece:
             var, k, _ = self.terms[0].harmonic
             sym = {"alpha1": "α₁", "alpha2": "α₂"}[var]
             return f"{a:.3g} {unit} · sin({'' if k == 1 else k}{sym} {'+' if phi >= 0 else '−'} {abs(phi):.2f})"
-        return f"{self.coefficients[0]:+.3g} {unit} · {self.terms[0].symbol}"
+        return " ".join(f"{c:+.3g} {unit} · {t.symbol}" for t, c in zip(self.terms, self.coefficients))
 
     def state(self) -> str:
         return self.terms[0].state
@@ -427,11 +470,12 @@ def proposal_source(pieces, name: str = "proposed_term") -> tuple[str, dict]:
                 args |= {var}
                 vals[an], vals[ph] = a, phi
             else:
-                cn = f"c{i}_{coefficient_name(p.terms[0]).split('_', 1)[1]}"
-                params.append(f"Parameter({cn!r}, {unit!r}, 0.0, ({-bound!r}, {bound!r}), {p.terms[0].symbol!r})")
-                body.append(f"{cn} * ({p.terms[0].expression})")
-                args |= set(_variables(p.terms[0].expression))
-                vals[cn] = p.coefficients[0]
+                for m, (term, coef) in enumerate(zip(p.terms, p.coefficients)):   # a group of several: each its own
+                    cn = f"c{i}{'' if len(p.terms) == 1 else chr(97 + m)}_{coefficient_name(term).split('_', 1)[1]}"
+                    params.append(f"Parameter({cn!r}, {unit!r}, 0.0, ({-bound!r}, {bound!r}), {term.symbol!r})")
+                    body.append(f"{cn} * ({term.expression})")
+                    args |= set(_variables(term.expression))
+                    vals[cn] = coef
         # deferred: backlash_monitor.plant (numba) costs ~1000 ms at start-up (python -X importtime, 29 Nov)
         from backlash_monitor.plant.effects import MODEL_VARIABLES
         arglist = [v for v in MODEL_VARIABLES if v in args] + [q.split("'")[1] for q in params]

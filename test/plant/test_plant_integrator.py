@@ -56,7 +56,7 @@ def _stage(kernel, Y, P, G):
         WS[m.R_P:m.R_P + P.shape[0], :live] = P[:, t0:t0 + live]
         WS[m.R_P:m.R_P + P.shape[0], live:] = P[:, t0 + live - 1:t0 + live]   # padded as rk4_simd pads
         flat = WS.reshape(-1)
-        m.stage(flat, m.R_Y, m.R_K, 1.0, 0.0, G, nl)
+        m.stage(flat, m.R_Y, m.R_K, 1.0, 0.0, 1.0e6, 1.0e6, G, nl)
         K[:, t0:t0 + live] = WS[m.R_K:m.R_K + N_STATES, :live]
     return K
 

@@ -27,10 +27,21 @@ def test_the_library_is_generic_and_covers_every_balance_and_both_shafts_angles(
     # a gate on the jaw's side in every balance of a body (the load side ahead of its drive), one group each
     gates = [t for t in lib if "delta" in t.variables]
     assert {t.balance for t in gates} == {"motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N"}
-    # a harmonic's sine and cosine are one group: selected together, linear in their coefficients
-    for g, names in candidate_terms.groups().items():
-        kinds = {candidate_terms.by_name()[n].harmonic is not None for n in names}
-        assert len(kinds) == 1 and (len(names) == 2) == kinds.pop()
+    # a harmonic's sine and cosine are one group: selected together, linear in their coefficients; so are the decays
+    # after one edge of the load pulse in one balance; every other group is one term
+    # (the edges' groups: written, not in the default library, candidate_terms.EDGES_IN_LIBRARY)
+    with_edges = candidate_terms.library(edges=True)
+    by = {t.name: t for t in with_edges}
+    edges = {g for g, names in candidate_terms.groups(with_edges).items() if by[names[0]].state == "load pulse"
+             and len(names) > 1}
+    for g, names in candidate_terms.groups(with_edges).items():
+        kinds = {by[n].harmonic is not None for n in names}
+        assert len(kinds) == 1
+        assert len(names) == (2 if kinds.pop() else len(candidate_terms.EDGE_DECAYS_S) if g in edges else 1)
+    # the responses after both edges of the load pulse, in the motor, wheel and mass balances, on the pulse clock
+    assert {(t.balance, t.variables) for t in with_edges if t.group in edges} == {
+        (b, (v,)) for b in ("motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N")
+        for v in ("pulse_time_s", "pulse_off_time_s")}
     for t in lib:
         assert set(t.variables) <= set(MODEL_VARIABLES)
     # the library is a valid plug-in file: every term an effect with a neutral default
@@ -121,6 +132,51 @@ def test_the_proposal_is_written_as_a_plugin_that_loads_with_its_fitted_values(t
     assert cfg.effect_parameter("proposed_term_wheel", "amplitude0_Nm") == pytest.approx(2.9)
     assert cfg.effect_parameter("proposed_term_wheel", "phase0_rad") == pytest.approx(0.31)
     assert cfg.effect_parameter("proposed_term_rim", "c0_N") == pytest.approx(-4.0)
+
+
+@pytest.mark.slow        # two kernels compiled: ~50 s on a cold cache
+def test_a_response_after_the_pulses_falling_edge_is_written_as_a_plugin_that_runs_the_law(tmp_path):
+    """A proposed group of decays after the falling edge in the motor balance: its plug-in loads with both fitted
+    coefficients, and the simulator's motor balance carries c1 e^(-t_f/10 ms) + c2 e^(-t_f/40 ms) -- the law computed
+    here from the time since the held pulse's falling edge -- at every sample."""
+    from backlash_monitor.plant.disturbances import pulse_load_pu
+    from backlash_monitor.plant.scenarios import Scenario
+    from backlash_monitor.plant.simulate import PlantSimulator
+    fall = [t for t in candidate_terms.edge_terms("motor_load_moment_pu") if t.group == "motor_fall"]
+    assert [t.variables for t in fall] == [("pulse_off_time_s",)] * len(candidate_terms.EDGE_DECAYS_S)
+    coef = (0.05, -0.03)
+    piece = candidate_terms.ProposedPiece(tuple(fall), coef, (0.01, 0.01))
+    law = candidate_terms.proposal_law([piece])
+    assert law.startswith("motor load moment += +0.05 p.u. · e^(−t_f/10 ms) -0.03 p.u. · e^(−t_f/40 ms)"), law
+    src, values = candidate_terms.proposal_source([piece])
+    f = tmp_path / "proposed.py"
+    f.write_text(src)
+    cat = builtin_catalogue().with_files([f])
+    (name, vals), = values.items()
+    over = {"simulation.run_in_s": 0.0}
+    runs = {}
+    for on in (False, True):
+        o = dict(over, **({f"effects.{name}": True} | {f"{name}.{k}": v for k, v in vals.items()} if on else {}))
+        cfg = load_plant_config(overrides=o, catalogue=cat)
+        ch = PlantSimulator([Scenario(0.005, seed=3)], config=cfg, noise=False, record_states=True).run(40_000)
+        runs[on] = (cfg, ch)
+    cfg, ch = runs[True]
+    fs = cfg.simulation.sample_rate_hz
+    p = pulse_load_pu(-20_000, 60_000, cfg) > 0
+    falls = np.flatnonzero(p[:-1] & ~p[1:]) + 1 - 20_000          # sample indices of the falling edges
+    k = np.arange(40_000)
+    t_f = (k - falls[np.searchsorted(falls, k, side="right") - 1]) / fs
+    expected = sum(c * np.exp(-t_f / tau) for c, tau in zip(coef, candidate_terms.EDGE_DECAYS_S))
+    # the motor balance of the run with the term, sample by sample: T_m dw1/dt = te - T_c/T_b - T_L - load
+    m = cfg.motor
+    st = ch.states
+    iw = 1.0 / m.w_pu
+    te = st["psi_sa"] * (m.x_r_pu * st["psi_sb"] - m.x_m_pu * st["psi_rb"]) * iw \
+        - st["psi_sb"] * (m.x_r_pu * st["psi_sa"] - m.x_m_pu * st["psi_ra"]) * iw
+    load = te[0] - ch.transmitted_torque_Nm[0] / m.base_torque_Nm - pulse_load_pu(0, 40_000, cfg) \
+        - m.mechanical_time_constant_s * ch.a1[0] / (cfg.load.wheel_radius_m * m.base_mechanical_speed_rad_s)
+    assert np.allclose(load, expected, atol=1e-8)
+    assert expected.max() > 0.015 and not np.allclose(runs[False][1].a1, ch.a1)    # the law acts: 0.05 - 0.03 at the edge
 
 
 def _diagnosis_with_proposal(tmp_path, proposed=True):
