@@ -320,7 +320,11 @@ def parse_args(argv=None):
                          "SUITE) and skip the width check, the foreign suite and the sensor check; the JSON then holds "
                          "only those rows' figures")
     ap.add_argument("--sealed", action="store_true",
-                    help="with --parts outside: the sealed outside suite (run once, at the end), not the development one")
+                    help="with --parts outside: the sealed outside suite of --set (run once, at the end), not the "
+                         "development one")
+    ap.add_argument("--set", dest="set_", type=int, default=1, metavar="N",
+                    help="with --parts outside: the set of outside mechanisms (bench/_workbench/outside.py SETS: 1-3 "
+                         "spent, both halves development data; 4: outside_dev4, its sealed half unspent; default 1)")
     ap.add_argument("--parts", default="own,foreign,sensor,memory", metavar="PART[,PART...]",
                     help="what to run: own (this project's simulator: the suite and the width check), foreign (the "
                          "foreign drives of foreign_drives/ through the README's loop: diagnose, add-effect, train, "
@@ -358,7 +362,10 @@ def main(argv=None):
         out["foreign_per_recording"] = frows
     if "outside" in parts:
         from _workbench import outside
-        out.update(outside.summary(*outside.run_all(sealed=args.sealed)))
+        if args.set_ not in outside.SETS:
+            log(f"--set {args.set_}: unknown set of outside mechanisms; allowed: {', '.join(map(str, outside.SETS))}")
+            raise SystemExit(2)
+        out.update(outside.summary(*outside.run_all(sealed=args.sealed, set_=args.set_)))
     if "sensor" in parts:
         out.update(sensor_check())
     if "width" in parts:
