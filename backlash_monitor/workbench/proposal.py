@@ -28,7 +28,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import candidate_terms, consistency, event_design, plant_adapter
+from . import candidate_terms, consistency, drive_terms, event_design, plant_adapter
+
+NO_PLUGIN_NOTE = "; no plug-in form (a sensor's term or one of the time in the record)"   # the reason's tail
 
 VERDICTS = ("partial", "nothing_explains")
 CV_Z = 3.0             # a group enters when its held-out gain is CV_Z standard errors (over the events) above 0
@@ -594,13 +596,13 @@ def propose(run, up, verdict: str) -> Proposal | None:
     out.views_after = after.to_json()
     out.plugin_source, out.plugin_values = src, values
     also = "".join(x.alike_text() for x in pieces)
-    out.reason = (f"{out.law}{also}: explains {explained:.0%} of the residual"
+    out.reason = (f"{out.law}{also}: explains {drive_terms.explained_percent(explained)} of the residual"
                   + (f" left by {' + '.join(on_top)}" if on_top else "")
                   + (f", instead of {' + '.join(replaced)} (the events' held-out error is smaller without it)"
                      if replaced else "")
                   + (", the model with it consistent in every view" if after.consistent
                      else ", the model with it still outside the noise band")
-                  + ("" if src else "; no plug-in form (a sensor's term or one of the time in the record)"))
+                  + ("" if src else NO_PLUGIN_NOTE))
     out.cpu_seconds = time.process_time() - t0
     out.simulated_sets = p.n_sets_simulated - n_before
     return out
