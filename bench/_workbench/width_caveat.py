@@ -2,8 +2,8 @@
 simulator), run through the commands as a user runs them.
 
 1. ``confident_wrong_width_alarms``: every recording of the foreign bench suite (``python -m foreign_drives write
-   --suite bench``) and of every outside suite (outside_dev, outside_sealed, and outside_dev2/outside_sealed2 where
-   foreign_drives has them: mechanisms outside the catalogue), simulated in a pool of 2 processes, then through ONE
+   --suite bench``) and of every outside suite (sets 1-4, outside_dev ... outside_sealed4, where foreign_drives has
+   them: mechanisms outside the catalogue), simulated in a pool of 2 processes, then through ONE
    ``analyze DIR --jobs 2`` (the fleet table, with its model fit against the default model at the measured width, as
    the command gives it); each recording under a drive name of its own (the suites' recordings share names, and the
    fleet's trend is per drive; the physics and the seed are the suite's). A *confident wrong width alarm*: the row's
@@ -139,11 +139,12 @@ def _alarm(level: str, true_width_m: float, warn_m: float, error_m: float) -> bo
     return (level == "WARN" and true_width_m < warn_m) or (level == "ERROR" and true_width_m < error_m)
 
 
-ALARM_SUITES = ("bench", "outside_dev", "outside_sealed", "outside_dev2", "outside_sealed2")
+ALARM_SUITES = ("bench", "outside_dev", "outside_sealed", "outside_dev2", "outside_sealed2", "outside_dev3",
+                "outside_sealed3", "outside_dev4", "outside_sealed4")
 
 
 def alarm_suites() -> list[str]:
-    """The suites the alarm check covers: the foreign bench and every outside set foreign_drives has (the second
+    """The suites the alarm check covers: the foreign bench and every outside set foreign_drives has (the later
     outside sets only where they exist: written after this check)."""
     from foreign_drives.suites import SUITE_NAMES
     return [n for n in ALARM_SUITES if n in SUITE_NAMES]
