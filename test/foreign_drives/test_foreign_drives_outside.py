@@ -91,7 +91,9 @@ def _zero(form):
     return p
 
 
-@pytest.mark.parametrize("name", sorted(OUTSIDE))
+# the fourth set's forms have their own test of it at their suite's parameters (test_foreign_drives_outside4.py: whole
+# numbers of scans and stations, a slew limit's neutral value is its largest, not 0)
+@pytest.mark.parametrize("name", sorted(n for n, f in OUTSIDE.items() if f.half not in ("dev4", "sealed4")))
 def test_zero_amplitude_is_the_clean_drive(name):
     rec = rec_of(name, **_zero(OUTSIDE[name]))
     base = clean()
