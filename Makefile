@@ -67,9 +67,9 @@ lint: setup  ## the architecture's contracts (import-linter: .importlinter) and 
 # seconds (its process's and its waited-for children's: a cost that does not grow with the machine's load, as the
 # --durations wall times do) go to log/test-cpu.tsv (conftest's --cpu-log), summed at the end.
 TEST_WORKERS ?= 2
-# make test leaves out the tests marked heavy (setup.cfg: three whole-path workbench tests that bench/_workbench/
-# outside.py measures row by row, ~4.5 min of CPU with a cold kernel cache): the suite is CPU-bound on 2 cores and
-# was at 19 min with them. make test-all runs them too.
+# make test leaves out the tests marked heavy (setup.cfg: the whole-path workbench tests that bench/_workbench/
+# outside.py measures row by row, 1-3 min of CPU each with a cold kernel cache): the suite is CPU-bound on 2 cores and
+# was at 19 min with the first three of them. make test-all runs them too.
 TEST_EXCLUDE ?= and not heavy
 test: setup chromium lint  ## the contracts and ruff, then the test suite but the heavy tests (non-ros tests on TEST_WORKERS=2 workers at nice 10, the ros tests beside them)
 	@$(ACTIVATE) && rc=0 \
