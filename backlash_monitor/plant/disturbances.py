@@ -18,14 +18,18 @@ def pulse_load_pu(first_sample: int, n_samples: int, cfg) -> np.ndarray:
 
     Negative k (the run-in before sample 0) see the same train extended periodically backwards, so
     the run-in ends in the pulse train's periodic steady state with the next pulse at k0."""
+    k, k0, period, duration = _pulse_train(first_sample, n_samples, cfg)
+    on = ((k >= k0) | (k < 0)) & (np.mod(k - k0, period) < duration)
+    return np.where(on, cfg.pulse_load.amplitude_pu, 0.0)
+
+
+def _pulse_train(first_sample: int, n_samples: int, cfg) -> tuple:
+    """(the sample indices first_sample .. first_sample+n-1, the first rise k0, the period P, the duration D) of the
+    pulse train, in samples: the one geometry the load and its clock share."""
     fs = cfg.simulation.sample_rate_hz
     pl = cfg.pulse_load
-    k0 = int(round(pl.first_s * fs))
-    period = int(round(pl.period_s * fs))
-    duration = int(round(pl.duration_s * fs))
     k = np.arange(first_sample, first_sample + n_samples, dtype=np.int64)
-    on = ((k >= k0) | (k < 0)) & (np.mod(k - k0, period) < duration)
-    return np.where(on, pl.amplitude_pu, 0.0)
+    return k, int(round(pl.first_s * fs)), int(round(pl.period_s * fs)), int(round(pl.duration_s * fs))
 
 
 NO_PULSE_S = 1.0e6   # the pulse clock without a load pulse [s]: "never", so every exp(-t/tau) response to an edge is 0
@@ -46,11 +50,7 @@ def pulse_clock_s(first_sample: int, n_samples: int, cfg) -> np.ndarray:
     if not cfg.effects.pulse_load:
         return np.full((n_samples, 2), NO_PULSE_S)
     fs = cfg.simulation.sample_rate_hz
-    pl = cfg.pulse_load
-    k0 = int(round(pl.first_s * fs))
-    period = int(round(pl.period_s * fs))
-    duration = int(round(pl.duration_s * fs))
-    k = np.arange(first_sample, first_sample + n_samples, dtype=np.int64)
+    k, k0, period, duration = _pulse_train(first_sample, n_samples, cfg)
     out = np.empty((n_samples, 2))
     out[:, 0] = np.mod(k - k0, period) / fs
     out[:, 1] = np.mod(k - k0 - duration, period) / fs
