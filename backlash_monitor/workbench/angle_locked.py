@@ -441,7 +441,7 @@ def relinearised(run, eff, x: np.ndarray) -> Beside:
     steps = fitting._fd_steps(x, h_abs, hi)
     ens = run.problem.evaluate(fitting._sets_for(eff, [x] + steps))
     p0 = run.problem.pred_of(ens, 0)
-    J = np.stack([(run.problem.pred_of(ens, i + 1) - p0) / (s[i] - x[i]) for i, s in enumerate(steps)], axis=1)
+    J = fitting.forward_differences(p0, [run.problem.pred_of(ens, i + 1) for i in range(len(steps))], x, steps)
     return Beside(eff, np.asarray(x, float), p0 - run.base_pred, J)
 
 

@@ -443,9 +443,7 @@ def refine(problem: Problem, effect, start: Linearisation, base_pred: np.ndarray
     def jac_pred(x):
         """Forward difference of the prediction (prediction space, not projected)."""
         steps = _fd_steps(x, h_abs, hi)
-        p0 = preds_at([x])[0]
-        ps = preds_at(steps)
-        return np.stack([(m - p0) / (s[i] - x[i]) for i, (m, s) in enumerate(zip(ps, steps))], axis=1)
+        return forward_differences(preds_at([x])[0], preds_at(steps), x, steps)
 
     last = {}
 
@@ -483,6 +481,12 @@ def refine(problem: Problem, effect, start: Linearisation, base_pred: np.ndarray
                      unc, x0, (lo, hi), explained, ic - base_ic, ic, m, start.explained_lin, len(cache),
                      effect.balance, effect.description, at_bound, model_mean_raw=m_raw, pred=p, jacobian=J_pred,
                      fixed=getattr(effect, "fixed_values", {}))
+
+
+def forward_differences(p0: np.ndarray, preds, x, steps) -> np.ndarray:
+    """(N, k): the prediction's forward differences, column i (preds[i] - p0) / (steps[i][i] - x[i]) for the points
+    steps of _fd_steps (one parameter stepped each)."""
+    return np.stack([(m - p0) / (s[i] - x[i]) for i, (m, s) in enumerate(zip(preds, steps))], axis=1)
 
 
 def _fd_steps(x, h_abs, hi) -> list:
