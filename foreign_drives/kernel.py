@@ -156,15 +156,24 @@ MEMORY_RING = 64
 # sampled delay line (a = scan in segments, b = delay in scans); a one-shot (a = threshold the input rises through,
 # b = hold time [s]); a schedule (on for b seconds from each of the mem_n times in the ring)
 MK_OFF, MK_LAG, MK_DELAY, MK_ONESHOT, MK_SCHEDULE = range(5)
+# the fifth set (foreign_drives.outside_dev5/_sealed5): a play (a backlash operator: m follows x once x is more than a
+# away from it); a sample taken at each load pulse's start (held until the next); a resonator driven by the input's
+# rate (a tuned absorber: a = its angular frequency [rad/s], b = its damping ratio; its relative displacement and
+# speed in the ring's first two places; output w^2*d + 2*zeta*w*d')
+MK_PLAY, MK_STROKE_SAMPLE, MK_RESONATOR = 5, 6, 7
 # selectors: the drive quantity a factor reads
 (XS_ONE, XS_OMEGA1, XS_OMEGA2, XS_RIM_SPEED, XS_MASS_SPEED, XS_PENETRATION, XS_SPRING_EXTENSION, XS_ALPHA1,
  XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
  XS_SIGN_OMEGA2, XS_JAW_ANGLE, XS_PULSE_PHASE, XS_GAP_DISTANCE, XS_ALPHA2_UNWRAPPED, XS_RELAY, XS_PULSE_COUNT,
  XS_CONTACT_AGE, XS_SIGNED_PENETRATION, XS_MEMORY, XS_MEMORY_EXCESS, XS_ALPHA2_MINUS_CLOCK, XS_PENETRATION_DEPTH) = (
     range(29))
+# the fifth set: the carriage's position unwrapped from the run-in's start [m]; the power the contact dissipates
+# |T_c*D'| [W] (the contact law's torque at the state, 0 free)
+XS_MASS_POSITION, XS_CONTACT_POWER = 29, 30
 # shapes of a factor f(x; a, b, c)
 (XF_ONE, XF_X, XF_POWER, XF_SIN, XF_SIN_POSITIVE, XF_EXCESS_POWER, XF_RAMP, XF_TANH, XF_RISE, XF_COS,
  XF_RISE_AFTER, XF_ABS, XF_SIGMOID, XF_DECAY_AFTER, XF_CUSHION, XF_PERIODIC_GATE, XF_CLIP) = range(17)
+XF_STAIRS = 17                   # the fifth set: a*floor((x - b)/a) above b, else 0 (whole steps of a, a quantiser)
 
 
 @njit(cache=True, inline="always")
@@ -297,6 +306,17 @@ def _quantity(sel, t, y, P, mode, pen, tcc):
         return P[P_MEMSTATE]
     if sel == XS_ALPHA2_MINUS_CLOCK:             # the unwrapped wheel angle less a clock's angle [rad]
         return y[S_A2] + 2.0 * math.pi * P[P_A2TURNS] - P[P_CLKRATE] * (t - P[P_CLKT0])
+    if sel == XS_MASS_POSITION:                  # the mass position with the integrator's whole turns put back [m]
+        return y[S_X] + r * 2.0 * math.pi * P[P_A2TURNS]
+    if sel == XS_CONTACT_POWER:                  # |T_c * D'| of the contact law at this state [W]; 0 free
+        if mode == 0:
+            return 0.0
+        d, dd = clutch_angles(y, P)
+        if mode > 0:
+            tq = contact_torque(d - P[P_BETA], dd, P[P_KCD], P)
+        else:
+            tq = contact_torque(-d - P[P_BETA], -dd, P[P_KCF], P)
+        return abs(tq * dd)
     return 0.0
 
 
@@ -307,6 +327,44 @@ def _selected(sel, t, y, P, mode, pen, tcc):
     if sel == XS_MEMORY_EXCESS:
         return _quantity(int(P[P_MEMSEL]), t, y, P, mode, pen, tcc) - P[P_MEMSTATE]
     return _quantity(sel, t, y, P, mode, pen, tcc)
+
+
+@njit(cache=True)
+def _memory_scan5(kind, x, P, seg_dt):
+    """The fifth set's memory kinds, one 0.2 ms scan with the input ``x``:
+    - MK_PLAY: m -> min(max(m, x - a), x + a) (first scan: m = x);
+    - MK_STROKE_SAMPLE: m = x at the first scan of each load pulse (the pulse count changed), held (first scan: m = x);
+    - MK_RESONATOR: d'' = -w^2*d - 2*zeta*w*d' - x', x' = the input's change over the last scan / seg_dt (w = a,
+      zeta = b; four semi-implicit Euler steps per scan); m = w^2*d + 2*zeta*w*d' (first scan: at rest, d = d' = 0)."""
+    a, b = P[P_MEMA], P[P_MEMB]
+    if P[P_MEMINIT] == 0.0:
+        P[P_MEMINIT] = 1.0
+        P[P_MEMSTATE] = 0.0 if kind == MK_RESONATOR else x
+        P[P_MEMPREV] = P[P_PCOUNT] if kind == MK_STROKE_SAMPLE else x
+        P[P_MEMR0] = 0.0
+        P[P_MEMR0 + 1] = 0.0
+        return
+    if kind == MK_PLAY:
+        m = P[P_MEMSTATE]
+        if m < x - a:
+            m = x - a
+        elif m > x + a:
+            m = x + a
+        P[P_MEMSTATE] = m
+    elif kind == MK_STROKE_SAMPLE:
+        if P[P_PCOUNT] != P[P_MEMPREV]:
+            P[P_MEMSTATE] = x
+            P[P_MEMPREV] = P[P_PCOUNT]
+    elif kind == MK_RESONATOR:
+        acc = (x - P[P_MEMPREV]) / seg_dt
+        P[P_MEMPREV] = x
+        d, dd = P[P_MEMR0], P[P_MEMR0 + 1]
+        h = 0.25 * seg_dt
+        for _ in range(4):
+            dd += h * (-a * a * d - 2.0 * b * a * dd - acc)
+            d += h * dd
+        P[P_MEMR0], P[P_MEMR0 + 1] = d, dd
+        P[P_MEMSTATE] = a * a * d + 2.0 * b * a * dd
 
 
 @njit(cache=True)
@@ -329,6 +387,9 @@ def memory_scan(t, y, P, mode, seg_dt):
         P[P_MEMSTATE] = on
         return
     x = _quantity(int(P[P_MEMSEL]), t, y, P, mode, 0.0, 0.0)
+    if kind >= MK_PLAY:
+        _memory_scan5(kind, x, P, seg_dt)
+        return
     if P[P_MEMINIT] == 0.0:
         P[P_MEMINIT] = 1.0
         P[P_MEMSTATE] = 0.0 if kind == MK_ONESHOT else x
@@ -406,6 +467,8 @@ def _shaped(shape, x, a, b, c):
     if shape == XF_CLIP:                         # x + b limited to [-a, a]
         q = x + b
         return -a if q < -a else (a if q > a else q)
+    if shape == XF_STAIRS:                       # whole steps of a above b (a quantiser), 0 below b
+        return a * math.floor((x - b) / a) if x > b else 0.0
     return 0.0
 
 

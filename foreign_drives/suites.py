@@ -291,6 +291,34 @@ OUTSIDE_DEV4_ROWS = [
                                       "latency_scans": 3})]),
 ]
 
+# ---- issue 31 part 4, fifth set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev5;
+# the fifth sealed half's rows are in foreign_drives.outside_sealed5). One mechanism per row at its own nominal
+# conditions, one clean control. Seeds 8200+. Each strength set by one simulation against the clean drive of the same
+# seed (docs/foreign_drives.md "The fifth set").
+OUTSIDE_DEV5_ROWS = [
+    # a governor's brake band behind a linkage with 1 rad/s of play, biting above 151 rad/s (the drive runs 147-154)
+    ("od5_motor_governor_linkage_play", "outside", 0.0058, 0.0275, 0.93,
+     [E("motor_governor_linkage_play", {"gain_Nms_per_rad": 2.0, "play_rad_s": 1.0, "set_speed_rad_s": 151.0})]),
+    # the spring's cable winding onto the drum, 0.2 mm of lever arm per turn (~150 turns in the run-in and 4 s)
+    ("od5_wheel_rope_drum_layers", "outside", 0.0082, 0.0225, 0.90,
+     [E("wheel_rope_drum_layers", {"growth_m_per_turn": 2e-4})]),
+    # the jaw hub's run-out: +-30 % of the contact torque once per wheel revolution
+    ("od5_clutch_hub_runout", "outside", 0.0048, 0.0375, 0.95,
+     [E("clutch_hub_runout", {"gain": 0.3, "phase_rad": 0.5})]),
+    # a 2 kg absorber tuned to 40 Hz (near the jaw's ~33 Hz mode), 5 % damping
+    ("od5_mass_tuned_absorber", "outside", 0.0068, 0.02, 0.91,
+     [E("mass_tuned_absorber", {"mass_kg": 2.0, "frequency_hz": 40.0, "damping_ratio": 0.05})]),
+    ("od5_clean_w7.2_eta0.0325_n0.92", "clean", 0.0072, 0.0325, 0.92, []),
+    # a tare every 0.37 s (not a multiple of the 0.25 s pulse period) over the 5 ms before it
+    ("od5_a2_daq_autozero", "outside", 0.0092, 0.045, 0.94,
+     [E("a2_daq_autozero", {"period_s": 0.37, "window_s": 0.005, "first_s": 0.2})]),
+    ("od5_clutch_insert_heating", "outside", 0.0062, 0.0155, 0.89,
+     [E("clutch_insert_heating", {"softening_per_J": 0.02, "cooling_time_s": 0.5})]),
+    # a stuck bit of weight 0.25 m/s^2 in an ADC over +-4 g (a2 swings over several m/s^2)
+    ("od5_a2_stuck_adc_bit", "outside", 0.0042, 0.03, 0.96,
+     [E("a2_stuck_adc_bit", {"bit_weight_m_s2": 0.25, "range_m_s2": 39.24})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -298,8 +326,10 @@ OUTSIDE_DEV = _suite(OUTSIDE_DEV_ROWS, 7000, 4.0)
 OUTSIDE_DEV2 = _suite(OUTSIDE_DEV2_ROWS, 7300, 4.0)
 OUTSIDE_DEV3 = _suite(OUTSIDE_DEV3_ROWS, 7800, 4.0)
 OUTSIDE_DEV4 = _suite(OUTSIDE_DEV4_ROWS, 8000, 4.0)
+OUTSIDE_DEV5 = _suite(OUTSIDE_DEV5_ROWS, 8200, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
-          "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4}
+          "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
+          "outside_dev5": OUTSIDE_DEV5}
 
 
 def _outside_sealed():
@@ -326,7 +356,14 @@ def _outside_sealed4():
     return _suite(suite_rows(), 8100, 4.0)
 
 
-SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4")
+def _outside_sealed5():
+    """The fifth sealed half's suite, made from foreign_drives.outside_sealed5 on first use (its rows live there)."""
+    from .outside_sealed5 import suite_rows
+    return _suite(suite_rows(), 8300, 4.0)
+
+
+SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
+                               "outside_sealed5")
 
 
 def suite(name: str) -> list:
@@ -338,6 +375,8 @@ def suite(name: str) -> list:
         return _outside_sealed3()
     if name == "outside_sealed4":
         return _outside_sealed4()
+    if name == "outside_sealed5":
+        return _outside_sealed5()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])
