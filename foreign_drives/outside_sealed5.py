@@ -215,7 +215,7 @@ def suite_rows():
     from .spec import EffectSpec as E
     return [
         ("os5_motor_viscoplastic_stroke", "outside", 0.0075, 0.035, 0.90,
-         [E("motor_viscoplastic_stroke", {"coefficient_Nms_per_rad": 2.0, "reference_speed_rad_s": 150.0})]),
+         [E("motor_viscoplastic_stroke", {"coefficient_Nms_per_rad": 4.03, "reference_speed_rad_s": 150.0})]),
         ("os5_wheel_stroke_tension_control", "outside", 0.0052, 0.0225, 0.94,
          [E("wheel_stroke_tension_control", {"gain_Nm_per_m": 200.0, "reference_extension_m": 0.305})]),
         ("os5_clutch_centrifugal_shoes", "outside", 0.0088, 0.0175, 0.92,

@@ -296,15 +296,18 @@ OUTSIDE_DEV4_ROWS = [
 # conditions, one clean control. Seeds 8200+. Each strength set by one simulation against the clean drive of the same
 # seed (docs/foreign_drives.md "The fifth set").
 OUTSIDE_DEV5_ROWS = [
-    # a governor's brake band behind a linkage with 1 rad/s of play, biting above 151 rad/s (the drive runs 147-154)
+    # a governor's brake band behind a linkage with 1 rad/s of play, biting above 151 rad/s (the drive runs 147-154);
+    # 2 N*m*s/rad moved a2 by 0.039 m/s^2 rms: x1.91
     ("od5_motor_governor_linkage_play", "outside", 0.0058, 0.0275, 0.93,
-     [E("motor_governor_linkage_play", {"gain_Nms_per_rad": 2.0, "play_rad_s": 1.0, "set_speed_rad_s": 151.0})]),
-    # the spring's cable winding onto the drum, 0.2 mm of lever arm per turn (~150 turns in the run-in and 4 s)
+     [E("motor_governor_linkage_play", {"gain_Nms_per_rad": 3.81, "play_rad_s": 1.0, "set_speed_rad_s": 151.0})]),
+    # the spring's cable winding onto the drum (~150 turns in the run-in and 4 s); 0.2 mm per turn moved a2 by
+    # 0.023 m/s^2 rms: x3.22
     ("od5_wheel_rope_drum_layers", "outside", 0.0082, 0.0225, 0.90,
-     [E("wheel_rope_drum_layers", {"growth_m_per_turn": 2e-4})]),
-    # the jaw hub's run-out: +-30 % of the contact torque once per wheel revolution
+     [E("wheel_rope_drum_layers", {"growth_m_per_turn": 6.43e-4})]),
+    # the jaw hub's run-out: the contact torque modulated once per wheel revolution; +-30 % moved a2 by 0.040 m/s^2
+    # rms: x1.88
     ("od5_clutch_hub_runout", "outside", 0.0048, 0.0375, 0.95,
-     [E("clutch_hub_runout", {"gain": 0.3, "phase_rad": 0.5})]),
+     [E("clutch_hub_runout", {"gain": 0.563, "phase_rad": 0.5})]),
     # a 2 kg absorber tuned to 40 Hz (near the jaw's ~33 Hz mode), 5 % damping
     ("od5_mass_tuned_absorber", "outside", 0.0068, 0.02, 0.91,
      [E("mass_tuned_absorber", {"mass_kg": 2.0, "frequency_hz": 40.0, "damping_ratio": 0.05})]),
@@ -312,8 +315,13 @@ OUTSIDE_DEV5_ROWS = [
     # a tare every 0.37 s (not a multiple of the 0.25 s pulse period) over the 5 ms before it
     ("od5_a2_daq_autozero", "outside", 0.0092, 0.045, 0.94,
      [E("a2_daq_autozero", {"period_s": 0.37, "window_s": 0.005, "first_s": 0.2})]),
+    # the insert softening as it heats. At 0.02/J with tau 0.5 s it moved a2 by 0.0040 m/s^2 rms (g*theta ~ 0.1, nearly
+    # constant: a stiffness drift), and the x18.7 the criterion asked would soften it by g*theta ~ 2 (a pulling
+    # contact). Changed before any diagnose: tau 0.05 s (a surface layer, its heat varying within each stroke), g 0.1/J
+    # (g*theta 0.005-0.15; a2 0.0033 m/s^2 rms); at 0.4/J the softening feeds back (softer, deeper, hotter) and the
+    # simulation did not finish in 5 minutes. BELOW the visibility criterion (docs/foreign_drives.md "The fifth set")
     ("od5_clutch_insert_heating", "outside", 0.0062, 0.0155, 0.89,
-     [E("clutch_insert_heating", {"softening_per_J": 0.02, "cooling_time_s": 0.5})]),
+     [E("clutch_insert_heating", {"softening_per_J": 0.1, "cooling_time_s": 0.05})]),
     # a stuck bit of weight 0.25 m/s^2 in an ADC over +-4 g (a2 swings over several m/s^2)
     ("od5_a2_stuck_adc_bit", "outside", 0.0042, 0.03, 0.96,
      [E("a2_stuck_adc_bit", {"bit_weight_m_s2": 0.25, "range_m_s2": 39.24})]),
