@@ -50,7 +50,7 @@ class MotorViscoplasticStroke(OutsideForm):
     description = ("the stroke's forming load is strain-rate sensitive (a viscoplastic material): during a stroke it "
                    "grows with the ram's speed, pulse*c*(Omega1 - Omega_ref) on the motor's load, pulse = 1 while on")
     parameters = (Param("coefficient_Nms_per_rad", "N*m*s/rad", (0.0, 20.0), "c"),
-                  Param("reference_speed_rad_s", "rad/s", (100.0, 170.0), "Omega_ref"))
+                  Param("reference_speed_rad_s", "rad/s", (100.0, 170.0), "Omega_ref: the speed at the nominal load"))
 
     def apply(self, b, p):
         add_term(b, "motor_load_moment", p["coefficient_Nms_per_rad"], (K.XS_PULSE, K.XF_X, 0.0, 0.0, 0.0),
