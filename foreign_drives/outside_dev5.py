@@ -213,7 +213,8 @@ class ClutchInsertHeating(OutsideForm):
                    "tau; it softens as it heats: the contact law's torque T_c times 1 - g*theta, theta' = P - "
                    "theta/tau (theta the heat held [J]; P from the state at each 0.2 ms scan, theta advanced exactly "
                    "over the scan; theta = tau*P at the run-in's first scan)")
-    parameters = (Param("softening_per_J", "1/J", (0.0, 10.0), "g (g*theta < 1)"),
+    parameters = (Param("softening_per_J", "1/J", (0.0, 0.2),
+                        "g (g*theta < 1: at 0.1/J on a nominal drive g*theta <= 0.15; at 0.4/J the softening ran away)"),
                   Param("cooling_time_s", "s", (1e-3, 100.0), "tau"))
     note = "a rate-dependent memory of the impacts: the same penetration passes less torque after hard impacts"
 
