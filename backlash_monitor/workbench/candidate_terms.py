@@ -4,8 +4,8 @@ Each term is coefficient x f(states), put into one balance of the model (docs/ef
 the motor's load moment [p.u.], the clutch's contact torque [N*m], the rim force between wheel and mass [N], the
 wheel torque [N*m], the mass force [N]. f is dimensionless and of order 1 at the operating point (each state divided
 by the scale below), so the coefficient carries the balance's unit. The library is not a list of known faults: it is
-the powers and signs of the speeds, the clutch's penetration and its rate (and their product), the spring
-extension's powers, the harmonics of both shafts' angles (integer orders 1 and 2, as sine/cosine pairs that are
+the powers and signs of the speeds and each body's speed deviation from the recording's mean (_speed_deviations),
+the clutch's penetration and its rate (and their product), the spring extension's powers, the harmonics of both shafts' angles (integer orders 1 and 2, as sine/cosine pairs that are
 linear in their coefficients: a pair is one group, selected together, reported as amplitude and phase), the
 electromagnetic torque, the load pulse (the responses after its edges, on the pulse clock pulse_time_s,
 pulse_off_time_s, are written -- edge_terms -- but not in the default library: EDGES_IN_LIBRARY), and products of
