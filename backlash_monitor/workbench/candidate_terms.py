@@ -4,8 +4,8 @@ Each term is coefficient x f(states), put into one balance of the model (docs/ef
 the motor's load moment [p.u.], the clutch's contact torque [N*m], the rim force between wheel and mass [N], the
 wheel torque [N*m], the mass force [N]. f is dimensionless and of order 1 at the operating point (each state divided
 by the scale below), so the coefficient carries the balance's unit. The library is not a list of known faults: it is
-the powers and signs of the speeds, the clutch's penetration and its rate (and their product), the spring
-extension's powers, the harmonics of both shafts' angles (integer orders 1 and 2, as sine/cosine pairs that are
+the powers and signs of the speeds and each body's speed deviation from the recording's mean (_speed_deviations),
+the clutch's penetration and its rate (and their product), the spring extension's powers, the harmonics of both shafts' angles (integer orders 1 and 2, as sine/cosine pairs that are
 linear in their coefficients: a pair is one group, selected together, reported as amplitude and phase), the
 electromagnetic torque, the load pulse (the responses after its edges, on the pulse clock pulse_time_s,
 pulse_off_time_s, are written -- edge_terms -- but not in the default library: EDGES_IN_LIBRARY), and products of
@@ -19,12 +19,15 @@ numbers in one batch. A proposal is written back in the same form (``proposal_so
 """
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
 import re
+
+import numpy as np
 
 PREFIX = "cand_"     # the library's effect names: cand_<balance>_<what>
 
@@ -97,6 +100,9 @@ class Term:
                                       # ("harmonic", angle, order, fn) | ("speed", speed) | ("time",) | ("channel",
                                       # the other accelerometer) | ("cubic", itself); or ("time", the
                                       # constant term it modulates) -- a slow change of a constant in its balance
+    center: str | None = None         # a speed's deviation from the recording's operating point (_speed_deviations):
+                                      # the recorded speed whose mean is the term's CENTER parameter (set per
+                                      # recording, centers()); written as a number in a proposal (with_center)
 
     @property
     def simulated(self) -> bool:
@@ -198,7 +204,54 @@ def library(edges: bool = EDGES_IN_LIBRARY) -> tuple[Term, ...]:
         b = SHORT[balance]
         t.append(Term(f"{PREFIX}{b}_const", balance, f"1.0 + 0.0 * {var}", "1", "constant", f"{b}_const", (var,)))
     t += _contact_torque_products()
+    t += _speed_deviations()
     return tuple(t)
+
+
+# ------------------------------------------------------------------ a speed's deviation from its operating point
+SPEED_DEVIATION_SCALE_RAD_S = 1.5   # a shaft speed's spread about its mean within a record (a 4 s foreign clean drive:
+                                    # Omega1, Omega2 std 1.4, 1.6 rad/s; 1 %-99 % within -3.6 .. +2.1 rad/s)
+CENTER = "center_rad_s"             # the deviation terms' second parameter: the operating point's speed [rad/s]
+DEVIATIONS = (("motor_load_moment_pu", "omega1", "Ω₁", "omega1", "(omega1 - center_rad_s)", "omega1"),
+              ("wheel_torque_Nm", "omega2", "Ω₂", "omega2", "(omega2 - center_rad_s)", "omega2"),
+              ("mass_force_N", "xdot", "ẋ/r", "omega2", "(xdot / wheel_radius_m - center_rad_s)", "xdot"))
+
+
+def _speed_deviations() -> list:
+    """c · (Ω − Ω̄)/1.5 rad/s of each body's own speed (the motor's Ω₁, the wheel's Ω₂, the mass's ẋ/r), Ω̄ the
+    recording's mean speed (the parameter CENTER, set per recording by centers(): the mass runs at r·Ω₂ on average).
+    The library's other speed terms are by the base speed Ω_mb (157 rad/s): at the operating point Ω/Ω_mb is
+    0.965 ± 0.01, a constant in all but 1 %, which the events cannot tell from the balance's constant (alike) and whose
+    bounded coefficient moves the balance by at most 1 % of its bound with the speed. A load that follows the speed's
+    swing about its operating point -- a speed loop (a servo on the carriage), a flywheel dragged by the shaft, an
+    eddy-current or fan brake linearised at its speed, a governor -- is this term: its column is the speed's
+    variation within a stroke, zero on average."""
+    out = []
+    for balance, var, sym, mean_of, dev, state in DEVIATIONS:
+        b = SHORT[balance]
+        out.append(Term(f"{PREFIX}{b}_{var}_dev", balance, f"{dev} / {SPEED_DEVIATION_SCALE_RAD_S!r}",
+                        f"({sym}−Ω̄)/{SPEED_DEVIATION_SCALE_RAD_S:g}", state, f"{b}_{var}_dev", (var,), center=mean_of))
+    return out
+
+
+def centers(signals: dict) -> dict:
+    """{recorded speed: its mean over the record [rad/s]} for the deviation terms' CENTER (omega2 for the mass: it
+    runs at r·Ω₂ on average); a speed the recording lacks is left out (its terms keep the center 0: then they are the
+    plain speed, still neutral at coefficient 0)."""
+    return {k: float(np.mean(np.asarray(signals[k], dtype=float))) for k in ("omega1", "omega2") if k in signals}
+
+
+def center_key(term: Term) -> str:
+    return f"{term.name}.{CENTER}"
+
+
+def with_center(term: Term, center_rad_s: float) -> Term:
+    """The term with its center written as a number (a proposal's law and plug-in file)."""
+    if term.center is None:
+        return term
+    num = f"{center_rad_s:.6g}"
+    return dataclasses.replace(term, expression=term.expression.replace(CENTER, num),
+                               symbol=term.symbol.replace("Ω̄", num), center=None)
 
 
 # ------------------------------------------------------------------ products of the contact torque (issue 31, part 2)
@@ -358,9 +411,13 @@ def library_source() -> str:
     for i, t in enumerate(library()):
         unit, _, bound = BALANCES[t.balance]
         c = coefficient_name(t)
-        param = f"Parameter({c!r}, {unit!r}, 0.0, ({-bound!r}, {bound!r}), 'the coefficient')"
+        params = [f"Parameter({c!r}, {unit!r}, 0.0, ({-bound!r}, {bound!r}), 'the coefficient')"]
+        extra = []
+        if t.center is not None:     # the operating point's speed, set per recording (centers)
+            params.append(f"Parameter({CENTER!r}, 'rad/s', 0.0, (-1000.0, 1000.0), 'the mean speed')")
+            extra = [CENTER]
         parts.append(_class_source(f"Cand{i}", t.name, t.balance, f"{BALANCE_WORDS[t.balance]} += c * {t.symbol}",
-                                   [param], _variables(t.expression) + [c], f"{c} * ({t.expression})"))
+                                   params, _variables(t.expression) + [c] + extra, f"{c} * ({t.expression})"))
     return "\n\n".join(parts)
 
 

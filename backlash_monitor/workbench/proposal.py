@@ -424,9 +424,12 @@ def propose(run, up, verdict: str) -> Proposal | None:
     p = copy.copy(p0)
     p.model = _library_model(run.model)
     base_sets, on_top = _base_sets(run, up) if verdict == "partial" else ({}, [])
-    p.base = {**p0.base, **base_sets}
-    n_before = p.n_sets_simulated
     terms = list(candidate_terms.library())
+    # the speed-deviation terms' operating point: the recording's mean speeds (candidate_terms._speed_deviations)
+    centers = candidate_terms.centers(run.meas.signals)
+    center_sets = {candidate_terms.center_key(t): centers[t.center] for t in terms if t.center in centers}
+    p.base = {**p0.base, **base_sets, **center_sets}
+    n_before = p.n_sets_simulated
     shared = [t for t in terms if t.harmonic is None]
     key = {t.name: f"{t.name}.{candidate_terms.coefficient_name(t)}" for t in terms}
     steps = {t.name: candidate_terms.BALANCES[t.balance][1] for t in terms}
@@ -462,7 +465,7 @@ def propose(run, up, verdict: str) -> Proposal | None:
     replaced = [] if top else on_top
     if replaced:
         on_top = []
-        p.base = dict(p0.base)
+        p.base = {**p0.base, **center_sets}
     freq = _stability_gram(GG, Gy, yy, groups, alike=alike)
     stab = {group_names[i]: float(freq[i]) for i in np.argsort(-freq) if freq[i] > 0}
     cv = [{"group": group_names[g], "held_out_gain": m, "z": z} for g, m, z in cv_steps]
@@ -581,7 +584,8 @@ def propose(run, up, verdict: str) -> Proposal | None:
     i = 0
     for g in stable:
         n = len(groups[g])
-        pieces.append(candidate_terms.ProposedPiece(tuple(d.terms[c] for c in groups[g]),
+        pieces.append(candidate_terms.ProposedPiece(tuple(candidate_terms.with_center(d.terms[c], centers.get(
+                                                        d.terms[c].center, 0.0)) for c in groups[g]),
                                                     tuple(float(v) for v in coef[i:i + n]),
                                                     tuple(float(u) for u in unc[i:i + n]),
                                                     tuple(d.terms[groups[a][0]] for a in alike[g] if a != g)))
