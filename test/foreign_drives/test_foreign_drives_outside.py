@@ -6,7 +6,6 @@ suites (well formed, writing valid bags).
 This file names the sealed mechanisms only through the registry (FORMS, the suite); it states no sealed law."""
 from __future__ import annotations
 
-import functools
 import json
 import math
 
@@ -18,9 +17,9 @@ from foreign_drives import forms as F
 from foreign_drives import noise as N
 from foreign_drives import outside as O
 from foreign_drives.drive import make_recording
-from foreign_drives.spec import EffectSpec as E
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/: the balances solved for the outside term
+from foreign_outside_recordings import Recordings                              # test/: each file's recordings, made once
 
 W = C.WHEEL_RADIUS_M
 T_B = C.BASE_TORQUE_NM
@@ -36,18 +35,8 @@ def spec(effects=(), width=0.0075, eta=0.025, n1=0.89, seed=151, duration=1.0, n
                          noise=noise, **kw)
 
 
-@functools.lru_cache(maxsize=None)
-def clean():
-    return make_recording(spec())
-
-
-@functools.lru_cache(maxsize=None)
-def made(form, params_json):
-    return make_recording(spec([E(form, json.loads(params_json))]))
-
-
-def rec_of(form, **p):
-    return made(form, json.dumps(p, sort_keys=True))
+RECORDINGS = Recordings(lambda effects, duration_s: spec(effects, duration=duration_s), duration_s=1.0)
+rec_of, clean = RECORDINGS.rec_of, RECORDINGS.clean
 
 
 def pulse_per_sample(rec):

@@ -8,8 +8,6 @@ or label (zero amplitude = the clean drive is checked for every outside form in 
 from __future__ import annotations
 
 import dataclasses
-import functools
-import json
 
 import numpy as np
 import pytest
@@ -19,9 +17,9 @@ from foreign_drives import forms as F
 from foreign_drives import outside as O
 from foreign_drives import suites
 from foreign_drives.drive import build_parameters, make_recording
-from foreign_drives.spec import EffectSpec as E
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_outside_recordings import Recordings, outside_bench              # test/
 
 T_B = C.BASE_TORQUE_NM
 
@@ -31,23 +29,13 @@ SEALED2 = {n: f for n, f in OUTSIDE.items() if f.half == "sealed2"}
 DURATION_S = 0.6
 
 
-def _spec(effects, seed=171, width=0.0065):
-    return RecordingSpec("t2", "outside", width, 0.025, 0.9, effects=tuple(effects), seed=seed,
-                         duration_s=DURATION_S, noise=False)
+def _spec(effects, seed=171, width=0.0065, duration=DURATION_S):
+    return RecordingSpec("t2", "outside" if effects else "clean", width, 0.025, 0.9, effects=tuple(effects), seed=seed,
+                         duration_s=duration, noise=False)
 
 
-@functools.lru_cache(maxsize=None)
-def _made(form, params_json):
-    return make_recording(_spec([E(form, json.loads(params_json))]))
-
-
-def rec_of(form, **p):
-    return _made(form, json.dumps(p, sort_keys=True))
-
-
-@functools.lru_cache(maxsize=None)
-def clean():
-    return make_recording(dataclasses.replace(_spec([]), kind="clean"))
+RECORDINGS = Recordings(lambda effects, duration_s: _spec(effects, duration=duration_s), DURATION_S)
+rec_of, clean = RECORDINGS.rec_of, RECORDINGS.clean
 
 
 def test_second_set_is_seven_and_seven_over_all_balances_with_valid_truth_vocabulary():
@@ -150,13 +138,7 @@ def test_sensor_mechanisms_change_only_their_channel():
 
 # ------------------------------------------------------------------ the outside bench's sets and its loop's guard
 def _outside_bench():
-    import importlib.util
-    from pathlib import Path
-    path = Path(__file__).resolve().parents[2] / "bench" / "_workbench" / "outside.py"
-    spec = importlib.util.spec_from_file_location("outside_bench_under_test", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return outside_bench("outside_bench_under_test")
 
 
 def test_outside_bench_knows_both_sets_and_loops_on_the_spent_sealed_half():

@@ -8,8 +8,6 @@ This file names the sealed mechanisms only through the registry and the suite; i
 from __future__ import annotations
 
 import dataclasses
-import functools
-import json
 import math
 
 import numpy as np
@@ -21,9 +19,9 @@ from foreign_drives import kernel as K
 from foreign_drives import outside as O
 from foreign_drives import suites
 from foreign_drives.drive import make_recording, pulse_indicator
-from foreign_drives.spec import EffectSpec as E
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_outside_recordings import Recordings, outside_bench, suite_effect  # test/
 
 W = C.WHEEL_RADIUS_M
 
@@ -38,38 +36,17 @@ def _spec(effects, seed=173, width=0.0065, duration=DURATION_S):
                          duration_s=duration, noise=False)
 
 
-@functools.lru_cache(maxsize=None)
-def _made(form, params_json, duration=DURATION_S):
-    return make_recording(_spec([E(form, json.loads(params_json))], duration=duration))
-
-
-def rec_of(form, **p):
-    return _made(form, json.dumps(p, sort_keys=True))
-
-
-@functools.lru_cache(maxsize=None)
-def clean(duration=DURATION_S):
-    return make_recording(_spec([], duration=duration))
+RECORDINGS = Recordings(lambda effects, duration_s: _spec(effects, duration=duration_s), DURATION_S)
+rec_of, clean = RECORDINGS.rec_of, RECORDINGS.clean
 
 
 def _suite_effect(name):
     """The set-3 suite's use of a mechanism (its parameters at the suite's strength)."""
-    for sname in ("outside_dev3", "outside_sealed3"):
-        for s in suites.suite(sname):
-            for e in s.effects:
-                if e.form == name:
-                    return e
-    raise AssertionError(f"{name} is in no set-3 suite")
+    return suite_effect(name, ("outside_dev3", "outside_sealed3"))
 
 
 def _outside_bench():
-    import importlib.util
-    from pathlib import Path
-    path = Path(__file__).resolve().parents[2] / "bench" / "_workbench" / "outside.py"
-    spec = importlib.util.spec_from_file_location("outside_bench_under_test3", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return outside_bench("outside_bench_under_test3")
 
 
 # ------------------------------------------------------------------ registry and truth vocabulary

@@ -36,16 +36,23 @@ def _diagnose_before(meas, model, seeds=None):
     return run.before
 
 
+@pytest.fixture(scope="module")
+def built_on_a_recording(model):
+    """(recording, reference built on it without record-mean seeds): a 3 s drive whose load mass is 15 % heavier than
+    the model's, built once for the two tests below (a build runs diagnose's consistency test: ~12 s)."""
+    meas = synthetic.hidden_effect_recording(model, 3.0, seed=36, config_overrides={
+        "effects.load_mass_drift": True, "load_mass_drift.relative_change": 0.15})
+    return meas, reference.build(model, seeds=SEEDS, width_step=0.2, recording=meas, record_mean_seeds=0)
+
+
 @pytest.mark.slow
-def test_a_reference_built_on_a_recording_is_diagnoses_test_on_it_to_the_last_digit(model, tmp_path):
+def test_a_reference_built_on_a_recording_is_diagnoses_test_on_it_to_the_last_digit(built_on_a_recording, tmp_path):
     """Built on the recording itself (its conditions, its noise floor, its number of events), saved and loaded,
     the reference's evaluation at the nominal width is diagnose's consistency test on it (the one screen_step ran
     while building: the reference keeps it as provenance): every view's T^2 and the residual to 1e-9 -- the views
     are rebuilt from the stored arrays by consistency.py's own functions, nothing re-implemented."""
-    meas = synthetic.hidden_effect_recording(model, 3.0, seed=36, config_overrides={
-        "effects.load_mass_drift": True, "load_mass_drift.relative_change": 0.15})
-    own = reference.load(reference.build(model, seeds=SEEDS, width_step=0.2, recording=meas, record_mean_seeds=0)
-                         .save(tmp_path / "own.watch.npz"))
+    meas, built = built_on_a_recording
+    own = reference.load(built.save(tmp_path / "own.watch.npz"))
     ours = own.evaluate(reference.evidence_from_measurement(meas, own), profile_width=False)
     theirs = own.meta["build_consistency"]
     assert own.meta["build_events_measured"] == ours.n_events
@@ -57,13 +64,12 @@ def test_a_reference_built_on_a_recording_is_diagnoses_test_on_it_to_the_last_di
 
 
 @pytest.mark.slow
-def test_the_record_mean_seeds_sharpen_the_record_means_noise_and_nothing_else(model, tmp_path):
+def test_the_record_mean_seeds_sharpen_the_record_means_noise_and_nothing_else(model, built_on_a_recording, tmp_path):
     """More noise seeds of the model at its nominal width (reference.RECORD_MEAN_SEEDS) give the record mean's floor
     and whitening more degrees of freedom (K x (DC_BLOCKS - 1) -> (K + extra) x (DC_BLOCKS - 1)); the other views
     are untouched (to rounding: 1e-12). A reference of format 3 (none) is still read, with diagnose's estimate."""
     import numpy as np
-    meas = synthetic.hidden_effect_recording(model, 3.0, seed=36)
-    plain = reference.build(model, seeds=SEEDS, width_step=0.2, recording=meas, record_mean_seeds=0)
+    meas, plain = built_on_a_recording
     more = reference.load(reference.build(model, seeds=SEEDS, width_step=0.2, recording=meas, record_mean_seeds=9)
                           .save(tmp_path / "more.watch.npz"))
     assert plain.view_dof()["record_mean"] == 3 * 3 and more.view_dof()["record_mean"] == (3 + 9) * 3

@@ -24,6 +24,13 @@ DURATION_S = 3.0
 MASS_CHANGE = 0.3           # load_mass_drift.relative_change: 10 kg -> 13 kg
 MASS_TOLERANCE = 0.05       # relative error of the fitted mass
 NOISE_BAND_RATIO = 1.5      # residual / noise floor of a model that agrees (analysis.INCONSISTENT_RATIO)
+# The model's noise ensemble of these diagnoses: 3 seeds (the command line's --ensemble 3), not diagnose's default 6:
+# every claim here was measured to hold at 3 as well (29 Nov; a diagnosis 15-30 % less CPU): the hidden mass named
+# with +0.304 +- 0.011 (+0.3 within 5 %), its recording's residual 6.8 x the noise floor before (> 3); both clean
+# recordings consistent (residual 0.66 and 0.45 x the floor); the rotor resistance inconsistent, nothing explains,
+# the residual in the impact phase at level a6.
+ENSEMBLE = 3
+SEEDS = list(range(ENSEMBLE))
 
 
 def _save_npz(meas, path):
@@ -40,7 +47,7 @@ def hidden_mass(tmp_path_factory):
     meas = hidden_effect_recording(model, DURATION_S, seed=31, config_overrides={"effects.load_mass_drift": True, "load_mass_drift.relative_change": MASS_CHANGE})
     npz = _save_npz(meas, d / "drive.npz")
     rc = main(["diagnose", str(npz), "--model", str(d / "v1.yaml"), "--json", str(d / "diag.json"),
-               "--report", str(d / "report")])
+               "--report", str(d / "report"), "--ensemble", str(ENSEMBLE)])
     assert rc == 0
     return d, json.loads((d / "diag.json").read_text())
 
@@ -92,7 +99,7 @@ def test_add_effect_brings_the_fit_to_the_noise_band(hidden_mass):
 def test_clean_recordings_give_no_discovery(scenario, seed):
     model = load_model(None, width_m=scenario["width_m"], eta_k=scenario.get("eta_k"))
     meas = hidden_effect_recording(model, DURATION_S, seed=seed)
-    res = public(diagnose(meas, model, propose=False))
+    res = public(diagnose(meas, model, seeds=SEEDS, propose=False))
     assert res["discovery"] is None, res["message"]
 
 
@@ -107,7 +114,7 @@ def test_out_of_catalogue_effect_inconsistent_and_where():
     is not always so (docs/workbench.md, "Identifiability, measured")."""
     model = load_model(None)
     meas = hidden_effect_recording(model, DURATION_S, seed=43, config_overrides={"motor.r_r_pu": 0.12})
-    res = public(diagnose(meas, model, propose=False))
+    res = public(diagnose(meas, model, seeds=SEEDS, propose=False))
     assert res["model_inconsistent"], res["residual_over_noise_floor"]
     assert res["discovery"] is None, res["message"]
     assert res["where"]["dominant_phase"] != "before_entry"

@@ -3,7 +3,7 @@ implementation of the drive's physics with effects in other laws and other senso
 No inverse crime: every inference here is tested on data our model did not make.
 
 3 s recordings (12 onset events), seeds 300-309 (the bench's foreign suite uses 5000+, foreign_drives' own tests
-100-199). Each diagnosis runs the whole catalogue (~25 s)."""
+100-199). Each diagnosis runs the whole catalogue (~15-70 CPU-s), on the ensemble ENSEMBLE gives it."""
 import os
 
 import numpy as np
@@ -53,17 +53,28 @@ SPECS = {
                                                                  E("bias_constant", {"signal": "a2", "bias_m_s2": 1.5})],
                                width=0.006),
 }
+# The model's noise ensemble of a diagnosis: diagnose's default (analysis.DEFAULT_SEEDS, 6 seeds), or 3 seeds for the
+# recordings on which the test's claim was measured to hold with margin at 3 as well (29 Nov; the diagnosis 20-35 %
+# less CPU): clean_mems consistent, a2 noise 0.0099 m/s^2 (0.01 +- 25 %); friction_tanh a discovery naming the wheel
+# Coulomb friction; supply_sag supply_voltage_drift; hot_rotor rotor_resistance_drift at +0.413 +- 0.022 (the bound
+# 0.45 +- 0.107); vibration_131Hz nothing_explains, a line at 131.3 Hz not locked; offset_a2 accelerometer_bias[a2]
+# 1.998 m/s^2 (2.0 +- 0.2). Not on the others: at 3 seeds butterworth2_a1 was a partial, friction_tanh_strong did not
+# name the Coulomb friction, mass_in_pulse named the a2 gain without the mass, width_6_to_7 measured 6.77 mm (7 +- 0.2).
+THREE_SEEDS = [0, 1, 2]
+ENSEMBLE = {name: THREE_SEEDS for name in ("clean_mems", "friction_tanh", "supply_sag", "hot_rotor", "vibration_131Hz",
+                                           "offset_a2")}
 _CACHE: dict = {}
 
 
 def diagnosed(name):
-    """(diagnosis JSON, truth) of one foreign recording, diagnosed against the model at its user's nominal values."""
+    """(diagnosis JSON, truth) of one foreign recording, diagnosed against the model at its user's nominal values
+    (with the ensemble ENSEMBLE gives it)."""
     if name not in _CACHE:
         spec = SPECS[name]
         rec = make_recording(spec)
         meas = Measurement(f"foreign:{name}", rec.sample_period_s, {k: np.asarray(v) for k, v in rec.signals.items()})
         model = load_model(None, width_m=spec.width_m, eta_k=spec.eta_k, n1=spec.n1)
-        _CACHE[name] = (diagnose(meas, model, propose=False).to_json(), rec.truth)
+        _CACHE[name] = (diagnose(meas, model, seeds=ENSEMBLE.get(name), propose=False).to_json(), rec.truth)
     return _CACHE[name]
 
 

@@ -1,0 +1,59 @@
+"""What the outside-mechanism test files (test/foreign_drives/test_foreign_drives_outside*.py, one per set) share: the
+short noise-free recordings they check a set's laws on -- one outside form at given parameters, or the clean drive --
+each made once per file (every file keeps a cache of its own, on its own drive spec), a suite's use of a mechanism
+(its parameters at the suite's strength) and the outside bench module (bench/_workbench/outside.py) loaded from its
+file."""
+from __future__ import annotations
+
+import functools
+import importlib.util
+import json
+from pathlib import Path
+
+from foreign_drives import suites
+from foreign_drives.drive import make_recording
+from foreign_drives.spec import EffectSpec
+
+OUTSIDE_BENCH = Path(__file__).resolve().parents[1] / "bench" / "_workbench" / "outside.py"
+
+
+class Recordings:
+    """The recordings of one test file's drive, each made once. ``make_spec(effects, duration_s)``: the file's
+    RecordingSpec with those effects (the clean drive when there are none), ``duration_s`` long; ``duration_s``: the
+    file's recording length [s] when a call names none."""
+
+    def __init__(self, make_spec, duration_s: float):
+        self.make_spec = make_spec
+        self.duration_s = duration_s
+        self._made = functools.lru_cache(maxsize=None)(self._make)       # this file's cache
+
+    def _make(self, form, params_json: str, duration_s: float):
+        effects = () if form is None else (EffectSpec(form, json.loads(params_json)),)
+        return make_recording(self.make_spec(effects, duration_s))
+
+    def rec_of(self, form: str, duration: float | None = None, **parameters):
+        """The drive with the outside ``form`` at ``parameters`` (the form's own names and units)."""
+        return self._made(form, json.dumps(parameters, sort_keys=True),
+                          self.duration_s if duration is None else duration)
+
+    def clean(self, duration: float | None = None):
+        """The drive without any effect."""
+        return self._made(None, "{}", self.duration_s if duration is None else duration)
+
+
+def suite_effect(name: str, suite_names) -> EffectSpec:
+    """The first use of mechanism ``name`` in the suites ``suite_names`` (its parameters at the suite's strength)."""
+    for suite_name in suite_names:
+        for spec in suites.suite(suite_name):
+            for effect in spec.effects:
+                if effect.form == name:
+                    return effect
+    raise AssertionError(f"{name} is in none of the suites {', '.join(suite_names)}")
+
+
+def outside_bench(module_name: str):
+    """bench/_workbench/outside.py loaded from its file as the module ``module_name``."""
+    spec = importlib.util.spec_from_file_location(module_name, OUTSIDE_BENCH)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
