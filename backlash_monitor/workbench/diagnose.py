@@ -774,8 +774,8 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
                     "catalogue: " if basis == PARTIAL and up.confident else
                     "; the event average is not explained by the spectral discovery: proposed term outside the "
                     "catalogue: ")
-            # the reason without its own no-plug-in note: the message ends with what to do instead
-            result.message += (f"{lead}{found.reason.removesuffix(proposal.NO_PLUGIN_NOTE)} "
+            # the finding without the reason's no-plug-in note: the message ends with what to do instead
+            result.message += (f"{lead}{found.finding} "
                                + ("(add-effect --accept-proposal)" if found.plugin_source else
                                   "(a sensor's term or a change in time: check the sensor, nothing to add to the model)"))
     return result

@@ -42,6 +42,7 @@ ALIKE_COSINE = 0.95    # two groups whose per-event columns span (almost) the sa
                        # smallest principal angle between them over every event's whitened coordinates. The data cannot
                        # tell them apart (the two shafts' angles differ by at most the gap; a speed's sign is 1 on a
                        # drive that never reverses), so they share their votes in the stability and are reported as one
+MIN_EXPLAINED_SHARE = 0.0   # a proposal must lower the event average's residual once in the model (share > 0)
 BOOTSTRAP_SEED = 31    # the resampling's seed: a diagnosis is reproducible
 BATCH_SETS = 6         # parameter sets simulated per batch (memory: a 4 s recording's set is ~0.2 GB over 8 seeds)
 
@@ -59,6 +60,7 @@ class Proposal:
     consistent: bool | None = None
     views_after: dict | None = None
     plugin_source: str = ""
+    finding: str = ""          # what was proposed and how well it explains, without the reason's no-plug-in tail
     plugin_values: dict = field(default_factory=dict)
     on_top_of: list = field(default_factory=list)   # the partial explanation the terms were fitted on top of
     cpu_seconds: float = 0.0
@@ -590,6 +592,15 @@ def propose(run, up, verdict: str) -> Proposal | None:
                                                     tuple(float(u) for u in unc[i:i + n]),
                                                     tuple(d.terms[groups[a][0]] for a in alike[g] if a != g)))
         i += n
+    if explained <= MIN_EXPLAINED_SHARE:
+        # stable over the resampled events, yet once in the model it does not lower the events' mean residual: the
+        # terms fit the events one by one (a column built from each event's own recorded signal), not what they share
+        out.reason = (f"{candidate_terms.proposal_law(pieces)} was selected in the resampled events but explains "
+                      f"{100 * explained:.0f} % of the event average once in the model: nothing proposed")
+        out.explained_fraction = float(explained)
+        out.cpu_seconds = time.process_time() - t0
+        out.simulated_sets = p.n_sets_simulated - n_before
+        return out
     src, values = candidate_terms.proposal_source(pieces)
     out.proposed = True
     out.pieces = pieces
@@ -600,13 +611,13 @@ def propose(run, up, verdict: str) -> Proposal | None:
     out.views_after = after.to_json()
     out.plugin_source, out.plugin_values = src, values
     also = "".join(x.alike_text() for x in pieces)
-    out.reason = (f"{out.law}{also}: explains {drive_terms.explained_percent(explained)} of the residual"
-                  + (f" left by {' + '.join(on_top)}" if on_top else "")
-                  + (f", instead of {' + '.join(replaced)} (the events' held-out error is smaller without it)"
-                     if replaced else "")
-                  + (", the model with it consistent in every view" if after.consistent
-                     else ", the model with it still outside the noise band")
-                  + ("" if src else NO_PLUGIN_NOTE))
+    out.finding = (f"{out.law}{also}: explains {drive_terms.explained_percent(explained)} of the residual"
+                   + (f" left by {' + '.join(on_top)}" if on_top else "")
+                   + (f", instead of {' + '.join(replaced)} (the events' held-out error is smaller without it)"
+                      if replaced else "")
+                   + (", the model with it consistent in every view" if after.consistent
+                      else ", the model with it still outside the noise band"))
+    out.reason = out.finding + ("" if src else NO_PLUGIN_NOTE)
     out.cpu_seconds = time.process_time() - t0
     out.simulated_sets = p.n_sets_simulated - n_before
     return out
