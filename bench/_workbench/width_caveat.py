@@ -255,7 +255,7 @@ def _alarm_row(r: dict, out_dir: Path, truth: dict, rule, warn_c: float, error_c
     trend_wrong = _alarm(r["level"], t, rule.warn_width_m, rule.error_width_m)
     cls_wrong = _alarm(cls_level, t, warn_c, error_c)
     row.update(true_width_mm=t * 1e3, width_mm=r["width_m"] * 1e3,
-               width_uncertainty_mm=(r.get("width_uncertainty_m") or math.nan) * 1e3,
+               width_uncertainty_mm=(math.nan if r.get("width_uncertainty_m") is None else r["width_uncertainty_m"]) * 1e3,
                level=r["level"], reason=r["reason"], model_fit=r.get("model_fit_level"),
                model_fit_ratio=r.get("model_fit_ratio"), caveat=r.get("width_caveat", ""),
                classifier_level=cls_level, classifier_fused_width_mm=fused * 1e3,
