@@ -10,9 +10,12 @@ import importlib.util
 import json
 from pathlib import Path
 
+import numpy as np
+
 from foreign_drives import suites
 from foreign_drives.drive import make_recording
 from foreign_drives.spec import EffectSpec
+from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm
 
 OUTSIDE_BENCH = Path(__file__).resolve().parents[1] / "bench" / "_workbench" / "outside.py"
 
@@ -57,3 +60,23 @@ def outside_bench(module_name: str):
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
+
+
+def assert_acts_in_its_balance_only(name: str, balance: str, rec, base) -> None:
+    """A sealed mechanism ``name`` (its recording ``rec``, the clean drive ``base`` of the same spec) acts in its
+    recorded ``balance`` only: a sensor's leaves every balance and a1's physical signal untouched and moves a1 or a2
+    by > 0.05 m/s^2; a clutch-torque one leaves the three balances and moves the contact torque by > 0.5 N*m; any other
+    moves its own balance by > 0.5 (N*m or N) and no other by 1e-6."""
+    off = {"motor_load_moment": np.max(np.abs(motor_term_Nm(rec))),
+           "wheel_torque": np.max(np.abs(wheel_term_Nm(rec))), "mass_force": np.max(np.abs(mass_term_N(rec)))}
+    if balance == "sensor":
+        assert max(off.values()) < 1e-6
+        assert any(np.max(np.abs(rec.signals[k] - base.signals[k])) > 0.05 for k in ("a1", "a2"))
+        assert np.array_equal(rec.internal["a1_physical"], base.internal["a1_physical"])
+        return
+    if balance == "clutch_torque":
+        assert max(off.values()) < 1e-6
+        assert np.max(np.abs(rec.internal["clutch_torque_Nm"] - base.internal["clutch_torque_Nm"])) > 0.5
+        return
+    for bal, v in off.items():
+        assert (v > 0.5) if bal == balance else (v < 1e-6), (name, bal, v)

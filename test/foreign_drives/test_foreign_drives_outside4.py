@@ -24,7 +24,7 @@ from foreign_drives.drive import make_recording, pulse_indicator
 from foreign_drives.spec import EffectSpec as E
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
-from foreign_outside_recordings import Recordings, outside_bench, suite_effect  # test/
+from foreign_outside_recordings import Recordings, assert_acts_in_its_balance_only, outside_bench, suite_effect  # test/
 
 W = C.WHEEL_RADIUS_M
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
@@ -261,20 +261,7 @@ def test_sealed4_mechanism_acts_in_its_recorded_balance_only(name):
     duration = 3.0 if name == "mass_air_kicker" else DURATION_S               # its suite's firings begin after 2.7 s
     rec = make_recording(_spec([_suite_effect(name)], duration=duration))
     base = clean(duration)
-    off = {"motor_load_moment": np.max(np.abs(motor_term_Nm(rec))),
-           "wheel_torque": np.max(np.abs(wheel_term_Nm(rec))), "mass_force": np.max(np.abs(mass_term_N(rec)))}
-    f = SEALED4[name]
-    if f.balance == "sensor":
-        assert max(off.values()) < 1e-6
-        assert any(np.max(np.abs(rec.signals[k] - base.signals[k])) > 0.05 for k in ("a1", "a2"))
-        assert np.array_equal(rec.internal["a1_physical"], base.internal["a1_physical"])
-        return
-    if f.balance == "clutch_torque":
-        assert max(off.values()) < 1e-6
-        assert np.max(np.abs(rec.internal["clutch_torque_Nm"] - base.internal["clutch_torque_Nm"])) > 0.5
-        return
-    for bal, v in off.items():
-        assert (v > 0.5) if bal == f.balance else (v < 1e-6), (name, bal, v)
+    assert_acts_in_its_balance_only(name, SEALED4[name].balance, rec, base)
 
 
 # ------------------------------------------------------------------ suites, recordings, forms, bench

@@ -9,7 +9,6 @@ This file names the sealed mechanisms only through the registry and the suite; i
 from __future__ import annotations
 
 import dataclasses
-import functools
 import json
 import math
 
@@ -23,9 +22,10 @@ from foreign_drives import noise as N
 from foreign_drives import outside as O
 from foreign_drives import suites
 from foreign_drives.drive import make_recording
-from foreign_drives.spec import EffectSpec as E
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only, outside_bench,  # test/
+                                       suite_effect)
 
 W = C.WHEEL_RADIUS_M
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
@@ -41,38 +41,17 @@ def _spec(effects, seed=173, width=0.0065, duration=DURATION_S):
                          duration_s=duration, noise=False)
 
 
-@functools.lru_cache(maxsize=None)
-def _made(form, params_json):
-    return make_recording(_spec([E(form, json.loads(params_json))]))
-
-
-def rec_of(form, **p):
-    return _made(form, json.dumps(p, sort_keys=True))
-
-
-@functools.lru_cache(maxsize=None)
-def clean(duration=DURATION_S):
-    return make_recording(_spec([], duration=duration))
+RECORDINGS = Recordings(lambda effects, duration_s: _spec(effects, duration=duration_s), DURATION_S)
+rec_of, clean = RECORDINGS.rec_of, RECORDINGS.clean
 
 
 def _suite_effect(name):
     """The set-5 suite's use of a mechanism (its parameters at the suite's strength)."""
-    for sname in ("outside_dev5", "outside_sealed5"):
-        for s in suites.suite(sname):
-            for e in s.effects:
-                if e.form == name:
-                    return e
-    raise AssertionError(f"{name} is in no set-5 suite")
+    return suite_effect(name, ("outside_dev5", "outside_sealed5"))
 
 
 def _outside_bench():
-    import importlib.util
-    from pathlib import Path
-    path = Path(__file__).resolve().parents[2] / "bench" / "_workbench" / "outside.py"
-    spec = importlib.util.spec_from_file_location("outside_bench_under_test5", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return outside_bench("outside_bench_under_test5")
 
 
 def _t(rec):
@@ -272,20 +251,7 @@ def test_stuck_adc_bit_raises_a2_by_the_bits_weight_wherever_that_bit_would_be_z
 def test_sealed5_mechanism_acts_in_its_recorded_balance_only(name):
     rec = rec_of(name, **_suite_effect(name).parameters)
     base = clean()
-    off = {"motor_load_moment": np.max(np.abs(motor_term_Nm(rec))),
-           "wheel_torque": np.max(np.abs(wheel_term_Nm(rec))), "mass_force": np.max(np.abs(mass_term_N(rec)))}
-    f = SEALED5[name]
-    if f.balance == "sensor":
-        assert max(off.values()) < 1e-6
-        assert any(np.max(np.abs(rec.signals[k] - base.signals[k])) > 0.05 for k in ("a1", "a2"))
-        assert np.array_equal(rec.internal["a1_physical"], base.internal["a1_physical"])
-        return
-    if f.balance == "clutch_torque":
-        assert max(off.values()) < 1e-6
-        assert np.max(np.abs(rec.internal["clutch_torque_Nm"] - base.internal["clutch_torque_Nm"])) > 0.5
-        return
-    for bal, v in off.items():
-        assert (v > 0.5) if bal == f.balance else (v < 1e-6), (name, bal, v)
+    assert_acts_in_its_balance_only(name, SEALED5[name].balance, rec, base)
 
 
 # ------------------------------------------------------------------ suites, recordings, forms, bench
