@@ -26,7 +26,9 @@ about the square root of the number of events (docs/classifier.md "Fused continu
 Its uncertainty (``continuous_width_se_m``): the robust standard error of that median over the same
 fused events, sqrt(pi/2) * sigma / sqrt(n) with sigma = 1.4826 * MAD * b_n (b_n: the MAD's small-sample
 correction, Croux & Rousseeuw 1992); the events are the independent units. NaN with fewer than 3 finite
-continuous widths (docs/classifier.md section 5.2).
+continuous widths (docs/classifier.md section 5.2). +inf when the median lies at the top of the continuous range
+(shape.continuous_top_m): the windows were clipped there, so their spread (often 0) is the clip's, not the
+drive's, and the width is only known to be at least that top (a censored value; ``fused_width_uncertainty_m``).
 """
 from __future__ import annotations
 
@@ -36,6 +38,8 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+
+from .shape import continuous_top_m
 
 FUSION_RULES = ("sum_normalised_b", "vote", "trimmed_normalised_b")
 DEFAULT_WINDOW_EVENTS = 8
@@ -90,7 +94,8 @@ class FusedEstimate:
     events: int
     score: np.ndarray       # fused score per candidate width (smaller is better)
     continuous_width_m: float = float("nan")  # median of the events' continuous widths (NaN: none)
-    continuous_width_se_m: float = float("nan")  # its robust standard error over the events (NaN: < 3)
+    continuous_width_se_m: float = float("nan")  # its robust standard error over the events (NaN: < 3; +inf:
+                                                 # the median is at the range's top, a censored width)
 
     @cached_property
     def margin(self) -> float:
@@ -116,6 +121,7 @@ class WidthFusion:
         if rule not in FUSION_RULES:
             raise ValueError(f"unknown fusion rule {rule!r}; allowed: {', '.join(FUSION_RULES)}")
         self.widths_m = np.asarray(widths_m, dtype=float)
+        self.top_m = continuous_top_m(self.widths_m)    # the continuous widths' clip (a censored fused width)
         self.window_events = int(window_events)
         self.rule = rule
         self._bs: deque = deque(maxlen=self.window_events)
@@ -201,7 +207,7 @@ class WidthFusion:
         idx, score = _fuse_normalised(bs, normalised, self.rule)
         return FusedEstimate(index=idx, width_m=float(self.widths_m[idx]), events=len(bs),
                              score=score, continuous_width_m=fused_continuous_width(continuous),
-                             continuous_width_se_m=median_standard_error(continuous))
+                             continuous_width_se_m=fused_width_uncertainty_m(continuous, self.top_m))
 
 
 def fusable(bs: np.ndarray) -> np.ndarray:
@@ -241,6 +247,18 @@ def median_standard_error(values) -> float:
     mad = fused_continuous_width([abs(x - middle) for x in c])
     sigma = 1.4826 * mad * _MAD_SMALL_SAMPLE.get(n, n / (n - 0.8))
     return math.sqrt(math.pi / 2) * sigma / math.sqrt(n)
+
+
+def fused_width_uncertainty_m(values, top_m: float = math.inf) -> float:
+    """The uncertainty [m] of the fused continuous width of ``values`` (one per event): the median's robust standard
+    error (median_standard_error), or +inf when that median is at ``top_m``, the top of the continuous range the
+    windows are clipped to (shape.continuous_top_m): a censored width, known only to be >= top_m. Measured on a drive
+    with rail joints outside the catalogue (outside_sealed5): every window read the 20 mm clip, the MAD was 0, and the
+    monitor printed "20.00 ± 0.00 mm" on a 4.5 mm drive."""
+    middle = fused_continuous_width(values)
+    if math.isfinite(middle) and middle >= top_m * (1.0 - 1e-9):
+        return math.inf
+    return median_standard_error(values)
 
 
 def fused_indices(b_sequence, window_events: int = DEFAULT_WINDOW_EVENTS, rule: str = "sum_normalised_b",

@@ -26,6 +26,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+CONTINUOUS_TOP_FACTOR = 2.0   # w_hat is clipped to [0, 2 x the widest pattern width] (20 mm for the paper's 10 mm): a
+                              # regression beyond its training range is extrapolation, and a window whose features
+                              # are far off (another mechanism, a broken sensor) must not read as any width at all
+
+
+def continuous_top_m(widths_m) -> float:
+    """The top [m] of the continuous width's range: CONTINUOUS_TOP_FACTOR x the widest pattern width. A window
+    clipped there says only that the width is at least this (fusion.fused_width_uncertainty_m)."""
+    return CONTINUOUS_TOP_FACTOR * float(np.max(np.asarray(widths_m, dtype=float)))
+
 SHAPE = "shape"
 SHAPE_SIGNALS = ("a1", "a2", "a1+a2")
 
@@ -180,7 +190,7 @@ class ShapeModel:
     def continuous_width(self, a1=None, a2=None) -> np.ndarray:
         f = window_features(self.signal, a1, a2, self.sample_period_s)
         w = _expand((f - self.mu) / self.sd) @ self.coef + self.intercept
-        return np.clip(w, 0.0, 2.0 * float(self.widths_m.max()))
+        return np.clip(w, 0.0, continuous_top_m(self.widths_m))
 
     def b(self, a1=None, a2=None) -> tuple[np.ndarray, np.ndarray]:
         """(B (n, 6), continuous width (n,)) for windows (n, L) (or one window (L,): B (1, 6))."""

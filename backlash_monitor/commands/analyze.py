@@ -215,6 +215,7 @@ def _print_integrity(integrity) -> None:
 
 
 def _print_summary(summary, rows, discarded, n_samples, elapsed, outputs):
+    from backlash_monitor.fleet.caveat import width_text
     true_width = summary["true_width_m"]
     print(f"analyzed {n_samples} samples in {elapsed:.2f} s; {len({r['entry_sample_index'] for r in rows})} "
           f"onset windows classified, {len(discarded)} discarded")
@@ -224,8 +225,7 @@ def _print_summary(summary, rows, discarded, n_samples, elapsed, outputs):
         acc = "-" if math.isnan(true_width) else f"{s['correct'] / s['estimates']:.0%}"
         cont = s.get("fused_continuous_width_m", math.nan)
         se = s.get("fused_width_uncertainty_m", math.nan)
-        cont_text = ("-" if math.isnan(cont) else f"{cont * 1e3:.2f} mm" if math.isnan(se)
-                     else f"{cont * 1e3:.2f} ± {se * 1e3:.2f} mm")
+        cont_text = width_text(cont, se)
         lines.append((signal, str(s["estimates"]), acc, f"{s['fused_width_m'] * 1e3:.2f} mm",
                       cont_text, str(s["fused_events"])))
     widths = [max(len(line[i]) for line in lines) for i in range(len(header))]

@@ -72,9 +72,12 @@ def with_caveat(text: str, fit: FitVerdict | None) -> str:
 
 def width_text(width_m: float, uncertainty_m: float = math.nan) -> str:
     """'10.80 ± 0.05 mm', '10.80 mm' without an uncertainty, '-' without a width (NaN; 0 from a
-    publisher that does not set the field reads as none)."""
+    publisher that does not set the field reads as none), '≥ 20.00 mm (the top of the classifier's range)' for a
+    censored width (uncertainty +inf: classifier/fusion.py fused_width_uncertainty_m)."""
     if not math.isfinite(width_m) or width_m <= 0:
         return "-"
+    if uncertainty_m == math.inf:
+        return f"≥ {width_m * 1e3:.2f} mm (the top of the classifier's range)"
     if math.isfinite(uncertainty_m) and uncertainty_m > 0:
         return f"{width_m * 1e3:.2f} ± {uncertainty_m * 1e3:.2f} mm"
     return f"{width_m * 1e3:.2f} mm"

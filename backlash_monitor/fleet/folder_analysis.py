@@ -189,7 +189,8 @@ def analyze_one(job: dict) -> dict:
     """One bag through the single-bag analysis (a worker's task: a job is its bag, its output prefix,
     the AnalyzeOptions and the WatchOptions of its model fit); returns its fleet-table row."""
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
-    from backlash_monitor.classifier.fusion import median_standard_error
+    from backlash_monitor.classifier.fusion import fused_width_uncertainty_m
+    from backlash_monitor.classifier.shape import continuous_top_m
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.offline.bag_analysis import analyze_bag
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
@@ -236,7 +237,8 @@ def analyze_one(job: dict) -> dict:
                width_m=statistics.median(widths) if widths else math.nan,
                # the robust standard error of that median over the recording's onset windows (the
                # events: classifier/fusion.py); NaN where the mode gives no continuous width
-               width_uncertainty_m=median_standard_error(continuous),
+               width_uncertainty_m=fused_width_uncertainty_m(
+                   continuous, continuous_top_m(mine[0]["candidate_widths_m"]) if mine else math.inf),
                fused_width_m=mine[-1]["fused_width_m"] if mine else math.nan,
                true_width_m=result["summary"]["true_width_m"],
                onsets=len({r["entry_sample_index"] for r in mine}),

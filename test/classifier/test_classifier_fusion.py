@@ -209,3 +209,24 @@ def test_fused_estimate_carries_the_standard_error_of_its_events():
     g = WidthFusion(widths, window_events=8, rule="trimmed_normalised_b")
     batch = g.add_many([b] * 12, list(cont))
     assert [e.continuous_width_se_m for e in batch[2:]] == [e.continuous_width_se_m for e in ests[2:]]
+
+
+def test_a_fused_width_at_the_top_of_the_continuous_range_is_censored_not_certain():
+    """Windows clipped at the top of the continuous range (shape.continuous_top_m, 2 x the widest pattern) have no
+    spread of the drive's: their median says only "at least the top". The uncertainty is +inf, not the MAD's 0, and
+    a drive whose windows scatter below the top keeps its finite standard error."""
+    from backlash_monitor.classifier.fusion import fused_width_uncertainty_m, median_standard_error
+    from backlash_monitor.classifier.shape import continuous_top_m
+    widths = np.array([0.0025, 0.00375, 0.005, 0.0075, 0.009, 0.01])
+    top = continuous_top_m(widths)
+    assert top == pytest.approx(0.02)
+    f = WidthFusion(widths, window_events=8, rule="trimmed_normalised_b")
+    b = np.abs(widths - 0.01) + 1e-4
+    clipped = [0.0185, 0.0191] + [top] * 6            # most windows clipped: the median is the clip
+    ests = [f.add(b, continuous_width_m=c) for c in clipped]
+    assert ests[-1].continuous_width_m == top
+    assert median_standard_error(clipped) == 0.0       # what was printed as "20.00 ± 0.00 mm"
+    assert ests[-1].continuous_width_se_m == math.inf
+    below = [top - 1e-3 + 1e-4 * k for k in range(8)]  # near the top, not at it: a measurement with its spread
+    assert 0 < fused_width_uncertainty_m(below, top) == pytest.approx(median_standard_error(below))
+    assert fused_width_uncertainty_m([math.nan] * 4, top) != math.inf

@@ -26,6 +26,14 @@ def test_a_model_that_explains_or_no_fit_at_all_leaves_the_width_alone():
     assert width_text(math.nan) == "-" and width_text(0.0) == "-"       # 0: a publisher that sets none
 
 
+def test_a_censored_width_says_it_is_at_the_top_of_the_range_and_keeps_the_caveat():
+    """+inf uncertainty (classifier/fusion.py: the fused median at the continuous range's clip) reads as a bound,
+    never as '20.00 ± 0.00 mm', and the model's caveat still follows in the same line."""
+    assert width_text(0.02, math.inf) == "≥ 20.00 mm (the top of the classifier's range)"
+    line = width_line(0.02, math.inf, FitVerdict.from_watch("WARN", "v1", 6.0))
+    assert line.startswith("width ≥ 20.00 mm (the top") and says_model_fails(line) and "±" not in line
+
+
 def test_bad_levels_are_refused_and_a_fit_that_is_a_reason_gives_no_verdict():
     with pytest.raises(ValueError, match="allowed: OK, WARN"):
         FitVerdict.from_watch("ERROR", "m", 1.0)
