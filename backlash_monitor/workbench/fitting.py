@@ -219,13 +219,23 @@ class Problem:
         noise = float(self.views.fit_basis.shape[1]) * c
         return (r0 - r1) / max(r0 - noise, 1e-3 * r0, 1e-300)
 
+    def events_in_views(self) -> np.ndarray:
+        """The measured events' vectors in the whitened views' basis (E, k): taken once per views object, not per
+        IC (the fits and the proposal take ~200 ICs of one problem; (E x n) @ (n x k) was a third of a diagnosis)."""
+        kept = self.__dict__.get("_events_in_views")
+        if kept is None or kept[0] is not self.views:
+            kept = (self.views, self.event_vecs @ self.views.basis)
+            self._events_in_views = kept
+        return kept[1]
+
     def ic(self, pred, k: int) -> float:
-        d = self.event_vecs - pred[None]
-        e = d.shape[0]
+        e = self.event_vecs.shape[0]
         if self.views is not None:
-            # whitened candidate subspace: one Gaussian per direction, its variance estimated from the events
-            z = d @ self.views.basis
+            # whitened candidate subspace: one Gaussian per direction, its variance estimated from the events;
+            # (events - pred) @ basis taken as events @ basis (kept) - pred @ basis
+            z = self.events_in_views() - (np.asarray(pred) @ self.views.basis)[None]
             return float(e * np.sum(np.log(np.mean(z ** 2, axis=0))) + k * np.log(e))
+        d = self.event_vecs - pred[None]
         loss = np.mean(d[:, :self.n_event_coords] ** 2, axis=1)
         return float(e * np.log(np.mean(loss)) + k * np.log(e))
 

@@ -66,3 +66,25 @@ def test_the_views_are_built_whole_and_not_changed_afterwards():
     views, _ = _views(np.random.default_rng(3))
     with pytest.raises(dataclasses.FrozenInstanceError):
         views.basis = None
+
+
+def test_the_information_criterion_in_the_views_is_the_events_gaussian_per_direction():
+    """fitting.Problem.ic in the whitened views: E * sum_j log(mean_e z_ej^2) + k log E, z = (event_e - pred) @ basis
+    (docs/workbench.md "Decisions"), with the events' projection kept per views object (a new views object is
+    projected anew, not read from the old one's)."""
+    from backlash_monitor.workbench import fitting
+    rng = np.random.default_rng(3)
+    p = object.__new__(fitting.Problem)
+    p.event_vecs = rng.normal(size=(16, N_EV + N_SP + N_DC)) + 5.0
+    p.n_event_coords = N_EV
+    p.views = _views(rng)[0]
+    pred = rng.normal(size=p.event_vecs.shape[1])
+
+    def by_hand(views, k):
+        z = (p.event_vecs - pred[None]) @ views.basis
+        return 16 * np.sum(np.log(np.mean(z ** 2, axis=0))) + k * np.log(16)
+    assert p.ic(pred, 3) == pytest.approx(by_hand(p.views, 3), rel=1e-12)
+    other = _views(np.random.default_rng(4))[0]
+    q = p.with_views(other)
+    assert q.ic(pred, 0) == pytest.approx(by_hand(other, 0), rel=1e-12)
+    assert p.ic(pred, 0) == pytest.approx(by_hand(p.views, 0), rel=1e-12)
