@@ -23,8 +23,11 @@ analyze or proposal ran on them. The suite is made on first use (``suites.suite(
    where it last slid: T_f*s, s -> sign(dD) - (sign(dD) - s)*exp(-|dD|/theta_c) for each change dD of the jaw's angle
    difference (rate-independent, smooth);
 8. mass force x the spring extension through a RATE LIMITER: a pneumatic balancer on the carriage whose pressure
-   regulator follows the spring's extension, -K*(m - z_ref), m -> z but moving at most R (m/s) (a proportional valve
-   that slews: the force lags only where the extension changes fast);
+   regulator follows the spring's extension, K*(m - z_ref) towards the rim like a second spring, m -> z but moving at
+   most R (m/s) (a proportional valve that slews: the force lags only where the extension changes fast; first written
+   with the sign of a force against the spring, -K*(m - z_ref): with K above the spring's stiffness that pushed the
+   carriage away from its equilibrium -- changed after its first visibility simulation, before any diagnose, and its
+   visibility simulated once more at the same K);
 10. a1 sensor x a1 at RANDOM LATENCIES: a1's rotating telemetry sends packets whose latency varies; the recorder stamps
     them on arrival, so each recorded a1 sample is the signal at t - d_n, d_n pseudo-random in [0, D] for each sample
     (linear interpolation): a timing jitter;
@@ -127,20 +130,21 @@ class MassRateLimitedBalancer(OutsideForm):
     half = "sealed6"
     balance = "mass_force"
     depends_on = ("spring_extension",)
-    description = ("a pneumatic balancer on the carriage whose pressure regulator follows the spring's extension through "
-                   "a valve that slews at most R: -K*(m - z_ref), m moving towards z by at most R*0.2 ms per 0.2 ms scan "
-                   "(m = z at the run-in's start)")
+    description = ("a pneumatic balancer on the carriage, beside the spring, whose pressure regulator follows the "
+                   "spring's extension through a valve that slews at most R: it pulls the carriage towards the rim like "
+                   "a second spring, K*(m - z_ref), m moving towards z by at most R*0.2 ms per 0.2 ms scan (m = z at the "
+                   "run-in's start)")
     parameters = (Param("gain_N_per_m", "N/m", (0.0, 5000.0), "K"),
                   Param("rate_m_s", "m/s", (1e-4, 10.0), "R"),
                   Param("reference_extension_m", "m", (0.0, 1.0), "z_ref"))
 
     def apply(self, b, p):
         set_memory(b, self.name, K.MK_RATE_LIMIT, K.XS_SPRING_EXTENSION, p["rate_m_s"])
-        add_term(b, "mass_force", -p["gain_N_per_m"],
+        add_term(b, "mass_force", p["gain_N_per_m"],
                  (K.XS_MEMORY, K.XF_CLIP, 1e9, -p["reference_extension_m"], 0.0), nonperiodic=True)
 
     def law(self, p):
-        return (f"mass force += -{p['gain_N_per_m']:.6g} N/m * (m - {p['reference_extension_m']:.6g} m), m -> z at most "
+        return (f"mass force += {p['gain_N_per_m']:.6g} N/m * (m - {p['reference_extension_m']:.6g} m), m -> z at most "
                 f"{p['rate_m_s']:.6g} m/s (every 0.2 ms), z the spring extension")
 
 

@@ -335,9 +335,10 @@ OUTSIDE_DEV6_ROWS = [
     # a 0.03 kg*m^2 brake disc (0.27 J1) on a slip hub of 2 N*m
     ("od6_motor_slip_hub_flywheel", "outside", 0.0061, 0.0285, 0.92,
      [E("motor_slip_hub_flywheel", {"inertia_kgm2": 0.03, "slip_torque_Nm": 2.0})]),
-    # an idler of 0.005 kg*m^2 in a +-4 mrad mesh backlash, 200 Hz on its flank, drag 0.5/s (0.4 N*m at speed)
+    # an idler in a +-4 mrad mesh backlash, 200 Hz on its flank, drag 0.5/s; 0.005 kg*m^2 moved a2 by 0.0147 m/s^2 rms:
+    # x5.12
     ("od6_wheel_idler_gear_rattle", "outside", 0.0079, 0.022, 0.91,
-     [E("wheel_idler_gear_rattle", {"inertia_kgm2": 0.005, "backlash_rad": 0.004, "contact_frequency_hz": 200.0,
+     [E("wheel_idler_gear_rattle", {"inertia_kgm2": 0.0256, "backlash_rad": 0.004, "contact_frequency_hz": 200.0,
                                     "contact_damping_ratio": 0.1, "drag_per_s": 0.5})]),
     # the contact torque capped at 40 N*m (an impact's elastic torque reaches ~39, with its damping ~105-120)
     ("od6_clutch_torque_limiter", "outside", 0.0052, 0.036, 0.94, [E("clutch_torque_limiter", {"limit_Nm": 40.0})]),
@@ -350,9 +351,10 @@ OUTSIDE_DEV6_ROWS = [
     # a module over +-2.4 m/s^2 (the clean drive of seed 8406: |a2| up to 2.62, its 90th percentile 2.30), 2 ms to recover
     ("od6_a2_overload_recovery", "outside", 0.0046, 0.0315, 0.96,
      [E("a2_overload_recovery", {"range_m_s2": 2.4, "recovery_s": 0.002})]),
-    # a 3 N*m brake chopped at 5 ms, its duty 0 at 149 rad/s and 1 at 155 (the drive runs 147-154)
+    # a brake chopped at 5 ms, its duty 0 at 149 rad/s and 1 at 155 (the drive runs 147-154); 3 N*m moved a2 by 0.0346
+    # m/s^2 rms: x2.17
     ("od6_wheel_pwm_brake", "outside", 0.0058, 0.0245, 0.89,
-     [E("wheel_pwm_brake", {"torque_Nm": 3.0, "carrier_period_s": 0.005, "zero_duty_speed_rad_s": 149.0,
+     [E("wheel_pwm_brake", {"torque_Nm": 6.5, "carrier_period_s": 0.005, "zero_duty_speed_rad_s": 149.0,
                             "full_duty_span_rad_s": 6.0})]),
 ]
 
