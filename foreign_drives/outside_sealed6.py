@@ -4,7 +4,7 @@ SEALED: whoever builds or tunes the workbench's proposal of a missing term (work
 event_design.py, candidate_terms.py, and the model's variables they use) does not read this file, the suite it makes
 (``python -m foreign_drives write --suite outside_sealed6``), its manifest or its recordings' diagnoses, until the
 final, once-only run. ``python -m foreign_drives forms`` withholds these laws; docs/foreign_drives.md lists these
-mechanisms by name and balance only.
+mechanisms by balance only.
 
 Seven mechanisms outside the catalogue, of kinds neither the catalogue, the forms of :mod:`forms`, the first five sets
 nor the sixth development half (:mod:`outside_dev6`) has, and the suite's rows (seeds 8500+). The split rule is in
@@ -89,7 +89,7 @@ class WheelPiSpeedBrake(OutsideForm):
     parameters = (Param("proportional_Nms_per_rad", "N*m*s/rad", (0.0, 20.0), "K_p"),
                   Param("integral_Nm_per_rad", "N*m/rad", (0.0, 500.0), "K_i"),
                   Param("max_torque_Nm", "N*m", (0.0, 50.0), "T_max"),
-                  Param("reference_speed_rad_s", "rad/s", (100.0, 170.0), "Omega_ref"))
+                  Param("reference_speed_rad_s", "rad/s", (100.0, 170.0), "Omega_ref: the web speed it holds"))
 
     def apply(self, b, p):
         set_memory(b, self.name, K.MK_PI_SAT, K.XS_OMEGA2, p["proportional_Nms_per_rad"], p["integral_Nm_per_rad"],
