@@ -38,6 +38,10 @@ analyze or proposal ran on them. The suite is made on first use (``suites.suite(
 14. mass force x the mass speed through a SLACK TOW CHAIN: the carriage tows a trailer cart by a chain with slack L;
     the cart's rolling resistance slows it until the chain snatches taut (a stiff, damped one-sided contact), pulls
     it up to speed and goes slack again: the carriage feels the chain's snatch loads only.
+
+Visibility, measured (as in :mod:`outside_dev6`: one simulation of each row, 4 s, against the same spec without the
+mechanism, same seed): 2 a2 0.109; 4 a2 0.135; 6 a2 0.0525; 8 a2 0.309 with the first sign, 0.0734 with the final
+one (same K); 10 a1 5.38; 12 a2 0.290; 14 a2 0.0954. None was scaled.
 """
 from __future__ import annotations
 
