@@ -161,6 +161,13 @@ MK_OFF, MK_LAG, MK_DELAY, MK_ONESHOT, MK_SCHEDULE = range(5)
 # rate (a tuned absorber: a = its angular frequency [rad/s], b = its damping ratio; its relative displacement and
 # speed in the ring's first two places; output w^2*d + 2*zeta*w*d')
 MK_PLAY, MK_STROKE_SAMPLE, MK_RESONATOR = 5, 6, 7
+# the sixth set (foreign_drives.outside_dev6/_sealed6), see _memory_scan6: a hidden inertia on a slip hub (stick-slip);
+# a hidden body in a gap driven by its carrier's speed (a rattle, or with the ring's one-sided flag a slack chain); a PI
+# controller with a saturated output and clamping anti-windup; a Dahl friction element; a rate limiter; an accumulator's
+# pressure with an unloader; a PWM actuator whose duty is sampled at each carrier period's start. Their extra parameters
+# sit in the ring from MEM_EXTRA on (set by the form), their states in the ring's first places.
+MK_SLIP_HUB, MK_RATTLE, MK_PI_SAT, MK_DAHL, MK_RATE_LIMIT, MK_UNLOADER, MK_PWM = 8, 9, 10, 11, 12, 13, 14
+MEM_EXTRA = 8
 # selectors: the drive quantity a factor reads
 (XS_ONE, XS_OMEGA1, XS_OMEGA2, XS_RIM_SPEED, XS_MASS_SPEED, XS_PENETRATION, XS_SPRING_EXTENSION, XS_ALPHA1,
  XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
@@ -174,6 +181,9 @@ XS_MASS_POSITION, XS_CONTACT_POWER = 29, 30
 (XF_ONE, XF_X, XF_POWER, XF_SIN, XF_SIN_POSITIVE, XF_EXCESS_POWER, XF_RAMP, XF_TANH, XF_RISE, XF_COS,
  XF_RISE_AFTER, XF_ABS, XF_SIGMOID, XF_DECAY_AFTER, XF_CUSHION, XF_PERIODIC_GATE, XF_CLIP) = range(17)
 XF_STAIRS = 17                   # the fifth set: a*floor((x - b)/a) above b, else 0 (whole steps of a, a quantiser)
+# the sixth set: a pseudo-random number in [-1, 1) from the whole number floor(x) and a seed a (exact integer
+# arithmetic); the excess beyond +-a (a dead zone: sign(x)*max(0, |x| - a)); (x - b) mod a (a count's residue)
+XF_HASH, XF_DEADZONE, XF_MOD = 18, 19, 20
 
 
 @njit(cache=True, inline="always")
@@ -368,6 +378,125 @@ def _memory_scan5(kind, x, P, seg_dt):
 
 
 @njit(cache=True)
+def _rattle_scan(x, P, seg_dt):
+    """MK_RATTLE: a hidden body in a gap +-a (input units: rad or m) on a carrier whose speed is ``x``: its displacement
+    d and speed d' relative to the carrier in the ring's first two places; contact (|d| > a; one-sided flag in the ring:
+    only d < -a) with angular frequency b and damping ratio ring[MEM_EXTRA], never pulling; a drag -c*(x + d') on its
+    absolute speed; the carrier's acceleration = its speed's change over the last scan. Eight semi-implicit Euler steps
+    per scan; the output: minus the mean contact acceleration over the scan (the reaction on the carrier per unit of the
+    body's mass or inertia)."""
+    g, w, lam = P[P_MEMA], P[P_MEMB], P[P_MEMC]
+    zeta, one_sided = P[P_MEMR0 + MEM_EXTRA], P[P_MEMR0 + MEM_EXTRA + 1]
+    acc = (x - P[P_MEMPREV]) / seg_dt
+    P[P_MEMPREV] = x
+    d, dd = P[P_MEMR0], P[P_MEMR0 + 1]
+    h = 0.125 * seg_dt
+    tot = 0.0
+    for _ in range(8):
+        ca = 0.0
+        if d < -g:
+            ca = -w * w * (d + g) - 2.0 * zeta * w * dd
+            if ca < 0.0:
+                ca = 0.0
+        elif d > g and one_sided == 0.0:
+            ca = -w * w * (d - g) - 2.0 * zeta * w * dd
+            if ca > 0.0:
+                ca = 0.0
+        dd += h * (ca - lam * (x + dd) - acc)
+        d += h * dd
+        tot += ca
+    P[P_MEMR0], P[P_MEMR0 + 1] = d, dd
+    P[P_MEMSTATE] = -tot / 8.0
+
+
+@njit(cache=True)
+def _memory_scan6(kind, x, P, seg_dt):
+    """The sixth set's memory kinds, one 0.2 ms scan with the input ``x`` (first scan: initialised, output below):
+    - MK_SLIP_HUB: a hidden inertia a on a slip hub of slip torque b: the torque to bring it to x over the scan,
+      a*(x - w_f)/dt, passed whole while within +-b (w_f = x), else +-b (w_f moves by +-b/a*dt); output: that torque
+      (first scan: w_f = x, 0);
+    - MK_RATTLE: _rattle_scan (first scan: at rest on the driving flank, d = -a - c*x/b^2, d' = 0);
+    - MK_PI_SAT: u = K_p*e + I limited to [0, c], e = x - ring[MEM_EXTRA], K_p = a; I += b*e*dt unless u is at a limit
+      and e pushes it further; output u (first scan: I = 0);
+    - MK_DAHL: s -> sign(dx) - (sign(dx) - s)*exp(-|dx|/a) for the input's change dx since the last scan (first: s = 0);
+    - MK_RATE_LIMIT: m moves towards x by at most a*dt (first scan: m = x);
+    - MK_UNLOADER: p += (on*a*x - b*pulse)*dt (p >= 0); on -> 0 above c, -> 1 below ring[MEM_EXTRA]; output on*p
+      (first scan: p = ring[MEM_EXTRA], on);
+    - MK_PWM: at every a-th scan the duty clip((x - b)/c, 0, 1) is taken; output 1 for the first round(duty*a) scans of
+      the period, else 0 (first scan: the period starts)."""
+    a, b, c = P[P_MEMA], P[P_MEMB], P[P_MEMC]
+    if P[P_MEMINIT] == 0.0:
+        P[P_MEMINIT] = 1.0
+        P[P_MEMPREV] = x
+        P[P_MEMSTATE] = 0.0
+        P[P_MEMN] = 0.0
+        P[P_MEMR0] = 0.0
+        P[P_MEMR0 + 1] = 0.0
+        if kind == MK_SLIP_HUB:
+            P[P_MEMR0] = x
+            return
+        if kind == MK_RATTLE:
+            P[P_MEMR0] = -a - c * x / (b * b)
+            return
+        if kind == MK_DAHL:
+            return
+        if kind == MK_RATE_LIMIT:
+            P[P_MEMSTATE] = x
+            return
+        if kind == MK_UNLOADER:
+            P[P_MEMR0] = P[P_MEMR0 + MEM_EXTRA]
+            P[P_MEMR0 + 1] = 1.0
+            P[P_MEMSTATE] = P[P_MEMR0]
+            return
+    if kind == MK_SLIP_HUB:
+        need = a * (x - P[P_MEMR0]) / seg_dt
+        if abs(need) <= b:
+            P[P_MEMR0] = x
+            P[P_MEMSTATE] = need
+        else:
+            tq = b if need > 0.0 else -b
+            P[P_MEMR0] += tq / a * seg_dt
+            P[P_MEMSTATE] = tq
+    elif kind == MK_RATTLE:
+        _rattle_scan(x, P, seg_dt)
+    elif kind == MK_PI_SAT:
+        e = x - P[P_MEMR0 + MEM_EXTRA]
+        u = a * e + P[P_MEMR0]
+        if not ((u >= c and e > 0.0) or (u <= 0.0 and e < 0.0)):
+            P[P_MEMR0] += b * e * seg_dt
+            u = a * e + P[P_MEMR0]
+        P[P_MEMSTATE] = 0.0 if u < 0.0 else (c if u > c else u)
+    elif kind == MK_DAHL:
+        dx = x - P[P_MEMPREV]
+        P[P_MEMPREV] = x
+        if dx != 0.0:
+            sg = 1.0 if dx > 0.0 else -1.0
+            P[P_MEMSTATE] = sg - (sg - P[P_MEMSTATE]) * math.exp(-abs(dx) / a)
+    elif kind == MK_RATE_LIMIT:
+        step = x - P[P_MEMSTATE]
+        lim = a * seg_dt
+        P[P_MEMSTATE] += -lim if step < -lim else (lim if step > lim else step)
+    elif kind == MK_UNLOADER:
+        p = P[P_MEMR0] + (P[P_MEMR0 + 1] * a * x - b * P[P_PON]) * seg_dt
+        p = p if p > 0.0 else 0.0
+        if P[P_MEMR0 + 1] != 0.0 and p > c:
+            P[P_MEMR0 + 1] = 0.0
+        elif P[P_MEMR0 + 1] == 0.0 and p < P[P_MEMR0 + MEM_EXTRA]:
+            P[P_MEMR0 + 1] = 1.0
+        P[P_MEMR0] = p
+        P[P_MEMSTATE] = P[P_MEMR0 + 1] * p
+    elif kind == MK_PWM:
+        n = int(P[P_MEMN])
+        per = int(a)
+        k = n % per
+        if k == 0:
+            q = (x - b) / c
+            P[P_MEMR0] = 0.0 if q < 0.0 else (1.0 if q > 1.0 else q)
+        P[P_MEMSTATE] = 1.0 if k < round(P[P_MEMR0] * per) else 0.0
+        P[P_MEMN] = n + 1.0
+
+
+@njit(cache=True)
 def memory_scan(t, y, P, mode, seg_dt):
     """Advance the memory element by one 0.2 ms segment from the state ``y`` at the segment's start ``t``:
     - MK_LAG: m -> x + (m - x)*exp(-dt/a) while x > m, else x + (m - x)*exp(-dt/b) (c = 1: m*exp(-dt/b));
@@ -387,6 +516,9 @@ def memory_scan(t, y, P, mode, seg_dt):
         P[P_MEMSTATE] = on
         return
     x = _quantity(int(P[P_MEMSEL]), t, y, P, mode, 0.0, 0.0)
+    if kind >= MK_SLIP_HUB:
+        _memory_scan6(kind, x, P, seg_dt)
+        return
     if kind >= MK_PLAY:
         _memory_scan5(kind, x, P, seg_dt)
         return
@@ -469,6 +601,16 @@ def _shaped(shape, x, a, b, c):
         return -a if q < -a else (a if q > a else q)
     if shape == XF_STAIRS:                       # whole steps of a above b (a quantiser), 0 below b
         return a * math.floor((x - b) / a) if x > b else 0.0
+    if shape == XF_HASH:                         # pseudo-random in [-1, 1) from the whole number floor(x), seed a
+        k = math.floor(x)
+        q = k * k * 7919.0 + k * 40503.0 + a * 104729.0
+        return 2.0 * (q - 65521.0 * math.floor(q / 65521.0)) / 65521.0 - 1.0
+    if shape == XF_DEADZONE:                     # the excess beyond +-a
+        e = abs(x) - a
+        return (e if x > 0.0 else -e) if e > 0.0 else 0.0
+    if shape == XF_MOD:                          # (x - b) mod a
+        q = x - b
+        return q - a * math.floor(q / a)
     return 0.0
 
 

@@ -42,7 +42,7 @@ class OutsideForm(Form):
     family = None
     balance = ""                 # one of BALANCES
     depends_on: tuple = ()       # names of STATES
-    half = ""                    # "dev" | "sealed" | "dev2" | "sealed2" | "dev3" | "sealed3"
+    half = ""                    # "dev" | "sealed" | "dev2" | "sealed2" | ... | "dev6" | "sealed6"
     uses_states = False          # a sensor form that reads the run's internal signals
 
     def law(self, p: dict) -> str:

@@ -327,6 +327,37 @@ OUTSIDE_DEV5_ROWS = [
      [E("a2_stuck_adc_bit", {"bit_weight_m_s2": 0.25, "range_m_s2": 39.24})]),
 ]
 
+# ---- issue 31 part 4, sixth set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev6;
+# the sixth sealed half's rows are in foreign_drives.outside_sealed6). One mechanism per row at its own nominal
+# conditions, one clean control. Seeds 8400+. Each strength set by one simulation against the clean drive of the same
+# seed (docs/foreign_drives.md "The sixth set").
+OUTSIDE_DEV6_ROWS = [
+    # a 0.03 kg*m^2 brake disc (0.27 J1) on a slip hub of 2 N*m
+    ("od6_motor_slip_hub_flywheel", "outside", 0.0061, 0.0285, 0.92,
+     [E("motor_slip_hub_flywheel", {"inertia_kgm2": 0.03, "slip_torque_Nm": 2.0})]),
+    # an idler in a +-4 mrad mesh backlash, 200 Hz on its flank, drag 0.5/s; 0.005 kg*m^2 moved a2 by 0.0147 m/s^2 rms:
+    # x5.12
+    ("od6_wheel_idler_gear_rattle", "outside", 0.0079, 0.022, 0.91,
+     [E("wheel_idler_gear_rattle", {"inertia_kgm2": 0.0256, "backlash_rad": 0.004, "contact_frequency_hz": 200.0,
+                                    "contact_damping_ratio": 0.1, "drag_per_s": 0.5})]),
+    # the contact torque capped at 40 N*m (an impact's elastic torque reaches ~39, with its damping ~105-120)
+    ("od6_clutch_torque_limiter", "outside", 0.0052, 0.036, 0.94, [E("clutch_torque_limiter", {"limit_Nm": 40.0})]),
+    # 1.5 N of rail friction per part, the tray emptied every 4 strokes
+    ("od6_mass_tray_parts", "outside", 0.0069, 0.019, 0.90,
+     [E("mass_tray_parts", {"force_per_part_N": 1.5, "every_n": 4, "first_empty": 1})]),
+    ("od6_clean_w7.4_eta0.0265_n0.95", "clean", 0.0074, 0.0265, 0.95, []),
+    # +-10 % gain for the two directions
+    ("od6_a2_bilinear_gain", "outside", 0.0087, 0.041, 0.93, [E("a2_bilinear_gain", {"asymmetry": 0.1})]),
+    # a module over +-2.4 m/s^2 (the clean drive of seed 8406: |a2| up to 2.62, its 90th percentile 2.30), 2 ms to recover
+    ("od6_a2_overload_recovery", "outside", 0.0046, 0.0315, 0.96,
+     [E("a2_overload_recovery", {"range_m_s2": 2.4, "recovery_s": 0.002})]),
+    # a brake chopped at 5 ms, its duty 0 at 149 rad/s and 1 at 155 (the drive runs 147-154); 3 N*m moved a2 by 0.0346
+    # m/s^2 rms: x2.17
+    ("od6_wheel_pwm_brake", "outside", 0.0058, 0.0245, 0.89,
+     [E("wheel_pwm_brake", {"torque_Nm": 6.5, "carrier_period_s": 0.005, "zero_duty_speed_rad_s": 149.0,
+                            "full_duty_span_rad_s": 6.0})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -335,9 +366,10 @@ OUTSIDE_DEV2 = _suite(OUTSIDE_DEV2_ROWS, 7300, 4.0)
 OUTSIDE_DEV3 = _suite(OUTSIDE_DEV3_ROWS, 7800, 4.0)
 OUTSIDE_DEV4 = _suite(OUTSIDE_DEV4_ROWS, 8000, 4.0)
 OUTSIDE_DEV5 = _suite(OUTSIDE_DEV5_ROWS, 8200, 4.0)
+OUTSIDE_DEV6 = _suite(OUTSIDE_DEV6_ROWS, 8400, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
-          "outside_dev5": OUTSIDE_DEV5}
+          "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6}
 
 
 def _outside_sealed():
@@ -370,8 +402,14 @@ def _outside_sealed5():
     return _suite(suite_rows(), 8300, 4.0)
 
 
+def _outside_sealed6():
+    """The sixth sealed half's suite, made from foreign_drives.outside_sealed6 on first use (its rows live there)."""
+    from .outside_sealed6 import suite_rows
+    return _suite(suite_rows(), 8500, 4.0)
+
+
 SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
-                               "outside_sealed5")
+                               "outside_sealed5", "outside_sealed6")
 
 
 def suite(name: str) -> list:
@@ -385,6 +423,8 @@ def suite(name: str) -> list:
         return _outside_sealed4()
     if name == "outside_sealed5":
         return _outside_sealed5()
+    if name == "outside_sealed6":
+        return _outside_sealed6()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])
