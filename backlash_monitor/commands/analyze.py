@@ -28,6 +28,7 @@ import sys
 from typing import TYPE_CHECKING
 
 from backlash_monitor.commands import UsageError
+from backlash_monitor.fleet.caveat import width_text
 from backlash_monitor.files.registry import RegistryError, entries
 
 if TYPE_CHECKING:
@@ -215,7 +216,6 @@ def _print_integrity(integrity) -> None:
 
 
 def _print_summary(summary, rows, discarded, n_samples, elapsed, outputs):
-    from backlash_monitor.fleet.caveat import width_text
     true_width = summary["true_width_m"]
     print(f"analyzed {n_samples} samples in {elapsed:.2f} s; {len({r['entry_sample_index'] for r in rows})} "
           f"onset windows classified, {len(discarded)} discarded")

@@ -190,6 +190,7 @@ def analyze_one(job: dict) -> dict:
     the AnalyzeOptions and the WatchOptions of its model fit); returns its fleet-table row."""
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.classifier.fusion import fused_width_uncertainty_m
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.classifier.shape import continuous_top_m
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.offline.bag_analysis import analyze_bag
