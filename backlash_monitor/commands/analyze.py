@@ -25,10 +25,12 @@ from __future__ import annotations
 
 import math
 import sys
+from dataclasses import replace
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from backlash_monitor.commands import UsageError
-from backlash_monitor.fleet.caveat import width_text
+from backlash_monitor.fleet.caveat import FitVerdict, with_caveat, width_text
 from backlash_monitor.files.registry import RegistryError, entries
 
 if TYPE_CHECKING:
@@ -101,19 +103,24 @@ def _add_many_arguments(parser) -> None:
     group.add_argument("--trend-config", default="", metavar="FILE.yaml",
                        help="trend rule file (default: the packaged config/trend.yaml)")
     group.add_argument("--no-plots", action="store_true", help="write no trend plots")
-    group.add_argument("--watch-reference", default="", metavar="REF.watch.npz",
-                       help="the model version the model-fit column holds every bag against (default: "
-                            "--library's LIB.watch.npz where it exists, else the default model's at the pattern "
-                            "width nearest the drive's measured width, eta_k 0.025 and --n1: from the cache, "
-                            "built there once when missing; docs/model_watch.md)")
-    group.add_argument("--registry", default="", metavar="PATH",
-                       help="the drive registry (docs/registry.md; e.g. drives.yaml, or the fleet file): each bag's "
-                            "widths come from its own drive's library and its model fit is held against the "
-                            "drive's current version (matched by the bag's namespace /LINE/DRIVE or recorded drive "
-                            "name LINE/DRIVE; its watch_reference, else the default model at its nominal width, "
-                            "eta_k, n1); bags that match no drive are named")
-    group.add_argument("--no-model-fit", action="store_true",
-                       help="no model-fit column (the model watch's test on each bag's last onset events)")
+    fit = parser.add_argument_group(
+        "model fit (one bag or many): each bag's last 16 onset events held against its drive's model by the folder's "
+        "one-off rule (config/folder_model_fit.yaml, docs/registry.md); when the model does not explain the bag, "
+        "every width printed for it says so in the same line")
+    fit.add_argument("--watch-reference", default="", metavar="REF.watch.npz",
+                     help="the model version every bag is held against (default: --library's LIB.watch.npz where it "
+                          "exists, else the default model's at the pattern width nearest the drive's measured width, "
+                          "eta_k 0.025 and --n1: from the cache, built there once when missing (~30-60 s of one "
+                          "core, said by a line); docs/model_watch.md)")
+    fit.add_argument("--registry", default="", metavar="PATH",
+                     help="the drive registry (docs/registry.md; e.g. drives.yaml, or the fleet file): each bag's "
+                          "widths come from its own drive's library and its model fit is held against the "
+                          "drive's current version (matched by the bag's namespace /LINE/DRIVE or recorded drive "
+                          "name LINE/DRIVE; its watch_reference, else the default model at its nominal width, "
+                          "eta_k, n1); bags that match no drive are named")
+    fit.add_argument("--no-model-fit", action="store_true",
+                     help="no model fit: a folder's table has no model-fit column; one bag's summary says "
+                          "'model fit: not run' and its widths carry no caveat (its analysis ~1-2 s of CPU less)")
 
 
 def options_from_args(args) -> AnalyzeOptions:
@@ -174,9 +181,16 @@ def run(args) -> int:
                          "--out PREFIX")
     # deferred: backlash_monitor.offline.bag_analysis costs ~300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.offline.bag_analysis import analyze_bag
-    result = analyze_bag(args.bag, args.out, options_from_args(args))
+    from backlash_monitor.fleet.folder_analysis import WatchOptions, one_bag_fit
+    options = options_from_args(args)
+    watch = WatchOptions(enabled=not args.no_model_fit, reference=args.watch_reference, drives=registry_drives(args))
+    # the bag's model fit, as a folder's analysis holding it would make it (its fields in the summary and OUT.json)
+    result = analyze_bag(args.bag, args.out, options, library=_registered_library(args.bag, options, watch),
+                         summary_fields=lambda analysis: one_bag_fit(args.bag, options, watch, analysis,
+                                                                     log=_say))
     _print_summary(result["summary"], result["rows"], result["discarded"], result["n_samples"],
                    result["seconds"], result["outputs"])
+    _print_model_fit(result["summary"])
     _print_integrity(result["integrity"])
     _print_sensor_offsets(result["sensor_offsets"])
     print_saturation(result["input_saturation"])
@@ -185,6 +199,46 @@ def run(args) -> int:
         print(f"input faults: {stage_faults.summary()}; windows rejected: "
               f"{estimator_faults.summary()}; {result['lost_samples']} samples not analysed")
     return 0
+
+
+def _say(text: str) -> None:
+    print(text, flush=True)       # (a reference being built: said before the ~30-60 s it takes)
+
+
+def _registered_library(bag: str, options, watch):
+    """One bag's pattern library as a folder's analysis takes it (fleet/folder_analysis.library_for_bag): --library,
+    else its --registry drive's library; None (analyze_bag loads --library or the packaged one) without a registry
+    or when the bag's drive has no library of its own."""
+    if not watch.drives or options.library:
+        return None
+    # deferred: backlash_monitor.fleet.folder_analysis costs ~100 ms at start-up (python -X importtime, 29 Nov); --help imports every command
+    from backlash_monitor.fleet.folder_analysis import library_for_bag, registered_drive
+    # deferred: backlash_monitor.offline.bag_analysis costs ~300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
+    from backlash_monitor.offline.bag_analysis import load_library, recorded_drive
+    namespace, name = recorded_drive(bag, options.namespace, options.recover)
+    drive = registered_drive(watch, {"namespace": namespace, "drive": name or Path(bag).stem})
+    path = library_for_bag(options, drive)
+    return load_library(replace(options, library=path)) if path else None
+
+
+def _print_model_fit(summary: dict) -> None:
+    """The `model fit:` line after one bag's table: its level, residual ratio and where, against which model; or why
+    there is none (never nothing)."""
+    # deferred: backlash_monitor.fleet.folder_analysis costs ~100 ms at start-up (python -X importtime, 29 Nov); --help imports every command
+    from backlash_monitor.fleet.folder_analysis import model_fit_text
+    fit, path = summary.get("model_fit"), summary.get("model_fit_reference", "")
+    if isinstance(fit, dict):
+        line = f"model fit: {model_fit_text(summary)} against model {fit['model']} ({fit['events']} onset events; " \
+               f"reference {path})"
+        if fit["level"] != "OK":
+            line += (f": model {fit['model']} does not explain this recording ({', '.join(fit['exceeding'])} beyond "
+                     "the folder's one-off rule): run diagnose on it")
+        print(line)
+    elif fit == "no reference":
+        print(f"model fit: not run — no reference {path} (`python -m backlash_monitor watch-reference ...` builds "
+              "one; or give --watch-reference REF.watch.npz)")
+    else:
+        print(f"model fit: {fit or 'not run'}")
 
 
 def _print_sensor_offsets(info: dict) -> None:
@@ -216,6 +270,7 @@ def _print_integrity(integrity) -> None:
 
 
 def _print_summary(summary, rows, discarded, n_samples, elapsed, outputs):
+    fit = FitVerdict.from_recording(summary.get("model_fit"))     # its caveat on every width's line
     true_width = summary["true_width_m"]
     print(f"analyzed {n_samples} samples in {elapsed:.2f} s; {len({r['entry_sample_index'] for r in rows})} "
           f"onset windows classified, {len(discarded)} discarded")
@@ -230,7 +285,9 @@ def _print_summary(summary, rows, discarded, n_samples, elapsed, outputs):
                       cont_text, str(s["fused_events"])))
     widths = [max(len(line[i]) for line in lines) for i in range(len(header))]
     for i, line in enumerate(lines):
-        print("  ".join(c.rjust(w) for c, w in zip(line, widths)))
+        text = "  ".join(c.rjust(w) for c, w in zip(line, widths))
+        # a width's row: the model-fit caveat in the same line when the model does not explain the recording
+        print(text if i == 0 else with_caveat(text, fit))
         if i == 0:
             print("  ".join("-" * w for w in widths))
     if not math.isnan(true_width):

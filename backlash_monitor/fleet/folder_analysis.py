@@ -33,6 +33,7 @@ from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 import importlib
 
 from backlash_monitor.errors import UsageError
+from backlash_monitor.files.locks import exclusive
 from backlash_monitor.fleet.trend import PRIMARY_SIGNAL, drive_trend, load_rule, plot_trends
 from backlash_monitor.fleet.caveat import FitVerdict, with_caveat, width_text, caveat
 
@@ -189,10 +190,6 @@ def analyze_one(job: dict) -> dict:
     """One bag through the single-bag analysis (a worker's task: a job is its bag, its output prefix,
     the AnalyzeOptions and the WatchOptions of its model fit); returns its fleet-table row."""
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
-    from backlash_monitor.classifier.fusion import fused_width_uncertainty_m
-    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
-    from backlash_monitor.classifier.shape import continuous_top_m
-    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.offline.bag_analysis import analyze_bag
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.offline.bag_analysis import recorded_drive
@@ -226,25 +223,7 @@ def analyze_one(job: dict) -> dict:
     except UsageError as error:
         row["error"] = str(error)
         return row
-    rows = result["rows"]
-    signals = {r["signal"] for r in rows}
-    primary = PRIMARY_SIGNAL if PRIMARY_SIGNAL in signals else (sorted(signals)[0] if signals else "")
-    mine = [r for r in rows if r["signal"] == primary]
-    widths = [r["continuous_width_m"] if r["continuous_width_m"] == r["continuous_width_m"]
-              else r["width_m"] for r in mine]
-    continuous = [r["continuous_width_m"] for r in mine]
-    row.update(drive=result["drive"] or Path(job["bag"]).stem, namespace=result.get("namespace", ""),
-               time_s=result["first_stamp_s"],
-               width_m=statistics.median(widths) if widths else math.nan,
-               # the robust standard error of that median over the recording's onset windows (the
-               # events: classifier/fusion.py); NaN where the mode gives no continuous width
-               width_uncertainty_m=fused_width_uncertainty_m(
-                   continuous, continuous_top_m(mine[0]["candidate_widths_m"]) if mine else math.inf),
-               fused_width_m=mine[-1]["fused_width_m"] if mine else math.nan,
-               true_width_m=result["summary"]["true_width_m"],
-               onsets=len({r["entry_sample_index"] for r in mine}),
-               discarded=len(result["discarded"]),
-               seconds=time.perf_counter() - started, signal=primary)
+    row.update(recording_fields(job["bag"], result), seconds=time.perf_counter() - started)
     if watch.enabled and job.get("fit", True):     # (False: the pool's model-fit stage fits it, FitStage)
         row.update(model_fit(job["bag"], job["options"], watch, row))
     offsets = result.get("sensor_offsets", {})      # the drive's latest sensor offset estimate
@@ -252,6 +231,35 @@ def analyze_one(job: dict) -> dict:
                a2_offset_m_s2=offsets.get("a2_m_s2", math.nan),
                offset_implausible=sorted(k[:-len("_m_s2")] for k in offsets.get("implausible", {})))
     return row
+
+
+def recording_fields(bag: str, result: dict) -> dict:
+    """A bag's fields of the fleet table from its single-bag analysis (analyze_bag's result): drive, namespace,
+    time, its width (the median continuous width of its primary signal's onset windows, with its uncertainty), the
+    last fused width, the true width, onsets, discarded windows and the primary signal. The table, the trend and the
+    model fit (of a folder's bag or of one bag) read these."""
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
+    from backlash_monitor.classifier.fusion import fused_width_uncertainty_m
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
+    from backlash_monitor.classifier.shape import continuous_top_m
+    rows = result["rows"]
+    signals = {r["signal"] for r in rows}
+    primary = PRIMARY_SIGNAL if PRIMARY_SIGNAL in signals else (sorted(signals)[0] if signals else "")
+    mine = [r for r in rows if r["signal"] == primary]
+    widths = [r["continuous_width_m"] if r["continuous_width_m"] == r["continuous_width_m"]
+              else r["width_m"] for r in mine]
+    continuous = [r["continuous_width_m"] for r in mine]
+    return dict(drive=result["drive"] or Path(bag).stem, namespace=result.get("namespace", ""),
+                time_s=result["first_stamp_s"],
+                width_m=statistics.median(widths) if widths else math.nan,
+                # the robust standard error of that median over the recording's onset windows (the
+                # events: classifier/fusion.py); NaN where the mode gives no continuous width
+                width_uncertainty_m=fused_width_uncertainty_m(
+                    continuous, continuous_top_m(mine[0]["candidate_widths_m"]) if mine else math.inf),
+                fused_width_m=mine[-1]["fused_width_m"] if mine else math.nan,
+                true_width_m=result["summary"]["true_width_m"],
+                onsets=len({r["entry_sample_index"] for r in mine}),
+                discarded=len(result["discarded"]), signal=primary)
 
 
 # ------------------------------------------------------------------------------------------- model fit
@@ -382,10 +390,35 @@ def missing_references(rows: list[dict], options, watch: WatchOptions, log=print
             model = drive_model(drive[2]) if drive is not None else default_model(options.n1, width)
             path = str(reference.cache_path(model))
             if path not in built:
-                reference.cached(model, log=lambda text: log(f"analyze: {text}"))
+                # under a lock beside the cache entry: another analyze (or test) building the same waits, then
+                # loads it (files/locks.py; test/shared_cache.py takes the same lock)
+                with exclusive(path + ".lock"):
+                    reference.cached(model, log=lambda text: log(f"analyze: {text}"))
                 built.add(path)
             again.append(r)
     return again
+
+
+FIT_FIELDS = ("model_fit", "model_fit_level", "model_fit_ratio", "model_fit_reference", "width_caveat")
+
+
+def one_bag_fit(bag: str, options, watch: WatchOptions, result: dict, log=print) -> dict:
+    """`analyze BAG`'s model fit: the bag held against the reference the analysis of a folder holding it would take
+    (reference_for_bag: --watch-reference, its --registry drive's, LIB.watch.npz beside --library, else the default
+    model's cache entry at the pattern width nearest its measured width), judged by the folder's one-off rule
+    (model_fit); the default model's reference, when it is not in the cache yet, built there once first
+    (missing_references: ~30-60 s of one core, said by a line through ``log``). ``result``: the bag's analysis
+    (analyze_bag's). -> the fields a folder's row has (FIT_FIELDS): the fit (its dict, or why there is none), its
+    level and residual ratio, the reference and the width's caveat (fleet/caveat.py; "" when the model explains the
+    drive or there is no fit)."""
+    if not watch.enabled:
+        return {"model_fit": "not run (--no-model-fit)", "model_fit_level": "", "model_fit_ratio": math.nan,
+                "model_fit_reference": "", "width_caveat": ""}
+    row = recording_fields(bag, result)
+    fields = model_fit(bag, options, watch, row)
+    if fields["model_fit"] == "no reference" and missing_references([{**row, **fields}], options, watch, log=log):
+        fields = model_fit(bag, options, watch, row)
+    return {**fields, "width_caveat": caveat(FitVerdict.from_recording(fields["model_fit"]))}
 
 
 def _jobs(options, bags: list[Path], out_dir: Path, watch: WatchOptions | None = None) -> list[dict]:

@@ -228,14 +228,16 @@ class SourceCheck:
 
 
 def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
-                chunks_ahead: int | None = None) -> dict:
+                chunks_ahead: int | None = None, summary_fields=None) -> dict:
     """One bag through the chain; writes PREFIX.csv/.json/.mcap (``out_prefix`` None or "": the
     default beside the bag) and returns rows, summary, discarded windows, samples, seconds,
     outputs, the bag's integrity, the faults (stage, estimator), lost samples, the sensor offsets,
     and ``drive``/``first_stamp_s`` (the first a1 chunk's frame_id and the stamp of its first
     sample). ``library``: (library, offset) from :func:`load_library`, loaded here when None.
     ``chunks_ahead``: the bag reader's decompression thread (BagReader; None: its default; 0: none,
-    for a pool with a worker per core). Raises UsageError (one line) for anything wrong with the
+    for a pool with a worker per core). ``summary_fields``: called with the analysis (the returned dict, before
+    the outputs are written) for fields added to its summary, which OUT.json holds too (one bag's model fit:
+    fleet/folder_analysis.one_bag_fit); None: none. Raises UsageError (one line) for anything wrong with the
     bag or the options."""
     options.check()
     reuse_freed_memory()   # no page fault per freed-and-reallocated array (process/memory.py)
@@ -342,6 +344,13 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
     summary = _summary(rows, true_width)
     sensor_offsets = _sensor_offsets(*last_offsets, estimator.waiting_for_offset)
     saturation = saturation_report(stage.saturation, *saturated_windows)
+    result = {"rows": rows, "summary": summary, "discarded": discarded, "n_samples": n_samples,
+              "seconds": elapsed, "outputs": outputs, "integrity": integrity,
+              "faults": (stage.faults, estimator.faults), "lost_samples": stage.lost_samples,
+              "drive": first_a1[0][0], "first_stamp_s": first_a1[0][1], "sensor_offsets": sensor_offsets,
+              "input_saturation": saturation, "namespace": namespace}
+    if summary_fields is not None:
+        summary.update(summary_fields(result))
     # written under temporary names, renamed together once all three are complete
     with staged_outputs([outputs["csv"], outputs["json"], outputs["mcap"]]) as (csv_tmp, json_tmp, mcap_tmp):
         with open(csv_tmp, "w", newline="") as f:
@@ -363,11 +372,7 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
                        "input_saturation": saturation,
                        "summary": summary, "estimates": rows}, allow_nan=True))
         _write_estimate_bag(mcap_tmp, estimates_msgs, true_width)
-    return {"rows": rows, "summary": summary, "discarded": discarded, "n_samples": n_samples,
-            "seconds": elapsed, "outputs": outputs, "integrity": integrity,
-            "faults": (stage.faults, estimator.faults), "lost_samples": stage.lost_samples,
-            "drive": first_a1[0][0], "first_stamp_s": first_a1[0][1], "sensor_offsets": sensor_offsets,
-            "input_saturation": saturation, "namespace": namespace}
+    return result
 
 
 def saturation_report(counter, saturated_windows: int, windows: int) -> dict:
