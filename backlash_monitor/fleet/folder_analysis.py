@@ -32,7 +32,7 @@ import sys
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 import importlib
 
-from backlash_monitor.errors import UsageError
+from backlash_monitor.errors import RunFailure, UsageError
 from backlash_monitor.files.locks import exclusive
 from backlash_monitor.fleet.trend import PRIMARY_SIGNAL, drive_trend, load_rule, plot_trends
 from backlash_monitor.fleet.caveat import FitVerdict, with_caveat, width_text, caveat
@@ -357,8 +357,8 @@ def model_fit(bag: str, options, watch: WatchOptions, row: dict) -> dict:
     try:
         meas = load_measurement(bag, options.namespace or None)
         fit = evaluate_recording(meas, ref, rule, window_events=cfg["window_events"])
-    except (MeasurementError, ValueError) as error:
-        out["model_fit"] = f"not evaluated: {error}"
+    except (MeasurementError, ValueError, RunFailure) as error:     # (RunFailure: a damaged bag, even with --recover:
+        out["model_fit"] = f"not evaluated: {error}"                # the fit reads the whole recording, no gap)
         return out
     out.update(model_fit=fit, model_fit_level=fit["level"], model_fit_ratio=fit["residual_over_noise"])
     return out
