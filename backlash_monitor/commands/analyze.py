@@ -19,6 +19,10 @@ inside the bag is dropped and counted as the live chain counts it ("input_faults
 docs/windowing.md "Input faults"): a sample period that is not a positive number, signals' chunks
 of unequal length, non-finite samples, accelerometer samples outside the sensor's declared range.
 
+The bag is held against its drive's model as `analyze FOLDER` would hold it (fleet/folder_analysis.one_bag_fit:
+the same reference and one-off rule): a `model fit:` line follows the table, and when the model does not explain the
+recording every width row says so in the same line (fleet/caveat.py); OUT.json's summary has the fit's fields.
+
 This module parses and prints; the analysis is backlash_monitor/offline/bag_analysis.py.
 """
 from __future__ import annotations
@@ -104,13 +108,14 @@ def _add_many_arguments(parser) -> None:
                        help="trend rule file (default: the packaged config/trend.yaml)")
     group.add_argument("--no-plots", action="store_true", help="write no trend plots")
     fit = parser.add_argument_group(
-        "model fit (one bag or many): each bag's last 16 onset events held against its drive's model by the folder's "
-        "one-off rule (config/folder_model_fit.yaml, docs/registry.md); when the model does not explain the bag, "
-        "every width printed for it says so in the same line")
+        "model fit (one bag or many)",
+        "each bag's last 16 onset events held against its drive's model by the folder's one-off rule "
+        "(config/folder_model_fit.yaml, docs/registry.md); one bag: a 'model fit:' line after its table; when the model "
+        "does not explain the bag, every width printed for it says so in the same line")
     fit.add_argument("--watch-reference", default="", metavar="REF.watch.npz",
                      help="the model version every bag is held against (default: --library's LIB.watch.npz where it "
                           "exists, else the default model's at the pattern width nearest the drive's measured width, "
-                          "eta_k 0.025 and --n1: from the cache, built there once when missing (~30-60 s of one "
+                          "eta_k 0.025 and --n1: from the cache, built there once when missing (~50 s of one "
                           "core, said by a line); docs/model_watch.md)")
     fit.add_argument("--registry", default="", metavar="PATH",
                      help="the drive registry (docs/registry.md; e.g. drives.yaml, or the fleet file): each bag's "
@@ -120,7 +125,7 @@ def _add_many_arguments(parser) -> None:
                           "eta_k, n1); bags that match no drive are named")
     fit.add_argument("--no-model-fit", action="store_true",
                      help="no model fit: a folder's table has no model-fit column; one bag's summary says "
-                          "'model fit: not run' and its widths carry no caveat (its analysis ~1-2 s of CPU less)")
+                          "'model fit: not run' and its widths carry no caveat (one bag: ~3.5-6 s of CPU less)")
 
 
 def options_from_args(args) -> AnalyzeOptions:
@@ -202,7 +207,7 @@ def run(args) -> int:
 
 
 def _say(text: str) -> None:
-    print(text, flush=True)       # (a reference being built: said before the ~30-60 s it takes)
+    print(text, flush=True)       # (a reference being built: said before the ~50 s of CPU it takes)
 
 
 def _registered_library(bag: str, options, watch):

@@ -254,6 +254,14 @@ def test_each_bag_takes_its_registered_drives_library_and_an_explicit_library_ov
     assert by_csv[bags[1].name]["library"] == str(wider) and by_csv[bags[1].name]["drive_version"] == "2"
     b_line = next(line for line in stdout.splitlines() if bags[1].name in line)
     assert " v2 " in b_line and "line1_driveB_v2.npz" in b_line
+    # one bag with --registry: its drive's library too, the same estimates as the folder's row of it
+    proc = subprocess.run([sys.executable, "-m", "backlash_monitor", "analyze", str(bags[1]), "--out",
+                           str(tmp_path / "one_b"), "--no-model-fit", "--registry", str(registry)],
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    one = json.loads((tmp_path / "one_b.json").read_text())["estimates"]
+    folder = json.loads((tmp_path / "own" / f"{bags[1].stem}.estimates.json").read_text())["estimates"]
+    assert [e["continuous_width_m"] for e in one] == [e["continuous_width_m"] for e in folder]
 
     rows, stdout = analyze("given", "--jobs", "1", "--library", str(default_library_path()))
     assert rows["driveB"]["width_m"] == rows["driveA"]["width_m"] == a["width_m"]
