@@ -186,6 +186,7 @@ def run(args) -> int:
                          "--out PREFIX")
     # deferred: backlash_monitor.offline.bag_analysis costs ~300 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.offline.bag_analysis import analyze_bag
+    # deferred: backlash_monitor.fleet.folder_analysis costs ~100 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.fleet.folder_analysis import WatchOptions, one_bag_fit
     options = options_from_args(args)
     watch = WatchOptions(enabled=not args.no_model_fit, reference=args.watch_reference, drives=registry_drives(args))
