@@ -35,6 +35,7 @@ import numpy as np
 
 from backlash_monitor.files.locks import exclusive
 import backlash_monitor.plant.effects as _effects
+import backlash_monitor.plant.lags as _lags
 import backlash_monitor.plant.outputs as _outputs
 from backlash_monitor.plant._numba import HAVE_NUMBA, numba
 from backlash_monitor.plant.state import GLOBAL_NAMES, N_STATES, STATE_NAMES  # noqa: F401 (the kernels' layout)
@@ -42,7 +43,7 @@ from backlash_monitor.plant.mathlib import NUMPY_NAMESPACE
 import backlash_monitor.plant.mathlib as mathlib
 BASE_ROWS = ("beta", "wheel_inertia_kgm2", "mass_kg",   # per-scenario model values every kernel reads (the motor's
              "rotor_resistance_pu", "supply_voltage_scale")  # two that drift with temperature and the grid among them)
-GENERATOR_VERSION = "9"
+GENERATOR_VERSION = "10"
 
 
 def global_vector(cfg) -> np.ndarray:
@@ -128,9 +129,10 @@ def _body(effect_classes, indent: str, prefix: str = "_t_") -> str:
     return textwrap.indent("\n".join(lines), indent)
 
 
-def _binds(effect_classes, src_state: str, src_param: str, indent: str) -> str:
-    """Assignments of the local names from the state / parameter containers (format strings with {i})."""
+def _binds(effect_classes, src_state: str, src_param: str, indent: str, src_lag: str) -> str:
+    """Assignments of the local names from the state / parameter / lag containers (format strings with {i})."""
     lines = [f"{n} = {src_state.format(i=i)}" for i, n in enumerate(STATE_NAMES)]
+    lines += [f"{n} = {src_lag.format(i=j)}" for j, n in enumerate(_lags.LAG_NAMES)]
     rows = param_rows(effect_classes)
     for j, row in enumerate(rows):
         local = row if "." not in row else _pname(*row.split("."))
@@ -167,8 +169,9 @@ def stage(WS, ry, rk, ua, ub, pulse_time_s, pulse_off_time_s, G, nl):
 
 
 @numba.njit(**_JIT)
-def f_scalar(y, ua, ub, load_pu, pulse_time_s, pulse_off_time_s, ps, G, mode, out):
-    """The right-hand side of one scenario (ps: its column of P); writes out, returns T_c.
+def f_scalar(y, ua, ub, load_pu, pulse_time_s, pulse_off_time_s, lg, ps, G, mode, out):
+    """The right-hand side of one scenario (lg: its lags, held over the step; ps: its column of P); writes out,
+    returns T_c.
     mode: 0 = the zone test decides, 1 = in contact, 2 = in the zone (forced, at a located crossing)."""
 {globals_1}
 {binds_scalar}
@@ -179,7 +182,7 @@ def f_scalar(y, ua, ub, load_pu, pulse_time_s, pulse_off_time_s, ps, G, mode, ou
 
 
 @numba.njit(**_JIT)
-def f_tuple(y0, y1, y2, y3, y4, y5, y6, y7, y8, y9, y10, ua, ub, load_pu, pulse_time_s, pulse_off_time_s, ps, G, mode):
+def f_tuple(y0, y1, y2, y3, y4, y5, y6, y7, y8, y9, y10, ua, ub, load_pu, pulse_time_s, pulse_off_time_s, lg, ps, G, mode):
     """The right-hand side on named scalars (the numba-scalar loop keeps its state in registers)."""
 {globals_1}
 {binds_tuple}
@@ -189,31 +192,31 @@ def f_tuple(y0, y1, y2, y3, y4, y5, y6, y7, y8, y9, y10, ua, ub, load_pu, pulse_
 
 _LOOPS = '''
 @numba.njit(**_JIT)
-def _derivs_at(y, tau, phase, u_amp, ld, pt, po, ps, G, mode, out):
+def _derivs_at(y, tau, phase, u_amp, ld, pt, po, lg, ps, G, mode, out):
     ph = phase + G[6] * tau
-    return f_scalar(y, u_amp * math.cos(ph), u_amp * math.sin(ph), ld, pt, po, ps, G, mode, out)
+    return f_scalar(y, u_amp * math.cos(ph), u_amp * math.sin(ph), ld, pt, po, lg, ps, G, mode, out)
 
 
 @numba.njit(**_JIT)
-def _rk4_substep(y, hs, tau0, phase, u_amp, ld, pt, po, ps, G, mode):
+def _rk4_substep(y, hs, tau0, phase, u_amp, ld, pt, po, lg, ps, G, mode):
     k1 = np.empty(N_STATES); k2 = np.empty(N_STATES); k3 = np.empty(N_STATES); k4 = np.empty(N_STATES)
     tmp = np.empty(N_STATES)
-    _derivs_at(y, tau0, phase, u_amp, ld, pt, po, ps, G, mode, k1)
+    _derivs_at(y, tau0, phase, u_amp, ld, pt, po, lg, ps, G, mode, k1)
     for i in range(N_STATES):
         tmp[i] = y[i] + 0.5 * hs * k1[i]
-    _derivs_at(tmp, tau0 + 0.5 * hs, phase, u_amp, ld, pt, po, ps, G, mode, k2)
+    _derivs_at(tmp, tau0 + 0.5 * hs, phase, u_amp, ld, pt, po, lg, ps, G, mode, k2)
     for i in range(N_STATES):
         tmp[i] = y[i] + 0.5 * hs * k2[i]
-    _derivs_at(tmp, tau0 + 0.5 * hs, phase, u_amp, ld, pt, po, ps, G, mode, k3)
+    _derivs_at(tmp, tau0 + 0.5 * hs, phase, u_amp, ld, pt, po, lg, ps, G, mode, k3)
     for i in range(N_STATES):
         tmp[i] = y[i] + hs * k3[i]
-    _derivs_at(tmp, tau0 + hs, phase, u_amp, ld, pt, po, ps, G, mode, k4)
+    _derivs_at(tmp, tau0 + hs, phase, u_amp, ld, pt, po, lg, ps, G, mode, k4)
     for i in range(N_STATES):
         y[i] += hs / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
 
 
 @numba.njit(**_JIT)
-def crossing_step(y0, y1, h, phase, u_amp, ld, pt, po, ps, G):
+def crossing_step(y0, y1, h, phase, u_amp, ld, pt, po, lg, ps, G):
     """Redo a step in which Delta crossed |Delta| = beta: locate the crossing on the cubic Hermite
     interpolant of Delta, RK4 to it with the start side's law and on with the other side's (docs/model.md).
     Returns the crossing's fraction of the step."""
@@ -244,25 +247,27 @@ def crossing_step(y0, y1, h, phase, u_amp, ld, pt, po, ps, G):
     for i in range(N_STATES):
         y1[i] = y0[i]
     if th > 0.0:
-        _rk4_substep(y1, th * h, 0.0, phase, u_amp, ld, pt, po, ps, G, mode0)
+        _rk4_substep(y1, th * h, 0.0, phase, u_amp, ld, pt, po, lg, ps, G, mode0)
     if th < 1.0:
-        _rk4_substep(y1, (1.0 - th) * h, th * h, phase, u_amp, ld, pt, po, ps, G, mode1)
+        _rk4_substep(y1, (1.0 - th) * h, th * h, phase, u_amp, ld, pt, po, lg, ps, G, mode1)
     return th
 
 
 @numba.njit(**_JIT)
-def rk4_simd(x, load, clock, ua, ub, phase, u_amp, P, G, h, out, states, record_states, record_outputs, sel):
+def rk4_simd(x, lags, load, clock, ua, ub, phase, u_amp, P, G, h, out, states, record_states, record_outputs, sel):
     """Scenarios in tiles of nl = up to WR (a multiple of W, a run-time count), samples inner per tile; each
     tile's state, stages, parameters and load in one workspace whose rows are WR apart. The loops over a
     tile's scenarios run to the run-time nl: LLVM keeps them loops of whole vectors (loops of a constant 8
     were unrolled into mostly scalar code, measured: ~1.6x slower, docs/effects.md). The last tile is padded
-    to a multiple of W with copies of the last scenario (never written out, never take the crossing step)."""
+    to a multiple of W with copies of the last scenario (never written out, never take the crossing step).
+    ``lags`` (S, N_LAGS): each scenario's first-order lags (plant/lags.py), held over each step, advanced in place."""
     S = x.shape[0]
     n = load.shape[1]
 {GLOBALS}
     hh = 0.5 * h; h6 = h / 6.0
     WS = np.empty(WS_ROWS * WR)
-    y0 = np.empty(N_STATES); y1 = np.empty(N_STATES); ps = np.empty(N_PARAMS)
+    y0 = np.empty(N_STATES); y1 = np.empty(N_STATES); ps = np.empty(N_PARAMS); lg = np.empty(N_LAGS)
+    LC = lag_coefficients(h)
     nsel = sel.shape[0]
     buf = np.empty((nsel, OUT_BLOCK, WR))
     t0 = 0
@@ -275,6 +280,8 @@ def rk4_simd(x, load, clock, ua, ub, phase, u_amp, P, G, h, out, states, record_
                 WS[(R_Y + i) * WR + s] = x[sc, i]
             for j in range(N_PARAMS):
                 WS[(R_P + j) * WR + s] = P[j, sc]
+            for j in range(N_LAGS):
+                WS[(R_LG + j) * WR + s] = lags[sc, j]
         for k in range(n):
             for s in range(nl):
                 WS[R_LD * WR + s] = load[min(t0 + s, S - 1), k]
@@ -319,15 +326,23 @@ def rk4_simd(x, load, clock, ua, ub, phase, u_amp, P, G, h, out, states, record_
                             y0[i] = WS[(R_Y + i) * WR + s]; y1[i] = WS[(R_T + i) * WR + s]
                         for j in range(N_PARAMS):
                             ps[j] = WS[(R_P + j) * WR + s]
-                        crossing_step(y0, y1, h, phase[k], u_amp, WS[R_LD * WR + s], clock[k, 0], clock[k, 1], ps, G)
+                        for j in range(N_LAGS):
+                            lg[j] = WS[(R_LG + j) * WR + s]
+                        crossing_step(y0, y1, h, phase[k], u_amp, WS[R_LD * WR + s], clock[k, 0], clock[k, 1], lg, ps,
+                                      G)
                         for i in range(N_STATES):
                             WS[(R_T + i) * WR + s] = y1[i]
+            # the lags, from the state before (Y) and after (T) the step and the load held over it
+            for s in range(nl):
+{LAG_UPDATE_SIMD}
             for i in range(N_STATES):
                 for s in range(nl):
                     WS[(R_Y + i) * WR + s] = WS[(R_T + i) * WR + s]
         for s in range(live):
             for i in range(N_STATES):
                 x[t0 + s, i] = WS[(R_Y + i) * WR + s]
+            for j in range(N_LAGS):
+                lags[t0 + s, j] = WS[(R_LG + j) * WR + s]
         t0 += nl
 '''
 
@@ -346,6 +361,19 @@ W = 8                       # a tile holds a multiple of W scenarios: one AVX-51
 WR = 32                     # the most scenarios in a tile (the workspace's rows are WR apart): 16-32 measured
                             # equal at <= 12 scenarios, 32 ~5 % faster at >= 48; 64 slower at 6
 N_PARAMS = {n_params}
+N_LAGS = {n_lags}
+LAG_TIMES = {lag_times!r}     # each lag's time constant [s] (plant/lags.py LAGS)
+
+
+@numba.njit(**_JIT)
+def lag_coefficients(h):
+    """(N_LAGS, 3): each lag's update L' = A*L + B*q_new + C*q_old over a step h (plant/lags.py coefficients)."""
+    out = np.empty((N_LAGS, 3))
+    for j in range(N_LAGS):
+        a = math.exp(-h / LAG_TIMES[j])
+        c = LAG_TIMES[j] * (1.0 - a) / h
+        out[j, 0] = a; out[j, 1] = 1.0 - c; out[j, 2] = c - a
+    return out
 R_Y = 0                     # the workspace's rows (each WR wide): state, RK4 trial state, a stage's
 R_T = N_STATES              # derivatives, their weighted sum, T_c, the load, the parameters
 R_K = 2 * N_STATES
@@ -353,7 +381,8 @@ R_A = 3 * N_STATES
 R_TC = 4 * N_STATES
 R_LD = R_TC + 1
 R_P = R_TC + 2
-WS_ROWS = R_P + N_PARAMS
+R_LG = R_P + N_PARAMS       # the scenarios' first-order lags (plant/lags.py)
+WS_ROWS = R_LG + N_LAGS
 OUT_BLOCK = 32
 CLUTCH = {clutch}
 EFFECTS = {effect_names!r}
@@ -380,6 +409,21 @@ def _scalar_term_source(cls) -> str:
     return ast.unparse(fn)
 
 
+def _lag_update(indent: str, old: str, new: str, lag: str, beta: str, load: str) -> str:
+    """The lines advancing every lag over one step (plant/lags.py): ``old``/``new`` the state containers before and
+    after it (format strings with {i}), ``lag`` the lag's container ({j}); a held input's q_new is its q_old."""
+    lines = []
+    for i, (_, _, held) in enumerate(_lags.QUANTITIES):
+        def q(src):
+            return _lags.render(i, *(src.format(i=k) for k in (4, 5, 8, 10)), load, beta, "g_omega_mb")
+        lines.append(f"qo = {q(old)}")
+        lines.append("qn = qo" if held else f"qn = {q(new)}")
+        for j, (_, qi, _) in enumerate(_lags.LAGS):
+            if qi == i:
+                lines.append(f"{lag.format(j=j)} = LC[{j}, 0] * {lag.format(j=j)} + LC[{j}, 1] * qn + LC[{j}, 2] * qo")
+    return textwrap.indent("\n".join(lines), indent)
+
+
 def _simd_output_select() -> str:
     """rk4_simd's recording of the selected outputs ``sel`` into ``buf``: one branch per output of
     :data:`outputs.OUTPUTS` (the only definition), on the first stage's trial state (the state itself), its
@@ -403,19 +447,21 @@ def _scalar_loop() -> str:
     def stage(tag, src, coef, col):
         args = ", ".join(f"y{i} + {coef} * {src}{i}" for i in range(N)) if src else ys
         outs = ", ".join(f"{tag}{i}" for i in range(N))
-        return f"            {outs}, tc = f_tuple({args}, ua[k, {col}], ub[k, {col}], ld, pt, po, ps, G, 0)"
+        return f"            {outs}, tc = f_tuple({args}, ua[k, {col}], ub[k, {col}], ld, pt, po, lg, ps, G, 0)"
 
     lines = [
         "@numba.njit(**_JIT)",
-        "def rk4_scalar(x, load, clock, ua, ub, phase, u_amp, P, G, h, out, states, record_states):",
+        "def rk4_scalar(x, lags, load, clock, ua, ub, phase, u_amp, P, G, h, out, states, record_states):",
         '    """Scenarios outer, samples inner (the numba-scalar backend)."""',
         "    n_scen = x.shape[0]", "    n = load.shape[1]", _globals("    "),
         "    hh = 0.5 * h", "    h6 = h / 6.0",
-        "    y0a = np.empty(N_STATES); y1a = np.empty(N_STATES); ps = np.empty(P.shape[0])",
+        "    y0a = np.empty(N_STATES); y1a = np.empty(N_STATES); ps = np.empty(P.shape[0]); lg = np.empty(N_LAGS)",
+        "    LC = lag_coefficients(h)",
         "    for s in range(n_scen):",
         "        " + "; ".join(f"y{i} = x[s, {i}]" for i in range(N)),
         "        for j in range(P.shape[0]):", "            ps[j] = P[j, s]",
         "        bs = ps[0]",
+        "        for j in range(N_LAGS):", "            lg[j] = lags[s, j]",
         "        for k in range(n):",
         "            ld = load[s, k]; pt = clock[k, 0]; po = clock[k, 1]",
         "            if record_states:",
@@ -427,10 +473,12 @@ def _scalar_loop() -> str:
         "            " + "; ".join(f"n{i} = y{i} + h6 * (a{i} + 2.0 * b{i} + 2.0 * c{i} + e{i})" for i in range(N)),
         "            if CLUTCH and ((abs(y5) < bs) != (abs(n5) < bs)):",
         "                " + "; ".join(f"y0a[{i}] = y{i}; y1a[{i}] = n{i}" for i in range(N)),
-        "                crossing_step(y0a, y1a, h, phase[k], u_amp, ld, pt, po, ps, G)",
+        "                crossing_step(y0a, y1a, h, phase[k], u_amp, ld, pt, po, lg, ps, G)",
         "                " + "; ".join(f"n{i} = y1a[{i}]" for i in range(N)),
+        _lag_update("            ", "y{i}", "n{i}", "lg[{j}]", "bs", "ld"),
         "            " + "; ".join(f"y{i} = n{i}" for i in range(N)),
         "        " + "; ".join(f"x[s, {i}] = y{i}" for i in range(N)),
+        "        for j in range(N_LAGS):", "            lags[s, j] = lg[j]",
     ]
     return "\n\n" + "\n".join(lines) + "\n"
 
@@ -442,26 +490,36 @@ def generate_source(effect_classes) -> str:
     names = tuple(c.name for c in effect_classes)
     head = _HEADER.format(version=GENERATOR_VERSION, effects=", ".join(names) or "(none)", n_states=N_STATES,
                           n_params=len(param_rows(effect_classes)),
-                          clutch="backlash_clutch" in names, effect_names=names, rows=param_rows(effect_classes))
+                          clutch="backlash_clutch" in names, effect_names=names, rows=param_rows(effect_classes),
+                          n_lags=_lags.N_LAGS, lag_times=tuple(tau for _, _, tau in _lags.LAGS))
     kern = _KERNEL_TEMPLATE.format(
         globals=_globals("    "), globals_1=_globals("    "),
-        binds_simd=_binds(effect_classes, "WS[(ry + {i}) * WR + s]", "WS[(R_P + {i}) * WR + s]", "            "),
+        binds_simd=_binds(effect_classes, "WS[(ry + {i}) * WR + s]", "WS[(R_P + {i}) * WR + s]", "            ",
+                          "WS[(R_LG + {i}) * WR + s]"),
         body_simd=_body(effect_classes, "            "),
-        binds_scalar=_binds(effect_classes, "y[{i}]", "ps[{i}]", "    "),
-        binds_tuple=_binds(effect_classes, "y{i}", "ps[{i}]", "    "),
+        binds_scalar=_binds(effect_classes, "y[{i}]", "ps[{i}]", "    ", "lg[{i}]"),
+        binds_tuple=_binds(effect_classes, "y{i}", "ps[{i}]", "    ", "lg[{i}]"),
         body_scalar=_body(effect_classes, "    ", "_ts_"))
-    loops = _LOOPS.replace("{GLOBALS}", _globals("    ")).replace("{OUTPUT_SELECT}", _simd_output_select())
+    loops = (_LOOPS.replace("{GLOBALS}", _globals("    ")).replace("{OUTPUT_SELECT}", _simd_output_select())
+             .replace("{LAG_UPDATE_SIMD}", _lag_update("                ", "WS[(R_Y + {i}) * WR + s]",
+                                                       "WS[(R_T + {i}) * WR + s]", "WS[(R_LG + {j}) * WR + s]",
+                                                       "WS[R_P * WR + s]", "WS[R_LD * WR + s]")))
     return head + "\n\n" + terms + "\n\n" + kern + loops + _scalar_loop()
 
 
 def generate_numpy(effect_classes):
     """The right-hand side on arrays (numpy backend, solve_ivp reference): f(y_list, ua, ub, load_pu, pulse_time_s,
-    pulse_off_time_s, P, G, mode) -> (11 derivatives, (te, tc, f)); the same block, run in mathlib's numpy namespace."""
+    pulse_off_time_s, P, G, mode, lags) -> (11 derivatives, (te, tc, f)); the same block, run in mathlib's numpy
+    namespace. ``lags``: the list of the N_LAGS lags (plant/lags.py); None: each settled at its quantity's value."""
     terms = "\n\n".join(_effects.term_source(c) for c in effect_classes)
-    src = (terms + "\n\n\ndef rhs(y, ua, ub, load_pu, pulse_time_s, pulse_off_time_s, P, G, mode=0):\n" + _globals("    ") + "\n"
-           + _binds(effect_classes, "y[{i}]", "P[{i}]", "    ") + "\n" + _body(effect_classes, "    ") + "\n"
+    src = (terms + "\n\n\ndef rhs(y, ua, ub, load_pu, pulse_time_s, pulse_off_time_s, P, G, mode=0, lags=None):\n"
+           + _globals("    ") + "\n"
+           + "    if lags is None:   # no memory given (a reference solution): every lag settled at its quantity\n"
+           + "        q = LAG_QUANTITIES(y, load_pu, P[0], g_omega_mb)\n"
+           + "        lags = [q[i] for i in LAG_QUANTITY_OF]\n"
+           + _binds(effect_classes, "y[{i}]", "P[{i}]", "    ", "lags[{i}]") + "\n" + _body(effect_classes, "    ") + "\n"
            + "    return (d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10), (te, tc, f)\n")
-    ns = dict(NUMPY_NAMESPACE)
+    ns = dict(NUMPY_NAMESPACE, LAG_QUANTITIES=_lags.quantities, LAG_QUANTITY_OF=tuple(i for _, i, _ in _lags.LAGS))
     exec(compile(src, f"<numpy rhs: {', '.join(c.name for c in effect_classes)}>", "exec"), ns)  # noqa: S102
     return ns["rhs"]
 

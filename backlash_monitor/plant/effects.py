@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import lags as _lags
 from .mathlib import cos, exp, fabs, fmax, fmin, log, power, sign, sin, smooth_sign, sqrt, where  # noqa: F401 (terms run in Python too)
 
 BALANCES = ("motor_load_moment_pu", "clutch_torque_Nm", "rim_mass_force_N", "wheel_torque_Nm", "mass_force_N")
@@ -63,6 +64,7 @@ MODEL_VARIABLES = {
     "contact_torque_Nm": "T_c, the clutch's contact torque on the wheel [N*m] (signed as Delta; 0 in the gap); "
                          "not in the clutch_torque_Nm balance, whose terms make it",
 }
+MODEL_VARIABLES.update(_lags.MODEL_VARIABLES)     # the first-order lags of the drive's states (plant/lags.py)
 CLUTCH_MADE = ("contact_torque_Nm",)     # variables the clutch balance's own terms make: not arguments of them
 
 

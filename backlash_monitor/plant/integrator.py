@@ -25,6 +25,7 @@ import contextlib
 import numpy as np
 
 from . import codegen
+from . import lags as _lags
 from .disturbances import NO_PULSE_S
 from ._numba import HAVE_NUMBA
 from .state import N_STATES, STATE_NAMES  # noqa: F401 (re-exported: the layout beside the S_* indices)
@@ -35,11 +36,13 @@ S_PSA, S_PSB, S_PRA, S_PRB, S_W1, S_DELTA, S_ALPHA1, S_ALPHA2, S_OMEGA2, S_Z, S_
 from .outputs import N_OUTPUTS, OUTPUT_NAMES, numpy_outputs  # noqa: E402, F401 (OUTPUT_NAMES re-exported)
 
 
-def _rk4_numpy(kernel, x, load, clock, ua, ub, phase, u_amp, P, G, h, out, states, record_states):
-    """Same scheme, vectorised over the scenarios with numpy calls (the state is advanced in place)."""
+def _rk4_numpy(kernel, x, lags, load, clock, ua, ub, phase, u_amp, P, G, h, out, states, record_states):
+    """Same scheme, vectorised over the scenarios with numpy calls (the state and the lags are advanced in place)."""
     n = load.shape[1]
     rhs = kernel.rhs_numpy
     y = [x[:, i].copy() for i in range(N_STATES)]
+    lg = [lags[:, j].copy() for j in range(_lags.N_LAGS)]
+    coef = _lags.coefficients(h)
     clutch = "backlash_clutch" in kernel.names
     beta = P[0]
     for k in range(n):
@@ -48,12 +51,12 @@ def _rk4_numpy(kernel, x, load, clock, ua, ub, phase, u_amp, P, G, h, out, state
         if record_states:
             for i in range(N_STATES):
                 states[i, :, k] = y[i]
-        f1, aux = rhs(y, ua[k, 0], ub[k, 0], ld, pt, po, P, G)
+        f1, aux = rhs(y, ua[k, 0], ub[k, 0], ld, pt, po, P, G, lags=lg)
         for j, v in enumerate(numpy_outputs(y, f1, aux[1], G)):
             out[j, :, k] = v
-        f2, _ = rhs([y[i] + 0.5 * h * f1[i] for i in range(N_STATES)], ua[k, 1], ub[k, 1], ld, pt, po, P, G)
-        f3, _ = rhs([y[i] + 0.5 * h * f2[i] for i in range(N_STATES)], ua[k, 1], ub[k, 1], ld, pt, po, P, G)
-        f4, _ = rhs([y[i] + h * f3[i] for i in range(N_STATES)], ua[k, 2], ub[k, 2], ld, pt, po, P, G)
+        f2, _ = rhs([y[i] + 0.5 * h * f1[i] for i in range(N_STATES)], ua[k, 1], ub[k, 1], ld, pt, po, P, G, lags=lg)
+        f3, _ = rhs([y[i] + 0.5 * h * f2[i] for i in range(N_STATES)], ua[k, 1], ub[k, 1], ld, pt, po, P, G, lags=lg)
+        f4, _ = rhs([y[i] + h * f3[i] for i in range(N_STATES)], ua[k, 2], ub[k, 2], ld, pt, po, P, G, lags=lg)
         y_new = [y[i] + (h / 6.0) * (f1[i] + 2.0 * f2[i] + 2.0 * f3[i] + f4[i]) for i in range(N_STATES)]
         if clutch:
             crossed = np.flatnonzero((np.abs(y[S_DELTA]) < beta) != (np.abs(y_new[S_DELTA]) < beta))
@@ -61,12 +64,15 @@ def _rk4_numpy(kernel, x, load, clock, ua, ub, phase, u_amp, P, G, h, out, state
                 y0 = np.array([y[i][s] for i in range(N_STATES)])
                 y1 = np.array([y_new[i][s] for i in range(N_STATES)])
                 kernel.module.crossing_step(y0, y1, h, phase[k], u_amp, float(ld[s]), float(pt), float(po),
-                                            np.ascontiguousarray(P[:, s]), G)
+                                            np.array([v[s] for v in lg]), np.ascontiguousarray(P[:, s]), G)
                 for i in range(N_STATES):
                     y_new[i][s] = y1[i]
+        lg = _lags.update(lg, _lags.quantities(y, ld, beta, G[8]), _lags.quantities(y_new, ld, beta, G[8]), coef)
         y = y_new
     for i in range(N_STATES):
         x[:, i] = y[i]
+    for j in range(_lags.N_LAGS):
+        lags[:, j] = lg[j]
 
 
 @contextlib.contextmanager
@@ -85,13 +91,13 @@ def _compile_errors(kernel):
         raise
 
 
-def _first_call_compiles(kernel, x, common, out, states, record_states, record_outputs, sel) -> None:
+def _first_call_compiles(kernel, x, lags, common, out, states, record_states, record_outputs, sel) -> None:
     """This process's first call of the kernel, on one scenario and one sample of the same types (dimensions, dtype,
     layout) as the real call, under codegen.compile_lock: it compiles the kernel, or loads what another process
     compiled meanwhile, and leaves the real arrays untouched."""
     load, clock, ua, ub, phase, u_amp, P, G, h = common
     n = min(1, load.shape[1])
-    tiny = (np.array(x[:1]), np.ascontiguousarray(load[:1, :n]), np.ascontiguousarray(clock[:n]), np.ascontiguousarray(ua[:n]),
+    tiny = (np.array(x[:1]), np.array(lags[:1]), np.ascontiguousarray(load[:1, :n]), np.ascontiguousarray(clock[:n]), np.ascontiguousarray(ua[:n]),
             np.ascontiguousarray(ub[:n]), np.ascontiguousarray(phase[:n]), u_amp, np.ascontiguousarray(P[:, :1]), G, h)
     out1 = np.empty((out.shape[0], 1, n)) if out.shape[1] else np.empty(out.shape)
     states1 = np.empty((states.shape[0], 1, n)) if states.shape[1] else np.empty(states.shape)
@@ -114,8 +120,15 @@ def resolve_backend(name: str) -> str:
     return name
 
 
+def initial_lags(x, load_first, P, G) -> np.ndarray:
+    """(n_scen, N_LAGS): the first-order lags (plant/lags.py) settled at their quantities in the state ``x`` (n_scen,
+    N_STATES) with the held load ``load_first`` (n_scen,); ``P``'s first row is beta, ``G[8]`` the motor's base
+    speed."""
+    return _lags.initial(np.asarray(x), load_first, np.asarray(P)[0], float(np.asarray(G)[8]))
+
+
 def rk4_advance(backend, kernel, x, load, ua, ub, phase, u_amp, P, G, h, record_states=False,
-                record_outputs=True, outputs=None, pulse_clock=None):
+                record_outputs=True, outputs=None, pulse_clock=None, lags=None):
     """Advance ``x`` (n_scen, N_STATES) in place by ``load.shape[1]`` steps with the backends of ``kernel``
     (:func:`codegen.kernel_for`); ``P``: (len(kernel.param_rows), n_scen) per-scenario parameters, ``G``:
     global motor constants. Return (outputs (n_out, n_scen, n) or None when ``record_outputs`` is false
@@ -126,7 +139,10 @@ def rk4_advance(backend, kernel, x, load, ua, ub, phase, u_amp, P, G, h, record_
 
     ``pulse_clock``: (n, 2) the held pulse clock of each step [s] (disturbances.pulse_clock_s: the time since the
     latest load pulse began, since it ended; the model variables pulse_time_s, pulse_off_time_s), one for every
-    scenario; None: no load pulse (both NO_PULSE_S, so every response to an edge is 0)."""
+    scenario; None: no load pulse (both NO_PULSE_S, so every response to an edge is 0).
+
+    ``lags``: (n_scen, N_LAGS) the first-order lags of plant/lags.py, advanced in place with ``x`` (a caller that runs
+    in chunks carries them from one call to the next, as it does ``x``); None: settled at the start (initial_lags)."""
     n_scen, n = load.shape
     sel = np.arange(N_OUTPUTS, dtype=np.int64) if outputs is None else np.asarray(outputs, dtype=np.int64)
     if sel.ndim != 1 or np.any((sel < 0) | (sel >= N_OUTPUTS)):
@@ -139,6 +155,11 @@ def rk4_advance(backend, kernel, x, load, ua, ub, phase, u_amp, P, G, h, record_
     if pulse_clock.shape != (n, 2):
         raise ValueError(f"rk4_advance: pulse_clock has shape {pulse_clock.shape}; allowed: ({n}, 2), the held "
                          "(time since the pulse began, since it ended) of each step")
+    if lags is None:
+        lags = initial_lags(x, load[:, 0] if n else np.zeros(n_scen), P, G)
+    if lags.shape != (n_scen, _lags.N_LAGS) or lags.dtype != np.float64 or not lags.flags.c_contiguous:
+        raise ValueError(f"rk4_advance: lags has shape {lags.shape}, dtype {lags.dtype}; allowed: a C-contiguous "
+                         f"float64 array ({n_scen}, {_lags.N_LAGS}) (plant/lags.py)")
     common = (np.ascontiguousarray(load), pulse_clock, np.ascontiguousarray(ua), np.ascontiguousarray(ub),
               np.ascontiguousarray(phase, dtype=np.float64), float(u_amp), P, G, float(h))
     if backend == "numba":
@@ -146,16 +167,16 @@ def rk4_advance(backend, kernel, x, load, ua, ub, phase, u_amp, P, G, h, record_
         states = np.empty((N_STATES, n_scen, n)) if record_states else np.empty((N_STATES, 0, 0))
         with _compile_errors(kernel):
             if not kernel.module.rk4_simd.signatures:
-                _first_call_compiles(kernel, x, common, out, states, record_states, record_outputs, sel)
-            kernel.module.rk4_simd(x, *common, out, states, bool(record_states), bool(record_outputs), sel)
+                _first_call_compiles(kernel, x, lags, common, out, states, record_states, record_outputs, sel)
+            kernel.module.rk4_simd(x, lags, *common, out, states, bool(record_states), bool(record_outputs), sel)
         return (out if record_outputs else None), (states if record_states else None)
     out = np.empty((N_OUTPUTS, n_scen, n))
     states = np.empty((N_STATES, n_scen, n)) if record_states else np.empty((N_STATES, 0, 0))
     with _compile_errors(kernel):
         if backend == "numba-scalar":
-            kernel.module.rk4_scalar(x, *common, out, states, bool(record_states))
+            kernel.module.rk4_scalar(x, lags, *common, out, states, bool(record_states))
         else:
-            _rk4_numpy(kernel, x, *common, out, states, bool(record_states))
+            _rk4_numpy(kernel, x, lags, *common, out, states, bool(record_states))
     if outputs is not None:
         out = out[sel]
     return out, (states if record_states else None)

@@ -13,7 +13,7 @@ from .disturbances import MotorLoadInput, motor_load_batch, pulse_clock_s, pulse
 from .drivetrain import absorber_coefficient
 from .codegen import global_vector, kernel_for
 from .state import STATE_NAMES
-from .integrator import OUTPUT_NAMES, rk4_advance, resolve_backend
+from .integrator import OUTPUT_NAMES, initial_lags, rk4_advance, resolve_backend
 from .motor import supply_phase, supply_voltage
 from .scenarios import Scenario
 from .steady_state import settled_state
@@ -141,6 +141,7 @@ class PlantSimulator:
         self.inputs = _shared_inputs(self._seeds, cfg)
         self._sensor_state: dict = {}
         self.state, self.motor_steady_state = settled_state(self.beta, cfg, values=self._values)
+        self.lags = None     # the first-order lags (plant/lags.py), settled at the state on the first step
         self.sample_index = 0
         self._last_delta = None
         run_in = int(round(cfg.simulation.run_in_s * cfg.simulation.sample_rate_hz))
@@ -294,8 +295,11 @@ class PlantSimulator:
             ua, ub, phase = self._supply(k0, m)
             pulse = self._pulse(k0, m)
             load = motor_load_batch(run_in_inputs, k0 + n, m, self.noise, pulse=pulse, constants=self._constants)
+            if self.lags is None:
+                self.lags = initial_lags(self.state, load[:, 0], self.P, self.G)
             rk4_advance(self.backend, self.kernel, self.state, load, ua, ub, phase, cfg.motor.supply_voltage_pu,
-                        self.P, self.G, self.sample_period_s, record_outputs=False, pulse_clock=pulse_clock_s(k0, m, cfg))
+                        self.P, self.G, self.sample_period_s, record_outputs=False, pulse_clock=pulse_clock_s(k0, m, cfg),
+                        lags=self.lags)
 
     def _pulse(self, k0: int, n: int):
         pulse = pulse_load_pu(k0, n, self.config)
@@ -321,10 +325,12 @@ class PlantSimulator:
         k0 = self.sample_index
         load = self.motor_load_pu(k0, n)
         ua, ub, phase = self._supply(k0, n)
+        if self.lags is None:
+            self.lags = initial_lags(self.state, load[:, 0] if n else np.zeros(len(self.scenarios)), self.P, self.G)
         out, states = rk4_advance(self.backend, self.kernel, self.state, load, ua, ub, phase,
                                   self.config.motor.supply_voltage_pu, self.P, self.G, self.sample_period_s,
                                   self.record_states, outputs=self._output_index,
-                                  pulse_clock=pulse_clock_s(k0, n, self.config))
+                                  pulse_clock=pulse_clock_s(k0, n, self.config), lags=self.lags)
         sig = dict.fromkeys(OUTPUT_NAMES)
         sig.update(zip(self.outputs, out))
         self.sensor_stage(sig)

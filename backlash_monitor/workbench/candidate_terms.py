@@ -10,7 +10,8 @@ linear in their coefficients: a pair is one group, selected together, reported a
 electromagnetic torque, the load pulse (the responses after its edges, on the pulse clock pulse_time_s,
 pulse_off_time_s, are written -- edge_terms -- but not in the default library: EDGES_IN_LIBRARY), and products of
 the clutch's contact torque (the model variable ``contact_torque_Nm``) with a speed's sign in the balances after the
-clutch's (_contact_torque_products); computed on the recorded events instead of simulated (recorded_terms), a
+clutch's (_contact_torque_products), terms with a memory of their own on the plant's first-order lags (memory_terms:
+a hidden body on a viscous coupling, a relaxing contact, a stroke through a lag; plant/lags.py); computed on the recorded events instead of simulated (recorded_terms), a
 sensor's terms, its own dynamics (_sensor_dynamics) and a slow change with the time in the record.
 
 The library is written as a plug-in file (the documented ``--effects-file`` form): every term one Effect class with
@@ -131,9 +132,10 @@ def _harmonics(balance, var, sym, orders=(1, 2)):
     return out
 
 
-def library(edges: bool = EDGES_IN_LIBRARY) -> tuple[Term, ...]:
+def library(edges: bool = EDGES_IN_LIBRARY, memory: bool | None = None) -> tuple[Term, ...]:
     """The candidate terms, in a fixed order (``edges``: with the responses after the load pulse's edges,
-    edge_terms)."""
+    edge_terms; ``memory``: with the terms with a memory, memory_terms; None: MEMORY_IN_LIBRARY)."""
+    memory = MEMORY_IN_LIBRARY if memory is None else memory
     ms, ws = f"({SPEED_REF})", f"({SPEED_REF})"
     t: list[Term] = []
     # the motor's load moment: its speed, the torque it delivers, both shafts' angles
@@ -205,6 +207,8 @@ def library(edges: bool = EDGES_IN_LIBRARY) -> tuple[Term, ...]:
         t.append(Term(f"{PREFIX}{b}_const", balance, f"1.0 + 0.0 * {var}", "1", "constant", f"{b}_const", (var,)))
     t += _contact_torque_products()
     t += _speed_deviations()
+    if memory:
+        t += memory_terms()
     return tuple(t)
 
 
@@ -252,6 +256,56 @@ def with_center(term: Term, center_rad_s: float) -> Term:
     num = f"{center_rad_s:.6g}"
     return dataclasses.replace(term, expression=term.expression.replace(CENTER, num),
                                symbol=term.symbol.replace("Ω̄", num), center=None)
+
+
+# ------------------------------------------------------------------ terms with a memory (issue 31, part 2)
+# the first-order lags the plant carries (plant/lags.py: the motor, wheel and mass speeds, the clutch's penetration,
+# the load moment input, each at LAG_TIMES_S = 10 and 100 ms; the infinite time constant is the speed deviation above)
+MEMORY_IN_LIBRARY = True     # library(memory=False): without them (measured before/after: docs/workbench.md)
+MEMORY_SPEEDS = (("motor_load_moment_pu", "omega1", "Ω₁", f"{SPEED_DEVIATION_SCALE_RAD_S!r}"),
+                 ("wheel_torque_Nm", "omega2", "Ω₂", f"{SPEED_DEVIATION_SCALE_RAD_S!r}"),
+                 ("mass_force_N", "xdot", "ẋ", f"(wheel_radius_m * {SPEED_DEVIATION_SCALE_RAD_S!r})"))
+
+
+def memory_terms() -> list:
+    """Terms of the first-order lags L_tau (plant/lags.py), each balance's two time constants ONE group (selected
+    together, two coefficients: a memory between 10 and 100 ms is within a few per cent a combination of the two):
+
+    - (q - L_tau(q))/scale of the balance's own body's speed (Ω₁ in the motor's, Ω₂ in the wheel's, ẋ in the mass's;
+      scale the speed's spread 1.5 rad/s, r·1.5 m/s for the mass): a hidden body of speed L on a viscous coupling
+      (a flywheel on a creeping belt, a fan, a governor's sleeve) loads its shaft with c·(q - L), L -> q with
+      tau = J/c; also a speed loop's delay, q - L being the speed's recent change;
+    - (p - L_tau(p))/p₀ of the clutch's penetration in its own balance (in contact): a relaxing (viscoelastic) contact,
+      stiffer in an impact than under a steady load -- the Maxwell branch k·(p - q), q -> p with tau;
+    - L_tau(T_L)/1.6 of the load moment input (the strokes' pulse train) in the motor's, the wheel's and the mass's:
+      a force that follows the stroke through its own lag (a coil's field current, a valve and a line filling).
+    Not lags of a product (a softening that follows the dissipated power), nor a one-way or a play's memory (only in
+    part: measured, docs/workbench.md "Terms with memory")."""
+    from backlash_monitor.plant.lags import LAG_TIMES_S, lag_name
+    out = []
+    for balance, var, sym, scale in MEMORY_SPEEDS:
+        b = SHORT[balance]
+        for tau in LAG_TIMES_S:
+            ms = f"{tau * 1e3:g}"
+            lag = lag_name(var, tau)
+            out.append(Term(f"{PREFIX}{b}_{var}_memory_{ms}ms", balance, f"({var} - {lag}) / {scale}",
+                            f"({sym}−lag{ms}ms({sym}))/{SPEED_DEVIATION_SCALE_RAD_S:g}", var, f"{b}_{var}_memory",
+                            (var, lag)))
+    for tau in LAG_TIMES_S:
+        ms = f"{tau * 1e3:g}"
+        lag = lag_name("penetration", tau)
+        out.append(Term(f"{PREFIX}clutch_pen_memory_{ms}ms", "clutch_torque_Nm",
+                        f"(penetration - {lag}) / {PENETRATION_SCALE_RAD!r}",
+                        f"(p−lag{ms}ms(p))/{PENETRATION_SCALE_RAD:g}", "penetration", "clutch_pen_memory",
+                        ("penetration", lag)))
+    for balance in ("motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N"):
+        b = SHORT[balance]
+        for tau in LAG_TIMES_S:
+            ms = f"{tau * 1e3:g}"
+            lag = lag_name("load_moment", tau)
+            out.append(Term(f"{PREFIX}{b}_pulse_memory_{ms}ms", balance, f"{lag} / {PULSE_SCALE_PU}",
+                            f"lag{ms}ms(T_L)/{PULSE_SCALE_PU:g}", "load pulse", f"{b}_pulse_memory", (lag,)))
+    return out
 
 
 # ------------------------------------------------------------------ products of the contact torque (issue 31, part 2)

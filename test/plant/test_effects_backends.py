@@ -258,7 +258,7 @@ def test_generated_simd_stage_vectorises_with_every_catalogue_term(tmp_path):
         "cfg = load_plant_config(overrides={f'effects.{c.name}': True for c in CATALOGUE})\n"
         "k = kernel_for(tuple(cfg.catalogue.enabled(cfg, 'term')))\n"
         "S, n = 2, 3; P = np.ones((len(k.param_rows), S))\n"
-        "k.module.rk4_simd(np.ones((S, N_STATES)), np.zeros((S, n)), np.zeros((n, 2)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n),"
+        "k.module.rk4_simd(np.ones((S, N_STATES)), np.zeros((S, k.module.N_LAGS)), np.zeros((S, n)), np.zeros((n, 2)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n),"
         " 1.0, P, global_vector(cfg), 2e-5, np.zeros((1, S, n)), np.zeros((N_STATES, 0, 0)), False, True,"
         " np.zeros(1, dtype=np.int64))\n"
         "ir = k.module.rk4_simd.inspect_llvm(k.module.rk4_simd.signatures[0])\n"

@@ -10,6 +10,7 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 from backlash_monitor.plant import load_plant_config                      # noqa: E402
 from backlash_monitor.plant.catalogue import builtin_catalogue           # noqa: E402
 from backlash_monitor.plant.effects import MODEL_VARIABLES               # noqa: E402
+from backlash_monitor.plant.lags import LAG_TIMES_S                      # noqa: E402
 from backlash_monitor.workbench import candidate_terms, proposal         # noqa: E402
 
 
@@ -32,12 +33,15 @@ def test_the_library_is_generic_and_covers_every_balance_and_both_shafts_angles(
     # (the edges' groups: written, not in the default library, candidate_terms.EDGES_IN_LIBRARY)
     with_edges = candidate_terms.library(edges=True)
     by = {t.name: t for t in with_edges}
-    edges = {g for g, names in candidate_terms.groups(with_edges).items() if by[names[0]].state == "load pulse"
-             and len(names) > 1}
+    edges = {g for g, names in candidate_terms.groups(with_edges).items()
+             if {"pulse_time_s", "pulse_off_time_s"} & set(by[names[0]].variables)}
+    # the terms with a memory: each balance's lags at every time constant of plant/lags.py one group
+    memory = {t.group for t in candidate_terms.memory_terms()}
     for g, names in candidate_terms.groups(with_edges).items():
         kinds = {by[n].harmonic is not None for n in names}
         assert len(kinds) == 1
-        assert len(names) == (2 if kinds.pop() else len(candidate_terms.EDGE_DECAYS_S) if g in edges else 1)
+        assert len(names) == (2 if kinds.pop() else len(candidate_terms.EDGE_DECAYS_S) if g in edges
+                              else len(LAG_TIMES_S) if g in memory else 1)
     # the responses after both edges of the load pulse, in the motor, wheel and mass balances, on the pulse clock
     assert {(t.balance, t.variables) for t in with_edges if t.group in edges} == {
         (b, (v,)) for b in ("motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N")
