@@ -88,7 +88,8 @@ def test_a_pulse_memory_term_is_the_stroke_through_a_first_order_lag():
 
 @pytest.mark.heavy      # make test-all (CI time); ~3 min CPU
 @pytest.mark.slow
-def test_an_eddy_brake_whose_field_follows_the_stroke_through_a_lag_is_proposed_on_the_lagged_pulse_in_the_wheel():
+def test_an_eddy_brake_whose_field_follows_the_stroke_through_a_lag_is_proposed_on_the_lagged_pulse_in_the_wheel(
+        monkeypatch):
     """foreign_drives' eddy-current brake on the wheel (the spent fifth sealed half, os5 #8): -c*Omega2*i, its field
     current i following the stroke with the coil's L/R = 20 ms, c = 0.02 N*m*s/rad (Omega2 ~ 151 rad/s: -3 N*m while
     the field is up). No term of the instantaneous states expresses it (before the lags: a motor load gated by the
@@ -100,6 +101,7 @@ def test_an_eddy_brake_whose_field_follows_the_stroke_through_a_lag_is_proposed_
     from backlash_monitor.workbench.diagnose import diagnose
     from backlash_monitor.workbench.measurement import Measurement
     from backlash_monitor.workbench.model import load_model
+    monkeypatch.setattr(candidate_terms, "MEMORY_IN_LIBRARY", True)     # the library with its terms with a memory
     spec = next(s for s in suite("outside_sealed5") if s.label == "os5_wheel_eddy_brake_field_lag")
     (eff,) = spec.effects
     assert eff.form == "wheel_eddy_brake_field_lag" and eff.parameters["time_constant_s"] == 0.02
