@@ -9,7 +9,8 @@ One recording, followed through the named steps (docs/workbench.md, "Diagnose: t
    the linear fit of every candidate; the consistency of the model as it is.
 2. **refine** (`refine_step`): bounded least squares on the simulator for the best candidates and every one
    that may tie with them.
-3. **decide** (`decide_step`): the winner among the qualifying candidates (decisions.qualifies) and the ones not
+3. **decide** (`decide_step`): the winner among the qualifying candidates (decisions.qualifies, its weak evidence
+   significant family-wise over the candidates screened: the look-elsewhere effect) and the ones not
    distinguishable from it.
 4. **second effect** (`second_effect_step`, pairs.py): when the winner leaves the model inconsistent.
 5. **confidence** (`confidence_step`): the model with the effect(s) must be consistent in every view, without
@@ -74,6 +75,15 @@ class Run:
     @property
     def inconsistent(self) -> bool:
         return not self.before.consistent or self.events_evidence is not None
+
+    @property
+    def n_candidates(self) -> int:
+        """How many candidates the winner is the best of: every one screened and ranked (decisions.qualifies)."""
+        return len(self.order)
+
+    def qualifies(self, fit) -> bool:
+        """decisions.qualifies, honest about the candidates looked at (the look-elsewhere effect)."""
+        return qualifies(fit, self.by_name[fit.effect], n_candidates=self.n_candidates)
 
 
 @dataclass
@@ -171,7 +181,7 @@ def refine_step(run: Run) -> list:
         # in the recording's evidence (the IC without its parameter penalty): a two-parameter law may tie with a
         # one-parameter one that fits as well (decisions.likelihood_part); with the best's misfit scale
         lnE = np.log(max(p.n_events, 2))
-        ok = [f for f in fits if qualifies(f, run.by_name[f.effect])]
+        ok = [f for f in fits if run.qualifies(f)]
         best = min(ok, key=lambda f: f.delta_ic) if ok else None
         reach = ((likelihood_part(best, p.n_events) + DELTA_IC_TIE * misfit_scale(p, best)) if best is not None
                  else -DELTA_IC_STRONG) + LINEAR_IC_MARGIN
@@ -233,7 +243,7 @@ def decide_step(run: Run) -> Decision:
     with it -- their evidence (decisions.likelihood_part) or their fitted prediction (prediction_distance) within
     DELTA_IC_TIE of it, both divided by the winner's misfit_scale -- are not distinguishable from it, and so is a
     candidate that is the same term of the model as it or as one of those (decisions.IDENTICAL)."""
-    qual = [f for f in run.fits if qualifies(f, run.by_name[f.effect])] if run.inconsistent else []
+    qual = [f for f in run.fits if run.qualifies(f)] if run.inconsistent else []
     winner = qual[0] if qual else None
     if winner is not None:
         scale = misfit_scale(run.problem, winner)

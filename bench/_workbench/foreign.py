@@ -81,8 +81,9 @@ def score(diag: dict, truth: dict, kind: str) -> dict:
     return out
 
 
-def run_recording(spec, workdir: Path, loop: bool = True) -> dict:
-    """One foreign recording: bag, diagnosis, score; with ``loop`` the whole README loop and the width errors."""
+def run_recording(spec, workdir: Path, loop: bool = True, keep_json: Path | None = None) -> dict:
+    """One foreign recording: bag, diagnosis, score; with ``loop`` the whole README loop and the width errors;
+    with ``keep_json`` the diagnosis's JSON is kept there as LABEL.json (every candidate's fit, for offline study)."""
     from foreign_drives.files import write_bag
     from foreign_drives.drive import make_recording
     rec = make_recording(spec)
@@ -99,6 +100,9 @@ def run_recording(spec, workdir: Path, loop: bool = True) -> dict:
         row["error"] = out[-2000:]
         return row
     diag = json.loads((d / "d.json").read_text())
+    if keep_json is not None:
+        keep_json.mkdir(parents=True, exist_ok=True)
+        (keep_json / f"{spec.label}.json").write_text((d / "d.json").read_text())
     row.update(score(diag, truth, spec.kind))
     row.update({"message": diag["message"], "seconds": diag["seconds"], "wall_seconds": wall, "cpu_seconds": cpu,
                 "additions": [(a["candidate"], a["role"]) for a in diag["additions"]],
@@ -134,14 +138,14 @@ def run_recording(spec, workdir: Path, loop: bool = True) -> dict:
     return row
 
 
-def run_suite(name: str = "bench", only=None, loop: bool = True, workdir=None) -> list:
+def run_suite(name: str = "bench", only=None, loop: bool = True, workdir=None, keep_json=None) -> list:
     sys.path.insert(0, str(ROOT))
     from foreign_drives.suites import suite
     specs = [s for s in suite(name) if not only or s.label in only]
     rows = []
     with tempfile.TemporaryDirectory(dir=workdir) as tmp:
         for i, spec in enumerate(specs):
-            row = run_recording(spec, Path(tmp), loop)
+            row = run_recording(spec, Path(tmp), loop, Path(keep_json) if keep_json else None)
             rows.append(row)
             log(f"[foreign {i + 1}/{len(specs)}] {spec.label}: {row.get('verdict')} {row.get('discovery')} "
                 f"(named {row.get('named')}; truth {row['families'] or 'none'})"
@@ -185,6 +189,7 @@ if __name__ == "__main__":
     ap.add_argument("--suite", default="bench")
     ap.add_argument("--only", action="append")
     ap.add_argument("--no-loop", action="store_true")
+    ap.add_argument("--keep-json", metavar="DIR", help="keep every diagnosis's JSON as DIR/LABEL.json")
     a = ap.parse_args()
-    rows = run_suite(a.suite, a.only, not a.no_loop)
+    rows = run_suite(a.suite, a.only, not a.no_loop, keep_json=a.keep_json)
     print(json.dumps({**summary(rows), "per_recording": rows}, default=float))
