@@ -30,6 +30,8 @@ import re
 
 import numpy as np
 
+from backlash_monitor.plant.lags import LAG_TIMES_S, lag_name
+
 PREFIX = "cand_"     # the library's effect names: cand_<balance>_<what>
 
 # the scales f divides the states by [unit of the state] -- the size of each state at the paper's operating point
@@ -285,7 +287,6 @@ def memory_terms() -> list:
       a force that follows the stroke through its own lag (a coil's field current, a valve and a line filling).
     Not lags of a product (a softening that follows the dissipated power), nor a one-way or a play's memory (only in
     part: measured, docs/workbench.md "Terms with memory")."""
-    from backlash_monitor.plant.lags import LAG_TIMES_S, lag_name
     out = []
     for balance, var, sym, scale in MEMORY_SPEEDS:
         b = SHORT[balance]
