@@ -80,3 +80,29 @@ def assert_acts_in_its_balance_only(name: str, balance: str, rec, base) -> None:
         return
     for bal, v in off.items():
         assert (v > 0.5) if bal == balance else (v < 1e-6), (name, bal, v)
+
+
+def assert_suite_writes_one_recording(out_dir: Path, suite_name: str) -> None:
+    """``python -m foreign_drives write --suite SUITE --only LABEL --format npz`` on the suite's first outside row
+    writes its recording (4 s at 50 kHz: 200,000 samples of a1, a2) and a manifest naming the suite, the label, the
+    half and the onsets made."""
+    from foreign_drives.cli import main
+    label = next(s.label for s in suites.suite(suite_name) if s.kind == "outside")
+    assert main(["write", "--suite", suite_name, "--out", str(out_dir), "--only", label, "--format", "npz",
+                 "--quiet"]) == 0
+    doc = json.loads((out_dir / "manifest.json").read_text())
+    (r,) = doc["recordings"]
+    assert doc["suite"] == suite_name and r["spec"]["label"] == label and (out_dir / r["file"]).is_file()
+    assert r["made"]["onset_entries"] and r["truth"]["effects"][0]["half"] == suite_name.replace("outside_", "")
+    with np.load(out_dir / r["file"]) as z:
+        assert {"a1", "a2"} <= set(z.files) and z["a1"].size == 200_000
+
+
+def assert_forms_withholds_sealed(out: str, sealed: dict, dev: dict) -> None:
+    """``python -m foreign_drives forms``'s output ``out`` names each sealed form, its balance and no law (neither its
+    description nor its parameters' longer descriptions), and shows each development form's description."""
+    for name, f in sealed.items():
+        assert f"{name}  family=None  outside (sealed)  balance={f.balance}" in out
+        assert f.description not in out and all(p.description not in out for p in f.parameters if len(p.description) > 8)
+    for f in dev.values():
+        assert f.description in out

@@ -9,7 +9,6 @@ This file names the sealed mechanisms only through the registry and the suite; i
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
 
 import numpy as np
@@ -24,8 +23,9 @@ from foreign_drives import suites
 from foreign_drives.drive import make_recording
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
-from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only, outside_bench,  # test/
-                                       suite_effect)
+from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
+                                       assert_forms_withholds_sealed, assert_suite_writes_one_recording,
+                                       outside_bench, suite_effect)
 
 W = C.WHEEL_RADIUS_M
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
@@ -277,27 +277,13 @@ def test_set5_suites_have_one_row_per_mechanism_and_a_clean_control():
 
 @pytest.mark.parametrize("suite_name", ["outside_dev5", "outside_sealed5"])
 def test_each_suite_writes_its_recordings_and_manifest(tmp_path, suite_name):
-    from foreign_drives.cli import main
-    label = next(s.label for s in suites.suite(suite_name) if s.kind == "outside")
-    assert main(["write", "--suite", suite_name, "--out", str(tmp_path), "--only", label, "--format", "npz",
-                 "--quiet"]) == 0
-    doc = json.loads((tmp_path / "manifest.json").read_text())
-    (r,) = doc["recordings"]
-    assert doc["suite"] == suite_name and r["spec"]["label"] == label and (tmp_path / r["file"]).is_file()
-    assert r["made"]["onset_entries"] and r["truth"]["effects"][0]["half"] == suite_name.replace("outside_", "")
-    with np.load(tmp_path / r["file"]) as z:
-        assert {"a1", "a2"} <= set(z.files) and z["a1"].size == 200_000
+    assert_suite_writes_one_recording(tmp_path, suite_name)
 
 
 def test_forms_withholds_the_sealed_laws_and_shows_the_development_ones(capsys):
     from foreign_drives.cli import main
     assert main(["forms"]) == 0
-    out = capsys.readouterr().out
-    for name, f in SEALED5.items():
-        assert f"{name}  family=None  outside (sealed)  balance={f.balance}" in out
-        assert f.description not in out and all(p.description not in out for p in f.parameters if len(p.description) > 8)
-    for f in DEV5.values():
-        assert f.description in out
+    assert_forms_withholds_sealed(capsys.readouterr().out, SEALED5, DEV5)
 
 
 def test_outside_bench_knows_set_5_whose_sealed_half_is_spent_now():
