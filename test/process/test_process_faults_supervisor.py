@@ -115,11 +115,25 @@ _STUBBORN_CHILD = textwrap.dedent("""
 """)
 
 
+# A child whose main thread blocks in C while it holds the GIL (libc's sleep through ctypes.PyDLL,
+# which keeps the GIL), and ignores SIGTERM: the watchdog's thread can never run again, so only a
+# stage outside the process's interpreter ends it. Before that stage, this child outlived its
+# parent for good (a killed pipeline's node, once in CI).
+_GIL_HOLDING_CHILD = textwrap.dedent("""
+    import ctypes, signal
+    from backlash_monitor.process.parent_watch import start_watchdog
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    assert start_watchdog(grace_s=1.0, period_s=0.1) is not None
+    ctypes.PyDLL(None).sleep(120)
+""")
+
+
 @pytest.mark.process
 @pytest.mark.parametrize("how, child", [
     ("supervisor", "import time; time.sleep(60)"),
     ("watchdog", _STUBBORN_CHILD),
-])
+    ("watchdog", _GIL_HOLDING_CHILD),
+], ids=["supervisor", "watchdog", "watchdog-gil-held"])
 def test_children_die_when_their_parent_is_killed_with_sigkill(how, child):
     parent = subprocess.Popen([sys.executable, "-c", _PARENT, how, child], stdout=subprocess.PIPE,
                               text=True, start_new_session=True)
