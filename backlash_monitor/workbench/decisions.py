@@ -69,18 +69,50 @@ def significant(fit, threshold: float = SIGNIFICANCE) -> bool:
     return bool(np.all(alone))
 
 
-def qualifies(fit, candidate, min_explained: float = MIN_EXPLAINED, n_candidates: int = 1) -> bool:
-    """``n_candidates``: how many candidates the winner is the best of (diagnose: every one screened and ranked).
-    (No significance test for a single effect with decisive evidence: its test is the IC, and the jackknife through
-    the final Jacobian can be far off for a strongly nonlinear parameter -- measured: a quadratic wheel drag fitted
-    0.064 +- 0.040 at delta_ic -250. Weaker evidence needs the family-wise significance over the candidates looked at
-    (family_significance); the width with decisive evidence SIGNIFICANCE.)"""
+def smallest_z(fit) -> float:
+    """The smallest of the fitted values' distances from the model's in their (jackknife) uncertainties; a group of
+    the fit's ``groups`` counts as one value, its joint z (the quantity :func:`significant` tests)."""
+    d = np.abs(np.asarray(fit.values, dtype=float) - np.asarray(fit.nominal, dtype=float))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = np.where(d > 0, d / np.asarray(fit.uncertainty, dtype=float), 0.0)
+    z = np.where(np.isnan(z), 0.0, z)
+    for start, stop, group_z in getattr(fit, "groups", ()):
+        z[start:stop] = group_z
+    return float(np.min(z)) if z.size else float("inf")
+
+
+def refusals(fit, candidate, min_explained: float = MIN_EXPLAINED, n_candidates: int = 1) -> list[str]:
+    """Why a fitted candidate does not qualify, in words (empty: it qualifies). ``n_candidates``: how many
+    candidates the winner is the best of (diagnose: every one screened and ranked). (No significance test for a
+    single effect with decisive evidence: its test is the IC, and the jackknife through the final Jacobian can be far
+    off for a strongly nonlinear parameter -- measured: a quadratic wheel drag fitted 0.064 +- 0.040 at delta_ic
+    -250. Weaker evidence needs the family-wise significance over the candidates looked at (family_significance);
+    the width with decisive evidence SIGNIFICANCE.)"""
     measurand = fit.effect.split("[")[0] in MEASURAND_EFFECTS
     weak = fit.delta_ic > -DELTA_IC_DECISIVE
     threshold = family_significance(n_candidates) if weak else SIGNIFICANCE
-    return (fit.delta_ic <= -DELTA_IC_STRONG and fit.explained_fraction >= min_explained and not fit.at_bound
-            and tolerance.beyond_tolerance(fit, candidate, TOLERANCE_FACTOR)
-            and (not (measurand or weak) or significant(fit, threshold)))
+    why = []
+    if fit.delta_ic > -DELTA_IC_STRONG:
+        why.append(f"no evidence on the events (delta_ic {fit.delta_ic:.1f} > {-DELTA_IC_STRONG:.0f})")
+    if fit.explained_fraction < min_explained:
+        why.append(f"explains less than {min_explained:.0%} of the residual")
+    if fit.at_bound:
+        why.append("fitted at the bound of its range")
+    if not tolerance.beyond_tolerance(fit, candidate, TOLERANCE_FACTOR):
+        why.append(f"its change is within {TOLERANCE_FACTOR:g} x the model's nominal tolerance")
+    if (measurand or weak) and not significant(fit, threshold):
+        z = smallest_z(fit)
+        if weak and n_candidates > 1:
+            why.append(f"weak evidence (delta_ic {fit.delta_ic:.1f} > {-DELTA_IC_DECISIVE:.0f}) and z {z:.2f} below "
+                       f"{threshold:.2f}, the significance of the best of {n_candidates} candidates")
+        else:
+            why.append(f"its value is {z:.2f} of its uncertainties from the model's, not more than {threshold:.2f}")
+    return why
+
+
+def qualifies(fit, candidate, min_explained: float = MIN_EXPLAINED, n_candidates: int = 1) -> bool:
+    """The fitted candidate may be named: :func:`refusals` finds no reason against it."""
+    return not refusals(fit, candidate, min_explained, n_candidates)
 
 
 def views_not_worse(problem, before_pred, after_pred) -> tuple[bool, list]:

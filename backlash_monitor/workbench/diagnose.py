@@ -30,7 +30,7 @@ import numpy as np
 from . import (analysis, angle_locked, consistency, drive_terms, fitting, model_average, pairs, plant_adapter,
                proposal, report, ripple, separation, tolerance)
 from .decisions import (DELTA_IC_DECISIVE, DELTA_IC_STRONG, DELTA_IC_TIE, MIN_EXPLAINED, confident, identical_to,
-                        likelihood_part, qualifies, significant)
+                        likelihood_part, qualifies, refusals, significant)
 from .diagnosis_result import (CONSISTENT, DISCOVERY, MEASURAND, MEASURAND_EFFECTS, NOTHING_EXPLAINS, PARTIAL,
                         ROLE_DISCOVERY, ROLE_PARTIAL, ROLE_SECOND, Addition, Conditions, Diagnosis,
                         WidthMeasurement)
@@ -84,6 +84,10 @@ class Run:
     def qualifies(self, fit) -> bool:
         """decisions.qualifies, honest about the candidates looked at (the look-elsewhere effect)."""
         return qualifies(fit, self.by_name[fit.effect], n_candidates=self.n_candidates)
+
+    def refusals(self, fit) -> list[str]:
+        """Why ``fit`` does not qualify, in words (decisions.refusals; empty when it does)."""
+        return refusals(fit, self.by_name[fit.effect], n_candidates=self.n_candidates)
 
 
 @dataclass
@@ -587,9 +591,10 @@ def verdict_message(run: Run, up: Update, v: Verdict, width: WidthMeasurement, r
         message = (f"the model agrees with the event average within its noise band and model-form tolerance "
                    f"(residual {overall_before:.2f} x the noise floor), but not with the raw spectrum")
     elif verdict == NOTHING_EXPLAINS:
+        why = run.refusals(best)
         message = (f"nothing in the catalogue explains the residual (best: {best.effect}, explains "
                    f"{drive_terms.explained_percent(best.explained_fraction)}, delta_ic {best.delta_ic:.1f}"
-                   + (", at the bound of its range" if best.at_bound else "") + f"); {where_text}")
+                   + (f"; not taken: {'; '.join(why)}" if why else "") + f"); {where_text}")
     elif verdict == PARTIAL:
         names = " + ".join(f.effect for f in partial)
         message = (f"partial explanation, no confident discovery: {names} explains "

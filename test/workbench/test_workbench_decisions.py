@@ -10,7 +10,7 @@ from scipy.special import erfc
 
 from backlash_monitor.workbench import plant_adapter
 from backlash_monitor.workbench.decisions import (DELTA_IC_DECISIVE, DELTA_IC_STRONG, SIGNIFICANCE,
-                                                  family_significance, qualifies)
+                                                  family_significance, qualifies, refusals)
 from backlash_monitor.workbench.fitting import FitResult
 from backlash_monitor.workbench.model import load_model
 
@@ -89,3 +89,20 @@ def test_a_synthetic_candidate_table_of_null_fits_gives_no_winner_and_a_true_eff
         assert not any(qualifies(f, spring, n_candidates=k) for f in table)
     z_true = family_significance(k) + 0.5
     assert qualifies(_spring_fit(0.05 * z_true, 0.05, -8.0), spring, n_candidates=k)
+
+
+def test_each_reason_against_a_candidate_is_named_in_words_and_none_when_it_qualifies(catalogue):
+    """diagnose's `nothing_explains` message says why its best candidate was not taken (decisions.refusals): the
+    reasons are the rule's own conditions, one each, and a candidate that qualifies has none."""
+    spring = next(c for c in catalogue if c.name == "spring_stiffness_drift")
+    k = len(catalogue)
+    assert refusals(_spring_fit(-0.32, 0.08, -40.0), spring, n_candidates=k) == []
+    look_elsewhere = refusals(_spring_fit(-0.19, 0.08, -3.9), spring, n_candidates=k)
+    assert len(look_elsewhere) == 1
+    assert f"best of {k} candidates" in look_elsewhere[0] and "z 2.38" in look_elsewhere[0]
+    assert f"{family_significance(k):.2f}" in look_elsewhere[0]
+    no_evidence = refusals(_spring_fit(-0.32, 0.08, -1.0, explained=0.2), spring, n_candidates=k)
+    assert any("no evidence" in r for r in no_evidence) and any("less than 50%" in r for r in no_evidence)
+    pinned = _spring_fit(-0.32, 0.08, -40.0)
+    pinned.at_bound = True
+    assert refusals(pinned, spring, n_candidates=k) == ["fitted at the bound of its range"]
