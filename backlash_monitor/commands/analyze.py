@@ -197,6 +197,7 @@ def run(args) -> int:
     _print_summary(result["summary"], result["rows"], result["discarded"], result["n_samples"],
                    result["seconds"], result["outputs"])
     _print_model_fit(result["summary"])
+    _print_registry_match(args.bag, options, watch, result)
     _print_integrity(result["integrity"])
     _print_sensor_offsets(result["sensor_offsets"])
     print_saturation(result["input_saturation"])
@@ -225,6 +226,22 @@ def _registered_library(bag: str, options, watch):
     drive = registered_drive(watch, {"namespace": namespace, "drive": name or Path(bag).stem})
     path = library_for_bag(options, drive)
     return load_library(replace(options, library=path)) if path else None
+
+
+def _print_registry_match(bag: str, options, watch, result: dict) -> None:
+    """With --registry, a bag of no registered drive is said (as a folder's analysis says it): its widths and model
+    fit are then not its drive's own."""
+    if not watch.drives:
+        return
+    # deferred: backlash_monitor.fleet.folder_analysis costs ~100 ms at start-up (python -X importtime, 29 Nov); --help imports every command
+    from backlash_monitor.fleet.folder_analysis import registered_drive
+    row = {"namespace": result.get("namespace", ""), "drive": result["drive"] or Path(bag).stem}
+    if registered_drive(watch, row) is None:
+        print(f"{Path(bag).name} matched no drive of the registry (drive {row['drive']!r}, namespace "
+              f"{row['namespace'] or '/'!r}; widths from {options.library or 'the packaged library'}"
+              f"{', model fit against the default model' if watch.enabled and not watch.reference else ''}): "
+              "add it to the registry (docs/registry.md; `train --drive LINE/DRIVE` registers a version) or check the "
+              "bag's namespace")
 
 
 def _print_model_fit(summary: dict) -> None:

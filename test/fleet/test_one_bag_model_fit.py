@@ -105,3 +105,20 @@ def test_no_fit_is_said_never_silent(bags, tmp_path):
     stdout, summary = _one(paths["foreign"], tmp_path / "missing", "--watch-reference", missing)
     assert f"model fit: not run — no reference {missing} (`python -m backlash_monitor watch-reference" in stdout
     assert summary["model_fit"] == "no reference" and summary["width_caveat"] == ""
+
+
+@pytest.mark.process
+def test_a_bag_of_no_registered_drive_is_said_not_silently_held_against_the_default(bags, tmp_path):
+    """--registry naming other drives: one bag of none of them says so after its table (as a folder's analysis
+    does), with its recorded drive and namespace and what its widths come from; without --registry nothing is said.
+    (The match itself is folder_analysis.registered_drive's, the folder's: test_fleet_analyze's registry tests.)"""
+    import yaml
+    paths, _ = bags
+    registry = tmp_path / "drives.yaml"
+    registry.write_text(yaml.safe_dump({"lines": {"line1": {"driveA": {"width_m": 0.005}}}}))
+    stdout, _ = _one(paths["clean"], tmp_path / "unmatched", "--no-model-fit", "--registry", registry)
+    [line] = [x for x in stdout.splitlines() if "matched no drive of the registry" in x]
+    assert line.startswith("clean.mcap matched no drive of the registry (drive ")
+    assert "(drive 'drive', namespace '/'; widths from the packaged library)" in line    # simulate's bag: no LINE/
+    stdout, _ = _one(paths["clean"], tmp_path / "none", "--no-model-fit")
+    assert not any("registry" in x for x in stdout.splitlines())
