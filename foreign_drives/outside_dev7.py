@@ -41,6 +41,16 @@ down:
 13. a2 sensor x a2's own recent samples: a2's I/O module has its spike suppression switched on: each output sample is
     the median of the last W input samples (a causal, nonlinear order-statistic filter with a memory of W samples:
     not a linear low-pass).
+
+Visibility, measured (one simulation of each suite row, 4 s, against the same spec without the mechanism, same seed;
+no diagnose; rms of the recorded signal's difference; criterion a2 >= 0.05 m/s^2, a1 >= 0.25 for an a1 row): 1 a2
+0.0385 at 0.03 N*m*s/rad, scaled once x1.95 -> 0.0729; 3 a2 0.226; 5 a2 0.0148 at 5 N*m, scaled once x5.06 -> 0.0853;
+7 a2 0.198; 9 a2 0.0509; 11 a2 0.266; 13 a2 0.0108 at 51 samples, scaled once x6.92 (353 samples) -> 0.0707
+(docs/foreign_drives.md "The seventh set").
+
+Angles: as in :mod:`outside_dev` (a law locked to an angle is stated on the simulator's angle). Memory elements (one
+per recording) are advanced once per 0.2 ms input segment from the state at the segment's start (kernel.py "memory"),
+as in the fourth to sixth sets; the memory starts afresh at the run-in's first scan, 2 s before sample 0.
 """
 from __future__ import annotations
 
