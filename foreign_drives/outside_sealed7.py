@@ -43,10 +43,10 @@ memoryless). Written before any diagnose, analyze or proposal ran on them. The s
 
 Visibility, measured (as in :mod:`outside_dev7`: one simulation of each row, 4 s, against the same spec without the
 mechanism, same seed): 2 a2 0.0665; 4 a2 0.0466 at 3 N*m, scaled once x1.61 -> 0.0752; 6 a2 0.0180 at 40000
-N*m/rad^2: scaled x4.16 (1.67e5) its simulation did not finish in 10 minutes (the softening feeds back: softer, deeper,
-softer, until k_s*p_peak reaches the contact's 3000 N*m/rad and the contact would pull), so left at 40000, BELOW the
-visibility criterion; 8 a2 0.0340 at 0.15 N*s/m, scaled once x2.20 (0.331) -> 0.140; 10 a1 5.47; 12 a2 0.105; 14 a2
-0.259.
+N*m/rad^2: scaled x4.16 (1.67e5) its simulation had not finished after about 9 minutes and was stopped (why was not
+looked into; a softening that feeds back, softer, deeper, softer, is the likely cause, not measured), so it was left
+at 40000, BELOW the visibility criterion; 8 a2 0.0340 at 0.15 N*s/m, scaled once x2.20 (0.331) -> 0.140; 10 a1 5.47;
+12 a2 0.105; 14 a2 0.259.
 """
 from __future__ import annotations
 
