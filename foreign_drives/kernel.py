@@ -168,6 +168,10 @@ MK_PLAY, MK_STROKE_SAMPLE, MK_RESONATOR = 5, 6, 7
 # sit in the ring from MEM_EXTRA on (set by the form), their states in the ring's first places.
 MK_SLIP_HUB, MK_RATTLE, MK_PI_SAT, MK_DAHL, MK_RATE_LIMIT, MK_UNLOADER, MK_PWM = 8, 9, 10, 11, 12, 13, 14
 MEM_EXTRA = 8
+# the seventh set (foreign_drives.outside_dev7/_sealed7), see _memory_scan7: a latch set by a threshold and reset at each
+# load pulse's start; an on-delay timer (a debounced switch); the integral of the input since each load pulse's start;
+# a thermal integrator heated by the input's square; a peak detector with a decay
+MK_LATCH, MK_ON_DELAY, MK_SINCE_STROKE, MK_HEAT, MK_PEAK = 15, 16, 17, 18, 19
 # selectors: the drive quantity a factor reads
 (XS_ONE, XS_OMEGA1, XS_OMEGA2, XS_RIM_SPEED, XS_MASS_SPEED, XS_PENETRATION, XS_SPRING_EXTENSION, XS_ALPHA1,
  XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
@@ -184,6 +188,10 @@ XF_STAIRS = 17                   # the fifth set: a*floor((x - b)/a) above b, el
 # the sixth set: a pseudo-random number in [-1, 1) from the whole number floor(x) and a seed a (exact integer
 # arithmetic); the excess beyond +-a (a dead zone: sign(x)*max(0, |x| - a)); (x - b) mod a (a count's residue)
 XF_HASH, XF_DEADZONE, XF_MOD = 18, 19, 20
+# the seventh set: the pull of two faces at +-b on a body at x across the gap between them, (a/(b - x + a))^c -
+# (a/(b + x + a))^c for |x| < b, else 0 (an inverse power of the distance to each face); a chirp switched on at x = c,
+# sin(2*pi*(a*(x - c) + b*(x - c)^2/2)) for x >= c, else 0 (a frequency a + b*(x - c))
+XF_FACE_PULL, XF_CHIRP = 21, 22
 
 
 @njit(cache=True, inline="always")
@@ -497,6 +505,53 @@ def _memory_scan6(kind, x, P, seg_dt):
 
 
 @njit(cache=True)
+def _memory_scan7(kind, x, P, seg_dt):
+    """The seventh set's memory kinds, one 0.2 ms scan with the input ``x`` (the output m in mem_state):
+    - MK_LATCH: at a load pulse's first scan (the pulse count changed) m -> 0; then m -> 1 if x > a (first scan: m = 0,
+      set if x > a);
+    - MK_ON_DELAY: n = the number of consecutive scans up to this one with x > a (0 when x <= a); m = 1 when n*dt >= b
+      - 1e-12, else 0 (first scan: n counted from it);
+    - MK_SINCE_STROKE: at a load pulse's first scan m -> 0, else m += x*dt (x at the scan's start; first scan: m = 0);
+    - MK_HEAT: m += dt*(a*x^2 - m/b) (first scan: m = 0);
+    - MK_PEAK: m -> max(x, m*exp(-dt/a)) (first scan: m = x)."""
+    a, b = P[P_MEMA], P[P_MEMB]
+    if P[P_MEMINIT] == 0.0:
+        P[P_MEMINIT] = 1.0
+        P[P_MEMPREV] = P[P_PCOUNT]
+        P[P_MEMN] = 0.0
+        P[P_MEMSTATE] = 0.0
+        if kind == MK_LATCH:
+            P[P_MEMSTATE] = 1.0 if x > a else 0.0
+            return
+        if kind == MK_PEAK:
+            P[P_MEMSTATE] = x
+            return
+        if kind != MK_ON_DELAY:
+            return
+    if kind == MK_LATCH:
+        if P[P_PCOUNT] != P[P_MEMPREV]:
+            P[P_MEMPREV] = P[P_PCOUNT]
+            P[P_MEMSTATE] = 0.0
+        if x > a:
+            P[P_MEMSTATE] = 1.0
+    elif kind == MK_ON_DELAY:
+        n = P[P_MEMN] + 1.0 if x > a else 0.0
+        P[P_MEMN] = n
+        P[P_MEMSTATE] = 1.0 if n * seg_dt >= b - 1e-12 and n > 0.0 else 0.0
+    elif kind == MK_SINCE_STROKE:
+        if P[P_PCOUNT] != P[P_MEMPREV]:
+            P[P_MEMPREV] = P[P_PCOUNT]
+            P[P_MEMSTATE] = 0.0
+        else:
+            P[P_MEMSTATE] += x * seg_dt
+    elif kind == MK_HEAT:
+        P[P_MEMSTATE] += seg_dt * (a * x * x - P[P_MEMSTATE] / b)
+    elif kind == MK_PEAK:
+        m = P[P_MEMSTATE] * math.exp(-seg_dt / a)
+        P[P_MEMSTATE] = x if x > m else m
+
+
+@njit(cache=True)
 def memory_scan(t, y, P, mode, seg_dt):
     """Advance the memory element by one 0.2 ms segment from the state ``y`` at the segment's start ``t``:
     - MK_LAG: m -> x + (m - x)*exp(-dt/a) while x > m, else x + (m - x)*exp(-dt/b) (c = 1: m*exp(-dt/b));
@@ -516,6 +571,9 @@ def memory_scan(t, y, P, mode, seg_dt):
         P[P_MEMSTATE] = on
         return
     x = _quantity(int(P[P_MEMSEL]), t, y, P, mode, 0.0, 0.0)
+    if kind >= MK_LATCH:
+        _memory_scan7(kind, x, P, seg_dt)
+        return
     if kind >= MK_SLIP_HUB:
         _memory_scan6(kind, x, P, seg_dt)
         return
@@ -611,6 +669,15 @@ def _shaped(shape, x, a, b, c):
     if shape == XF_MOD:                          # (x - b) mod a
         q = x - b
         return q - a * math.floor(q / a)
+    if shape == XF_FACE_PULL:                    # two faces at +-b pulling on x between them, ~ 1/distance^c
+        if x >= b or x <= -b:
+            return 0.0
+        return (a / (b - x + a)) ** c - (a / (b + x + a)) ** c
+    if shape == XF_CHIRP:                        # a chirp from x = c: frequency a + b*(x - c)
+        if x < c:
+            return 0.0
+        q = x - c
+        return math.sin(2.0 * math.pi * (a * q + 0.5 * b * q * q))
     return 0.0
 
 

@@ -358,6 +358,36 @@ OUTSIDE_DEV6_ROWS = [
                             "full_duty_span_rad_s": 6.0})]),
 ]
 
+# ---- issue 31 part 4, seventh set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev7;
+# the seventh sealed half's rows are in foreign_drives.outside_sealed7). One mechanism per row at its own nominal
+# conditions, one clean control. Seeds 8600+. Each strength set by one simulation against the clean drive of the same
+# seed (docs/foreign_drives.md "The seventh set").
+OUTSIDE_DEV7_ROWS = [
+    # a retarder disc, its coefficient +-60 % over a turn; 0.03 N*m*s/rad (4.5 N*m at 150 rad/s) moved a2 by 0.0385
+    # m/s^2 rms: x1.95
+    ("od7_motor_eddy_disc_wobble", "outside", 0.0063, 0.0295, 0.91,
+     [E("motor_eddy_disc_wobble", {"drag_Nms_per_rad": 0.0584, "wobble": 0.6, "phase_rad": 0.8})]),
+    # a catch tripping at 153 rad/s (the clean drive of seed 8600: Omega2 148.2-153.6, its 95th percentile 153.3)
+    ("od7_wheel_overspeed_latch_brake", "outside", 0.0077, 0.0215, 0.93,
+     [E("wheel_overspeed_latch_brake", {"torque_Nm": 4.0, "trip_speed_rad_s": 153.0})]),
+    # magnets whose pull falls to a quarter 2 mrad from a face (the gap's half ~30-50 mrad); 5 N*m at a face moved a2 by
+    # 0.0148 m/s^2 rms: x5.06
+    ("od7_clutch_magnetic_face_latch", "outside", 0.0054, 0.0345, 0.90,
+     [E("clutch_magnetic_face_latch", {"pull_Nm": 25.3, "decay_angle_rad": 0.002})]),
+    # a 10 N rail brake after 10 ms above 22.74 m/s (the clean drive of seed 8600: v 22.67-22.80, median 22.72)
+    ("od7_mass_debounced_overspeed_brake", "outside", 0.0071, 0.0195, 0.96,
+     [E("mass_debounced_overspeed_brake", {"force_N": 10.0, "max_speed_m_s": 22.74, "delay_s": 0.01})]),
+    ("od7_clean_w7.6_eta0.0275_n0.93", "clean", 0.0076, 0.0275, 0.93, []),
+    # the reading 10 % low during each pulse
+    ("od7_a2_supply_sag_gain", "outside", 0.0089, 0.0385, 0.92, [E("a2_supply_sag_gain", {"sag": 0.1})]),
+    # a 6 N*m feed over 15 rad (about 0.1 s at 150 rad/s, past the 60 ms pulse)
+    ("od7_motor_metered_roll_feed", "outside", 0.0047, 0.0325, 0.94,
+     [E("motor_metered_roll_feed", {"torque_Nm": 6.0, "feed_angle_rad": 15.0})]),
+    # a median over 353 samples (7 ms); 51 samples (1 ms) moved a2 by 0.0108 m/s^2 rms: x6.92
+    ("od7_a2_median_spike_filter", "outside", 0.0059, 0.0225, 0.89,
+     [E("a2_median_spike_filter", {"window_samples": 353})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -367,9 +397,10 @@ OUTSIDE_DEV3 = _suite(OUTSIDE_DEV3_ROWS, 7800, 4.0)
 OUTSIDE_DEV4 = _suite(OUTSIDE_DEV4_ROWS, 8000, 4.0)
 OUTSIDE_DEV5 = _suite(OUTSIDE_DEV5_ROWS, 8200, 4.0)
 OUTSIDE_DEV6 = _suite(OUTSIDE_DEV6_ROWS, 8400, 4.0)
+OUTSIDE_DEV7 = _suite(OUTSIDE_DEV7_ROWS, 8600, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
-          "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6}
+          "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7}
 
 
 def _outside_sealed():
@@ -408,8 +439,14 @@ def _outside_sealed6():
     return _suite(suite_rows(), 8500, 4.0)
 
 
+def _outside_sealed7():
+    """The seventh sealed half's suite, made from foreign_drives.outside_sealed7 on first use (its rows live there)."""
+    from .outside_sealed7 import suite_rows
+    return _suite(suite_rows(), 8700, 4.0)
+
+
 SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
-                               "outside_sealed5", "outside_sealed6")
+                               "outside_sealed5", "outside_sealed6", "outside_sealed7")
 
 
 def suite(name: str) -> list:
@@ -425,6 +462,8 @@ def suite(name: str) -> list:
         return _outside_sealed5()
     if name == "outside_sealed6":
         return _outside_sealed6()
+    if name == "outside_sealed7":
+        return _outside_sealed7()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])

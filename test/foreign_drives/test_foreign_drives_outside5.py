@@ -288,7 +288,7 @@ def test_forms_withholds_the_sealed_laws_and_shows_the_development_ones(capsys):
 
 def test_outside_bench_knows_set_5_whose_sealed_half_is_spent_now():
     """Set 5's sealed half was run once (29 Nov, main d26fbff): development data now, in the loop's default suites (the
-    unspent sealed half's guard is tested with set 6, test_foreign_drives_outside6)."""
+    unspent sealed half's guard is tested with set 7, test_foreign_drives_outside7)."""
     bench = _outside_bench()
     assert [s.label for s in bench.suite_rows(False, 5)] == [s.label for s in suites.suite("outside_dev5")]
     assert bench.suite_name(True, 5) == "outside_sealed5" and "outside_sealed5" not in bench.UNSPENT_SEALED
