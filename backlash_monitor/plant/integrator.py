@@ -67,7 +67,8 @@ def _rk4_numpy(kernel, x, lags, load, clock, ua, ub, phase, u_amp, P, G, h, out,
                                             np.array([v[s] for v in lg]), np.ascontiguousarray(P[:, s]), G)
                 for i in range(N_STATES):
                     y_new[i][s] = y1[i]
-        lg = _lags.update(lg, _lags.quantities(y, ld, beta, G[8]), _lags.quantities(y_new, ld, beta, G[8]), coef)
+        if kernel.carries_lags:      # as the compiled kernels: only when a term names a lag (codegen.lags_used)
+            lg = _lags.update(lg, _lags.quantities(y, ld, beta, G[8]), _lags.quantities(y_new, ld, beta, G[8]), coef)
         y = y_new
     for i in range(N_STATES):
         x[:, i] = y[i]

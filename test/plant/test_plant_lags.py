@@ -6,7 +6,7 @@ import pytest
 from scipy.signal import lsim
 
 from backlash_monitor.plant import load_plant_config
-from backlash_monitor.plant import lags
+from backlash_monitor.plant import codegen, lags
 from backlash_monitor.plant.catalogue import builtin_catalogue
 from backlash_monitor.plant.disturbances import pulse_load_pu
 from backlash_monitor.plant.scenarios import Scenario
@@ -41,19 +41,31 @@ def test_update_is_the_odes_exact_solution_for_a_step_and_a_ramp(tau):
     assert np.max(np.abs(np.array(got_ramp) - exact_ramp)) < 1e-12 * rate * t[-1]
 
 
-def _sim(backend, effects=None, catalogue=None):
+def _sim(backend, effects=None, catalogue=None, record_states=True):
     over = {"simulation.run_in_s": 0.0}
     over.update(effects or {})
     cfg = load_plant_config(overrides=over, catalogue=catalogue)
     return PlantSimulator([Scenario(0.005, 0.025, 0.89, seed=1)], config=cfg, noise=False, backend=backend,
-                          record_states=True), cfg
+                          record_states=record_states), cfg
+
+
+def _flywheel_catalogue(tmp_path):
+    """The built-in catalogue with HIDDEN_FLYWHEEL (below), a term that names a lag: its kernel advances the lags."""
+    path = tmp_path / "flywheel.py"
+    path.write_text(HIDDEN_FLYWHEEL)
+    return builtin_catalogue().with_files([path])
+
+
+def _sim_carrying_lags(backend, tmp_path):
+    """A model whose kernel advances the lags: the flywheel's term names one, at c = 0 (the drive unchanged)."""
+    return _sim(backend, {"effects.test_hidden_flywheel": True}, _flywheel_catalogue(tmp_path))
 
 
 @pytest.mark.parametrize("backend", ["numba", "numpy"])
-def test_plant_lag_of_the_load_step_is_exact(backend):
+def test_plant_lag_of_the_load_step_is_exact(backend, tmp_path):
     """Without noise the load moment input is the pulse train: a held step at the pulse's rise. The plant's lags of
     it, carried across chunks, are A*(1 - exp(-t/tau)) from the rise (the ODE's solution for a held input)."""
-    sim, cfg = _sim(backend)
+    sim, cfg = _sim_carrying_lags(backend, tmp_path)
     n = 8000
     load = np.asarray(pulse_load_pu(0, n, cfg), dtype=float).reshape(-1)
     rise = int(np.flatnonzero(load > 0)[0])
@@ -70,10 +82,10 @@ def test_plant_lag_of_the_load_step_is_exact(backend):
 
 
 @pytest.mark.parametrize("backend", ["numba", "numba-scalar", "numpy"])
-def test_plant_lags_of_the_states_are_their_odes_solution(backend):
+def test_plant_lags_of_the_states_are_their_odes_solution(backend, tmp_path):
     """The speeds and the penetration of a run, their lags at its end against scipy's lsim of tau*L' = q - L on the
     recorded samples (linear between samples), each started at its quantity's first value."""
-    sim, cfg = _sim(backend)
+    sim, cfg = _sim_carrying_lags(backend, tmp_path)
     n = 6000                                          # over the first pulse: speeds swing, the jaw impacts
     chunk = sim.run(n)
     st = chunk.states
@@ -114,9 +126,7 @@ class HiddenFlywheel(Effect):
 def test_a_term_of_a_lag_runs_alike_on_every_backend(tmp_path):
     """A plug-in whose term names a lag (a hidden flywheel on the motor) gives the same recording on the compiled and
     the numpy backends, and a different one from the model without it."""
-    path = tmp_path / "flywheel.py"
-    path.write_text(HIDDEN_FLYWHEEL)
-    cat = builtin_catalogue().with_files([path])
+    cat = _flywheel_catalogue(tmp_path)
     out = {}
     for backend in ("numba", "numba-scalar", "numpy"):
         cfg = load_plant_config(overrides={"simulation.run_in_s": 0.0, "effects.test_hidden_flywheel": True},
@@ -129,3 +139,22 @@ def test_a_term_of_a_lag_runs_alike_on_every_backend(tmp_path):
     sim0, _ = _sim("numba")
     a1_without = sim0.run(6000).a1
     assert np.max(np.abs(out["numba"] - a1_without)) > 1e-3 * np.abs(a1_without).max()
+
+
+@pytest.mark.parametrize("backend", ["numba", "numba-scalar", "numpy"])
+def test_a_model_whose_terms_name_no_lag_runs_alike_without_advancing_them(backend, tmp_path):
+    """The lags are advanced only in a kernel whose terms name one (codegen.lags_used): without such a term the run
+    is the same recording as the model with the flywheel's lag term at c = 0 (which advances them), and the lags stay
+    settled at their first state's quantities."""
+    sim, _ = _sim(backend, record_states=False)
+    carrying, _ = _sim(backend, {"effects.test_hidden_flywheel": True}, _flywheel_catalogue(tmp_path),
+                       record_states=False)
+    assert not codegen.lags_used(sim.kernel.effects) and codegen.lags_used(carrying.kernel.effects)
+    a, b = sim.run(3000), carrying.run(3000)
+    first = sim.lags.copy()
+    for name in ("a1", "a2", "omega1", "angle_difference"):
+        x, y = getattr(a, name), getattr(b, name)
+        assert np.allclose(x, y, rtol=1e-9, atol=1e-9 * np.abs(y).max()), name
+    sim.run(3000)
+    assert np.array_equal(sim.lags, first)                            # not advanced
+    assert np.max(np.abs(carrying.lags - first)) > 0.0                # advanced where a term names one
