@@ -21,6 +21,7 @@ because the clutch's damper engages with a jump in torque there.
 from __future__ import annotations
 
 import contextlib
+import time
 
 import numpy as np
 
@@ -92,10 +93,29 @@ def _compile_errors(kernel):
         raise
 
 
+_FIRST_CALL_CPU_S = [0.0]
+
+
+def first_call_cpu_seconds() -> float:
+    """This process's CPU time [s] so far in the compiled kernels' first calls (_first_call_compiles): each kernel's
+    compile on a cold cache (~10-25 s of one core after a change of its effects or of the generator), else the load
+    of numba's cached code (~0.03-0.6 s). A one-time cost, not one of the runs: a caller that reports its own CPU
+    time per recording takes it out and names it (proposal.Proposal.first_call_cpu_seconds)."""
+    return _FIRST_CALL_CPU_S[0]
+
+
 def _first_call_compiles(kernel, x, lags, common, out, states, record_states, record_outputs, sel) -> None:
     """This process's first call of the kernel, on one scenario and one sample of the same types (dimensions, dtype,
     layout) as the real call, under codegen.compile_lock: it compiles the kernel, or loads what another process
-    compiled meanwhile, and leaves the real arrays untouched."""
+    compiled meanwhile, and leaves the real arrays untouched. Its CPU time adds to first_call_cpu_seconds."""
+    c0 = time.process_time()
+    try:
+        _first_call(kernel, x, lags, common, out, states, record_states, record_outputs, sel)
+    finally:
+        _FIRST_CALL_CPU_S[0] += time.process_time() - c0
+
+
+def _first_call(kernel, x, lags, common, out, states, record_states, record_outputs, sel) -> None:
     load, clock, ua, ub, phase, u_amp, P, G, h = common
     n = min(1, load.shape[1])
     tiny = (np.array(x[:1]), np.array(lags[:1]), np.ascontiguousarray(load[:1, :n]), np.ascontiguousarray(clock[:n]), np.ascontiguousarray(ua[:n]),

@@ -65,6 +65,8 @@ class Proposal:
     on_top_of: list = field(default_factory=list)   # the partial explanation the terms were fitted on top of
     cpu_seconds: float = 0.0
     simulated_sets: int = 0
+    first_call_cpu_seconds: float = 0.0   # of cpu_seconds, the one-time first call of the library's kernel in this
+                                          # process (its compile on a cold cache; plant.integrator.first_call_cpu_seconds)
 
     def to_json(self) -> dict:
         return {"proposed": self.proposed, "reason": self.reason, "law": self.law,
@@ -81,6 +83,8 @@ class Proposal:
                 "consistent": self.consistent, "consistency_after": self.views_after,
                 "plugin_source": self.plugin_source, "plugin_values": self.plugin_values,
                 "on_top_of": self.on_top_of, "cpu_seconds": self.cpu_seconds, "simulated_sets": self.simulated_sets,
+                "kernel_first_call_cpu_seconds": self.first_call_cpu_seconds,
+                "per_recording_cpu_seconds": self.cpu_seconds - self.first_call_cpu_seconds,
                 "method": "forward selection of generic terms by leave-one-event-out cross-validation, stable under "
                           f"{BOOTSTRAP} resamples of the events (>= {STABILITY:.0%}), refined on the simulator"}
 
@@ -415,7 +419,18 @@ def _preferred(GG, Gy, yy, groups: list, chosen: list, alike: list, terms: list)
 
 def propose(run, up, verdict: str) -> Proposal | None:
     """The proposal for a diagnosis (diagnose.Run and Update, its verdict); None when the verdict is not one of
-    VERDICTS (a consistent model or a catalogue effect that explains: nothing to propose)."""
+    VERDICTS (a consistent model or a catalogue effect that explains: nothing to propose). Its ``cpu_seconds`` holds
+    the library kernel's first call in this process, named apart (``first_call_cpu_seconds``): on a cold kernel cache
+    its compile, ~20 s of one core once after a change of the library or of the plant's generator."""
+    from backlash_monitor.plant.integrator import first_call_cpu_seconds
+    c0 = first_call_cpu_seconds()
+    out = _propose(run, up, verdict)
+    if out is not None:
+        out.first_call_cpu_seconds = first_call_cpu_seconds() - c0
+    return out
+
+
+def _propose(run, up, verdict: str) -> Proposal | None:
     if verdict not in VERDICTS:
         return None
     t0 = time.process_time()
