@@ -83,3 +83,18 @@ def test_simd_power_law_matches_numpy_power():
     force = K[10] * cfg.load.mass_kg     # m*x'' = F
     expected = c * np.abs(v) ** n1 * np.sign(v)
     assert np.allclose(force, expected, rtol=1e-13, atol=0.0)
+
+
+def test_only_a_kernels_first_call_counts_as_its_one_time_cost():
+    """first_call_cpu_seconds holds the compiled kernel's first call in the process (its compile, or numba's cache
+    load: a one-time cost that a per-recording CPU figure names apart, proposal.Proposal); later runs of the same
+    kernel add nothing to it."""
+    from backlash_monitor.plant import integrator
+    cfg = load_plant_config(overrides={"simulation.run_in_s": 0.0})
+    sim = PlantSimulator([Scenario(0.005, 0.025, 0.89, seed=1)], config=cfg, noise=False, backend="numba")
+    sim.run(200)                                              # the kernel called at least once in this process
+    after_first = integrator.first_call_cpu_seconds()
+    assert after_first >= 0.0
+    PlantSimulator([Scenario(0.0025, 0.05, 0.97, seed=2)], config=cfg, noise=False, backend="numba").run(2000)
+    sim.run(2000)
+    assert integrator.first_call_cpu_seconds() == after_first
