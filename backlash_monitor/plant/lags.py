@@ -22,8 +22,10 @@ The time constants (LAG_TIMES_S), from the drive's physics (config/plant.yaml):
 A geometric ladder of factor 10: a lag at a time constant between them is, within a few per cent, a combination of
 the two (measured on the foreign drives, docs/workbench.md "Terms with memory").
 
-Each lag is held over each sample step (as the load input and the pulse clock are) and updated after the step, exactly
-for a quantity linear over the step (a first-order hold): with a = exp(-h/tau), c = tau*(1 - a)/h,
+Only a kernel whose terms name a lag advances them (plant/codegen.py lags_used): otherwise they stay as settled at
+the start, which nothing reads. Each lag is held over each sample step (as the load input and the pulse clock are) and
+updated after the step, exactly for a quantity linear over the step (a first-order hold): with a = exp(-h/tau),
+c = tau*(1 - a)/h,
     L_{k+1} = a*L_k + (1 - c)*q_{k+1} + (c - a)*q_k,
 and for the load moment, held over the step itself, the zero-order hold's exact L_{k+1} = a*L_k + (1 - a)*q_k. Held,
 a term reads L_k over step k: off the continuous lag by at most (h/tau)*|q - L| (0.2 % at 10 ms, 20 us steps).
