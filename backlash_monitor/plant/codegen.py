@@ -223,14 +223,14 @@ def _gated_passes(effect_classes, gated, indent: str) -> str:
                 return
             need.add(name)
             if name in prefix:
-                for dep in {n.id for n in ast.walk(ast.parse(prefix[name])) if isinstance(n, ast.Name)}:
+                for dep in sorted({n.id for n in ast.walk(ast.parse(prefix[name])) if isinstance(n, ast.Name)}):
                     visit(dep)
                 order.append(name)
         for a in args:
             if a not in own:
                 visit(a)
         body = []
-        for n in need:
+        for n in sorted(need):      # sorted: the same source (the same cache key) in every process
             if n in STATE_NAMES:
                 body.append(f"{n} = WS[(ry + {STATE_NAMES.index(n)}) * WR + s]")
             elif n in _lags.LAG_NAMES:

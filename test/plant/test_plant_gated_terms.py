@@ -65,3 +65,24 @@ def test_gated_terms_run_alike_on_every_backend_on_tiles_with_and_without_them(t
         assert np.max(np.abs(out.omega1[i] - off.omega1[i])) > 1e-4 * np.abs(off.omega1[i]).max()
     for i in (0, 1, 3, 7):             # and no other
         assert np.array_equal(out.a1[i], off.a1[i])
+
+
+def test_the_gated_kernels_source_is_the_same_in_every_process(tmp_path):
+    """The kernel's source names its cache file: the gated passes are generated in one order whatever the process's
+    string hashing (else every process compiles the kernel anew, ~1 min of CPU for the proposal's library)."""
+    import subprocess
+    import sys
+    path = tmp_path / "brake.py"
+    path.write_text(BRAKE)
+    code = ("import hashlib, sys; from backlash_monitor.plant import codegen; "
+            "from backlash_monitor.plant.catalogue import builtin_catalogue; "
+            f"cat = builtin_catalogue().with_files([{str(path)!r}]); "
+            "cls = tuple(c for c in cat.values() if c.kind == 'term'); "
+            "assert codegen._gated_terms(cls); "
+            "print(hashlib.sha256(codegen.generate_source(cls).encode()).hexdigest())")
+    digests = set()
+    for seed in ("1", "2", "3"):
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                             env={**__import__("os").environ, "PYTHONHASHSEED": seed})
+        digests.add(out.stdout.strip())
+    assert len(digests) == 1
