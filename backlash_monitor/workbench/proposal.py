@@ -384,8 +384,9 @@ TIE_SHARE = 0.05       # alike groups within this share of the best's held-out g
 # and t_e chosen over Ω₁ that fitted the events as well
 # the own-state preference picks the state within the balance of the tied set's largest gain; it does not move the term
 # to another body (alike groups of several balances explain the events alike; the best gain is the one hint the events
-# give at the balance). Off: the measurement (docs/workbench.md "The sixth set's misses") decides
-TIE_KEEPS_BALANCE = False
+# give at the balance). Measured (docs/workbench.md "The sixth set's misses"): a PWM wheel brake named in the wheel on
+# its speed (before: a mass force on xdot|xdot|), a wheel phase-lock trim in the wheel; 14 other proposing rows the same
+TIE_KEEPS_BALANCE = True
 OWN_STATES = {"motor_load_moment_pu": ("omega1", "alpha1"), "wheel_torque_Nm": ("omega2", "alpha2"),
               "mass_force_N": ("xdot", "alpha2"), "clutch_torque_Nm": ("penetration", "penetration rate"),
               "rim_mass_force_N": ("z", "v")}
