@@ -8,7 +8,7 @@ Each row is diagnosed in this process at the drive's nominal values (as outside.
 without ``--propose`` no term is proposed (the decision among the catalogue's candidates is what is studied). One
 line of JSON per row on stdout: label, verdict, discovery, the diagnosis's message; DIR/SUITE__LABEL__SEED.json the whole
 diagnosis. ``--reseed N``: each row also N times with other noise seeds (seed + 10007 i, i = 1..N; the same drive,
-other noise: whether a decision is the drive's or the noise's). Never the unspent sealed half (outside_sealed7).
+other noise: whether a decision is the drive's or the noise's). Never an unspent sealed half (outside.UNSPENT_SEALED).
 """
 from __future__ import annotations
 
