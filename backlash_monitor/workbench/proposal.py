@@ -28,6 +28,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from backlash_monitor.plant.integrator import first_call_cpu_seconds
+
 from . import candidate_terms, consistency, drive_terms, event_design, plant_adapter
 
 NO_PLUGIN_NOTE = "; no plug-in form (a sensor's term or one of the time in the record)"   # the reason's tail
@@ -427,8 +429,8 @@ def propose(run, up, verdict: str) -> Proposal | None:
     """The proposal for a diagnosis (diagnose.Run and Update, its verdict); None when the verdict is not one of
     VERDICTS (a consistent model or a catalogue effect that explains: nothing to propose). Its ``cpu_seconds`` holds
     the library kernel's first call in this process, named apart (``first_call_cpu_seconds``): on a cold kernel cache
-    its compile, ~20 s of one core once after a change of the library or of the plant's generator."""
-    from backlash_monitor.plant.integrator import first_call_cpu_seconds
+    its compile, ~40 s of one core once after a change of the library or of the plant's generator (the gated
+    library kernel: bench/results.json proposal_cpu_first_call)."""
     c0 = first_call_cpu_seconds()
     out = _propose(run, up, verdict)
     if out is not None:
