@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from foreign_drives import forms as F
 from foreign_drives import suites
 from foreign_drives.drive import make_recording
 from foreign_drives.spec import EffectSpec
@@ -106,3 +107,29 @@ def assert_forms_withholds_sealed(out: str, sealed: dict, dev: dict) -> None:
         assert f.description not in out and all(p.description not in out for p in f.parameters if len(p.description) > 8)
     for f in dev.values():
         assert f.description in out
+
+
+def assert_set_suites(set_number: int, dev: dict, sealed: dict, dev_first_seed: int, sealed_first_seed: int) -> None:
+    """Set ``set_number``'s two suites (outside_devN, outside_sealedN): the development one listed, the sealed one only
+    named; each one row per mechanism of its half (``dev``, ``sealed``: name -> form) plus one clean drive, 4 s, each
+    row at its own conditions, every truth of its half in its form's balance with a law; seeds from the first seed up,
+    none and no label shared with any other suite."""
+    dev_name, sealed_name = f"outside_dev{set_number}", f"outside_sealed{set_number}"
+    dev_rows, sealed_rows = suites.suite(dev_name), suites.suite(sealed_name)
+    assert dev_name in suites.SUITES and sealed_name not in suites.SUITES
+    assert sealed_name in suites.SUITE_NAMES
+    others = [s for n in suites.SUITE_NAMES if n not in (dev_name, sealed_name) for s in suites.suite(n)]
+    for rows, names, half in ((dev_rows, dev, f"dev{set_number}"), (sealed_rows, sealed, f"sealed{set_number}")):
+        assert [s.kind for s in rows].count("clean") == 1 and len(rows) == len(names) + 1
+        outside = [s for s in rows if s.kind == "outside"]
+        assert sorted(e.form for s in outside for e in s.effects) == sorted(names)    # one mechanism per row
+        assert all(s.duration_s == 4.0 for s in rows)
+        assert len({(s.width_m, s.eta_k, s.n1) for s in rows}) == len(rows)        # each at its own conditions
+        for s in outside:
+            for e in s.truth().effects:
+                assert e.half == half and e.balance == F.get(e.form).balance and e.law
+    assert [s.seed for s in dev_rows] == list(range(dev_first_seed, dev_first_seed + len(dev_rows)))
+    assert [s.seed for s in sealed_rows] == list(range(sealed_first_seed, sealed_first_seed + len(sealed_rows)))
+    assert not {s.seed for s in dev_rows + sealed_rows} & {s.seed for s in others}
+    labels = [s.label for s in dev_rows + sealed_rows + others]
+    assert len(labels) == len(set(labels))

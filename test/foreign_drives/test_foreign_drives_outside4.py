@@ -24,7 +24,8 @@ from foreign_drives.spec import EffectSpec as E
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
-                                       assert_forms_withholds_sealed, assert_suite_writes_one_recording,
+                                       assert_forms_withholds_sealed, assert_set_suites,
+                                       assert_suite_writes_one_recording,
                                        outside_bench, suite_effect)
 
 W = C.WHEEL_RADIUS_M
@@ -267,24 +268,7 @@ def test_sealed4_mechanism_acts_in_its_recorded_balance_only(name):
 
 # ------------------------------------------------------------------ suites, recordings, forms, bench
 def test_set4_suites_have_one_row_per_mechanism_and_a_clean_control():
-    dev, sealed = suites.suite("outside_dev4"), suites.suite("outside_sealed4")
-    assert "outside_dev4" in suites.SUITES and "outside_sealed4" not in suites.SUITES
-    assert "outside_sealed4" in suites.SUITE_NAMES
-    others = [s for n in suites.SUITE_NAMES if n not in ("outside_dev4", "outside_sealed4") for s in suites.suite(n)]
-    for s_, names, half in ((dev, DEV4, "dev4"), (sealed, SEALED4, "sealed4")):
-        assert [s.kind for s in s_].count("clean") == 1 and len(s_) == len(names) + 1
-        outside = [s for s in s_ if s.kind == "outside"]
-        assert sorted(e.form for s in outside for e in s.effects) == sorted(names)    # one mechanism per row
-        assert all(s.duration_s == 4.0 for s in s_)
-        assert len({(s.width_m, s.eta_k, s.n1) for s in s_}) == len(s_)           # each at its own conditions
-        for s in outside:
-            for e in s.truth().effects:
-                assert e.half == half and e.balance == F.get(e.form).balance and e.law
-    assert [s.seed for s in dev] == list(range(8000, 8008)) and [s.seed for s in sealed] == list(range(8100, 8108))
-    seeds = [s.seed for s in dev + sealed]
-    assert not set(seeds) & {s.seed for s in others}
-    labels = [s.label for s in dev + sealed + others]
-    assert len(labels) == len(set(labels))
+    assert_set_suites(4, DEV4, SEALED4, 8000, 8100)
 
 
 @pytest.mark.parametrize("suite_name", ["outside_dev4", "outside_sealed4"])

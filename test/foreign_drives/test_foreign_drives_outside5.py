@@ -24,7 +24,8 @@ from foreign_drives.drive import make_recording
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
-                                       assert_forms_withholds_sealed, assert_suite_writes_one_recording,
+                                       assert_forms_withholds_sealed, assert_set_suites,
+                                       assert_suite_writes_one_recording,
                                        outside_bench, suite_effect)
 
 W = C.WHEEL_RADIUS_M
@@ -256,23 +257,7 @@ def test_sealed5_mechanism_acts_in_its_recorded_balance_only(name):
 
 # ------------------------------------------------------------------ suites, recordings, forms, bench
 def test_set5_suites_have_one_row_per_mechanism_and_a_clean_control():
-    dev, sealed = suites.suite("outside_dev5"), suites.suite("outside_sealed5")
-    assert "outside_dev5" in suites.SUITES and "outside_sealed5" not in suites.SUITES
-    assert "outside_sealed5" in suites.SUITE_NAMES
-    others = [s for n in suites.SUITE_NAMES if n not in ("outside_dev5", "outside_sealed5") for s in suites.suite(n)]
-    for s_, names, half in ((dev, DEV5, "dev5"), (sealed, SEALED5, "sealed5")):
-        assert [s.kind for s in s_].count("clean") == 1 and len(s_) == len(names) + 1
-        outside = [s for s in s_ if s.kind == "outside"]
-        assert sorted(e.form for s in outside for e in s.effects) == sorted(names)    # one mechanism per row
-        assert all(s.duration_s == 4.0 for s in s_)
-        assert len({(s.width_m, s.eta_k, s.n1) for s in s_}) == len(s_)           # each at its own conditions
-        for s in outside:
-            for e in s.truth().effects:
-                assert e.half == half and e.balance == F.get(e.form).balance and e.law
-    assert [s.seed for s in dev] == list(range(8200, 8208)) and [s.seed for s in sealed] == list(range(8300, 8308))
-    assert not {s.seed for s in dev + sealed} & {s.seed for s in others}
-    labels = [s.label for s in dev + sealed + others]
-    assert len(labels) == len(set(labels))
+    assert_set_suites(5, DEV5, SEALED5, 8200, 8300)
 
 
 @pytest.mark.parametrize("suite_name", ["outside_dev5", "outside_sealed5"])

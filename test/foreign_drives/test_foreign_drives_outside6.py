@@ -24,7 +24,8 @@ from foreign_drives.drive import make_recording
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
-                                       assert_forms_withholds_sealed, assert_suite_writes_one_recording,
+                                       assert_forms_withholds_sealed, assert_set_suites,
+                                       assert_suite_writes_one_recording,
                                        outside_bench, suite_effect)
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
@@ -256,23 +257,7 @@ def test_sealed6_mechanism_acts_in_its_recorded_balance_only(name):
 
 # ------------------------------------------------------------------ suites, recordings, forms, bench
 def test_set6_suites_have_one_row_per_mechanism_and_a_clean_control():
-    dev, sealed = suites.suite("outside_dev6"), suites.suite("outside_sealed6")
-    assert "outside_dev6" in suites.SUITES and "outside_sealed6" not in suites.SUITES
-    assert "outside_sealed6" in suites.SUITE_NAMES
-    others = [s for n in suites.SUITE_NAMES if n not in ("outside_dev6", "outside_sealed6") for s in suites.suite(n)]
-    for s_, names, half in ((dev, DEV6, "dev6"), (sealed, SEALED6, "sealed6")):
-        assert [s.kind for s in s_].count("clean") == 1 and len(s_) == len(names) + 1
-        outside = [s for s in s_ if s.kind == "outside"]
-        assert sorted(e.form for s in outside for e in s.effects) == sorted(names)    # one mechanism per row
-        assert all(s.duration_s == 4.0 for s in s_)
-        assert len({(s.width_m, s.eta_k, s.n1) for s in s_}) == len(s_)           # each at its own conditions
-        for s in outside:
-            for e in s.truth().effects:
-                assert e.half == half and e.balance == F.get(e.form).balance and e.law
-    assert [s.seed for s in dev] == list(range(8400, 8408)) and [s.seed for s in sealed] == list(range(8500, 8508))
-    assert not {s.seed for s in dev + sealed} & {s.seed for s in others}
-    labels = [s.label for s in dev + sealed + others]
-    assert len(labels) == len(set(labels))
+    assert_set_suites(6, DEV6, SEALED6, 8400, 8500)
 
 
 def test_each_mechanism_row_is_visible_above_the_criterion_its_strength_was_set_by():
