@@ -61,12 +61,8 @@ def family_significance(n_candidates: int) -> float:
 
 def significant(fit, threshold: float = SIGNIFICANCE) -> bool:
     """Every fitted value differs from the model's by more than ``threshold`` x its (jackknife) uncertainty; the
-    parameters of one of the fit's ``groups`` together (their z above ``threshold``)."""
-    d = np.abs(np.asarray(fit.values) - np.asarray(fit.nominal))
-    alone = d > threshold * np.asarray(fit.uncertainty)
-    for start, stop, z in getattr(fit, "groups", ()):
-        alone[start:stop] = z > threshold
-    return bool(np.all(alone))
+    parameters of one of the fit's ``groups`` together (their z above ``threshold``): :func:`smallest_z` above it."""
+    return smallest_z(fit) > threshold
 
 
 def smallest_z(fit) -> float:
