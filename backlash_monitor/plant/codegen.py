@@ -195,14 +195,6 @@ def _gated_header(gated) -> str:
             f"GATE_ROWS = {tuple(r for _, r in gated)!r}     # per gated term, the row of P of its factor\n")
 
 
-def _without_gating(source: str) -> str:
-    """rk4_simd and the stage without the gated terms' machinery (a kernel that has none: the same source as before)."""
-    for old, new in ((", G, nl, act):", ", G, nl):"), (", G, nl, act)", ", G, nl)"), (_ACT_INIT, ""), (_ACT_TILE, "")):
-        assert old in source
-        source = source.replace(old, new)
-    return source
-
-
 def _gated_passes(effect_classes, gated, indent: str) -> str:
     """The SIMD stage's passes of the gated terms: each balance's accumulator row zeroed, then per term, on a tile where
     its factor is non-zero on some scenario (act[k]), one loop over the tile adding it to its balance's row."""
@@ -253,7 +245,7 @@ def _globals(indent: str) -> str:
 
 _KERNEL_TEMPLATE = '''
 @numba.njit(**_TJIT)
-def stage(WS, ry, rk, ua, ub, pulse_time_s, pulse_off_time_s, G, nl, act):
+def stage(WS, ry, rk, ua, ub, pulse_time_s, pulse_off_time_s, G, nl{act_arg}):
     """One RK4 stage for the nl scenarios of a tile (nl a multiple of W): K = f(Y) with Y the N_STATES rows of
     the workspace from row ``ry``, K those from row ``rk``, T_c into row R_TC; inlined where it is called, so
     the rows are constants and every access is the workspace's base plus a constant plus s (the pulse clock, like
@@ -404,7 +396,7 @@ def rk4_simd(x, lags, load, clock, ua, ub, phase, u_amp, P, G, h, out, states, r
                 # the right-hand side at the trial state T, into K; the stage's weight into the sum A; the
                 # next trial state. One inlined stage in a loop (not four): a quarter of the compile time
                 c = (st + 1) // 2
-                stage(WS, R_T, R_K, ua[k, c], ub[k, c], clock[k, 0], clock[k, 1], G, nl, act)
+                stage(WS, R_T, R_K, ua[k, c], ub[k, c], clock[k, 0], clock[k, 1], G, nl{ACT_ARG})
                 if st == 0 and record_outputs:
                     b = k % OUT_BLOCK
                     for j in range(nsel):
@@ -615,7 +607,10 @@ def generate_source(effect_classes) -> str:
                           clutch="backlash_clutch" in names, effect_names=names, rows=param_rows(effect_classes),
                           n_lags=_lags.N_LAGS, lag_times=tuple(tau for _, _, tau in _lags.LAGS),
                           gated_rows=_gated_header(gated))
-    kern = _KERNEL_TEMPLATE.format(gated_passes=_gated_passes(effect_classes, gated, "    "),
+    # the gated terms' machinery (their tile flags ``act``) only in a kernel that has some: without, the same source
+    # as before gating existed (the same cache key)
+    act_arg, act_init, act_tile = (", act", _ACT_INIT, _ACT_TILE) if gated else ("", "", "")
+    kern = _KERNEL_TEMPLATE.format(gated_passes=_gated_passes(effect_classes, gated, "    "), act_arg=act_arg,
         globals=_globals("    "), globals_1=_globals("    "),
         binds_simd=_binds(effect_classes, "WS[(ry + {i}) * WR + s]", "WS[(R_P + {i}) * WR + s]", "            ",
                           "WS[(R_LG + {i}) * WR + s]"),
@@ -625,9 +620,8 @@ def generate_source(effect_classes) -> str:
         body_scalar=_body(effect_classes, "    ", "_ts_"))
     loops = (_LOOPS.replace("{GLOBALS}", _globals("    ")).replace("{OUTPUT_SELECT}", _simd_output_select())
              .replace("{LAG_UPDATE_SIMD}", _simd_lag_update(carry))
-             .replace("{ACT_INIT}", _ACT_INIT).replace("{ACT_TILE}", _ACT_TILE))
-    src = kern + loops
-    return head + "\n\n" + terms + "\n\n" + (src if gated else _without_gating(src)) + _scalar_loop(carry)
+             .replace("{ACT_INIT}", act_init).replace("{ACT_TILE}", act_tile).replace("{ACT_ARG}", act_arg))
+    return head + "\n\n" + terms + "\n\n" + kern + loops + _scalar_loop(carry)
 
 
 def _simd_lag_update(carry_lags: bool) -> str:
