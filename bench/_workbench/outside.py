@@ -1,7 +1,7 @@
 """Proposing the missing term on drives with mechanisms outside the catalogue (issue 31), and a user's exact-law plug-in
 on drives with a torque locked to a shaft's angle.
 
-    python bench/_workbench/outside.py [--set 1|2|3|4|5|6] [--sealed] [--only LABEL ...] [--skip-explained]
+    python bench/_workbench/outside.py [--set N] [--sealed] [--only LABEL ...] [--skip-explained]
     python bench/_workbench/outside.py --loop [--loop-suites SUITE,...] [--only LABEL ...]
     (or: python bench/workbench.py --parts outside [--sealed])
 
@@ -17,7 +17,7 @@ Goals (docs/workbench.md "Proposing a missing term"):
 - angle_locked_plugin_named_rate: on every foreign drive with a torque locked to a shaft's angle, a user's plug-in with
   the exact law is named, its amplitude within 3 uncertainties of the truth;
 - proposal_cpu_seconds: the proposal's own CPU time per recording (on top of diagnose), one core; the library kernel's
-  one-time first call in a process (its compile on a cold kernel cache, ~20 s once after a change of the library or
+  one-time first call in a process (its compile on a cold kernel cache, ~40 s once after a change of the library or
   the plant's generator) is not in it, but beside it (proposal_kernel_first_call_cpu_seconds_max).
 
 The development suite is ``foreign_drives.suites.suite("outside_dev")`` when it exists, else DEV_ROWS below; the
@@ -170,11 +170,12 @@ def right_balance(terms, bal: set, st: set) -> bool:
     return any(BALANCE_WORDS.get(t["balance"]) in bal and states(t) & st for t in terms)
 
 
-def _per_recording_cpu(prop: dict):
-    """The proposal's CPU time of this recording [s]: without the library kernel's one-time first call in the process
-    (its compile on a cold cache after a change of the library or the generator: the row's
-    ``proposal_kernel_first_call_cpu_seconds``)."""
-    return prop.get("per_recording_cpu_seconds", prop.get("cpu_seconds"))
+def _proposal_cpu(prop: dict) -> dict:
+    """A row's proposal CPU fields [s]: ``proposal_cpu_seconds``, this recording's own (without the library kernel's
+    one-time first call in the process), and ``proposal_kernel_first_call_cpu_seconds``, that first call (its compile on
+    a cold cache after a change of the library or the generator; None when the kernel was already loaded)."""
+    return {"proposal_cpu_seconds": prop.get("per_recording_cpu_seconds", prop.get("cpu_seconds")),
+            "proposal_kernel_first_call_cpu_seconds": prop.get("kernel_first_call_cpu_seconds")}
 
 
 def run_outside(specs) -> list:
@@ -196,9 +197,7 @@ def run_outside(specs) -> list:
                "terms": [(t["balance"], t["state"], t["group"]) for t in terms],
                "stability": prop.get("stability"), "reason": prop.get("reason"),
                "explained_fraction": prop.get("explained_fraction"),
-               "proposal_cpu_seconds": _per_recording_cpu(prop),
-               "proposal_kernel_first_call_cpu_seconds": prop.get("kernel_first_call_cpu_seconds"),
-               "diagnose_cpu_seconds": cpu,
+               **_proposal_cpu(prop), "diagnose_cpu_seconds": cpu,
                "message": d["message"]}
         log(json.dumps(row, default=float))
         rows.append(row)
@@ -399,9 +398,7 @@ def loop_row(spec, workdir: Path, suite: str) -> dict:
                 "right_balance": bool(prop.get("proposed")) and right_balance(terms, bal, st),
                 "terms": [(t["balance"], t["state"], t["group"]) for t in terms],
                 "additions": [(a["candidate"], a["role"]) for a in diag.get("additions") or []],
-                "proposal_cpu_seconds": _per_recording_cpu(prop),
-                "proposal_kernel_first_call_cpu_seconds": prop.get("kernel_first_call_cpu_seconds"),
-                "diagnose_message": diag["message"][:400]})
+                **_proposal_cpu(prop), "diagnose_message": diag["message"][:400]})
     rc, out, _, cpu["analyze_before"] = _cli(["analyze", bag, "--out", d / "before"], d)
     if rc != 0:
         row["error"] = "analyze before: " + out[-1000:]
