@@ -234,14 +234,10 @@ def _print_registry_match(bag: str, options, watch, result: dict) -> None:
     if not watch.drives:
         return
     # deferred: backlash_monitor.fleet.folder_analysis costs ~100 ms at start-up (python -X importtime, 29 Nov); --help imports every command
-    from backlash_monitor.fleet.folder_analysis import registered_drive
-    row = {"namespace": result.get("namespace", ""), "drive": result["drive"] or Path(bag).stem}
+    from backlash_monitor.fleet.folder_analysis import registered_drive, unmatched_text
+    row = {"bag": bag, "namespace": result.get("namespace", ""), "drive": result["drive"] or Path(bag).stem}
     if registered_drive(watch, row) is None:
-        print(f"{Path(bag).name} matched no drive of the registry (drive {row['drive']!r}, namespace "
-              f"{row['namespace'] or '/'!r}; widths from {options.library or 'the packaged library'}"
-              f"{', model fit against the default model' if watch.enabled and not watch.reference else ''}): "
-              "add it to the registry (docs/registry.md; `train --drive LINE/DRIVE` registers a version) or check the "
-              "bag's namespace")
+        print(unmatched_text([row], options.library, watch.enabled and not watch.reference))
 
 
 def _print_model_fit(summary: dict) -> None:

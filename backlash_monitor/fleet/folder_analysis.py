@@ -280,6 +280,23 @@ def _kept(kind: str, key, make):
     return kept[key]
 
 
+def unmatched_text(rows: list, library, default_model_fit: bool) -> str:
+    """The line that says which bags matched no drive of the registry (``rows``: each with ``bag``, ``drive``,
+    ``namespace``), what their widths (``library``: None for the packaged one) and model fit came from instead, and
+    what to do; one bag's analysis and a folder's say it alike."""
+    came_from = (f"widths from {library or 'the packaged library'}"
+                 + (", model fit against the default model" if default_model_fit else ""))
+    advice = ("add it to the registry (docs/registry.md; `train --drive LINE/DRIVE` registers a version) or check its "
+              "namespace")
+
+    def named(r):
+        return f"drive {r['drive']!r}, namespace {r.get('namespace') or '/'!r}"
+    if len(rows) == 1:
+        return f"{Path(rows[0]['bag']).name} matched no drive of the registry ({named(rows[0])}; {came_from}): {advice}"
+    return (f"{len(rows)} bags matched no drive of the registry ({came_from}): "
+            + ", ".join(f"{Path(r['bag']).name} ({named(r)})" for r in rows) + f"; for each, {advice}")
+
+
 def registered_drive(watch: WatchOptions, row: dict):
     """The registry's drive (hardware_id, reference, nominal) a bag belongs to: by its topics' namespace
     (/LINE/DRIVE) or its recorded drive name (LINE/DRIVE); None when none matches or there is no registry."""
@@ -775,11 +792,7 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     if watch.drives:
         unmatched = [r for r in rows if not r["error"] and not r.get("registry_drive")]
         if unmatched:
-            print(f"{len(unmatched)} bags matched no drive of the registry (widths from "
-                  f"{options.library or 'the packaged library'}"
-                  f"{', model fit against the default model' if watch.enabled else ''}): "
-                  + ", ".join(f"{Path(r['bag']).name} (drive {r['drive']!r}, namespace {r.get('namespace') or '/'!r})"
-                              for r in unmatched))
+            print(unmatched_text(unmatched, options.library, watch.enabled))
     print(f"analysed {len(bags)} bags of {len(points)} drives in {wall:.1f} s on {n_jobs} "
           f"{'worker' if n_jobs == 1 else 'workers'} ({fleet.engine}); wrote {out_dir / 'fleet.csv'}"
           f", .json{', ' + str(len(plots)) + ' plots' if plots else ''}")
