@@ -193,7 +193,7 @@ class MotorStepControlledThrottle(OutsideForm):
                    "the last step, the throttle opens (closes) one step, within 0..N steps (closed at the run-in's "
                    "start); the pump loads the motor with K per step open")
     parameters = (Param("torque_per_step_Nm", "N*m", (0.0, 10.0), "K"),
-                  Param("reference_speed_rad_s", "rad/s", (100.0, 200.0), "Omega_ref"),
+                  Param("reference_speed_rad_s", "rad/s", (100.0, 200.0), "Omega_ref: the controller's set speed"),
                   Param("dead_band_rad_s", "rad/s", (0.0, 20.0), "b"),
                   Param("step_time_s", "s", (2e-4, 1.0), "T_s (a multiple of 0.2 ms)"),
                   Param("steps", "-", (1, 100), "N", "int"))
