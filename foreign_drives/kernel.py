@@ -172,6 +172,12 @@ MEM_EXTRA = 8
 # load pulse's start; an on-delay timer (a debounced switch); the integral of the input since each load pulse's start;
 # a thermal integrator heated by the input's square; a peak detector with a decay
 MK_LATCH, MK_ON_DELAY, MK_SINCE_STROKE, MK_HEAT, MK_PEAK = 15, 16, 17, 18, 19
+# the eighth set (foreign_drives.outside_dev8/_sealed8), see _memory_scan8: a once-per-turn period tachometer (2*pi over
+# the time between the two latest passes of an index mark); a run-to-run controller (updated at each load pulse's start
+# from the input's mean over the scans since the last); a tank filled by the input and draining through an orifice
+# (sqrt law); a van der Pol oscillator whose negative damping the input sets; a three-point step controller (a stepping
+# integrator with a dead band)
+MK_PERIOD_TACHO, MK_RUN_TO_RUN, MK_TANK, MK_SQUEAL, MK_STEP = 20, 21, 22, 23, 24
 # selectors: the drive quantity a factor reads
 (XS_ONE, XS_OMEGA1, XS_OMEGA2, XS_RIM_SPEED, XS_MASS_SPEED, XS_PENETRATION, XS_SPRING_EXTENSION, XS_ALPHA1,
  XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
@@ -192,6 +198,8 @@ XF_HASH, XF_DEADZONE, XF_MOD = 18, 19, 20
 # (a/(b + x + a))^c for |x| < b, else 0 (an inverse power of the distance to each face); a chirp switched on at x = c,
 # sin(2*pi*(a*(x - c) + b*(x - c)^2/2)) for x >= c, else 0 (a frequency a + b*(x - c))
 XF_FACE_PULL, XF_CHIRP = 21, 22
+# the eighth set: a resonance peak 1/(1 + ((x - b)/a)^2) (a Lorentzian of half-width a at x = b)
+XF_LORENTZ = 23
 
 
 @njit(cache=True, inline="always")
@@ -552,6 +560,93 @@ def _memory_scan7(kind, x, P, seg_dt):
 
 
 @njit(cache=True)
+def _memory_scan8(kind, t, x, P, seg_dt):
+    """The eighth set's memory kinds, one 0.2 ms scan at ``t`` with the input ``x`` (the output m in mem_state):
+    - MK_PERIOD_TACHO: x an unwrapped angle, k = floor((x - a)/(2*pi)) the index mark's passes; at a scan where k
+      changed, m -> 2*pi/(t - t_last) if there was an earlier pass (its time t_last in ring[0], ring[1] = 1), then
+      t_last = t (first scan: m = 0, no pass yet);
+    - MK_RUN_TO_RUN: at a load pulse's first scan (the pulse count changed), if scans were summed since the last,
+      m -> clip(m - a*(mean - b), -c, c); then the sum restarts; every scan adds x to the sum (ring[0]) and counts
+      (ring[1]) (first scan: m = 0, summed from it);
+    - MK_TANK: m -> max(0, m + dt*(a*x - b*sqrt(m))) (first scan: m = 0);
+    - MK_SQUEAL: a van der Pol oscillator X'' = w*g*(x - c)*(1 - X^2)*X' - w^2*X (w = a, g = b; X, X' in ring[0:2];
+      eight semi-implicit Euler steps per scan); when X^2 + (X'/w)^2 < 1e-6 the state is scaled up to that amplitude
+      (a floor); m = X (first scan: X = 1e-3, X' = 0);
+    - MK_STEP: d = +1 if x > a + b, -1 if x < a - b, else 0; n = the consecutive scans with the same d != 0 since the
+      last step (ring[0]; its d in ring[1]); when n*dt >= c - 1e-12, m -> clip(m + d, 0, ring[MEM_EXTRA]) and n = 0
+      (first scan: m = 0, counted from it)."""
+    a, b, c = P[P_MEMA], P[P_MEMB], P[P_MEMC]
+    if P[P_MEMINIT] == 0.0:
+        P[P_MEMINIT] = 1.0
+        P[P_MEMPREV] = P[P_PCOUNT]
+        P[P_MEMSTATE] = 0.0
+        P[P_MEMR0] = 0.0
+        P[P_MEMR0 + 1] = 0.0
+        if kind == MK_PERIOD_TACHO:
+            P[P_MEMPREV] = math.floor((x - a) / (2.0 * math.pi))
+            return
+        if kind == MK_TANK:
+            return
+        if kind == MK_SQUEAL:
+            P[P_MEMR0] = 1e-3
+            P[P_MEMSTATE] = 1e-3
+            return
+    if kind == MK_PERIOD_TACHO:
+        k = math.floor((x - a) / (2.0 * math.pi))
+        if k != P[P_MEMPREV]:
+            P[P_MEMPREV] = k
+            if P[P_MEMR0 + 1] != 0.0 and t > P[P_MEMR0]:
+                P[P_MEMSTATE] = 2.0 * math.pi / (t - P[P_MEMR0])
+            P[P_MEMR0] = t
+            P[P_MEMR0 + 1] = 1.0
+    elif kind == MK_RUN_TO_RUN:
+        if P[P_PCOUNT] != P[P_MEMPREV]:
+            P[P_MEMPREV] = P[P_PCOUNT]
+            if P[P_MEMR0 + 1] > 0.0:
+                m = P[P_MEMSTATE] - a * (P[P_MEMR0] / P[P_MEMR0 + 1] - b)
+                P[P_MEMSTATE] = -c if m < -c else (c if m > c else m)
+            P[P_MEMR0] = 0.0
+            P[P_MEMR0 + 1] = 0.0
+        P[P_MEMR0] += x
+        P[P_MEMR0 + 1] += 1.0
+    elif kind == MK_TANK:
+        v = P[P_MEMSTATE]
+        v += seg_dt * (a * x - b * math.sqrt(v if v > 0.0 else 0.0))
+        P[P_MEMSTATE] = v if v > 0.0 else 0.0
+    elif kind == MK_SQUEAL:
+        mu = a * b * (x - c)
+        q, dq = P[P_MEMR0], P[P_MEMR0 + 1]
+        h = 0.125 * seg_dt
+        for _ in range(8):
+            dq += h * (mu * (1.0 - q * q) * dq - a * a * q)
+            q += h * dq
+        amp2 = q * q + (dq / a) ** 2
+        if amp2 < 1e-6:
+            if amp2 > 0.0:
+                s = 1e-3 / math.sqrt(amp2)
+                q, dq = q * s, dq * s
+            else:
+                q = 1e-3
+        P[P_MEMR0], P[P_MEMR0 + 1] = q, dq
+        P[P_MEMSTATE] = q
+    elif kind == MK_STEP:
+        d = 1.0 if x > a + b else (-1.0 if x < a - b else 0.0)
+        if d == 0.0:
+            n = 0.0
+        elif d == P[P_MEMR0 + 1]:
+            n = P[P_MEMR0] + 1.0
+        else:
+            n = 1.0
+        P[P_MEMR0 + 1] = d
+        if d != 0.0 and n * seg_dt >= c - 1e-12:
+            m = P[P_MEMSTATE] + d
+            top = P[P_MEMR0 + MEM_EXTRA]
+            P[P_MEMSTATE] = 0.0 if m < 0.0 else (top if m > top else m)
+            n = 0.0
+        P[P_MEMR0] = n
+
+
+@njit(cache=True)
 def memory_scan(t, y, P, mode, seg_dt):
     """Advance the memory element by one 0.2 ms segment from the state ``y`` at the segment's start ``t``:
     - MK_LAG: m -> x + (m - x)*exp(-dt/a) while x > m, else x + (m - x)*exp(-dt/b) (c = 1: m*exp(-dt/b));
@@ -571,6 +666,9 @@ def memory_scan(t, y, P, mode, seg_dt):
         P[P_MEMSTATE] = on
         return
     x = _quantity(int(P[P_MEMSEL]), t, y, P, mode, 0.0, 0.0)
+    if kind >= MK_PERIOD_TACHO:
+        _memory_scan8(kind, t, x, P, seg_dt)
+        return
     if kind >= MK_LATCH:
         _memory_scan7(kind, x, P, seg_dt)
         return
@@ -678,6 +776,9 @@ def _shaped(shape, x, a, b, c):
             return 0.0
         q = x - c
         return math.sin(2.0 * math.pi * (a * q + 0.5 * b * q * q))
+    if shape == XF_LORENTZ:                      # a resonance peak of half-width a at x = b
+        q = (x - b) / a
+        return 1.0 / (1.0 + q * q)
     return 0.0
 
 
