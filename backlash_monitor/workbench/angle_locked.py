@@ -431,7 +431,8 @@ def fit_pair(run, a: str, b: str) -> fitting.FitResult | None:
     event: that term fitted event by event beside the other, a shared effect, linearised at its single-effect fit when
     there is one (else at the model's values, on its screening secant). Its parameters in the order a's, b's (as
     pairs.combined holds them); its evidence the events' own likelihood about their per-event predictions, as the
-    term's alone (comparable with it). None when it does not apply (the pair is then refined on the event average)."""
+    term's alone (comparable with it); the shared effect's value then searched on the whole law (whole_law_search).
+    None when it does not apply (the pair is then refined on the event average)."""
     locked = [n for n in (a, b) if n in run.event_fits]
     if len(locked) != 1:
         return None
