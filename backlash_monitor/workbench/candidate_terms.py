@@ -270,7 +270,15 @@ def with_center(term: Term, center_rad_s: float) -> Term:
 # (proposal.FORM_STAGE) adds, for each selected simulated group whose state is one of these, max(0, s - k_j) and
 # max(0, k_j - s) in the same balance at the knots k_j below, screens them in one batch and selects among them by the
 # same rule as the library's terms.
-HINGES_IN_PROPOSAL = True
+# OFF (measured, docs/workbench.md "The proposed term's form", 30 Nov, branch `form`): on 8 development rows (7 where a
+# term had been proposed in the right balance but not consistent, 1 wrong) consistent 0 of 8 with the stage as without;
+# a hinge entered on 2 rows and helped neither: the od6 torque limiter's entered on the contact's OPENING speed
+# (max(0, -0.47 - ṗ), z 5.1, stable 100 %) and the fitted terms then stopped the model crossing its backlash (the law
+# was lost until the fallback below kept the one without the hinges), the od6 PWM brake's at its bound (+20 N*m *
+# max(0, 148.5 - Ω₂)/1.5: 94 % -> 92 % explained); the other rows selected none (or had MAX_GROUPS already, or no
+# simulated group); the proposal's CPU +3-9 s a recording (max 36 s), the library kernel's compile 41 -> 66 s once.
+# Switched on (with the library's kernel then holding the hinges, gated: neutral at 0), the stage runs as written
+HINGES_IN_PROPOSAL = False
 KNOT = "knot"            # a hinge's knot parameter, in the state's own unit (set per recording: hinge_knots)
 KNOT_TOKEN = "⟨k⟩"       # the knot's place in a hinge's symbol (with_knot writes the number there)
 # the knots at these quantiles of the state over the recording's events: the middle (a deadband's or a switch's

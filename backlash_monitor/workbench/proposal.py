@@ -436,9 +436,8 @@ def _preferred(GG, Gy, yy, groups: list, chosen: list, alike: list, terms: list)
 
 
 # the form stage: hinges of the selected groups' own states (candidate_terms.hinge_terms), selected by the same rule on
-# top of the chosen groups. Measured before and after on the development rows where a term was proposed in the right
-# balance but not consistent (docs/workbench.md "The proposed term's form"); see the constant's measurement there
-FORM_STAGE = True
+# top of the chosen groups; off by default (candidate_terms.HINGES_IN_PROPOSAL: its measurement there and in
+# docs/workbench.md "The proposed term's form")
 
 
 def _event_samples(p) -> np.ndarray:
@@ -631,89 +630,100 @@ def _propose(run, up, verdict: str) -> Proposal | None:
         return out
     # 3b. the form: hinges of the chosen groups' own states (a cap, a deadband, a limit), on top of them, by the same rule
     knot_of: dict = {}
-    if FORM_STAGE and candidate_terms.HINGES_IN_PROPOSAL and len(stable) < MAX_GROUPS:
+    form_added: list = []
+    if candidate_terms.HINGES_IN_PROPOSAL and len(stable) < MAX_GROUPS:
         form = _form_stage(p, run, d, Y, groups, group_names, stable, alike, key, steps)
         if form is not None:
-            d, groups, group_names, alike, added, knot_of, out.form = form
-            stable = list(stable) + added
+            d, groups, group_names, alike, form_added, knot_of, out.form = form
+            stable = list(stable) + form_added
             GG, Gy, yy = gram(d.G, Y)
-    cols = [c for g in stable for c in groups[g]]
-    # 4. the coefficients on every event (least squares of the per-event design), their uncertainty the jackknife
-    # over the events (the leave-one-out fits the selection made); an angle-locked pair's response re-estimated at
-    # its fitted amplitude (a secant: a torque of the working torque's size changes the crossing it acts on, its
-    # response is not the tangent's at amplitude 0: measured, 8 N*m on the wheel fitted as 5.4 on the tangent)
-    coef, unc = _fit(GG, Gy, cols)
-    angles = d.angles
-    entries = np.asarray(p.events.entries)
-    for _ in range(SECANT_ITERATIONS):
-        moved = False
-        for g in stable:
-            sin_t = d.terms[groups[g][0]]
-            if not (sin_t.simulated and sin_t.harmonic is not None) or sin_t.harmonic[0] not in angles:
-                continue
-            i0 = cols.index(groups[g][0])
-            amp = float(np.hypot(coef[i0], coef[i0 + 1]))
-            if amp < 2.0 * steps[sin_t.name]:
-                continue
-            resp = event_design.angle_responses(p, [sin_t], {sin_t.name: amp}, p.project).get(sin_t.name)
-            if resp is None:
-                continue
-            var, k, _ = sin_t.harmonic
-            psi = k * angles[var][entries]
-            d.G[..., groups[g]] = event_design.angle_columns(resp, psi, p.project)
-            d.mean_cols[:, groups[g]] = event_design.angle_columns(resp, psi).mean(axis=0)
-            moved = True
-        if not moved:
-            break
-        GG, Gy, yy = gram(d.G, Y)
-        before = coef
-        coef, unc = _fit(GG, Gy, cols)
-        if np.max(np.abs(coef - before)) < SECANT_TOLERANCE * max(float(np.max(np.abs(coef))), 1e-12):
-            break
-    # a group whose fitted coefficients are all within MIN_COEFFICIENT_Z of their uncertainty from 0 leaves the
-    # proposal (it entered beside a term whose response was still the tangent's)
-    keep = [g for g in stable if np.max(np.abs(coef[[cols.index(c) for c in groups[g]]])
-                                        / np.maximum(unc[[cols.index(c) for c in groups[g]]], 1e-300)) >= MIN_COEFFICIENT_Z]
-    if keep and len(keep) < len(stable):
-        stable = keep
+    # the form stage refines a law, it must not cost one: when the fitted terms with the hinges stop the model crossing
+    # its backlash (a hinge fitted past the mechanism it stands for: measured, the od6 torque limiter), the law is
+    # fitted again without them (the design without the hinges' columns)
+    attempts = [stable] + ([[g for g in stable if g not in form_added]] if form_added else [])
+    for attempt, stable in enumerate(attempts):
         cols = [c for g in stable for c in groups[g]]
+        # 4. the coefficients on every event (least squares of the per-event design), their uncertainty the jackknife
+        # over the events (the leave-one-out fits the selection made); an angle-locked pair's response re-estimated at
+        # its fitted amplitude (a secant: a torque of the working torque's size changes the crossing it acts on, its
+        # response is not the tangent's at amplitude 0: measured, 8 N*m on the wheel fitted as 5.4 on the tangent)
         coef, unc = _fit(GG, Gy, cols)
-    chosen = [d.terms[c] for c in cols]
-    lo = np.array([-candidate_terms.BALANCES[t.balance][2] for t in chosen])
-    coef = np.clip(coef, lo * 0.999, -lo * 0.999)
-    # the model after: the plain terms simulated at their fitted values; a term locked to an angle by its change of
-    # the recorded events' mean at their own angles (the model's runs cross their entries at other angles: their
-    # average of it is another draw of the same noise); the recorded ones by their linear change
-    # -- except in the spectral shape, a power: there the angle-locked terms are simulated at their fitted values too
-    # (the shape does not depend on the phase; its change is of second order in the amplitude, which no secant at
-    # amplitude 0 holds)
-    rec_cols = [i for i, t in enumerate(chosen) if not t.simulated]
-    harm_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is not None]
-    plain_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is None]
+        angles = d.angles
+        entries = np.asarray(p.events.entries)
+        for _ in range(SECANT_ITERATIONS):
+            moved = False
+            for g in stable:
+                sin_t = d.terms[groups[g][0]]
+                if not (sin_t.simulated and sin_t.harmonic is not None) or sin_t.harmonic[0] not in angles:
+                    continue
+                i0 = cols.index(groups[g][0])
+                amp = float(np.hypot(coef[i0], coef[i0 + 1]))
+                if amp < 2.0 * steps[sin_t.name]:
+                    continue
+                resp = event_design.angle_responses(p, [sin_t], {sin_t.name: amp}, p.project).get(sin_t.name)
+                if resp is None:
+                    continue
+                var, k, _ = sin_t.harmonic
+                psi = k * angles[var][entries]
+                d.G[..., groups[g]] = event_design.angle_columns(resp, psi, p.project)
+                d.mean_cols[:, groups[g]] = event_design.angle_columns(resp, psi).mean(axis=0)
+                moved = True
+            if not moved:
+                break
+            GG, Gy, yy = gram(d.G, Y)
+            before = coef
+            coef, unc = _fit(GG, Gy, cols)
+            if np.max(np.abs(coef - before)) < SECANT_TOLERANCE * max(float(np.max(np.abs(coef))), 1e-12):
+                break
+        # a group whose fitted coefficients are all within MIN_COEFFICIENT_Z of their uncertainty from 0 leaves the
+        # proposal (it entered beside a term whose response was still the tangent's)
+        keep = [g for g in stable if np.max(np.abs(coef[[cols.index(c) for c in groups[g]]])
+                                            / np.maximum(unc[[cols.index(c) for c in groups[g]]], 1e-300)) >= MIN_COEFFICIENT_Z]
+        if keep and len(keep) < len(stable):
+            stable = keep
+            cols = [c for g in stable for c in groups[g]]
+            coef, unc = _fit(GG, Gy, cols)
+        chosen = [d.terms[c] for c in cols]
+        lo = np.array([-candidate_terms.BALANCES[t.balance][2] for t in chosen])
+        coef = np.clip(coef, lo * 0.999, -lo * 0.999)
+        # the model after: the plain terms simulated at their fitted values; a term locked to an angle by its change of
+        # the recorded events' mean at their own angles (the model's runs cross their entries at other angles: their
+        # average of it is another draw of the same noise); the recorded ones by their linear change
+        # -- except in the spectral shape, a power: there the angle-locked terms are simulated at their fitted values too
+        # (the shape does not depend on the phase; its change is of second order in the amplitude, which no secant at
+        # amplitude 0 holds)
+        rec_cols = [i for i, t in enumerate(chosen) if not t.simulated]
+        harm_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is not None]
+        plain_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is None]
 
-    def model_after(coef):
-        sim_set = {key[chosen[i].name]: float(coef[i]) for i in plain_cols}
-        harm_set = {key[chosen[i].name]: float(coef[i]) for i in harm_cols}
-        sets_after = ([sim_set] if sim_set else []) + ([{**sim_set, **harm_set}] if harm_set else [])
-        ens = p.evaluate(sets_after) if sets_after else None
-        pred = p.pred_of(ens, 0) if sim_set else ref.copy()
-        if rec_cols:
-            pred = pred + d.mean_cols[:, [cols[i] for i in rec_cols]] @ coef[rec_cols]
-        if harm_cols:
-            lined_up = d.mean_cols[:, [cols[i] for i in harm_cols]] @ coef[harm_cols]
-            lined_up[p.spectral_slice] = 0.0
-            pred = pred + lined_up
-            sp = p.spectral_slice
-            pred[sp] += p.pred_of(ens, len(sets_after) - 1)[sp] - (p.pred_of(ens, 0)[sp] if sim_set else ref[sp])
-        return pred
-    try:
-        pred_after = model_after(coef)
-    except ValueError as error:        # the terms at these values stop the drive crossing its backlash
-        out.reason = ("the fitted terms stop the model crossing its backlash "
-                      f"({str(error).splitlines()[0]}): nothing proposed")
-        out.cpu_seconds = time.process_time() - t0
-        out.simulated_sets = p.n_sets_simulated - n_before
-        return out
+        def model_after(coef):
+            sim_set = {key[chosen[i].name]: float(coef[i]) for i in plain_cols}
+            harm_set = {key[chosen[i].name]: float(coef[i]) for i in harm_cols}
+            sets_after = ([sim_set] if sim_set else []) + ([{**sim_set, **harm_set}] if harm_set else [])
+            ens = p.evaluate(sets_after) if sets_after else None
+            pred = p.pred_of(ens, 0) if sim_set else ref.copy()
+            if rec_cols:
+                pred = pred + d.mean_cols[:, [cols[i] for i in rec_cols]] @ coef[rec_cols]
+            if harm_cols:
+                lined_up = d.mean_cols[:, [cols[i] for i in harm_cols]] @ coef[harm_cols]
+                lined_up[p.spectral_slice] = 0.0
+                pred = pred + lined_up
+                sp = p.spectral_slice
+                pred[sp] += p.pred_of(ens, len(sets_after) - 1)[sp] - (p.pred_of(ens, 0)[sp] if sim_set else ref[sp])
+            return pred
+        try:
+            pred_after = model_after(coef)
+            break
+        except ValueError as error:        # the terms at these values stop the drive crossing its backlash
+            if attempt + 1 < len(attempts):
+                out.form["dropped"] = ("the fitted terms with the hinges stop the model crossing its backlash "
+                                       f"({str(error).splitlines()[0]}): fitted again without them")
+                continue
+            out.reason = ("the fitted terms stop the model crossing its backlash "
+                          f"({str(error).splitlines()[0]}): nothing proposed")
+            out.cpu_seconds = time.process_time() - t0
+            out.simulated_sets = p.n_sets_simulated - n_before
+            return out
     # the plain terms' coefficients refined on the simulator (Gauss-Newton on the events' mean in the views' metric,
     # the tangent columns as the Jacobian): the per-event fit holds each term's change at its small screening step, a
     # term of the balance's own size bends it (a brake that slows the crossing it acts on). A step is kept only when

@@ -94,3 +94,16 @@ def test_on_noise_alone_no_hinge_enters():
         added, _, _ = proposal.select_on_top(G, Y, groups, [1], list(range(3, len(groups))), alike)
         false += len(added)
     assert false <= 1
+
+
+def test_switched_on_the_librarys_plugin_file_holds_every_hinge_neutral_with_a_bounded_knot(monkeypatch):
+    """candidate_terms.HINGES_IN_PROPOSAL on: the library's plug-in file (the kernel the proposal screens) holds every
+    hinge as an effect of its balance, its coefficient neutral at 0 and its knot a bounded parameter set per recording."""
+    from backlash_monitor.plant.catalogue import builtin_catalogue
+    monkeypatch.setattr(candidate_terms, "HINGES_IN_PROPOSAL", True)
+    cat = builtin_catalogue().with_files([candidate_terms.library_file()])
+    for t in candidate_terms.hinge_terms():
+        params = cat[t.name].parameters
+        assert params[0].default == 0.0 and params[1].name == candidate_terms.KNOT
+        lo, hi = candidate_terms.HINGE_STATES[t.knot].bounds
+        assert lo < 0.0 < hi
