@@ -106,6 +106,9 @@ class Term:
     center: str | None = None         # a speed's deviation from the recording's operating point (_speed_deviations):
                                       # the recorded speed whose mean is the term's CENTER parameter (set per
                                       # recording, centers()); written as a number in a proposal (with_center)
+    knot: str | None = None           # a hinge's state (hinge_terms): the variable of HINGE_STATES whose knot is the
+                                      # term's KNOT parameter (set per recording, hinge_knots()); written as a number
+                                      # in a proposal (with_knot)
 
     @property
     def simulated(self) -> bool:
@@ -258,6 +261,130 @@ def with_center(term: Term, center_rad_s: float) -> Term:
     num = f"{center_rad_s:.6g}"
     return dataclasses.replace(term, expression=term.expression.replace(CENTER, num),
                                symbol=term.symbol.replace("Ω̄", num), center=None)
+
+
+# ------------------------------------------------------------------ hinges of a selected term's state (the form)
+# A limiter caps the contact torque (a hinge of the penetration), a deadband or a saturation is a hinge of a speed, a
+# brake with limits is a clipped function of a speed deviation: one fixed power or sign of a state holds none of them;
+# a piecewise-linear function of the SAME state does, and stays linear in its coefficients. The proposal's form stage
+# (proposal.FORM_STAGE) adds, for each selected simulated group whose state is one of these, max(0, s - k_j) and
+# max(0, k_j - s) in the same balance at the knots k_j below, screens them in one batch and selects among them by the
+# same rule as the library's terms.
+# OFF (measured, docs/workbench.md "The proposed term's form", 30 Nov, branch `form`): on 8 development rows (7 where a
+# term had been proposed in the right balance but not consistent, 1 wrong) consistent 0 of 8 with the stage as without;
+# a hinge entered on 2 rows and helped neither: the od6 torque limiter's entered on the contact's OPENING speed
+# (max(0, -0.47 - ṗ), z 5.1, stable 100 %) and the fitted terms then stopped the model crossing its backlash (the law
+# was lost until the fallback below kept the one without the hinges), the od6 PWM brake's at its bound (+20 N*m *
+# max(0, 148.5 - Ω₂)/1.5: 94 % -> 92 % explained); the other rows selected none (or had MAX_GROUPS already, or no
+# simulated group); the proposal's CPU +3-9 s a recording (max 36 s), the library kernel's compile 41 -> 66 s once.
+# Switched on (with the library's kernel then holding the hinges, gated: neutral at 0), the stage runs as written
+HINGES_IN_PROPOSAL = False
+KNOT = "knot"            # a hinge's knot parameter, in the state's own unit (set per recording: hinge_knots)
+KNOT_TOKEN = "⟨k⟩"       # the knot's place in a hinge's symbol (with_knot writes the number there)
+# the knots at these quantiles of the state over the recording's events: the middle (a deadband's or a switch's
+# centre) and both tails (a limit, a cap, a saturation acting on the largest or smallest values). Three knots x two
+# sides = 6 hinges a state: each is one more hypothesis the forward selection tests on ~16 events (CV_Z standard
+# errors each), and one more simulated set (~0.5 s of CPU); a finer grid fits the knot to the events' noise
+HINGE_QUANTILES = (0.1, 0.5, 0.9)
+
+
+@dataclass(frozen=True)
+class HingeState:
+    balance: str
+    state: str           # the Term.state of the library's terms it refines (and the hinge's own)
+    expression: str      # the state in its unit, in model variables
+    scale: float         # the hinge divided by this (the library's scale of the state): f of order 1
+    symbol: str
+    unit: str
+    bounds: tuple        # the knot's bounds [unit]
+
+
+# the scalar states of the model whose distribution over the events is known (proposal._state_samples: the recorded
+# speeds, the carriage's speed from the recorded a2, the contact's penetration and its rate from the model's run);
+# not the spring's extension and rate nor t_e (no output of the plant gives them), not the angles (their harmonics)
+HINGE_STATES = {
+    "omega1": HingeState("motor_load_moment_pu", "omega1", "omega1", SPEED_DEVIATION_SCALE_RAD_S, "Ω₁", "rad/s",
+                         (-1000.0, 1000.0)),
+    "omega2": HingeState("wheel_torque_Nm", "omega2", "omega2", SPEED_DEVIATION_SCALE_RAD_S, "Ω₂", "rad/s",
+                         (-1000.0, 1000.0)),
+    "rel_speed": HingeState("wheel_torque_Nm", "rel_speed", "rel_speed", REL_SPEED_SCALE_RAD_S, "(Ω₁−Ω₂)", "rad/s",
+                            (-1000.0, 1000.0)),
+    "xdot": HingeState("mass_force_N", "xdot", "(xdot / wheel_radius_m)", SPEED_DEVIATION_SCALE_RAD_S, "ẋ/r",
+                       "rad/s", (-1000.0, 1000.0)),
+    "penetration": HingeState("clutch_torque_Nm", "penetration", "penetration", PENETRATION_SCALE_RAD, "p", "rad",
+                              (-1.0, 1.0)),
+    "approach_speed": HingeState("clutch_torque_Nm", "penetration rate", "approach_speed", APPROACH_SCALE_RAD_S, "ṗ",
+                                 "rad/s", (-1000.0, 1000.0)),
+}
+HINGE_SIDES = (("above", 1.0), ("below", -1.0))
+
+
+def hinge_terms() -> tuple[Term, ...]:
+    """max(0, ±(s - k_j))/scale for every state of HINGE_STATES in its balance, each side, each knot slot j (the knot a
+    parameter, KNOT); each term its own group. Not screened with the library: the proposal's form stage screens the
+    hinges of the selected groups' states only (hinges_for)."""
+    out = []
+    for var, hs in HINGE_STATES.items():
+        b = SHORT[hs.balance]
+        for side, sgn in HINGE_SIDES:
+            d = f"({hs.expression} - {KNOT})" if sgn > 0 else f"({KNOT} - {hs.expression})"
+            expr = f"0.5 * ({d} + fabs({d})) / {hs.scale!r}"
+            sym = (f"max(0, {hs.symbol} − {KNOT_TOKEN})" if sgn > 0 else f"max(0, {KNOT_TOKEN} − {hs.symbol})") \
+                + f"/{hs.scale:g}"
+            for j in range(len(HINGE_QUANTILES)):
+                name = f"{PREFIX}{b}_{var}_hinge_{side}{j}"
+                out.append(Term(name, hs.balance, expr, sym, hs.state, name, tuple(_variables_of(hs.expression)),
+                                knot=var))
+    return tuple(out)
+
+
+def _variables_of(expr: str) -> list:
+    return [v for v in re.findall(r"[A-Za-z_][A-Za-z_0-9]*", expr) if v not in ("fabs",)]
+
+
+def hinge_slot(term: Term) -> int:
+    """The knot slot j of a hinge term (its knot is HINGE_QUANTILES[j] of its state)."""
+    return int(term.name[-1])
+
+
+def hinge_states_of(term: Term) -> list:
+    """The HINGE_STATES a selected library term refines: in its own balance, its own state (a clutch term: every state
+    of the contact it names -- (p/p₀)(ṗ/ṗ₀) both). Not a harmonic, a sensor's, a slow change or a hinge itself."""
+    if not term.simulated or term.harmonic is not None or term.knot is not None:
+        return []
+    out = []
+    for var, hs in HINGE_STATES.items():
+        if hs.balance != term.balance:
+            continue
+        if term.state == hs.state or (term.balance == "clutch_torque_Nm" and hs.expression in term.variables):
+            out.append(var)
+    return out
+
+
+def hinges_for(states) -> list:
+    """The hinge terms of these states (hinge_terms), in library order."""
+    states = set(states)
+    return [t for t in hinge_terms() if t.knot in states]
+
+
+def hinge_knots(samples: dict) -> dict:
+    """{state: its knots [unit]}: HINGE_QUANTILES of each state's samples over the recording's events (``samples``:
+    state -> 1-D array; a state with fewer than 100 samples is left out)."""
+    return {v: [float(q) for q in np.quantile(np.asarray(x, dtype=float), HINGE_QUANTILES)]
+            for v, x in samples.items() if v in HINGE_STATES and np.size(x) >= 100}
+
+
+def knot_key(term: Term) -> str:
+    return f"{term.name}.{KNOT}"
+
+
+def with_knot(term: Term, knot: float) -> Term:
+    """The hinge with its knot written as a number (a proposal's law and plug-in file)."""
+    if term.knot is None:
+        return term
+    num = f"{knot:.6g}"
+    return dataclasses.replace(term, expression=term.expression.replace(KNOT, f"({num})"),
+                               symbol=term.symbol.replace(KNOT_TOKEN, num), knot=None)
 
 
 # ------------------------------------------------------------------ terms with a memory (issue 31, part 2)
@@ -425,7 +552,7 @@ def _sensor_dynamics(sig: str) -> list:
 
 
 def by_name() -> dict:
-    return {t.name: t for t in library() + recorded_terms()}
+    return {t.name: t for t in library() + recorded_terms() + hinge_terms()}
 
 
 def groups(terms=None) -> dict:
@@ -467,7 +594,7 @@ def _variables(expr: str, extra=()) -> list:
 def library_source() -> str:
     parts = ['"""The candidate terms of a proposal (backlash_monitor/workbench/candidate_terms.py), generated."""\n'
              + HEADER]
-    for i, t in enumerate(library()):
+    for i, t in enumerate(library() + (hinge_terms() if HINGES_IN_PROPOSAL else ())):
         unit, _, bound = BALANCES[t.balance]
         c = coefficient_name(t)
         params = [f"Parameter({c!r}, {unit!r}, 0.0, ({-bound!r}, {bound!r}), 'the coefficient')"]
@@ -475,6 +602,10 @@ def library_source() -> str:
         if t.center is not None:     # the operating point's speed, set per recording (centers)
             params.append(f"Parameter({CENTER!r}, 'rad/s', 0.0, (-1000.0, 1000.0), 'the mean speed')")
             extra = [CENTER]
+        if t.knot is not None:       # a hinge's knot, set per recording (hinge_knots)
+            hs = HINGE_STATES[t.knot]
+            params.append(f"Parameter({KNOT!r}, {hs.unit!r}, 0.0, {hs.bounds!r}, 'the knot')")
+            extra = [KNOT]
         parts.append(_class_source(f"Cand{i}", t.name, t.balance, f"{BALANCE_WORDS[t.balance]} += c * {t.symbol}",
                                    params, _variables(t.expression) + [c] + extra, f"{c} * ({t.expression})"))
     return "\n\n".join(parts)

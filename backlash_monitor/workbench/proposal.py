@@ -67,6 +67,7 @@ class Proposal:
     on_top_of: list = field(default_factory=list)   # the partial explanation the terms were fitted on top of
     cpu_seconds: float = 0.0
     simulated_sets: int = 0
+    form: dict = field(default_factory=dict)   # the form stage (_form_stage): the hinges screened, their selection
     first_call_cpu_seconds: float = 0.0   # of cpu_seconds, the one-time first call of the library's kernel in this
                                           # process (its compile on a cold cache; plant.integrator.first_call_cpu_seconds)
 
@@ -85,6 +86,7 @@ class Proposal:
                 "consistent": self.consistent, "consistency_after": self.views_after,
                 "plugin_source": self.plugin_source, "plugin_values": self.plugin_values,
                 "on_top_of": self.on_top_of, "cpu_seconds": self.cpu_seconds, "simulated_sets": self.simulated_sets,
+                "form_stage": self.form,
                 "kernel_first_call_cpu_seconds": self.first_call_cpu_seconds,
                 "per_recording_cpu_seconds": self.cpu_seconds - self.first_call_cpu_seconds,
                 "method": "forward selection of generic terms by leave-one-event-out cross-validation, stable under "
@@ -130,20 +132,27 @@ def cv_errors(G: np.ndarray, Y: np.ndarray, cols) -> np.ndarray:
     return cv_errors_gram(*gram(G, Y), cols)
 
 
-def _forward_gram(GG, Gy, yy, groups: list, z: float, max_groups: int, alike: list | None = None):
+def _forward_gram(GG, Gy, yy, groups: list, z: float, max_groups: int, alike: list | None = None,
+                  start: list | None = None, candidates: list | None = None):
     """forward_select on the events' normal equations; ``alike`` (alike_groups): a group the data cannot tell from
     one already selected is the same term and does not enter beside it (two of them together fit their small
-    difference, a term of another shape: measured, sin α₂ and sin α₁ on a2 at opposite coefficients)."""
+    difference, a term of another shape: measured, sin α₂ and sin α₁ on a2 at opposite coefficients). ``start``:
+    groups already chosen (the form stage: the hinges enter on top of them, ``candidates`` the only ones tried); the
+    returned selection holds the added groups only, ``max_groups`` counts the start's too."""
+    start = list(start or [])
     sel: list = []
-    cols: list = []
+    cols: list = [c for g in start for c in groups[g]]
+    allowed = None if candidates is None else set(candidates)
     err = cv_errors_gram(GG, Gy, yy, cols)
     steps = []
     e = yy.shape[0]
     taken: set = set()
-    while len(sel) < max_groups:
+    for g in start:
+        taken |= set(alike[g]) if alike is not None else {g}
+    while len(start) + len(sel) < max_groups:
         best = None
         for gi, g in enumerate(groups):
-            if gi in sel or gi in taken:
+            if gi in sel or gi in taken or (allowed is not None and gi not in allowed):
                 continue
             d = err - cv_errors_gram(GG, Gy, yy, cols + list(g))
             m, s = float(d.mean()), float(d.std(ddof=1)) / np.sqrt(e)
@@ -197,8 +206,9 @@ def stability(G: np.ndarray, Y: np.ndarray, groups: list, n: int = BOOTSTRAP, se
 
 
 def _stability_gram(GG, Gy, yy, groups: list, n: int = BOOTSTRAP, seed: int = BOOTSTRAP_SEED,
-                    alike: list | None = None) -> np.ndarray:
-    """stability on the events' normal equations (gram())."""
+                    alike: list | None = None, start: list | None = None, candidates: list | None = None) -> np.ndarray:
+    """stability on the events' normal equations (gram()); ``start``, ``candidates``: as _forward_gram's (the groups
+    added on top of ``start`` in each resample)."""
     rng = np.random.default_rng(seed)
     e = yy.shape[0]
     counts = np.zeros(len(groups))
@@ -206,7 +216,7 @@ def _stability_gram(GG, Gy, yy, groups: list, n: int = BOOTSTRAP, seed: int = BO
         idx = rng.integers(0, e, e)
         if len(np.unique(idx)) < 3:
             continue
-        sel, _ = _forward_gram(GG[idx], Gy[idx], yy[idx], groups, CV_Z, MAX_GROUPS, alike)
+        sel, _ = _forward_gram(GG[idx], Gy[idx], yy[idx], groups, CV_Z, MAX_GROUPS, alike, start, candidates)
         hit = np.zeros(len(groups), dtype=bool)
         hit[sel] = True
         if alike is not None:
@@ -425,6 +435,121 @@ def _preferred(GG, Gy, yy, groups: list, chosen: list, alike: list, terms: list)
     return out
 
 
+# the form stage: hinges of the selected groups' own states (candidate_terms.hinge_terms), selected by the same rule on
+# top of the chosen groups; off by default (candidate_terms.HINGES_IN_PROPOSAL: its measurement there and in
+# docs/workbench.md "The proposed term's form")
+
+
+def _event_samples(p) -> np.ndarray:
+    """The sample indices of the recording's events (each event's segment from its entry)."""
+    L = int(np.asarray(p.events.raw).shape[-1])
+    idx = (np.asarray(p.events.entries, dtype=int)[:, None] + np.arange(L)[None]).ravel()
+    return np.unique(idx[(idx >= 0) & (idx < p.n_samples)])
+
+
+def _state_samples(p, run, states) -> dict:
+    """{state: its values over the recording's events} for the hinges' knots: the recorded speeds (Ω₁, Ω₂, Ω₁ − Ω₂),
+    the carriage's ẋ/r from the recorded a2 (its running integral about r·mean Ω₂: the carriage runs at the wheel's
+    rim speed on average); the contact's penetration and its rate -- which no sensor records -- from the model's own
+    run without noise (in contact: the transmitted torque non-zero; β the least |Δ| there), as a speed the recording
+    lacks."""
+    states = set(states)
+    idx = _event_samples(p)
+    sig = run.meas.signals
+    out = {}
+    for v in ("omega1", "omega2"):
+        if v in states and v in sig:
+            out[v] = np.asarray(sig[v], dtype=float)[idx]
+    if "rel_speed" in states and "omega1" in sig and "omega2" in sig:
+        out["rel_speed"] = (np.asarray(sig["omega1"], dtype=float) - np.asarray(sig["omega2"], dtype=float))[idx]
+    if "xdot" in states and "omega2" in sig and "a2" in sig:
+        r = float(plant_adapter._plant_config(run.model).load.wheel_radius_m)
+        xr = float(np.mean(np.asarray(sig["omega2"], dtype=float))) + running_integral(sig["a2"], p.dt) / r
+        out["xdot"] = xr[idx]
+    missing = states - set(out)
+    if missing:
+        sim = plant_adapter.simulate_sets(p.model, [dict(p.base)], p.seeds[:1], p.n_samples,
+                                          conditions=p.conditions, noise=False,
+                                          signals=("omega1", "omega2", "angle_difference", "transmitted_torque_Nm"))
+        w1, w2 = sim["omega1"][0, 0], sim["omega2"][0, 0]
+        dl, tc = sim["angle_difference"][0, 0], sim["transmitted_torque_Nm"][0, 0]
+        touch = np.abs(tc) > 0.0
+        inside = idx[touch[idx]]
+        if inside.size:
+            beta = float(np.min(np.abs(dl[touch])))
+            sim_states = {"penetration": np.abs(dl[inside]) - beta,
+                          "approach_speed": (np.sign(dl) * (w1 - w2))[inside]}
+        else:
+            sim_states = {}
+        sim_states.update({"omega1": w1[idx], "omega2": w2[idx], "rel_speed": (w1 - w2)[idx]})
+        out.update({v: sim_states[v] for v in missing if v in sim_states})
+    return out
+
+
+def hinge_alike(hinges: list, g0: int) -> list:
+    """Per hinge (its group index g0 + j), the hinges of the same side of the same state at the other knots: the
+    alternatives of one form (one of them enters; they share their votes in the stability, as alike groups do)."""
+    family: dict = {}
+    for j, t in enumerate(hinges):
+        family.setdefault((t.knot, t.name[:-1]), []).append(g0 + j)
+    return [family[(t.knot, t.name[:-1])] for t in hinges]
+
+
+def select_on_top(G, Y, groups: list, start: list, candidates: list, alike: list) -> tuple:
+    """The form stage's selection (pure numpy): ``candidates`` entered by forward selection on top of the groups
+    ``start`` (leave-one-event-out CV_Z standard errors, at most MAX_GROUPS in all), kept when stable in STABILITY of
+    BOOTSTRAP resamples of the events. -> ([added group], [(group, held-out gain, z)], the resamples' shares)."""
+    GG, Gy, yy = gram(G, Y)
+    sel, steps = _forward_gram(GG, Gy, yy, groups, CV_Z, MAX_GROUPS, alike, list(start), list(candidates))
+    freq = _stability_gram(GG, Gy, yy, groups, alike=alike, start=list(start), candidates=list(candidates))
+    return [g for g in sel if freq[g] >= STABILITY], steps, freq
+
+
+def _form_stage(p, run, d, Y, groups, group_names, stable, alike, key, steps):
+    """Hinges of the stable groups' states, screened on the simulator (one batch, the same seeds: common random numbers)
+    and entered by the selection's own rule on top of them: leave-one-event-out CV_Z standard errors, stable in
+    STABILITY of the event resamples, at most MAX_GROUPS in all; the knots of one side of a state are alternatives
+    (one of them enters; they share their votes). -> (design, groups, group names, alike, [added group], knots {term
+    name: knot}, report) or None (no state to refine)."""
+    states = []
+    for g in stable:
+        for c in groups[g]:
+            states += [v for v in candidate_terms.hinge_states_of(d.terms[c]) if v not in states]
+    if not states:
+        return None
+    knots = candidate_terms.hinge_knots(_state_samples(p, run, states))
+    hinges = [t for t in candidate_terms.hinges_for(states) if t.knot in knots]
+    if not hinges:
+        return None
+    knot_of = {t.name: knots[t.knot][candidate_terms.hinge_slot(t)] for t in hinges}
+    p.base = {**p.base, **{candidate_terms.knot_key(t): knot_of[t.name] for t in hinges}}
+    for t in hinges:
+        key[t.name] = f"{t.name}.{candidate_terms.coefficient_name(t)}"
+        steps[t.name] = candidate_terms.BALANCES[t.balance][1]
+    preds = _evaluate_each(p, [{}] + [{key[t.name]: float(steps[t.name])} for t in hinges])
+    if preds[0] is None:
+        return None
+    S = np.stack([np.zeros_like(preds[0]) if preds[j + 1] is None else (preds[j + 1] - preds[0]) / steps[t.name]
+                  for j, t in enumerate(hinges)], axis=1)
+    e = d.G.shape[0]
+    Gh = p.project(S)
+    m0 = d.G.shape[-1]
+    d2 = Design(list(d.terms) + hinges, np.concatenate([d.G, np.broadcast_to(Gh[None], (e,) + Gh.shape)], axis=-1),
+                np.concatenate([d.mean_cols, S], axis=-1), {**d.groups, **{t.group: [m0 + j] for j, t in
+                                                                            enumerate(hinges)}}, d.angles)
+    g0 = len(groups)
+    groups2 = list(groups) + [[m0 + j] for j in range(len(hinges))]
+    names2 = list(group_names) + [t.group for t in hinges]
+    alike2 = [list(a) for a in alike] + hinge_alike(hinges, g0)
+    cand = list(range(g0, len(groups2)))
+    added, steps_sel, freq = select_on_top(d2.G, Y, groups2, list(stable), cand, alike2)
+    report = {"states": states, "knots": knots, "screened": len(hinges),
+              "selection": [{"group": names2[g], "held_out_gain": m, "z": z} for g, m, z in steps_sel],
+              "stability": {names2[g]: float(freq[g]) for g in cand if freq[g] > 0},
+              "added": [names2[g] for g in added]}
+    return d2, groups2, names2, alike2, added, knot_of, report
+
+
 def propose(run, up, verdict: str) -> Proposal | None:
     """The proposal for a diagnosis (diagnose.Run and Update, its verdict); None when the verdict is not one of
     VERDICTS (a consistent model or a catalogue effect that explains: nothing to propose). Its ``cpu_seconds`` holds
@@ -503,83 +628,102 @@ def _propose(run, up, verdict: str) -> Proposal | None:
         out.cpu_seconds = time.process_time() - t0
         out.simulated_sets = p.n_sets_simulated - n_before
         return out
-    cols = [c for g in stable for c in groups[g]]
-    # 4. the coefficients on every event (least squares of the per-event design), their uncertainty the jackknife
-    # over the events (the leave-one-out fits the selection made); an angle-locked pair's response re-estimated at
-    # its fitted amplitude (a secant: a torque of the working torque's size changes the crossing it acts on, its
-    # response is not the tangent's at amplitude 0: measured, 8 N*m on the wheel fitted as 5.4 on the tangent)
-    coef, unc = _fit(GG, Gy, cols)
-    angles = d.angles
-    entries = np.asarray(p.events.entries)
-    for _ in range(SECANT_ITERATIONS):
-        moved = False
-        for g in stable:
-            sin_t = d.terms[groups[g][0]]
-            if not (sin_t.simulated and sin_t.harmonic is not None) or sin_t.harmonic[0] not in angles:
-                continue
-            i0 = cols.index(groups[g][0])
-            amp = float(np.hypot(coef[i0], coef[i0 + 1]))
-            if amp < 2.0 * steps[sin_t.name]:
-                continue
-            resp = event_design.angle_responses(p, [sin_t], {sin_t.name: amp}, p.project).get(sin_t.name)
-            if resp is None:
-                continue
-            var, k, _ = sin_t.harmonic
-            psi = k * angles[var][entries]
-            d.G[..., groups[g]] = event_design.angle_columns(resp, psi, p.project)
-            d.mean_cols[:, groups[g]] = event_design.angle_columns(resp, psi).mean(axis=0)
-            moved = True
-        if not moved:
-            break
-        GG, Gy, yy = gram(d.G, Y)
-        before = coef
-        coef, unc = _fit(GG, Gy, cols)
-        if np.max(np.abs(coef - before)) < SECANT_TOLERANCE * max(float(np.max(np.abs(coef))), 1e-12):
-            break
-    # a group whose fitted coefficients are all within MIN_COEFFICIENT_Z of their uncertainty from 0 leaves the
-    # proposal (it entered beside a term whose response was still the tangent's)
-    keep = [g for g in stable if np.max(np.abs(coef[[cols.index(c) for c in groups[g]]])
-                                        / np.maximum(unc[[cols.index(c) for c in groups[g]]], 1e-300)) >= MIN_COEFFICIENT_Z]
-    if keep and len(keep) < len(stable):
-        stable = keep
+    # 3b. the form: hinges of the chosen groups' own states (a cap, a deadband, a limit), on top of them, by the same rule
+    knot_of: dict = {}
+    form_added: list = []
+    if candidate_terms.HINGES_IN_PROPOSAL and len(stable) < MAX_GROUPS:
+        form = _form_stage(p, run, d, Y, groups, group_names, stable, alike, key, steps)
+        if form is not None:
+            d, groups, group_names, alike, form_added, knot_of, out.form = form
+            stable = list(stable) + form_added
+            GG, Gy, yy = gram(d.G, Y)
+    # the form stage refines a law, it must not cost one: when the fitted terms with the hinges stop the model crossing
+    # its backlash (a hinge fitted past the mechanism it stands for: measured, the od6 torque limiter), the law is
+    # fitted again without them (the design without the hinges' columns)
+    attempts = [stable] + ([[g for g in stable if g not in form_added]] if form_added else [])
+    for attempt, stable in enumerate(attempts):
         cols = [c for g in stable for c in groups[g]]
+        # 4. the coefficients on every event (least squares of the per-event design), their uncertainty the jackknife
+        # over the events (the leave-one-out fits the selection made); an angle-locked pair's response re-estimated at
+        # its fitted amplitude (a secant: a torque of the working torque's size changes the crossing it acts on, its
+        # response is not the tangent's at amplitude 0: measured, 8 N*m on the wheel fitted as 5.4 on the tangent)
         coef, unc = _fit(GG, Gy, cols)
-    chosen = [d.terms[c] for c in cols]
-    lo = np.array([-candidate_terms.BALANCES[t.balance][2] for t in chosen])
-    coef = np.clip(coef, lo * 0.999, -lo * 0.999)
-    # the model after: the plain terms simulated at their fitted values; a term locked to an angle by its change of
-    # the recorded events' mean at their own angles (the model's runs cross their entries at other angles: their
-    # average of it is another draw of the same noise); the recorded ones by their linear change
-    # -- except in the spectral shape, a power: there the angle-locked terms are simulated at their fitted values too
-    # (the shape does not depend on the phase; its change is of second order in the amplitude, which no secant at
-    # amplitude 0 holds)
-    rec_cols = [i for i, t in enumerate(chosen) if not t.simulated]
-    harm_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is not None]
-    plain_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is None]
+        angles = d.angles
+        entries = np.asarray(p.events.entries)
+        for _ in range(SECANT_ITERATIONS):
+            moved = False
+            for g in stable:
+                sin_t = d.terms[groups[g][0]]
+                if not (sin_t.simulated and sin_t.harmonic is not None) or sin_t.harmonic[0] not in angles:
+                    continue
+                i0 = cols.index(groups[g][0])
+                amp = float(np.hypot(coef[i0], coef[i0 + 1]))
+                if amp < 2.0 * steps[sin_t.name]:
+                    continue
+                resp = event_design.angle_responses(p, [sin_t], {sin_t.name: amp}, p.project).get(sin_t.name)
+                if resp is None:
+                    continue
+                var, k, _ = sin_t.harmonic
+                psi = k * angles[var][entries]
+                d.G[..., groups[g]] = event_design.angle_columns(resp, psi, p.project)
+                d.mean_cols[:, groups[g]] = event_design.angle_columns(resp, psi).mean(axis=0)
+                moved = True
+            if not moved:
+                break
+            GG, Gy, yy = gram(d.G, Y)
+            before = coef
+            coef, unc = _fit(GG, Gy, cols)
+            if np.max(np.abs(coef - before)) < SECANT_TOLERANCE * max(float(np.max(np.abs(coef))), 1e-12):
+                break
+        # a group whose fitted coefficients are all within MIN_COEFFICIENT_Z of their uncertainty from 0 leaves the
+        # proposal (it entered beside a term whose response was still the tangent's)
+        keep = [g for g in stable if np.max(np.abs(coef[[cols.index(c) for c in groups[g]]])
+                                            / np.maximum(unc[[cols.index(c) for c in groups[g]]], 1e-300)) >= MIN_COEFFICIENT_Z]
+        if keep and len(keep) < len(stable):
+            stable = keep
+            cols = [c for g in stable for c in groups[g]]
+            coef, unc = _fit(GG, Gy, cols)
+        chosen = [d.terms[c] for c in cols]
+        lo = np.array([-candidate_terms.BALANCES[t.balance][2] for t in chosen])
+        coef = np.clip(coef, lo * 0.999, -lo * 0.999)
+        # the model after: the plain terms simulated at their fitted values; a term locked to an angle by its change of
+        # the recorded events' mean at their own angles (the model's runs cross their entries at other angles: their
+        # average of it is another draw of the same noise); the recorded ones by their linear change
+        # -- except in the spectral shape, a power: there the angle-locked terms are simulated at their fitted values too
+        # (the shape does not depend on the phase; its change is of second order in the amplitude, which no secant at
+        # amplitude 0 holds)
+        rec_cols = [i for i, t in enumerate(chosen) if not t.simulated]
+        harm_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is not None]
+        plain_cols = [i for i, t in enumerate(chosen) if t.simulated and t.harmonic is None]
 
-    def model_after(coef):
-        sim_set = {key[chosen[i].name]: float(coef[i]) for i in plain_cols}
-        harm_set = {key[chosen[i].name]: float(coef[i]) for i in harm_cols}
-        sets_after = ([sim_set] if sim_set else []) + ([{**sim_set, **harm_set}] if harm_set else [])
-        ens = p.evaluate(sets_after) if sets_after else None
-        pred = p.pred_of(ens, 0) if sim_set else ref.copy()
-        if rec_cols:
-            pred = pred + d.mean_cols[:, [cols[i] for i in rec_cols]] @ coef[rec_cols]
-        if harm_cols:
-            lined_up = d.mean_cols[:, [cols[i] for i in harm_cols]] @ coef[harm_cols]
-            lined_up[p.spectral_slice] = 0.0
-            pred = pred + lined_up
-            sp = p.spectral_slice
-            pred[sp] += p.pred_of(ens, len(sets_after) - 1)[sp] - (p.pred_of(ens, 0)[sp] if sim_set else ref[sp])
-        return pred
-    try:
-        pred_after = model_after(coef)
-    except ValueError as error:        # the terms at these values stop the drive crossing its backlash
-        out.reason = ("the fitted terms stop the model crossing its backlash "
-                      f"({str(error).splitlines()[0]}): nothing proposed")
-        out.cpu_seconds = time.process_time() - t0
-        out.simulated_sets = p.n_sets_simulated - n_before
-        return out
+        def model_after(coef):
+            sim_set = {key[chosen[i].name]: float(coef[i]) for i in plain_cols}
+            harm_set = {key[chosen[i].name]: float(coef[i]) for i in harm_cols}
+            sets_after = ([sim_set] if sim_set else []) + ([{**sim_set, **harm_set}] if harm_set else [])
+            ens = p.evaluate(sets_after) if sets_after else None
+            pred = p.pred_of(ens, 0) if sim_set else ref.copy()
+            if rec_cols:
+                pred = pred + d.mean_cols[:, [cols[i] for i in rec_cols]] @ coef[rec_cols]
+            if harm_cols:
+                lined_up = d.mean_cols[:, [cols[i] for i in harm_cols]] @ coef[harm_cols]
+                lined_up[p.spectral_slice] = 0.0
+                pred = pred + lined_up
+                sp = p.spectral_slice
+                pred[sp] += p.pred_of(ens, len(sets_after) - 1)[sp] - (p.pred_of(ens, 0)[sp] if sim_set else ref[sp])
+            return pred
+        try:
+            pred_after = model_after(coef)
+            break
+        except ValueError as error:        # the terms at these values stop the drive crossing its backlash
+            if attempt + 1 < len(attempts):
+                out.form["dropped"] = ("the fitted terms with the hinges stop the model crossing its backlash "
+                                       f"({str(error).splitlines()[0]}): fitted again without them")
+                continue
+            out.reason = ("the fitted terms stop the model crossing its backlash "
+                          f"({str(error).splitlines()[0]}): nothing proposed")
+            out.cpu_seconds = time.process_time() - t0
+            out.simulated_sets = p.n_sets_simulated - n_before
+            return out
     # the plain terms' coefficients refined on the simulator (Gauss-Newton on the events' mean in the views' metric,
     # the tangent columns as the Jacobian): the per-event fit holds each term's change at its small screening step, a
     # term of the balance's own size bends it (a brake that slows the crossing it acts on). A step is kept only when
@@ -609,8 +753,9 @@ def _propose(run, up, verdict: str) -> Proposal | None:
     i = 0
     for g in stable:
         n = len(groups[g])
-        pieces.append(candidate_terms.ProposedPiece(tuple(candidate_terms.with_center(d.terms[c], centers.get(
-                                                        d.terms[c].center, 0.0)) for c in groups[g]),
+        pieces.append(candidate_terms.ProposedPiece(tuple(candidate_terms.with_knot(candidate_terms.with_center(
+                                                        d.terms[c], centers.get(d.terms[c].center, 0.0)),
+                                                        knot_of.get(d.terms[c].name, 0.0)) for c in groups[g]),
                                                     tuple(float(v) for v in coef[i:i + n]),
                                                     tuple(float(u) for u in unc[i:i + n]),
                                                     tuple(d.terms[groups[a][0]] for a in alike[g] if a != g)))
