@@ -100,7 +100,8 @@ def _base_from_diagnosis(args, conditions, src):
 
 def _take_proposal(diag, src, adds, model, output):
     """(additions, model, note) with a diagnosis's proposed term: its plug-in file written beside ``output`` and put
-    into the model's effect files; the additions its proposal was fitted on top of, and the term at its values."""
+    into the model's effect files; the additions its proposal was fitted on top of (at their values refitted jointly
+    with the term, when the proposal holds them), and the term at its values."""
     # deferred: backlash_monitor.workbench.diagnosis_result costs ~170 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.workbench.diagnosis_result import Addition
     prop = diag.get("proposal")
@@ -116,6 +117,11 @@ def _take_proposal(diag, src, adds, model, output):
     model = copy.copy(model)
     model.effect_files = list(model.effect_files) + [path.resolve()]
     kept = [a for a in adds if a.effect in prop.get("on_top_of", []) or a.candidate in prop.get("on_top_of", [])]
+    # the partial explanation at its values refitted jointly with the term (proposal._joint_refit), not diagnose's
+    # values of it alone
+    joint, joint_unc = prop.get("on_top_values") or {}, prop.get("on_top_uncertainty") or {}
+    kept = [Addition(a.effect, a.candidate, dict(joint[a.candidate]), dict(joint_unc.get(a.candidate, {})), a.role,
+                     a.evidence) if a.candidate in joint else a for a in kept]
     for effect, values in prop["plugin_values"].items():
         kept.append(Addition(effect, effect, dict(values), {}, "discovery", "proposal"))
     return kept, model, f"proposed term added (--accept-proposal): {prop['law']}; its plug-in file {path}"
