@@ -242,8 +242,9 @@ SECANT_TOLERANCE = 0.05  # stop when no coefficient moves by more than this shar
 MIN_COEFFICIENT_Z = 2.0  # a proposed group's largest coefficient over its jackknife uncertainty, at least
 REFIT_ITERATIONS = 2     # Gauss-Newton steps of the plain terms' coefficients on the simulator after the per-event fit
 JOINT_REFIT = True       # after a partial verdict: the partial effect's parameters refitted jointly with the terms (below)
-JOINT_ITERATIONS = 2     # its Gauss-Newton steps; each one simulated set (+ the partial's tangents when diagnose's fit
-                         # has none: one set per parameter), each kept only when it lowers the residual
+JOINT_ITERATIONS = 2     # its Gauss-Newton steps; each one simulated set, or up to three when refused (the step halved
+                         # twice), + the partial's tangents when diagnose's fit has none (one set per parameter); a step
+                         # is kept only when it lowers the residual
 
 
 def _fit(GG, Gy, cols) -> tuple:
@@ -275,24 +276,32 @@ def _evaluate_each(p, sets) -> list:
     return preds
 
 
-def kept_gauss_newton(x0, lo, hi, J: np.ndarray, residual_at, r0: np.ndarray, iterations: int) -> tuple:
+def kept_gauss_newton(x0, lo, hi, J: np.ndarray, residual_at, r0: np.ndarray, iterations: int,
+                      scales=(1.0, 0.5, 0.25)) -> tuple:
     """Bounded Gauss-Newton steps of x on a fixed Jacobian J (d prediction / d x, in the metric of the residual
     r = target - prediction), each kept only when the residual it leaves, ``residual_at(x)`` (which may raise
-    ValueError: no prediction there), is smaller than the one kept: the residual never grows. -> (x, r, |r|^2, the
-    trials' |r|^2)."""
+    ValueError: no prediction there), is smaller than the one kept; a step refused is tried again shorter (``scales``
+    of it) before the iterations stop: the residual never grows. -> (x, r, |r|^2, the trials' |r|^2, None where
+    ``residual_at`` raised)."""
     x, r = np.asarray(x0, dtype=float).copy(), np.asarray(r0, dtype=float)
     norm, trials = float(r @ r), []
     for _ in range(iterations):
-        trial = np.clip(x + np.linalg.lstsq(J, r, rcond=None)[0], lo, hi)
-        try:
-            r_trial = np.asarray(residual_at(trial), dtype=float)
-        except ValueError:
+        step = np.linalg.lstsq(J, r, rcond=None)[0]
+        kept = False
+        for scale in scales:
+            trial = np.clip(x + scale * step, lo, hi)
+            try:
+                r_trial = np.asarray(residual_at(trial), dtype=float)
+            except ValueError:
+                trials.append(None)
+                continue
+            n_trial = float(r_trial @ r_trial)
+            trials.append(n_trial)
+            if n_trial < norm:
+                x, r, norm, kept = trial, r_trial, n_trial, True
+                break
+        if not kept:
             break
-        n_trial = float(r_trial @ r_trial)
-        trials.append(n_trial)
-        if n_trial >= norm:
-            break
-        x, r, norm = trial, r_trial, n_trial
     return x, r, norm, trials
 
 
@@ -646,6 +655,8 @@ def _joint_refit(p, run, fits, coef, cols, plain_cols, lo, d, pred_after, model_
 
     r0 = p.project(p.residual(pred_after))
     x_start = np.concatenate([x0, coef[plain_cols]])
+    first_step = np.linalg.lstsq(J, r0, rcond=None)[0]
+    report["first_step"] = dict(zip(names + [f"term {i}" for i in range(len(plain))], map(float, first_step)))
     x, _, norm, trials = kept_gauss_newton(x_start, lo_all, hi_all, J, residual_at, r0, JOINT_ITERATIONS)
     moved = tuple(x) in preds
     r_ref = p.project(p.residual(ref))

@@ -67,7 +67,7 @@ def test_the_joint_refit_never_raises_the_residual_with_a_wrong_tangent_or_a_fai
     def fails(x):
         raise ValueError("no onset window")
     x, r, norm, trials = proposal.kept_gauss_newton(x0, [-10, -10], [10, 10], np.stack([u, v], axis=1), fails, r0, 3)
-    assert np.array_equal(x, x0) and norm == pytest.approx(float(r0 @ r0)) and trials == []
+    assert np.array_equal(x, x0) and norm == pytest.approx(float(r0 @ r0)) and trials == [None] * 3
 
 
 def test_add_effect_writes_the_partial_effect_at_the_values_refitted_with_the_proposed_term(tmp_path, capsys):
@@ -93,12 +93,12 @@ def test_add_effect_writes_the_partial_effect_at_the_values_refitted_with_the_pr
     path.write_text(json.dumps(d))
     out = tmp_path / "v2.yaml"
     assert main(["add-effect", str(path), "-o", str(out), "--accept-proposal", "--accept-partial"]) == 0
-    cfg = load_model(out).plant_config()
-    assert cfg.effect_parameter("working_resistance_drift", "relative_change") == pytest.approx(joint)
+    f0 = load_model(None).plant_config().load.working_resistance_N
+    # a drift is written as the new nominal value: F0 (1 + change)
+    assert load_model(out).plant_config().load.working_resistance_N == pytest.approx(f0 * (1 + joint))
     # without the joint values (a proposal of before), diagnose's value of the partial alone
     del prop["on_top_values"], prop["on_top_uncertainty"]
     path.write_text(json.dumps(d))
     out3 = tmp_path / "v3.yaml"
     assert main(["add-effect", str(path), "-o", str(out3), "--accept-proposal", "--accept-partial"]) == 0
-    assert load_model(out3).plant_config().effect_parameter("working_resistance_drift",
-                                                            "relative_change") == pytest.approx(alone)
+    assert load_model(out3).plant_config().load.working_resistance_N == pytest.approx(f0 * (1 + alone))
