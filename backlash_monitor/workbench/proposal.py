@@ -658,7 +658,7 @@ def _joint_refit(p, run, fits, coef, cols, plain_cols, lo, d, pred_after, model_
     first_step = np.linalg.lstsq(J, r0, rcond=None)[0]
     report["first_step"] = dict(zip(names + [f"term {i}" for i in range(len(plain))], map(float, first_step)))
     x, _, norm, trials = kept_gauss_newton(x_start, lo_all, hi_all, J, residual_at, r0, JOINT_ITERATIONS)
-    moved = tuple(x) in preds
+    moved = norm < float(r0 @ r0)
     r_ref = p.project(p.residual(ref))
     report.update({"residual_before": float(r0 @ r0), "residual_after": norm, "trials": trials, "moved": moved,
                    "explained_before": float(p.explained_share(r0, r_ref)),
@@ -932,7 +932,7 @@ def _propose(run, up, verdict: str) -> Proposal | None:
     out.views_after = after.to_json()
     out.plugin_source, out.plugin_values = src, values
     out.joint = joint
-    if joint.get("values_after"):
+    if joint.get("moved"):        # the partial explanation's values beside the terms: what --accept-proposal writes
         out.on_top_values = joint["values_after"]
         out.on_top_uncertainty = joint["uncertainty"]
     also = "".join(x.alike_text() for x in pieces)
