@@ -70,7 +70,7 @@ def test_the_joint_refit_never_raises_the_residual_with_a_wrong_tangent_or_a_fai
     assert np.array_equal(x, x0) and norm == pytest.approx(float(r0 @ r0)) and trials == [None] * 3
 
 
-def test_add_effect_writes_the_partial_effect_at_the_values_refitted_with_the_proposed_term(tmp_path, capsys):
+def test_add_effect_writes_the_partial_effect_at_the_values_refitted_with_the_proposed_term(tmp_path):
     from backlash_monitor.__main__ import main
     from backlash_monitor.workbench.diagnosis_result import Conditions
     from backlash_monitor.workbench.model import load_model
@@ -92,7 +92,8 @@ def test_add_effect_writes_the_partial_effect_at_the_values_refitted_with_the_pr
     path = tmp_path / "d.json"
     path.write_text(json.dumps(d))
     out = tmp_path / "v2.yaml"
-    assert main(["add-effect", str(path), "-o", str(out), "--accept-proposal", "--accept-partial"]) == 0
+    # the partial the term sits on goes in with it (no --accept-partial needed: the term was fitted beside it)
+    assert main(["add-effect", str(path), "-o", str(out), "--accept-proposal"]) == 0
     f0 = load_model(None).plant_config().load.working_resistance_N
     # a drift is written as the new nominal value: F0 (1 + change)
     assert load_model(out).plant_config().load.working_resistance_N == pytest.approx(f0 * (1 + joint))
@@ -100,5 +101,33 @@ def test_add_effect_writes_the_partial_effect_at_the_values_refitted_with_the_pr
     del prop["on_top_values"], prop["on_top_uncertainty"]
     path.write_text(json.dumps(d))
     out3 = tmp_path / "v3.yaml"
-    assert main(["add-effect", str(path), "-o", str(out3), "--accept-proposal", "--accept-partial"]) == 0
+    assert main(["add-effect", str(path), "-o", str(out3), "--accept-proposal"]) == 0
     assert load_model(out3).plant_config().load.working_resistance_N == pytest.approx(f0 * (1 + alone))
+
+
+@pytest.mark.heavy      # make test-all (CI time); ~2.5 min CPU
+@pytest.mark.slow
+def test_a_torque_limiters_term_refitted_with_the_drift_it_sits_on_gives_back_what_the_drift_took():
+    """foreign_drives' torque limiter (the sixth development half: the clutch's contact torque capped at 40 N·m).
+    diagnose calls it partial, a working-resistance drift fitted alone standing in for part of it (measured +0.60).
+    The true drive has no drift: with the proposed clutch term in, the joint refit moves the drift back toward 0 and
+    lowers the events' mean residual; it never raises it."""
+    from foreign_drives.drive import make_recording
+    from foreign_drives.suites import suite
+
+    from backlash_monitor.workbench.diagnose import diagnose
+    from backlash_monitor.workbench.measurement import Measurement
+    from backlash_monitor.workbench.model import load_model
+    spec = next(s for s in suite("outside_dev6") if s.label == "od6_clutch_torque_limiter")
+    rec = make_recording(spec)
+    meas = Measurement("foreign:limiter", rec.sample_period_s, {k: np.asarray(v) for k, v in rec.signals.items()})
+    d = diagnose(meas, load_model(None, width_m=spec.width_m, eta_k=spec.eta_k, n1=spec.n1)).to_json()
+    prop = d["proposal"]
+    assert prop and prop["proposed"] and prop["on_top_of"] == ["working_resistance_drift"], d["message"]
+    joint = prop["joint_refit"]
+    assert joint["residual_after"] <= joint["residual_before"]
+    assert joint["moved"], joint
+    before = joint["values_before"]["working_resistance_drift"]["relative_change"]
+    after = prop["on_top_values"]["working_resistance_drift"]["relative_change"]
+    assert 0.0 <= after < before, (before, after)
+    assert prop["explained_fraction"] > joint["explained_before"]
