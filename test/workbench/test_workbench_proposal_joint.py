@@ -105,7 +105,7 @@ def test_add_effect_writes_the_partial_effect_at_the_values_refitted_with_the_pr
     assert load_model(out3).plant_config().load.working_resistance_N == pytest.approx(f0 * (1 + alone))
 
 
-@pytest.mark.heavy      # make test-all (CI time); ~2.5 min CPU
+@pytest.mark.heavy      # make test-all (CI time); ~2 min CPU
 @pytest.mark.slow
 def test_a_torque_limiters_term_refitted_with_the_drift_it_sits_on_gives_back_what_the_drift_took():
     """foreign_drives' torque limiter (the sixth development half: the clutch's contact torque capped at 40 N·m).
