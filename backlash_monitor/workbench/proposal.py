@@ -242,6 +242,9 @@ SECANT_TOLERANCE = 0.05  # stop when no coefficient moves by more than this shar
 MIN_COEFFICIENT_Z = 2.0  # a proposed group's largest coefficient over its jackknife uncertainty, at least
 REFIT_ITERATIONS = 2     # Gauss-Newton steps of the plain terms' coefficients on the simulator after the per-event fit
 JOINT_REFIT = True       # after a partial verdict: the partial effect's parameters refitted jointly with the terms (below)
+PAIR_VARIANT = False     # a third selection variant after a partial verdict: on top of the partial explanation with its
+                         # tangent columns free in every held-out fit (a pair against a term alone); off: measured on
+                         # 30 Nov only on the rows of docs/workbench.md "The partial explanation refitted jointly"
 JOINT_ITERATIONS = 2     # its Gauss-Newton steps; each one simulated set, or up to three when refused (the step halved
                          # twice), + the partial's tangents when diagnose's fit has none (one set per parameter); a step
                          # is kept only when it lowers the residual
@@ -680,6 +683,28 @@ def _joint_refit(p, run, fits, coef, cols, plain_cols, lo, d, pred_after, model_
     return report, coef, pred_after
 
 
+def _pair_variant(p, run, up, d, Y, groups, alike):
+    """The selection on top of the partial explanation with its tangent columns (diagnose's forward differences,
+    shared by the events) free in every fit: the events' normal equations of the library extended by them, the
+    partial's columns a start group (not counted among the terms). -> (the held-out error's sum, [group], steps, the
+    extended normal equations for the stability), or None when a partial fit has no tangent."""
+    fits = _partial_fits(run, up)
+    if not fits or any(f.jacobian is None or np.shape(f.jacobian)[1] != len(f.values) for f in fits):
+        return None
+    J = p.project(np.hstack([np.asarray(f.jacobian, dtype=float) for f in fits]))       # (D, k)
+    Ge = _per_event(d.G, Y.shape[0])                                                      # (E, D, M)
+    E, _, M = Ge.shape
+    k = J.shape[1]
+    G_ext = np.concatenate([Ge, np.broadcast_to(J[None], (E,) + J.shape)], axis=2)
+    GG, Gy, yy = gram(G_ext, Y)
+    start = len(groups)
+    groups_ext = list(groups) + [list(range(M, M + k))]
+    alike_ext = list(alike) + [[start]]
+    sel, steps = _forward_gram(GG, Gy, yy, groups_ext, CV_Z, MAX_GROUPS + 1, alike_ext, [start])
+    cols = list(range(M, M + k)) + [c for g in sel for c in groups_ext[g]]
+    return float(cv_errors_gram(GG, Gy, yy, cols).sum()), sel, steps, (GG, Gy, yy, groups_ext, alike_ext, start)
+
+
 def _joint_text(joint: dict) -> str:
     """The partial values before and after the joint refit, in words."""
     parts = []
@@ -751,16 +776,33 @@ def _propose(run, up, verdict: str) -> Proposal | None:
         score = float(cv_errors_gram(GGv, Gyv, yyv, [c for g in selv for c in groups[g]]).sum())
         if best is None or (selv and score < best[0]):
             best = (score, Yv, refv, top, GGv, Gyv, yyv, selv, stepsv)
+    pair_note, pair_gram = None, None
+    if PAIR_VARIANT and on_top:
+        pair = _pair_variant(p, run, up, d, variants[0][0], groups, alike)
+        if pair is not None:
+            pair_note = {"score": pair[0], "selected": [group_names[g] for g in pair[1]],
+                         "scores_of_the_others": float(best[0])}
+            if pair[1] and pair[0] < best[0]:
+                GGv, Gyv, yyv = gram(d.G, variants[0][0])
+                best = (pair[0], variants[0][0], variants[0][1], on_top, GGv, Gyv, yyv, pair[1], pair[2])
+                pair_note["chosen"] = True
+                pair_gram = pair[3]
     _, Y, ref, top, GG, Gy, yy, sel, cv_steps = best
     replaced = [] if top else on_top
     if replaced:
         on_top = []
         p.base = {**p0.base, **center_sets}
-    freq = _stability_gram(GG, Gy, yy, groups, alike=alike)
+    if pair_gram is None:
+        freq = _stability_gram(GG, Gy, yy, groups, alike=alike)
+    else:       # the pair variant: the groups' stability with the partial's columns free in every resample
+        GGx, Gyx, yyx, groups_x, alike_x, start_x = pair_gram
+        freq = _stability_gram(GGx, Gyx, yyx, groups_x, alike=alike_x, start=[start_x])[:len(groups)]
     stab = {group_names[i]: float(freq[i]) for i in np.argsort(-freq) if freq[i] > 0}
     cv = [{"group": group_names[g], "held_out_gain": m, "z": z} for g, m, z in cv_steps]
     stable = _preferred(GG, Gy, yy, groups, [g for g in sel if freq[g] >= STABILITY], alike, d.terms)
     out = Proposal(False, "", stability=stab, cv=cv, on_top_of=on_top)
+    if pair_note is not None:
+        out.joint = {"pair_variant": pair_note}
     if not stable:
         out.reason = ("no candidate term lowers the held-out events' error stably: "
                       + (", ".join(f"{group_names[g]} selected in {freq[g]:.0%} of the resamples" for g in sel)
@@ -931,7 +973,7 @@ def _propose(run, up, verdict: str) -> Proposal | None:
     out.consistent = bool(after.consistent)
     out.views_after = after.to_json()
     out.plugin_source, out.plugin_values = src, values
-    out.joint = joint
+    out.joint = {**out.joint, **joint}
     if joint.get("moved"):        # the partial explanation's values beside the terms: what --accept-proposal writes
         out.on_top_values = joint["values_after"]
         out.on_top_uncertainty = joint["uncertainty"]
