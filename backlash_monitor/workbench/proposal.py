@@ -243,8 +243,11 @@ MIN_COEFFICIENT_Z = 2.0  # a proposed group's largest coefficient over its jackk
 REFIT_ITERATIONS = 2     # Gauss-Newton steps of the plain terms' coefficients on the simulator after the per-event fit
 JOINT_REFIT = True       # after a partial verdict: the partial effect's parameters refitted jointly with the terms (below)
 PAIR_VARIANT = False     # a third selection variant after a partial verdict: on top of the partial explanation with its
-                         # tangent columns free in every held-out fit (a pair against a term alone); off: measured on
-                         # 30 Nov only on the rows of docs/workbench.md "The partial explanation refitted jointly"
+                         # tangent columns free in every held-out fit (a pair against a term alone). Off: measured
+                         # (30 Nov, 6dbd39a) on the three rows proposed instead of their partial, it lost the held-out
+                         # error to "instead" on each (od6 PWM brake 5604 vs 4427, idler rattle 998 vs 971, os7
+                         # hold-down 1281 vs 1243): nothing changed (docs/workbench.md "The partial explanation
+                         # refitted jointly")
 JOINT_ITERATIONS = 2     # its Gauss-Newton steps; each one simulated set, or up to three when refused (the step halved
                          # twice), + the partial's tangents when diagnose's fit has none (one set per parameter); a step
                          # is kept only when it lowers the residual
