@@ -100,9 +100,10 @@ def _base_from_diagnosis(args, conditions, src):
 
 def _take_proposal(diag, src, adds, model, output):
     """(additions, model, note) with a diagnosis's proposed term: its plug-in file written beside ``output`` and put
-    into the model's effect files; the additions its proposal was fitted on top of, and the term at its values."""
+    into the model's effect files; the additions its proposal was fitted on top of (at their values refitted jointly
+    with the term, when the proposal holds them), and the term at its values."""
     # deferred: backlash_monitor.workbench.diagnosis_result costs ~170 ms at start-up (python -X importtime, 29 Nov); --help imports every command
-    from backlash_monitor.workbench.diagnosis_result import Addition
+    from backlash_monitor.workbench.diagnosis_result import ROLE_SECOND, Addition
     prop = diag.get("proposal")
     if not isinstance(prop, dict) or not prop.get("proposed"):
         why = prop.get("reason") if isinstance(prop, dict) else "its verdict is not partial or nothing_explains"
@@ -116,6 +117,12 @@ def _take_proposal(diag, src, adds, model, output):
     model = copy.copy(model)
     model.effect_files = list(model.effect_files) + [path.resolve()]
     kept = [a for a in adds if a.effect in prop.get("on_top_of", []) or a.candidate in prop.get("on_top_of", [])]
+    # the partial explanation the term was fitted on top of is part of the proposal (the term without it is another
+    # model than the one fitted: it goes in without --accept-partial), at its values refitted jointly with the term
+    # (proposal._joint_refit) where the proposal holds them, else at diagnose's values of it alone
+    joint, joint_unc = prop.get("on_top_values") or {}, prop.get("on_top_uncertainty") or {}
+    kept = [Addition(a.effect, a.candidate, dict(joint.get(a.candidate, a.parameters)),
+                     dict(joint_unc.get(a.candidate, a.uncertainty)), ROLE_SECOND, a.evidence) for a in kept]
     for effect, values in prop["plugin_values"].items():
         kept.append(Addition(effect, effect, dict(values), {}, "discovery", "proposal"))
     return kept, model, f"proposed term added (--accept-proposal): {prop['law']}; its plug-in file {path}"
