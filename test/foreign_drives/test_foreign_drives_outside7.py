@@ -4,7 +4,7 @@ memory kinds, the development laws checked on the drive's own balances and signa
 recorded, noise-free states: the product, the latch, the attraction, the timer, the gain, the window, the median), every
 sealed mechanism acting in its recorded balance only, the suites (made, written, deterministic, each mechanism row
 visible above the criterion its strength was set by, but the one row its module says is below it), ``forms``
-withholding the sealed laws, and the outside bench's set 7 (its sealed half the unspent one).
+withholding the sealed laws, and the outside bench's set 7 (its sealed half run once, 30 Nov: spent).
 
 This file names the sealed mechanisms only through the registry and the suite; it prints and states no sealed law."""
 from __future__ import annotations
