@@ -84,6 +84,13 @@ def unit_of(signal: str) -> str:
     return ""
 
 
+def _share_text(count: int, samples: int) -> str:
+    """'4.1 % of samples'; a share that one decimal would print as 0.0 % as the count ('12 of 200000 samples'): a
+    fault found is never said to be in 0.0 % of the samples."""
+    share = 100.0 * count / samples if samples else 0.0
+    return f"{share:.1f} % of samples" if share >= 0.05 else f"{count} of {samples} samples"
+
+
 @dataclass(frozen=True)
 class SignalSaturation:
     """One signal's count: ``samples`` looked at, ``at_rail`` of them at a rail (in ``runs`` runs of
@@ -123,11 +130,11 @@ class SignalSaturation:
         """One line per fault ('' when clean): the rail first, then a stuck stretch."""
         parts = []
         if self.at_rail:
-            parts.append(f"{self.signal} at its rail ({self.rails_text()}) in {100 * self.rail_fraction:.1f} % "
-                         f"of samples: the {sensor_of(self.signal)}'s range is too small")
+            parts.append(f"{self.signal} at its rail ({self.rails_text()}) in {_share_text(self.at_rail, self.samples)}: "
+                         f"the {sensor_of(self.signal)}'s range is too small")
         if self.stuck:
             value = "" if self.stuck_value is None else f" at {self.stuck_value:.4g} {unit_of(self.signal)}".rstrip()
-            parts.append(f"{self.signal} stuck{value} in {100 * self.stuck_fraction:.1f} % of samples (one value "
+            parts.append(f"{self.signal} stuck{value} in {_share_text(self.stuck, self.samples)} (one value "
                          f"repeated): a dead {sensor_of(self.signal)} or a broken wire")
         return "; ".join(parts)
 

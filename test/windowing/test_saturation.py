@@ -178,3 +178,13 @@ def test_settings_come_from_the_yaml():
     assert s == SaturationSettings()
     with pytest.raises(ValueError, match="rail_min_run_samples"):
         SaturationSettings(rail_min_run_samples=0)
+
+
+def test_a_rail_hit_on_a_few_samples_is_said_as_their_count_never_as_zero_percent():
+    """A handful of clipped samples in a long record is a fault found: its share printed at one decimal would read
+    '0.0 %' (measured on an auto-ranging a1 of the eighth sealed set), so the count is said instead."""
+    from backlash_monitor.windowing.saturation import SignalSaturation
+    few = SignalSaturation("a1", samples=200_000, at_rail=12, runs=3, upper_rail=166.0, lower_rail=-166.0)
+    assert "in 12 of 200000 samples: the accelerometer's range is too small" in few.message()
+    many = SignalSaturation("a1", samples=200_000, at_rail=8_200, runs=40, upper_rail=166.0, lower_rail=-166.0)
+    assert "in 4.1 % of samples" in many.message()
