@@ -5,6 +5,7 @@ each made once per file (every file keeps a cache of its own, on its own drive s
 file."""
 from __future__ import annotations
 
+import dataclasses
 import functools
 import importlib.util
 import json
@@ -133,3 +134,38 @@ def assert_set_suites(set_number: int, dev: dict, sealed: dict, dev_first_seed: 
     assert not {s.seed for s in dev_rows + sealed_rows} & {s.seed for s in others}
     labels = [s.label for s in dev_rows + sealed_rows + others]
     assert len(labels) == len(set(labels))
+
+
+# the visibility criterion each outside set's strengths were set by (docs/foreign_drives.md): the rms difference of
+# the recorded signal against the same spec without the mechanism over 4 s [m/s^2], five times NOISY_ADC16's sensor
+# noise
+CRITERION_M_S2 = {"a2": 0.05, "a1": 0.25}
+
+
+def assert_rows_visible(suite_names, below=frozenset()) -> None:
+    """The visibility simulation of docs/foreign_drives.md, repeated: each outside row of ``suite_names`` against the
+    same spec without its mechanism (same seed, its full length); a sensor row of a1 on a1, every other on a2. A row
+    its module leaves below the criterion (``below``, labels) is below it, and visible (above a tenth of it)."""
+    for s in [row for name in suite_names for row in suites.suite(name)]:
+        if s.kind != "outside":
+            continue
+        (e,) = s.effects
+        rec, base = make_recording(s), make_recording(dataclasses.replace(s, effects=(), kind="clean"))
+        f = F.get(e.form)
+        signal = "a1" if f.balance == "sensor" and "motor_acceleration" in f.depends_on else "a2"
+        rms = float(np.sqrt(np.mean((rec.signals[signal] - base.signals[signal]) ** 2)))
+        if s.label in below:
+            assert 0.1 * CRITERION_M_S2[signal] < rms < CRITERION_M_S2[signal], (s.label, signal, rms)
+        else:
+            assert rms >= CRITERION_M_S2[signal], (s.label, signal, rms)
+
+
+def assert_recordings_repeat(suite_names, rows=(0, 1, 5, 6)) -> None:
+    """A recording is the same each time it is made: ``rows`` of each suite, 0.4 s, made twice, equal sample by sample."""
+    for name in suite_names:
+        specs = suites.suite(name)
+        for s in [specs[i] for i in rows if i < len(specs)]:
+            short = dataclasses.replace(s, duration_s=0.4)
+            one, two = make_recording(short), make_recording(short)
+            for k in ("a1", "a2", "omega1", "omega2", "angle_difference"):
+                assert np.array_equal(one.signals[k], two.signals[k]), (s.label, k)
