@@ -25,6 +25,15 @@ from .shape import (A1_JUMP, A1_OFFSETS, A2_DROP, A2_OFFSETS, DEFAULT_RIDGE, SHA
 M3_N1 = 0.89                                      # eq. 14: M3 from the n1 = 0.89 group
 
 
+class NoTrainingWindows(ValueError):
+    """A condition of the training grid at which the simulated drive gave no onset window in any seed (a model whose
+    effects stop it crossing its backlash there)."""
+
+    def __init__(self, width_m: float, eta_k: float, n1: float):
+        super().__init__(f"no training windows for width {width_m} m, eta_k {eta_k}, n1 {n1}")
+        self.width_m, self.eta_k, self.n1 = width_m, eta_k, n1
+
+
 def pattern_windows(ws: WindowSet, signal: str, n1: float, widths_m=K2_WIDTHS_M,
                     eta_k: float = PATTERN_ETA_K) -> np.ndarray:
     """M2 for one n1: (6, L), row i = mean of the denoised onset windows of width i at eta_k, n1."""
@@ -33,7 +42,7 @@ def pattern_windows(ws: WindowSet, signal: str, n1: float, widths_m=K2_WIDTHS_M,
     for w in widths_m:
         sel = (np.isclose(ws.width_m, w)) & np.isclose(ws.col("eta_k"), eta_k) & np.isclose(ws.col("n1"), n1)
         if not sel.any():
-            raise ValueError(f"no training windows for width {w} m, eta_k {eta_k}, n1 {n1}")
+            raise NoTrainingWindows(w, eta_k, n1)
         rows.append(x[sel].mean(axis=0))
     return np.array(rows)
 

@@ -13,6 +13,7 @@ import sys
 import time
 
 from backlash_monitor.commands import UsageError
+from backlash_monitor.errors import RunFailure
 from backlash_monitor.commands._args import seed_list
 from backlash_monitor.commands.vocabulary import deprecated
 from backlash_monitor.commands._workbench import add_drive_arguments, drive_entry
@@ -143,7 +144,7 @@ def run(args) -> int:
     # deferred: backlash_monitor.classifier.patterns costs ~90 ms at start-up (python -X importtime, 29 Nov); --help imports every command
     from backlash_monitor.classifier.patterns import default_library_path
     # deferred: backlash_monitor.classifier.training costs ~720 ms at start-up (python -X importtime, 29 Nov); --help imports every command
-    from backlash_monitor.classifier.training import build_library
+    from backlash_monitor.classifier.training import NoTrainingWindows, build_library
     out = args.output or default_library_path(args.trigger)
     config = None
     models = []
@@ -164,11 +165,19 @@ def run(args) -> int:
             raise UsageError(str(exc)) from None
         config = configs[0] if len(configs) == 1 else configs
     t0 = time.time()
-    with tqdm(total=len(args.seeds), desc=f"simulate+window ({args.trigger})", unit="seed",
-              disable=args.no_progress, file=sys.stderr) as bar:
-        lib = build_library(args.trigger, args.seeds, epochs=args.epochs, l1=args.l1, l2=args.l2,
-                            ridge=args.ridge, duration_s=args.duration, progress=bar.update,
-                            window_offset=args.window_offset, config=config)
+    try:
+        with tqdm(total=len(args.seeds), desc=f"simulate+window ({args.trigger})", unit="seed",
+                  disable=args.no_progress, file=sys.stderr) as bar:
+            lib = build_library(args.trigger, args.seeds, epochs=args.epochs, l1=args.l1, l2=args.l2,
+                                ridge=args.ridge, duration_s=args.duration, progress=bar.update,
+                                window_offset=args.window_offset, config=config)
+    except NoTrainingWindows as error:
+        model = f"model {', '.join(str(m) for m in args.model)}" if args.model else "the default model"
+        raise RunFailure(f"{model} gave no onset window at width {error.width_m * 1e3:.2f} mm, eta_k {error.eta_k:g}, "
+                         f"n1 {error.n1:g} in any of its {len(args.seeds)} seeds of {args.duration:g} s: with its "
+                         "effects the simulated drive does not cross its backlash there (check the effects' values, "
+                         "e.g. an accepted proposal's or partial effect's, in the model file), or give more --seeds or "
+                         "a longer --duration; nothing written") from None
     check = None
     rejected = None
     if models and any(m.provenance.get("measurement") for m in models):

@@ -2,8 +2,10 @@
 1 for a failure while running, one range form naming the option, no traceback, no internal name; the folder of an
 output file must exist. bench/reliability.py (--modules inputs --inputs every) runs the long table over every
 command; these are its cases that once escaped."""
+import dataclasses
 import re
 
+import numpy as np
 import pytest
 
 from backlash_monitor.__main__ import main
@@ -71,3 +73,26 @@ def test_no_command_is_one_line_naming_the_commands(capsys):
     assert main([]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "give a command; allowed: add-effect, analyze" in err[0]
+
+
+def test_a_model_that_gives_no_training_windows_at_a_grid_condition_is_one_line_not_a_traceback(
+        tmp_path, capsys, monkeypatch):
+    """A model whose effects stop the simulated drive crossing its backlash at one condition of the training grid
+    (seen in the README's loop: an accepted proposal with the partial effect it sits on, at 7.5 mm and n1 0.89) leaves
+    that condition without a window: `train` says which condition, exits 1, and writes nothing."""
+    from backlash_monitor.classifier import training
+    pattern = training.pattern_windows
+
+    def no_windows_at_the_widest(ws, signal, n1, widths_m=training.K2_WIDTHS_M, **kw):
+        # the real windows, less the widest width's: as a model that never crosses its backlash there
+        keep = ~np.isclose(ws.width_m, max(widths_m))
+        return pattern(dataclasses.replace(ws, **{f.name: getattr(ws, f.name)[keep] for f in dataclasses.fields(ws)
+                                                  if np.ndim(getattr(ws, f.name)) and len(getattr(ws, f.name)) == len(keep)}),
+                       signal, n1, widths_m, **kw)
+    monkeypatch.setattr(training, "pattern_windows", no_windows_at_the_widest)
+    out = tmp_path / "lib.npz"
+    assert main(["train", "-o", str(out), "--seeds", "1000", "--duration", "0.5", "--no-progress"]) == 1
+    line = error_line(capsys)
+    widest_mm = 1e3 * max(training.K2_WIDTHS_M)
+    assert f"gave no onset window at width {widest_mm:.2f} mm" in line and "does not cross its backlash there" in line
+    assert not out.exists()
