@@ -329,13 +329,9 @@ def _partial_set(run, fits, x) -> dict:
 
 def _base_sets(run, up) -> tuple[dict, list]:
     """The parameter set of the partial explanation the terms go on top of (diagnose's update), and its names."""
-    sets, names = {}, []
-    for f in (getattr(up, "first", None), getattr(up, "second", None)):
-        if f is None or f.effect not in run.by_name:
-            continue
-        sets.update(plant_adapter.apply_values(run.by_name[f.effect], f.values))
-        names.append(f.effect)
-    return sets, names
+    fits = _partial_fits(run, up)
+    values = np.concatenate([np.asarray(f.values, dtype=float) for f in fits]) if fits else np.zeros(0)
+    return _partial_set(run, fits, values), [f.effect for f in fits]
 
 
 def running_integral(x: np.ndarray, dt_s: float) -> np.ndarray:
@@ -917,20 +913,18 @@ def _propose(run, up, verdict: str) -> Proposal | None:
     # it lowers the mean's residual; the jackknife uncertainty stays the per-event fit's
     if plain_cols:
         J = p.project(d.mean_cols[:, [cols[i] for i in plain_cols]])
-        norm = float(np.sum(p.project(p.residual(pred_after)) ** 2))
-        for _ in range(REFIT_ITERATIONS):
-            r = p.project(p.residual(pred_after))
-            trial = coef.copy()
-            trial[plain_cols] = np.clip(coef[plain_cols] + np.linalg.lstsq(J, r, rcond=None)[0],
-                                        lo[plain_cols] * 0.999, -lo[plain_cols] * 0.999)
-            try:
-                pred_trial = model_after(trial)
-            except ValueError:
-                break
-            n_trial = float(np.sum(p.project(p.residual(pred_trial)) ** 2))
-            if n_trial >= norm:
-                break
-            coef, pred_after, norm = trial, pred_trial, n_trial
+        tried: dict = {}
+
+        def refit_residual(x):
+            c = coef.copy()
+            c[plain_cols] = x
+            tried[tuple(x)] = (c, model_after(c))
+            return p.project(p.residual(tried[tuple(x)][1]))
+        r0 = p.project(p.residual(pred_after))
+        x, _, norm, _ = kept_gauss_newton(coef[plain_cols], lo[plain_cols] * 0.999, -lo[plain_cols] * 0.999, J,
+                                          refit_residual, r0, REFIT_ITERATIONS, scales=(1.0,))
+        if norm < float(r0 @ r0):
+            coef, pred_after = tried[tuple(x)]
     # 5. the partial explanation refitted jointly with the terms: diagnose fitted it alone, where it took up part of
     # the mechanism the terms now hold, so its values are no longer the best beside them (measured: the model with both
     # outside the noise band). Its parameters (tangents: diagnose's forward differences at its values, or one set per
