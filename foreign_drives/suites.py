@@ -425,16 +425,17 @@ OUTSIDE_DEV8_ROWS = [
 # conditions, one clean control. Seeds 9000+. Each strength set by one simulation against the clean drive of the same
 # seed (docs/foreign_drives.md "The ninth set").
 OUTSIDE_DEV9_ROWS = [
-    # a blower of 2 N*m at 150 rad/s behind a clutch engaging over +-2 rad/s (a clean drive's Omega1: 147-153.6 rad/s)
+    # a blower at 150 rad/s behind a clutch engaging over +-2 rad/s (a clean drive's Omega1: 147-153.6 rad/s); 2 N*m a
+    # priori, a2 0.0234: scaled once x3.20
     ("od9_motor_centrifugal_clutch_blower", "outside", 0.0067, 0.0255, 0.92,
-     [E("motor_centrifugal_clutch_blower", {"blower_torque_Nm": 2.0, "engage_speed_rad_s": 150.0,
+     [E("motor_centrifugal_clutch_blower", {"blower_torque_Nm": 6.40, "engage_speed_rad_s": 150.0,
                                             "engage_width_rad_s": 2.0})]),
-    # 5 N*m over 1 rad of every third wheel turn
+    # a drag over 1 rad of every third wheel turn; 5 N*m a priori, a2 0.0282: scaled once x2.66
     ("od9_wheel_geneva_indexer", "outside", 0.0073, 0.0215, 0.94,
-     [E("wheel_geneva_indexer", {"torque_Nm": 5.0, "turns_per_index": 3, "window_rad": 1.0, "phase_rad": 0.5})]),
-    # disc springs of 5 N*m over a free height of 5 mrad (k_c = 3000 N*m/rad: ~7 mrad at 20 N*m)
-    ("od9_clutch_belleville_snap_through", "outside", 0.0082, 0.0345, 0.91,
-     [E("clutch_belleville_snap_through", {"spring_torque_Nm": 5.0, "free_height_rad": 0.005})]),
+     [E("wheel_geneva_indexer", {"torque_Nm": 13.3, "turns_per_index": 3, "window_rad": 1.0, "phase_rad": 0.5})]),
+    # dev 5 (clutch_belleville_snap_through) has NO row yet: with the recording noise on, the generator did not finish
+    # 0.4 s of it (> 50 s CPU at 5 N*m / 5 mrad, at 10 mrad, and with only its linear part at 0.4 N*m; the same spec
+    # with the noise off: 0.32 s); its row waits for that to be understood (outside_dev9's docstring)
     # 50 N per m/s of the chamber's speed above 22.6 m/s (a clean drive's v: 22.63-22.78 m/s); 5 ms up, 100 ms down
     ("od9_mass_check_valve_damper", "outside", 0.0050, 0.0305, 0.95,
      [E("mass_check_valve_damper", {"coefficient_N_s_per_m": 50.0, "crack_speed_m_s": 22.6, "rise_time_s": 0.005,
