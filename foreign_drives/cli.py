@@ -13,7 +13,8 @@ from .spec import manifest
 SUITE_CHOICES = ("bench", "widthloop", "test", "outside_dev", "outside_sealed", "outside_dev2", "outside_sealed2",
                  "outside_dev3", "outside_sealed3", "outside_dev4", "outside_sealed4",
                  "outside_dev5", "outside_sealed5", "outside_dev6", "outside_sealed6", "outside_dev7",
-                 "outside_sealed7", "outside_dev8", "outside_sealed8")
+                 "outside_sealed7", "outside_dev8", "outside_sealed8", "outside_dev9",
+                 "outside_sealed9")
 
 DESCRIPTION = """\
 Foreign drives: recordings of the drive made by a second, independent simulator (docs/foreign_drives.md),
@@ -57,7 +58,8 @@ def build_parser() -> argparse.ArgumentParser:
                         "outside_sealed4: a fourth set (seeds 8000+ / 8100+); outside_dev5 / outside_sealed5: a fifth "
                         "(seeds 8200+ / 8300+); outside_dev6 / outside_sealed6: a sixth (seeds 8400+ / 8500+); "
                         "outside_dev7 / outside_sealed7: a seventh (seeds 8600+ / 8700+); outside_dev8 / "
-                        "outside_sealed8: an eighth (seeds 8800+ / 8900+)")
+                        "outside_sealed8: an eighth (seeds 8800+ / 8900+); outside_dev9 / outside_sealed9: a ninth (seeds "
+                        "9000+ / 9100+)")
     w.add_argument("--out", required=True, metavar="DIR", help="output directory (created if missing)")
     w.add_argument("--only", action="append", metavar="LABEL", default=None,
                    help="write only this recording (repeatable); the manifest then lists only these")

@@ -187,6 +187,9 @@ MK_PERIOD_TACHO, MK_RUN_TO_RUN, MK_TANK, MK_SQUEAL, MK_STEP = 20, 21, 22, 23, 24
 # the fifth set: the carriage's position unwrapped from the run-in's start [m]; the power the contact dissipates
 # |T_c*D'| [W] (the contact law's torque at the state, 0 free)
 XS_MASS_POSITION, XS_CONTACT_POWER = 29, 30
+# the ninth set: the jaw's angle difference beyond the gap, sign(D)*max(0, |D| - beta), whatever the contact mode (a
+# term on it stays continuous where the contact law stops pushing)
+XS_JAW_OVERLAP = 31
 # shapes of a factor f(x; a, b, c)
 (XF_ONE, XF_X, XF_POWER, XF_SIN, XF_SIN_POSITIVE, XF_EXCESS_POWER, XF_RAMP, XF_TANH, XF_RISE, XF_COS,
  XF_RISE_AFTER, XF_ABS, XF_SIGMOID, XF_DECAY_AFTER, XF_CUSHION, XF_PERIODIC_GATE, XF_CLIP) = range(17)
@@ -343,6 +346,10 @@ def _quantity(sel, t, y, P, mode, pen, tcc):
         else:
             tq = contact_torque(-d - P[P_BETA], -dd, P[P_KCF], P)
         return abs(tq * dd)
+    if sel == XS_JAW_OVERLAP:                    # the jaw faces' geometric overlap, + drive side, pushing or not [rad]
+        d = clutch_angles(y, P)[0]
+        e = abs(d) - P[P_BETA]
+        return (e if d > 0.0 else -e) if e > 0.0 else 0.0
     return 0.0
 
 
