@@ -3,7 +3,8 @@ the drive's physics, effects in other functional forms, other sensor chains; doc
 looped through the commands exactly as the README runs them:
 
     diagnose BAG --width-m W --eta-k E --n1 N --json d.json
-    add-effect d.json -o v2.yaml                      (refused when there is nothing to add: the monitor stays)
+    add-effect d.json -o v2.yaml                      (refused when there is nothing to add: the monitor stays;
+                                                       --accept-partial on a `partial` verdict: the nearer model)
     train --model v2.yaml --out lib.npz --seeds 1000,1001
     analyze BAG --library lib.npz --out after         (before: analyze BAG, the packaged library)
 
@@ -114,10 +115,12 @@ def run_recording(spec, workdir: Path, loop: bool = True, keep_json: Path | None
         row["error"] = "analyze before: " + out[-1000:]
         return row
     row["before"] = monitor_error_mm(d / "before.json", truth["true_width_m"])
-    rc, out, _, _ = _cli(["add-effect", d / "d.json", "-o", d / "v2.yaml"], d)
+    # a `partial` verdict: the README's loop takes the nearer model (add-effect --accept-partial)
+    partial = ["--accept-partial"] if diag["verdict"] == "partial" else []
+    rc, out, _, _ = _cli(["add-effect", d / "d.json", *partial, "-o", d / "v2.yaml"], d)
     row["add_effect_exit"] = rc
     if rc != 0:
-        # nothing to add (or a partial the README's loop does not accept): the monitor keeps its library
+        # nothing to add: the monitor keeps its library
         row["after"] = dict(row["before"])
         row["loop"] = "no new version: " + out.strip().splitlines()[-1][:200]
     else:

@@ -354,8 +354,9 @@ def run_all(sealed: bool = False, only=(), skip_explained: bool = False, skip_an
 # ------------------------------------------------------------------------------------------------- the outside loop
 # The README's loop as a user runs it, through the CLI, on each outside recording (bench/_workbench/foreign.py runs
 # the same commands): diagnose BAG at the drive's nominal conditions -> add-effect --accept-proposal when diagnose
-# proposes a term, else add-effect when diagnose names a catalogue effect (its ``additions``), else nothing (the
-# monitor keeps the packaged library) -> train --model -> analyze BAG --library, against analyze BAG before.
+# proposes a term, else add-effect --accept-partial when its verdict is `partial` (the nearer model: README), else
+# add-effect when diagnose names a catalogue effect (its ``additions``), else nothing (the monitor keeps the packaged
+# library) -> train --model -> analyze BAG --library, against analyze BAG before.
 # Training kept short (LOOP_TRAIN_SEEDS, LOOP_TRAIN_DURATION_S) so that a row costs a few CPU-minutes: one seed of the
 # 120-scenario grid is 8 windows per scenario at --duration 2.25 (the default); 1.25 s gives 4 per scenario.
 LOOP_TRAIN_SEEDS = "1000,1001"
@@ -413,6 +414,9 @@ def loop_row(spec, workdir: Path, suite: str) -> dict:
     if row["proposed"]:
         row["added"] = "proposal"
         rc, out, _, cpu["add_effect"] = _cli(["add-effect", d / "d.json", "--accept-proposal", "-o", d / "v2.yaml"], d)
+    elif row["verdict"] == "partial":
+        row["added"] = "partial"
+        rc, out, _, cpu["add_effect"] = _cli(["add-effect", d / "d.json", "--accept-partial", "-o", d / "v2.yaml"], d)
     else:
         row["added"] = "catalogue"
         rc, out, _, cpu["add_effect"] = _cli(["add-effect", d / "d.json", "-o", d / "v2.yaml"], d)
@@ -477,7 +481,7 @@ def loop_summary(rows) -> dict:
             "outside_loop_worse_count": int(sum(r["worse"] for r in done)),
             "outside_loop_worse_labels": [r["label"] for r in done if r["worse"]],
             "outside_loop_added": {k: int(sum(r.get("added") == k for r in done))
-                                   for k in ("proposal", "catalogue", "nothing")},
+                                   for k in ("proposal", "partial", "catalogue", "nothing")},
             "outside_loop_by_suite": by_suite,
             "outside_loop_row_cpu_seconds_max": max((r["row_cpu_seconds"] for r in done if "row_cpu_seconds" in r),
                                                     default=None),

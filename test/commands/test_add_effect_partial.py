@@ -1,0 +1,46 @@
+"""add-effect on a `partial` diagnosis (README: the loop takes the nearer model with --accept-partial): refused
+without the flag, with a message that names it; with it, the partial effect goes in at its fitted value and the new
+version says it is an approximation."""
+import json
+
+import pytest
+
+from backlash_monitor.__main__ import main
+from backlash_monitor.workbench.diagnosis_result import Conditions
+from backlash_monitor.workbench.model import load_model
+
+
+def _partial_diagnosis(tmp_path, change=0.25):
+    model = load_model(None)
+    cond = Conditions("drive.mcap", model.label(), None, dict(model.nominal), {}, [], model.to_dict(), [1, 2], {}, 16)
+    addition = {"effect": "working_resistance_drift", "candidate": "working_resistance_drift",
+                "parameters": {"relative_change": change}, "uncertainty": {"relative_change": 0.02},
+                "role": "partial", "evidence": "event average"}
+    d = {"discovery": None, "verdict": "partial", "message": "partial explanation: working_resistance_drift explains "
+         "83% of the residual", "additions": [addition], "conditions": cond.to_json(), "measured_width": {},
+         "proposal": {"proposed": False, "reason": "nothing stable"}}
+    path = tmp_path / "d.json"
+    path.write_text(json.dumps(d))
+    return path
+
+
+def test_a_partial_diagnosis_is_refused_without_the_flag_and_says_which_flag_takes_it(tmp_path, capsys):
+    path = _partial_diagnosis(tmp_path)
+    out = tmp_path / "v2.yaml"
+    assert main(["add-effect", str(path), "-o", str(out)]) != 0
+    said = capsys.readouterr()
+    assert "--accept-partial" in said.err + said.out
+    assert "Traceback" not in said.err
+    assert not out.exists()
+
+
+def test_accept_partial_writes_the_partial_effect_at_its_fitted_value_and_says_it_is_an_approximation(tmp_path,
+                                                                                                       capsys):
+    path = _partial_diagnosis(tmp_path, change=0.25)
+    out = tmp_path / "v2.yaml"
+    assert main(["add-effect", str(path), "--accept-partial", "-o", str(out)]) == 0
+    said = capsys.readouterr().out
+    assert "partial explanation added on request" in said
+    f0 = load_model(None).plant_config().load.working_resistance_N
+    # a drift is written as the new nominal value: F0 (1 + change)
+    assert load_model(out).plant_config().load.working_resistance_N == pytest.approx(f0 * 1.25)
