@@ -53,10 +53,11 @@ def _cli(args, cwd) -> tuple[int, str, float, float]:
     return p.returncode, p.stdout + p.stderr, wall, cpu
 
 
-def monitor_error_mm(analyze_json: Path, truth_m: float) -> dict:
-    """The monitor's published fused continuous width (a1+a2) against the truth, from analyze's JSON."""
+def monitor_error_mm(analyze_json: Path, truth_m: float, signal: str = "a1+a2") -> dict:
+    """The monitor's published fused continuous width (a1+a2; or one signal's) against the truth, from analyze's
+    JSON."""
     est = [e for e in json.loads(analyze_json.read_text())["estimates"]
-           if e["signal"] == "a1+a2" and e.get("entry_kind", "onset") == "onset"]
+           if e["signal"] == signal and e.get("entry_kind", "onset") == "onset"]
     full = [e["fused_continuous_width_m"] for e in est if e["fused_events"] >= FUSION_EVENTS
             and e["fused_continuous_width_m"] is not None and np.isfinite(e["fused_continuous_width_m"])]
     vals = np.array(full, dtype=float)

@@ -375,6 +375,9 @@ def _width_error(analyze_json: Path, truth_m: float) -> dict:
     u = [e.get("fused_width_uncertainty_m") for e in est]
     u = [x for x in u if x is not None and np.isfinite(x)]
     out["uncertainty_mm"] = float(np.mean(u) * 1e3) if u else None
+    # each accelerometer's own fused width too (recorded, not a goal: docs/workbench.md "One signal against both")
+    out["per_signal_mean_abs_mm"] = {sig: monitor_error_mm(analyze_json, truth_m, sig)["mean_abs_mm"]
+                                     for sig in ("a1", "a2")}
     return out
 
 
