@@ -378,6 +378,7 @@ def _width_error(analyze_json: Path, truth_m: float) -> dict:
     # each accelerometer's own fused width too (recorded, not a goal: docs/workbench.md "One signal against both")
     out["per_signal_mean_abs_mm"] = {sig: monitor_error_mm(analyze_json, truth_m, sig)["mean_abs_mm"]
                                      for sig in ("a1", "a2")}
+    out["model_fit_level"] = (json.loads(analyze_json.read_text()).get("summary") or {}).get("model_fit_level")
     return out
 
 
