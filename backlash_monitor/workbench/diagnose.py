@@ -600,7 +600,8 @@ def verdict_message(run: Run, up: Update, v: Verdict, width: WidthMeasurement, r
         message = (f"partial explanation, no confident discovery: {names} explains "
                    f"{drive_terms.explained_percent(up.checks.get('explained', partial[-1].explained_fraction))} of the residual but "
                    f"{_left_where(run, up) or 'leaves it outside the noise band'} (an effect outside the catalogue, "
-                   "or a catalogue effect in another form?); add-effect takes it only with --accept-partial")
+                   "or a catalogue effect in another form?); add-effect --accept-partial takes it as the nearer "
+                   "model, the loop's next step when nothing is proposed")
     else:
         parts = []
         if discovery is not None:
