@@ -240,7 +240,10 @@ def run(args) -> int:
         for line in describe(check):
             print("  " + line)
         if rejected is not None:
-            print(f"WARNING: the retrained library puts the monitor further from the diagnosis than the previous one: "
+            shown = ("further from the diagnosis than the previous one" if any(c.get("further") for c in check["checked"])
+                     else "no closer to the diagnosis than the previous one by its uncertainty, and the diagnosed "
+                          "model does not explain its recording")
+            print(f"WARNING: the retrained library puts the monitor {shown}: "
                   f"{path} holds the previous library (its training.check says why); the retrained one is {rejected} "
                   "(--keep-worse writes it as --output)", file=sys.stderr)
         elif check["flagged"]:
