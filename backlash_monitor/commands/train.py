@@ -79,8 +79,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "retrained library is checked against it on the diagnosed recording")
     parser.add_argument("--keep-worse", action="store_true",
                         help="with --model: write the retrained library even when it puts the monitor further from "
-                             "the diagnosis than the previous library (default: the previous library is written under "
-                             "--output, saying why, and the retrained one as NAME.rejected.npz)")
+                             "the diagnosis than the previous library, or, after a 'partial' or 'nothing_explains' "
+                             "diagnosis, no closer to it than the previous library by the diagnosis's uncertainty "
+                             "(default: the previous library is written under --output, saying why, and the "
+                             "retrained one as NAME.rejected.npz)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     add_drive_arguments(parser)
 
