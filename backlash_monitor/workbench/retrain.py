@@ -35,7 +35,7 @@ WORSE_MARGIN_M = 0.05e-3     # the retrained library may not be further from the
 # explanation or a proposed term) measured its width under that model's form error, so it is no reference to switch
 # libraries on by a hair: there the retrained library is handed on only when it is closer to the diagnosis than the
 # previous one by more than the diagnosis's own uncertainty. Measured on 25 loop rows of the spent outside sets
-# (docs/workbench.md "Retraining the monitor"): the one row the loop made worse (0.13 -> 0.78 mm) kept its library;
+# (docs/workbench.md "The check after training"): the one row the loop made worse (0.13 -> 0.78 mm) kept its library;
 # three small gains (<= 0.26 mm) were given up; every gain larger than the diagnosis's uncertainty kept.
 UNEXPLAINED_VERDICTS = ("partial", "nothing_explains")
 
@@ -99,7 +99,6 @@ def check_library(library, models, previous=None) -> dict:
             "reasons": reasons}
 
 
-
 def judge(diag_w: float, unc: float, new_w: float, old_w: float, verdict: str | None) -> dict:
     """The retrained library's width ``new_w`` and the previous one's ``old_w`` on the diagnosed recording against the
     diagnosis's width ``diag_w`` ± ``unc`` [m] -> {"allowed_m", "reasons", "worse" (not handed on), "further" (further
@@ -126,6 +125,7 @@ def judge(diag_w: float, unc: float, new_w: float, old_w: float, verdict: str | 
                    f"explain the recording (verdict {verdict}): its width is no reference to switch on")
     return {"allowed_m": tol, "reasons": why, "worse": further or not_shown_better, "further": further,
             "not_shown_better": not_shown_better}
+
 
 def describe(check: dict) -> list:
     """Lines for the train command."""
