@@ -64,6 +64,37 @@ def outside_bench(module_name: str):
     return module
 
 
+def assert_set_registry(set_number: int) -> None:
+    """Set N's registry and truth vocabulary: seven mechanisms in each half (outside_devN, outside_sealedN), each half
+    over every balance; each one outside the catalogue and new to this set, in a balance and on states the outside
+    bench has words for, a sensor stage exactly when its balance is a sensor, every parameter's bounds finite and
+    ordered."""
+    import math
+
+    from foreign_drives import outside as O
+    outside = {n: f for n, f in F.FORMS.items() if isinstance(f, O.OutsideForm)}
+    dev = {n: f for n, f in outside.items() if f.half == f"dev{set_number}"}
+    sealed = {n: f for n, f in outside.items() if f.half == f"sealed{set_number}"}
+    dev_module = importlib.import_module(f"foreign_drives.outside_dev{set_number}")
+    sealed_module = importlib.import_module(f"foreign_drives.outside_sealed{set_number}")
+    assert {c.name for c in dev_module.FORM_CLASSES} == set(dev) and len(dev) == 7
+    assert {c.name for c in sealed_module.FORM_CLASSES} == set(sealed) and len(sealed) == 7
+    for half in (dev, sealed):
+        assert {f.balance for f in half.values()} == set(O.BALANCES)
+    bench = outside_bench(f"outside_bench_under_test{set_number}")
+    known_states = {w for ws in bench.STATE_WORDS.values() for w in ws}
+    known_balances = set(bench.BALANCE_WORDS.values())
+    earlier = {n for n, f in outside.items() if f.half not in (f"dev{set_number}", f"sealed{set_number}")}
+    for name, f in {**dev, **sealed}.items():
+        assert f.family is None and name not in F.CATALOGUE_FAMILIES and name not in earlier
+        assert f.balance in O.BALANCES and f.balance in known_balances, name
+        assert f.depends_on and set(f.depends_on) <= set(O.STATES) and set(f.depends_on) <= known_states, name
+        assert (f.stage == "sensor") == (f.balance == "sensor"), name
+        for p in f.parameters:
+            lo, hi = p.bounds
+            assert math.isfinite(lo) and math.isfinite(hi) and lo < hi, (name, p.name)
+
+
 def assert_acts_in_its_balance_only(name: str, balance: str, rec, base) -> None:
     """A sealed mechanism ``name`` (its recording ``rec``, the clean drive ``base`` of the same spec) acts in its
     recorded ``balance`` only: a sensor's leaves every balance and a1's physical signal untouched and moves a1 or a2

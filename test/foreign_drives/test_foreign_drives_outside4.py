@@ -24,7 +24,7 @@ from foreign_drives.spec import EffectSpec as E
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
-                                       assert_forms_withholds_sealed, assert_set_suites,
+                                       assert_forms_withholds_sealed, assert_set_registry, assert_set_suites,
                                        assert_suite_writes_one_recording,
                                        outside_bench, suite_effect)
 
@@ -57,23 +57,7 @@ def _outside_bench():
 
 # ------------------------------------------------------------------ registry and truth vocabulary
 def test_fourth_set_is_seven_and_seven_each_half_over_every_balance_in_the_benchs_words():
-    from foreign_drives import outside_dev4, outside_sealed4
-    assert {c.name for c in outside_dev4.FORM_CLASSES} == set(DEV4) and len(DEV4) == 7
-    assert {c.name for c in outside_sealed4.FORM_CLASSES} == set(SEALED4) and len(SEALED4) == 7
-    for half in (DEV4, SEALED4):
-        assert {f.balance for f in half.values()} == set(O.BALANCES)
-    bench = _outside_bench()
-    known_states = {w for ws in bench.STATE_WORDS.values() for w in ws}
-    known_balances = set(bench.BALANCE_WORDS.values())
-    earlier = {n for n, f in OUTSIDE.items() if f.half not in ("dev4", "sealed4")}
-    for name, f in {**DEV4, **SEALED4}.items():
-        assert f.family is None and name not in F.CATALOGUE_FAMILIES and name not in earlier
-        assert f.balance in O.BALANCES and f.balance in known_balances, name
-        assert f.depends_on and set(f.depends_on) <= set(O.STATES) and set(f.depends_on) <= known_states, name
-        assert (f.stage == "sensor") == (f.balance == "sensor"), name
-        for p in f.parameters:
-            lo, hi = p.bounds
-            assert math.isfinite(lo) and math.isfinite(hi) and lo < hi, (name, p.name)
+    assert_set_registry(4)
 
 
 def _strength(name):

@@ -24,7 +24,7 @@ from foreign_drives.drive import make_recording
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
-                                       assert_forms_withholds_sealed, assert_set_suites,
+                                       assert_forms_withholds_sealed, assert_set_registry, assert_set_suites,
                                        assert_suite_writes_one_recording,
                                        outside_bench, suite_effect)
 
@@ -77,23 +77,7 @@ def _held_per_segment(x):
 
 # ------------------------------------------------------------------ registry and truth vocabulary
 def test_fifth_set_is_seven_and_seven_each_half_over_every_balance_in_the_benchs_words():
-    from foreign_drives import outside_dev5, outside_sealed5
-    assert {c.name for c in outside_dev5.FORM_CLASSES} == set(DEV5) and len(DEV5) == 7
-    assert {c.name for c in outside_sealed5.FORM_CLASSES} == set(SEALED5) and len(SEALED5) == 7
-    for half in (DEV5, SEALED5):
-        assert {f.balance for f in half.values()} == set(O.BALANCES)
-    bench = _outside_bench()
-    known_states = {w for ws in bench.STATE_WORDS.values() for w in ws}
-    known_balances = set(bench.BALANCE_WORDS.values())
-    earlier = {n for n, f in OUTSIDE.items() if f.half not in ("dev5", "sealed5")}
-    for name, f in {**DEV5, **SEALED5}.items():
-        assert f.family is None and name not in F.CATALOGUE_FAMILIES and name not in earlier
-        assert f.balance in O.BALANCES and f.balance in known_balances, name
-        assert f.depends_on and set(f.depends_on) <= set(O.STATES) and set(f.depends_on) <= known_states, name
-        assert (f.stage == "sensor") == (f.balance == "sensor"), name
-        for p in f.parameters:
-            lo, hi = p.bounds
-            assert math.isfinite(lo) and math.isfinite(hi) and lo < hi, (name, p.name)
+    assert_set_registry(5)
 
 
 # each mechanism's neutral setting at its suite's parameters: a strength 0, a tare after the recording, no decimation

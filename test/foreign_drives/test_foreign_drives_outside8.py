@@ -27,7 +27,7 @@ from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
                                         assert_forms_withholds_sealed, assert_recordings_repeat,
-                                        assert_rows_visible, assert_set_suites,
+                                        assert_rows_visible, assert_set_registry, assert_set_suites,
                                         assert_suite_writes_one_recording, outside_bench, suite_effect)
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
@@ -85,23 +85,7 @@ def _others_zero(rec, *terms):
 
 # ------------------------------------------------------------------ registry and truth vocabulary
 def test_eighth_set_is_seven_and_seven_each_half_over_every_balance_in_the_benchs_words():
-    from foreign_drives import outside_dev8, outside_sealed8
-    assert {c.name for c in outside_dev8.FORM_CLASSES} == set(DEV8) and len(DEV8) == 7
-    assert {c.name for c in outside_sealed8.FORM_CLASSES} == set(SEALED8) and len(SEALED8) == 7
-    for half in (DEV8, SEALED8):
-        assert {f.balance for f in half.values()} == set(O.BALANCES)
-    bench = outside_bench("outside_bench_under_test8")
-    known_states = {w for ws in bench.STATE_WORDS.values() for w in ws}
-    known_balances = set(bench.BALANCE_WORDS.values())
-    earlier = {n for n, f in OUTSIDE.items() if f.half not in ("dev8", "sealed8")}
-    for name, f in {**DEV8, **SEALED8}.items():
-        assert f.family is None and name not in F.CATALOGUE_FAMILIES and name not in earlier
-        assert f.balance in O.BALANCES and f.balance in known_balances, name
-        assert f.depends_on and set(f.depends_on) <= set(O.STATES) and set(f.depends_on) <= known_states, name
-        assert (f.stage == "sensor") == (f.balance == "sensor"), name
-        for p in f.parameters:
-            lo, hi = p.bounds
-            assert math.isfinite(lo) and math.isfinite(hi) and lo < hi, (name, p.name)
+    assert_set_registry(8)
 
 
 # each mechanism's neutral setting at its suite's parameters: a strength 0, a range never reached
