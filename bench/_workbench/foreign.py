@@ -53,16 +53,24 @@ def _cli(args, cwd) -> tuple[int, str, float, float]:
     return p.returncode, p.stdout + p.stderr, wall, cpu
 
 
+def full_fusions(analyze_doc: dict, signal: str = "a1+a2") -> list:
+    """analyze JSON's onset estimates of ``signal`` whose fusion is full and whose fused continuous width is finite."""
+    return [e for e in analyze_doc["estimates"]
+            if e["signal"] == signal and e.get("entry_kind", "onset") == "onset" and e["fused_events"] >= FUSION_EVENTS
+            and e["fused_continuous_width_m"] is not None and np.isfinite(e["fused_continuous_width_m"])]
+
+
+def fused_width_error_mm(estimates: list, truth_m: float) -> dict:
+    """|fused continuous width - truth| over ``estimates`` (full_fusions): mean [mm], median width [mm], count."""
+    vals = np.array([e["fused_continuous_width_m"] for e in estimates], dtype=float)
+    return {"mean_abs_mm": float(np.mean(np.abs(vals - truth_m)) * 1e3) if vals.size else None,
+            "median_width_mm": float(np.median(vals) * 1e3) if vals.size else None, "windows": int(vals.size)}
+
+
 def monitor_error_mm(analyze_json: Path, truth_m: float, signal: str = "a1+a2") -> dict:
     """The monitor's published fused continuous width (a1+a2; or one signal's) against the truth, from analyze's
     JSON."""
-    est = [e for e in json.loads(analyze_json.read_text())["estimates"]
-           if e["signal"] == signal and e.get("entry_kind", "onset") == "onset"]
-    full = [e["fused_continuous_width_m"] for e in est if e["fused_events"] >= FUSION_EVENTS
-            and e["fused_continuous_width_m"] is not None and np.isfinite(e["fused_continuous_width_m"])]
-    vals = np.array(full, dtype=float)
-    return {"mean_abs_mm": float(np.mean(np.abs(vals - truth_m)) * 1e3) if vals.size else None,
-            "median_width_mm": float(np.median(vals) * 1e3) if vals.size else None, "windows": int(vals.size)}
+    return fused_width_error_mm(full_fusions(json.loads(analyze_json.read_text()), signal), truth_m)
 
 
 def score(diag: dict, truth: dict, kind: str) -> dict:

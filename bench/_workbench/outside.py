@@ -367,18 +367,17 @@ def _width_error(analyze_json: Path, truth_m: float) -> dict:
     """|fused continuous width (a1+a2) - true width| over the onset windows whose fusion is full (foreign.py's
     measure), and its uncertainty: the mean of the fused widths' own stated uncertainties over the same windows
     (analyze's ``fused_width_uncertainty_m``: the spread of the windows each fuses)."""
-    from _workbench.foreign import FUSION_EVENTS, monitor_error_mm
-    out = monitor_error_mm(analyze_json, truth_m)
-    est = [e for e in json.loads(analyze_json.read_text())["estimates"]
-           if e["signal"] == "a1+a2" and e.get("entry_kind", "onset") == "onset" and e["fused_events"] >= FUSION_EVENTS
-           and e["fused_continuous_width_m"] is not None and np.isfinite(e["fused_continuous_width_m"])]
+    from _workbench.foreign import full_fusions, fused_width_error_mm
+    doc = json.loads(analyze_json.read_text())
+    est = full_fusions(doc)
+    out = fused_width_error_mm(est, truth_m)
     u = [e.get("fused_width_uncertainty_m") for e in est]
     u = [x for x in u if x is not None and np.isfinite(x)]
     out["uncertainty_mm"] = float(np.mean(u) * 1e3) if u else None
     # each accelerometer's own fused width too (recorded, not a goal: docs/workbench.md "One signal against both")
-    out["per_signal_mean_abs_mm"] = {sig: monitor_error_mm(analyze_json, truth_m, sig)["mean_abs_mm"]
+    out["per_signal_mean_abs_mm"] = {sig: fused_width_error_mm(full_fusions(doc, sig), truth_m)["mean_abs_mm"]
                                      for sig in ("a1", "a2")}
-    out["model_fit_level"] = (json.loads(analyze_json.read_text()).get("summary") or {}).get("model_fit_level")
+    out["model_fit_level"] = (doc.get("summary") or {}).get("model_fit_level")
     return out
 
 
