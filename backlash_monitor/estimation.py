@@ -24,7 +24,10 @@ reason and leaves the fusion untouched. A B vector that comes out non-finite or 
 finite window unlike any training window can overflow a feature) is not published or fused
 either (``non_finite_estimate``). So every estimate has a candidate width and a B vector of
 finite, non-negative entries. Each signal keeps its own fusion of the last
-``fusion_events`` onset events (backlash_monitor.classifier.fusion).
+``fusion_events`` onset events (backlash_monitor.classifier.fusion). In shape mode the a1+a2 estimate's
+fused fields (the width the drive's level follows) are checked against a1's: where a1+a2's fused width
+departs from a1's by more than the check allows, they carry a1's fusion (``fused_from_signal``;
+backlash_monitor.classifier.signal_check).
 """
 from __future__ import annotations
 
@@ -37,6 +40,7 @@ import numpy as np
 from backlash_monitor.classifier.cpn import CPN_VARIANTS, b_margin
 from backlash_monitor.classifier.fusion import WidthFusion, default_fusion_rule
 from backlash_monitor.classifier.patterns import PatternLibrary
+from backlash_monitor.classifier.signal_check import BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, checked_width
 from backlash_monitor.classifier.shape import (SHAPE, SHAPE_SIGNALS, ShapeModel, _expand,
                                               a1_features, a2_features)
 from backlash_monitor.windowing.faults import FaultLog, is_period
@@ -64,6 +68,10 @@ class WidthEstimate:
     fused_events: int
     fused_continuous_width_m: float = math.nan   # median continuous width of the fused events
     fused_width_uncertainty_m: float = math.nan  # its robust standard error over them (fusion.py)
+    # a1+a2 in shape mode: the signal whose fusion the fused fields above carry ("a1" when a1+a2's departed from
+    # a1's by more than the check's sigmas: classifier/signal_check.py), and that departure [combined SEs]
+    fused_from_signal: str = ""
+    departure_sigmas: float = math.nan
 
     @property
     def level_width_m(self) -> float:
@@ -247,7 +255,7 @@ class DriveEstimator:
                  for k, signal in enumerate(self.signals)}
         for j, (i, results) in enumerate(accepted):
             for signal, b, continuous, index, margin in results:
-                f = fused[signal][j]
+                f, source, departure = self._checked(fused, signal, j)
                 out[i].append(WidthEstimate(
                     signal_name=signal, mode=self.mode, candidate_widths_m=self.widths_m,
                     b_vector=b, width_index=index,
@@ -255,8 +263,21 @@ class DriveEstimator:
                     continuous_width_m=continuous, fused_width_m=f.width_m,
                     fused_events=f.events,
                     fused_continuous_width_m=f.continuous_width_m,
-                    fused_width_uncertainty_m=f.continuous_width_se_m))
+                    fused_width_uncertainty_m=f.continuous_width_se_m,
+                    fused_from_signal=source, departure_sigmas=departure))
         return out
+
+    def _checked(self, fused: dict, signal: str, j: int):
+        """The fused estimate that ``signal``'s estimate j carries, its signal and the check's departure: a1+a2's
+        own unless it departs from a1's by more than the check allows (classifier/signal_check.py); every other
+        signal (and a1+a2 without a1 beside it, or in a paper mode) its own, unchecked."""
+        own = fused[signal][j]
+        if self.mode != SHAPE or signal != BOTH_SIGNALS or MOTOR_SIDE_SIGNAL not in fused:
+            return own, signal, math.nan
+        motor = fused[MOTOR_SIDE_SIGNAL][j]
+        check = checked_width(own.continuous_width_m, own.continuous_width_se_m,
+                              motor.continuous_width_m, motor.continuous_width_se_m)
+        return (motor if check.signal == MOTOR_SIDE_SIGNAL else own), check.signal, check.departure_sigmas
 
 
 def _offset_pair(sensor_offsets) -> tuple[float, float] | None:

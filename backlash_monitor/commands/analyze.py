@@ -33,6 +33,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from backlash_monitor.classifier.signal_check import BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, SIGNAL_CHECK_SIGMAS
 from backlash_monitor.commands import UsageError
 from backlash_monitor.fleet.caveat import FitVerdict, with_caveat, width_text
 from backlash_monitor.files.registry import RegistryError, entries
@@ -309,6 +310,11 @@ def _print_summary(summary, rows, discarded, n_samples, elapsed, outputs):
         print(text if i == 0 else with_caveat(text, fit))
         if i == 0:
             print("  ".join("-" * w for w in widths))
+    both = summary["per_signal"].get(BOTH_SIGNALS, {})
+    if both.get("fused_from_signal") == MOTOR_SIDE_SIGNAL:
+        print(f"{BOTH_SIGNALS}'s fused width is {MOTOR_SIDE_SIGNAL}'s: both together departed from the motor side's by "
+              f"more than {SIGNAL_CHECK_SIGMAS:g} standard errors (the load side carries what the library does not "
+              "know; docs/classifier.md \"The signal check\")")
     if not math.isnan(true_width):
         print(f"true width: {true_width * 1e3:.2f} mm")
     print(f"wrote {outputs['csv']}, {outputs['json'].name}, {outputs['mcap'].name}")

@@ -242,24 +242,36 @@ def recording_fields(bag: str, result: dict) -> dict:
     from backlash_monitor.classifier.fusion import fused_width_uncertainty_m
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.classifier.shape import continuous_top_m
+    # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
+    from backlash_monitor.classifier.signal_check import BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, checked_width
     rows = result["rows"]
     signals = {r["signal"] for r in rows}
     primary = PRIMARY_SIGNAL if PRIMARY_SIGNAL in signals else (sorted(signals)[0] if signals else "")
-    mine = [r for r in rows if r["signal"] == primary]
-    widths = [r["continuous_width_m"] if r["continuous_width_m"] == r["continuous_width_m"]
-              else r["width_m"] for r in mine]
-    continuous = [r["continuous_width_m"] for r in mine]
+
+    def median_width(signal: str) -> tuple[list, float, float]:
+        """The signal's rows, the median of their (continuous, else class) widths and its robust standard error."""
+        mine = [r for r in rows if r["signal"] == signal]
+        widths = [r["continuous_width_m"] if r["continuous_width_m"] == r["continuous_width_m"]
+                  else r["width_m"] for r in mine]
+        # the robust standard error of that median over the recording's onset windows (the events:
+        # classifier/fusion.py); NaN where the mode gives no continuous width
+        se = fused_width_uncertainty_m([r["continuous_width_m"] for r in mine],
+                                       continuous_top_m(mine[0]["candidate_widths_m"]) if mine else math.inf)
+        return mine, (statistics.median(widths) if widths else math.nan), se
+
+    mine, width, se = median_width(primary)
+    signal = primary
+    if primary == BOTH_SIGNALS and MOTOR_SIDE_SIGNAL in signals:
+        # checked against the motor side's, as the live estimate's fusion is (classifier/signal_check.py)
+        _, motor_width, motor_se = median_width(MOTOR_SIDE_SIGNAL)
+        check = checked_width(width, se, motor_width, motor_se)
+        width, se, signal = check.width_m, check.uncertainty_m, check.signal
     return dict(drive=result["drive"] or Path(bag).stem, namespace=result.get("namespace", ""),
-                time_s=result["first_stamp_s"],
-                width_m=statistics.median(widths) if widths else math.nan,
-                # the robust standard error of that median over the recording's onset windows (the
-                # events: classifier/fusion.py); NaN where the mode gives no continuous width
-                width_uncertainty_m=fused_width_uncertainty_m(
-                    continuous, continuous_top_m(mine[0]["candidate_widths_m"]) if mine else math.inf),
+                time_s=result["first_stamp_s"], width_m=width, width_uncertainty_m=se,
                 fused_width_m=mine[-1]["fused_width_m"] if mine else math.nan,
                 true_width_m=result["summary"]["true_width_m"],
                 onsets=len({r["entry_sample_index"] for r in mine}),
-                discarded=len(result["discarded"]), signal=primary)
+                discarded=len(result["discarded"]), signal=signal)
 
 
 # ------------------------------------------------------------------------------------------- model fit

@@ -192,7 +192,11 @@ class ClassifierNode(Node):
         level = width_level(estimate.level_width_m, p["warn_width_m"], p["error_width_m"])
         cont = width_text(estimate.fused_continuous_width_m, estimate.fused_width_uncertainty_m)
         shown = f"{estimate.fused_width_m * 1e3:.2f} mm" if cont == "-" else cont
-        self.width_state = (level, f"backlash {shown} (fused over {estimate.fused_events} events; nearest "
+        # a1+a2's fusion checked against a1's (classifier/signal_check.py): say when the width is a1's
+        source = (f"; {estimate.fused_from_signal}'s: {estimate.signal_name} departed by "
+                  f"{estimate.departure_sigmas:.1f} sigma" if estimate.fused_from_signal not in ("", estimate.signal_name)
+                  else "")
+        self.width_state = (level, f"backlash {shown} (fused over {estimate.fused_events} events{source}; nearest "
                                    f"pattern width {estimate.fused_width_m * 1e3:.2f} mm)", dict(
             fused_width_m=f"{estimate.fused_width_m:.5f}", last_width_m=f"{estimate.width_m:.5f}",
             continuous_width_m="" if math.isnan(estimate.continuous_width_m)
@@ -201,7 +205,8 @@ class ClassifierNode(Node):
             else f"{estimate.fused_continuous_width_m:.5f}",
             fused_width_uncertainty_m="" if math.isnan(estimate.fused_width_uncertainty_m)
             else f"{estimate.fused_width_uncertainty_m:.5f}",
-            signal=estimate.signal_name, mode=estimate.mode))
+            signal=estimate.signal_name, fused_from_signal=estimate.fused_from_signal or estimate.signal_name,
+            mode=estimate.mode))
         self.update_diagnostics()
 
     def update_diagnostics(self, publish_now: bool = False):

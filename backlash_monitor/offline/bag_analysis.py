@@ -57,7 +57,7 @@ ESTIMATE_BATCH = 64   # onset windows per batched denoise + DriveEstimator.estim
 CSV_COLUMNS = ("entry_sample_index", "entry_time_s", "signal", "mode", "width_m", "width_index",
                "b_margin", "continuous_width_m", "fused_width_m", "fused_events", "true_width_m",
                "b_vector", "fused_continuous_width_m", "a1_offset_m_s2", "a2_offset_m_s2",
-               "offset_periods", "fused_width_uncertainty_m")
+               "offset_periods", "fused_width_uncertainty_m", "fused_from_signal")
 TRIGGERS = ("contact_loss", "paper")
 ANGLE_SOURCES = ("measured", "integrated")
 
@@ -545,6 +545,8 @@ def _row(window, est, true_width) -> dict:
         "b_vector": np.asarray(est.b_vector, dtype=np.float64).tolist(),   # (Python floats)
         "fused_continuous_width_m": est.fused_continuous_width_m,
         "fused_width_uncertainty_m": est.fused_width_uncertainty_m,
+        # the signal whose fusion the fused fields carry (a1+a2's checked against a1's: classifier/signal_check.py)
+        "fused_from_signal": est.fused_from_signal, "departure_sigmas": est.departure_sigmas,
         "a1_offset_m_s2": window.sensor_offsets.get("a1", math.nan),
         "a2_offset_m_s2": window.sensor_offsets.get("a2", math.nan),
         "offset_periods": window.offset_periods,
@@ -569,6 +571,7 @@ def _summary(rows, true_width):
         s["fused_events"] = r["fused_events"]
         s["fused_continuous_width_m"] = r.get("fused_continuous_width_m", math.nan)
         s["fused_width_uncertainty_m"] = r.get("fused_width_uncertainty_m", math.nan)
+        s["fused_from_signal"] = r.get("fused_from_signal", "")
     return {"true_width_m": true_width, "per_signal": per}
 
 

@@ -108,8 +108,20 @@ def test_estimates_and_namespaced_diagnostics(ros_env):
     smallest, second = np.sort(np.asarray(est.b_vector))[:2]     # the margin of this B vector
     assert est.b_margin == pytest.approx(second / smallest, rel=1e-12)
     assert est.fused_events == min(8, len(windows) - 1)
-    # the fused continuous width: the median of the same events' continuous widths (this signal's)
-    mine = [e.continuous_width_m for e in estimates if e.signal_name == est.signal_name][-est.fused_events:]
+    # the fused continuous width: the median of the same events' continuous widths: this signal's, or a1's where
+    # a1+a2's departed from a1's (classifier/signal_check.py; the node's /diagnostics value says which)
+    source = {kv.key: kv.value for kv in diagnostics[-1].status[0].values}["fused_from_signal"]
+    assert source in (est.signal_name, "a1")
+    if source != est.signal_name:
+        a1 = [e for e in estimates if e.signal_name == "a1"][-1]
+        assert "a1's: a1+a2 departed by" in diagnostics[-1].status[0].message
+        assert (est.fused_continuous_width_m, est.fused_width_uncertainty_m) == (
+            a1.fused_continuous_width_m, a1.fused_width_uncertainty_m)
+        assert abs(est.fused_continuous_width_m - float(np.median(
+            [e.continuous_width_m for e in estimates if e.signal_name == est.signal_name][-est.fused_events:]))) > (
+            2 * np.hypot(a1.fused_width_uncertainty_m, median_standard_error(
+                [e.continuous_width_m for e in estimates if e.signal_name == est.signal_name][-est.fused_events:])))
+    mine = [e.continuous_width_m for e in estimates if e.signal_name == source][-est.fused_events:]
     assert est.fused_continuous_width_m == pytest.approx(float(np.median(mine)), rel=1e-12)
     # and its uncertainty: the robust standard error of that median over the same events
     assert est.fused_width_uncertainty_m == pytest.approx(median_standard_error(mine), rel=1e-12)

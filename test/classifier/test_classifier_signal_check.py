@@ -1,0 +1,82 @@
+"""The check of the both-accelerometer width against the motor side's (classifier/signal_check.py): the rule itself,
+then on drives of the independent simulator (foreign_drives/, not our plant): a drive whose load side carries a
+mechanism outside the catalogue, where both together extrapolate, and a clean drive, where both together are the
+more precise and the check must not spoil them."""
+import math
+
+import numpy as np
+import pytest
+
+from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, SIGNAL_CHECK_SIGMAS,
+                                                      checked_width)
+
+
+def test_widths_that_agree_within_the_check_keep_both_together():
+    c = checked_width(5.00e-3, 0.05e-3, 5.10e-3, 0.05e-3)
+    assert c.signal == BOTH_SIGNALS and c.width_m == 5.00e-3 and c.uncertainty_m == 0.05e-3
+    assert c.departure_sigmas == pytest.approx(0.1 / math.hypot(0.05, 0.05))
+
+
+def test_a_departure_beyond_the_check_takes_the_motor_side_with_its_own_uncertainty():
+    # 0.5 mm apart with standard errors of 0.1 mm each: 3.5 combined standard errors
+    c = checked_width(6.0e-3, 0.1e-3, 5.5e-3, 0.1e-3)
+    assert c.departure_sigmas > SIGNAL_CHECK_SIGMAS
+    assert c.signal == MOTOR_SIDE_SIGNAL and c.width_m == 5.5e-3 and c.uncertainty_m == 0.1e-3
+
+
+def test_the_threshold_is_on_the_combined_standard_error():
+    se = 0.1e-3
+    just_inside = SIGNAL_CHECK_SIGMAS * math.hypot(se, se) * 0.99
+    assert checked_width(5e-3 + just_inside, se, 5e-3, se).signal == BOTH_SIGNALS
+    assert checked_width(5e-3 + just_inside / 0.98, se, 5e-3, se).signal == MOTOR_SIDE_SIGNAL
+
+
+@pytest.mark.parametrize("values", [(5e-3, math.nan, 6e-3, 1e-4), (5e-3, 1e-4, math.nan, 1e-4),
+                                    (5e-3, math.inf, 9e-3, 1e-4), (5e-3, 1e-4, 9e-3, math.inf)])
+def test_widths_without_a_finite_uncertainty_are_not_checked(values):
+    """Fewer than 3 events (NaN) or a width censored at the range's top (+inf): nothing to test against."""
+    c = checked_width(*values)
+    assert c.signal == BOTH_SIGNALS and c.width_m == values[0] and math.isnan(c.departure_sigmas)
+
+
+def _traces(label: str):
+    from foreign_drives.drive import make_recording
+    from foreign_drives.suites import suite
+
+    from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS
+    from backlash_monitor.workbench.measurement import Measurement
+    from backlash_monitor.workbench.width import monitor_widths
+    spec = next(s for s in suite("outside_sealed9") if s.label == label)
+    rec = make_recording(spec)
+    meas = Measurement(f"foreign:{label}", rec.sample_period_s, {k: np.asarray(v) for k, v in rec.signals.items()})
+    both, motor = monitor_widths(meas, signal=BOTH_SIGNALS), monitor_widths(meas, signal=MOTOR_SIDE_SIGNAL)
+    full = both.fused_events >= DEFAULT_FUSION_EVENTS
+    n = DEFAULT_FUSION_EVENTS
+    # the unchecked fusion of both together: the median of the last n windows' continuous widths (fusion.py)
+    unchecked = np.array([np.median(both.continuous_m[max(0, i - n + 1):i + 1]) for i in range(both.continuous_m.size)])
+    return rec.truth.true_width_m, both, motor, unchecked, full
+
+
+def test_a_load_side_mechanism_outside_the_catalogue_gives_the_motor_sides_width():
+    """A load wheel with a blower sail (a drag the catalogue has no law for; spent set 9): both together read the
+    width off by extrapolating a2's features, the motor side does not. Every full fusion is one of the two, the
+    checked width lies on the motor side's where it departs, and it is closer to the truth than both together."""
+    truth, both, motor, unchecked, full = _traces("os9_mass_wheel_blower_sail")
+    assert full.sum() >= 5
+    took_motor = np.isclose(both.fused_continuous_m, motor.fused_continuous_m, rtol=0, atol=1e-12)
+    kept_both = np.isclose(both.fused_continuous_m, unchecked, rtol=0, atol=1e-12)
+    assert np.all((took_motor | kept_both)[full])
+    assert took_motor[full].sum() >= 1
+    err_checked = np.mean(np.abs(both.fused_continuous_m[full] - truth))
+    err_unchecked = np.mean(np.abs(unchecked[full] - truth))
+    assert err_checked < err_unchecked, (err_checked, err_unchecked)
+
+
+def test_on_a_clean_drive_the_check_keeps_the_width_within_a_tenth_of_a_millimetre():
+    """A clean drive of the other simulator (width 6.3 mm, damping and n1 of its own): both together and the motor
+    side agree within their noise, so the checked width stays as close as the resolution goal asks."""
+    truth, both, _, unchecked, full = _traces("os9_clean_w6.3_eta0.0215_n0.91")
+    assert full.sum() >= 5
+    err_checked = np.mean(np.abs(both.fused_continuous_m[full] - truth))
+    assert err_checked <= 0.1e-3, err_checked
+    assert err_checked <= np.mean(np.abs(unchecked[full] - truth)) + 0.05e-3
