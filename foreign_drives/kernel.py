@@ -178,6 +178,11 @@ MK_LATCH, MK_ON_DELAY, MK_SINCE_STROKE, MK_HEAT, MK_PEAK = 15, 16, 17, 18, 19
 # (sqrt law); a van der Pol oscillator whose negative damping the input sets; a three-point step controller (a stepping
 # integrator with a dead band)
 MK_PERIOD_TACHO, MK_RUN_TO_RUN, MK_TANK, MK_SQUEAL, MK_STEP = 20, 21, 22, 23, 24
+# the tenth set (foreign_drives.outside_dev10/_sealed10), see _memory_scan10: a thermal cut-out (a heat integrator of
+# the input's square behind a hysteresis switch it drives itself); an impulse (latching) relay toggled each time the
+# input rises past a threshold (re-armed below a lower one); a moving average over the last a scans (a boxcar); a
+# sample of the input taken at each contact from the gap (the scan after it began), held
+MK_THERMOSTAT, MK_TOGGLE, MK_MOVING_MEAN, MK_IMPACT_SAMPLE = 25, 26, 27, 28
 # selectors: the drive quantity a factor reads
 (XS_ONE, XS_OMEGA1, XS_OMEGA2, XS_RIM_SPEED, XS_MASS_SPEED, XS_PENETRATION, XS_SPRING_EXTENSION, XS_ALPHA1,
  XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
@@ -203,6 +208,9 @@ XF_HASH, XF_DEADZONE, XF_MOD = 18, 19, 20
 XF_FACE_PULL, XF_CHIRP = 21, 22
 # the eighth set: a resonance peak 1/(1 + ((x - b)/a)^2) (a Lorentzian of half-width a at x = b)
 XF_LORENTZ = 23
+# the tenth set: a pseudo-random number in [-1, 1) from the whole number floor((x - c)/b) and a seed a (XF_HASH's
+# arithmetic on steps of b from c); a decay exp(-((x - b) mod a)/c) restarting every a from b (a train of decays)
+XF_HASH_STEP, XF_PERIODIC_DECAY = 24, 25
 
 
 @njit(cache=True, inline="always")
@@ -654,6 +662,62 @@ def _memory_scan8(kind, t, x, P, seg_dt):
 
 
 @njit(cache=True)
+def _memory_scan10(kind, x, P, seg_dt):
+    """The tenth set's memory kinds, one 0.2 ms scan with the input ``x`` (the output m in mem_state):
+    - MK_THERMOSTAT: heat h (ring[0]) += dt*(m*a*x^2 - h/b); m -> 0 when h > c, -> 1 when h < ring[MEM_EXTRA] (first
+      scan: h = 0, m = 1);
+    - MK_TOGGLE: armed (ring[0]) and x > a: m -> 1 - m, disarmed; disarmed and x < b: armed (first scan: m = 0, armed
+      when x < b);
+    - MK_MOVING_MEAN: the ring's place n mod a takes x (n the scan's number), m = the mean of the ring's first a places
+      (a <= MEMORY_RING; first scan: all a places = x, m = x);
+    - MK_IMPACT_SAMPLE: m -> x at a scan where the contact's start time (contact_t0) changed since the last (first
+      scan: m = x)."""
+    a, b, c = P[P_MEMA], P[P_MEMB], P[P_MEMC]
+    if P[P_MEMINIT] == 0.0:
+        P[P_MEMINIT] = 1.0
+        P[P_MEMN] = 0.0
+        P[P_MEMPREV] = P[P_CT0]
+        P[P_MEMSTATE] = x
+        if kind == MK_THERMOSTAT:
+            P[P_MEMR0] = 0.0
+            P[P_MEMSTATE] = 1.0
+        elif kind == MK_TOGGLE:
+            P[P_MEMR0] = 1.0 if x < b else 0.0
+            P[P_MEMSTATE] = 0.0
+        elif kind == MK_MOVING_MEAN:
+            for i in range(int(a)):
+                P[P_MEMR0 + i] = x
+            P[P_MEMN] = 1.0
+        return
+    if kind == MK_THERMOSTAT:
+        h = P[P_MEMR0] + seg_dt * (P[P_MEMSTATE] * a * x * x - P[P_MEMR0] / b)
+        P[P_MEMR0] = h
+        if P[P_MEMSTATE] != 0.0 and h > c:
+            P[P_MEMSTATE] = 0.0
+        elif P[P_MEMSTATE] == 0.0 and h < P[P_MEMR0 + MEM_EXTRA]:
+            P[P_MEMSTATE] = 1.0
+    elif kind == MK_TOGGLE:
+        if P[P_MEMR0] != 0.0 and x > a:
+            P[P_MEMSTATE] = 1.0 - P[P_MEMSTATE]
+            P[P_MEMR0] = 0.0
+        elif P[P_MEMR0] == 0.0 and x < b:
+            P[P_MEMR0] = 1.0
+    elif kind == MK_MOVING_MEAN:
+        na = int(a)
+        n = int(P[P_MEMN])
+        P[P_MEMR0 + n % na] = x
+        P[P_MEMN] = n + 1.0
+        tot = 0.0
+        for i in range(na):
+            tot += P[P_MEMR0 + i]
+        P[P_MEMSTATE] = tot / na
+    elif kind == MK_IMPACT_SAMPLE:
+        if P[P_CT0] != P[P_MEMPREV]:
+            P[P_MEMPREV] = P[P_CT0]
+            P[P_MEMSTATE] = x
+
+
+@njit(cache=True)
 def memory_scan(t, y, P, mode, seg_dt):
     """Advance the memory element by one 0.2 ms segment from the state ``y`` at the segment's start ``t``:
     - MK_LAG: m -> x + (m - x)*exp(-dt/a) while x > m, else x + (m - x)*exp(-dt/b) (c = 1: m*exp(-dt/b));
@@ -673,6 +737,9 @@ def memory_scan(t, y, P, mode, seg_dt):
         P[P_MEMSTATE] = on
         return
     x = _quantity(int(P[P_MEMSEL]), t, y, P, mode, 0.0, 0.0)
+    if kind >= MK_THERMOSTAT:
+        _memory_scan10(kind, x, P, seg_dt)
+        return
     if kind >= MK_PERIOD_TACHO:
         _memory_scan8(kind, t, x, P, seg_dt)
         return
@@ -786,6 +853,13 @@ def _shaped(shape, x, a, b, c):
     if shape == XF_LORENTZ:                      # a resonance peak of half-width a at x = b
         q = (x - b) / a
         return 1.0 / (1.0 + q * q)
+    if shape == XF_HASH_STEP:                    # pseudo-random in [-1, 1) from the step floor((x - c)/b), seed a
+        k = math.floor((x - c) / b)
+        q = k * k * 7919.0 + k * 40503.0 + a * 104729.0
+        return 2.0 * (q - 65521.0 * math.floor(q / 65521.0)) / 65521.0 - 1.0
+    if shape == XF_PERIODIC_DECAY:               # exp(-((x - b) mod a)/c): a decay restarting every a from b
+        q = x - b
+        return math.exp(-(q - a * math.floor(q / a)) / c)
     return 0.0
 
 

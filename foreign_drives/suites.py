@@ -454,6 +454,36 @@ OUTSIDE_DEV9_ROWS = [
      [E("clutch_belleville_snap_through", {"spring_torque_Nm": 9.32, "free_height_rad": 0.005})]),
 ]
 
+# ---- issue 31 part 4, tenth set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev10;
+# the tenth sealed half's rows are in foreign_drives.outside_sealed10). One mechanism per row at its own nominal
+# conditions, one clean control. Seeds 10000+. Each strength set by one simulation against the clean drive of the same
+# seed (docs/foreign_drives.md "The tenth set").
+OUTSIDE_DEV10_ROWS = [
+    # a ring at 80 Hz decaying over 20 ms from each stroke's start; 5 N*m a priori, a2 0.0115: scaled once x6.54
+    ("od10_motor_stroke_torsional_ring", "outside", 0.0063, 0.0265, 0.92,
+     [E("motor_stroke_torsional_ring", {"amplitude_Nm": 32.7, "frequency_hz": 80.0, "decay_time_s": 0.02})]),
+    # 0.05 N*m*s/rad (~7.5 N*m at 150 rad/s, ~1.1 kW) cut out above 300 J, back below 200 J, cooling over 0.5 s
+    ("od10_wheel_thermal_cutout_brake", "outside", 0.0079, 0.0215, 0.93,
+     [E("wheel_thermal_cutout_brake", {"coefficient_Nm_s_per_rad": 0.05, "cooling_time_s": 0.5, "off_above_J": 300.0,
+                                       "on_below_J": 200.0})]),
+    # a leaf spring across the jaw during each stroke; 60 N*m/rad a priori, a2 0.0392: scaled once x1.91
+    ("od10_clutch_stroke_leaf_spring", "outside", 0.0054, 0.0355, 0.90,
+     [E("clutch_stroke_leaf_spring", {"stiffness_Nm_per_rad": 115.0})]),
+    # a rail brake toggled each time z rises past 0.31 m, re-armed below 0.295 m (a clean drive's z: 0.284-0.322 m);
+    # 3 N a priori, a2 0.0460: scaled once x1.63
+    ("od10_mass_impulse_relay_brake", "outside", 0.0087, 0.0305, 0.94,
+     [E("mass_impulse_relay_brake", {"force_N": 4.89, "on_above_m": 0.31, "rearm_below_m": 0.295})]),
+    ("od10_clean_w7.1_eta0.0245_n0.92", "clean", 0.0071, 0.0245, 0.92, []),
+    # a codec of full scale 200 m/s^2 (a clean drive's a1: -104..100 m/s^2 for 99 %)
+    ("od10_a1_mu_law_codec", "outside", 0.0068, 0.0185, 0.95, [E("a1_mu_law_codec", {"full_scale_m_s2": 200.0})]),
+    # relaxing over 5 ms (a clean drive's slip: -5..5 rad/s); 1 N*m*s/rad a priori, a2 0.0301: scaled once x2.49
+    ("od10_clutch_viscoelastic_coupling", "outside", 0.0056, 0.0295, 0.89,
+     [E("clutch_viscoelastic_coupling", {"coefficient_Nm_s_per_rad": 2.49, "relaxation_time_s": 0.005})]),
+    # 3 N*m rising over 10 ms from each contact's start
+    ("od10_wheel_contact_interlock_brake", "outside", 0.0075, 0.0375, 0.91,
+     [E("wheel_contact_interlock_brake", {"torque_Nm": 3.0, "rise_time_s": 0.01})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -466,10 +496,12 @@ OUTSIDE_DEV6 = _suite(OUTSIDE_DEV6_ROWS, 8400, 4.0)
 OUTSIDE_DEV7 = _suite(OUTSIDE_DEV7_ROWS, 8600, 4.0)
 OUTSIDE_DEV8 = _suite(OUTSIDE_DEV8_ROWS, 8800, 4.0)
 OUTSIDE_DEV9 = _suite(OUTSIDE_DEV9_ROWS, 9000, 4.0)
+OUTSIDE_DEV10 = _suite(OUTSIDE_DEV10_ROWS, 10000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
-          "outside_dev8": OUTSIDE_DEV8, "outside_dev9": OUTSIDE_DEV9}
+          "outside_dev8": OUTSIDE_DEV8, "outside_dev9": OUTSIDE_DEV9,
+          "outside_dev10": OUTSIDE_DEV10}
 
 
 def _outside_sealed():
@@ -526,9 +558,15 @@ def _outside_sealed9():
     return _suite(suite_rows(), 9100, 4.0)
 
 
+def _outside_sealed10():
+    """The tenth sealed half's suite, made from foreign_drives.outside_sealed10 on first use (its rows live there)."""
+    from .outside_sealed10 import suite_rows
+    return _suite(suite_rows(), 10100, 4.0)
+
+
 SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
                                "outside_sealed5", "outside_sealed6", "outside_sealed7", "outside_sealed8",
-                               "outside_sealed9")
+                               "outside_sealed9", "outside_sealed10")
 
 
 def suite(name: str) -> list:
@@ -550,6 +588,8 @@ def suite(name: str) -> list:
         return _outside_sealed8()
     if name == "outside_sealed9":
         return _outside_sealed9()
+    if name == "outside_sealed10":
+        return _outside_sealed10()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])
