@@ -190,10 +190,13 @@ class A1RotatingGravity(OutsideForm):
 
 
 def _plugin(cls, name, balance, description, params, args, expr, helpers) -> str:
-    """A plug-in file's text (docs/effects.md, "Writing an effect") with the exact law; every default 0 (neutral)."""
+    """A plug-in file's text (docs/effects.md, "Writing an effect") with the exact law. Every default 0 where its
+    bounds hold 0 (the amplitude's 0 makes the term neutral), else its lower bound (a speed, a time: the project
+    refuses a default outside its bounds, and the law divides by some of them)."""
     imp = ("from backlash_monitor.plant.effects import Effect, Parameter\n"
            + (f"from backlash_monitor.plant.mathlib import {helpers}\n" if helpers else ""))
-    ps = "".join(f"        Parameter({n!r}, {u!r}, 0.0, ({lo!r}, {hi!r}), {d!r}),\n" for n, u, (lo, hi), d in params)
+    ps = "".join(f"        Parameter({n!r}, {u!r}, {0.0 if lo <= 0.0 <= hi else float(lo)!r}, ({lo!r}, {hi!r}), {d!r}),\n"
+                 for n, u, (lo, hi), d in params)
     return (f"{imp}\n\nclass {cls}(Effect):\n    name = {name!r}\n    balance = {balance!r}\n"
             f"    description = {description!r}\n    parameters = (\n{ps}    )\n\n    @staticmethod\n"
             f"    def term({args}):\n        return {expr}\n")

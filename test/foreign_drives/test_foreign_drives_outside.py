@@ -290,3 +290,30 @@ def test_outside_suites_write_valid_bags_with_their_truth(tmp_path):
         rec = make_recording(row)
         for k in C.SIGNAL_UNITS:
             assert np.array_equal(meas.signals[k], rec.signals[k]), (name, k)
+
+
+def test_every_sets_plugin_loads_and_is_neutral_at_its_defaults(tmp_path):
+    """Each outside mechanism's plug-in text (every set's) loads into the project's catalogue as a user's file would
+    (its defaults inside its bounds: the project refuses one outside), in its stated balance, and its term at the
+    defaults adds nothing (a plug-in added to a model changes it only once fitted)."""
+    import inspect
+
+    from backlash_monitor.plant import builtin_catalogue
+    with_plugin = []
+    for form in F.FORMS.values():
+        if not isinstance(form, O.OutsideForm) or type(form).plugin is O.OutsideForm.plugin:
+            continue
+        # the mid-range values (the text takes the law's exact constants from them where it has any)
+        p = {q.name: (round if q.kind == "int" else float)((q.bounds[0] + q.bounds[1]) / 2) for q in form.parameters
+             if q.kind in ("float", "int") and all(math.isfinite(b) for b in q.bounds)}
+        with_plugin.append((form.name, form.plugin(p)))
+    assert len(with_plugin) >= 12
+    for name, text in with_plugin:
+        path = tmp_path / f"{name}.py"
+        path.write_text(text)
+        cls = builtin_catalogue().with_files([str(path)]).get(name)
+        assert cls.balance in text
+        args = inspect.signature(cls.term).parameters
+        defaults = {q.name: q.default for q in cls.parameters}
+        values = {a: defaults.get(a, 1.3) for a in args}
+        assert float(np.max(np.abs(cls.term(**values)))) == 0.0, name
