@@ -40,7 +40,8 @@ import numpy as np
 from backlash_monitor.classifier.cpn import CPN_VARIANTS, b_margin
 from backlash_monitor.classifier.fusion import WidthFusion, default_fusion_rule
 from backlash_monitor.classifier.patterns import PatternLibrary
-from backlash_monitor.classifier.signal_check import BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, checked_width
+from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, CheckedWidth,
+                                                      checked_width)
 from backlash_monitor.classifier.shape import (SHAPE, SHAPE_SIGNALS, ShapeModel, _expand,
                                               a1_features, a2_features)
 from backlash_monitor.windowing.faults import FaultLog, is_period
@@ -69,9 +70,11 @@ class WidthEstimate:
     fused_continuous_width_m: float = math.nan   # median continuous width of the fused events
     fused_width_uncertainty_m: float = math.nan  # its robust standard error over them (fusion.py)
     # a1+a2 in shape mode: the signal whose fusion the fused fields above carry ("a1" when a1+a2's departed from
-    # a1's by more than the check's sigmas: classifier/signal_check.py), and that departure [combined SEs]
+    # a1's beyond the check, or scattered more than it allows: classifier/signal_check.py), that departure
+    # [combined SEs] and a1+a2's SE over a1's
     fused_from_signal: str = ""
     departure_sigmas: float = math.nan
+    scatter_ratio: float = math.nan
 
     @property
     def level_width_m(self) -> float:
@@ -255,7 +258,7 @@ class DriveEstimator:
                  for k, signal in enumerate(self.signals)}
         for j, (i, results) in enumerate(accepted):
             for signal, b, continuous, index, margin in results:
-                f, source, departure = self._checked(fused, signal, j)
+                f, check = self._checked(fused, signal, j)
                 out[i].append(WidthEstimate(
                     signal_name=signal, mode=self.mode, candidate_widths_m=self.widths_m,
                     b_vector=b, width_index=index,
@@ -264,20 +267,21 @@ class DriveEstimator:
                     fused_events=f.events,
                     fused_continuous_width_m=f.continuous_width_m,
                     fused_width_uncertainty_m=f.continuous_width_se_m,
-                    fused_from_signal=source, departure_sigmas=departure))
+                    fused_from_signal=check.signal, departure_sigmas=check.departure_sigmas,
+                    scatter_ratio=check.scatter_ratio))
         return out
 
     def _checked(self, fused: dict, signal: str, j: int):
-        """The fused estimate that ``signal``'s estimate j carries, its signal and the check's departure: a1+a2's
-        own unless it departs from a1's by more than the check allows (classifier/signal_check.py); every other
-        signal (and a1+a2 without a1 beside it, or in a paper mode) its own, unchecked."""
+        """The fused estimate that ``signal``'s estimate j carries and the check's verdict: a1+a2's own unless the
+        check takes a1's (classifier/signal_check.py); every other signal (and a1+a2 without a1 beside it, or in a
+        paper mode) its own, unchecked."""
         own = fused[signal][j]
         if self.mode != SHAPE or signal != BOTH_SIGNALS or MOTOR_SIDE_SIGNAL not in fused:
-            return own, signal, math.nan
+            return own, CheckedWidth(own.continuous_width_m, own.continuous_width_se_m, signal, math.nan)
         motor = fused[MOTOR_SIDE_SIGNAL][j]
         check = checked_width(own.continuous_width_m, own.continuous_width_se_m,
                               motor.continuous_width_m, motor.continuous_width_se_m)
-        return (motor if check.signal == MOTOR_SIDE_SIGNAL else own), check.signal, check.departure_sigmas
+        return (motor if check.signal == MOTOR_SIDE_SIGNAL else own), check
 
 
 def _offset_pair(sensor_offsets) -> tuple[float, float] | None:

@@ -33,7 +33,8 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from backlash_monitor.classifier.signal_check import BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, SIGNAL_CHECK_SIGMAS
+from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, SCATTER_RATIO,
+                                                      SIGNAL_CHECK_SIGMAS)
 from backlash_monitor.commands import UsageError
 from backlash_monitor.fleet.caveat import FitVerdict, with_caveat, width_text
 from backlash_monitor.files.registry import RegistryError, entries
@@ -313,8 +314,8 @@ def _print_summary(summary, rows, discarded, n_samples, elapsed, outputs):
     both = summary["per_signal"].get(BOTH_SIGNALS, {})
     if both.get("fused_from_signal") == MOTOR_SIDE_SIGNAL:
         print(f"{BOTH_SIGNALS}'s fused width is {MOTOR_SIDE_SIGNAL}'s: both together departed from the motor side's by "
-              f"more than {SIGNAL_CHECK_SIGMAS:g} standard errors (the load side carries what the library does not "
-              "know; docs/classifier.md \"The signal check\")")
+              f"more than {SIGNAL_CHECK_SIGMAS:g} standard errors or scattered more than {SCATTER_RATIO:g}x as much (the "
+              "load side carries what the library does not know; docs/classifier.md 5.3)")
     if not math.isnan(true_width):
         print(f"true width: {true_width * 1e3:.2f} mm")
     print(f"wrote {outputs['csv']}, {outputs['json'].name}, {outputs['mcap'].name}")

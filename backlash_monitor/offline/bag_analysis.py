@@ -547,6 +547,7 @@ def _row(window, est, true_width) -> dict:
         "fused_width_uncertainty_m": est.fused_width_uncertainty_m,
         # the signal whose fusion the fused fields carry (a1+a2's checked against a1's: classifier/signal_check.py)
         "fused_from_signal": est.fused_from_signal, "departure_sigmas": est.departure_sigmas,
+        "scatter_ratio": est.scatter_ratio,
         "a1_offset_m_s2": window.sensor_offsets.get("a1", math.nan),
         "a2_offset_m_s2": window.sensor_offsets.get("a2", math.nan),
         "offset_periods": window.offset_periods,

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, SIGNAL_CHECK_SIGMAS,
-                                                      checked_width)
+from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, SCATTER_RATIO,
+                                                      SIGNAL_CHECK_SIGMAS, checked_width)
 
 
 def test_widths_that_agree_within_the_check_keep_both_together():
@@ -31,10 +31,21 @@ def test_the_threshold_is_on_the_combined_standard_error():
     assert checked_width(5e-3 + just_inside / 0.98, se, 5e-3, se).signal == MOTOR_SIDE_SIGNAL
 
 
+def test_both_together_scattering_far_more_than_the_motor_side_takes_the_motor_side():
+    """On the library's own model both together scatter less than a1 alone; 1 mm of scatter beside 0.12 mm says the
+    load side is not that model, even where the medians lie within 2 combined errors of each other."""
+    c = checked_width(6.7e-3, 1.0e-3, 5.75e-3, 0.12e-3)
+    assert c.departure_sigmas < SIGNAL_CHECK_SIGMAS and c.scatter_ratio > SCATTER_RATIO
+    assert c.signal == MOTOR_SIDE_SIGNAL and c.width_m == 5.75e-3
+    assert checked_width(6.7e-3, 0.2e-3, 6.6e-3, 0.12e-3).signal == BOTH_SIGNALS     # 1.7x: kept
+
+
 @pytest.mark.parametrize("values", [(5e-3, math.nan, 6e-3, 1e-4), (5e-3, 1e-4, math.nan, 1e-4),
-                                    (5e-3, math.inf, 9e-3, 1e-4), (5e-3, 1e-4, 9e-3, math.inf)])
+                                    (5e-3, math.inf, 9e-3, 1e-4), (5e-3, 1e-4, 9e-3, math.inf),
+                                    (5e-3, 1e-4, 9e-3, 0.0)])
 def test_widths_without_a_finite_uncertainty_are_not_checked(values):
-    """Fewer than 3 events (NaN) or a width censored at the range's top (+inf): nothing to test against."""
+    """Fewer than 3 events (NaN), a width censored at the range's top (+inf), or a motor side whose events gave one
+    width exactly (a stuck or clipped input, not a precision): nothing to test against."""
     c = checked_width(*values)
     assert c.signal == BOTH_SIGNALS and c.width_m == values[0] and math.isnan(c.departure_sigmas)
 

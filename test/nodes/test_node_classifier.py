@@ -114,13 +114,15 @@ def test_estimates_and_namespaced_diagnostics(ros_env):
     assert source in (est.signal_name, "a1")
     if source != est.signal_name:
         a1 = [e for e in estimates if e.signal_name == "a1"][-1]
-        assert "a1's: a1+a2 departed by" in diagnostics[-1].status[0].message
+        assert "a1's: a1+a2 departed by" in diagnostics[-1].status[0].message or \
+            "a1's: a1+a2 scattered" in diagnostics[-1].status[0].message
         assert (est.fused_continuous_width_m, est.fused_width_uncertainty_m) == (
             a1.fused_continuous_width_m, a1.fused_width_uncertainty_m)
-        assert abs(est.fused_continuous_width_m - float(np.median(
-            [e.continuous_width_m for e in estimates if e.signal_name == est.signal_name][-est.fused_events:]))) > (
-            2 * np.hypot(a1.fused_width_uncertainty_m, median_standard_error(
-                [e.continuous_width_m for e in estimates if e.signal_name == est.signal_name][-est.fused_events:])))
+        both = [e.continuous_width_m for e in estimates if e.signal_name == est.signal_name][-est.fused_events:]
+        # taken because both together departed beyond 2 combined errors, or scattered more than twice a1
+        se = median_standard_error(both)
+        assert (abs(float(np.median(both)) - a1.fused_continuous_width_m)
+                > 2 * np.hypot(a1.fused_width_uncertainty_m, se)) or se > 2 * a1.fused_width_uncertainty_m
     mine = [e.continuous_width_m for e in estimates if e.signal_name == source][-est.fused_events:]
     assert est.fused_continuous_width_m == pytest.approx(float(np.median(mine)), rel=1e-12)
     # and its uncertainty: the robust standard error of that median over the same events
