@@ -356,7 +356,8 @@ def run_all(sealed: bool = False, only=(), skip_explained: bool = False, skip_an
 # ------------------------------------------------------------------------------------------------- the outside loop
 # The README's loop as a user runs it, through the CLI, on each outside recording (bench/_workbench/foreign.py runs
 # the same commands): diagnose BAG at the drive's nominal conditions -> add-effect --accept-proposal when diagnose
-# proposes a term, else add-effect --accept-partial when its verdict is `partial` (the nearer model: README), else
+# proposes a term (and --accept-partial after it when the term has no plug-in form and the verdict is `partial`: the
+# refusal names it), else add-effect --accept-partial when its verdict is `partial` (the nearer model: README), else
 # add-effect when diagnose names a catalogue effect (its ``additions``), else nothing (the monitor keeps the packaged
 # library) -> train --model -> analyze BAG --library, against analyze BAG before.
 # Training kept short (LOOP_TRAIN_SEEDS, LOOP_TRAIN_DURATION_S) so that a row costs a few CPU-minutes: one seed of the
@@ -425,6 +426,11 @@ def loop_row(spec, workdir: Path, suite: str) -> dict:
     else:
         row["added"] = "catalogue"
         rc, out, _, cpu["add_effect"] = _cli(["add-effect", d / "d.json", "-o", d / "v2.yaml"], d)
+    if rc != 0 and row["added"] == "proposal" and row["verdict"] == "partial":
+        # a proposed term with no plug-in form (a sensor's): the refusal names --accept-partial, the README's step
+        row["added"] = "partial"
+        rc, out, _, cpu["add_effect_partial"] = _cli(["add-effect", d / "d.json", "--accept-partial", "-o",
+                                                      d / "v2.yaml"], d)
     if rc != 0:          # nothing to add (or refused): the monitor keeps its library
         row["added"] = "nothing"
         row["add_effect_said"] = (out.strip().splitlines() or [""])[-1][:300]

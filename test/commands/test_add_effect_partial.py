@@ -44,3 +44,20 @@ def test_accept_partial_writes_the_partial_effect_at_its_fitted_value_and_says_i
     f0 = load_model(None).plant_config().load.working_resistance_N
     # a drift is written as the new nominal value: F0 (1 + change)
     assert load_model(out).plant_config().load.working_resistance_N == pytest.approx(f0 * 1.25)
+
+
+def test_a_sensor_term_proposed_after_a_partial_verdict_is_refused_with_the_partial_step_named(tmp_path, capsys):
+    """A proposed term on a sensor's signal has no plug-in form: --accept-proposal refuses it, and on a `partial`
+    verdict the refusal names the step that remains (the partial effect: --accept-partial), which then works."""
+    path = _partial_diagnosis(tmp_path)
+    d = json.loads(path.read_text())
+    d["proposal"] = {"proposed": True, "law": "measured a2 += -0.0248 m/s² · a₁/10", "plugin_source": "",
+                     "on_top_of": ["working_resistance_drift"], "terms": []}
+    path.write_text(json.dumps(d))
+    out = tmp_path / "v2.yaml"
+    assert main(["add-effect", str(path), "--accept-proposal", "-o", str(out)]) == 2
+    said = capsys.readouterr()
+    assert "no plug-in form" in said.err and "--accept-partial" in said.err and "Traceback" not in said.err
+    assert not out.exists()
+    assert main(["add-effect", str(path), "--accept-partial", "-o", str(out)]) == 0
+    assert out.exists()
