@@ -26,7 +26,7 @@ either (``non_finite_estimate``). So every estimate has a candidate width and a 
 finite, non-negative entries. Each signal keeps its own fusion of the last
 ``fusion_events`` onset events (backlash_monitor.classifier.fusion). In shape mode the a1+a2 estimate's
 fused fields (the width the drive's level follows) are checked against a1's: where a1+a2's fused width
-departs from a1's by more than the check allows, they carry a1's fusion (``fused_from_signal``;
+departs from a1's, or scatters more, than the check allows, they carry a1's fusion (``fused_from_signal``;
 backlash_monitor.classifier.signal_check).
 """
 from __future__ import annotations
@@ -40,10 +40,10 @@ import numpy as np
 from backlash_monitor.classifier.cpn import CPN_VARIANTS, b_margin
 from backlash_monitor.classifier.fusion import WidthFusion, default_fusion_rule
 from backlash_monitor.classifier.patterns import PatternLibrary
-from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, CheckedWidth,
-                                                      checked_width)
 from backlash_monitor.classifier.shape import (SHAPE, SHAPE_SIGNALS, ShapeModel, _expand,
                                               a1_features, a2_features)
+from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, CheckedWidth,
+                                                      checked_width)
 from backlash_monitor.windowing.faults import FaultLog, is_period
 from backlash_monitor.windowing.offset import offset_removal_label, remove_offset
 

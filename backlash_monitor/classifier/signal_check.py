@@ -66,3 +66,13 @@ def checked_width(both_m: float, both_se_m: float, motor_m: float, motor_se_m: f
     if departure > sigmas or ratio > scatter_ratio:
         return CheckedWidth(motor_m, motor_se_m, MOTOR_SIDE_SIGNAL, departure, ratio)
     return CheckedWidth(both_m, both_se_m, BOTH_SIGNALS, departure, ratio)
+
+
+def source_text(fused_from_signal: str, signal: str, departure_sigmas: float, scatter_ratio: float) -> str:
+    """Why a width carries another signal's fusion, for a message ("a1's: a1+a2 departed by 3.4 sigma"); "" when it
+    carries its own."""
+    if fused_from_signal in ("", signal):
+        return ""
+    if departure_sigmas > SIGNAL_CHECK_SIGMAS:
+        return f"{fused_from_signal}'s: {signal} departed by {departure_sigmas:.1f} sigma"
+    return f"{fused_from_signal}'s: {signal} scattered {scatter_ratio:.1f}x as much"

@@ -35,7 +35,7 @@ import time
 from rclpy.node import Node
 
 from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_warning, load_library
-from backlash_monitor.classifier.signal_check import SIGNAL_CHECK_SIGMAS
+from backlash_monitor.classifier.signal_check import source_text
 from backlash_monitor.fleet.caveat import width_text, with_caveat
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator, width_level
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
@@ -194,12 +194,9 @@ class ClassifierNode(Node):
         cont = width_text(estimate.fused_continuous_width_m, estimate.fused_width_uncertainty_m)
         shown = f"{estimate.fused_width_m * 1e3:.2f} mm" if cont == "-" else cont
         # a1+a2's fusion checked against a1's (classifier/signal_check.py): say when the width is a1's
-        source = ""
-        if estimate.fused_from_signal not in ("", estimate.signal_name):
-            source = (f"; {estimate.fused_from_signal}'s: {estimate.signal_name} departed by "
-                      f"{estimate.departure_sigmas:.1f} sigma" if estimate.departure_sigmas > SIGNAL_CHECK_SIGMAS
-                      else f"; {estimate.fused_from_signal}'s: {estimate.signal_name} scattered "
-                      f"{estimate.scatter_ratio:.1f}x as much")
+        source = source_text(estimate.fused_from_signal, estimate.signal_name, estimate.departure_sigmas,
+                             estimate.scatter_ratio)
+        source = f"; {source}" if source else ""
         self.width_state = (level, f"backlash {shown} (fused over {estimate.fused_events} events{source}; nearest "
                                    f"pattern width {estimate.fused_width_m * 1e3:.2f} mm)", dict(
             fused_width_m=f"{estimate.fused_width_m:.5f}", last_width_m=f"{estimate.width_m:.5f}",

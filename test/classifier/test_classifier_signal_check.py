@@ -91,3 +91,10 @@ def test_on_a_clean_drive_the_check_keeps_the_width_within_a_tenth_of_a_millimet
     err_checked = np.mean(np.abs(both.fused_continuous_m[full] - truth))
     assert err_checked <= 0.1e-3, err_checked
     assert err_checked <= np.mean(np.abs(unchecked[full] - truth)) + 0.05e-3
+
+
+def test_the_message_says_which_test_took_the_motor_side_and_nothing_when_it_did_not():
+    from backlash_monitor.classifier.signal_check import source_text
+    assert source_text("a1+a2", "a1+a2", 0.5, 1.0) == "" and source_text("", "a1+a2", math.nan, math.nan) == ""
+    assert source_text("a1", "a1+a2", 3.4, 1.2) == "a1's: a1+a2 departed by 3.4 sigma"
+    assert source_text("a1", "a1+a2", 1.1, 2.6) == "a1's: a1+a2 scattered 2.6x as much"
