@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, SCATTER_RATIO,
-                                                      SIGNAL_CHECK_SIGMAS, checked_width)
+from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, MIN_DEPARTURE_M, MOTOR_SIDE_SIGNAL,
+                                                      SCATTER_RATIO, SIGNAL_CHECK_SIGMAS, checked_width)
 
 
 def test_widths_that_agree_within_the_check_keep_both_together():
@@ -29,6 +29,15 @@ def test_the_threshold_is_on_the_combined_standard_error():
     just_inside = SIGNAL_CHECK_SIGMAS * math.hypot(se, se) * 0.99
     assert checked_width(5e-3 + just_inside, se, 5e-3, se).signal == BOTH_SIGNALS
     assert checked_width(5e-3 + just_inside / 0.98, se, 5e-3, se).signal == MOTOR_SIDE_SIGNAL
+
+
+def test_a_departure_smaller_than_the_regressions_own_disagreement_keeps_both_together():
+    """0.15 mm apart at 5 combined standard errors: beyond the error, but within the 0.2 mm the two regressions differ
+    by on clean drives; 0.3 mm apart at the same errors: taken."""
+    se = 0.15e-3 / 5 / math.sqrt(2)
+    kept = checked_width(5.15e-3, se, 5.0e-3, se)
+    assert kept.departure_sigmas == pytest.approx(5.0) and 0.15e-3 < MIN_DEPARTURE_M and kept.signal == BOTH_SIGNALS
+    assert checked_width(5.3e-3, se, 5.0e-3, se).signal == MOTOR_SIDE_SIGNAL
 
 
 def test_both_together_scattering_far_more_than_the_motor_side_takes_the_motor_side():
