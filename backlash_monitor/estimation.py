@@ -75,6 +75,7 @@ class WidthEstimate:
     fused_from_signal: str = ""
     departure_sigmas: float = math.nan
     scatter_ratio: float = math.nan
+    check_reason: str = ""          # why a1's was taken, in words (signal_check.CheckedWidth.reason)
 
     @property
     def level_width_m(self) -> float:
@@ -268,7 +269,7 @@ class DriveEstimator:
                     fused_continuous_width_m=f.continuous_width_m,
                     fused_width_uncertainty_m=f.continuous_width_se_m,
                     fused_from_signal=check.signal, departure_sigmas=check.departure_sigmas,
-                    scatter_ratio=check.scatter_ratio))
+                    scatter_ratio=check.scatter_ratio, check_reason=check.reason))
         return out
 
     def _checked(self, fused: dict, signal: str, j: int):

@@ -56,6 +56,7 @@ class CheckedWidth:
     signal: str                  # BOTH_SIGNALS or MOTOR_SIDE_SIGNAL
     departure_sigmas: float      # |both - motor side| / combined uncertainty (NaN: not checked)
     scatter_ratio: float = math.nan   # both's uncertainty / the motor side's (NaN: not checked)
+    reason: str = ""             # why the motor side's was taken ("departed by 3.4 sigma (0.45 mm)"); "" when not
 
 
 def checked_width(both_m: float, both_se_m: float, motor_m: float, motor_se_m: float,
@@ -69,18 +70,27 @@ def checked_width(both_m: float, both_se_m: float, motor_m: float, motor_se_m: f
     values = (both_m, both_se_m, motor_m, motor_se_m)
     if not all(isinstance(v, (int, float)) and math.isfinite(v) for v in values) or motor_se_m <= 0:
         return CheckedWidth(both_m, both_se_m, BOTH_SIGNALS, math.nan)
-    departure = abs(both_m - motor_m) / math.hypot(both_se_m, motor_se_m)
+    apart_m = abs(both_m - motor_m)
+    departure = apart_m / math.hypot(both_se_m, motor_se_m)
     ratio = both_se_m / motor_se_m
-    if (departure > sigmas and abs(both_m - motor_m) > min_departure_m) or ratio > scatter_ratio:
-        return CheckedWidth(motor_m, motor_se_m, MOTOR_SIDE_SIGNAL, departure, ratio)
+    reasons = ([f"departed by {departure:.1f} sigma ({apart_m * 1e3:.2f} mm)"]
+               if departure > sigmas and apart_m > min_departure_m else [])
+    reasons += [f"scattered {ratio:.1f}x as much"] if ratio > scatter_ratio else []
+    if reasons:
+        return CheckedWidth(motor_m, motor_se_m, MOTOR_SIDE_SIGNAL, departure, ratio, " and ".join(reasons))
     return CheckedWidth(both_m, both_se_m, BOTH_SIGNALS, departure, ratio)
 
 
-def source_text(fused_from_signal: str, signal: str, departure_sigmas: float, scatter_ratio: float) -> str:
-    """Why a width carries another signal's fusion, for a message ("a1's: a1+a2 departed by 3.4 sigma"); "" when it
-    carries its own."""
+def source_text(fused_from_signal: str, signal: str, reason: str) -> str:
+    """Why a width carries another signal's fusion, for a message ("a1's: a1+a2 departed by 3.4 sigma (0.45 mm)"), from
+    the check's ``reason``; "" when it carries its own."""
     if fused_from_signal in ("", signal):
         return ""
-    if departure_sigmas > SIGNAL_CHECK_SIGMAS and scatter_ratio <= SCATTER_RATIO:
-        return f"{fused_from_signal}'s: {signal} departed by {departure_sigmas:.1f} sigma"
-    return f"{fused_from_signal}'s: {signal} scattered {scatter_ratio:.1f}x as much"
+    return f"{fused_from_signal}'s: {signal} {reason}".rstrip()
+
+
+def rule_text(sigmas: float = SIGNAL_CHECK_SIGMAS, min_departure_m: float = MIN_DEPARTURE_M,
+              scatter_ratio: float = SCATTER_RATIO) -> str:
+    """The rule in words, for a user who sees the motor side's width taken."""
+    return (f"a1+a2 is replaced by a1 when the two depart by more than {sigmas:g} combined standard errors and "
+            f"{min_departure_m * 1e3:g} mm, or a1+a2 scatters more than {scatter_ratio:g}x as much as a1")

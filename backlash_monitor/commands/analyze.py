@@ -33,8 +33,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, SCATTER_RATIO,
-                                                      SIGNAL_CHECK_SIGMAS)
+from backlash_monitor.classifier.signal_check import BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, rule_text, source_text
 from backlash_monitor.commands import UsageError
 from backlash_monitor.fleet.caveat import FitVerdict, with_caveat, width_text
 from backlash_monitor.files.registry import RegistryError, entries
@@ -285,6 +284,16 @@ def print_saturation(info: dict) -> None:
           f"({info['saturated_windows']} of {info['windows_checked']} windows with such samples)")
 
 
+def print_signal_check(summary: dict) -> None:
+    """One line when a1+a2's last fused width is a1's (classifier/signal_check.py): why, and the rule; nothing when
+    it is its own."""
+    both = summary["per_signal"].get(BOTH_SIGNALS, {})
+    if both.get("fused_from_signal") == MOTOR_SIDE_SIGNAL:
+        print(f"{BOTH_SIGNALS}'s fused width is "
+              f"{source_text(MOTOR_SIDE_SIGNAL, BOTH_SIGNALS, both.get('check_reason', ''))} ({rule_text()}: the load "
+              "side carries what the library does not know; docs/classifier.md 5.3)")
+
+
 def _print_integrity(integrity) -> None:
     if integrity and (integrity["damaged_chunks"] or integrity["problems"] or not integrity["complete"]):
         print(f"bag integrity: {integrity['describe']}")
@@ -311,11 +320,7 @@ def _print_summary(summary, rows, discarded, n_samples, elapsed, outputs):
         print(text if i == 0 else with_caveat(text, fit))
         if i == 0:
             print("  ".join("-" * w for w in widths))
-    both = summary["per_signal"].get(BOTH_SIGNALS, {})
-    if both.get("fused_from_signal") == MOTOR_SIDE_SIGNAL:
-        print(f"{BOTH_SIGNALS}'s fused width is {MOTOR_SIDE_SIGNAL}'s: both together departed from the motor side's by "
-              f"more than {SIGNAL_CHECK_SIGMAS:g} standard errors or scattered more than {SCATTER_RATIO:g}x as much (the "
-              "load side carries what the library does not know; docs/classifier.md 5.3)")
+    print_signal_check(summary)
     if not math.isnan(true_width):
         print(f"true width: {true_width * 1e3:.2f} mm")
     print(f"wrote {outputs['csv']}, {outputs['json'].name}, {outputs['mcap'].name}")

@@ -194,8 +194,7 @@ class ClassifierNode(Node):
         cont = width_text(estimate.fused_continuous_width_m, estimate.fused_width_uncertainty_m)
         shown = f"{estimate.fused_width_m * 1e3:.2f} mm" if cont == "-" else cont
         # a1+a2's fusion checked against a1's (classifier/signal_check.py): say when the width is a1's
-        source = source_text(estimate.fused_from_signal, estimate.signal_name, estimate.departure_sigmas,
-                             estimate.scatter_ratio)
+        source = source_text(estimate.fused_from_signal, estimate.signal_name, estimate.check_reason)
         source = f"; {source}" if source else ""
         self.width_state = (level, f"backlash {shown} (fused over {estimate.fused_events} events{source}; nearest "
                                    f"pattern width {estimate.fused_width_m * 1e3:.2f} mm)", dict(

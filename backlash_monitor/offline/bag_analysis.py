@@ -547,7 +547,7 @@ def _row(window, est, true_width) -> dict:
         "fused_width_uncertainty_m": est.fused_width_uncertainty_m,
         # the signal whose fusion the fused fields carry (a1+a2's checked against a1's: classifier/signal_check.py)
         "fused_from_signal": est.fused_from_signal, "departure_sigmas": est.departure_sigmas,
-        "scatter_ratio": est.scatter_ratio,
+        "scatter_ratio": est.scatter_ratio, "check_reason": est.check_reason,
         "a1_offset_m_s2": window.sensor_offsets.get("a1", math.nan),
         "a2_offset_m_s2": window.sensor_offsets.get("a2", math.nan),
         "offset_periods": window.offset_periods,
@@ -573,6 +573,7 @@ def _summary(rows, true_width):
         s["fused_continuous_width_m"] = r.get("fused_continuous_width_m", math.nan)
         s["fused_width_uncertainty_m"] = r.get("fused_width_uncertainty_m", math.nan)
         s["fused_from_signal"] = r.get("fused_from_signal", "")
+        s["check_reason"] = r.get("check_reason", "")
     return {"true_width_m": true_width, "per_signal": per}
 
 

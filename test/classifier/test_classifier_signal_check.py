@@ -103,7 +103,18 @@ def test_on_a_clean_drive_the_check_keeps_the_width_within_a_tenth_of_a_millimet
 
 
 def test_the_message_says_which_test_took_the_motor_side_and_nothing_when_it_did_not():
-    from backlash_monitor.classifier.signal_check import source_text
-    assert source_text("a1+a2", "a1+a2", 0.5, 1.0) == "" and source_text("", "a1+a2", math.nan, math.nan) == ""
-    assert source_text("a1", "a1+a2", 3.4, 1.2) == "a1's: a1+a2 departed by 3.4 sigma"
-    assert source_text("a1", "a1+a2", 1.1, 2.6) == "a1's: a1+a2 scattered 2.6x as much"
+    from backlash_monitor.classifier.signal_check import rule_text, source_text
+    departed = checked_width(6.0e-3, 0.1e-3, 5.5e-3, 0.1e-3)        # 0.5 mm at 3.5 sigma, the same scatter
+    scattered = checked_width(6.7e-3, 1.0e-3, 5.75e-3, 0.12e-3)     # 8.3x the scatter, within 2 sigma
+    both = checked_width(7.0e-3, 1.0e-3, 5.0e-3, 0.12e-3)           # 2.0 mm at 2.0 sigma is not beyond 2; 8.3x
+    kept = checked_width(5.0e-3, 0.05e-3, 5.1e-3, 0.05e-3)
+    assert departed.reason == "departed by 3.5 sigma (0.50 mm)"
+    assert scattered.reason == "scattered 8.3x as much"
+    assert both.reason == "scattered 8.3x as much" and kept.reason == ""
+    far = checked_width(8.0e-3, 0.3e-3, 5.0e-3, 0.12e-3)            # 3 mm at 9.3 sigma and 2.5x the scatter
+    assert far.reason == "departed by 9.3 sigma (3.00 mm) and scattered 2.5x as much"
+    assert source_text("a1", BOTH_SIGNALS, departed.reason) == "a1's: a1+a2 departed by 3.5 sigma (0.50 mm)"
+    assert source_text(BOTH_SIGNALS, BOTH_SIGNALS, kept.reason) == "" and source_text("", BOTH_SIGNALS, "") == ""
+    # the rule in words names all three thresholds (the floor too)
+    assert all(part in rule_text() for part in (f"{SIGNAL_CHECK_SIGMAS:g} combined standard errors",
+                                                f"{MIN_DEPARTURE_M * 1e3:g} mm", f"{SCATTER_RATIO:g}x"))
