@@ -24,6 +24,8 @@ from backlash_monitor.ros.conversions import from_float64_field, to_float64_arra
 from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
 from backlash_monitor.ros.qos import WINDOW_QOS
+from backlash_monitor.ros.resend_on_match import ResendOnMatch
+from backlash_monitor.classifier.repeats import RepeatedWindows
 from backlash_monitor.ros.runtime import run_node
 from backlash_monitor_msgs.msg import BacklashWindow
 
@@ -51,7 +53,11 @@ class DenoiseNode(Node):
                                       f"levels between 1 and level = {p['level']}")
         self.options = dict(level=p["level"], details_removed=details, mode=p["mode"])
         self.label = denoising_label(p["level"], details, p["mode"])
-        self.publisher = self.create_publisher(BacklashWindow, "windows/denoised", WINDOW_QOS)
+        # a reader that matches gets the last windows again (ros/resend_on_match.py: the DDS history alone
+        # is not always delivered to a restarted classifier under load)
+        self.resender = ResendOnMatch(self, BacklashWindow, "windows/denoised", WINDOW_QOS)
+        self.publisher = self.resender.publisher
+        self.repeated = RepeatedWindows()   # windows/raw re-sent by the windowing node: denoised once
         self.faults = FaultLog()
         self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "windows")
         self.counts = {"denoised": 0, "dropped": 0}
@@ -62,6 +68,9 @@ class DenoiseNode(Node):
     def on_window(self, msg: BacklashWindow):
         now = time.monotonic()
         self.health.arrived(now)
+        if self.repeated.is_repeat(msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec,
+                                   msg.entry_sample_index, msg.entry_kind, msg.header.frame_id):
+            return
         a1, a2 = from_float64_field(msg.a1), from_float64_field(msg.a2)
         clean, reason = denoise_checked(a1, a2, **self.options)
         if reason is not None:
@@ -75,7 +84,7 @@ class DenoiseNode(Node):
         msg.a1 = to_float64_array(clean[0])
         msg.a2 = to_float64_array(clean[1])
         msg.denoising = self.label
-        self.publisher.publish(msg)
+        self.resender.publish(msg)
         self.counts["denoised"] += 1
 
     def update_diagnostics(self, publish_now: bool = False):
@@ -83,6 +92,7 @@ class DenoiseNode(Node):
         summary = f"{self.counts['denoised']} windows denoised, {self.counts['dropped']} dropped"
         self.diagnostics.set(level, f"{problem}; {summary}" if problem else summary,
                              publish_now=publish_now, input_faults=self.faults.summary(),
+                             repeated_windows_skipped=self.repeated.repeats, windows_resent=self.resender.resent,
                              **self.counts)
 
 

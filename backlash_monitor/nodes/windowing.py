@@ -39,6 +39,7 @@ from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
 from backlash_monitor.ros.qos import LATCHED, WINDOW_QOS, chunk_qos
+from backlash_monitor.ros.resend_on_match import ResendOnMatch
 from backlash_monitor.ros.runtime import run_node
 from backlash_monitor.chain.joiner import ChunkJoiner, pending_ranges_for
 from backlash_monitor.chain.stage import WindowingStage
@@ -114,7 +115,10 @@ class WindowingNode(Node):
             self.create_subscription(SignalChunk, f"plant/{name}",
                                      lambda msg, n=name: self.on_chunk(n, msg), qos)
         self.create_subscription(Float64, "plant/true_width_m", self.on_true_width, LATCHED)
-        self.publisher = self.create_publisher(BacklashWindow, "windows/raw", WINDOW_QOS)
+        # a reader that matches gets the last windows again (ros/resend_on_match.py: the DDS history alone
+        # is not always delivered to a restarted denoise node under load)
+        self.resender = ResendOnMatch(self, BacklashWindow, "windows/raw", WINDOW_QOS)
+        self.publisher = self.resender.publisher
         self.diagnostics = DriveDiagnostics(self, "windowing", p["drive_name"],
                                             refresh=self.update_diagnostics)
         self.get_logger().info(f"trigger {p['trigger']}, angles {p['angle_source']}, "
@@ -203,7 +207,7 @@ class WindowingNode(Node):
                              lost_samples=self.stage.lost_samples,
                              input_faults=self.faults.summary(), offset_periods=periods,
                              plausible_offset_m_s2=limit, saturation=saturation or "none",
-                             **values, **self.counts)
+                             windows_resent=self.resender.resent, **values, **self.counts)
 
     def publish_window(self, window, frame_id: str, range_stamp=None):
         msg = BacklashWindow()
@@ -228,7 +232,7 @@ class WindowingNode(Node):
         msg.a2_offset_m_s2 = window.sensor_offsets.get("a2", math.nan)
         msg.offset_periods = window.offset_periods
         msg.saturated_samples = min(window.saturated_samples, 2 ** 32 - 1)
-        self.publisher.publish(msg)
+        self.resender.publish(msg)
         if window.saturated_samples:
             self.counts["saturated_windows"] += 1
             self.note_saturation()

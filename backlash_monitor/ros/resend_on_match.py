@@ -1,0 +1,59 @@
+"""ResendOnMatch: a window publisher that sends its recent windows again when a reader matches.
+
+The window topics are reliable and transient local (docs/graph.md "QoS"): a reader that matches late
+(a node restarted in a running graph) should get the writer's last 1000 windows from the DDS history.
+Under load it sometimes gets none of them. Measured with `bench/_reliability/under_load.py` (the classifier killed 10
+times at x2 beside a CPU hog, 2ae9ad2): in 1 run of 4 a restarted classifier's first estimate was fused over
+1 event, 18 s of stream after the last one before the kill, and 138 onsets were never classified although the
+denoise node had published their windows. Fast DDS has known reports of this race: a late
+joiner that receives a live sample before the writer's heartbeat takes that sample's sequence number as its
+start and never asks for the history (eProsima/Fast-DDS issues 2387 and 3822).
+
+So the writer does not rely on it alone. It keeps the last ``depth`` messages it published and, when its
+matched-reader count grows, publishes them again, oldest first. They are new samples with new sequence numbers,
+delivered like live ones. Every reader sees them twice (from the history or live, and now again): the
+denoise and classifier nodes skip a window they have seen (classifier/repeats.py). A reader that lost the history
+may get the re-sent windows after a few newer ones; the classifier fuses them in the order they arrive, and
+width_trend ignores an estimate older than its open period (fleet/trend.py).
+
+Attaches to a host node as diagnostic_updater's Updater does: ``ResendOnMatch(node, msg_type, topic, qos)``,
+then ``.publish(msg)`` in place of the publisher's. A published message is kept by reference: the host must not
+change it afterwards.
+"""
+from __future__ import annotations
+
+from collections import deque
+
+from rclpy.event_handler import PublisherEventCallbacks
+
+
+class ResendOnMatch:
+    """A publisher that keeps its last ``depth`` messages and sends them again when a new reader matches."""
+
+    def __init__(self, node, msg_type, topic: str, qos, depth: int | None = None):
+        depth = qos.depth if depth is None else depth
+        if depth < 0:
+            raise ValueError(f"depth = {depth}; allowed: 0 (send nothing again) or more")
+        self.node = node
+        self.kept: deque = deque(maxlen=depth)
+        self.resent = 0            # messages sent again, in all
+        self.matches = 0           # times a reader matched
+        self.publisher = node.create_publisher(msg_type, topic, qos,
+                                               event_callbacks=PublisherEventCallbacks(matched=self.on_matched))
+
+    def publish(self, msg) -> None:
+        self.publisher.publish(msg)
+        if self.kept.maxlen:
+            self.kept.append(msg)
+
+    def on_matched(self, info) -> None:
+        """A reader matched (current_count_change > 0): send the kept messages again, oldest first."""
+        if info.current_count_change <= 0:
+            return
+        self.matches += 1
+        for msg in list(self.kept):
+            self.publisher.publish(msg)
+        self.resent += len(self.kept)
+        if self.kept:
+            self.node.get_logger().info(f"a reader of {self.publisher.topic_name} matched: sent the last "
+                                        f"{len(self.kept)} windows again")
