@@ -10,8 +10,13 @@ joiner that receives a live sample before the writer's heartbeat takes that samp
 start and never asks for the history (eProsima/Fast-DDS issues 2387 and 3822).
 
 So the writer does not rely on it alone. It keeps the last ``depth`` messages it published and, when its
-matched-reader count grows, publishes them again, oldest first. They are new samples with new sequence numbers,
-delivered like live ones. Every reader sees them twice (from the history or live, and now again): the
+matched-reader count grows, publishes them again, oldest first, three times: ``RESEND_AFTER_S`` (0.5, 2 and 8 s)
+after the match. They are new samples with new sequence numbers, delivered like live ones. Not at once: a match is
+two-sided, the writer counts the reader before the reader has matched the writer back, and what comes in between is
+dropped on the reader's side (docs/graph.md, the plant's ``match_settle_s``). Measured with a single re-send at the
+match (the same bench, 4 runs with a third busy loop): in 1 run a restarted classifier got the re-sent windows only
+from 2.75 s of stream after the oldest on, and 10 onsets were lost; under load the reader can take seconds to match
+back, hence the later re-sends. Every reader sees them twice (from the history or live, and now again): the
 denoise and classifier nodes skip a window they have seen (classifier/repeats.py). A reader that lost the history
 may get the re-sent windows after a few newer ones; the classifier fuses them in the order they arrive, and
 width_trend ignores an estimate older than its open period (fleet/trend.py).
@@ -22,24 +27,34 @@ change it afterwards.
 """
 from __future__ import annotations
 
+import time
 from collections import deque
 
 from rclpy.event_handler import PublisherEventCallbacks
+
+RESEND_AFTER_S = (0.5, 2.0, 8.0)   # after a reader matched [s]: the reader matches back within a second when
+                                   # idle, within seconds under load; each re-send costs the readers a skip
+POLL_S = 0.25                      # the re-send timer's period while one is due [s]
 
 
 class ResendOnMatch:
     """A publisher that keeps its last ``depth`` messages and sends them again when a new reader matches."""
 
-    def __init__(self, node, msg_type, topic: str, qos, depth: int | None = None):
+    def __init__(self, node, msg_type, topic: str, qos, depth: int | None = None,
+                 resend_after_s: tuple[float, ...] = RESEND_AFTER_S):
         depth = qos.depth if depth is None else depth
         if depth < 0:
             raise ValueError(f"depth = {depth}; allowed: 0 (send nothing again) or more")
         self.node = node
         self.kept: deque = deque(maxlen=depth)
+        self.resend_after_s = tuple(sorted(resend_after_s))
+        self.due: list[float] = []  # time.monotonic() of the re-sends still to come
         self.resent = 0            # messages sent again, in all
         self.matches = 0           # times a reader matched
         self.publisher = node.create_publisher(msg_type, topic, qos,
                                                event_callbacks=PublisherEventCallbacks(matched=self.on_matched))
+        self.timer = node.create_timer(POLL_S, self.on_timer)
+        self.timer.cancel()        # runs only while a re-send is due
 
     def publish(self, msg) -> None:
         self.publisher.publish(msg)
@@ -47,13 +62,30 @@ class ResendOnMatch:
             self.kept.append(msg)
 
     def on_matched(self, info) -> None:
-        """A reader matched (current_count_change > 0): send the kept messages again, oldest first."""
+        """A reader matched (current_count_change > 0): the kept messages are due again at each delay."""
         if info.current_count_change <= 0:
             return
         self.matches += 1
+        if not self.kept.maxlen:
+            return
+        now = time.monotonic()
+        self.due = sorted(set(self.due) | {now + delay for delay in self.resend_after_s})
+        self.timer.reset()
+
+    def on_timer(self) -> None:
+        now = time.monotonic()
+        if self.due and self.due[0] <= now:
+            while self.due and self.due[0] <= now:   # several due at once (a slow executor): one re-send
+                self.due.pop(0)
+            self.resend()
+        if not self.due:
+            self.timer.cancel()
+
+    def resend(self) -> None:
+        """Publish the kept messages again, oldest first."""
         for msg in list(self.kept):
             self.publisher.publish(msg)
         self.resent += len(self.kept)
         if self.kept:
             self.node.get_logger().info(f"a reader of {self.publisher.topic_name} matched: sent the last "
-                                        f"{len(self.kept)} windows again")
+                                        f"{len(self.kept)} windows again", throttle_duration_sec=5.0)
