@@ -183,6 +183,11 @@ MK_PERIOD_TACHO, MK_RUN_TO_RUN, MK_TANK, MK_SQUEAL, MK_STEP = 20, 21, 22, 23, 24
 # input rises past a threshold (re-armed below a lower one); a moving average over the last a scans (a boxcar); a
 # sample of the input taken at each contact from the gap (the scan after it began), held
 MK_THERMOSTAT, MK_TOGGLE, MK_MOVING_MEAN, MK_IMPACT_SAMPLE = 25, 26, 27, 28
+# the eleventh set (foreign_drives.outside_dev11/_sealed11), see _memory_scan11: a hidden rotor behind a magnetic
+# (pole-slipping, sinusoidal) coupling; an off-delay timer (on while the input is above a threshold and for a set time
+# after); a fill level ramping up while the input is on and down while it is off, clamped to [0, 1]; the state (the
+# contact's age) of a rate-and-state friction law
+MK_MAG_COUPLING, MK_OFF_DELAY, MK_FILL, MK_RATE_STATE = 29, 30, 31, 32
 # selectors: the drive quantity a factor reads
 (XS_ONE, XS_OMEGA1, XS_OMEGA2, XS_RIM_SPEED, XS_MASS_SPEED, XS_PENETRATION, XS_SPRING_EXTENSION, XS_ALPHA1,
  XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
@@ -211,6 +216,9 @@ XF_LORENTZ = 23
 # the tenth set: a pseudo-random number in [-1, 1) from the whole number floor((x - c)/b) and a seed a (XF_HASH's
 # arithmetic on steps of b from c); a decay exp(-((x - b) mod a)/c) restarting every a from b (a train of decays)
 XF_HASH_STEP, XF_PERIODIC_DECAY = 24, 25
+# the eleventh set: a logarithm ln(x/a) (0 for x <= 0); a polytropic gas law (1/(1 - q))^b - 1, q = x/a taken at most
+# 0.9 (an air column of length a squeezed by x, its exponent b)
+XF_LOG, XF_POLYTROPIC = 26, 27
 
 
 @njit(cache=True, inline="always")
@@ -718,6 +726,59 @@ def _memory_scan10(kind, x, P, seg_dt):
 
 
 @njit(cache=True)
+def _memory_scan11(kind, t, x, P, seg_dt):
+    """The eleventh set's memory kinds, one 0.2 ms scan at ``t`` with the input ``x`` (the output m in mem_state):
+    - MK_MAG_COUPLING: a hidden rotor behind a magnetic coupling of pull-out torque a and b pole pairs, inertia c, viscous
+      load ring[MEM_EXTRA]: its speed w (ring[1]) += dt*(a*sin(b*phi) - ring[MEM_EXTRA]*w)/c, then the angle phi of the
+      input's shaft ahead of it (ring[0]) += dt*(x - w); m = a*sin(b*phi) (first scan: w = x, b*phi = asin(ring[MEM_EXTRA]
+      *x/a), 0 when a = 0);
+    - MK_OFF_DELAY: m -> 1 at a scan with x > a (its time kept), -> 0 once b seconds have passed since the last such scan
+      (first scan: m = 1 if x > a, else 0);
+    - MK_FILL: m += dt/a while x > 0.5, m -= dt/b otherwise, clamped to [0, 1] (first scan: m = 0);
+    - MK_RATE_STATE: m -> a/x + (m - a/x)*exp(-x*dt/a) (theta' = 1 - x*theta/a over the scan at the input x > 0; m +=
+      dt where x <= 0) (first scan: m = a/x)."""
+    a, b, c = P[P_MEMA], P[P_MEMB], P[P_MEMC]
+    if P[P_MEMINIT] == 0.0:
+        P[P_MEMINIT] = 1.0
+        P[P_MEMN] = 0.0
+        P[P_MEMT0] = t
+        if kind == MK_MAG_COUPLING:
+            q = P[P_MEMR0 + MEM_EXTRA] * x / a if a > 0.0 else 0.0
+            q = -1.0 if q < -1.0 else (1.0 if q > 1.0 else q)
+            P[P_MEMR0] = math.asin(q) / b
+            P[P_MEMR0 + 1] = x
+            P[P_MEMSTATE] = a * math.sin(b * P[P_MEMR0])
+        elif kind == MK_OFF_DELAY:
+            P[P_MEMSTATE] = 1.0 if x > a else 0.0
+        elif kind == MK_FILL:
+            P[P_MEMSTATE] = 0.0
+        else:
+            P[P_MEMSTATE] = a / x if x > 0.0 else 0.0
+        return
+    if kind == MK_MAG_COUPLING:
+        w = P[P_MEMR0 + 1]
+        w += seg_dt * (a * math.sin(b * P[P_MEMR0]) - P[P_MEMR0 + MEM_EXTRA] * w) / c
+        P[P_MEMR0 + 1] = w
+        P[P_MEMR0] += seg_dt * (x - w)
+        P[P_MEMSTATE] = a * math.sin(b * P[P_MEMR0])
+    elif kind == MK_OFF_DELAY:
+        if x > a:
+            P[P_MEMSTATE] = 1.0
+            P[P_MEMT0] = t
+        elif P[P_MEMSTATE] != 0.0 and t - P[P_MEMT0] >= b - 1e-12:
+            P[P_MEMSTATE] = 0.0
+    elif kind == MK_FILL:
+        m = P[P_MEMSTATE] + (seg_dt / a if x > 0.5 else -seg_dt / b)
+        P[P_MEMSTATE] = 0.0 if m < 0.0 else (1.0 if m > 1.0 else m)
+    elif kind == MK_RATE_STATE:
+        if x > 0.0:
+            ss = a / x
+            P[P_MEMSTATE] = ss + (P[P_MEMSTATE] - ss) * math.exp(-x * seg_dt / a)
+        else:
+            P[P_MEMSTATE] += seg_dt
+
+
+@njit(cache=True)
 def memory_scan(t, y, P, mode, seg_dt):
     """Advance the memory element by one 0.2 ms segment from the state ``y`` at the segment's start ``t``:
     - MK_LAG: m -> x + (m - x)*exp(-dt/a) while x > m, else x + (m - x)*exp(-dt/b) (c = 1: m*exp(-dt/b));
@@ -737,6 +798,9 @@ def memory_scan(t, y, P, mode, seg_dt):
         P[P_MEMSTATE] = on
         return
     x = _quantity(int(P[P_MEMSEL]), t, y, P, mode, 0.0, 0.0)
+    if kind >= MK_MAG_COUPLING:
+        _memory_scan11(kind, t, x, P, seg_dt)
+        return
     if kind >= MK_THERMOSTAT:
         _memory_scan10(kind, x, P, seg_dt)
         return
@@ -860,6 +924,13 @@ def _shaped(shape, x, a, b, c):
     if shape == XF_PERIODIC_DECAY:               # exp(-((x - b) mod a)/c): a decay restarting every a from b
         q = x - b
         return math.exp(-(q - a * math.floor(q / a)) / c)
+    if shape == XF_LOG:                          # ln(x/a), 0 for x <= 0
+        return math.log(x / a) if x > 0.0 else 0.0
+    if shape == XF_POLYTROPIC:                   # (1/(1 - q))^b - 1, q = x/a at most 0.9 (an air column squeezed)
+        q = x / a
+        if q > 0.9:
+            q = 0.9
+        return (1.0 / (1.0 - q)) ** b - 1.0
     return 0.0
 
 

@@ -484,6 +484,36 @@ OUTSIDE_DEV10_ROWS = [
      [E("wheel_contact_interlock_brake", {"torque_Nm": 3.0, "rise_time_s": 0.01})]),
 ]
 
+# ---- issue 31 part 4, eleventh set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev11;
+# the eleventh sealed half's rows are in foreign_drives.outside_sealed11). One mechanism per row at its own nominal
+# conditions, one clean control. Seeds 11000+. Each strength set by one simulation against the clean drive of the same
+# seed (docs/foreign_drives.md "The eleventh set").
+OUTSIDE_DEV11_ROWS = [
+    # 2 N*m per rad/s of wheel speed above 151 rad/s on the motor (a clean drive's Omega: 147.6-153.7 rad/s)
+    ("od11_motor_wheel_runaway_governor", "outside", 0.0064, 0.0270, 0.93,
+     [E("motor_wheel_runaway_governor", {"gain_Nm_s_per_rad": 2.0, "set_speed_rad_s": 151.0})]),
+    # 3 N*m on above 152 rad/s, held 20 ms after
+    ("od11_wheel_off_delay_overspeed_brake", "outside", 0.0078, 0.0220, 0.91,
+     [E("wheel_off_delay_overspeed_brake", {"torque_Nm": 3.0, "trip_speed_rad_s": 152.0, "off_delay_s": 0.02})]),
+    # 1 N*m*s/rad one way (a clean drive's slip: -5..5 rad/s)
+    ("od11_clutch_overrunning_viscous_coupling", "outside", 0.0055, 0.0350, 0.92,
+     [E("clutch_overrunning_viscous_coupling", {"coefficient_Nm_s_per_rad": 1.0})]),
+    # +-2 N outside 22.72 +- 0.02 m/s (a clean drive's v: 22.67-22.77 m/s)
+    ("od11_mass_dead_band_speed_switch", "outside", 0.0086, 0.0300, 0.95,
+     [E("mass_dead_band_speed_switch", {"force_N": 2.0, "reference_speed_m_s": 22.72, "half_band_m_s": 0.02,
+                                        "edge_width_m_s": 0.002})]),
+    ("od11_clean_w7.2_eta0.0250_n0.90", "clean", 0.0072, 0.0250, 0.90, []),
+    # a 50 Hz notch of quality 1
+    ("od11_a2_mains_notch_filter", "outside", 0.0069, 0.0190, 0.94,
+     [E("a2_mains_notch_filter", {"notch_hz": 50.0, "quality": 1.0})]),
+    # 5 N on a 0.1 m air column, gamma 1.4 (a clean drive's z: 0.284-0.322 m)
+    ("od11_mass_stroke_trapped_air_cushion", "outside", 0.0057, 0.0290, 0.90,
+     [E("mass_stroke_trapped_air_cushion", {"force_N": 5.0, "column_m": 0.1, "exponent": 1.4})]),
+    # +-2 N*m, a new level every 0.1 s
+    ("od11_wheel_upstream_tension_steps", "outside", 0.0074, 0.0370, 0.92,
+     [E("wheel_upstream_tension_steps", {"torque_Nm": 2.0, "step_s": 0.1, "first_step_s": 0.05, "seed": 11})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -497,11 +527,12 @@ OUTSIDE_DEV7 = _suite(OUTSIDE_DEV7_ROWS, 8600, 4.0)
 OUTSIDE_DEV8 = _suite(OUTSIDE_DEV8_ROWS, 8800, 4.0)
 OUTSIDE_DEV9 = _suite(OUTSIDE_DEV9_ROWS, 9000, 4.0)
 OUTSIDE_DEV10 = _suite(OUTSIDE_DEV10_ROWS, 10000, 4.0)
+OUTSIDE_DEV11 = _suite(OUTSIDE_DEV11_ROWS, 11000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
           "outside_dev8": OUTSIDE_DEV8, "outside_dev9": OUTSIDE_DEV9,
-          "outside_dev10": OUTSIDE_DEV10}
+          "outside_dev10": OUTSIDE_DEV10, "outside_dev11": OUTSIDE_DEV11}
 
 
 def _outside_sealed():
@@ -564,9 +595,15 @@ def _outside_sealed10():
     return _suite(suite_rows(), 10100, 4.0)
 
 
+def _outside_sealed11():
+    """The eleventh sealed half's suite, made from foreign_drives.outside_sealed11 on first use (its rows live there)."""
+    from .outside_sealed11 import suite_rows
+    return _suite(suite_rows(), 11100, 4.0)
+
+
 SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
                                "outside_sealed5", "outside_sealed6", "outside_sealed7", "outside_sealed8",
-                               "outside_sealed9", "outside_sealed10")
+                               "outside_sealed9", "outside_sealed10", "outside_sealed11")
 
 
 def suite(name: str) -> list:
@@ -590,6 +627,8 @@ def suite(name: str) -> list:
         return _outside_sealed9()
     if name == "outside_sealed10":
         return _outside_sealed10()
+    if name == "outside_sealed11":
+        return _outside_sealed11()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])
