@@ -10,13 +10,15 @@ joiner that receives a live sample before the writer's heartbeat takes that samp
 start and never asks for the history (eProsima/Fast-DDS issues 2387 and 3822).
 
 So the writer does not rely on it alone. It keeps the last ``depth`` messages it published and, when its
-matched-reader count grows, publishes them again, oldest first, three times: ``RESEND_AFTER_S`` (0.5, 2 and 8 s)
-after the match. They are new samples with new sequence numbers, delivered like live ones. Not at once: a match is
+matched-reader count grows, publishes them again, oldest first, twice: ``RESEND_AFTER_S`` (1 and 5 s) after the
+match, in slices of ``SLICE`` windows per ``TICK_S``. They are new samples with new sequence numbers, delivered like live ones. Not at once: a match is
 two-sided, the writer counts the reader before the reader has matched the writer back, and what comes in between is
 dropped on the reader's side (docs/graph.md, the plant's ``match_settle_s``). Measured with a single re-send at the
 match (the same bench, 4 runs with a third busy loop): in 1 run a restarted classifier got the re-sent windows only
 from 2.75 s of stream after the oldest on, and 10 onsets were lost; under load the reader can take seconds to match
-back, hence the later re-sends. Every reader sees them twice (from the history or live, and now again): the
+back, hence the later re-send. Not all at once either: three re-sends of up to 1000 windows each in one callback
+(0.5, 2 and 8 s) stalled the chain in 2 of 5 runs (a restarted classifier got no window at all for minutes; in one
+run the windowing node stopped at 548 windows). Every reader sees them twice (from the history or live, and now again): the
 denoise and classifier nodes skip a window they have seen (classifier/repeats.py). A reader that lost the history
 may get the re-sent windows after a few newer ones; the classifier fuses them in the order they arrive, and
 width_trend ignores an estimate older than its open period (fleet/trend.py).
@@ -32,9 +34,10 @@ from collections import deque
 
 from rclpy.event_handler import PublisherEventCallbacks
 
-RESEND_AFTER_S = (0.5, 2.0, 8.0)   # after a reader matched [s]: the reader matches back within a second when
-                                   # idle, within seconds under load; each re-send costs the readers a skip
-POLL_S = 0.25                      # the re-send timer's period while one is due [s]
+RESEND_AFTER_S = (1.0, 5.0)   # after a reader matched [s]: the reader matches back within a second when idle,
+                              # within seconds under load; each re-send costs every reader a skip per window
+SLICE = 50                    # windows published per timer tick while a re-send runs (1.6 MB at 2048 samples)
+TICK_S = 0.1                  # the timer's period while a re-send is due or running [s]
 
 
 class ResendOnMatch:
@@ -49,12 +52,14 @@ class ResendOnMatch:
         self.kept: deque = deque(maxlen=depth)
         self.resend_after_s = tuple(sorted(resend_after_s))
         self.due: list[float] = []  # time.monotonic() of the re-sends still to come
+        self.sending: list = []     # the re-send under way: what is left of it, oldest first
+        self.started_s = 0.0
         self.resent = 0            # messages sent again, in all
         self.matches = 0           # times a reader matched
         self.publisher = node.create_publisher(msg_type, topic, qos,
                                                event_callbacks=PublisherEventCallbacks(matched=self.on_matched))
-        self.timer = node.create_timer(POLL_S, self.on_timer)
-        self.timer.cancel()        # runs only while a re-send is due
+        self.timer = node.create_timer(TICK_S, self.on_timer)
+        self.timer.cancel()        # runs only while a re-send is due or under way
 
     def publish(self, msg) -> None:
         self.publisher.publish(msg)
@@ -73,19 +78,23 @@ class ResendOnMatch:
         self.timer.reset()
 
     def on_timer(self) -> None:
+        """Publish the next slice of a re-send under way, or start one that is due. In slices, so that the node's
+        own input is served in between (a re-send of 1000 windows at once kept the executor for seconds under
+        load)."""
         now = time.monotonic()
-        if self.due and self.due[0] <= now:
+        if not self.sending and self.due and self.due[0] <= now:
             while self.due and self.due[0] <= now:   # several due at once (a slow executor): one re-send
                 self.due.pop(0)
-            self.resend()
-        if not self.due:
+            self.sending, self.started_s = list(self.kept), now
+        if self.sending:
+            part, self.sending = self.sending[:SLICE], self.sending[SLICE:]
+            for msg in part:
+                self.publisher.publish(msg)
+            self.resent += len(part)
+            if not self.sending:
+                self.node.get_logger().info(
+                    f"a reader of {self.publisher.topic_name} matched: sent the last windows again "
+                    f"({self.resent} in all, this one in {time.monotonic() - self.started_s:.1f} s)",
+                    throttle_duration_sec=5.0)
+        if not self.due and not self.sending:
             self.timer.cancel()
-
-    def resend(self) -> None:
-        """Publish the kept messages again, oldest first."""
-        for msg in list(self.kept):
-            self.publisher.publish(msg)
-        self.resent += len(self.kept)
-        if self.kept:
-            self.node.get_logger().info(f"a reader of {self.publisher.topic_name} matched: sent the last "
-                                        f"{len(self.kept)} windows again", throttle_duration_sec=5.0)

@@ -43,7 +43,7 @@ import time
 REPO = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "test"))
 
-from process_fault_helpers import ONSET, CpuHog, PipelineRun  # noqa: E402
+from process_fault_helpers import ONSET, STREAM_START, CpuHog, PipelineRun  # noqa: E402
 
 RATE = 2.0
 KILLS = 10
@@ -66,6 +66,7 @@ def _env(offset: int) -> dict:
 
 def kill_repeatedly(node: str, offset: int) -> dict:
     case = {"case": f"kill_{node}_x{KILLS}_under_load", "kills": 0}
+    killed_wall_s: list[float] = []
     run = PipelineRun(["--duration", str(DURATION_S), "--rate-factor", str(RATE), "--restart",
                        "on-failure", "--max-restarts", str(KILLS)], _env(offset))
     try:
@@ -74,6 +75,7 @@ def kill_repeatedly(node: str, offset: int) -> dict:
             return case
         pid = run.pids[node]
         for _ in range(KILLS):
+            killed_wall_s.append(time.time())
             os.kill(pid, signal.SIGKILL)
             case["kills"] += 1
             line = run.wait_for(lambda text, p=pid: (m := FAULT.match(text)) is not None
@@ -107,6 +109,12 @@ def kill_repeatedly(node: str, offset: int) -> dict:
     else:
         own = []
     lost = sum(n for g in gaps if g not in own for n in (g[2],))
+    # where the stream was at each kill, and how far the node's estimates were behind it [s of stream]
+    starts = [float(m.group(1)) for line in run.stderr.splitlines() if (m := STREAM_START.match(line))]
+    at_kill = [round((t - starts[0]) * RATE, 2) for t in killed_wall_s] if starts else []
+    case.update(stream_at_kills_s=at_kill,
+                estimates_behind_at_kills_s=[round(k - b, 2) for k, b in zip(at_kill, before)]
+                if node != "plant_simulator" else [])
     case.update(restarts_named=len(faults), onsets_estimated=len(run.onsets()),
                 gaps=[f"{a:.3f}..{b:.3f} s ({n})" for a, b, n in gaps],
                 onsets_missing_own_outage=sum(g[2] for g in own), onsets_lost_upstream=lost)

@@ -86,10 +86,12 @@ def test_a_reader_that_gets_no_history_gets_the_last_windows_again_in_order(cont
 
 
 @pytest.mark.ros
-def test_the_kept_windows_are_sent_again_at_each_delay_after_a_match(context):
+def test_the_kept_windows_are_sent_again_at_each_delay_after_a_match_in_slices(context, monkeypatch):
     """A reader that matches back late (under load: seconds) still gets them: each delay sends them once more."""
     writer = rclpy.create_node("writer3", context=context)
     reader = rclpy.create_node("reader3", context=context)
+    import backlash_monitor.ros.resend_on_match as module
+    monkeypatch.setattr(module, "SLICE", 3)         # 4 windows: two slices per re-send
     resender = ResendOnMatch(writer, BacklashWindow, "windows/three", WINDOW_QOS, depth=4,
                              resend_after_s=(0.2, 0.6, 1.2))
     spinning = Spinning(context, writer, reader)
