@@ -17,8 +17,9 @@ onset estimates it reports ("onset estimates missing: t=a..b s (n onsets ...)") 
 ``onsets_lost_upstream`` (summed into under_load_kill_onsets_lost), per node:
 
 - denoise, classifier: every onset missing. The hops upstream (plant, windowing, and denoise for
-  the classifier) kept running, and the window topics keep the last 1000 windows for the
-  restarted process: nothing may be missing.
+  the classifier) kept running, the window topics keep the last 1000 windows for the restarted
+  process, and their writers send those again after it matched (ros/resend_on_match.py): nothing
+  may be missing.
 - windowing: the onsets missing in gaps that no windowing outage explains. The chunk topics are
   volatile: what the plant published while the windowing process was down is the killed node's
   own loss (docs/graph.md): a gap that begins at most 2 s of stream before the "last estimate
@@ -26,6 +27,10 @@ onset estimates it reports ("onset estimates missing: t=a..b s (n onsets ...)") 
   killed process go with it) and ends after it. Any other gap is an upstream loss.
 - plant_simulator: every onset missing inside a stream (a restarted plant starts a new stream
   at sample 0: the end of the killed one is its own, not a gap).
+
+Each case also records where the stream was at each kill (``stream_at_kills_s``, from the plant's
+stream start) and how far the estimates were behind it (``estimates_behind_at_kills_s``): a node
+far behind has more queued in it, which the upstream writers must still hold.
 
 ``under_load_ros_test_runs_passed`` is measured apart (`tools/ros_tests_under_load.py`, several
 minutes per run): this module reports it when BENCH_ROS_TEST_RUNS_JSON names that tool's output.
