@@ -40,6 +40,9 @@ PARAMETERS = (
                   "says STALE (windows come only with load pulses)", 0.01, 86400.0),
     ParameterSpec("fault_hold_s", 10.0, "seconds /diagnostics stays WARN after the last "
                   "window dropped as bad", 0.01, 3600.0),
+    ParameterSpec("resend_windows", 1000, "windows kept and published again 1 and 5 s after a reader of "
+                  "windows/denoised matched (ros/resend_on_match.py: a restarted reader does not always get the DDS "
+                  "history under load); 0: none. About 33 kB each at 2048 samples", 0, 1000),
 )
 
 
@@ -55,7 +58,8 @@ class DenoiseNode(Node):
         self.label = denoising_label(p["level"], details, p["mode"])
         # a reader that matches gets the last windows again (ros/resend_on_match.py: the DDS history alone
         # is not always delivered to a restarted classifier under load)
-        self.resender = ResendOnMatch(self, BacklashWindow, "windows/denoised", WINDOW_QOS)
+        self.resender = ResendOnMatch(self, BacklashWindow, "windows/denoised", WINDOW_QOS,
+                                      depth=p["resend_windows"])
         self.publisher = self.resender.publisher
         self.repeated = RepeatedWindows()   # windows/raw re-sent by the windowing node: denoised once
         self.faults = FaultLog()

@@ -73,6 +73,9 @@ PARAMETERS = (
                   "largest accelerometer offset [m/s^2] taken as a sensor's own (a MEMS zero-g offset "
                   "reaches ~0.2 g); an estimate beyond it makes /diagnostics WARN (config/windowing.yaml "
                   "sensor_offset.plausible_abs_m_s2)", 0.0, 1000.0),
+    ParameterSpec("resend_windows", 1000, "windows kept and published again 1 and 5 s after a reader of "
+                  "windows/raw matched (ros/resend_on_match.py: a restarted reader does not always get the DDS "
+                  "history under load); 0: none. About 33 kB each at 2048 samples", 0, 1000),
 )
 
 
@@ -117,7 +120,8 @@ class WindowingNode(Node):
         self.create_subscription(Float64, "plant/true_width_m", self.on_true_width, LATCHED)
         # a reader that matches gets the last windows again (ros/resend_on_match.py: the DDS history alone
         # is not always delivered to a restarted denoise node under load)
-        self.resender = ResendOnMatch(self, BacklashWindow, "windows/raw", WINDOW_QOS)
+        self.resender = ResendOnMatch(self, BacklashWindow, "windows/raw", WINDOW_QOS,
+                                      depth=p["resend_windows"])
         self.publisher = self.resender.publisher
         self.diagnostics = DriveDiagnostics(self, "windowing", p["drive_name"],
                                             refresh=self.update_diagnostics)
