@@ -12,7 +12,8 @@ killed after it: process_fault_helpers.CpuHog). After the first estimate the nod
 times; before each next kill the pipeline has named the restart and printed an onset estimate
 after it (for the windowing node: of an event over 1 s of stream after the last estimate before
 the kill, which the new process windowed). Then the pipeline is interrupted (SIGINT: it prints its summary) and the gaps in the
-onset estimates it reports ("onset estimates missing: t=a..b s (n onsets ...)") are read.
+onset estimates it reports ("onset estimates missing: t=a..b s (n onsets ...)") are read, once no
+estimate has come for QUIET_S (10 s: the windows re-sent to the last restarted process come late).
 
 ``onsets_lost_upstream`` (summed into under_load_kill_onsets_lost), per node:
 
@@ -55,6 +56,7 @@ KILLS = 10
 NODES = ("plant_simulator", "windowing", "denoise", "classifier")
 DURATION_S = 400          # simulated; the run is interrupted after the last kill has been survived
 TIMEOUT_S = 300           # for a restart or an estimate under load (a timeout, not a measurement)
+QUIET_S = 10.0            # after the last restart: no estimate for this long ends the run [s]
 MISSING = re.compile(r"^onset estimates missing: t=([0-9.]+)\.\.([0-9.]+) s \((\d+) onsets")
 FAULT = re.compile(r"^pipeline: node (\w+) \(pid (\d+)\) was killed by signal SIGKILL \(9\); "
                    r"restarted as pid (\d+)(?:; last estimate before it: event at t=([0-9.]+) s)?")
@@ -98,7 +100,13 @@ def kill_repeatedly(node: str, offset: int) -> dict:
                                 and float(m.group(1)) > after_s, timeout_s=TIMEOUT_S):
                 case["reason"] = f"no estimate after restart {case['kills']}"
                 return case
-        time.sleep(2.0)
+        # the windows the last restarted process missed come re-sent 1 and 5 s after it matched and are classified
+        # after the newer ones it got first: wait until no estimate came for QUIET_S, as the pipeline waits for
+        # estimates in flight at the end of a stream (with 2 s, one run cut off 51 onsets still on their way)
+        deadline = time.monotonic() + TIMEOUT_S
+        while time.monotonic() < deadline and run.wait_for(lambda text: ONSET.match(text) is not None,
+                                                           timeout_s=QUIET_S) is not None:
+            pass
         run.process.send_signal(signal.SIGINT)      # the pipeline prints its summary
         case["exit_code"] = run.finish(timeout_s=TIMEOUT_S)
     finally:
