@@ -18,7 +18,13 @@ match (the same bench, 4 runs with a third busy loop): in 1 run a restarted clas
 from 2.75 s of stream after the oldest on, and 10 onsets were lost; under load the reader can take seconds to match
 back, hence the later re-send. Not all at once either: three re-sends of up to 1000 windows each in one callback
 (0.5, 2 and 8 s) stalled the chain in 2 of 5 runs (a restarted classifier got no window at all for minutes; in one
-run the windowing node stopped at 548 windows). Every reader sees them twice (from the history or live, and now again): the
+run the windowing node stopped at 548 windows). Not through the live writer either: re-sent in slices through it, 1
+run of 11 still had a restarted classifier get no window for minutes. A burst through the live writer turns its
+1000-deep history over within seconds, while a new reader is still asking it for that history: our reading (not
+traced in Fast DDS's source) is that the reader then waits for samples the writer no longer holds, and a reliable
+reader delivers nothing after a hole (eProsima/Fast-DDS issue 2387 and the late-joiner GAP fixes of PR 1295). So the
+re-send goes through a second writer on the same topic (``resend_publisher``, its own history of ``RESEND_DEPTH``):
+whatever happens to a reader's exchange with it, the live writer's stream is not touched. Every reader sees them twice (from the history or live, and now again): the
 denoise and classifier nodes skip a window they have seen (classifier/repeats.py). A reader that lost the history
 may get the re-sent windows after a few newer ones; the classifier fuses them in the order they arrive, and
 width_trend ignores an estimate older than its open period (fleet/trend.py).
@@ -33,11 +39,13 @@ import time
 from collections import deque
 
 from rclpy.event_handler import PublisherEventCallbacks
+from rclpy.qos import HistoryPolicy, QoSProfile
 
 RESEND_AFTER_S = (1.0, 5.0)   # after a reader matched [s]: the reader matches back within a second when idle,
                               # within seconds under load; each re-send costs every reader a skip per window
 SLICE = 50                    # windows published per timer tick while a re-send runs (1.6 MB at 2048 samples)
 TICK_S = 0.1                  # the timer's period while a re-send is due or running [s]
+RESEND_DEPTH = 4 * SLICE      # the re-send writer's own history: the slices a slow reader may still be taking
 
 
 class ResendOnMatch:
@@ -58,6 +66,10 @@ class ResendOnMatch:
         self.matches = 0           # times a reader matched
         self.publisher = node.create_publisher(msg_type, topic, qos,
                                                event_callbacks=PublisherEventCallbacks(matched=self.on_matched))
+        # the re-sent windows' own writer, of the same reliability and durability (a reader's QoS must match it)
+        self.resend_publisher = node.create_publisher(
+            msg_type, topic, QoSProfile(depth=RESEND_DEPTH, reliability=qos.reliability, durability=qos.durability,
+                                        history=HistoryPolicy.KEEP_LAST))
         self.timer = node.create_timer(TICK_S, self.on_timer)
         self.timer.cancel()        # runs only while a re-send is due or under way
 
@@ -89,7 +101,7 @@ class ResendOnMatch:
         if self.sending:
             part, self.sending = self.sending[:SLICE], self.sending[SLICE:]
             for msg in part:
-                self.publisher.publish(msg)
+                self.resend_publisher.publish(msg)
             self.resent += len(part)
             if not self.sending:
                 self.node.get_logger().info(
