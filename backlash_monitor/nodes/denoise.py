@@ -24,8 +24,6 @@ from backlash_monitor.ros.conversions import from_float64_field, to_float64_arra
 from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
 from backlash_monitor.ros.qos import WINDOW_QOS
-from backlash_monitor.ros.resend_on_match import ResendOnMatch
-from backlash_monitor.classifier.repeats import RepeatedWindows
 from backlash_monitor.ros.runtime import run_node
 from backlash_monitor_msgs.msg import BacklashWindow
 
@@ -40,9 +38,6 @@ PARAMETERS = (
                   "says STALE (windows come only with load pulses)", 0.01, 86400.0),
     ParameterSpec("fault_hold_s", 10.0, "seconds /diagnostics stays WARN after the last "
                   "window dropped as bad", 0.01, 3600.0),
-    ParameterSpec("resend_windows", 1000, "windows kept and published again 1 and 5 s after a reader of "
-                  "windows/denoised matched (ros/resend_on_match.py: a restarted reader does not always get the DDS "
-                  "history under load); 0: none. About 33 kB each at 2048 samples", 0, 1000),
 )
 
 
@@ -56,12 +51,7 @@ class DenoiseNode(Node):
                                       f"levels between 1 and level = {p['level']}")
         self.options = dict(level=p["level"], details_removed=details, mode=p["mode"])
         self.label = denoising_label(p["level"], details, p["mode"])
-        # a reader that matches gets the last windows again (ros/resend_on_match.py: the DDS history alone
-        # is not always delivered to a restarted classifier under load)
-        self.resender = ResendOnMatch(self, BacklashWindow, "windows/denoised", WINDOW_QOS,
-                                      depth=p["resend_windows"])
-        self.publisher = self.resender.publisher
-        self.repeated = RepeatedWindows()   # windows/raw re-sent by the windowing node: denoised once
+        self.publisher = self.create_publisher(BacklashWindow, "windows/denoised", WINDOW_QOS)
         self.faults = FaultLog()
         self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "windows")
         self.counts = {"denoised": 0, "dropped": 0}
@@ -72,9 +62,6 @@ class DenoiseNode(Node):
     def on_window(self, msg: BacklashWindow):
         now = time.monotonic()
         self.health.arrived(now)
-        if self.repeated.is_repeat(msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec,
-                                   msg.entry_sample_index, msg.entry_kind, msg.header.frame_id):
-            return
         a1, a2 = from_float64_field(msg.a1), from_float64_field(msg.a2)
         clean, reason = denoise_checked(a1, a2, **self.options)
         if reason is not None:
@@ -88,7 +75,7 @@ class DenoiseNode(Node):
         msg.a1 = to_float64_array(clean[0])
         msg.a2 = to_float64_array(clean[1])
         msg.denoising = self.label
-        self.resender.publish(msg)
+        self.publisher.publish(msg)
         self.counts["denoised"] += 1
 
     def update_diagnostics(self, publish_now: bool = False):
@@ -96,7 +83,6 @@ class DenoiseNode(Node):
         summary = f"{self.counts['denoised']} windows denoised, {self.counts['dropped']} dropped"
         self.diagnostics.set(level, f"{problem}; {summary}" if problem else summary,
                              publish_now=publish_now, input_faults=self.faults.summary(),
-                             repeated_windows_skipped=self.repeated.repeats, windows_resent=self.resender.resent,
                              **self.counts)
 
 

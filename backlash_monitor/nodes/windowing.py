@@ -39,7 +39,6 @@ from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
 from backlash_monitor.ros.qos import LATCHED, WINDOW_QOS, chunk_qos
-from backlash_monitor.ros.resend_on_match import ResendOnMatch
 from backlash_monitor.ros.runtime import run_node
 from backlash_monitor.chain.joiner import ChunkJoiner, pending_ranges_for
 from backlash_monitor.chain.stage import WindowingStage
@@ -73,9 +72,6 @@ PARAMETERS = (
                   "largest accelerometer offset [m/s^2] taken as a sensor's own (a MEMS zero-g offset "
                   "reaches ~0.2 g); an estimate beyond it makes /diagnostics WARN (config/windowing.yaml "
                   "sensor_offset.plausible_abs_m_s2)", 0.0, 1000.0),
-    ParameterSpec("resend_windows", 1000, "windows kept and published again 1 and 5 s after a reader of "
-                  "windows/raw matched (ros/resend_on_match.py: a restarted reader does not always get the DDS "
-                  "history under load); 0: none. About 33 kB each at 2048 samples", 0, 1000),
 )
 
 
@@ -118,11 +114,7 @@ class WindowingNode(Node):
             self.create_subscription(SignalChunk, f"plant/{name}",
                                      lambda msg, n=name: self.on_chunk(n, msg), qos)
         self.create_subscription(Float64, "plant/true_width_m", self.on_true_width, LATCHED)
-        # a reader that matches gets the last windows again (ros/resend_on_match.py: the DDS history alone
-        # is not always delivered to a restarted denoise node under load)
-        self.resender = ResendOnMatch(self, BacklashWindow, "windows/raw", WINDOW_QOS,
-                                      depth=p["resend_windows"])
-        self.publisher = self.resender.publisher
+        self.publisher = self.create_publisher(BacklashWindow, "windows/raw", WINDOW_QOS)
         self.diagnostics = DriveDiagnostics(self, "windowing", p["drive_name"],
                                             refresh=self.update_diagnostics)
         self.get_logger().info(f"trigger {p['trigger']}, angles {p['angle_source']}, "
@@ -211,7 +203,7 @@ class WindowingNode(Node):
                              lost_samples=self.stage.lost_samples,
                              input_faults=self.faults.summary(), offset_periods=periods,
                              plausible_offset_m_s2=limit, saturation=saturation or "none",
-                             windows_resent=self.resender.resent, **values, **self.counts)
+                             **values, **self.counts)
 
     def publish_window(self, window, frame_id: str, range_stamp=None):
         msg = BacklashWindow()
@@ -236,7 +228,7 @@ class WindowingNode(Node):
         msg.a2_offset_m_s2 = window.sensor_offsets.get("a2", math.nan)
         msg.offset_periods = window.offset_periods
         msg.saturated_samples = min(window.saturated_samples, 2 ** 32 - 1)
-        self.resender.publish(msg)
+        self.publisher.publish(msg)
         if window.saturated_samples:
             self.counts["saturated_windows"] += 1
             self.note_saturation()

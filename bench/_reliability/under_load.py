@@ -13,14 +13,13 @@ times; before each next kill the pipeline has named the restart and printed an o
 after it (for the windowing node: of an event over 1 s of stream after the last estimate before
 the kill, which the new process windowed). Then the pipeline is interrupted (SIGINT: it prints its summary) and the gaps in the
 onset estimates it reports ("onset estimates missing: t=a..b s (n onsets ...)") are read, GRACE_S (15 s)
-after the last restarted process's first estimate (the windows re-sent to it come late).
+after the last restarted process's first estimate (the history reaches it late under load).
 
 ``onsets_lost_upstream`` (summed into under_load_kill_onsets_lost), per node:
 
 - denoise, classifier: every onset missing. The hops upstream (plant, windowing, and denoise for
-  the classifier) kept running, the window topics keep the last 1000 windows for the restarted
-  process, and their writers send those again after it matched (ros/resend_on_match.py): nothing
-  may be missing.
+  the classifier) kept running, and the window topics keep the last 1000 windows for the
+  restarted process: nothing may be missing.
 - windowing: the onsets missing in gaps that no windowing outage explains. The chunk topics are
   volatile: what the plant published while the windowing process was down is the killed node's
   own loss (docs/graph.md): a gap that begins at most 2 s of stream before the "last estimate
@@ -56,8 +55,8 @@ KILLS = 10
 NODES = ("plant_simulator", "windowing", "denoise", "classifier")
 DURATION_S = 400          # simulated; the run is interrupted after the last kill has been survived
 TIMEOUT_S = 300           # for a restart or an estimate under load (a timeout, not a measurement)
-GRACE_S = 15.0            # after the last restart's first estimate: read on this long, then interrupt [s] (the
-                          # last re-send comes 5 s after the match; a loaded classifier takes seconds for 1000 windows)
+GRACE_S = 15.0            # after the last restart's first estimate: read on this long, then interrupt [s] (a
+                          # loaded classifier takes seconds for the up to 1000 windows of the history)
 MISSING = re.compile(r"^onset estimates missing: t=([0-9.]+)\.\.([0-9.]+) s \((\d+) onsets")
 FAULT = re.compile(r"^pipeline: node (\w+) \(pid (\d+)\) was killed by signal SIGKILL \(9\); "
                    r"restarted as pid (\d+)(?:; last estimate before it: event at t=([0-9.]+) s)?")
@@ -101,9 +100,8 @@ def kill_repeatedly(node: str, offset: int) -> dict:
                                 and float(m.group(1)) > after_s, timeout_s=TIMEOUT_S):
                 case["reason"] = f"no estimate after restart {case['kills']}"
                 return case
-        # the windows the last restarted process missed come re-sent 1 and 5 s after it matched and are classified
-        # after the newer ones it got first: read on for GRACE_S before interrupting (with 2 s, one run cut off 51
-        # onsets still on their way)
+        # the windows the last restarted process missed come from the upstream history, after a restart that
+        # takes seconds under load: read on for GRACE_S before interrupting (2 s cut off onsets still on their way)
         run.wait_for(lambda text: False, timeout_s=GRACE_S)
         run.process.send_signal(signal.SIGINT)      # the pipeline prints its summary
         case["exit_code"] = run.finish(timeout_s=TIMEOUT_S)
