@@ -283,7 +283,7 @@ SETS = {1: ("outside_dev", "outside_sealed"), 2: ("outside_dev2", "outside_seale
         6: ("outside_dev6", "outside_sealed6"), 7: ("outside_dev7", "outside_sealed7"),
         8: ("outside_dev8", "outside_sealed8"), 9: ("outside_dev9", "outside_sealed9"),
         10: ("outside_dev10", "outside_sealed10"), 11: ("outside_dev11", "outside_sealed11")}
-# the sealed halves not to be run but once, at the end (only with --sealed); sets 1-10 are spent, set 11's is not
+# the sealed halves not to be run but once, at the end (only with --sealed); sets 1-11 are spent
 UNSPENT_SEALED: tuple[str, ...] = ()
 # the suites the outside loop runs on by default: every development one and the spent sealed halves, never the unspent
 # sealed half
