@@ -98,6 +98,12 @@ class PipelineRun:
     def output(self) -> str:
         return "\n".join(self.lines) + "\n--- stderr:\n" + self.stderr[-3000:]
 
+    def stream_start_wall_s(self) -> float | None:
+        """Wall-clock time [s] at which the plant started its first stream (its log line, stamped with the wall
+        clock: STREAM_START); None before it said so."""
+        starts = [float(m.group(1)) for line in self.stderr.splitlines() if (m := STREAM_START.match(line))]
+        return starts[0] if starts else None
+
     def onsets(self) -> list[tuple[int, float]]:
         """(line number, event time [s]) of every onset line."""
         return [(i, float(m.group(1))) for i, line in enumerate(self.lines)

@@ -79,9 +79,8 @@ def kill_node(node: str, offset: int) -> dict:
     at = run.lines.index(faults[0]) if faults else len(run.lines)
     before = [t for i, t in run.onsets() if i < at]
     after = [t for i, t in run.onsets() if i > at]
-    starts = [float(m.group(1)) for line in run.stderr.splitlines()
-              if (m := STREAM_START.match(line))]
-    killed_at_s = (killed_wall_s - starts[0]) * RATE if starts else float("nan")
+    start = run.stream_start_wall_s()
+    killed_at_s = (killed_wall_s - start) * RATE if start is not None else float("nan")
     if node == "plant_simulator":
         # the new stream's onsets (from sample 0 again; the old stream's come in order)
         resumed = bool(after) and bool(before) and min(after) <= before[-1]

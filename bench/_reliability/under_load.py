@@ -54,7 +54,7 @@ import time
 REPO = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "test"))
 
-from process_fault_helpers import ONSET, STREAM_START, CpuHog, PipelineRun  # noqa: E402
+from process_fault_helpers import ONSET, CpuHog, PipelineRun  # noqa: E402
 
 RATE = 2.0
 KILLS = 10
@@ -126,8 +126,8 @@ def kill_repeatedly(node: str, offset: int) -> dict:
     else:
         own = []
     # where the stream was at each kill, and how far the node's estimates were behind it [s of stream]
-    starts = [float(m.group(1)) for line in run.stderr.splitlines() if (m := STREAM_START.match(line))]
-    at_kill = [round((t - starts[0]) * RATE, 2) for t in killed_wall_s] if starts else []
+    start = run.stream_start_wall_s()
+    at_kill = [round((t - start) * RATE, 2) for t in killed_wall_s] if start is not None else []
     behind = [round(k - b, 2) for k, b in zip(at_kill, before)] if node != "plant_simulator" else []
     # a gap that begins at the last estimate before a kill when the estimates were a full history behind: the
     # windows queued in the killed node were more than its upstream writer keeps (docs/graph.md, "While a consumer

@@ -17,7 +17,7 @@ import time
 
 import pytest
 
-from process_fault_helpers import ONSET, STREAM_START, PipelineRun, gone, wait_until
+from process_fault_helpers import ONSET, PipelineRun, gone, wait_until
 
 ONSET_PERIOD_S = 0.25      # the simulated drive's onsets: 0.054 s + k * 0.25 s
 FIRST_ONSET_S = 0.054
@@ -51,9 +51,9 @@ TIMEOUT_S = 300
 def stream_time_at(run, wall_s: float) -> float:
     """Stream time [s] of the first stream at the wall-clock time ``wall_s`` (the plant logs,
     stamped with the wall clock, when it starts streaming)."""
-    starts = [float(m.group(1)) for line in run.stderr.splitlines() if (m := STREAM_START.match(line))]
-    assert starts, run.output
-    return (wall_s - starts[0]) * RATE
+    start = run.stream_start_wall_s()
+    assert start is not None, run.output
+    return (wall_s - start) * RATE
 
 
 # The windowing node re-synchronises on a stream whose index restarts at 0 with the input checks
