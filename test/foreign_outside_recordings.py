@@ -200,3 +200,42 @@ def assert_recordings_repeat(suite_names, rows=(0, 1, 5, 6)) -> None:
             one, two = make_recording(short), make_recording(short)
             for k in ("a1", "a2", "omega1", "omega2", "angle_difference"):
                 assert np.array_equal(one.signals[k], two.signals[k]), (s.label, k)
+
+
+def assert_bench_guards_unspent_sealed(set_number: int, capsys, monkeypatch) -> None:
+    """bench/_workbench/outside.py knows the set; sets 1..set_number are spent (each sealed half ran once: development
+    data, in the loop's default suites); the loop refuses a sealed half while it is unspent (the guard, tested with
+    this set's half monkeypatched unspent); each row's truth names a balance and a state exactly when it is outside."""
+    import pytest
+    dev, sealed = f"outside_dev{set_number}", f"outside_sealed{set_number}"
+    bench = outside_bench(f"outside_bench_under_test{set_number}")
+    assert [s.label for s in bench.suite_rows(False, set_number)] == [s.label for s in suites.suite(dev)]
+    assert bench.suite_name(True, set_number) == sealed
+    spent = {"outside_sealed"} | {f"outside_sealed{k}" for k in range(2, set_number + 1)}
+    assert spent <= set(bench.LOOP_DEVELOPMENT_SUITES) and not spent & set(bench.UNSPENT_SEALED)
+    assert dev in bench.LOOP_DEVELOPMENT_SUITES
+    monkeypatch.setattr(bench, "UNSPENT_SEALED", (sealed,))
+    with pytest.raises(SystemExit) as e:
+        bench.main(["--loop", "--loop-suites", f"{dev},{sealed}"])
+    assert e.value.code == 2 and f"{sealed} is an unspent sealed half" in capsys.readouterr().err
+    for s in suites.suite(dev) + suites.suite(sealed):
+        bal, st = bench._truth_of(s, s.truth())
+        assert bool(bal) == (s.kind == "outside") and (not bal or st)
+
+
+def assert_alarm_check_covers_both_halves(set_number: int) -> None:
+    """bench/_workbench/width_caveat.py's alarm check covers the set's development half and its spent sealed half."""
+    spec = importlib.util.spec_from_file_location(f"width_caveat_under_test{set_number}",
+                                                  OUTSIDE_BENCH.parent / "width_caveat.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert {f"outside_dev{set_number}", f"outside_sealed{set_number}"} <= set(module.alarm_suites())
+
+
+def assert_a_row_of_each_half_crosses_the_backlash(set_number: int, duration_s: float) -> None:
+    """The first outside row of each half simulates at its own conditions: finite signals, at least two onsets."""
+    for name in (f"outside_dev{set_number}", f"outside_sealed{set_number}"):
+        spec = dataclasses.replace(next(s for s in suites.suite(name) if s.kind == "outside"), duration_s=duration_s)
+        rec = make_recording(spec)
+        assert all(np.all(np.isfinite(rec.signals[k])) for k in rec.signals)
+        assert sum(k == "onset" for _, k in rec.true_entries()) >= 2

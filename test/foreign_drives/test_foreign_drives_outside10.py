@@ -10,7 +10,6 @@ set 10 (its sealed half UNSPENT: the loop refuses it without --sealed).
 This file names the sealed mechanisms only through the registry and the suite; it prints and states no sealed law."""
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
@@ -21,15 +20,17 @@ from foreign_drives import forms as F
 from foreign_drives import kernel as K
 from foreign_drives import noise as N
 from foreign_drives import outside as O
-from foreign_drives import suites
-from foreign_drives.drive import make_recording, pulse_indicator
+from foreign_drives.drive import pulse_indicator
 from foreign_drives.outside_dev3 import pulse_phase_s
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
                                         assert_forms_withholds_sealed, assert_recordings_repeat,
                                         assert_rows_visible, assert_set_registry, assert_set_suites,
-                                        assert_suite_writes_one_recording, outside_bench, suite_effect)
+                                        assert_suite_writes_one_recording, suite_effect)
+from foreign_outside_recordings import (assert_a_row_of_each_half_crosses_the_backlash,  # test/
+                                        assert_alarm_check_covers_both_halves,
+                                        assert_bench_guards_unspent_sealed)
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -338,36 +339,14 @@ def test_forms_withholds_the_sealed_laws_and_shows_the_development_ones(capsys):
 
 
 def test_outside_bench_knows_set_10_and_never_loops_on_an_unspent_sealed_half(capsys, monkeypatch):
-    bench = outside_bench("outside_bench_under_test10")
-    assert [s.label for s in bench.suite_rows(False, 10)] == [s.label for s in suites.suite("outside_dev10")]
-    assert bench.suite_name(True, 10) == "outside_sealed10"
-    # sets 1-10 are spent (set 10's sealed half ran once, 30 Nov): each sealed half is development data, in the
-    # loop's default suites
-    spent = {f"outside_sealed{k}" for k in ("", 2, 3, 4, 5, 6, 7, 8, 9, 10)}
-    assert spent <= set(bench.LOOP_DEVELOPMENT_SUITES) and not spent & set(bench.UNSPENT_SEALED)
-    assert "outside_dev10" in bench.LOOP_DEVELOPMENT_SUITES
-    # the guard, for the next set's sealed half while it is unspent
-    monkeypatch.setattr(bench, "UNSPENT_SEALED", ("outside_sealed10",))
-    with pytest.raises(SystemExit) as e:
-        bench.main(["--loop", "--loop-suites", "outside_dev10,outside_sealed10"])
-    assert e.value.code == 2 and "outside_sealed10 is an unspent sealed half" in capsys.readouterr().err
-    for s in suites.suite("outside_dev10") + suites.suite("outside_sealed10"):
-        bal, st = bench._truth_of(s, s.truth())
-        assert bool(bal) == (s.kind == "outside") and (not bal or st)
+    # sets 1-10 are spent (set 10's sealed half ran once, 30 Nov): each sealed half is development data, in the loop's
+    # default suites; the guard, for the next set's sealed half while it is unspent
+    assert_bench_guards_unspent_sealed(10, capsys, monkeypatch)
 
 
 def test_the_alarm_check_covers_both_halves_once_the_sealed_one_is_spent():
-    from importlib.util import module_from_spec, spec_from_file_location
-    from foreign_outside_recordings import OUTSIDE_BENCH
-    spec = spec_from_file_location("width_caveat_under_test10", OUTSIDE_BENCH.parent / "width_caveat.py")
-    module = module_from_spec(spec)
-    spec.loader.exec_module(module)
-    assert "outside_dev10" in module.alarm_suites() and "outside_sealed10" in module.alarm_suites()
+    assert_alarm_check_covers_both_halves(10)
 
 
 def test_a_row_of_each_half_simulates_at_its_own_conditions_and_crosses_the_backlash():
-    for name in ("outside_dev10", "outside_sealed10"):
-        spec = dataclasses.replace(next(s for s in suites.suite(name) if s.kind == "outside"), duration_s=DURATION_S)
-        rec = make_recording(spec)
-        assert all(np.all(np.isfinite(rec.signals[k])) for k in rec.signals)
-        assert sum(k == "onset" for _, k in rec.true_entries()) >= 2
+    assert_a_row_of_each_half_crosses_the_backlash(10, DURATION_S)
