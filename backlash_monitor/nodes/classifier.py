@@ -41,6 +41,7 @@ from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MOD
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
 from backlash_monitor.ros.conversions import from_float64_field, to_float64_array
 from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
+from backlash_monitor.ros.history_subscription import HistorySubscription
 from backlash_monitor.ros.model_fit_caveat import follow_model_fit
 from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
@@ -102,7 +103,7 @@ class ClassifierNode(Node):
             raise ParameterValueError(str(error)) from None
         self.library_path = str(library.path)
         self.publisher = self.create_publisher(BacklashEstimate, "estimate", ESTIMATE_QOS)
-        self.create_subscription(BacklashWindow, "windows/denoised", self.on_window, WINDOW_QOS)
+        self.windows_in = HistorySubscription(self, BacklashWindow, "windows/denoised", self.on_window, WINDOW_QOS)
         self.classified = 0
         self.repeated = RepeatedWindows()
         self.faults = FaultLog()            # windows dropped here (not denoised)
@@ -246,6 +247,7 @@ class ClassifierNode(Node):
             input_faults=", ".join(f for f in (self.faults.summary(), self.estimator.faults.summary())
                                    if f != "none") or "none",
             repeated_windows_skipped=self.repeated.repeats, saturated_estimates=saturated[0],
+            history_resubscribes=self.windows_in.check.resubscribes, history_passed_over=self.windows_in.check.gave_up,
             warn_width_m=p["warn_width_m"], error_width_m=p["error_width_m"],
             model_version=p["model_version"], library=self.library_path,
             model_fit="" if self.model_fit is None else

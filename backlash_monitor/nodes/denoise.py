@@ -19,6 +19,7 @@ from rclpy.node import Node
 from backlash_monitor.denoise import denoise_checked, denoising_label
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
 from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
+from backlash_monitor.ros.history_subscription import HistorySubscription
 from backlash_monitor.denoise import DEFAULT_MODE
 from backlash_monitor.ros.conversions import from_float64_field, to_float64_array
 from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
@@ -57,7 +58,7 @@ class DenoiseNode(Node):
         self.counts = {"denoised": 0, "dropped": 0}
         self.diagnostics = DriveDiagnostics(self, "denoise", p["drive_name"],
                                             refresh=self.update_diagnostics)
-        self.create_subscription(BacklashWindow, "windows/raw", self.on_window, WINDOW_QOS)
+        self.windows_in = HistorySubscription(self, BacklashWindow, "windows/raw", self.on_window, WINDOW_QOS)
 
     def on_window(self, msg: BacklashWindow):
         now = time.monotonic()
@@ -83,7 +84,8 @@ class DenoiseNode(Node):
         summary = f"{self.counts['denoised']} windows denoised, {self.counts['dropped']} dropped"
         self.diagnostics.set(level, f"{problem}; {summary}" if problem else summary,
                              publish_now=publish_now, input_faults=self.faults.summary(),
-                             **self.counts)
+                             history_resubscribes=self.windows_in.check.resubscribes,
+                             history_passed_over=self.windows_in.check.gave_up, **self.counts)
 
 
 def main(args=None):

@@ -239,12 +239,15 @@ class LeanExecutor(SingleThreadedExecutor):
         """``sub``'s next message (rclpy's take), or None. A take that fails while the context shuts down -- a signal
         between the wait and the take tears the entities down: measured once in ~200 process-fault runs, pybind's
         "Unable to convert call argument" from a killed chain's neighbour -- ends the spin as the external shutdown
-        it is, not with a traceback."""
+        it is, not with a traceback. A subscription that a callback of the same wake-up destroyed gives None."""
         try:
             return sub.handle.take_message(sub.msg_type, sub.raw)
-        except (RuntimeError, InvalidHandle):
+        except (RuntimeError, InvalidHandle) as error:
             if self._is_shutdown or not self._context.ok():
                 raise ExternalShutdownException() from None
+            if isinstance(error, InvalidHandle):   # destroyed by a callback of this wake-up (a subscription made
+                self._drop_plan()                  # anew: ros/history_subscription.py): nothing to take from it
+                return None
             raise
 
     def _drain(self, subs) -> tuple[int, float]:
