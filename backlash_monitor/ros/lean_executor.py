@@ -112,10 +112,11 @@ class LeanExecutor(SingleThreadedExecutor):
 
     @staticmethod
     def signature(nodes) -> tuple:
-        """What the plan depends on: the nodes and how many entities of each kind they hold
-        (rclpy's Node keeps them in these lists; its public properties are generators)."""
-        return tuple((id(n), len(n._subscriptions), len(n._timers), len(n._services),
-                      len(n._clients), sum(1 for _ in n.waitables), len(n._guards)) for n in nodes)
+        """What the plan depends on: the nodes and the entities they hold (rclpy's Node keeps them in
+        these lists; its public properties are generators). The subscriptions and waitables by identity:
+        one replaced by another in a callback (ros/history_subscription.py) leaves their counts alike."""
+        return tuple((id(n), tuple(map(id, n._subscriptions)), len(n._timers), len(n._services),
+                      len(n._clients), tuple(map(id, n.waitables)), len(n._guards)) for n in nodes)
 
     def _lean_plan(self):
         """The kept plan, rebuilt when the nodes' entities changed; None when a node needs
