@@ -33,11 +33,12 @@ down:
 9. a2 sensor x a2's own past through a CABLE ECHO: a2's long, badly terminated signal cable reflects its signal back
    once: y[n] = x[n] + r*x[n - d] (a comb filter: one delayed copy of the signal, d samples at 50 kHz; none of the
    earlier sensor faults adds a delayed copy);
-11. mass force x the carriage's position through a LOST-MOTION LINK: the carriage's dog runs in a slot of +-a in a
-    slider that a friction clamp holds on the frame; across the slot the dog's rubber pads push F*(x - s)/a, at the
-    slot's end it drags the slider along with +-F: s follows x as a play operator of half-width a (s -> min(max(s, x -
-    a), x + a) every 0.2 ms, s = x at the run-in's start), the carriage pushed with -F*(x - s)/a (a friction element
-    behind a play on the position; the fifth set's play works on the motor speed);
+11. mass force x the spring's extension through a LOST-MOTION LINK: the spring's cable carries a dog that runs in a
+    slot of +-a in a slider which a friction clamp holds on the carriage; across the slot the dog's rubber pads push
+    F*(z - s)/a, at the slot's end it drags the slider along with +-F: s follows z as a play operator of half-width a
+    (s -> min(max(s, z - a), z + a) every 0.2 ms, s = z at the run-in's start), the carriage pulled along x with
+    +F*(z - s)/a (a friction element behind a play, in parallel with the spring; the fifth set's play works on the
+    motor speed, the sixth set's Dahl ring is a smooth friction law of the jaw's angle);
 13. wheel torque x the wheel speed TIMES the load pulse: a die-cushion pump driven by the wheel's shaft, switched to
     pressure only while the stroke's pulse is on: -c*Omega2*P (a viscous load gated by the stroke; the first set's
     process brake is a constant torque during the pulse).

@@ -20,10 +20,10 @@ memoryless). Written before any diagnose, analyze or proposal ran on them. The s
 4. wheel torque x the wheel speed through a STAIRCASE of stages: a multi-stage retarder on the wheel whose speed switch
    adds one stage of T per step of Omega_s above Omega_0: -T*floor((Omega2 - Omega_0)/Omega_s) (0 below Omega_0) (a
    quantised law of the speed itself: the fifth set's stairs act on a sampled tacho on the motor);
-6. clutch torque x the contact torque through a LAG: a hydraulic torque-sharing cylinder pair between the jaw's halves
-   whose pressure follows the jaw's contact torque through a throttle (first-order lag of time constant tau, every
-   0.2 ms, m = 0 at the run-in's start), adding g*m from the motor to the wheel (a parallel load path fed by the
-   transmitted torque with a delay);
+6. clutch torque x the slip speed through a DEAD TIME: an electronically slip-controlled eddy-current coupling beside
+   the jaw, whose controller reads the two shafts' speeds over a fieldbus: c*(Omega1 - Omega2)(t - T_d), the slip
+   sampled every 0.2 ms and applied T_d later (a damping of the slip that acts on its past: the earlier clutch terms
+   read the slip, the angle or the contact now);
 8. mass force x the mass speed INTEGRATED SINCE EACH STROKE'S START: a return spring on the carriage hooked at each
    stroke's start: its extension is the distance the carriage travelled since the latest pulse's first 0.2 ms scan
    (s = integral of v, reset to 0 there), the carriage pulled back with -k*s (the seventh set integrates the motor
