@@ -47,3 +47,228 @@ Angles: as in :mod:`outside_dev` (a law locked to an angle is stated on the simu
 per recording) are advanced once per 0.2 ms input segment from the state at the segment's start (kernel.py "memory"),
 as in the fourth to eleventh sets; the memory starts afresh at the run-in's first scan, 2 s before sample 0.
 """
+from __future__ import annotations
+
+import numpy as np
+
+from . import kernel as K
+from .forms import Param
+from .outside import OutsideForm, add_term
+from .outside_dev import _plugin
+from .outside_dev4 import set_memory
+
+OMEGA_N_RAD_S = 150.0              # the speed the products of two states are normalised to (1, 5, 7)
+
+
+# 1. motor load moment x the motor speed through a choked quadratic law
+class MotorChokedWaterBrake(OutsideForm):
+    name = "motor_choked_water_brake"
+    half = "dev12"
+    balance = "motor_load_moment"
+    depends_on = ("motor_speed",)
+    description = ("a hydraulic (water-brake) dynamometer on the motor's shaft end whose inlet chokes above Omega_c: "
+                   "c*Omega1*clip(Omega1, -Omega_c, Omega_c) on the motor's load (quadratic below Omega_c, linear above)")
+    parameters = (Param("coefficient_Nm_s2_per_rad2", "N*m*s^2/rad^2", (0.0, 0.01), "c"),
+                  Param("choke_speed_rad_s", "rad/s", (1.0, 300.0), "Omega_c"))
+    note = "a law that changes its order (2 -> 1) at a speed"
+
+    def apply(self, b, p):
+        add_term(b, "motor_load_moment", p["coefficient_Nm_s2_per_rad2"], (K.XS_OMEGA1, K.XF_X, 0.0, 0.0, 0.0),
+                 (K.XS_OMEGA1, K.XF_CLIP, p["choke_speed_rad_s"], 0.0, 0.0))
+
+    @staticmethod
+    def torque(omega1, p):
+        w = np.asarray(omega1, dtype=np.float64)
+        c, wc = p["coefficient_Nm_s2_per_rad2"], p["choke_speed_rad_s"]
+        return c * w * np.clip(w, -wc, wc)
+
+    def law(self, p):
+        return (f"motor load moment += {p['coefficient_Nm_s2_per_rad2']:.6g} N*m*s^2/rad^2 * Omega1 * clip(Omega1, "
+                f"+-{p['choke_speed_rad_s']:.6g} rad/s)")
+
+    def plugin(self, p):
+        return _plugin("MotorChokedWaterBrake", self.name, "motor_load_moment_pu", self.description, [
+            ("coefficient_pu_s2_per_rad2", "p.u.*s^2/rad^2", (0.0, 5e-4), "c / T_b (T_b = 20 N*m)"),
+            ("choke_speed_rad_s", "rad/s", (1.0, 300.0), "Omega_c")],
+            "omega1, coefficient_pu_s2_per_rad2, choke_speed_rad_s",
+            "coefficient_pu_s2_per_rad2 * omega1 * fmin(fmax(omega1, -choke_speed_rad_s), choke_speed_rad_s)",
+            "fmin, fmax")
+
+
+# 3. wheel torque x the wheel speed through an orifice-drained tank
+class WheelPumpFedRetarder(OutsideForm):
+    name = "wheel_pump_fed_retarder"
+    half = "dev12"
+    balance = "wheel_torque"
+    depends_on = ("wheel_speed",)
+    description = ("a hydraulic retarder on the wheel filled by a gear pump on the wheel's shaft and drained through an "
+                   "orifice: m -> max(0, m + dt*(a*Omega2 - b*sqrt(m))) every 0.2 ms (m = 0 at the run-in's start), "
+                   "the wheel braked with -k*m")
+    parameters = (Param("torque_Nm_per_l", "N*m/l", (0.0, 50.0), "k"),
+                  Param("inflow_l_per_rad", "l/rad", (0.0, 1.0), "a"),
+                  Param("drain_l_s_per_sqrt_l", "l/s/sqrt(l)", (1e-3, 100.0), "b"))
+    note = "a brake whose fill the shaft's own speed pumps up and an orifice lets down"
+
+    def apply(self, b, p):
+        set_memory(b, self.name, K.MK_TANK, K.XS_OMEGA2, p["inflow_l_per_rad"], p["drain_l_s_per_sqrt_l"])
+        add_term(b, "wheel_torque", -p["torque_Nm_per_l"], (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0), nonperiodic=True)
+
+    @staticmethod
+    def fill(omega2_at_scans, p, dt, m0=0.0):
+        """The fill after each scan from the wheel speed at the scans' starts (m0 before the first)."""
+        m, out = m0, []
+        for w in np.asarray(omega2_at_scans, dtype=np.float64).tolist():
+            m = max(0.0, m + dt * (p["inflow_l_per_rad"] * w - p["drain_l_s_per_sqrt_l"] * np.sqrt(m)))
+            out.append(m)
+        return np.array(out)
+
+    def law(self, p):
+        return (f"wheel torque += -{p['torque_Nm_per_l']:.6g} N*m/l * m, m -> max(0, m + 0.2 ms*("
+                f"{p['inflow_l_per_rad']:.6g} l/rad*Omega2 - {p['drain_l_s_per_sqrt_l']:.6g} l/s/sqrt(l)*sqrt(m))) "
+                "every 0.2 ms, m = 0 at the run-in's start")
+
+
+# 5. clutch torque x the slip speed times the motor speed
+class ClutchHydrodynamicCoupling(OutsideForm):
+    name = "clutch_hydrodynamic_coupling"
+    half = "dev12"
+    balance = "clutch_torque"
+    depends_on = ("motor_speed", "wheel_speed")
+    description = ("a hydrodynamic (Foettinger) coupling beside the jaw: c*(Omega1 - Omega2)*Omega1/Omega_n from the "
+                   "motor to the wheel, Omega_n = 150 rad/s; in the gap and in contact")
+    parameters = (Param("coefficient_Nm_s_per_rad", "N*m*s/rad", (0.0, 20.0), "c"),)
+    note = "a product of two states: the slip's coefficient grows with the pump wheel's speed"
+
+    def apply(self, b, p):
+        add_term(b, "clutch_torque", p["coefficient_Nm_s_per_rad"] / OMEGA_N_RAD_S,
+                 (K.XS_JAW_SPEED, K.XF_X, 0.0, 0.0, 0.0), (K.XS_OMEGA1, K.XF_X, 0.0, 0.0, 0.0))
+
+    @staticmethod
+    def torque(omega1, omega2, p):
+        w1, w2 = np.asarray(omega1, dtype=np.float64), np.asarray(omega2, dtype=np.float64)
+        return p["coefficient_Nm_s_per_rad"] * (w1 - w2) * w1 / OMEGA_N_RAD_S
+
+    def law(self, p):
+        return (f"clutch torque += {p['coefficient_Nm_s_per_rad']:.6g} N*m*s/rad * (Omega1 - Omega2) * Omega1/"
+                "150 rad/s, in the gap and in contact")
+
+
+# 7. mass force x the mass speed times the motor speed
+class MassTachoFedEddyBrake(OutsideForm):
+    name = "mass_tacho_fed_eddy_brake"
+    half = "dev12"
+    balance = "mass_force"
+    depends_on = ("mass_speed", "motor_speed")
+    description = ("an eddy-current rail brake on the carriage whose field coils a tacho-generator on the motor's shaft "
+                   "feeds: -c*(Omega1/Omega_n)*v, Omega_n = 150 rad/s")
+    parameters = (Param("coefficient_N_s_per_m", "N*s/m", (0.0, 10.0), "c"),)
+    note = "a damping of the mass set by the motor's speed"
+
+    def apply(self, b, p):
+        add_term(b, "mass_force", -p["coefficient_N_s_per_m"] / OMEGA_N_RAD_S,
+                 (K.XS_MASS_SPEED, K.XF_X, 0.0, 0.0, 0.0), (K.XS_OMEGA1, K.XF_X, 0.0, 0.0, 0.0))
+
+    @staticmethod
+    def force(v, omega1, p):
+        return (-p["coefficient_N_s_per_m"] * np.asarray(omega1, dtype=np.float64) / OMEGA_N_RAD_S
+                * np.asarray(v, dtype=np.float64))
+
+    def law(self, p):
+        return (f"mass force += -{p['coefficient_N_s_per_m']:.6g} N*s/m * (Omega1/150 rad/s) * v, v the mass speed")
+
+    def plugin(self, p):
+        return _plugin("MassTachoFedEddyBrake", self.name, "mass_force_N", self.description, [
+            ("coefficient_N_s_per_m", "N*s/m", (0.0, 10.0), "c")],
+            "xdot, omega1, coefficient_N_s_per_m", "-coefficient_N_s_per_m * omega1 / 150.0 * xdot", "")
+
+
+# 9. a2 sensor x a2's own past through a cable echo
+class A2CableEcho(OutsideForm):
+    name = "a2_cable_echo"
+    half = "dev12"
+    stage = "sensor"
+    order = 1                      # the cable, after the sensing element
+    uses_states = True
+    balance = "sensor"
+    depends_on = ("mass_acceleration",)
+    description = ("a2's long, badly terminated cable reflects its signal once: y[n] = x[n] + r*x[n - d] (d samples at "
+                   "the recorder's rate; x[n - d] = x[0] before the pre-roll's first sample)")
+    parameters = (Param("reflection", "-", (0.0, 1.0), "r"), Param("delay_samples", "samples", (1, 1000), "d", "int"))
+    note = "a comb filter: one delayed copy of the signal added"
+
+    def apply_signal(self, sig, p, t, fs, states=None):
+        sig["a2"] = self.read(sig["a2"], p)
+
+    @staticmethod
+    def read(a, p):
+        x = np.asarray(a, dtype=np.float64)
+        d = int(p["delay_samples"])
+        past = np.concatenate([np.full(d, x[0]), x[:-d]]) if x.size > d else np.full(x.size, x[0])
+        return x + p["reflection"] * past
+
+    def law(self, p):
+        return (f"a2 sensor = a2[n] + {p['reflection']:.6g} * a2[n - {int(p['delay_samples'])}] (samples at 50 kHz; "
+                "a2[0] before the first)")
+
+
+# 11. mass force x the spring's extension through a lost-motion link
+class MassLostMotionFrictionLink(OutsideForm):
+    name = "mass_lost_motion_friction_link"
+    half = "dev12"
+    balance = "mass_force"
+    depends_on = ("spring_extension",)
+    description = ("the spring's cable carries a dog in a slot of +-a of a slider that a friction clamp holds on the "
+                   "carriage: the carriage pulled along x with F*(z - s)/a, s following z as a play of half-width a "
+                   "(s -> min(max(s, z - a), z + a) every 0.2 ms, s = z at the run-in's start)")
+    parameters = (Param("force_N", "N", (0.0, 100.0), "F"), Param("half_slot_m", "m", (1e-5, 0.1), "a"))
+    note = "a friction element behind a play, in parallel with the spring"
+
+    def apply(self, b, p):
+        set_memory(b, self.name, K.MK_PLAY, K.XS_SPRING_EXTENSION, p["half_slot_m"])
+        add_term(b, "mass_force", p["force_N"] / p["half_slot_m"], (K.XS_MEMORY_EXCESS, K.XF_X, 0.0, 0.0, 0.0),
+                 nonperiodic=True)
+
+    @staticmethod
+    def slider(z_at_scans, p, s0=None):
+        """The slider's place after each scan from the extension at the scans' starts (s0 before the first; None: z
+        at the first)."""
+        z = np.asarray(z_at_scans, dtype=np.float64).tolist()
+        a = p["half_slot_m"]
+        s = z[0] if s0 is None else s0
+        out = []
+        for x in z:
+            s = min(max(s, x - a), x + a)
+            out.append(s)
+        return np.array(out)
+
+    def law(self, p):
+        return (f"mass force += {p['force_N']:.6g} N * (z - s)/{p['half_slot_m']:.6g} m, s -> min(max(s, z - "
+                f"{p['half_slot_m']:.6g} m), z + {p['half_slot_m']:.6g} m) every 0.2 ms, z the spring's extension")
+
+
+# 13. wheel torque x the wheel speed times the load pulse
+class WheelStrokeGatedCushionPump(OutsideForm):
+    name = "wheel_stroke_gated_cushion_pump"
+    half = "dev12"
+    balance = "wheel_torque"
+    depends_on = ("wheel_speed", "load_pulse")
+    description = ("a die-cushion pump driven by the wheel's shaft, switched to pressure only while the stroke's pulse "
+                   "is on: -c*Omega2*P, P = 1 during the pulse, else 0")
+    parameters = (Param("coefficient_Nm_s_per_rad", "N*m*s/rad", (0.0, 1.0), "c"),)
+    note = "a viscous load gated by the stroke"
+
+    def apply(self, b, p):
+        add_term(b, "wheel_torque", -p["coefficient_Nm_s_per_rad"], (K.XS_OMEGA2, K.XF_X, 0.0, 0.0, 0.0),
+                 (K.XS_PULSE, K.XF_X, 0.0, 0.0, 0.0))
+
+    @staticmethod
+    def torque(omega2, pulse, p):
+        return (-p["coefficient_Nm_s_per_rad"] * np.asarray(omega2, dtype=np.float64)
+                * np.asarray(pulse, dtype=np.float64))
+
+    def law(self, p):
+        return f"wheel torque += -{p['coefficient_Nm_s_per_rad']:.6g} N*m*s/rad * Omega2 * P, P the load pulse (0/1)"
+
+
+FORM_CLASSES = (MotorChokedWaterBrake, WheelPumpFedRetarder, ClutchHydrodynamicCoupling, MassTachoFedEddyBrake,
+                A2CableEcho, MassLostMotionFrictionLink, WheelStrokeGatedCushionPump)
