@@ -514,6 +514,36 @@ OUTSIDE_DEV11_ROWS = [
      [E("wheel_upstream_tension_steps", {"torque_Nm": 2.0, "step_s": 0.1, "first_step_s": 0.05, "seed": 11})]),
 ]
 
+# ---- issue 31 part 4, twelfth set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev12;
+# the twelfth sealed half's rows are in foreign_drives.outside_sealed12). One mechanism per row at its own nominal
+# conditions, one clean control. Seeds 12000+. Each strength set by one simulation against the clean drive of the same
+# seed (docs/foreign_drives.md "The twelfth set").
+OUTSIDE_DEV12_ROWS = [
+    # choked at 140 rad/s (a clean drive's Omega: 147.6-153.7 rad/s); c = 1.43e-4 N*m*s^2/rad^2 (about 3 N*m) a priori,
+    # a2 0.0114: scaled once x6.56 (about 20 N*m)
+    ("od12_motor_choked_water_brake", "outside", 0.0064, 0.0270, 0.93,
+     [E("motor_choked_water_brake", {"coefficient_Nm_s2_per_rad2": 9.38e-4, "choke_speed_rad_s": 140.0})]),
+    # 2 N*m per litre of fill; 0.1 l/rad in, 15 l/s/sqrt(l) out (about 1 l at 150 rad/s, filling in ~0.1 s)
+    ("od12_wheel_pump_fed_retarder", "outside", 0.0078, 0.0220, 0.91,
+     [E("wheel_pump_fed_retarder", {"torque_Nm_per_l": 2.0, "inflow_l_per_rad": 0.1, "drain_l_s_per_sqrt_l": 15.0})]),
+    # 1.5 N*m*s/rad at 150 rad/s (a clean drive's slip: -5..5 rad/s)
+    ("od12_clutch_hydrodynamic_coupling", "outside", 0.0055, 0.0350, 0.92,
+     [E("clutch_hydrodynamic_coupling", {"coefficient_Nm_s_per_rad": 1.5})]),
+    # at 150 rad/s; 0.1 N*s/m (about 2.3 N at a clean drive's 22.7 m/s) a priori, a2 0.0362: scaled once x2.07
+    ("od12_mass_tacho_fed_eddy_brake", "outside", 0.0086, 0.0300, 0.95,
+     [E("mass_tacho_fed_eddy_brake", {"coefficient_N_s_per_m": 0.207})]),
+    ("od12_clean_w7.2_eta0.0250_n0.90", "clean", 0.0072, 0.0250, 0.90, []),
+    # a 30 % echo 0.1 ms late
+    ("od12_a2_cable_echo", "outside", 0.0069, 0.0190, 0.94,
+     [E("a2_cable_echo", {"reflection": 0.3, "delay_samples": 5})]),
+    # 3 N behind a slot of +-5 mm (a clean drive's z: 0.284-0.322 m)
+    ("od12_mass_lost_motion_friction_link", "outside", 0.0057, 0.0290, 0.90,
+     [E("mass_lost_motion_friction_link", {"force_N": 3.0, "half_slot_m": 0.005})]),
+    # 0.02 N*m*s/rad during the pulse (about 3 N*m)
+    ("od12_wheel_stroke_gated_cushion_pump", "outside", 0.0074, 0.0370, 0.92,
+     [E("wheel_stroke_gated_cushion_pump", {"coefficient_Nm_s_per_rad": 0.02})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -528,11 +558,13 @@ OUTSIDE_DEV8 = _suite(OUTSIDE_DEV8_ROWS, 8800, 4.0)
 OUTSIDE_DEV9 = _suite(OUTSIDE_DEV9_ROWS, 9000, 4.0)
 OUTSIDE_DEV10 = _suite(OUTSIDE_DEV10_ROWS, 10000, 4.0)
 OUTSIDE_DEV11 = _suite(OUTSIDE_DEV11_ROWS, 11000, 4.0)
+OUTSIDE_DEV12 = _suite(OUTSIDE_DEV12_ROWS, 12000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
           "outside_dev8": OUTSIDE_DEV8, "outside_dev9": OUTSIDE_DEV9,
-          "outside_dev10": OUTSIDE_DEV10, "outside_dev11": OUTSIDE_DEV11}
+          "outside_dev10": OUTSIDE_DEV10, "outside_dev11": OUTSIDE_DEV11,
+          "outside_dev12": OUTSIDE_DEV12}
 
 
 def _outside_sealed():
@@ -601,9 +633,16 @@ def _outside_sealed11():
     return _suite(suite_rows(), 11100, 4.0)
 
 
+def _outside_sealed12():
+    """The twelfth sealed half's suite, made from foreign_drives.outside_sealed12 on first use (its rows live there)."""
+    from .outside_sealed12 import suite_rows
+    return _suite(suite_rows(), 12100, 4.0)
+
+
 SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
                                "outside_sealed5", "outside_sealed6", "outside_sealed7", "outside_sealed8",
-                               "outside_sealed9", "outside_sealed10", "outside_sealed11")
+                               "outside_sealed9", "outside_sealed10", "outside_sealed11",
+                               "outside_sealed12")
 
 
 def suite(name: str) -> list:
@@ -629,6 +668,8 @@ def suite(name: str) -> list:
         return _outside_sealed10()
     if name == "outside_sealed11":
         return _outside_sealed11()
+    if name == "outside_sealed12":
+        return _outside_sealed12()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])
