@@ -103,7 +103,8 @@ class ClassifierNode(Node):
             raise ParameterValueError(str(error)) from None
         self.library_path = str(library.path)
         self.publisher = self.create_publisher(BacklashEstimate, "estimate", ESTIMATE_QOS)
-        self.windows_in = HistorySubscription(self, BacklashWindow, "windows/denoised", self.on_window, WINDOW_QOS)
+        self.windows_in = HistorySubscription(self, BacklashWindow, "windows/denoised", self.on_window, WINDOW_QOS,
+                                              on_passed_over=self.on_history_passed_over)
         self.classified = 0
         self.repeated = RepeatedWindows()
         self.faults = FaultLog()            # windows dropped here (not denoised)
@@ -120,6 +121,13 @@ class ClassifierNode(Node):
                                f"library {library.path}")
         if self.library_flag:
             self.get_logger().warning(self.library_flag)
+
+    def on_history_passed_over(self, check) -> None:
+        """A restarted classifier's windows/denoised history came from its middle: an input fault (WARN for
+        fault_hold_s), the windows before it named (ros/history_subscription.py)."""
+        self.faults.add("history_passed_over", f"windows/denoised before sequence number {check.missed_before}")
+        if self.health.update(time.monotonic(), self.faults, self.estimator.faults):
+            self.update_diagnostics(publish_now=True)
 
     def on_model_fit(self, verdict) -> None:
         changed = self.model_fit is None or verdict.explains != self.model_fit.explains
@@ -239,7 +247,8 @@ class ClassifierNode(Node):
             message = f"{message}; {self.library_flag}"
         if self.width_state is not None:   # every width, OK, WARN or ERROR, carries a failed model fit
             message = with_caveat(message, self.model_fit)
-        rejected = self.faults.total + self.estimator.faults.total
+        rejected = (self.faults.total - self.faults.counts["history_passed_over"]   # windows, not a history
+                    + self.estimator.faults.total)
         self.diagnostics.set(
             level, message, publish_now=publish_now, **values,
             windows_classified=self.classified, windows_rejected=rejected,
@@ -247,7 +256,7 @@ class ClassifierNode(Node):
             input_faults=", ".join(f for f in (self.faults.summary(), self.estimator.faults.summary())
                                    if f != "none") or "none",
             repeated_windows_skipped=self.repeated.repeats, saturated_estimates=saturated[0],
-            history_resubscribes=self.windows_in.check.resubscribes, history_passed_over=self.windows_in.check.gave_up,
+            history_passed_over=self.windows_in.check.passed_over,
             warn_width_m=p["warn_width_m"], error_width_m=p["error_width_m"],
             model_version=p["model_version"], library=self.library_path,
             model_fit="" if self.model_fit is None else

@@ -112,11 +112,10 @@ class LeanExecutor(SingleThreadedExecutor):
 
     @staticmethod
     def signature(nodes) -> tuple:
-        """What the plan depends on: the nodes and the entities they hold (rclpy's Node keeps them in
-        these lists; its public properties are generators). The subscriptions and waitables by identity:
-        one replaced by another in a callback (ros/history_subscription.py) leaves their counts alike."""
-        return tuple((id(n), tuple(map(id, n._subscriptions)), len(n._timers), len(n._services),
-                      len(n._clients), tuple(map(id, n.waitables)), len(n._guards)) for n in nodes)
+        """What the plan depends on: the nodes and how many entities of each kind they hold
+        (rclpy's Node keeps them in these lists; its public properties are generators)."""
+        return tuple((id(n), len(n._subscriptions), len(n._timers), len(n._services),
+                      len(n._clients), sum(1 for _ in n.waitables), len(n._guards)) for n in nodes)
 
     def _lean_plan(self):
         """The kept plan, rebuilt when the nodes' entities changed; None when a node needs
@@ -240,15 +239,12 @@ class LeanExecutor(SingleThreadedExecutor):
         """``sub``'s next message (rclpy's take), or None. A take that fails while the context shuts down -- a signal
         between the wait and the take tears the entities down: measured once in ~200 process-fault runs, pybind's
         "Unable to convert call argument" from a killed chain's neighbour -- ends the spin as the external shutdown
-        it is, not with a traceback. A subscription that a callback of the same wake-up destroyed gives None."""
+        it is, not with a traceback."""
         try:
             return sub.handle.take_message(sub.msg_type, sub.raw)
-        except (RuntimeError, InvalidHandle) as error:
+        except (RuntimeError, InvalidHandle):
             if self._is_shutdown or not self._context.ok():
                 raise ExternalShutdownException() from None
-            if isinstance(error, InvalidHandle):   # destroyed by a callback of this wake-up (a subscription made
-                self._drop_plan()                  # anew: ros/history_subscription.py): nothing to take from it
-                return None
             raise
 
     def _drain(self, subs) -> tuple[int, float]:

@@ -44,6 +44,9 @@ REASONS = {
     "denoise_failed": "the window cannot be denoised with the configured level",
     "non_finite_estimate": "the classifier's B vector or width was not finite (not published)",
     "bad_b_vector": "a B vector of the wrong length, non-finite or negative (not fused)",
+    "history_passed_over": "a late reader of a window topic (a restarted node) got the writer's history only from "
+                           "its middle or not at all: the windows before it were not delivered "
+                           "(chain/late_join.py)",
 }
 
 MAX_INDEX = 2 ** 53        # sample indices stay exact as float64 and in numpy int64 arithmetic

@@ -1,4 +1,4 @@
-"""LateJoinCheck: a late reader's messages judged as a transient-local writer serves them.
+"""LateJoinCheck: a late reader's history judged as a transient-local writer serves it.
 
 A writer of depth D serves a reader that matches late its history first, oldest first: its whole history
 from sequence number 1, or its last D messages; then the live ones. A first message that is live, or one
@@ -6,105 +6,78 @@ from the middle of the history (a span shorter than the depth), means the histor
 """
 import pytest
 
-from backlash_monitor.chain.late_join import (HOLD, LIVE_AGE_S, MAX_RESUBSCRIBES, PASS, RELEASE, RESUBSCRIBE,
-                                              LateJoinCheck, age_s)
+from backlash_monitor.chain.late_join import LIVE_AGE_S, LateJoinCheck, age_s
 
 D = 100   # the writer's depth in these cases
 
 
 def _serve(check, seqs, ages):
-    """Offer the messages (their sequence numbers as items) -> the decisions and what was handed on."""
-    decisions, handed = [], []
-    for seq, age in zip(seqs, ages):
-        d = check.offer(seq, seq, age)
-        decisions.append(d)
-        if d == PASS:
-            handed.append(seq)
-        elif d == RELEASE:
-            handed += check.released
-    return decisions, handed
+    return [check.offer(seq, age) for seq, age in zip(seqs, ages)]
 
 
-def test_the_writers_whole_history_from_its_first_message_is_handed_on_at_once():
+def test_the_writers_whole_history_from_its_first_message_is_whole_at_once():
     check = LateJoinCheck(depth=D)
-    decisions, handed = _serve(check, range(1, 41), [30.0 - k * 0.5 for k in range(40)])
-    assert decisions == [PASS] * 40 and handed == list(range(1, 41))
-    assert (check.resubscribes, check.gave_up) == (0, 0)
+    verdicts = _serve(check, range(1, 41), [30.0 - k * 0.5 for k in range(40)])
+    assert verdicts == [False] + [None] * 39
+    assert check.passed_over == 0 and not check.judging
 
 
-def test_a_history_cut_by_the_depth_is_held_then_handed_on_whole_in_order():
-    # the writer had published 250: its last 100 come as history (old), the newest few of them and the
-    # live ones young
+def test_a_history_cut_by_the_depth_is_whole():
+    # the writer had published 250: its last 100 come as history (old), the newest few of them young
     check = LateJoinCheck(depth=D)
-    seqs = list(range(151, 261))
     ages = [60.0 - 0.6 * k for k in range(97)] + [0.5, 0.2, 0.01] + [0.003] * 10
-    decisions, handed = _serve(check, seqs, ages)
-    assert decisions[:97] == [HOLD] * 97 and decisions[97] == RELEASE
-    assert decisions[98:] == [PASS] * 12
-    assert handed == seqs
-    assert check.last_span == 248 - 151 and check.last_release == "whole"
-    assert check.resubscribes == 0
+    verdicts = _serve(check, range(151, 261), ages)
+    assert verdicts[:97] == [None] * 97 and verdicts[97] is False and verdicts[98:] == [None] * 12
+    assert check.last_span == 248 - 151 and check.passed_over == 0
 
 
-def test_a_full_depth_held_is_a_whole_history_even_without_a_young_message():
+def test_a_full_depth_of_old_messages_is_a_whole_history():
     check = LateJoinCheck(depth=D)
-    decisions, handed = _serve(check, range(500, 600), [100.0] * D)
-    assert decisions[-1] == RELEASE and handed == list(range(500, 600))
+    assert _serve(check, range(500, 600), [100.0] * D)[-1] is False
 
 
 def test_a_live_first_message_is_a_history_passed_over():
     check = LateJoinCheck(depth=D)
-    assert check.offer("w812", 812, 0.004) == RESUBSCRIBE
-    assert check.last_span == 0 and check.resubscribes == 1 and check.in_a_row == 1
+    assert check.offer(812, 0.004) is True
+    assert (check.passed_over, check.missed_before, check.last_span) == (1, 812, 0)
 
 
-def test_a_history_from_its_middle_is_passed_over_and_its_messages_dropped():
-    # the writer had published 60 (all in its history): the reader got them from 31 on
+def test_a_history_from_its_middle_is_passed_over():
+    # what the under-load bench showed: the writer had published about 600 (all within its depth), the
+    # restarted reader got them from 330 on, the first of them 62 s old
+    check = LateJoinCheck(depth=1000)
+    verdicts = _serve(check, range(330, 620), [62.4 - 0.2 * k for k in range(289)] + [0.02])
+    assert verdicts == [None] * 289 + [True]
+    assert (check.passed_over, check.missed_before, check.last_span) == (1, 330, 619 - 330)
+
+
+def test_a_new_subscription_is_judged_again():
     check = LateJoinCheck(depth=D)
-    decisions, handed = _serve(check, range(31, 61), [20.0 - 0.5 * k for k in range(29)] + [0.01])
-    assert decisions == [HOLD] * 29 + [RESUBSCRIBE]
-    assert handed == []
-    assert check.last_span == 60 - 31
-
-
-def test_asking_again_is_bounded_then_it_goes_on_with_what_it_holds():
-    check = LateJoinCheck(depth=D)
-    for k in range(MAX_RESUBSCRIBES):
-        check.start()
-        assert check.offer(900 + k, 900 + k, 0.01) == RESUBSCRIBE
+    assert check.offer(812, 0.01) is True
     check.start()
-    assert check.offer(990, 990, 0.01) == RELEASE and check.released == [990]
-    assert (check.resubscribes, check.gave_up, check.in_a_row, check.last_release) == (MAX_RESUBSCRIBES, 1, 0,
-                                                                                         "gave_up")
-    assert check.offer(991, 991, 0.01) == PASS
-
-
-def test_a_history_delivered_on_asking_again_ends_the_row():
-    check = LateJoinCheck(depth=D)
-    assert check.offer(812, 812, 0.01) == RESUBSCRIBE
+    assert check.offer(1, 40.0) is False
     check.start()
-    assert check.offer(1, 1, 40.0) == PASS
-    assert (check.resubscribes, check.gave_up, check.in_a_row) == (1, 0, 0)
+    assert check.offer(2000, 0.01) is True
+    assert check.passed_over == 2
 
 
 def test_a_writer_that_falls_silent_is_judged_on_what_came():
     whole = LateJoinCheck(depth=D)
     _serve(whole, range(301, 371), [90.0] * 70)
-    assert whole.holding and whole.silent() == RELEASE and whole.released == list(range(301, 371))
+    assert whole.judging and whole.silent() is False
     short = LateJoinCheck(depth=D)
     _serve(short, range(301, 311), [90.0] * 10)
-    assert short.silent() == RESUBSCRIBE
-    assert LateJoinCheck(depth=D).silent() == HOLD        # nothing held: nothing to judge
+    assert short.silent() is True and short.missed_before == 301
+    assert LateJoinCheck(depth=D).silent() is None        # nothing came: nothing to judge
 
 
-def test_a_middleware_that_says_nothing_changes_nothing():
+def test_a_middleware_that_says_nothing_leaves_the_history_unjudged():
     check = LateJoinCheck(depth=D)
-    assert check.offer("a", None, None) == PASS
-    assert check.offer("b", 7, 0.0) == PASS
+    assert check.offer(None, None) is None and not check.judging
     other = LateJoinCheck(depth=D)
-    assert other.offer("x", 50, 30.0) == HOLD
-    assert other.offer("y", 3, 0.01) == RELEASE and other.released == ["x", "y"]   # another writer's
-    assert other.last_release == "unordered" and other.resubscribes == 0
+    assert other.offer(50, 30.0) is None and other.judging
+    assert other.offer(3, 0.01) is None and not other.judging     # another writer's: nothing to judge by
+    assert other.passed_over == 0
 
 
 def test_age_from_rmw_time_stamps():
@@ -119,5 +92,3 @@ def test_bad_settings_name_the_allowed_values():
         LateJoinCheck(depth=0)
     with pytest.raises(ValueError, match="allowed: > 0 s"):
         LateJoinCheck(live_age_s=0.0)
-    with pytest.raises(ValueError, match="allowed: 0 or more"):
-        LateJoinCheck(max_resubscribes=-1)

@@ -189,3 +189,45 @@ def test_windows_sent_again_are_not_fused_twice(ros_env):
     assert len(estimates) == expected
     assert node.repeated.repeats == len(windows)
     assert estimates[-1].fused_events == len(windows)
+
+
+@pytest.mark.ros
+def test_a_late_classifier_gets_the_history_and_says_when_it_was_passed_over(ros_env):
+    """A classifier started after its windows were published (a restart) gets the writer's history from its
+    first window (chain/late_join.py: not passed over). A history the middleware passed over (under load,
+    docs/graph.md "Not always 0") is an input fault on /diagnostics: WARN, named, and not a rejected window."""
+    os.environ["ROS_DOMAIN_ID"] = ros_env["ROS_DOMAIN_ID"]
+    windows = [w for w in _onset_windows(0.005, seconds=1.5) if w.offset_periods > 0]
+    rclpy.init()
+    try:
+        probe = rclpy.create_node("probe")
+        pub = probe.create_publisher(BacklashWindow, "windows/denoised", WINDOW_QOS)
+        diagnostics = []
+        probe.create_subscription(DiagnosticArray, "/diagnostics", diagnostics.append, 10)
+        for window in windows:
+            pub.publish(_message(window, 0.005))
+        node = ClassifierNode()
+        executor = rclpy.executors.SingleThreadedExecutor()
+        executor.add_node(node)
+        executor.add_node(probe)
+        for _ in range(200):
+            executor.spin_once(timeout_sec=0.05)
+            if node.classified == len(windows):
+                break
+        whole = (node.classified, node.windows_in.check.passed_over, node.windows_in.check.judging)
+        node.windows_in.check.missed_before = 330          # what the under-load bench's restarted classifier saw
+        node.windows_in.check.passed_over += 1
+        node.on_history_passed_over(node.windows_in.check)
+        for _ in range(40):
+            executor.spin_once(timeout_sec=0.05)
+            if diagnostics and "history_passed_over" in diagnostics[-1].status[0].message:
+                break
+    finally:
+        rclpy.try_shutdown()
+    assert whole == (len(windows), 0, False)
+    status = diagnostics[-1].status[0]
+    values = {kv.key: kv.value for kv in status.values}
+    assert status.level == DiagnosticStatus.WARN
+    assert "history_passed_over (windows/denoised before sequence number 330)" in status.message
+    assert values["history_passed_over"] == "1" and values["windows_rejected"] == "0"
+    assert "history_passed_over 1" in values["input_faults"]
