@@ -38,6 +38,8 @@ class HistorySubscription:
             age = age_s(info.get("source_timestamp"), info.get("received_timestamp"))
             if self._first is None:
                 self._first = (seq, age)
+                self.node.get_logger().info(f"{self.topic}: first message: sequence number {seq}, "
+                                            f"{'-' if age is None else f'{age:.3f} s'} old")
             self._judged(self.check.offer(seq, age))
         self.callback(msg)
 
