@@ -15,7 +15,8 @@ SUITE_CHOICES = ("bench", "widthloop", "test", "outside_dev", "outside_sealed", 
                  "outside_dev5", "outside_sealed5", "outside_dev6", "outside_sealed6", "outside_dev7",
                  "outside_sealed7", "outside_dev8", "outside_sealed8", "outside_dev9",
                  "outside_sealed9", "outside_dev10", "outside_sealed10",
-                 "outside_dev11", "outside_sealed11", "outside_dev12", "outside_sealed12")
+                 "outside_dev11", "outside_sealed11", "outside_dev12", "outside_sealed12",
+                 "outside_dev13", "outside_sealed13")
 
 DESCRIPTION = """\
 Foreign drives: recordings of the drive made by a second, independent simulator (docs/foreign_drives.md),
@@ -62,7 +63,8 @@ def build_parser() -> argparse.ArgumentParser:
                         "outside_sealed8: an eighth (seeds 8800+ / 8900+); outside_dev9 / outside_sealed9: a ninth (seeds "
                         "9000+ / 9100+); outside_dev10 / outside_sealed10: a tenth (seeds 10000+ / 10100+); outside_dev11 / "
                         "outside_sealed11: an eleventh (seeds 11000+ / 11100+); outside_dev12 / outside_sealed12: a "
-                        "twelfth (seeds 12000+ / 12100+)")
+                        "twelfth (seeds 12000+ / 12100+); outside_dev13 / outside_sealed13: a thirteenth (seeds 13000+ / "
+                        "13100+)")
     w.add_argument("--out", required=True, metavar="DIR", help="output directory (created if missing)")
     w.add_argument("--only", action="append", metavar="LABEL", default=None,
                    help="write only this recording (repeatable); the manifest then lists only these")

@@ -71,7 +71,7 @@ class EffectTruth:
     note: str = ""
     # outside mechanisms (foreign_drives.outside): the balance the term acts in (outside.BALANCES), the drive
     # states it reads (outside.STATES), its law with the values, a plug-in's source with the exact law where a user
-    # can write one, and the half it belongs to (dev | sealed | dev2 | sealed2 | ... | dev12 | sealed12)
+    # can write one, and the half it belongs to (dev | sealed | dev2 | sealed2 | ... | dev13 | sealed13)
     balance: str | None = None
     depends_on: tuple = ()
     law: str = ""

@@ -544,6 +544,39 @@ OUTSIDE_DEV12_ROWS = [
      [E("wheel_stroke_gated_cushion_pump", {"coefficient_Nm_s_per_rad": 0.02})]),
 ]
 
+# ---- issue 31 part 4, thirteenth set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev13;
+# the thirteenth sealed half's rows are in foreign_drives.outside_sealed13). One mechanism per row at its own nominal
+# conditions, one clean control. Seeds 13000+. Each strength set by one simulation against the clean drive of the same
+# seed (docs/foreign_drives.md "The thirteenth set").
+OUTSIDE_DEV13_ROWS = [
+    # above 100 rad/s (a clean drive's Omega: 147.6-153.7 rad/s); c = 10 N*m (about 4 N*m) a priori, a2 0.0125: scaled
+    # once x6.00 (about 24 N*m)
+    ("od13_motor_paste_mixer", "outside", 0.0063, 0.0275, 0.92,
+     [E("motor_paste_mixer", {"coefficient_Nm": 60.05, "reference_speed_rad_s": 100.0})]),
+    # 0.03 N*m*s/rad up to 150 rad/s (about 4.5 N*m), constant above
+    ("od13_wheel_relief_valve_pump", "outside", 0.0079, 0.0225, 0.90,
+     [E("wheel_relief_valve_pump", {"coefficient_Nm_s_per_rad": 0.03, "relief_speed_rad_s": 150.0})]),
+    # 2 N*m once slipping by more than ~0.5 rad/s (a clean drive's slip: -5..5 rad/s)
+    ("od13_clutch_hysteresis_coupling", "outside", 0.0056, 0.0355, 0.93,
+     [E("clutch_hysteresis_coupling", {"torque_Nm": 2.0, "smoothing_speed_rad_s": 0.2})]),
+    # towards 0.1513 m * Omega2 (22.7 m/s at 150 rad/s; a clean drive's v: 22.67-22.77 m/s); 2 N*s/m a priori, a2
+    # 0.0467: scaled once x1.61
+    ("od13_mass_wheel_tracking_conveyor", "outside", 0.0085, 0.0305, 0.94,
+     [E("mass_wheel_tracking_conveyor", {"coefficient_N_s_per_m": 3.211, "belt_radius_m": 0.1513})]),
+    ("od13_clean_w7.3_eta0.0255_n0.91", "clean", 0.0073, 0.0255, 0.91, []),
+    # 0.1 m/s^2 at 150 rad/s, 4 pole pairs (about 95 Hz)
+    ("od13_a2_motor_magnet_pickup", "outside", 0.0068, 0.0195, 0.95,
+     [E("a2_motor_magnet_pickup", {"amplitude_m_s2": 0.1, "pole_pairs": 4, "phase_rad": 0.3})]),
+    # for 20 ms from each rise of Omega1 through 152 rad/s (a clean drive's Omega: 147.6-153.7 rad/s); 3 N*m a priori,
+    # a2 0.0278: scaled once x2.69
+    ("od13_motor_overspeed_timed_brake", "outside", 0.0058, 0.0285, 0.91,
+     [E("motor_overspeed_timed_brake", {"torque_Nm": 8.082, "trip_speed_rad_s": 152.0, "hold_s": 0.02})]),
+    # 2 cm^3/rad in, 20 cm^3/s/sqrt(cm^3) out; 1 N*m per cm^3 a priori, a2 0.000948: scaled once x79.1
+    ("od13_clutch_slip_pumped_plate_clutch", "outside", 0.0075, 0.0365, 0.93,
+     [E("clutch_slip_pumped_plate_clutch", {"torque_Nm_per_cm3": 79.12, "inflow_cm3_per_rad": 2.0,
+                                            "drain_cm3_s_per_sqrt_cm3": 20.0})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -559,12 +592,13 @@ OUTSIDE_DEV9 = _suite(OUTSIDE_DEV9_ROWS, 9000, 4.0)
 OUTSIDE_DEV10 = _suite(OUTSIDE_DEV10_ROWS, 10000, 4.0)
 OUTSIDE_DEV11 = _suite(OUTSIDE_DEV11_ROWS, 11000, 4.0)
 OUTSIDE_DEV12 = _suite(OUTSIDE_DEV12_ROWS, 12000, 4.0)
+OUTSIDE_DEV13 = _suite(OUTSIDE_DEV13_ROWS, 13000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
           "outside_dev8": OUTSIDE_DEV8, "outside_dev9": OUTSIDE_DEV9,
           "outside_dev10": OUTSIDE_DEV10, "outside_dev11": OUTSIDE_DEV11,
-          "outside_dev12": OUTSIDE_DEV12}
+          "outside_dev12": OUTSIDE_DEV12, "outside_dev13": OUTSIDE_DEV13}
 
 
 def _outside_sealed():
@@ -639,10 +673,16 @@ def _outside_sealed12():
     return _suite(suite_rows(), 12100, 4.0)
 
 
+def _outside_sealed13():
+    """The thirteenth sealed half's suite, made from foreign_drives.outside_sealed13 on first use (its rows live there)."""
+    from .outside_sealed13 import suite_rows
+    return _suite(suite_rows(), 13100, 4.0)
+
+
 SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
                                "outside_sealed5", "outside_sealed6", "outside_sealed7", "outside_sealed8",
                                "outside_sealed9", "outside_sealed10", "outside_sealed11",
-                               "outside_sealed12")
+                               "outside_sealed12", "outside_sealed13")
 
 
 def suite(name: str) -> list:
@@ -670,6 +710,8 @@ def suite(name: str) -> list:
         return _outside_sealed11()
     if name == "outside_sealed12":
         return _outside_sealed12()
+    if name == "outside_sealed13":
+        return _outside_sealed13()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])

@@ -27,3 +27,15 @@ def wheel_term_Nm(rec):
 def mass_term_N(rec):
     i = rec.internal
     return C.MASS_KG * i["a2_physical"] - i["rim_force_N"] + C.WORKING_RESISTANCE_N
+
+
+def contact_law_Nm(rec):
+    """The contact law's own torque (SPEC: k_c*p + d_c*p', far side negative, 0 in the gap) from the exact angle
+    difference and the speeds (no shaft hub: the rate of D is Omega1 - Omega2): what the clutch torque is without an
+    outside clutch term."""
+    from foreign_drives import kernel as K
+    i = rec.internal
+    d, dd, mode = i["jaw_angle_difference"], rec.signals["omega1"] - rec.signals["omega2"], i["mode"]
+    beta = i["parameters"][K.P_BETA]
+    k, c = C.CONTACT_STIFFNESS_NM_PER_RAD, C.CONTACT_DAMPING_NMS_PER_RAD
+    return np.where(mode > 0, k * (d - beta) + c * dd, np.where(mode < 0, -(k * (-d - beta) - c * dd), 0.0))
