@@ -296,7 +296,7 @@ LOOP_DEVELOPMENT_SUITES = ("outside_dev", "outside_sealed", "outside_dev2", "out
                            "outside_dev6", "outside_sealed6", "outside_dev7", "outside_sealed7", "outside_dev8",
                            "outside_sealed8", "outside_dev9", "outside_sealed9", "outside_dev10",
                            "outside_sealed10", "outside_dev11", "outside_sealed11", "outside_dev12",
-                           "outside_dev13")
+                           "outside_sealed12", "outside_dev13")
 
 
 def suite_name(sealed: bool, set_: int = 1) -> str:

@@ -4,13 +4,12 @@ development laws checked on the drive's own balances and signals (each term reco
 states: the choked water brake, the pump-fed retarder, the hydrodynamic coupling, the tacho-fed eddy brake, the cable
 echo, the lost-motion friction link, the stroke-gated cushion pump), every sealed mechanism acting in its recorded
 balance only, the suites (made, written, deterministic, each mechanism row visible above the criterion its strength was
-set by), ``forms`` withholding the sealed laws, and the outside bench's set 12 (its sealed half UNSPENT: the loop refuses
-it without --sealed, the alarm check leaves it out).
+set by), ``forms`` withholding the sealed laws, and the outside bench's set 12 (its sealed half spent since its one run:
+in the loop's default suites and the alarm check).
 
 This file names the sealed mechanisms only through the registry and the suite; it prints and states no sealed law."""
 from __future__ import annotations
 
-import importlib.util
 
 import numpy as np
 import pytest
@@ -20,15 +19,16 @@ from foreign_drives import forms as F
 from foreign_drives import kernel as K
 from foreign_drives import noise as N
 from foreign_drives import outside as O
-from foreign_drives import suites
 from foreign_drives.drive import pulse_indicator
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
-from foreign_outside_recordings import (OUTSIDE_BENCH, Recordings, assert_acts_in_its_balance_only,  # test/
+from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
                                         assert_forms_withholds_sealed, assert_recordings_repeat,
                                         assert_rows_visible, assert_set_registry, assert_set_suites,
-                                        assert_suite_writes_one_recording, outside_bench, suite_effect)
-from foreign_outside_recordings import assert_a_row_of_each_half_crosses_the_backlash  # test/
+                                        assert_suite_writes_one_recording, suite_effect)
+from foreign_outside_recordings import (assert_a_row_of_each_half_crosses_the_backlash,  # test/
+                                        assert_alarm_check_covers_both_halves,
+                                        assert_bench_guards_unspent_sealed)
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -240,28 +240,14 @@ def test_forms_withholds_the_sealed_laws_and_shows_the_development_ones(capsys):
     assert_forms_withholds_sealed(capsys.readouterr().out, SEALED12, DEV12)
 
 
-def test_outside_bench_knows_set_12_and_no_longer_holds_its_sealed_half_unspent():
-    # sets 1-12 are spent (set 12's sealed half ran once at stop 49); the unspent sealed half is set 13's, whose guard
-    # test_foreign_drives_outside13 checks. Set 12's sealed half joining the loop's default suites and the alarm check
-    # is left to whoever records its one run
-    bench = outside_bench("outside_bench_under_test12")
-    assert [s.label for s in bench.suite_rows(False, 12)] == [s.label for s in suites.suite("outside_dev12")]
-    assert bench.suite_name(True, 12) == "outside_sealed12" and "outside_sealed12" not in bench.UNSPENT_SEALED
-    spent = {"outside_sealed"} | {f"outside_sealed{k}" for k in range(2, 13)}
-    assert not spent & set(bench.UNSPENT_SEALED)
-    assert {"outside_sealed"} | {f"outside_sealed{k}" for k in range(2, 12)} | {"outside_dev12"} <= set(
-        bench.LOOP_DEVELOPMENT_SUITES)
-    for s in suites.suite("outside_dev12") + suites.suite("outside_sealed12"):
-        bal, st = bench._truth_of(s, s.truth())
-        assert bool(bal) == (s.kind == "outside") and (not bal or st)
+def test_outside_bench_knows_set_12_and_never_loops_on_an_unspent_sealed_half(capsys, monkeypatch):
+    # sets 1-12 are spent (set 12's sealed half ran once, 30 Nov, stop 49): each sealed half is development data, in
+    # the loop's default suites; the guard, for the next set's sealed half while it is unspent
+    assert_bench_guards_unspent_sealed(12, capsys, monkeypatch)
 
 
-def test_the_alarm_check_covers_the_development_half_and_not_the_unspent_sealed_one():
-    spec = importlib.util.spec_from_file_location("width_caveat_under_test12", OUTSIDE_BENCH.parent / "width_caveat.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    names = set(module.alarm_suites())
-    assert "outside_dev12" in names and "outside_sealed12" not in names
+def test_the_alarm_check_covers_both_halves_once_the_sealed_one_is_spent():
+    assert_alarm_check_covers_both_halves(12)
 
 
 def test_a_row_of_each_half_simulates_at_its_own_conditions_and_crosses_the_backlash():
