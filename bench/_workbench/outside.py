@@ -35,7 +35,7 @@ of sets 1-12 have been run once and are development data now (set 11's on 30 Nov
 
 The outside loop (``--loop``, goals outside_loop_width_error_after_mm and outside_loop_worse_count): the README's
 loop through the CLI on each development outside recording (the development halves of sets 1-13 and the spent sealed
-halves of sets 1-11; never an unspent sealed half unless ``--sealed``), the width error |fused width - true width|
+halves of sets 1-12; never an unspent sealed half unless ``--sealed``), the width error |fused width - true width|
 before and after; *worse*: after > before + the after's stated uncertainty. Its rows carry the proposal's fields too
 (verdict, law, right balance, consistent), from the CLI's diagnosis at the nominal conditions. Each recording is
 diagnosed in this process at the drive's nominal values (NUMBA_NUM_THREADS=1); the proposal's CPU time is its own
@@ -276,11 +276,11 @@ def run_angle_locked(rows) -> list:
     return out
 
 
-# the outside suites by set: (development, sealed). The sealed halves of sets 1-11 have each been run once (their labels
+# the outside suites by set: (development, sealed). The sealed halves of sets 1-12 have each been run once (their labels
 # and results are known; set 4's on 29 Nov, 18:19-18:50, set 5's on main d26fbff, set 6's as in 412d392, set 7's on
 # 30 Nov, main ca708e3, set 8's on 30 Nov, lead eb9735e, set 9's on 30 Nov, lead 3ad5e4f, set 10's on 30 Nov, lead
-# 75dcaf0) and set 12's (stop 49) have each been run once: they are development data now. A new set's sealed half goes
-# into UNSPENT_SEALED until its run.
+# 75dcaf0, set 11's at stop 48, lead 47813e6, set 12's at stop 49, lead 40a5676): they are development data now. A new
+# set's sealed half goes into UNSPENT_SEALED until its run.
 SETS = {1: ("outside_dev", "outside_sealed"), 2: ("outside_dev2", "outside_sealed2"), 3: ("outside_dev3", "outside_sealed3"),
         4: ("outside_dev4", "outside_sealed4"), 5: ("outside_dev5", "outside_sealed5"),
         6: ("outside_dev6", "outside_sealed6"), 7: ("outside_dev7", "outside_sealed7"),
