@@ -218,18 +218,50 @@ def assert_bench_guards_unspent_sealed(set_number: int, capsys, monkeypatch) -> 
     with pytest.raises(SystemExit) as e:
         bench.main(["--loop", "--loop-suites", f"{dev},{sealed}"])
     assert e.value.code == 2 and f"{sealed} is an unspent sealed half" in capsys.readouterr().err
+    _assert_truths_name_balance_and_state(bench, dev, sealed)
+
+
+def assert_bench_refuses_the_unspent_sealed_half(set_number: int, capsys) -> None:
+    """bench/_workbench/outside.py knows the set, whose sealed half is the one UNSPENT until its one run: the loop's
+    default suites hold its development half only, and the loop refuses the sealed half without --sealed; each row's
+    truth names a balance and a state exactly when it is outside."""
+    import pytest
+    dev, sealed = f"outside_dev{set_number}", f"outside_sealed{set_number}"
+    bench = outside_bench(f"outside_bench_under_test{set_number}")
+    assert [s.label for s in bench.suite_rows(False, set_number)] == [s.label for s in suites.suite(dev)]
+    assert bench.suite_name(True, set_number) == sealed and bench.UNSPENT_SEALED == (sealed,)
+    assert dev in bench.LOOP_DEVELOPMENT_SUITES
+    assert sealed not in bench.LOOP_DEVELOPMENT_SUITES
+    with pytest.raises(SystemExit) as e:
+        bench.main(["--loop", "--loop-suites", f"{dev},{sealed}"])
+    assert e.value.code == 2 and f"{sealed} is an unspent sealed half" in capsys.readouterr().err
+    _assert_truths_name_balance_and_state(bench, dev, sealed)
+
+
+def _assert_truths_name_balance_and_state(bench, dev: str, sealed: str) -> None:
     for s in suites.suite(dev) + suites.suite(sealed):
         bal, st = bench._truth_of(s, s.truth())
         assert bool(bal) == (s.kind == "outside") and (not bal or st)
 
 
-def assert_alarm_check_covers_both_halves(set_number: int) -> None:
-    """bench/_workbench/width_caveat.py's alarm check covers the set's development half and its spent sealed half."""
+def _alarm_suites(set_number: int) -> set:
+    """The suites bench/_workbench/width_caveat.py's alarm check covers (the module loaded under a name of its own)."""
     spec = importlib.util.spec_from_file_location(f"width_caveat_under_test{set_number}",
                                                   OUTSIDE_BENCH.parent / "width_caveat.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    assert {f"outside_dev{set_number}", f"outside_sealed{set_number}"} <= set(module.alarm_suites())
+    return set(module.alarm_suites())
+
+
+def assert_alarm_check_covers_both_halves(set_number: int) -> None:
+    """bench/_workbench/width_caveat.py's alarm check covers the set's development half and its spent sealed half."""
+    assert {f"outside_dev{set_number}", f"outside_sealed{set_number}"} <= _alarm_suites(set_number)
+
+
+def assert_alarm_check_leaves_out_the_unspent_sealed_half(set_number: int) -> None:
+    """The alarm check covers the set's development half and not its sealed half while that is unspent."""
+    names = _alarm_suites(set_number)
+    assert f"outside_dev{set_number}" in names and f"outside_sealed{set_number}" not in names
 
 
 def assert_a_row_of_each_half_crosses_the_backlash(set_number: int, duration_s: float) -> None:

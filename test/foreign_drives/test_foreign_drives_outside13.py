@@ -10,7 +10,6 @@ without --sealed, the alarm check leaves it out).
 This file names the sealed mechanisms only through the registry and the suite; it prints and states no sealed law."""
 from __future__ import annotations
 
-import importlib.util
 
 import numpy as np
 import pytest
@@ -18,14 +17,14 @@ import pytest
 from foreign_drives import forms as F
 from foreign_drives import noise as N
 from foreign_drives import outside as O
-from foreign_drives import suites
 from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
-from foreign_outside_recordings import (OUTSIDE_BENCH, Recordings, assert_a_row_of_each_half_crosses_the_backlash,  # test/
+from foreign_outside_recordings import (Recordings, assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_acts_in_its_balance_only, assert_forms_withholds_sealed,
                                         assert_recordings_repeat, assert_rows_visible, assert_set_registry,
-                                        assert_set_suites, assert_suite_writes_one_recording, outside_bench,
-                                        suite_effect)
+                                        assert_set_suites, assert_suite_writes_one_recording, suite_effect)
+from foreign_outside_recordings import (assert_alarm_check_leaves_out_the_unspent_sealed_half,  # test/
+                                        assert_bench_refuses_the_unspent_sealed_half)
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -249,27 +248,12 @@ def test_forms_withholds_the_sealed_laws_and_shows_the_development_ones(capsys):
 
 
 def test_outside_bench_knows_set_13_and_refuses_its_unspent_sealed_half_without_sealed(capsys):
-    # sets 1-12 are spent; set 13's sealed half is UNSPENT until its one run: the loop's default suites hold its
-    # development half only, and the loop refuses the sealed half without --sealed
-    bench = outside_bench("outside_bench_under_test13")
-    assert [s.label for s in bench.suite_rows(False, 13)] == [s.label for s in suites.suite("outside_dev13")]
-    assert bench.suite_name(True, 13) == "outside_sealed13" and bench.UNSPENT_SEALED == ("outside_sealed13",)
-    assert "outside_dev13" in bench.LOOP_DEVELOPMENT_SUITES
-    assert "outside_sealed13" not in bench.LOOP_DEVELOPMENT_SUITES
-    with pytest.raises(SystemExit) as e:
-        bench.main(["--loop", "--loop-suites", "outside_dev13,outside_sealed13"])
-    assert e.value.code == 2 and "outside_sealed13 is an unspent sealed half" in capsys.readouterr().err
-    for s in suites.suite("outside_dev13") + suites.suite("outside_sealed13"):
-        bal, st = bench._truth_of(s, s.truth())
-        assert bool(bal) == (s.kind == "outside") and (not bal or st)
+    # sets 1-12 are spent; set 13's sealed half is UNSPENT until its one run
+    assert_bench_refuses_the_unspent_sealed_half(13, capsys)
 
 
 def test_the_alarm_check_covers_the_development_half_and_not_the_unspent_sealed_one():
-    spec = importlib.util.spec_from_file_location("width_caveat_under_test13", OUTSIDE_BENCH.parent / "width_caveat.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    names = set(module.alarm_suites())
-    assert "outside_dev13" in names and "outside_sealed13" not in names
+    assert_alarm_check_leaves_out_the_unspent_sealed_half(13)
 
 
 def test_a_row_of_each_half_simulates_at_its_own_conditions_and_crosses_the_backlash():
