@@ -103,11 +103,11 @@ class ClassifierNode(Node):
             raise ParameterValueError(str(error)) from None
         self.library_path = str(library.path)
         self.publisher = self.create_publisher(BacklashEstimate, "estimate", ESTIMATE_QOS)
-        self.windows_in = HistorySubscription(self, BacklashWindow, "windows/denoised", self.on_window, WINDOW_QOS,
-                                              on_passed_over=self.on_history_passed_over)
         self.classified = 0
         self.repeated = RepeatedWindows()
-        self.faults = FaultLog()            # windows dropped here (not denoised)
+        self.faults = FaultLog()            # windows dropped here (not denoised), a history passed over
+        self.windows_in = HistorySubscription(self, BacklashWindow, "windows/denoised", self.on_window, WINDOW_QOS,
+                                              faults=self.faults, on_passed_over=self.on_history_passed_over)
         self.health = InputHealth(p["stale_after_s"], p["fault_hold_s"], "windows")
         # estimates from windows with samples at a sensor's rail or stuck: (count, when [monotonic s],
         # the last one's entry sample, its saturated samples)
@@ -122,10 +122,9 @@ class ClassifierNode(Node):
         if self.library_flag:
             self.get_logger().warning(self.library_flag)
 
-    def on_history_passed_over(self, check) -> None:
+    def on_history_passed_over(self) -> None:
         """A restarted classifier's windows/denoised history came from its middle: an input fault (WARN for
-        fault_hold_s), the windows before it named (ros/history_subscription.py)."""
-        self.faults.add("history_passed_over", f"windows/denoised before sequence number {check.missed_before}")
+        fault_hold_s; ros/history_subscription.py added it to self.faults)."""
         if self.health.update(time.monotonic(), self.faults, self.estimator.faults):
             self.update_diagnostics(publish_now=True)
 

@@ -59,7 +59,7 @@ class DenoiseNode(Node):
         self.diagnostics = DriveDiagnostics(self, "denoise", p["drive_name"],
                                             refresh=self.update_diagnostics)
         self.windows_in = HistorySubscription(self, BacklashWindow, "windows/raw", self.on_window, WINDOW_QOS,
-                                              on_passed_over=self.on_history_passed_over)
+                                              faults=self.faults, on_passed_over=self.on_history_passed_over)
 
     def on_window(self, msg: BacklashWindow):
         now = time.monotonic()
@@ -80,10 +80,9 @@ class DenoiseNode(Node):
         self.publisher.publish(msg)
         self.counts["denoised"] += 1
 
-    def on_history_passed_over(self, check) -> None:
+    def on_history_passed_over(self) -> None:
         """A restarted denoise node's windows/raw history came from its middle: an input fault (WARN for
-        fault_hold_s), the windows before it named (ros/history_subscription.py)."""
-        self.faults.add("history_passed_over", f"windows/raw before sequence number {check.missed_before}")
+        fault_hold_s; ros/history_subscription.py added it to self.faults)."""
         self.health.update(time.monotonic(), self.faults)
         self.update_diagnostics(publish_now=True)
 

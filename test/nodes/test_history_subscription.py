@@ -16,6 +16,7 @@ from std_msgs.msg import Int32
 
 from backlash_monitor.ros.history_subscription import HistorySubscription
 from backlash_monitor.ros.lean_executor import LeanExecutor
+from backlash_monitor.windowing.faults import FaultLog
 
 
 def _qos(depth: int) -> QoSProfile:
@@ -39,9 +40,9 @@ def _late_reader(context, depth: int, published: int, timeout_s: float = 30.0):
     for k in range(1, published + 1):
         pub.publish(Int32(data=k))
     reader = rclpy.create_node("history_reader", context=context)
-    got, reported = [], []
+    got, reported, faults = [], [], FaultLog()
     sub = HistorySubscription(reader, Int32, "history/in", lambda m: got.append(m.data), _qos(depth),
-                              on_passed_over=lambda check: reported.append(check.missed_before))
+                              faults=faults, on_passed_over=lambda: reported.append(sub.check.missed_before))
     executor = LeanExecutor(context=context)
     executor.add_node(reader)
     executor.add_node(writer)
@@ -55,6 +56,9 @@ def _late_reader(context, depth: int, published: int, timeout_s: float = 30.0):
     thread.join(timeout=10)
     reader.destroy_node()
     writer.destroy_node()
+    assert faults.counts["history_passed_over"] == len(reported)
+    if reported:
+        assert faults.last == ("history_passed_over", f"history/in before sequence number {reported[-1]}")
     return got, sub.check, reported
 
 

@@ -217,7 +217,7 @@ def test_a_late_classifier_gets_the_history_and_says_when_it_was_passed_over(ros
         whole = (node.classified, node.windows_in.check.passed_over, node.windows_in.check.judging)
         node.windows_in.check.missed_before = 330          # what the under-load bench's restarted classifier saw
         node.windows_in.check.passed_over += 1
-        node.on_history_passed_over(node.windows_in.check)
+        node.windows_in.report_passed_over()
         for _ in range(40):
             executor.spin_once(timeout_sec=0.05)
             if diagnostics and "history_passed_over" in diagnostics[-1].status[0].message:
