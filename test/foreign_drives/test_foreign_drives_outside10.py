@@ -23,7 +23,7 @@ from foreign_drives import outside as O
 from foreign_drives.drive import pulse_indicator
 from foreign_drives.outside_dev3 import pulse_phase_s
 from foreign_drives.spec import RecordingSpec
-from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
                                         assert_forms_withholds_sealed, assert_recordings_repeat,
                                         assert_rows_visible, assert_set_registry, assert_set_suites,
@@ -65,16 +65,6 @@ def _pulse(rec):
     t = np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
     on = pulse_indicator(t, rec.spec.pulse_first_s)
     return on, pulse_phase_s(t, on)
-
-
-def _nominal_contact_Nm(rec):
-    """The contact law's own torque (SPEC: k_c*p + d_c*p', far side negative) from the exact angle difference and
-    the speeds (no shaft hub: the rate of D is Omega1 - Omega2)."""
-    i = rec.internal
-    d, dd, mode = i["jaw_angle_difference"], rec.signals["omega1"] - rec.signals["omega2"], i["mode"]
-    beta = i["parameters"][K.P_BETA]
-    k, c = C.CONTACT_STIFFNESS_NM_PER_RAD, C.CONTACT_DAMPING_NMS_PER_RAD
-    return np.where(mode > 0, k * (d - beta) + c * dd, np.where(mode < 0, -(k * (-d - beta) - c * dd), 0.0))
 
 
 def _others_zero(rec, *terms):
@@ -223,7 +213,7 @@ def test_stroke_leaf_spring_is_a_stiffness_across_the_jaw_during_each_stroke_onl
     p = _params("clutch_stroke_leaf_spring")
     rec = rec_of("clutch_stroke_leaf_spring", **p)
     i = rec.internal
-    extra = i["clutch_torque_Nm"] - _nominal_contact_Nm(rec)
+    extra = i["clutch_torque_Nm"] - contact_law_Nm(rec)
     on, _ = _pulse(rec)
     d = i["jaw_angle_difference"]
     law = DEV10["clutch_stroke_leaf_spring"].torque(d, on, p)
@@ -275,7 +265,7 @@ def test_viscoelastic_coupling_passes_the_slip_relaxed_by_its_time_at_all_times(
     p = _params("clutch_viscoelastic_coupling")
     rec = rec_of("clutch_viscoelastic_coupling", **p)
     i = rec.internal
-    extra = i["clutch_torque_Nm"] - _nominal_contact_Nm(rec)
+    extra = i["clutch_torque_Nm"] - contact_law_Nm(rec)
     assert np.max(_held_per_segment(extra)) < 1e-6
     m = extra[::SEG] / p["coefficient_Nm_s_per_rad"]
     slip = (rec.signals["omega1"] - rec.signals["omega2"])[::SEG]

@@ -22,7 +22,7 @@ from foreign_drives import noise as N
 from foreign_drives import outside as O
 from foreign_drives.drive import pulse_indicator
 from foreign_drives.spec import RecordingSpec
-from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
                                         assert_forms_withholds_sealed, assert_recordings_repeat,
                                         assert_rows_visible, assert_set_registry, assert_set_suites,
@@ -59,16 +59,6 @@ def _held_per_segment(x):
     """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
     n = x.size // SEG
     return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
-def _nominal_contact_Nm(rec):
-    """The contact law's own torque (SPEC: k_c*p + d_c*p', far side negative) from the exact angle difference and
-    the speeds (no shaft hub: the rate of D is Omega1 - Omega2)."""
-    i = rec.internal
-    d, dd, mode = i["jaw_angle_difference"], rec.signals["omega1"] - rec.signals["omega2"], i["mode"]
-    beta = i["parameters"][K.P_BETA]
-    k, c = C.CONTACT_STIFFNESS_NM_PER_RAD, C.CONTACT_DAMPING_NMS_PER_RAD
-    return np.where(mode > 0, k * (d - beta) + c * dd, np.where(mode < 0, -(k * (-d - beta) - c * dd), 0.0))
 
 
 def _others_zero(rec, *terms):
@@ -212,7 +202,7 @@ def test_overrunning_coupling_passes_the_slip_one_way_in_the_gap_and_in_contact(
     p = _params("clutch_overrunning_viscous_coupling")
     rec = rec_of("clutch_overrunning_viscous_coupling", **p)
     i = rec.internal
-    extra = i["clutch_torque_Nm"] - _nominal_contact_Nm(rec)
+    extra = i["clutch_torque_Nm"] - contact_law_Nm(rec)
     slip = rec.signals["omega1"] - rec.signals["omega2"]
     law = DEV11["clutch_overrunning_viscous_coupling"].torque(slip, p)
     assert np.max(np.abs(extra - law)) < 1e-6

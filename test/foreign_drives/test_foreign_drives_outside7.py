@@ -21,7 +21,7 @@ from foreign_drives import noise as N
 from foreign_drives import outside as O
 from foreign_drives.drive import pulse_indicator
 from foreign_drives.spec import RecordingSpec
-from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
                                         assert_forms_withholds_sealed, assert_recordings_repeat,
                                         assert_rows_visible, assert_set_registry, assert_set_suites,
@@ -70,16 +70,6 @@ def _stroke_at_scans(rec):
     seg = np.arange(rec.n_samples // SEG)
     first = round(rec.spec.pulse_first_s / DT)
     return np.floor((seg - first) / round(C.PULSE_PERIOD_S / DT))
-
-
-def _nominal_contact_Nm(rec):
-    """The contact law's own torque (SPEC: k_c*p + d_c*p', far side negative) from the exact angle difference and
-    the speeds (no shaft hub: the rate of D is Omega1 - Omega2)."""
-    i = rec.internal
-    d, dd, mode = i["jaw_angle_difference"], rec.signals["omega1"] - rec.signals["omega2"], i["mode"]
-    beta = i["parameters"][K.P_BETA]
-    k, c = C.CONTACT_STIFFNESS_NM_PER_RAD, C.CONTACT_DAMPING_NMS_PER_RAD
-    return np.where(mode > 0, k * (d - beta) + c * dd, np.where(mode < 0, -(k * (-d - beta) - c * dd), 0.0))
 
 
 # ------------------------------------------------------------------ registry and truth vocabulary
@@ -203,7 +193,7 @@ def test_magnetic_face_latch_pulls_towards_the_nearer_face_in_the_gap_only():
     rec = rec_of("clutch_magnetic_face_latch", **p)
     i = rec.internal
     beta = i["parameters"][K.P_BETA]
-    extra = i["clutch_torque_Nm"] - _nominal_contact_Nm(rec)
+    extra = i["clutch_torque_Nm"] - contact_law_Nm(rec)
     law = DEV7["clutch_magnetic_face_latch"].torque(i["jaw_angle_difference"], beta, p)
     assert np.max(np.abs(extra - law)) < 1e-6 * p["pull_Nm"]
     free = i["mode"] == 0
