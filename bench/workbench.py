@@ -323,8 +323,9 @@ def parse_args(argv=None):
                     help="with --parts outside: the sealed outside suite of --set (run once, at the end), not the "
                          "development one")
     ap.add_argument("--set", dest="set_", type=int, default=1, metavar="N",
-                    help="with --parts outside: the set of outside mechanisms (bench/_workbench/outside.py SETS: 1-5 "
-                         "spent, both halves development data; 6: outside_dev6, its sealed half unspent; default 1)")
+                    help="with --parts outside: the set of outside mechanisms (bench/_workbench/outside.py SETS; "
+                         "the sealed halves not yet run once are its UNSPENT_SEALED, python bench/_workbench/outside.py "
+                         "--help names them; default 1)")
     ap.add_argument("--parts", default="own,foreign,sensor,memory", metavar="PART[,PART...]",
                     help="what to run: own (this project's simulator: the suite and the width check), foreign (the "
                          "foreign drives of foreign_drives/ through the README's loop: diagnose, add-effect, train, "
