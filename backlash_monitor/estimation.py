@@ -42,8 +42,8 @@ from backlash_monitor.classifier.fusion import WidthFusion, default_fusion_rule
 from backlash_monitor.classifier.patterns import PatternLibrary
 from backlash_monitor.classifier.shape import (SHAPE, SHAPE_SIGNALS, ShapeModel, _expand,
                                               a1_features, a2_features)
-from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, CheckedWidth,
-                                                      checked_width)
+from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, LOAD_SIDE_SIGNAL, MOTOR_SIDE_SIGNAL,
+                                                      CheckedWidth, a1_chain_checked, checked_width)
 from backlash_monitor.windowing.faults import FaultLog, is_period
 from backlash_monitor.windowing.offset import offset_removal_label, remove_offset
 
@@ -193,16 +193,18 @@ class DriveEstimator:
         return self.estimate_many([(a1, a2, entry_kind, sample_period_s, sensor_offsets)])[0]
 
     def estimate_many(self, windows) -> list[list[WidthEstimate]]:
-        """``estimate`` for a sequence of (a1, a2, entry_kind[, sample_period_s[, sensor_offsets]]),
+        """``estimate`` for a sequence of (a1, a2, entry_kind[, sample_period_s[, sensor_offsets[, a1_chain]]]),
         in order (the fusion sees them in that order); one list per window, [] for a window that is
         not an onset or is rejected (``last_reasons[i]`` says why; counted in ``faults``) or whose
-        sensor offset is not known yet (``sensor_offset_unknown``). Shape mode: the features of all onset windows of one
+        sensor offset is not known yet (``sensor_offset_unknown``). ``a1_chain``: the window's check of a1 against the
+        motor speed (windowing/a1_chain.A1ChainResult; None: not checked), for the signal check. Shape mode: the features of all onset windows of one
         length are extracted in one batch -- row for row bit-identical to a batch of one (every
         step is elementwise or a per-row reduction; the regression's dot product is taken row
         by row on a fresh (1, n) copy, as for a single window; test_analyze_estimation.py)."""
         out: list[list[WidthEstimate]] = [[] for _ in windows]
         self.last_reasons = []
         offsets = []
+        chains = [w[5] if len(w) > 5 else None for w in windows]
         for i, w in enumerate(windows):
             reason = self.check_window(w[0], w[1], w[2], w[3] if len(w) > 3 else None)
             offsets.append(_offset_pair(w[4] if len(w) > 4 else None))
@@ -259,7 +261,7 @@ class DriveEstimator:
                  for k, signal in enumerate(self.signals)}
         for j, (i, results) in enumerate(accepted):
             for signal, b, continuous, index, margin in results:
-                f, check = self._checked(fused, signal, j)
+                f, check = self._checked(fused, signal, j, chains[i])
                 out[i].append(WidthEstimate(
                     signal_name=signal, mode=self.mode, candidate_widths_m=self.widths_m,
                     b_vector=b, width_index=index,
@@ -272,16 +274,22 @@ class DriveEstimator:
                     scatter_ratio=check.scatter_ratio, check_reason=check.reason))
         return out
 
-    def _checked(self, fused: dict, signal: str, j: int):
+    def _checked(self, fused: dict, signal: str, j: int, a1_chain=None):
         """The fused estimate that ``signal``'s estimate j carries and the check's verdict: a1+a2's own unless the
-        check takes a1's (classifier/signal_check.py); every other signal (and a1+a2 without a1 beside it, or in a
-        paper mode) its own, unchecked."""
+        check takes a1's, or a2's where a1's chain does not follow the motor speed (``a1_chain``, the window's
+        windowing/a1_chain.A1ChainResult or None; classifier/signal_check.py); every other signal (and a1+a2 without
+        a1 beside it, or in a paper mode) its own, unchecked."""
         own = fused[signal][j]
         if self.mode != SHAPE or signal != BOTH_SIGNALS or MOTOR_SIDE_SIGNAL not in fused:
             return own, CheckedWidth(own.continuous_width_m, own.continuous_width_se_m, signal, math.nan)
         motor = fused[MOTOR_SIDE_SIGNAL][j]
         check = checked_width(own.continuous_width_m, own.continuous_width_se_m,
                               motor.continuous_width_m, motor.continuous_width_se_m)
+        if LOAD_SIDE_SIGNAL in fused:
+            load = fused[LOAD_SIDE_SIGNAL][j]
+            check = a1_chain_checked(check, a1_chain, load.continuous_width_m, load.continuous_width_se_m)
+            if check.signal == LOAD_SIDE_SIGNAL:
+                return load, check
         return (motor if check.signal == MOTOR_SIDE_SIGNAL else own), check
 
 

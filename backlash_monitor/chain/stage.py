@@ -11,6 +11,7 @@ from backlash_monitor.chain.joiner import MAX_PENDING_RANGES, RESYNC_SAMPLES, Jo
 from backlash_monitor.signals import SIGNAL_UNITS
 from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture, default_window_offset
+from backlash_monitor.windowing.a1_chain import A1ChainCheck
 from backlash_monitor.windowing.faults import FaultLog, is_index, is_period
 from backlash_monitor.windowing.saturation import SaturationCounter, SaturationSettings
 
@@ -68,13 +69,17 @@ class WindowingStage:
     (a dead one) in blocks of 1 s (``saturation``: windowing/saturation.py); every window returned
     carries its samples at a rail found so far, and its stuck ones (``input_saturation``). They are
     not dropped: a clipped window is still a window, flagged.
+
+    ``a1_chain_radius_m`` (the drive-wheel radius r [m]; None: off): the motor speed ``omega1`` is an input
+    too, and a1 is checked against r·Ω₁ as the samples come (windowing/a1_chain.py); every window returned
+    carries the check so far (``a1_chain``).
     """
 
     def __init__(self, trigger: str = "contact_loss", width_m: float | None = None,
                  angle_source: str = "measured", window_length: int = 2048,
                  signals=("a1", "a2"), window_offset_samples: int | None = None,
                  faults: FaultLog | None = None, resync_samples: int = RESYNC_SAMPLES,
-                 accelerometer_range_m_s2: float | None = None):
+                 accelerometer_range_m_s2: float | None = None, a1_chain_radius_m: float | None = None):
         """``window_offset_samples``: window start after the entry; None = the trigger's configured
         value (config/windowing.yaml capture.window_offset_samples). ``accelerometer_range_m_s2``:
         None = the configured one (sensors.accelerometer_range_m_s2)."""
@@ -87,6 +92,9 @@ class WindowingStage:
         self.window_offset_samples = self.capture.window_offset_samples
         angle = ("angle_difference",) if angle_source == "measured" else ("omega1", "omega2")
         self.input_signals = tuple(signals) + angle
+        self.a1_chain = None if a1_chain_radius_m is None else A1ChainCheck(a1_chain_radius_m)
+        if self.a1_chain is not None and "omega1" not in self.input_signals:
+            self.input_signals += ("omega1",)
         self._input_set = frozenset(self.input_signals)
         self.faults = faults if faults is not None else FaultLog()
         self.resync_samples = int(resync_samples)
@@ -232,10 +240,14 @@ class WindowingStage:
         # detector and the capture need not test them again
         entries = self.detector.feed(first, joined.arrays, joined.sample_period_s, finite=True)
         self.saturation.feed(joined.arrays)
+        if self.a1_chain is not None and "a1" in joined.arrays:
+            self.a1_chain.feed(first, joined.arrays["a1"], joined.arrays["omega1"], joined.sample_period_s)
         windows, more = self.capture.feed(first, joined.arrays, entries=entries,
                                           sample_period_s=joined.sample_period_s, finite=True)
+        chain = self.a1_chain.result() if self.a1_chain is not None and windows else None
         for window in windows:
             window.input_saturation = self.saturation.check_window(window.signals)
+            window.a1_chain = chain
         return windows, discarded + more
 
     def takes_block(self, first_sample_index: int) -> bool:

@@ -27,6 +27,11 @@ So the width the drive's level follows is ``a1+a2``'s unless
 Then ``a1``'s is taken, with its own uncertainty, and the estimate says so (``fused_from_signal``). The two are
 correlated (both read a1's features), so the difference's true standard error is smaller than the root sum of
 squares used here: the first test is conservative (it switches less often than a 2-sigma test would).
+
+Both tests take the motor side as the sound one. Where a1's own sensor chain is what is wrong (it does not follow
+the recorded motor speed: windowing/a1_chain.py), ``a1`` and ``a1+a2`` both read it, and the load side's ``a2`` is
+taken instead (``a1_chain_checked``): measured on the independent simulator, a quadratic a1 characteristic read
+4.46 mm off from ``a1+a2`` and 0.01 mm from ``a2``, a telemetry AGC on a1 0.99 mm and 0.04 mm (docs/classifier.md 5.3).
 """
 from __future__ import annotations
 
@@ -35,6 +40,7 @@ from dataclasses import dataclass
 
 BOTH_SIGNALS = "a1+a2"
 MOTOR_SIDE_SIGNAL = "a1"
+LOAD_SIDE_SIGNAL = "a2"
 # 2 combined standard errors, chosen first (on 72 of those recordings): the clean drives' mean error 0.041 ->
 # 0.049 mm (it switches on few windows), the outside-mechanism drives' 1.00 -> 0.23 mm; 1 sigma gave 0.068 / 0.24,
 # 3 sigma 0.044 / 0.31 (docs/classifier.md 5.3).
@@ -53,7 +59,7 @@ class CheckedWidth:
     """The width a drive's level follows and where it came from."""
     width_m: float
     uncertainty_m: float
-    signal: str                  # BOTH_SIGNALS or MOTOR_SIDE_SIGNAL
+    signal: str                  # BOTH_SIGNALS, MOTOR_SIDE_SIGNAL or (a1's chain not sound) LOAD_SIDE_SIGNAL
     departure_sigmas: float      # |both - motor side| / combined uncertainty (NaN: not checked)
     scatter_ratio: float = math.nan   # both's uncertainty / the motor side's (NaN: not checked)
     reason: str = ""             # why the motor side's was taken ("departed by 3.4 sigma (0.45 mm)"); "" when not
@@ -81,6 +87,18 @@ def checked_width(both_m: float, both_se_m: float, motor_m: float, motor_se_m: f
     return CheckedWidth(both_m, both_se_m, BOTH_SIGNALS, departure, ratio)
 
 
+def a1_chain_checked(check: CheckedWidth, a1_chain, load_m: float, load_se_m: float) -> CheckedWidth:
+    """``check`` unless a1's chain does not follow the motor speed (``a1_chain``: windowing/a1_chain.A1ChainResult,
+    None: not checked): then the load side's fused width (``load_m`` ± ``load_se_m``), with the finding as its reason.
+    Kept as it is when the load side's width is not finite (no a2 estimate)."""
+    if a1_chain is None or not getattr(a1_chain, "faulty", False):
+        return check
+    if not (isinstance(load_m, (int, float)) and math.isfinite(load_m)):
+        return check
+    return CheckedWidth(load_m, load_se_m, LOAD_SIDE_SIGNAL, check.departure_sigmas, check.scatter_ratio,
+                        f"reads a1, and {a1_chain.text()}")
+
+
 def source_text(fused_from_signal: str, signal: str, reason: str) -> str:
     """Why a width carries another signal's fusion, for a message ("a1's: a1+a2 departed by 3.4 sigma (0.45 mm)"), from
     the check's ``reason``; "" when it carries its own."""
@@ -92,5 +110,8 @@ def source_text(fused_from_signal: str, signal: str, reason: str) -> str:
 def rule_text(sigmas: float = SIGNAL_CHECK_SIGMAS, min_departure_m: float = MIN_DEPARTURE_M,
               scatter_ratio: float = SCATTER_RATIO) -> str:
     """The rule in words, for a user who sees the motor side's width taken."""
+    # deferred: the commands import this module before numpy (fleet/folder_analysis.limit_threads)
+    from backlash_monitor.windowing.a1_chain import MAX_MISMATCH as A1_CHAIN_MAX_MISMATCH
     return (f"a1+a2 is replaced by a1 when the two depart by more than {sigmas:g} combined standard errors and "
-            f"{min_departure_m * 1e3:g} mm, or a1+a2 scatters more than {scatter_ratio:g}x as much as a1")
+            f"{min_departure_m * 1e3:g} mm, or a1+a2 scatters more than {scatter_ratio:g}x as much as a1; by a2 when "
+            f"a1 does not follow the motor speed r·dΩ₁/dt (more than {A1_CHAIN_MAX_MISMATCH:.0%} of its motion not in a1)")

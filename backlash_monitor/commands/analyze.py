@@ -33,7 +33,8 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from backlash_monitor.classifier.signal_check import BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, rule_text, source_text
+from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, LOAD_SIDE_SIGNAL, MOTOR_SIDE_SIGNAL, rule_text,
+                                                      source_text)
 from backlash_monitor.commands import UsageError
 from backlash_monitor.fleet.caveat import FitVerdict, with_caveat, width_text
 from backlash_monitor.files.registry import RegistryError, entries
@@ -285,13 +286,17 @@ def print_saturation(info: dict) -> None:
 
 
 def print_signal_check(summary: dict) -> None:
-    """One line when a1+a2's last fused width is a1's (classifier/signal_check.py): why, and the rule; nothing when
-    it is its own."""
+    """One line when a1+a2's last fused width is a1's or a2's (classifier/signal_check.py): why, and the rule;
+    nothing when it is its own."""
     both = summary["per_signal"].get(BOTH_SIGNALS, {})
     if both.get("fused_from_signal") == MOTOR_SIDE_SIGNAL:
         print(f"{BOTH_SIGNALS}'s fused width is "
               f"{source_text(MOTOR_SIDE_SIGNAL, BOTH_SIGNALS, both.get('check_reason', ''))} ({rule_text()}: the load "
               "side carries what the library does not know; docs/classifier.md 5.3)")
+    elif both.get("fused_from_signal") == LOAD_SIDE_SIGNAL:
+        print(f"WARN: {BOTH_SIGNALS}'s fused width is "
+              f"{source_text(LOAD_SIDE_SIGNAL, BOTH_SIGNALS, both.get('check_reason', ''))}: check a1's sensor chain "
+              "(and the drive-wheel radius r) before trusting a1 (docs/classifier.md 5.3)")
 
 
 def _print_integrity(integrity) -> None:

@@ -243,7 +243,8 @@ def recording_fields(bag: str, result: dict) -> dict:
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
     from backlash_monitor.classifier.shape import continuous_top_m
     # deferred: numpy not imported before limit_threads() (the forked workers inherit its thread limit)
-    from backlash_monitor.classifier.signal_check import BOTH_SIGNALS, MOTOR_SIDE_SIGNAL, checked_width
+    from backlash_monitor.classifier.signal_check import (BOTH_SIGNALS, LOAD_SIDE_SIGNAL, MOTOR_SIDE_SIGNAL,
+                                                          a1_chain_checked, checked_width)
     rows = result["rows"]
     signals = {r["signal"] for r in rows}
     primary = PRIMARY_SIGNAL if PRIMARY_SIGNAL in signals else (sorted(signals)[0] if signals else "")
@@ -265,6 +266,10 @@ def recording_fields(bag: str, result: dict) -> dict:
         # checked against the motor side's, as the live estimate's fusion is (classifier/signal_check.py)
         _, motor_width, motor_se = median_width(MOTOR_SIDE_SIGNAL)
         check = checked_width(width, se, motor_width, motor_se)
+        if LOAD_SIDE_SIGNAL in signals:
+            # a2's where a1 does not follow the recorded motor speed (windowing/a1_chain.py)
+            _, load_width, load_se = median_width(LOAD_SIDE_SIGNAL)
+            check = a1_chain_checked(check, result.get("a1_chain"), load_width, load_se)
         width, se, signal = check.width_m, check.uncertainty_m, check.signal
     return dict(drive=result["drive"] or Path(bag).stem, namespace=result.get("namespace", ""),
                 time_s=result["first_stamp_s"], width_m=width, width_uncertainty_m=se,

@@ -16,6 +16,9 @@ every event, and the node publishes:
   drive (residual 0.9x the noise floor)", or WARN "model drive7 v3 no longer explains the drive since 12:03:11:
   residual 2.8x the noise floor, in the gap traversal, wavelet level d4; snapshot drive7_20261124T120311.mcap; run
   diagnose on it"; STALE when the stream stopped for ``stale_after_s``;
+- with ``watch_omega1``, a1 checked against the motor speed (windowing/a1_chain.py: a1 = r·dΩ₁/dt): where a1 does not
+  follow it, the status is WARN and says so ("a1 does not follow r·dΩ₁/dt ...: the widths read from a1 and a1+a2
+  are not to be trusted"), value ``a1_chain_mismatch`` (docs/classifier.md 5.4);
 - on a WARN, a snapshot: an ordinary project bag of the plant topics from ``snapshot_before_s`` before to
   ``snapshot_after_s`` after it, in ``snapshot_dir`` (watch/snapshot.py: never overwritten, written in a thread).
 
@@ -34,6 +37,8 @@ from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 from backlash_monitor_msgs.msg import ModelFit, SignalChunk
 
+from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
+from backlash_monitor.windowing.a1_chain import A1ChainCheck
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
 from backlash_monitor.ros.conversions import to_float64_array, time_from_seconds
 from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
@@ -186,6 +191,8 @@ class ModelWatchNode(Node):
                                              p["snapshot_before_s"], p["snapshot_after_s"], topics,
                                              p["max_snapshots"])
         self.counts = {"chunks": 0, "events": 0, "evaluations": 0, "warnings": 0}
+        # a1 against the motor speed, where the watch joins it (r: the windowing's drive-wheel radius, as analyze's)
+        self.a1_chain = (A1ChainCheck(WINDOWING_DEFAULTS["detector"]["radius_m"]) if p["watch_omega1"] else None)
         self.last_chunk_s: dict = {}     # per signal: monotonic time of its last chunk (a watched stream missing)
         qos = chunk_qos(p["qos"])
         self.fit_type = ModelFit
@@ -233,6 +240,8 @@ class ModelWatchNode(Node):
             self.watch.live.next_index = None       # the stream goes on after it: a gap for the events
             return
         self.counts["chunks"] += 1
+        if self.a1_chain is not None:
+            self.a1_chain.feed(joined.first_sample_index, arrays["a1"], arrays["omega1"], joined.sample_period_s)
         if self.stream_start_s is None and joined.stamp is not None:
             sec, nanosec = joined.stamp
             self.stream_start_s = sec + nanosec * 1e-9 - joined.first_sample_index * joined.sample_period_s
@@ -343,6 +352,13 @@ class ModelWatchNode(Node):
             level = "STALE" if level == "OK" else level
         elif input_level == "WARN" and level == "OK":
             level = "WARN"
+        if self.a1_chain is not None:
+            chain = self.a1_chain.result()
+            values["a1_chain_mismatch"] = f"{chain.mismatch:.4f}"
+            if chain.faulty:
+                level = "WARN" if level == "OK" else level
+                problem = "; ".join(x for x in (problem, f"{chain.text()}: the widths read from a1 and a1+a2 are not "
+                                                "to be trusted (analyze takes a2's; docs/classifier.md 5.4)") if x)
         missing = self.missing_streams()
         if missing:
             level = "WARN" if level == "OK" else level

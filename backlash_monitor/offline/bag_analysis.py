@@ -238,7 +238,8 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
     for a pool with a worker per core). ``summary_fields``: called with the analysis (the returned dict, before
     the outputs are written) for fields added to its summary, which OUT.json holds too (one bag's model fit:
     fleet/folder_analysis.one_bag_fit); None: none. Raises UsageError (one line) for anything wrong with the
-    bag or the options."""
+    bag or the options. ``a1_chain``: a1 checked against the recorded motor speed (windowing/a1_chain.A1ChainResult;
+    None: the bag has no motor speed)."""
     options.check()
     reuse_freed_memory()   # no page fault per freed-and-reallocated array (process/memory.py)
     bag_path = pathlib.Path(bag)
@@ -273,6 +274,12 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
         with BagReader(bag_path, recover=options.recover, chunks_ahead=chunks_ahead) as reader:
             available = set(reader.topics)
             namespace = options.namespace or drive_namespace(available, bag_path)
+            if find_topic(available, namespace, "omega1"):
+                # the motor speed is recorded: a1 is checked against it as the samples come (windowing/a1_chain.py)
+                stage = WindowingStage(trigger=options.trigger,
+                                       width_m=options.width_m if options.trigger == "paper" else None,
+                                       angle_source=options.angle_source, window_offset_samples=offset,
+                                       faults=stage.faults, a1_chain_radius_m=DEFAULTS["detector"]["radius_m"])
             topics = {}
             for name in stage.input_signals:
                 topic = find_topic(available, namespace, name)
@@ -319,7 +326,8 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
                     batch.append((completing, window))
                 if len(batch) >= ESTIMATE_BATCH or (joined is None and batch):
                     denoised = denoise_pairs([(w.signals["a1"], w.signals["a2"]) for _, w in batch])
-                    results = estimator.estimate_many([(a1, a2, w.kind, w.sample_period_s, w.sensor_offsets)
+                    results = estimator.estimate_many([(a1, a2, w.kind, w.sample_period_s, w.sensor_offsets,
+                                                        w.a1_chain)
                                                        for (_, w), (a1, a2) in zip(batch, denoised)])
                     for (completing, window), estimates in zip(batch, results):
                         for est in estimates:
@@ -344,11 +352,12 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
     summary = _summary(rows, true_width)
     sensor_offsets = _sensor_offsets(*last_offsets, estimator.waiting_for_offset)
     saturation = saturation_report(stage.saturation, *saturated_windows)
+    a1_chain = stage.a1_chain.result() if stage.a1_chain is not None else None
     result = {"rows": rows, "summary": summary, "discarded": discarded, "n_samples": n_samples,
               "seconds": elapsed, "outputs": outputs, "integrity": integrity,
               "faults": (stage.faults, estimator.faults), "lost_samples": stage.lost_samples,
               "drive": first_a1[0][0], "first_stamp_s": first_a1[0][1], "sensor_offsets": sensor_offsets,
-              "input_saturation": saturation, "namespace": namespace}
+              "input_saturation": saturation, "namespace": namespace, "a1_chain": a1_chain}
     if summary_fields is not None:
         summary.update(summary_fields(result))
     # written under temporary names, renamed together once all three are complete
@@ -370,6 +379,7 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
                        "input_fault_examples": [{"reason": r, "detail": d} for r, d in stage.faults.take()[:20]],
                        "lost_samples": stage.lost_samples, "sensor_offsets": sensor_offsets,
                        "input_saturation": saturation,
+                       "a1_chain": a1_chain.as_dict() if a1_chain is not None else None,
                        "summary": summary, "estimates": rows}, allow_nan=True))
         _write_estimate_bag(mcap_tmp, estimates_msgs, true_width)
     return result

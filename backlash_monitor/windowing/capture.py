@@ -49,6 +49,9 @@ class BacklashWindow:
     # each captured signal's samples at a rail of the stream or stuck (saturation.SignalSaturation);
     # empty: not checked (WindowingStage checks every window it returns)
     input_saturation: dict = field(default_factory=dict)
+    # a1 against the recorded motor speed up to the window's end (a1_chain.A1ChainResult); None: not checked (the
+    # stage was not given the motor speed)
+    a1_chain: object = None
 
     @property
     def saturated_samples(self) -> int:

@@ -18,7 +18,9 @@ import numpy as np
 from backlash_monitor.denoise import denoise_pairs
 from backlash_monitor.classifier.patterns import load_library
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DriveEstimator
+from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing import default_window_offset, extract_windows
+from backlash_monitor.windowing.a1_chain import A1ChainCheck
 
 
 @dataclass
@@ -44,11 +46,23 @@ def monitor_widths(meas, library_path=None, signal: str = "a1+a2", mode: str = "
     if not wins:
         return WidthTrace(np.zeros(0), np.zeros(0), np.zeros(0, dtype=int), np.zeros(0))
     den = denoise_pairs([(w.signals["a1"], w.signals["a2"]) for w in wins])
-    results = est.estimate_many([(a1, a2, "onset", None, w.sensor_offsets) for w, (a1, a2) in zip(wins, den)])
+    chain = a1_chain_of(meas)
+    results = est.estimate_many([(a1, a2, "onset", None, w.sensor_offsets, chain) for w, (a1, a2) in zip(wins, den)])
     mine = [e for r in results for e in r if e.signal_name == signal]
     return WidthTrace(np.array([e.continuous_width_m for e in mine]), np.array([e.fused_width_m for e in mine]),
                       np.array([e.fused_events for e in mine], dtype=int),
                       np.array([e.fused_continuous_width_m for e in mine]))
+
+
+def a1_chain_of(meas):
+    """a1 checked against the measurement's motor speed over the whole record (windowing/a1_chain.py; ``analyze``
+    checks as the samples come, so its first windows, before 0.45 s of stream, are not checked); None without the
+    motor speed."""
+    if "omega1" not in meas.signals:
+        return None
+    check = A1ChainCheck(WINDOWING_DEFAULTS["detector"]["radius_m"])
+    check.feed(0, meas.signals["a1"], meas.signals["omega1"], meas.sample_period_s)
+    return check.result()
 
 
 def continuous_widths(meas, library_path=None, signal: str = "a1+a2", mode: str = "shape") -> np.ndarray:

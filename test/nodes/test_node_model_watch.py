@@ -185,3 +185,62 @@ def test_watch_reference_refuses_bad_input_before_building(tmp_path, args, named
     assert named in p.stderr + p.stdout
     assert "Traceback" not in p.stderr
     assert not any(tmp_path.iterdir())
+
+
+@pytest.mark.ros
+def test_an_a1_that_does_not_follow_the_motor_speed_is_a_warning_on_the_watchs_diagnostics(ros_env, ref_path):
+    """a1 = r·dΩ₁/dt (SPEC 2): a drive whose a1 reads 1.3x the motor's motion (a wrong sensitivity) is WARN on the
+    model watch's /diagnostics with the words to check a1's chain (windowing/a1_chain.py); the same stream with a1
+    as the speed's derivative is not. The motion is a closed form (test/windowing/test_a1_chain.py), not simulated."""
+    import sys
+    from pathlib import Path
+
+    import numpy as np
+    from backlash_monitor_msgs.msg import SignalChunk
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "windowing"))
+    from test_a1_chain import R, motion
+    os.environ["ROS_DOMAIN_ID"] = ros_env["ROS_DOMAIN_ID"]
+    w, dw = motion(duration_s=3.0)
+    rclpy.init()
+    try:
+        for gain in (1.3, 1.0):
+            watch = ModelWatchNode(namespace=NS, parameter_overrides=[
+                Parameter("reference", value=ref_path), Parameter("qos", value="reliable"),
+                Parameter("snapshot_dir", value=""), Parameter("stale_after_s", value=5.0),
+                Parameter("batch_s", value=0.0)])
+            talker = rclpy.create_node("talker", namespace=NS)
+            qos = rclpy.qos.QoSProfile(depth=200, reliability=rclpy.qos.ReliabilityPolicy.RELIABLE)
+            signals = {"a1": gain * R * dw, "a2": np.zeros_like(w), "angle_difference": np.zeros_like(w), "omega1": w}
+            pubs = {n: talker.create_publisher(SignalChunk, f"plant/{n}", qos) for n in signals}
+            executor = rclpy.executors.SingleThreadedExecutor()
+            executor.add_node(watch)
+            executor.add_node(talker)
+            for _ in range(200):
+                if all(p.get_subscription_count() for p in pubs.values()):
+                    break
+                executor.spin_once(timeout_sec=0.01)
+            n = 5000
+            for first in range(0, w.size, n):
+                for name, pub in pubs.items():
+                    unit = {"angle_difference": "rad", "omega1": "rad/s"}.get(name, "m/s^2")
+                    pub.publish(SignalChunk(signal_name=name, unit=unit, sample_period_s=2e-5,
+                                            first_sample_index=first, samples=signals[name][first:first + n].tolist()))
+                for _ in range(4):
+                    executor.spin_once(timeout_sec=0.01)
+            for _ in range(200):
+                if watch.counts["chunks"] >= w.size // n:
+                    break
+                executor.spin_once(timeout_sec=0.01)
+            watch.update_diagnostics()
+            level, message = watch.diagnostics.level, watch.diagnostics.message
+            chunks = watch.counts["chunks"]
+            watch.destroy_node()
+            talker.destroy_node()
+            assert chunks == w.size // n
+            if gain != 1.0:
+                assert level == "WARN" and "a1 does not follow r·dΩ₁/dt" in message, message
+                assert "not to be trusted" in message
+            else:
+                assert "a1 does not follow" not in message, message
+    finally:
+        rclpy.try_shutdown()

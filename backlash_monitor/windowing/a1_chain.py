@@ -1,0 +1,263 @@
+"""Does a1 read the motor side's motion? a1 against the recorded motor speed (no rclpy).
+
+a1 is the acceleration of the drive wheel's circumference on the motor side: a1 = r·dΩ₁/dt (SPEC section 2), with
+r the drive-wheel radius. A recording that holds both a1 and the motor speed Ω₁ (an encoder or resolver) can so
+check a1's own sensor chain: integrated, a1 must give the velocity r·Ω₁ up to a constant. An accelerometer whose
+chain distorts (a quadratic or compressing characteristic, a gain that an automatic gain control moves, a wrong
+sensitivity) does not; the width the classifier reads from a1's windows is then off by about as much (the width is a
+kinematic quantity: the gap the motor side crosses), and so is the width read from both accelerometers together.
+
+How, and why so:
+- **In velocity.** v = ∫a1 dt and w = r·Ω₁, both as block means of ``DECIMATE_S``. Differentiating a quantised
+  encoder's speed gives noise far above a1's; integrating a1 does not.
+- **As a transfer function, w over v.** The stream is cut into spans of up to ``SEGMENT_S`` (a parabola removed
+  from each: a1's offset integrates to a straight line, an offset drifting at a steady rate to a parabola; Hann
+  window). Their cross and auto spectra, averaged over ``SMOOTH_HZ``
+  of neighbouring frequencies, give G(f) = S_vw/S_vv: the H1 estimate, which noise in the speed signal does not
+  bias (it is not coherent with a1). Long spans, not Welch's short segments: a lag's memory across a segment's
+  ends biases the estimate by about lag/segment (a 20 ms speed filter read as 0.11 on half-second segments). A sound chain has G = 1 at
+  every frequency the motion has; a sensitivity g has G = 1/g; a distortion or a moving gain puts into a1 motion
+  the speed never had.
+- **Lags are allowed, gains are not.** A drive's speed signal is often filtered (a moving average over the
+  encoder's counts, a first-order speed filter) and an accelerometer may carry a low-pass of its own: a lag, not a
+  wrong reading of the motion. The mismatch is the smallest, over a moving average or a first-order lag L(f) of
+  time constant T (``MAX_LAG_S`` at most) put on either side, of
+
+      mismatch² = Σ_f S_vv(f)·|L_a1(f) − L_speed(f)·G(f)|²  /  Σ_f S_vv(f)·|G(f)|²     (f ≤ ``MAX_FREQUENCY_HZ``)
+
+  so 0.1 means that a tenth of the motor's motion, as the speed reads it, is not in a1; a 10 % sensitivity error
+  gives 0.1. No gain is fitted, so a wrong sensitivity stays visible (``gain`` reports it).
+
+Measured on the independent simulator's recordings (138 of its spent and development recordings; docs/classifier.md
+5.4): every clean drive 0.0012-0.0017 (14- and 16-bit encoders among them), every other mechanism 0.0024 at most
+but an a1 auto-ranging amplifier and an a1 crossover dead zone (0.047, 0.059) and the two a1 chains that were far off,
+a telemetry AGC and a quadratic characteristic (0.17, 0.69; their widths from a1 1.5 and 4.2 mm off, from a2 0.04 and
+0.01 mm). What it cannot see: a distortion of a motion that is not periodic is partly incoherent with a1, as noise
+is, and is then under-counted (the check errs towards "sound"); a fault above ``MAX_FREQUENCY_HZ`` (a resonance of
+a1's bracket) is not in it.
+
+The check needs the motor speed: the caller makes none without it. It runs as the samples come (``feed``:
+contiguous ranges; a gap closes the span, none spans it) with a fixed memory (one open span of block means), and its
+figure so far, the closed spans' sums with the open one's, is ``result()`` (NaN before ``MIN_SPAN_S`` of stream with
+motion). A 4 s recording costs a few tens of milliseconds.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+DECIMATE_S = 5e-4         # block means of this span [s] (25 samples at 50 kHz): a 2 kHz velocity
+SEGMENT_S = 8.0           # the stream is compared in spans of up to this long [s]; a lag's memory crossing a span's
+                          # ends biases the transfer estimate by about lag/span (0.4 % for a 30 ms speed filter)
+SMOOTH_HZ = 2.0           # the spectra are averaged over this band [Hz] (as Welch averages over segments): what
+                          # makes the transfer estimate robust to the speed signal's noise
+MAX_FREQUENCY_HZ = 200.0  # compared up to here: the strokes, the ripple and the crossings' jolts of the motion as a
+                          # speed signal follows it; above, encoders' speed filters leave little to compare
+MIN_FREQUENCY_HZ = 2.0    # from here: below, the span's parabola has taken the motion out (and an offset drift's)
+MAX_LAG_S = 0.05          # the longest lag tried [s]: a drive's speed filter (count averages of 0.5-2 ms, first-order
+                          # filters up to tens of ms) or an accelerometer's low-pass
+LAG_STEPS = 120           # the lags tried: 0 and log-spaced from 0.1 ms to MAX_LAG_S, on either side, both kinds
+MIN_SPAN_S = 1.5          # less stream compared (a span shorter than this is not compared): not checked (NaN)
+MIN_MOTION_M_S = 1e-3     # a span whose velocity varies less than this (rms, detrended) [m/s]: not compared
+RECOMPUTE_S = 0.5         # the open span is compared again when it has grown by this much [s] (result() is cached)
+# a1 does not read the motor's motion when more than this share of it is not in a1. The measured figures above: sound
+# chains below 0.01, the two chains that were far off far above; a 10 % sensitivity error (on a 5-9 mm drive, half a
+# millimetre and more of a kinematic width) is 0.1.
+MAX_MISMATCH = 0.1
+
+
+@dataclass(frozen=True)
+class A1ChainResult:
+    """What the check found so far."""
+    mismatch: float          # share of the motor's motion not in a1 (NaN: not checked)
+    gain: float              # a1's motion over the speed's at the best lag (NaN: not checked)
+    lag: str                 # the lag that fitted best ("none", "speed: 1 ms average", "a1: 2 ms lag")
+    seconds: float           # the stream compared [s]
+    radius_m: float = math.nan   # the r of r·Ω₁ [m]
+
+    @property
+    def checked(self) -> bool:
+        return math.isfinite(self.mismatch)
+
+    @property
+    def faulty(self) -> bool:
+        """a1 does not read the motor's motion (``MAX_MISMATCH``)."""
+        return self.checked and self.mismatch > MAX_MISMATCH
+
+    def text(self) -> str:
+        """The finding in words, for a width's line."""
+        if not self.checked:
+            return "a1 not checked against the motor speed"
+        if self.faulty:
+            return (f"a1 does not follow r·dΩ₁/dt (r = {self.radius_m:g} m): {self.mismatch:.0%} of the motor's "
+                    f"motion is not in it (gain {self.gain:.2f}, over {self.seconds:.1f} s)")
+        return f"a1 follows the motor speed ({self.mismatch:.1%} not in it, over {self.seconds:.1f} s)"
+
+    def as_dict(self) -> dict:
+        return {"mismatch": self.mismatch, "gain": self.gain, "lag": self.lag, "seconds": self.seconds,
+                "radius_m": self.radius_m, "faulty": self.faulty, "max_mismatch": MAX_MISMATCH,
+                "text": self.text()}
+
+
+def _lags():
+    return np.concatenate(([0.0], np.geomspace(1e-4, MAX_LAG_S, LAG_STEPS - 1)))
+
+
+def _responses(f: np.ndarray) -> tuple[list, np.ndarray]:
+    """(names, responses[k, f]): no lag, then each lag as a moving average and as a first-order lag."""
+    names, rows = ["none"], [np.ones_like(f, dtype=complex)]
+    for lag in _lags()[1:]:
+        x = np.pi * f * lag
+        names.append(f"{lag * 1e3:.3g} ms average")
+        rows.append(np.exp(-1j * x) * np.sinc(f * lag))
+        names.append(f"{lag * 1e3:.3g} ms lag")
+        rows.append(1.0 / (1.0 + 2j * x))
+    return names, np.array(rows)
+
+
+class A1ChainCheck:
+    """a1 against r·Ω₁, fed as the samples come (see the module docstring)."""
+
+    def __init__(self, radius_m: float):
+        if not (isinstance(radius_m, (int, float)) and math.isfinite(radius_m) and radius_m > 0):
+            raise ValueError(f"radius_m = {radius_m!r}; allowed: a number > 0 [m]")
+        self.radius_m = float(radius_m)
+        self._period: float | None = None
+        self._q = 1                               # samples per block mean
+        self._next: int | None = None             # the sample index the piece goes on at
+        self._v = 0.0                             # a1's running integral [m/s] at the piece's last sample
+        self._a_last = math.nan                   # the piece's last a1 sample
+        self._rest = (np.zeros(0), np.zeros(0))   # samples not yet in a whole block (v, w)
+        self._span: list = [[], []]               # the open span's block means (lists of arrays: v, w)
+        self._span_n = 0
+        self._sums = None                         # per lag tried (on a1's side, then the speed's): Σ S·|1 − G|²,
+                                                  # Σ S·|G|², Σ S·Re G over the closed spans (S: the lagged a1's spectrum)
+        self.seconds = 0.0                        # stream compared in closed spans [s]
+        self._cached: A1ChainResult | None = None
+        self._cached_n = -1
+
+    def feed(self, first_sample_index: int, a1_m_s2, omega1_rad_s, sample_period_s: float) -> None:
+        """A contiguous range of samples (a1 [m/s²], Ω₁ [rad/s]). A range that does not continue the last one, comes
+        at another sample period or holds a sample that is not finite starts a new piece."""
+        a = np.asarray(a1_m_s2, dtype=float)
+        w = np.asarray(omega1_rad_s, dtype=float)
+        n = min(a.size, w.size)
+        if n == 0 or not (np.isfinite(a[:n]).all() and np.isfinite(w[:n]).all()):
+            self._new_piece()
+            return
+        if self._period != sample_period_s or first_sample_index != self._next:
+            self._new_piece()
+            self._period = float(sample_period_s)
+            self._q = max(1, int(round(DECIMATE_S / self._period)))
+        a, w = a[:n], w[:n]
+        dt = self._period
+        start = self._a_last if math.isfinite(self._a_last) else a[0]
+        v = self._v + np.cumsum(0.5 * (np.concatenate(([start], a[:-1])) + a) * dt)
+        self._v, self._a_last = float(v[-1]), float(a[-1])
+        self._next = int(first_sample_index) + n
+        rv, rw = np.concatenate((self._rest[0], v)), np.concatenate((self._rest[1], self.radius_m * w))
+        q = self._q
+        whole = (rv.size // q) * q
+        self._rest = (rv[whole:], rw[whole:])
+        if whole:
+            self._span[0].append(rv[:whole].reshape(-1, q).mean(axis=1))
+            self._span[1].append(rw[:whole].reshape(-1, q).mean(axis=1))
+            self._span_n += whole // q
+            if self._span_n * self._step_s() >= SEGMENT_S:
+                self._close_span()
+
+    def _step_s(self) -> float:
+        return self._q * (self._period or DECIMATE_S)
+
+    def _new_piece(self) -> None:
+        self._close_span()
+        self._next, self._v, self._a_last = None, 0.0, math.nan
+        self._rest = (np.zeros(0), np.zeros(0))
+
+    def _close_span(self) -> None:
+        if self._span_n:
+            sums = self._compare(np.concatenate(self._span[0]), np.concatenate(self._span[1]))
+            if sums is not None:
+                self._add(sums)
+                self._cached = None
+        self._span, self._span_n = [[], []], 0
+
+    def _add(self, sums) -> None:
+        self._sums = tuple(sums[:3]) if self._sums is None else tuple(a + b for a, b in zip(self._sums, sums[:3]))
+        self.seconds += sums[3]
+
+    def _compare(self, v: np.ndarray, w: np.ndarray):
+        """One span's sums (see the module docstring), or None when it is too short or the motor barely moves."""
+        step_s = self._step_s()
+        m = v.size
+        if m * step_s < MIN_SPAN_S:
+            return None
+        t = np.linspace(-1.0, 1.0, m)
+        design = np.column_stack([t * t, t, np.ones(m)])
+        coef_v, *_ = np.linalg.lstsq(design, v, rcond=None)
+        coef_w, *_ = np.linalg.lstsq(design, w, rcond=None)
+        v, w = v - design @ coef_v, w - design @ coef_w
+        if not np.sqrt(np.mean(w ** 2)) > MIN_MOTION_M_S:
+            return None
+        window = np.hanning(m)
+        FV, FW = np.fft.rfft(v * window), np.fft.rfft(w * window)
+        f = np.fft.rfftfreq(m, step_s)
+        k = max(1, int(round(SMOOTH_HZ * m * step_s)))        # bins averaged (a Daniell window)
+        top = min(f.size, int(np.searchsorted(f, MAX_FREQUENCY_HZ, side="right")) + k)
+        f, FV, FW = f[:top], FV[:top], FW[:top]
+        _, L = _responses(f)
+        cross = np.conj(FV) * FW
+        auto = np.abs(FV) ** 2
+        band = (f >= MIN_FREQUENCY_HZ) & (f <= MAX_FREQUENCY_HZ)
+        if not band.any():
+            return None
+        # each lag put on its side BEFORE the spectra are averaged over neighbouring frequencies: a lag turns the
+        # cross spectrum's phase across the band (30 ms: 0.4 rad over 2 Hz), and averaging a turning phase would bias
+        # the transfer estimate's size by as much as the mismatch it is to find
+        on_a1 = (_smooth(np.conj(L) * cross[None, :], k), _smooth(np.abs(L) ** 2 * auto[None, :], k))
+        on_speed = (_smooth(L * cross[None, :], k), np.broadcast_to(_smooth(auto[None, :], k), L.shape))
+        sums = []
+        for sxy, sxx in (on_a1, on_speed):
+            sxy, sxx = sxy[:, band], sxx[:, band]
+            g = sxy / np.where(sxx > 0, sxx, np.inf)
+            sums.append((np.sum(sxx * np.abs(1.0 - g) ** 2, axis=1), np.sum(sxx * np.abs(g) ** 2, axis=1),
+                         np.sum(sxx * np.real(g), axis=1)))
+        num, den, re = (np.concatenate(x) for x in zip(*sums))
+        return num, den, re, m * step_s
+
+    def result(self) -> A1ChainResult:
+        """The check so far (the closed spans and the open one): NaN before ``MIN_SPAN_S`` of stream with motion."""
+        grown = self._span_n - self._cached_n
+        if self._cached is not None and 0 <= grown and grown * self._step_s() < RECOMPUTE_S:
+            return self._cached
+        sums, seconds = self._sums, self.seconds
+        if self._span_n:
+            open_span = self._compare(np.concatenate(self._span[0]), np.concatenate(self._span[1]))
+            if open_span is not None:
+                sums = open_span[:3] if sums is None else tuple(a + b for a, b in zip(sums, open_span[:3]))
+                seconds += open_span[3]
+        self._cached_n = self._span_n
+        if sums is None or not (sums[1] > 0).all():
+            self._cached = A1ChainResult(math.nan, math.nan, "", 0.0, self.radius_m)
+            return self._cached
+        num, den, re = sums
+        ratio = num / den
+        names, _ = _responses(np.zeros(1))
+        k = int(np.argmin(ratio))
+        side = "speed" if k < len(names) else "a1"     # a lag on a1's velocity means the speed is the one filtered
+        words = "none" if k % len(names) == 0 else f"{side}: {names[k % len(names)]}"
+        # a1's motion over the speed's at that lag: v·L ≈ gain·w, so gain = Σ S·Re G / Σ S·|G|² (G = 1/gain)
+        self._cached = A1ChainResult(float(math.sqrt(ratio[k])), float(re[k] / den[k]), words, float(seconds),
+                                     self.radius_m)
+        return self._cached
+
+
+def _smooth(x: np.ndarray, k: int) -> np.ndarray:
+    """Rows of ``x`` averaged over ``k`` neighbouring frequencies (centred; shorter at the ends)."""
+    c = np.cumsum(np.pad(x, ((0, 0), (1, 0))), axis=1)
+    n = x.shape[1]
+    lo = np.clip(np.arange(n) - k // 2, 0, n)
+    hi = np.clip(np.arange(n) - k // 2 + k, 0, n)
+    return (c[:, hi] - c[:, lo]) / (hi - lo)
