@@ -23,8 +23,8 @@ from foreign_outside_recordings import (Recordings, assert_a_row_of_each_half_cr
                                         assert_acts_in_its_balance_only, assert_forms_withholds_sealed,
                                         assert_recordings_repeat, assert_rows_visible, assert_set_registry,
                                         assert_set_suites, assert_suite_writes_one_recording, suite_effect)
-from foreign_outside_recordings import (assert_alarm_check_leaves_out_the_unspent_sealed_half,  # test/
-                                        assert_bench_refuses_the_unspent_sealed_half)
+from foreign_outside_recordings import (assert_alarm_check_covers_both_halves,  # test/
+                                        assert_bench_guards_unspent_sealed)
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -247,13 +247,14 @@ def test_forms_withholds_the_sealed_laws_and_shows_the_development_ones(capsys):
     assert_forms_withholds_sealed(capsys.readouterr().out, SEALED13, DEV13)
 
 
-def test_outside_bench_knows_set_13_and_refuses_its_unspent_sealed_half_without_sealed(capsys):
-    # sets 1-12 are spent; set 13's sealed half is UNSPENT until its one run
-    assert_bench_refuses_the_unspent_sealed_half(13, capsys)
+def test_outside_bench_knows_set_13_and_never_loops_on_an_unspent_sealed_half(capsys, monkeypatch):
+    # sets 1-13 are spent (set 13's sealed half ran once, 30 Nov, stop 50): each sealed half is development data, in
+    # the loop's default suites; the guard, for the next set's sealed half while it is unspent
+    assert_bench_guards_unspent_sealed(13, capsys, monkeypatch)
 
 
-def test_the_alarm_check_covers_the_development_half_and_not_the_unspent_sealed_one():
-    assert_alarm_check_leaves_out_the_unspent_sealed_half(13)
+def test_the_alarm_check_covers_both_halves_once_the_sealed_one_is_spent():
+    assert_alarm_check_covers_both_halves(13)
 
 
 def test_a_row_of_each_half_simulates_at_its_own_conditions_and_crosses_the_backlash():
