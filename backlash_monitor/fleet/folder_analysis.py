@@ -271,12 +271,17 @@ def recording_fields(bag: str, result: dict) -> dict:
             _, load_width, load_se = median_width(LOAD_SIDE_SIGNAL)
             check = a1_chain_checked(check, result.get("a1_chain"), load_width, load_se)
         width, se, signal = check.width_m, check.uncertainty_m, check.signal
+    chain = result.get("a1_chain")
     return dict(drive=result["drive"] or Path(bag).stem, namespace=result.get("namespace", ""),
                 time_s=result["first_stamp_s"], width_m=width, width_uncertainty_m=se,
                 fused_width_m=mine[-1]["fused_width_m"] if mine else math.nan,
                 true_width_m=result["summary"]["true_width_m"],
                 onsets=len({r["entry_sample_index"] for r in mine}),
-                discarded=len(result["discarded"]), signal=signal)
+                discarded=len(result["discarded"]), signal=signal,
+                # a1 against the recorded motor speed (windowing/a1_chain.py; NaN / "": not checked or sound)
+                a1_chain_mismatch=chain.mismatch if chain is not None else math.nan,
+                a1_chain_fault=(chain.text() + (": its width is a2's" if signal == LOAD_SIDE_SIGNAL else "")
+                                if chain is not None and chain.faulty else ""))
 
 
 # ------------------------------------------------------------------------------------------- model fit
@@ -757,7 +762,8 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
     points, trends = add_trends(rows, rule)
     columns = ("drive", "time_s", "width_m", "fused_width_m", "trend_m_per_day", "level",
                "reason", "model_fit_level", "model_fit_ratio", "true_width_m", "onsets", "discarded", "bag",
-               "a1_offset_m_s2", "a2_offset_m_s2", "width_uncertainty_m", "width_caveat",
+               "a1_offset_m_s2", "a2_offset_m_s2", "width_uncertainty_m", "width_caveat", "signal",
+               "a1_chain_mismatch",
                # what the bag was held against: its registered drive and version, the model and library
                "registry_drive", "drive_version", "drive_model", "library", "library_created_utc", "library_from",
                "model_fit_reference")
@@ -801,6 +807,9 @@ def run_many(fleet: FleetOptions, options: AnalyzeOptions) -> int:
             print(f"{Path(r['bag']).name}: WARN: sensor offset {signal} "
                   f"{r[signal + '_offset_m_s2']:+.2f} m/s^2 beyond what a MEMS sensor shows "
                   "(config/windowing.yaml sensor_offset): check the sensor (the widths are offset-free)")
+        if r.get("a1_chain_fault"):
+            print(f"{Path(r['bag']).name}: WARN: {r['a1_chain_fault']}; check a1's sensor chain (and the drive-wheel "
+                  "radius r) before trusting a1 (docs/classifier.md 5.4)")
     if watch.drives and options.library:
         overridden = sorted({d.hardware_id for d in watch.drives if d.library})
         if overridden:

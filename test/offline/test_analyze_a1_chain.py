@@ -44,6 +44,7 @@ def test_an_a1_that_does_not_follow_the_motor_speed_gives_the_load_sides_width(s
     from backlash_monitor.fleet.folder_analysis import recording_fields
     row = recording_fields(str(tmp_path / "drive.mcap"), result)
     assert row["signal"] == LOAD_SIDE_SIGNAL and abs(row["width_m"] - truth_m) < 0.3e-3, (row, truth_m)
+    assert row["a1_chain_mismatch"] > MAX_MISMATCH and row["a1_chain_fault"].endswith("its width is a2's")
     print_signal_check(result["summary"])
     line = capsys.readouterr().out
     assert line.startswith("WARN: a1+a2's fused width is a2's: a1+a2 reads a1, and a1 does not follow")
