@@ -583,12 +583,12 @@ OUTSIDE_DEV13_ROWS = [
 # seed (docs/foreign_drives.md "The fourteenth set"). A clean drive's ranges (seed 14004, 4 s): Omega1 146.9-154.2,
 # Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80 m/s, D -0.062..0.062 rad (beta 0.049 rad).
 OUTSIDE_DEV14_ROWS = [
-    # 3 N*m on the motor while sin(alpha2 + 0.5) > 0
+    # on the motor while sin(alpha2 + 0.5) > 0; 3 N*m a priori, a2 0.0228: scaled once x3.29
     ("od14_motor_wheel_cam_brake", "outside", 0.0064, 0.0265, 0.93,
-     [E("motor_wheel_cam_brake", {"torque_Nm": 3.0, "phase_rad": 0.5})]),
-    # 0.5 N*m*s/rad beyond 150 rad/s (up to about 2 N*m)
+     [E("motor_wheel_cam_brake", {"torque_Nm": 9.864, "phase_rad": 0.5})]),
+    # beyond 150 rad/s; 0.5 N*m*s/rad a priori (up to about 2 N*m), a2 0.0351: scaled once x2.14
     ("od14_wheel_bypassed_retarder", "outside", 0.0078, 0.0215, 0.91,
-     [E("wheel_bypassed_retarder", {"coefficient_Nm_s_per_rad": 0.5, "bypass_speed_rad_s": 150.0})]),
+     [E("wheel_bypassed_retarder", {"coefficient_Nm_s_per_rad": 1.069, "bypass_speed_rad_s": 150.0})]),
     # 50 N*m/rad at 150 rad/s (about 3 N*m at the faces)
     ("od14_clutch_centrifugal_leaf_spring", "outside", 0.0057, 0.0345, 0.92,
      [E("clutch_centrifugal_leaf_spring", {"stiffness_Nm_per_rad": 50.0})]),
@@ -596,12 +596,12 @@ OUTSIDE_DEV14_ROWS = [
     ("od14_mass_festoon_cable_loop", "outside", 0.0084, 0.0295, 0.95,
      [E("mass_festoon_cable_loop", {"weight_N_per_m": 200.0, "centre_m": 0.30, "half_range_m": 0.01})]),
     ("od14_clean_w7.3_eta0.0255_n0.91", "clean", 0.0073, 0.0255, 0.91, []),
-    # 1 (m/s^2)/(m/s) about 22.7 m/s
+    # about 22.7 m/s; 1 (m/s^2)/(m/s) a priori, a2 0.0397: scaled once x1.89
     ("od14_a2_velocity_sensitivity", "outside", 0.0069, 0.0205, 0.94,
-     [E("a2_velocity_sensitivity", {"sensitivity_per_s": 1.0, "zero_speed_m_s": 22.7})]),
-    # 1 N*m*s/rad above 152 rad/s of the held peak, bleeding off in 0.5 s
+     [E("a2_velocity_sensitivity", {"sensitivity_per_s": 1.891, "zero_speed_m_s": 22.7})]),
+    # above 152 rad/s of the held peak, bleeding off in 0.5 s; 1 N*m*s/rad a priori, a2 0.0150: scaled once x5.02
     ("od14_motor_drag_pointer_governor_brake", "outside", 0.0059, 0.0275, 0.90,
-     [E("motor_drag_pointer_governor_brake", {"coefficient_Nm_s_per_rad": 1.0, "set_speed_rad_s": 152.0,
+     [E("motor_drag_pointer_governor_brake", {"coefficient_Nm_s_per_rad": 5.016, "set_speed_rad_s": 152.0,
                                               "release_time_s": 0.5})]),
     # 200 N*m/rad, the hub slipping at 0.01 rad (2 N*m)
     ("od14_clutch_friction_slider_spring", "outside", 0.0076, 0.0355, 0.94,
