@@ -43,15 +43,18 @@ down:
     the jaw anchored on a friction hub that slips once the spring's twist exceeds a: k*(D - q), q -> min(max(q, D - a),
     D + a) every 0.2 ms, D = alpha1 - alpha2 (q = D at the run-in's start) (an elastic, perfectly plastic element: its
     torque linear, then capped at +-k*a until the motion reverses; the sixth set's Dahl ring approaches its cap
-    exponentially, the earlier play operators read the motor speed or the spring's extension).
+    exponentially; the twelfth set's lost-motion link is this element on the spring's extension for the mass, the fifth
+    set's play reads the motor speed).
 
-Visibility, measured (one simulation of each suite row, 4 s, against the same spec without the mechanism, same seed;
-no diagnose; rms of the recorded signal's difference; criterion a2 >= 0.05 m/s^2, a1 >= 0.25 for an a1 row): 1 a2
-0.0228 at its a-priori strength, scaled once x3.29 (T 3 -> 9.864 N*m; a2 0.0762 after); 3 a2 0.0351, scaled once x2.14
-(c 0.5 -> 1.069 N*m*s/rad; a2 0.0646 after); 5 a2 0.0611; 7 a2 0.0595; 9 a2 0.0397, scaled once x1.89 (K 1 -> 1.891 1/s;
-a2 0.0750 after); 11 a2 0.0150, scaled once x5.02 (c 1 -> 5.016 N*m*s/rad; a2 0.0479 after: BELOW the criterion, left
-there, the rule allowing one scaling only); 13 a2 0.106 -- the others as written (docs/foreign_drives.md "The
-fourteenth set"). Before it, a 0.4 s run of each row only checked that it simulates.
+Visibility, measured (one simulation of each suite row, 4 s, against the same spec without the mechanism, same seed; no
+diagnose; rms of the recorded signal's difference; criterion a2 >= 0.05 m/s^2, a1 >= 0.25 for an a1 row): 1 a2 0.0228 at
+its a-priori strength, scaled once x3.29 (T 3 -> 9.864 N*m; a2 0.0762 after); 3 a2 0.0351, scaled once x2.14 (c 0.5 ->
+1.069 N*m*s/rad; a2 0.0646 after); 5 a2 0.0611; 7 a2 0.0558 (its conditions written a third time, before any diagnose:
+the first, 200 N/m over 0.29-0.31 m, out-pulled the spring and left the loop always lifted, a constant force; the
+second, 50 N/m over 0.29-0.33 m, never left the ramp; suites.py); 9 a2 0.0397, scaled once x1.89 (K 1 -> 1.891 1/s; a2
+0.0750 after); 11 a2 0.0150, scaled once x5.02 (c 1 -> 5.016 N*m*s/rad; a2 0.0479 after: BELOW the criterion, left
+there, the rule allowing one scaling only); 13 a2 0.106 -- the others as written (docs/foreign_drives.md "The fourteenth
+set"). Before it, a 0.4 s run of each row only checked that it simulates.
 
 Angles: as in :mod:`outside_dev` (a law locked to an angle is stated on the simulator's angle). Memory elements (one
 per recording) are advanced once per 0.2 ms input segment from the state at the segment's start (kernel.py "memory"),

@@ -592,9 +592,12 @@ OUTSIDE_DEV14_ROWS = [
     # 50 N*m/rad at 150 rad/s (about 3 N*m at the faces)
     ("od14_clutch_centrifugal_leaf_spring", "outside", 0.0057, 0.0345, 0.92,
      [E("clutch_centrifugal_leaf_spring", {"stiffness_Nm_per_rad": 50.0})]),
-    # 200 N/m over 0.29-0.31 m (0..4 N)
+    # 80 N/m over 0.295-0.315 m (0..1.6 N; z 0.291-0.326 m with it: both ends and the ramp). As first written, 200 N/m
+    # over 0.29-0.31 m out-pulled the spring's 100 N/m: the carriage ran to the loop's lifted end and stayed there (z
+    # 0.321-0.357 m, a constant force; a2 0.0595 not used); then 50 N/m over 0.29-0.33 m kept z inside the ramp (a plain
+    # spring; a2 0.0438 not used); the third, this, a2 0.0558: as written
     ("od14_mass_festoon_cable_loop", "outside", 0.0084, 0.0295, 0.95,
-     [E("mass_festoon_cable_loop", {"weight_N_per_m": 200.0, "centre_m": 0.30, "half_range_m": 0.01})]),
+     [E("mass_festoon_cable_loop", {"weight_N_per_m": 80.0, "centre_m": 0.305, "half_range_m": 0.01})]),
     ("od14_clean_w7.3_eta0.0255_n0.91", "clean", 0.0073, 0.0255, 0.91, []),
     # about 22.7 m/s; 1 (m/s^2)/(m/s) a priori, a2 0.0397: scaled once x1.89
     ("od14_a2_velocity_sensitivity", "outside", 0.0069, 0.0205, 0.94,
