@@ -7,8 +7,8 @@ Kinds (balance x what it reads, and how), the sealed half:
 2. motor load moment x the WHEEL speed through a LAG with a rise and a fall time: a hydraulic brake on the motor's
    shaft fed from a gear pump on the wheel's shaft through a long line and a check valve: its pressure follows Omega2
    with time constant tau_r rising and tau_f falling (every 0.2 ms; m = Omega2 at the run-in's start), the brake
-   loading the motor by c*m (a load on one shaft from the other shaft's lagged speed: the earlier lags act on the same
-   shaft's balance or on the mass);
+   loading the motor by c*m (a load on one shaft from the other shaft's lagged speed: the earlier lags of a speed load
+   the shaft or the mass whose speed they read; others lag the pulse, the contact's power or its penetration);
 4. wheel torque x the SPRING EXTENSION through a LATCH reset at each stroke: a limit switch on the spring's cable
    guide trips once the extension exceeds z_t and latches a brake on the wheel, -T, until the next load pulse's start
    resets it (scanned every 0.2 ms; the seventh set's stroke-reset latch reads the wheel speed);
