@@ -577,6 +577,40 @@ OUTSIDE_DEV13_ROWS = [
                                             "drain_cm3_s_per_sqrt_cm3": 20.0})]),
 ]
 
+# ---- issue 31 part 4, fourteenth set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev14;
+# the fourteenth sealed half's rows are in foreign_drives.outside_sealed14). One mechanism per row at its own nominal
+# conditions, one clean control. Seeds 14000+. Each strength set by one simulation against the clean drive of the same
+# seed (docs/foreign_drives.md "The fourteenth set"). A clean drive's ranges (seed 14004, 4 s): Omega1 146.9-154.2,
+# Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80 m/s, D -0.062..0.062 rad (beta 0.049 rad).
+OUTSIDE_DEV14_ROWS = [
+    # on the motor while sin(alpha2 + 0.5) > 0; 3 N*m a priori, a2 0.0228: scaled once x3.29
+    ("od14_motor_wheel_cam_brake", "outside", 0.0064, 0.0265, 0.93,
+     [E("motor_wheel_cam_brake", {"torque_Nm": 9.864, "phase_rad": 0.5})]),
+    # beyond 150 rad/s; 0.5 N*m*s/rad a priori (up to about 2 N*m), a2 0.0351: scaled once x2.14
+    ("od14_wheel_bypassed_retarder", "outside", 0.0078, 0.0215, 0.91,
+     [E("wheel_bypassed_retarder", {"coefficient_Nm_s_per_rad": 1.069, "bypass_speed_rad_s": 150.0})]),
+    # 50 N*m/rad at 150 rad/s (about 3 N*m at the faces)
+    ("od14_clutch_centrifugal_leaf_spring", "outside", 0.0057, 0.0345, 0.92,
+     [E("clutch_centrifugal_leaf_spring", {"stiffness_Nm_per_rad": 50.0})]),
+    # 80 N/m over 0.295-0.315 m (0..1.6 N; z 0.291-0.326 m with it: both ends and the ramp). As first written, 200 N/m
+    # over 0.29-0.31 m out-pulled the spring's 100 N/m: the carriage ran to the loop's lifted end and stayed there (z
+    # 0.321-0.357 m, a constant force; a2 0.0595 not used); then 50 N/m over 0.29-0.33 m kept z inside the ramp (a plain
+    # spring; a2 0.0438 not used); the third, this, a2 0.0558: as written
+    ("od14_mass_festoon_cable_loop", "outside", 0.0084, 0.0295, 0.95,
+     [E("mass_festoon_cable_loop", {"weight_N_per_m": 80.0, "centre_m": 0.305, "half_range_m": 0.01})]),
+    ("od14_clean_w7.3_eta0.0255_n0.91", "clean", 0.0073, 0.0255, 0.91, []),
+    # about 22.7 m/s; 1 (m/s^2)/(m/s) a priori, a2 0.0397: scaled once x1.89
+    ("od14_a2_velocity_sensitivity", "outside", 0.0069, 0.0205, 0.94,
+     [E("a2_velocity_sensitivity", {"sensitivity_per_s": 1.891, "zero_speed_m_s": 22.7})]),
+    # above 152 rad/s of the held peak, bleeding off in 0.5 s; 1 N*m*s/rad a priori, a2 0.0150: scaled once x5.02
+    ("od14_motor_drag_pointer_governor_brake", "outside", 0.0059, 0.0275, 0.90,
+     [E("motor_drag_pointer_governor_brake", {"coefficient_Nm_s_per_rad": 5.016, "set_speed_rad_s": 152.0,
+                                              "release_time_s": 0.5})]),
+    # 200 N*m/rad, the hub slipping at 0.01 rad (2 N*m)
+    ("od14_clutch_friction_slider_spring", "outside", 0.0076, 0.0355, 0.94,
+     [E("clutch_friction_slider_spring", {"stiffness_Nm_per_rad": 200.0, "slip_twist_rad": 0.01})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -593,12 +627,14 @@ OUTSIDE_DEV10 = _suite(OUTSIDE_DEV10_ROWS, 10000, 4.0)
 OUTSIDE_DEV11 = _suite(OUTSIDE_DEV11_ROWS, 11000, 4.0)
 OUTSIDE_DEV12 = _suite(OUTSIDE_DEV12_ROWS, 12000, 4.0)
 OUTSIDE_DEV13 = _suite(OUTSIDE_DEV13_ROWS, 13000, 4.0)
+OUTSIDE_DEV14 = _suite(OUTSIDE_DEV14_ROWS, 14000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
           "outside_dev8": OUTSIDE_DEV8, "outside_dev9": OUTSIDE_DEV9,
           "outside_dev10": OUTSIDE_DEV10, "outside_dev11": OUTSIDE_DEV11,
-          "outside_dev12": OUTSIDE_DEV12, "outside_dev13": OUTSIDE_DEV13}
+          "outside_dev12": OUTSIDE_DEV12, "outside_dev13": OUTSIDE_DEV13,
+          "outside_dev14": OUTSIDE_DEV14}
 
 
 def _outside_sealed():
@@ -679,10 +715,16 @@ def _outside_sealed13():
     return _suite(suite_rows(), 13100, 4.0)
 
 
+def _outside_sealed14():
+    """The fourteenth sealed half's suite, made from foreign_drives.outside_sealed14 on first use (its rows live there)."""
+    from .outside_sealed14 import suite_rows
+    return _suite(suite_rows(), 14100, 4.0)
+
+
 SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
                                "outside_sealed5", "outside_sealed6", "outside_sealed7", "outside_sealed8",
                                "outside_sealed9", "outside_sealed10", "outside_sealed11",
-                               "outside_sealed12", "outside_sealed13")
+                               "outside_sealed12", "outside_sealed13", "outside_sealed14")
 
 
 def suite(name: str) -> list:
@@ -712,6 +754,8 @@ def suite(name: str) -> list:
         return _outside_sealed12()
     if name == "outside_sealed13":
         return _outside_sealed13()
+    if name == "outside_sealed14":
+        return _outside_sealed14()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])
