@@ -58,10 +58,10 @@ MAX_FREQUENCY_HZ = 200.0  # compared up to here: the strokes, the ripple and the
 MIN_FREQUENCY_HZ = 2.0    # from here: below, the span's parabola has taken the motion out (and an offset drift's)
 MAX_LAG_S = 0.05          # the longest lag tried [s]: a drive's speed filter (count averages of 0.5-2 ms, first-order
                           # filters up to tens of ms) or an accelerometer's low-pass
-LAG_STEPS = 120           # the lags tried: 0 and log-spaced from 0.1 ms to MAX_LAG_S, on either side, both kinds
+LAG_STEPS = 60            # the lags tried: 0 and log-spaced from 0.1 ms to MAX_LAG_S, on either side, both kinds
 MIN_SPAN_S = 1.5          # less stream compared (a span shorter than this is not compared): not checked (NaN)
 MIN_MOTION_M_S = 1e-3     # a span whose velocity varies less than this (rms, detrended) [m/s]: not compared
-RECOMPUTE_S = 0.5         # the open span is compared again when it has grown by this much [s] (result() is cached)
+RECOMPUTE_S = 2.0         # the open span is compared again when it has grown by this much [s] (result() is cached)
 # a1 does not read the motor's motion when more than this share of it is not in a1. The measured figures above: sound
 # chains below 0.01, the two chains that were far off far above; a 10 % sensitivity error (on a 5-9 mm drive, half a
 # millimetre and more of a kinematic width) is 0.1.
