@@ -17,7 +17,7 @@
   (read_signal).
 - rosbags_read_samples_per_s: the same bag read and deserialized by rosbags (time_rosbags_read()).
 - analyze_vs_rosbags_read: the whole `analyze` of a simulated 10 s bag against rosbags merely
-  reading and deserializing the same three topics of the same file: 15 rounds (ROUNDS), each an
+  reading and deserializing the same topics of the same file (the four analyze reads; three before 30 Nov, stop 50): 15 rounds (ROUNDS), each an
   analyze run and a rosbags read of each layout back to back, which of the two goes first
   alternating from round to round, the garbage collector run before every timed run (either
   side's garbage is not collected inside the other's time); the figure is the median over the
@@ -26,7 +26,7 @@
   from different moments, 0.53-2.4 in runs whose pair medians were 1.07-1.61); ``timing`` says so. Also on the bag rewritten by the `mcap` writer
   with rosbag2's writer options noSummary and noChunking (``..._noSummary``, ``..._noChunking``),
   and whether the three layouts gave the same estimates (``analyze_same_estimates_across_layouts``).
-- container_*_vs_mcap_library: the container layer alone on the same bag (the three topics' raw
+- container_*_vs_mcap_library: the container layer alone on the same bag (the topics' raw
   payloads; the SignalChunk fields analyze reads), backlash_monitor.bag's speed over the `mcap`
   package's reader (with our SignalChunk decoding on its payloads); > 1: ours is faster.
   damaged_*_read_fraction[_mcap_*]: the messages read back from that bag with a byte flipped in its
@@ -257,7 +257,9 @@ TIMING = (f"{ROUNDS} rounds; in each, per layout, one analyze run and one rosbag
           "analyze of the same round; _fastest = fastest rosbags read / fastest analyze; the wall "
           "times are each side's fastest")
 LAYOUTS = {"default": None, "noSummary": {"noSummary": True}, "noChunking": {"noChunking": True}}
-ANALYZE_TOPICS = [f"/plant/{n}" for n in ("a1", "a2", "angle_difference")]
+# the topics analyze reads: a1, a2, the angle difference and (since 30 Nov, stop 50: a1 checked against the motor
+# speed, windowing/a1_chain.py) omega1; rosbags reads the same ones
+ANALYZE_TOPICS = [f"/plant/{n}" for n in ("a1", "a2", "angle_difference", "omega1")]
 
 
 def _analyze(analyze, parser, bag: Path, out: Path) -> float:
@@ -353,7 +355,7 @@ def time_analyze(tmp: Path, seconds: float = 10.0) -> dict:
 
 
 def time_container(path: Path, rounds: int = ROUNDS) -> dict:
-    """The container layer alone, on the bag analyze reads: the three topics' raw payloads, and
+    """The container layer alone, on the bag analyze reads: the topics' raw payloads, and
     their SignalChunk fields (what analyze takes), by backlash_monitor.bag and by the `mcap`
     package's reader (make_reader: the summary's chunk index, file order) with the same
     SignalChunk decoding on its payloads. Interleaved rounds, the fastest of each."""

@@ -12,21 +12,22 @@ How, and why so:
   encoder's speed gives noise far above a1's; integrating a1 does not.
 - **As a transfer function, w over v.** The stream is cut into spans of up to ``SEGMENT_S`` (a parabola removed
   from each: a1's offset integrates to a straight line, an offset drifting at a steady rate to a parabola; Hann
-  window). Their cross and auto spectra, averaged over ``SMOOTH_HZ``
-  of neighbouring frequencies, give G(f) = S_vw/S_vv: the H1 estimate, which noise in the speed signal does not
-  bias (it is not coherent with a1). Long spans, not Welch's short segments: a lag's memory across a segment's
-  ends biases the estimate by about lag/segment (a 20 ms speed filter read as 0.11 on half-second segments). A sound chain has G = 1 at
-  every frequency the motion has; a sensitivity g has G = 1/g; a distortion or a moving gain puts into a1 motion
-  the speed never had.
+  window). Their cross and auto spectra, averaged over ``SMOOTH_HZ`` of neighbouring frequencies, give
+  G(f) = S_vw/S_vv: the H1 estimate, which noise in the speed signal does not bias (it is not coherent with a1). A
+  sound chain has G = 1 at every frequency the motion has; a sensitivity g has G = 1/g; a distortion or a moving
+  gain puts into a1 motion the speed never had.
 - **Lags are allowed, gains are not.** A drive's speed signal is often filtered (a moving average over the
   encoder's counts, a first-order speed filter) and an accelerometer may carry a low-pass of its own: a lag, not a
   wrong reading of the motion. The mismatch is the smallest, over a moving average or a first-order lag L(f) of
   time constant T (``MAX_LAG_S`` at most) put on either side, of
 
-      mismatch² = Σ_f S_vv(f)·|L_a1(f) − L_speed(f)·G(f)|²  /  Σ_f S_vv(f)·|G(f)|²     (f ≤ ``MAX_FREQUENCY_HZ``)
+      mismatch² = Σ_f S_L(f)·|1 − G_L(f)|²  /  Σ_f S_L(f)·|G_L(f)|²     (2 Hz ≤ f ≤ ``MAX_FREQUENCY_HZ``)
 
-  so 0.1 means that a tenth of the motor's motion, as the speed reads it, is not in a1; a 10 % sensitivity error
-  gives 0.1. No gain is fitted, so a wrong sensitivity stays visible (``gain`` reports it).
+  with G_L the transfer from the lagged side to the other and S_L the lagged side's spectrum, both averaged AFTER
+  the lag is put on (a lag turns the cross spectrum's phase across the averaging band; averaging the turning phase
+  first read a 20 ms speed filter as 0.06-0.11). So 0.1 means that a tenth of the motor's motion, as the speed reads
+  it, is not in a1; a 10 % sensitivity error gives 0.1. No gain is fitted, so a wrong sensitivity stays visible
+  (``gain`` reports it). A lag's memory across a span's ends biases by about lag/span (1.5 % for 30 ms).
 
 Measured on the independent simulator's recordings (138 of its spent and development recordings; docs/classifier.md
 5.4): every clean drive 0.0012-0.0017 (14- and 16-bit encoders among them), every other mechanism 0.0024 at most
@@ -43,18 +44,20 @@ motion). A 4 s recording costs a few tens of milliseconds.
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
 DECIMATE_S = 5e-4         # block means of this span [s] (25 samples at 50 kHz): a 2 kHz velocity
-SEGMENT_S = 8.0           # the stream is compared in spans of up to this long [s]; a lag's memory crossing a span's
-                          # ends biases the transfer estimate by about lag/span (0.4 % for a 30 ms speed filter)
-SMOOTH_HZ = 2.0           # the spectra are averaged over this band [Hz] (as Welch averages over segments): what
+SEGMENT_S = 2.0           # the stream is compared in spans of up to this long [s]; a lag's memory crossing a span's
+                          # ends biases the transfer estimate by about lag/span (1.5 % for a 30 ms speed filter)
+SMOOTH_HZ = 8.0           # the spectra are averaged over this band [Hz] (as Welch averages over segments): what
                           # makes the transfer estimate robust to the speed signal's noise
-MAX_FREQUENCY_HZ = 200.0  # compared up to here: the strokes, the ripple and the crossings' jolts of the motion as a
-                          # speed signal follows it; above, encoders' speed filters leave little to compare
+MAX_FREQUENCY_HZ = 100.0  # compared up to here: the strokes and the ripple of the motion as a speed signal follows
+                          # it; above, encoders' speed filters leave little to compare (200 Hz read the same figures
+                          # on the spent rows and the closed forms, at 1.3x the cost)
 MIN_FREQUENCY_HZ = 2.0    # from here: below, the span's parabola has taken the motion out (and an offset drift's)
 MAX_LAG_S = 0.05          # the longest lag tried [s]: a drive's speed filter (count averages of 0.5-2 ms, first-order
                           # filters up to tens of ms) or an accelerometer's low-pass
@@ -103,6 +106,13 @@ class A1ChainResult:
 
 def _lags():
     return np.concatenate(([0.0], np.geomspace(1e-4, MAX_LAG_S, LAG_STEPS - 1)))
+
+
+@functools.lru_cache(maxsize=8)
+def _responses_on_grid(m: int, step_s: float, top: int) -> tuple[list, np.ndarray]:
+    """``_responses`` on the first ``top`` frequencies of an ``m``-point real FFT at ``step_s`` (spans of one length
+    share it: cached)."""
+    return _responses(np.fft.rfftfreq(m, step_s)[:top])
 
 
 def _responses(f: np.ndarray) -> tuple[list, np.ndarray]:
@@ -207,7 +217,7 @@ class A1ChainCheck:
         k = max(1, int(round(SMOOTH_HZ * m * step_s)))        # bins averaged (a Daniell window)
         top = min(f.size, int(np.searchsorted(f, MAX_FREQUENCY_HZ, side="right")) + k)
         f, FV, FW = f[:top], FV[:top], FW[:top]
-        _, L = _responses(f)
+        _, L = _responses_on_grid(m, step_s, top)
         cross = np.conj(FV) * FW
         auto = np.abs(FV) ** 2
         band = (f >= MIN_FREQUENCY_HZ) & (f <= MAX_FREQUENCY_HZ)
@@ -233,7 +243,8 @@ class A1ChainCheck:
         if self._cached is not None and 0 <= grown and grown * self._step_s() < RECOMPUTE_S:
             return self._cached
         sums, seconds = self._sums, self.seconds
-        if self._span_n:
+        # the open span while the closed ones are not enough, and once it is itself long enough to be compared
+        if self._span_n and (seconds < MIN_SPAN_S or self._span_n * self._step_s() >= MIN_SPAN_S):
             open_span = self._compare(np.concatenate(self._span[0]), np.concatenate(self._span[1]))
             if open_span is not None:
                 sums = open_span[:3] if sums is None else tuple(a + b for a, b in zip(sums, open_span[:3]))
@@ -256,8 +267,10 @@ class A1ChainCheck:
 
 def _smooth(x: np.ndarray, k: int) -> np.ndarray:
     """Rows of ``x`` averaged over ``k`` neighbouring frequencies (centred; shorter at the ends)."""
-    c = np.cumsum(np.pad(x, ((0, 0), (1, 0))), axis=1)
     n = x.shape[1]
-    lo = np.clip(np.arange(n) - k // 2, 0, n)
-    hi = np.clip(np.arange(n) - k // 2 + k, 0, n)
+    c = np.zeros((x.shape[0], n + 1), dtype=x.dtype)
+    np.cumsum(x, axis=1, out=c[:, 1:])
+    idx = np.arange(n)
+    lo = np.clip(idx - k // 2, 0, n)
+    hi = np.clip(idx - k // 2 + k, 0, n)
     return (c[:, hi] - c[:, lo]) / (hi - lo)
