@@ -30,9 +30,9 @@ How, and why so:
   (``gain`` reports it). A lag's memory across a span's ends biases by about lag/span (1.5 % for 30 ms).
 
 Measured on the independent simulator's recordings (138 of its spent and development recordings; docs/classifier.md
-5.4): every clean drive 0.0012-0.0017 (14- and 16-bit encoders among them), every other mechanism 0.0024 at most
-but an a1 auto-ranging amplifier and an a1 crossover dead zone (0.047, 0.059) and the two a1 chains that were far off,
-a telemetry AGC and a quadratic characteristic (0.17, 0.69; their widths from a1 1.5 and 4.2 mm off, from a2 0.04 and
+5.4): every clean drive 0.0007-0.0015 (14- and 16-bit encoders among them), every other mechanism 0.0021 at most
+but an a1 auto-ranging amplifier and an a1 crossover dead zone (0.038, 0.051) and the two a1 chains that were far off,
+a telemetry AGC and a quadratic characteristic (0.17, 0.64; their widths from a1 1.5 and 4.2 mm off, from a2 0.04 and
 0.01 mm). What it cannot see: a distortion of a motion that is not periodic is partly incoherent with a1, as noise
 is, and is then under-counted (the check errs towards "sound"); a fault above ``MAX_FREQUENCY_HZ`` (a resonance of
 a1's bracket) is not in it.
