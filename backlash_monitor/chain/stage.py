@@ -241,7 +241,8 @@ class WindowingStage:
         entries = self.detector.feed(first, joined.arrays, joined.sample_period_s, finite=True)
         self.saturation.feed(joined.arrays)
         if self.a1_chain is not None and "a1" in joined.arrays:
-            self.a1_chain.feed(first, joined.arrays["a1"], joined.arrays["omega1"], joined.sample_period_s)
+            self.a1_chain.feed(first, joined.arrays["a1"], joined.arrays["omega1"], joined.sample_period_s,
+                               finite=True)
         windows, more = self.capture.feed(first, joined.arrays, entries=entries,
                                           sample_period_s=joined.sample_period_s, finite=True)
         chain = self.a1_chain.result() if self.a1_chain is not None and windows else None
