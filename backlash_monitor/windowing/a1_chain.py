@@ -304,7 +304,7 @@ class A1ChainCheck:
 def _smooth(x: np.ndarray, k: int) -> np.ndarray:
     """Rows of ``x`` averaged over ``k`` neighbouring frequencies (centred; over fewer at the ends)."""
     n = x.shape[1]
-    before, after = k // 2, k - k // 2
+    before = k // 2
     c = np.zeros((x.shape[0], n + k + 1), dtype=x.dtype)
     np.cumsum(x, axis=1, out=c[:, before + 1:before + 1 + n])
     c[:, before + 1 + n:] = c[:, before + n:before + n + 1]
