@@ -70,16 +70,16 @@ class WindowingStage:
     carries its samples at a rail found so far, and its stuck ones (``input_saturation``). They are
     not dropped: a clipped window is still a window, flagged.
 
-    ``a1_chain_radius_m`` (the drive-wheel radius r [m]; None: off): the motor speed ``omega1`` is an input
-    too, and a1 is checked against r·Ω₁ as the samples come (windowing/a1_chain.py); every window returned
-    carries the check so far (``a1_chain``).
+    ``check_a1_chain``: the motor speed ``omega1`` is an input too, and a1 is checked against r·Ω₁ as the
+    samples come (windowing/a1_chain.py, r configured); every window returned carries the check so far
+    (``a1_chain``).
     """
 
     def __init__(self, trigger: str = "contact_loss", width_m: float | None = None,
                  angle_source: str = "measured", window_length: int = 2048,
                  signals=("a1", "a2"), window_offset_samples: int | None = None,
                  faults: FaultLog | None = None, resync_samples: int = RESYNC_SAMPLES,
-                 accelerometer_range_m_s2: float | None = None, a1_chain_radius_m: float | None = None):
+                 accelerometer_range_m_s2: float | None = None, check_a1_chain: bool = False):
         """``window_offset_samples``: window start after the entry; None = the trigger's configured
         value (config/windowing.yaml capture.window_offset_samples). ``accelerometer_range_m_s2``:
         None = the configured one (sensors.accelerometer_range_m_s2)."""
@@ -92,7 +92,7 @@ class WindowingStage:
         self.window_offset_samples = self.capture.window_offset_samples
         angle = ("angle_difference",) if angle_source == "measured" else ("omega1", "omega2")
         self.input_signals = tuple(signals) + angle
-        self.a1_chain = None if a1_chain_radius_m is None else A1ChainCheck(a1_chain_radius_m)
+        self.a1_chain = A1ChainCheck() if check_a1_chain else None
         if self.a1_chain is not None and "omega1" not in self.input_signals:
             self.input_signals += ("omega1",)
         self._input_set = frozenset(self.input_signals)

@@ -31,7 +31,7 @@ squares used here: the first test is conservative (it switches less often than a
 Both tests take the motor side as the sound one. Where a1's own sensor chain is what is wrong (it does not follow
 the recorded motor speed: windowing/a1_chain.py), ``a1`` and ``a1+a2`` both read it, and the load side's ``a2`` is
 taken instead (``a1_chain_checked``): measured on the independent simulator, a quadratic a1 characteristic read
-4.46 mm off from ``a1+a2`` and 0.01 mm from ``a2``, a telemetry AGC on a1 0.99 mm and 0.04 mm (docs/classifier.md 5.3).
+4.46 mm off from ``a1+a2`` and 0.01 mm from ``a2``, a telemetry AGC on a1 0.99 mm and 0.04 mm (docs/classifier.md 5.4).
 """
 from __future__ import annotations
 

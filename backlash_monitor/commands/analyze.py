@@ -296,7 +296,7 @@ def print_signal_check(summary: dict) -> None:
     elif both.get("fused_from_signal") == LOAD_SIDE_SIGNAL:
         print(f"WARN: {BOTH_SIGNALS}'s fused width is "
               f"{source_text(LOAD_SIDE_SIGNAL, BOTH_SIGNALS, both.get('check_reason', ''))}: check a1's sensor chain "
-              "(and the drive-wheel radius r) before trusting a1 (docs/classifier.md 5.3)")
+              "(and the drive-wheel radius r) before trusting a1 (docs/classifier.md 5.4)")
 
 
 def _print_integrity(integrity) -> None:

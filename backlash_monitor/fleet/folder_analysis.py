@@ -262,6 +262,7 @@ def recording_fields(bag: str, result: dict) -> dict:
 
     mine, width, se = median_width(primary)
     signal = primary
+    chain = result.get("a1_chain")      # a1 against the recorded motor speed (None: the bag has none)
     if primary == BOTH_SIGNALS and MOTOR_SIDE_SIGNAL in signals:
         # checked against the motor side's, as the live estimate's fusion is (classifier/signal_check.py)
         _, motor_width, motor_se = median_width(MOTOR_SIDE_SIGNAL)
@@ -269,9 +270,8 @@ def recording_fields(bag: str, result: dict) -> dict:
         if LOAD_SIDE_SIGNAL in signals:
             # a2's where a1 does not follow the recorded motor speed (windowing/a1_chain.py)
             _, load_width, load_se = median_width(LOAD_SIDE_SIGNAL)
-            check = a1_chain_checked(check, result.get("a1_chain"), load_width, load_se)
+            check = a1_chain_checked(check, chain, load_width, load_se)
         width, se, signal = check.width_m, check.uncertainty_m, check.signal
-    chain = result.get("a1_chain")
     return dict(drive=result["drive"] or Path(bag).stem, namespace=result.get("namespace", ""),
                 time_s=result["first_stamp_s"], width_m=width, width_uncertainty_m=se,
                 fused_width_m=mine[-1]["fused_width_m"] if mine else math.nan,

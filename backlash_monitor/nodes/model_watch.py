@@ -37,7 +37,6 @@ from rclpy.node import Node
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 from backlash_monitor_msgs.msg import ModelFit, SignalChunk
 
-from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing.a1_chain import A1ChainCheck
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
 from backlash_monitor.ros.conversions import to_float64_array, time_from_seconds
@@ -191,8 +190,8 @@ class ModelWatchNode(Node):
                                              p["snapshot_before_s"], p["snapshot_after_s"], topics,
                                              p["max_snapshots"])
         self.counts = {"chunks": 0, "events": 0, "evaluations": 0, "warnings": 0}
-        # a1 against the motor speed, where the watch joins it (r: the windowing's drive-wheel radius, as analyze's)
-        self.a1_chain = (A1ChainCheck(WINDOWING_DEFAULTS["detector"]["radius_m"]) if p["watch_omega1"] else None)
+        # a1 against the motor speed, where the watch joins it (r: the configured drive-wheel radius, as analyze's)
+        self.a1_chain = A1ChainCheck() if p["watch_omega1"] else None
         self.last_chunk_s: dict = {}     # per signal: monotonic time of its last chunk (a watched stream missing)
         qos = chunk_qos(p["qos"])
         self.fit_type = ModelFit
@@ -241,7 +240,8 @@ class ModelWatchNode(Node):
             return
         self.counts["chunks"] += 1
         if self.a1_chain is not None:
-            self.a1_chain.feed(joined.first_sample_index, arrays["a1"], arrays["omega1"], joined.sample_period_s)
+            self.a1_chain.feed(joined.first_sample_index, arrays["a1"], arrays["omega1"], joined.sample_period_s,
+                               finite=True)
         if self.stream_start_s is None and joined.stamp is not None:
             sec, nanosec = joined.stamp
             self.stream_start_s = sec + nanosec * 1e-9 - joined.first_sample_index * joined.sample_period_s

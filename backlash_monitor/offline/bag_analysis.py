@@ -19,6 +19,7 @@ the library was trained at, or whose topics carry other signals (or units) than 
 from __future__ import annotations
 
 import csv
+import functools
 import json
 import math
 import sys
@@ -250,9 +251,12 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
     try:
         estimator = DriveEstimator(library, mode=mode, n1=options.n1,
                                    fusion_events=options.fusion_events)
-        stage = WindowingStage(trigger=options.trigger,
-                               width_m=options.width_m if options.trigger == "paper" else None,
-                               angle_source=options.angle_source, window_offset_samples=offset)
+        # the stage's settings, once: built here (its checks of them), and again with a1's check where the bag has the
+        # motor speed (below)
+        windowing_stage = functools.partial(WindowingStage, trigger=options.trigger,
+                                            width_m=options.width_m if options.trigger == "paper" else None,
+                                            angle_source=options.angle_source, window_offset_samples=offset)
+        stage = windowing_stage()
     except (PatternLibraryError, ValueError) as error:
         raise UsageError(str(error)) from None
     missing = [name for name in stage.input_signals[:2] if name not in library.signals]
@@ -276,10 +280,7 @@ def analyze_bag(bag, out_prefix, options: AnalyzeOptions, library=None,
             namespace = options.namespace or drive_namespace(available, bag_path)
             if find_topic(available, namespace, "omega1"):
                 # the motor speed is recorded: a1 is checked against it as the samples come (windowing/a1_chain.py)
-                stage = WindowingStage(trigger=options.trigger,
-                                       width_m=options.width_m if options.trigger == "paper" else None,
-                                       angle_source=options.angle_source, window_offset_samples=offset,
-                                       faults=stage.faults, a1_chain_radius_m=DEFAULTS["detector"]["radius_m"])
+                stage = windowing_stage(faults=stage.faults, check_a1_chain=True)
             topics = {}
             for name in stage.input_signals:
                 topic = find_topic(available, namespace, name)

@@ -38,9 +38,9 @@ is, and is then under-counted (the check errs towards "sound"); a fault above ``
 a1's bracket) is not in it.
 
 The check needs the motor speed: the caller makes none without it. It runs as the samples come (``feed``:
-contiguous ranges; a gap closes the span, none spans it) with a fixed memory (one open span of block means), and its
-figure so far, the closed spans' sums with the open one's, is ``result()`` (NaN before ``MIN_SPAN_S`` of stream with
-motion). 10 s of stream cost about 14 ms of CPU.
+contiguous ranges; a gap closes the span, none spans it) with a fixed memory (the open span's block means), and its
+figure so far, over the spans compared, is ``result()`` (NaN before the first span of ``SEGMENT_S`` with motion).
+10 s of stream cost about 14 ms of CPU.
 """
 from __future__ import annotations
 
@@ -49,6 +49,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+
+from backlash_monitor.windowing.config import DEFAULTS
 
 DECIMATE_S = 5e-4         # block means of this span [s] (25 samples at 50 kHz): a 2 kHz velocity
 SEGMENT_S = 2.0           # the stream is compared in spans of up to this long [s]; a lag's memory crossing a span's
@@ -63,9 +65,8 @@ MAX_LAG_S = 0.05          # the longest lag tried [s]: a drive's speed filter (c
                           # filters up to tens of ms) or an accelerometer's low-pass
 LAG_STEPS = 50            # the lags tried: 0 and log-spaced from 0.1 ms to MAX_LAG_S, on either side, both kinds
                           # (a first-order speed filter between two of them reads at most 0.022; 40 read 0.046)
-MIN_SPAN_S = 1.5          # less stream compared (a span shorter than this is not compared): not checked (NaN)
+MIN_SPAN_S = 1.5          # a piece's last span shorter than this (cut by a gap) is not compared
 MIN_MOTION_M_S = 1e-3     # a span whose velocity varies less than this (rms, detrended) [m/s]: not compared
-RECOMPUTE_S = 2.0         # the open span is compared again when it has grown by this much [s] (result() is cached)
 # a1 does not read the motor's motion when more than this share of it is not in a1. The measured figures above: sound
 # chains below 0.01, the two chains that were far off far above; a 10 % sensitivity error (on a 5-9 mm drive, half a
 # millimetre and more of a kinematic width) is 0.1.
@@ -136,7 +137,11 @@ def _responses(f: np.ndarray) -> tuple[list, np.ndarray]:
 class A1ChainCheck:
     """a1 against r·Ω₁, fed as the samples come (see the module docstring)."""
 
-    def __init__(self, radius_m: float):
+    def __init__(self, radius_m: float | None = None):
+        """``radius_m``: the drive-wheel radius r [m]; None: the configured one (config/windowing.yaml detector
+        radius_m), as every caller in the project takes it."""
+        if radius_m is None:
+            radius_m = DEFAULTS["detector"]["radius_m"]
         if not (isinstance(radius_m, (int, float)) and math.isfinite(radius_m) and radius_m > 0):
             raise ValueError(f"radius_m = {radius_m!r}; allowed: a number > 0 [m]")
         self.radius_m = float(radius_m)
@@ -151,8 +156,7 @@ class A1ChainCheck:
         self._sums = None                         # per lag tried (on a1's side, then the speed's): Σ S·|1 − G|²,
                                                   # Σ S·|G|², Σ S·Re G over the closed spans (S: the lagged a1's spectrum)
         self.seconds = 0.0                        # stream compared in closed spans [s]
-        self._cached: A1ChainResult | None = None
-        self._cached_n = -1
+        self._cached: A1ChainResult | None = None  # result() of the spans so far (None: a span was added since)
 
     def feed(self, first_sample_index: int, a1_m_s2, omega1_rad_s, sample_period_s: float,
              finite: bool = False) -> None:
@@ -225,12 +229,9 @@ class A1ChainCheck:
     def _add_span(self, v: np.ndarray, w: np.ndarray) -> None:
         sums = self._compare(v, w)
         if sums is not None:
-            self._add(sums)
+            self._sums = sums[:3] if self._sums is None else tuple(a + b for a, b in zip(self._sums, sums[:3]))
+            self.seconds += sums[3]
             self._cached = None
-
-    def _add(self, sums) -> None:
-        self._sums = tuple(sums[:3]) if self._sums is None else tuple(a + b for a, b in zip(self._sums, sums[:3]))
-        self.seconds += sums[3]
 
     def _compare(self, v: np.ndarray, w: np.ndarray):
         """One span's sums (see the module docstring), or None when it is too short or the motor barely moves."""
@@ -274,29 +275,21 @@ class A1ChainCheck:
         return num, den, re, m * step_s
 
     def result(self) -> A1ChainResult:
-        """The check so far (the closed spans and the open one): NaN before ``MIN_SPAN_S`` of stream with motion."""
-        grown = self._span_n - self._cached_n
-        if self._cached is not None and 0 <= grown and grown * self._step_s() < RECOMPUTE_S:
+        """The check over the spans compared so far (each closed at SEGMENT_S of stream, or at a gap): NaN before the
+        first."""
+        if self._cached is not None:
             return self._cached
-        sums, seconds = self._sums, self.seconds
-        # the open span while the closed ones are not enough, and once it is itself long enough to be compared
-        if self._span_n and (seconds < MIN_SPAN_S or self._span_n * self._step_s() >= MIN_SPAN_S):
-            open_span = self._compare(np.concatenate(self._span[0]), np.concatenate(self._span[1]))
-            if open_span is not None:
-                sums = open_span[:3] if sums is None else tuple(a + b for a, b in zip(sums, open_span[:3]))
-                seconds += open_span[3]
-        self._cached_n = self._span_n
-        if sums is None or not (sums[1] > 0).all():
+        if self._sums is None or not (self._sums[1] > 0).all():
             self._cached = A1ChainResult(math.nan, math.nan, "", 0.0, self.radius_m)
             return self._cached
-        num, den, re = sums
+        num, den, re = self._sums
         ratio = num / den
         names = _lag_names()
         k = int(np.argmin(ratio))
         side = "speed" if k < len(names) else "a1"     # a lag on a1's velocity means the speed is the one filtered
         words = "none" if k % len(names) == 0 else f"{side}: {names[k % len(names)]}"
         # a1's motion over the speed's at that lag: v·L ≈ gain·w, so gain = Σ S·Re G / Σ S·|G|² (G = 1/gain)
-        self._cached = A1ChainResult(float(math.sqrt(ratio[k])), float(re[k] / den[k]), words, float(seconds),
+        self._cached = A1ChainResult(float(math.sqrt(ratio[k])), float(re[k] / den[k]), words, float(self.seconds),
                                      self.radius_m)
         return self._cached
 

@@ -18,7 +18,6 @@ import numpy as np
 from backlash_monitor.denoise import denoise_pairs
 from backlash_monitor.classifier.patterns import load_library
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DriveEstimator
-from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing import default_window_offset, extract_windows
 from backlash_monitor.windowing.a1_chain import A1ChainCheck
 
@@ -56,11 +55,11 @@ def monitor_widths(meas, library_path=None, signal: str = "a1+a2", mode: str = "
 
 def a1_chain_of(meas):
     """a1 checked against the measurement's motor speed over the whole record (windowing/a1_chain.py; ``analyze``
-    checks as the samples come, so its first windows, before 0.45 s of stream, are not checked); None without the
-    motor speed."""
+    checks as the samples come, so its windows before the first 2 s span are not checked); None without the motor
+    speed."""
     if "omega1" not in meas.signals:
         return None
-    check = A1ChainCheck(WINDOWING_DEFAULTS["detector"]["radius_m"])
+    check = A1ChainCheck()
     check.feed(0, meas.signals["a1"], meas.signals["omega1"], meas.sample_period_s)
     return check.result()
 
