@@ -56,6 +56,35 @@ def suite_effect(name: str, suite_names) -> EffectSpec:
     raise AssertionError(f"{name} is in none of the suites {', '.join(suite_names)}")
 
 
+class OutsideSet:
+    """Set ``number`` of the outside mechanisms as its test file uses it: its halves' forms (``dev``, ``sealed``: name
+    -> OutsideForm, from foreign_drives.forms), the file's drive -- noise-free, ``duration_s`` long, width 6.5 mm,
+    eta_k 0.025, n1 0.9, at the file's own ``seed`` -- with one mechanism (``rec_of``) or none (``clean``), and a
+    mechanism's use in the set's suites (``effect``; ``params``: its parameters at the suite's strength)."""
+
+    def __init__(self, number: int, seed: int, duration_s: float = 0.6):
+        from foreign_drives import outside as O
+        from foreign_drives.spec import RecordingSpec
+        outside = {n: f for n, f in F.FORMS.items() if isinstance(f, O.OutsideForm)}
+        self.number, self.seed, self.duration_s = number, seed, duration_s
+        self.dev = {n: f for n, f in outside.items() if f.half == f"dev{number}"}
+        self.sealed = {n: f for n, f in outside.items() if f.half == f"sealed{number}"}
+        self.suites = (f"outside_dev{number}", f"outside_sealed{number}")
+        self.recordings = Recordings(
+            lambda effects, duration: RecordingSpec(f"t{number}", "outside" if effects else "clean", 0.0065, 0.025,
+                                                    0.9, effects=tuple(effects), seed=seed, duration_s=duration,
+                                                    noise=False), duration_s)
+        self.rec_of, self.clean = self.recordings.rec_of, self.recordings.clean
+
+    def effect(self, name: str) -> EffectSpec:
+        """The set's suites' use of mechanism ``name``."""
+        return suite_effect(name, self.suites)
+
+    def params(self, name: str) -> dict:
+        """Mechanism ``name``'s parameters at its suite's strength."""
+        return self.effect(name).parameters
+
+
 def outside_bench(module_name: str):
     """bench/_workbench/outside.py loaded from its file as the module ``module_name``."""
     spec = importlib.util.spec_from_file_location(module_name, OUTSIDE_BENCH)

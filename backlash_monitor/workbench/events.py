@@ -179,9 +179,22 @@ class Ensemble:
         return x - (total - x) / (k - 1)
 
 
-def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = False, dc_names=None) -> Ensemble:
+class NoOnsetWindow(ValueError):
+    """A simulated run gave no complete onset window: the model does not cross its backlash there. ``sets``: the
+    indices (in the batch given) of the parameter sets with a seed that gave none."""
+
+    def __init__(self, sets=()):
+        self.sets = tuple(int(i) for i in sets)
+        super().__init__("a simulated run of the model gave no complete onset window; the model does not cross "
+                         "its backlash under these conditions")
+
+
+def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = False, dc_names=None,
+                       empty_ok: bool = False) -> Ensemble:
     """``runs``: {signal: (n_sets, n_seeds, n)} from plant_adapter.simulate_sets; ``dc_names``: the record-mean
-    view's signals (the measurement's: dc_signals)."""
+    view's signals (the measurement's: dc_signals). A set with a seed that gave no onset window raises
+    NoOnsetWindow, or with ``empty_ok`` stays in the ensemble with ``n_events`` 0 there (the caller reads it: its
+    means are zeros and its band powers None)."""
     dc_names = tuple(dc_names) if dc_names is not None else dc_signals(runs)
     n_sets, n_seeds, n = runs["a1"].shape
     L = PRE_SAMPLES + POST_SAMPLES
@@ -203,9 +216,8 @@ def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = 
                 per_event.append(ev.raw)
                 per_entries.append(ev.entries)
                 per_dc.append(ev.dc)
-    if (counts == 0).any():
-        raise ValueError("a simulated run of the model gave no complete onset window; the model does not cross "
-                         "its backlash under these conditions")
+    if (counts == 0).any() and not empty_ok:
+        raise NoOnsetWindow(np.flatnonzero((counts == 0).any(axis=1)))
     records = {s: runs[s][0] for s in runs} if keep_records else None
     return Ensemble(means, counts, per_event, records, per_entries, bands, dc, per_dc)
 

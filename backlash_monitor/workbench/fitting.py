@@ -26,7 +26,7 @@ import numpy as np
 from scipy.optimize import least_squares, lsq_linear
 
 from . import plant_adapter, spectral
-from .events import concat_ensembles, denoise, ensemble_from_runs
+from .events import NoOnsetWindow, concat_ensembles, denoise, ensemble_from_runs
 
 
 LINEAR_EFFECTS = ("accelerometer_bias", "accelerometer_gain")   # a -> a + b, a -> a (1 + g)
@@ -160,17 +160,22 @@ class Problem:
             out.append(merged)
         return out
 
-    def evaluate(self, sets):
+    def evaluate(self, sets, empty_ok: bool = False):
         """Ensemble (denoised model means per set) of (scenario, config) override sets, in batches of at most
         sets_per_batch sets: each batch's whole records are reduced to its events before the next is simulated
-        (the same seeds in every batch: common random numbers hold across them)."""
+        (the same seeds in every batch: common random numbers hold across them). A set whose simulated drive gives
+        no onset window raises events.NoOnsetWindow (its ``sets``: indices into ``sets``), or with ``empty_ok``
+        stays with ``n_events`` 0 (ensemble_from_runs)."""
         merged = self._merge(sets)
         per = self.sets_per_batch()
         parts = []
         for i in range(0, len(merged), per):
             runs = plant_adapter.simulate_sets(self.model, merged[i:i + per], self.seeds, self.n_samples,
                                                conditions=self.conditions)
-            parts.append(ensemble_from_runs(runs, self.dt, dc_names=self.dc_names))
+            try:
+                parts.append(ensemble_from_runs(runs, self.dt, dc_names=self.dc_names, empty_ok=empty_ok))
+            except NoOnsetWindow as error:
+                raise NoOnsetWindow([i + j for j in error.sets]) from None
             del runs
         self.n_sets_simulated += len(sets)
         return concat_ensembles(parts)
@@ -262,19 +267,93 @@ def _two_sided(effect, h) -> np.ndarray:
     return (x0 - np.abs(h) >= lo) & (x0 + np.abs(h) <= hi)
 
 
-def screen(problem: Problem, effects, base_pred: np.ndarray, progress=None, two_sided: bool = True):
-    """Every effect's parameters stepped by h from the model's values, all in ONE batch (per seed): the
-    Jacobian columns and the linear (bounded) estimate of each effect. With ``two_sided``, a parameter with
-    room on both sides is stepped by +h and -h (a secant on one side misses an effect that bends the other
-    way, e.g. a smaller pulse amplitude); the side whose secants explain more is kept. -> {name: Linearisation}."""
-    r0 = problem.residual(base_pred)
-    out = {}
-    sets, owners = [], []
+# A screening step whose simulated drive crosses no backlash (seen: a proposed speed-proportional load stepped 0.3 p.u.
+# below its fitted value turned the motor's damping negative and it ran away to 7e4 rad/s) is tried again this much
+# shorter, at most STEP_BACK_TRIES times (0.15 of the range -> 0.0375 -> 0.0094 -> 0.0023): a secant is a derivative
+# at any length the model stays in its regime at; the screening's other sets are kept
+STEP_BACK_FACTOR = 0.25
+STEP_BACK_TRIES = 3
+# refine's least squares at a point out of that regime: the model's residual as is, this many times (any factor > 1
+# is refused by trf's reduction ratio; 10 keeps the cost finite and its gradient meaningless, never used: trf only
+# takes Jacobians at points it accepted)
+REGIME_WALL = 10.0
+
+
+def _stepped_predictions(problem: Problem, effects, steps: dict) -> dict:
+    """{owner: prediction} of every secant's set (owner: (effect name, parameter index, side); ``steps``: owner ->
+    signed step, shortened in place where the model with the step gave no onset window) and of every sine/cosine
+    pair's points (owner: (name, point, "pair")), all in one batch first."""
+    by_name = {eff.name: eff for eff in effects}
+    owners, sets = [], []
     for eff in effects:
         if angle_pair(eff):
             for j, (_, x) in enumerate(pair_points(eff)):
                 sets.append(plant_adapter.apply_values(eff, x))
                 owners.append((eff.name, j, "pair"))
+    pair_count = len(owners)
+
+    def set_of(owner, h):
+        eff = by_name[owner[0]]
+        x0 = eff.default_vector()
+        return plant_adapter.apply_values(eff, x0 + h * np.eye(len(x0))[owner[1]])
+
+    secants = list(steps)
+    ens = problem.evaluate(sets + [set_of(o, steps[o]) for o in secants], empty_ok=True)
+    empty = (ens.n_events == 0).any(axis=1)
+    if empty[:pair_count].any():
+        name = owners[int(np.flatnonzero(empty[:pair_count])[0])][0]
+        error = NoOnsetWindow(np.flatnonzero(empty[:pair_count]))
+        error.args = (f"{name}: the model with its sine/cosine pair's amplitude step gives no onset window -- the "
+                      "drive does not cross its backlash there; check the term's values in the model file",)
+        raise error
+    preds = {o: problem.pred_of(ens, j) for j, o in enumerate(owners)}
+    retry = []
+    for j, o in enumerate(secants):
+        if empty[pair_count + j]:
+            retry.append(o)
+        else:
+            preds[o] = problem.pred_of(ens, pair_count + j)
+    for _ in range(STEP_BACK_TRIES):
+        if not retry:
+            break
+        for o in retry:
+            steps[o] *= STEP_BACK_FACTOR
+        ens = problem.evaluate([set_of(o, steps[o]) for o in retry], empty_ok=True)
+        empty = (ens.n_events == 0).any(axis=1)
+        for j, o in enumerate(retry):
+            if not empty[j]:
+                preds[o] = problem.pred_of(ens, j)
+        retry = [o for j, o in enumerate(retry) if empty[j]]
+    if retry:
+        name, i, _ = retry[0]
+        param = by_name[name].parameters[i]
+        raise ScreeningStepError(param.key, float(param.default), float(steps[retry[0]]))
+    return preds
+
+
+class ScreeningStepError(NoOnsetWindow):
+    """A parameter whose every screening step (down to STEP_BACK_FACTOR**STEP_BACK_TRIES of the first) leaves the
+    model's drive without an onset window: the model at its value is at the edge of a regime it cannot leave."""
+
+    def __init__(self, key: str, value: float, shortest_step: float):
+        super().__init__()
+        self.args = (f"{key} = {value:.4g}: the model with it stepped by {shortest_step:+.3g} (and "
+                     f"by every longer step tried) gives no onset window -- the drive does not cross its backlash "
+                     f"there; check this value in the model file (an accepted proposal's or a plug-in's)",)
+
+
+def screen(problem: Problem, effects, base_pred: np.ndarray, progress=None, two_sided: bool = True):
+    """Every effect's parameters stepped by h from the model's values, all in ONE batch (per seed): the
+    Jacobian columns and the linear (bounded) estimate of each effect. With ``two_sided``, a parameter with
+    room on both sides is stepped by +h and -h (a secant on one side misses an effect that bends the other
+    way, e.g. a smaller pulse amplitude); the side whose secants explain more is kept. A step whose model crosses
+    no backlash is tried again shorter (STEP_BACK_FACTOR; the Linearisation's ``step`` is the one taken).
+    -> {name: Linearisation}."""
+    r0 = problem.residual(base_pred)
+    out = {}
+    steps = {}
+    for eff in effects:
+        if angle_pair(eff):
             continue
         x0 = eff.default_vector()
         h = _step(eff)
@@ -283,10 +362,8 @@ def screen(problem: Problem, effects, base_pred: np.ndarray, progress=None, two_
             for i in range(len(x0)):
                 if sign < 0 and not both[i]:
                     continue
-                sets.append(plant_adapter.apply_values(eff, x0 + sign * h[i] * np.eye(len(x0))[i]))
-                owners.append((eff.name, i, sign))
-    ens = problem.evaluate(sets)
-    preds = {o: problem.pred_of(ens, j) for j, o in enumerate(owners)}
+                steps[(eff.name, i, sign)] = sign * h[i]
+    preds = _stepped_predictions(problem, effects, steps)
     lin_r0 = problem.project(r0)
     for eff in effects:
         if angle_pair(eff):
@@ -308,7 +385,7 @@ def screen(problem: Problem, effects, base_pred: np.ndarray, progress=None, two_
                 continue
             keys = [(eff.name, i, sign) if (eff.name, i, sign) in preds else (eff.name, i, 1.0)
                     for i in range(len(x0))]
-            h = np.array([k[2] * h0[i] for i, k in enumerate(keys)])
+            h = np.array([steps[k] for k in keys])
             cols = [(preds[k] - base_pred) / h[i] for i, k in enumerate(keys)]
             J = np.stack(cols, axis=1)
             jp = problem.project(J)
@@ -435,10 +512,14 @@ def refine(problem: Problem, effect, start: Linearisation, base_pred: np.ndarray
     raw: dict = {}
 
     def preds_at(xs):
-        todo = [tuple(np.round(x, 12)) for x in xs if tuple(np.round(x, 12)) not in cache]
+        """The predictions at the points xs; None at a point whose simulated drive gives no onset window."""
+        todo = list(dict.fromkeys(tuple(np.round(x, 12)) for x in xs if tuple(np.round(x, 12)) not in cache))
         if todo:
-            ens = problem.evaluate(_sets_for(effect, [np.array(t) for t in todo]))
+            ens = problem.evaluate(_sets_for(effect, [np.array(t) for t in todo]), empty_ok=True)
             for i, t in enumerate(todo):
+                if ens.n_events[i].min() == 0:
+                    cache[t] = None
+                    continue
                 cache[t] = problem.pred_of(ens, i)
                 means[t] = ens.mean_denoised(i)
                 raw[t] = ens.mean_raw(i)
@@ -446,14 +527,35 @@ def refine(problem: Problem, effect, start: Linearisation, base_pred: np.ndarray
 
     cache[tuple(np.round(x0, 12))] = base_pred
     h_abs = np.abs(start.step) * 0.5
+    # where the model leaves the regime it crosses its backlash in (no onset window: a run-away or a stalled drive)
+    # trf meets a wall: a residual REGIME_WALL times the model's as is, a step there is refused and its region shrunk
+    wall = REGIME_WALL * problem.fit_residual(base_pred)
 
     def fun(x):
-        return problem.fit_residual(preds_at([x])[0])
+        pred = preds_at([x])[0]
+        return wall if pred is None else problem.fit_residual(pred)
 
     def jac_pred(x):
-        """Forward difference of the prediction (prediction space, not projected)."""
+        """Forward difference of the prediction (prediction space, not projected); a difference whose point leaves
+        the regime is taken on the other side, then shorter (STEP_BACK_FACTOR)."""
         steps = _fd_steps(x, h_abs, hi)
-        return forward_differences(preds_at([x])[0], preds_at(steps), x, steps)
+        preds = preds_at(steps)
+        for i, m in enumerate(preds):
+            if m is not None:
+                continue
+            h = steps[i][i] - x[i]
+            tries = ([-h] if lo[i] <= x[i] - h <= hi[i] else []) + [h * STEP_BACK_FACTOR ** k
+                                                                     for k in range(1, STEP_BACK_TRIES + 1)]
+            for t in tries:
+                point = np.array(x, dtype=float)
+                point[i] += t
+                m = preds_at([point])[0]
+                if m is not None:
+                    steps[i], preds[i] = point, m
+                    break
+            if m is None:
+                raise ScreeningStepError(effect.parameters[i].key, float(x[i]), float(tries[-1]))
+        return forward_differences(preds_at([x])[0], preds, x, steps)
 
     last = {}
 
@@ -464,6 +566,13 @@ def refine(problem: Problem, effect, start: Linearisation, base_pred: np.ndarray
 
     margin = 1e-3 * (hi - lo)   # strictly inside: trf's first trust radius scales with the start's distance
     x_start = np.clip(start.x_lin, lo + margin, hi - margin)
+    # a linear estimate outside the regime: back towards the model's values until the drive crosses its backlash
+    for _ in range(STEP_BACK_TRIES):
+        if preds_at([x_start])[0] is not None:
+            break
+        x_start = np.clip(x0 + STEP_BACK_FACTOR * (x_start - x0), lo + margin, hi - margin)
+    if preds_at([x_start])[0] is None:
+        x_start = np.clip(x0, lo + margin, hi - margin)
     res = least_squares(fun, x_start, jac=jac, bounds=(lo, hi + 1e-300), method="trf", max_nfev=max_nfev,
                         x_scale=np.abs(start.step))
     x = res.x

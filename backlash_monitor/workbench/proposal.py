@@ -265,14 +265,14 @@ def _fit(GG, Gy, cols) -> tuple:
 
 def _evaluate_each(p, sets) -> list:
     """The prediction of every parameter set, in batches (a batch's raw runs are sets x seeds x samples); a set whose
-    simulated runs give no onset window (a term at its step that stops the drive crossing its backlash) -> None
-    (that batch again one set at a time)."""
+    simulated runs give no onset window (a term at its step that stops the drive crossing its backlash) -> None; a
+    batch the simulator refuses (a value out of a parameter's range: ValueError) again one set at a time."""
     preds: list = []
     for i in range(0, len(sets), BATCH_SETS):
         batch = sets[i:i + BATCH_SETS]
         try:
-            ens = p.evaluate(batch)
-            preds += [p.pred_of(ens, j) for j in range(len(batch))]
+            ens = p.evaluate(batch, empty_ok=True)
+            preds += [p.pred_of(ens, j) if ens.n_events[j].all() else None for j in range(len(batch))]
         except ValueError:
             for one in batch:
                 try:

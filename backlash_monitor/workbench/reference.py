@@ -748,9 +748,9 @@ def build(model, duration_s: float = BUILD_DURATION_S, seeds=None, progress=None
     captured = []                    # every simulated set: (parameter set, its ensemble)
     evaluate = p.evaluate
 
-    def capturing(sets):
-        ens = evaluate(sets)
-        captured.extend((dict(s), ens, i) for i, s in enumerate(sets))
+    def capturing(sets, **kwargs):
+        ens = evaluate(sets, **kwargs)
+        captured.extend((dict(s), ens, i) for i, s in enumerate(sets) if ens.n_events[i].all())
         return ens
     p.evaluate = capturing
     try:

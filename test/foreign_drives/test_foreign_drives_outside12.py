@@ -15,17 +15,14 @@ import numpy as np
 import pytest
 
 from foreign_drives import constants as C
-from foreign_drives import forms as F
 from foreign_drives import kernel as K
 from foreign_drives import noise as N
-from foreign_drives import outside as O
 from foreign_drives.drive import pulse_indicator
-from foreign_drives.spec import RecordingSpec
 from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
-from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_only,  # test/
+from foreign_outside_recordings import (OutsideSet, assert_acts_in_its_balance_only,  # test/
                                         assert_forms_withholds_sealed, assert_recordings_repeat,
                                         assert_rows_visible, assert_set_registry, assert_set_suites,
-                                        assert_suite_writes_one_recording, suite_effect)
+                                        assert_suite_writes_one_recording)
 from foreign_outside_recordings import (assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_alarm_check_covers_both_halves,
                                         assert_bench_guards_unspent_sealed)
@@ -33,24 +30,9 @@ from foreign_outside_recordings import (assert_a_row_of_each_half_crosses_the_ba
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
 
-OUTSIDE = {n: f for n, f in F.FORMS.items() if isinstance(f, O.OutsideForm)}
-DEV12 = {n: f for n, f in OUTSIDE.items() if f.half == "dev12"}
-SEALED12 = {n: f for n, f in OUTSIDE.items() if f.half == "sealed12"}
-DURATION_S = 0.6
-
-
-def _spec(effects, seed=212, width=0.0065, duration=DURATION_S):
-    return RecordingSpec("t12", "outside" if effects else "clean", width, 0.025, 0.9, effects=tuple(effects), seed=seed,
-                         duration_s=duration, noise=False)
-
-
-RECORDINGS = Recordings(lambda effects, duration_s: _spec(effects, duration=duration_s), DURATION_S)
-rec_of, clean = RECORDINGS.rec_of, RECORDINGS.clean
-
-
-def _params(name):
-    """The set-12 suite's parameters of a mechanism (its suite's strength)."""
-    return suite_effect(name, ("outside_dev12", "outside_sealed12")).parameters
+SET = OutsideSet(12, seed=212)
+DEV12, SEALED12, DURATION_S = SET.dev, SET.sealed, SET.duration_s
+rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
 
 
 def _others_zero(rec, *terms):
