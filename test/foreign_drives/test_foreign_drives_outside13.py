@@ -4,8 +4,8 @@ development laws checked on the drive's own balances and signals (each term reco
 states: the paste mixer, the relief-valve pump, the hysteresis coupling, the wheel-tracking conveyor, the motor magnet's
 pickup, the overspeed timed brake, the slip-pumped plate clutch), every sealed mechanism acting in its recorded balance
 only, the suites (made, written, deterministic, each mechanism row visible above the criterion its strength was set by),
-``forms`` withholding the sealed laws, and the outside bench's set 13 (its sealed half UNSPENT: the loop refuses it
-without --sealed, the alarm check leaves it out).
+``forms`` withholding the sealed laws, and the outside bench's set 13 (spent: its sealed half ran once, at stop 50; the
+loop's default suites and the alarm check hold both halves).
 
 This file names the sealed mechanisms only through the registry and the suite; it prints and states no sealed law."""
 from __future__ import annotations

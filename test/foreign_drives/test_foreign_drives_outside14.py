@@ -5,8 +5,8 @@ states: the wheel-cam motor brake, the bypassed retarder, the centrifugal leaf s
 velocity sensitivity, the drag-pointer governor brake, the friction-slider spring), every sealed mechanism acting in its
 recorded balance only, the suites (made, written, deterministic, each mechanism row visible above the criterion its
 strength was set by, the one row its single scaling left below it below and visible), ``forms`` withholding the sealed
-laws, and the outside bench's set 14 (its sealed half UNSPENT: the loop refuses it without --sealed, the alarm check
-leaves it out).
+laws, and the outside bench's set 14 (spent: its sealed half ran once, at stop 51; the loop's default suites and the
+alarm check hold both halves, the guard stays for the next set's).
 
 This file names the sealed mechanisms only through the registry and the suite; it prints and states no sealed law."""
 from __future__ import annotations
@@ -20,8 +20,7 @@ from foreign_outside_recordings import (OutsideSet, assert_a_row_of_each_half_cr
                                         assert_acts_in_its_balance_only, assert_forms_withholds_sealed,
                                         assert_recordings_repeat, assert_rows_visible, assert_set_registry,
                                         assert_set_suites, assert_suite_writes_one_recording)
-from foreign_outside_recordings import (assert_alarm_check_leaves_out_the_unspent_sealed_half,  # test/
-                                        assert_bench_refuses_the_unspent_sealed_half)
+from foreign_outside_recordings import assert_alarm_check_covers_both_halves, assert_bench_guards_unspent_sealed  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -215,13 +214,14 @@ def test_forms_withholds_the_sealed_laws_and_shows_the_development_ones(capsys):
     assert_forms_withholds_sealed(capsys.readouterr().out, SEALED14, DEV14)
 
 
-def test_outside_bench_knows_set_14_and_refuses_its_unspent_sealed_half_without_sealed(capsys):
-    # sets 1-13 are spent; set 14's sealed half is UNSPENT until its one run
-    assert_bench_refuses_the_unspent_sealed_half(14, capsys)
+def test_outside_bench_knows_set_14_and_never_loops_on_an_unspent_sealed_half(capsys, monkeypatch):
+    # sets 1-14 are spent (set 14's sealed half ran once, 30 Nov, stop 51): each sealed half is development data, in
+    # the loop's default suites; the guard, for the next set's sealed half while it is unspent
+    assert_bench_guards_unspent_sealed(14, capsys, monkeypatch)
 
 
-def test_the_alarm_check_covers_the_development_half_and_not_the_unspent_sealed_one():
-    assert_alarm_check_leaves_out_the_unspent_sealed_half(14)
+def test_the_alarm_check_covers_both_halves_once_the_sealed_one_is_spent():
+    assert_alarm_check_covers_both_halves(14)
 
 
 def test_a_row_of_each_half_simulates_at_its_own_conditions_and_crosses_the_backlash():
