@@ -181,12 +181,13 @@ class Ensemble:
 
 class NoOnsetWindow(ValueError):
     """A simulated run gave no complete onset window: the model does not cross its backlash there. ``sets``: the
-    indices (in the batch given) of the parameter sets with a seed that gave none."""
+    indices (in the batch given) of the parameter sets with a seed that gave none; ``message``: what says where (None:
+    the general words)."""
 
-    def __init__(self, sets=()):
+    def __init__(self, sets=(), message: str | None = None):
         self.sets = tuple(int(i) for i in sets)
-        super().__init__("a simulated run of the model gave no complete onset window; the model does not cross "
-                         "its backlash under these conditions")
+        super().__init__(message or "a simulated run of the model gave no complete onset window; the model does not "
+                                    "cross its backlash under these conditions")
 
 
 def ensemble_from_runs(runs: dict, sample_period_s: float, keep_records: bool = False, dc_names=None,

@@ -302,10 +302,9 @@ def _stepped_predictions(problem: Problem, effects, steps: dict) -> dict:
     empty = (ens.n_events == 0).any(axis=1)
     if empty[:pair_count].any():
         name = owners[int(np.flatnonzero(empty[:pair_count])[0])][0]
-        error = NoOnsetWindow(np.flatnonzero(empty[:pair_count]))
-        error.args = (f"{name}: the model with its sine/cosine pair's amplitude step gives no onset window -- the "
-                      "drive does not cross its backlash there; check the term's values in the model file",)
-        raise error
+        raise NoOnsetWindow(np.flatnonzero(empty[:pair_count]),
+                            f"{name}: the model with its sine/cosine pair's amplitude step gives no onset window -- "
+                            "the drive does not cross its backlash there; check the term's values in the model file")
     preds = {o: problem.pred_of(ens, j) for j, o in enumerate(owners)}
     retry = []
     for j, o in enumerate(secants):
@@ -336,10 +335,9 @@ class ScreeningStepError(NoOnsetWindow):
     model's drive without an onset window: the model at its value is at the edge of a regime it cannot leave."""
 
     def __init__(self, key: str, value: float, shortest_step: float):
-        super().__init__()
-        self.args = (f"{key} = {value:.4g}: the model with it stepped by {shortest_step:+.3g} (and "
-                     f"by every longer step tried) gives no onset window -- the drive does not cross its backlash "
-                     f"there; check this value in the model file (an accepted proposal's or a plug-in's)",)
+        super().__init__((), f"{key} = {value:.4g}: the model with it stepped by {shortest_step:+.3g} (and by every "
+                             "longer step tried) gives no onset window -- the drive does not cross its backlash there; "
+                             "check this value in the model file (an accepted proposal's or a plug-in's)")
 
 
 def screen(problem: Problem, effects, base_pred: np.ndarray, progress=None, two_sided: bool = True):
@@ -376,15 +374,14 @@ def screen(problem: Problem, effects, base_pred: np.ndarray, progress=None, two_
                 progress(1)
             continue
         x0 = eff.default_vector()
-        h0 = _step(eff)
         lo, hi = eff.bounds()
-        both = _two_sided(eff, h0) if two_sided else np.zeros(len(x0), bool)
         best = None
         for sign in (1.0, -1.0):
-            if sign < 0 and not both.any():
-                continue
-            keys = [(eff.name, i, sign) if (eff.name, i, sign) in preds else (eff.name, i, 1.0)
+            # the other side where a parameter was stepped on it (its room on both sides: the steps made above)
+            keys = [(eff.name, i, sign) if (eff.name, i, sign) in steps else (eff.name, i, 1.0)
                     for i in range(len(x0))]
+            if sign < 0 and all(k[2] > 0 for k in keys):
+                continue
             h = np.array([steps[k] for k in keys])
             cols = [(preds[k] - base_pred) / h[i] for i, k in enumerate(keys)]
             J = np.stack(cols, axis=1)

@@ -19,7 +19,7 @@ def speed_at():
     m = load_model(None).plant_config().motor
 
     def speed(extra_pu):
-        return motor.steady_state_at_torque(BASE_LOAD_PU + float(extra_pu), m).w1_pu * 157.08
+        return motor.steady_state_at_torque(BASE_LOAD_PU + float(extra_pu), m).w1_pu * m.base_mechanical_speed_rad_s
     return speed
 
 
@@ -74,4 +74,4 @@ def test_the_motor_terms_bound_lets_a_load_reach_the_motors_breakdown_torque():
     bound = candidate_terms.BALANCES["motor_load_moment_pu"][2]
     # a constant load and a linear law of the speed reach it within the bound, a law of the speed's square too at 132
     # rad/s (a drive loaded near breakdown)
-    assert bound > breakdown and bound * (132.0 / 157.08) ** 2 >= breakdown - 0.01
+    assert bound > breakdown and bound * (132.0 / m.base_mechanical_speed_rad_s) ** 2 >= breakdown - 0.01
