@@ -53,6 +53,13 @@ down:
     one-shots are triggered by the extension or the motor speed; the tenth sealed half's knock sensor samples the
     carriage's speed at each contact and holds a brake set from it until the next).
 
+Visibility, measured (one simulation of each suite row, 4 s, against the same spec without the mechanism, same seed; no
+diagnose; rms of the recorded signal's difference; criterion a2 >= 0.05 m/s^2, a1 >= 0.25 for an a1 row): 1 a2 0.0694; 3
+a2 0.0386 at its a-priori strength, scaled once x1.94 (K 40 -> 77.78 N*m*s/m; a2 0.0551 after); 5 a2 0.0563; 7 a2
+0.0336, scaled once x2.23 (k_p 60 -> 133.9 N/m; a2 0.0662 after); 9 a2 0.0795; 11 a2 0.159; 13 a2 0.146 -- the others as
+written (docs/foreign_drives.md "The fifteenth set"). Before it, a 0.4 s run of each row only checked that it
+simulates.
+
 Memory elements (one per recording) are advanced once per 0.2 ms input segment from the state at the segment's start
 (kernel.py "memory"), as in the fourth to fourteenth sets; the memory starts afresh at the run-in's first scan, 2 s
 before sample 0. The ratchet (11) is the kernel's one new memory kind for this set, MK_STROKE_PEAK (a running maximum

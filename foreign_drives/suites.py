@@ -621,15 +621,15 @@ OUTSIDE_DEV15_ROWS = [
     # 1 N*m*s/rad of |Omega1 - Omega2| (a few N*m while the halves cross the gap)
     ("od15_motor_slip_monitor_brake", "outside", 0.0066, 0.0275, 0.92,
      [E("motor_slip_monitor_brake", {"coefficient_Nm_s_per_rad": 1.0})]),
-    # 40 N*m*s/m beyond 22.72 m/s (up to about 3 N*m)
+    # beyond 22.72 m/s; 40 N*m*s/m a priori (up to about 3 N*m), a2 0.0386: scaled once x1.94
     ("od15_wheel_carriage_runaway_brake", "outside", 0.0081, 0.0235, 0.94,
-     [E("wheel_carriage_runaway_brake", {"coefficient_Nm_s_per_m": 40.0, "trip_speed_m_s": 22.72})]),
+     [E("wheel_carriage_runaway_brake", {"coefficient_Nm_s_per_m": 77.78, "trip_speed_m_s": 22.72})]),
     # 5e4 N*m/rad^3 (2.9 N*m at the faces, beta 0.0387 rad)
     ("od15_clutch_hardening_elastomer_spider", "outside", 0.0058, 0.0325, 0.91,
      [E("clutch_hardening_elastomer_spider", {"stiffness_Nm_per_rad3": 5.0e4})]),
-    # 60 N/m about 0.295 m during each stroke (about +-1.5 N)
+    # about 0.295 m during each stroke; 60 N/m a priori (about +-1.5 N), a2 0.0336: scaled once x2.23
     ("od15_mass_stroke_gas_spring", "outside", 0.0074, 0.0285, 0.96,
-     [E("mass_stroke_gas_spring", {"stiffness_N_per_m": 60.0, "reference_m": 0.295})]),
+     [E("mass_stroke_gas_spring", {"stiffness_N_per_m": 133.9, "reference_m": 0.295})]),
     ("od15_clean_w7.7_eta0.0265_n0.93", "clean", 0.0077, 0.0265, 0.93, []),
     # 0.1 m/s^2 while the drive faces touch
     ("od15_a2_drive_face_ground_loop", "outside", 0.0063, 0.0215, 0.90,
