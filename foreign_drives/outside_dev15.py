@@ -20,7 +20,7 @@ down:
    eddy-current brake on the motor's shaft in proportion to how fast the jaw's halves move against each other, either
    way: c*|Omega1 - Omega2| on the motor's load (an even law of the slip on ONE shaft: the earlier laws of the slip
    are clutch torques, odd in it or half-wave, acting on both shafts; the earlier motor loads read Omega1, Omega2,
-   r*Omega1 - v, the extension, the angles, the contact torque or the pulse);
+   r*Omega1 - v, the extension, the angles, the contact torque, the pulse or the time);
 3. wheel torque x the CARRIAGE's speed beyond a limit: a runaway guard on the carriage (a centrifugal governor on its
    guide roller) pulls, through a Bowden cable, a band brake on the wheel's shaft when the carriage overruns:
    -K*max(0, v - v_0) (a cross-domain law: the earlier wheel laws read the wheel's speed or angle, the extension, the
@@ -50,8 +50,8 @@ down:
 13. mass force x the jaw's PENETRATION through a ONE-SHOT: a knock sensor on the coupling's housing: each time the
     jaw strikes (its penetration depth rising through p_t at a 0.2 ms scan) the PLC fires a rail brake on the carriage
     for T_h, not retriggered while it runs: -F while on (a timed brake triggered by the jaw's impacts: the earlier
-    one-shots are triggered by the extension or the motor speed; the tenth sealed half's knock sensor samples the
-    carriage's speed at each contact and holds a brake set from it until the next).
+    one-shots are triggered by the extension, the motor speed or the wheel's angle; the tenth sealed half's knock
+    sensor samples the carriage's speed at each contact and holds a brake set from it until the next).
 
 Visibility, measured (one simulation of each suite row, 4 s, against the same spec without the mechanism, same seed; no
 diagnose; rms of the recorded signal's difference; criterion a2 >= 0.05 m/s^2, a1 >= 0.25 for an a1 row): 1 a2 0.0694; 3

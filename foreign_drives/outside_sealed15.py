@@ -8,19 +8,20 @@ Kinds (balance x what it reads, and how), the sealed half:
    brake on the motor's shaft under a digital PI controller, u = K_p*e + I, e = Omega1 - Omega_ref, I += K_i*e*dt
    unless u is at a limit and e pushes it further (clamping anti-windup), u limited to [0, T_max], scanned every 0.2 ms
    (I = 0 at the run-in's start); u on the motor's load (the sixth set's PI brake reads the wheel speed for the
-   wheel; the earlier memories of the motor speed on the motor are lags, a play, a rate limit, a moving mean, a peak,
-   a one-shot, a step controller, a heat, a slip hub, a magnetic coupling, an absorber);
+   wheel; the earlier memories of the motor speed on the motor are lags, a play, a relay, a rate limit, a moving
+   mean, a peak, a one-shot, a step controller, an unloader, a heat, a slip hub, a magnetic coupling, an absorber);
 4. wheel torque x the jaw's DRIVE-FACE CONTACT through a FILL: a hydraulic drag brake on the wheel whose cylinder a
    pump fills while a contact switch on the jaw's drive faces is closed and which empties through a return orifice
    otherwise: -T*m, m += dt/T_f while the drive faces touch, m -= dt/T_d otherwise, clamped to [0, 1] (scanned every
    0.2 ms; m = 0 at the run-in's start) (a level integrated up and down by the jaw's own contact: the tenth set's
-   interlock brake rises afresh from each contact's start and drops in the gap, the eleventh sealed half's fill follows
-   the load pulse);
+   interlock brake rises afresh from each contact's start and drops in the gap, the fourteenth sealed half's run-on
+   coupling is held on for a set time after each contact, the eleventh sealed half's fill follows the load pulse);
 6. clutch torque x the slip through a THERMAL memory of its own dissipation: a viscous (silicone) coupling beside the
    jaw whose fluid thins as it heats, Reynolds' law: c*(Omega1 - Omega2)*exp(-theta/theta_c), theta += dt*(a*(Omega1 -
    Omega2)^2 - theta/tau) every 0.2 ms (theta = 0 at the run-in's start) (the first set's gap drag is this coupling
-   cold; the fifth set's insert heating softens the contact law with the contact's power, the seventh sealed half's
-   warm-up thins the motor bearings' grease with the motor speed, the tenth set's cut-out switches a wheel brake);
+   cold; the earlier memories of the slip are a lag, a delay, a tank, an on- and an off-delay, a fill; the fifth set's
+   insert heating softens the contact law with the contact's power, the seventh sealed half's warm-up thins the motor
+   bearings' grease with the motor speed, the tenth set's cut-out switches a wheel brake);
 8. mass force x the spring extension through a DAHL element: the spring's cable is a stranded wire rope whose strands
    rub on each other as it stretches and slackens (taken at the cable guide on the carriage): F_f*s along x, s ->
    sign(dz) - (sign(dz) - s)*exp(-|dz|/z_c) for each change dz of the extension over a 0.2 ms scan (s = 0 at the
@@ -29,7 +30,7 @@ Kinds (balance x what it reads, and how), the sealed half:
    carriage's speed);
 10. a1 sensor x a1's own past through a FIXED LATENCY: a1's rotating telemetry buffers d samples before it sends
     them, so the recorded a1 is the signal d samples earlier: y[n] = x[n - d] (x[0] before the pre-roll's first
-    sample) (a pure delay of one channel: the sixth set's jitter is random, the fourth sealed half's clock lag grows,
+    sample) (a pure delay of one channel: the sixth sealed half's jitter is random, the fourth's clock lag grows,
     the twelfth set's echo adds a delayed copy to the signal);
 12. a2 sensor x the MOTOR SPEED, additive: a2's signal return shares a wire with the motor's tacho-generator, whose
     output (zeroed by the drive's bias at Omega_0) drops across it: y = x + k*(Omega1 - Omega_0) (the thirteenth set's
