@@ -188,6 +188,9 @@ MK_THERMOSTAT, MK_TOGGLE, MK_MOVING_MEAN, MK_IMPACT_SAMPLE = 25, 26, 27, 28
 # after); a fill level ramping up while the input is on and down while it is off, clamped to [0, 1]; the state (the
 # contact's age) of a rate-and-state friction law
 MK_MAG_COUPLING, MK_OFF_DELAY, MK_FILL, MK_RATE_STATE = 29, 30, 31, 32
+# the fifteenth set (foreign_drives.outside_dev15), see _memory_scan15: a running maximum of the input reset at each load
+# pulse's start (a peak held since the stroke began)
+MK_STROKE_PEAK = 33
 # selectors: the drive quantity a factor reads
 (XS_ONE, XS_OMEGA1, XS_OMEGA2, XS_RIM_SPEED, XS_MASS_SPEED, XS_PENETRATION, XS_SPRING_EXTENSION, XS_ALPHA1,
  XS_ALPHA2, XS_PULSE, XS_TIME, XS_PULSE_AGE, XS_JAW_SPEED, XS_MOTOR_RIM_MINUS_MASS, XS_MODE, XS_CONTACT_TORQUE,
@@ -779,6 +782,24 @@ def _memory_scan11(kind, t, x, P, seg_dt):
 
 
 @njit(cache=True)
+def _memory_scan15(kind, x, P):
+    """The fifteenth set's memory kind, one 0.2 ms scan with the input ``x`` (the output m in mem_state):
+    - MK_STROKE_PEAK: at a load pulse's first scan (the pulse count changed) m -> x, else m -> max(m, x) (first scan:
+      m = x)."""
+    if P[P_MEMINIT] == 0.0:
+        P[P_MEMINIT] = 1.0
+        P[P_MEMPREV] = P[P_PCOUNT]
+        P[P_MEMSTATE] = x
+        return
+    if kind == MK_STROKE_PEAK:
+        if P[P_PCOUNT] != P[P_MEMPREV]:
+            P[P_MEMPREV] = P[P_PCOUNT]
+            P[P_MEMSTATE] = x
+        elif x > P[P_MEMSTATE]:
+            P[P_MEMSTATE] = x
+
+
+@njit(cache=True)
 def memory_scan(t, y, P, mode, seg_dt):
     """Advance the memory element by one 0.2 ms segment from the state ``y`` at the segment's start ``t``:
     - MK_LAG: m -> x + (m - x)*exp(-dt/a) while x > m, else x + (m - x)*exp(-dt/b) (c = 1: m*exp(-dt/b));
@@ -798,6 +819,9 @@ def memory_scan(t, y, P, mode, seg_dt):
         P[P_MEMSTATE] = on
         return
     x = _quantity(int(P[P_MEMSEL]), t, y, P, mode, 0.0, 0.0)
+    if kind >= MK_STROKE_PEAK:
+        _memory_scan15(kind, x, P)
+        return
     if kind >= MK_MAG_COUPLING:
         _memory_scan11(kind, t, x, P, seg_dt)
         return

@@ -611,6 +611,37 @@ OUTSIDE_DEV14_ROWS = [
      [E("clutch_friction_slider_spring", {"stiffness_Nm_per_rad": 200.0, "slip_twist_rad": 0.01})]),
 ]
 
+# ---- issue 31 part 4, fifteenth set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev15;
+# the fifteenth sealed half's rows are in foreign_drives.outside_sealed15). One mechanism per row at its own nominal
+# conditions, one clean control. Seeds 15000+. Each strength set by one simulation against the clean drive of the same
+# seed (docs/foreign_drives.md "The fifteenth set"). The a-priori values are read off the fourteenth set's clean drive
+# (seed 14004, 4 s: Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80 m/s) and the
+# documented impacts (the deepest penetration 0.013 rad at 7.5 mm; the drive side's steady one about r*F0/k_c).
+OUTSIDE_DEV15_ROWS = [
+    # 1 N*m*s/rad of |Omega1 - Omega2| (a few N*m while the halves cross the gap)
+    ("od15_motor_slip_monitor_brake", "outside", 0.0066, 0.0275, 0.92,
+     [E("motor_slip_monitor_brake", {"coefficient_Nm_s_per_rad": 1.0})]),
+    # beyond 22.72 m/s; 40 N*m*s/m a priori (up to about 3 N*m), a2 0.0386: scaled once x1.94
+    ("od15_wheel_carriage_runaway_brake", "outside", 0.0081, 0.0235, 0.94,
+     [E("wheel_carriage_runaway_brake", {"coefficient_Nm_s_per_m": 77.78, "trip_speed_m_s": 22.72})]),
+    # 5e4 N*m/rad^3 (2.9 N*m at the faces, beta 0.0387 rad)
+    ("od15_clutch_hardening_elastomer_spider", "outside", 0.0058, 0.0325, 0.91,
+     [E("clutch_hardening_elastomer_spider", {"stiffness_Nm_per_rad3": 5.0e4})]),
+    # about 0.295 m during each stroke; 60 N/m a priori (about +-1.5 N), a2 0.0336: scaled once x2.23
+    ("od15_mass_stroke_gas_spring", "outside", 0.0074, 0.0285, 0.96,
+     [E("mass_stroke_gas_spring", {"stiffness_N_per_m": 133.9, "reference_m": 0.295})]),
+    ("od15_clean_w7.7_eta0.0265_n0.93", "clean", 0.0077, 0.0265, 0.93, []),
+    # 0.1 m/s^2 while the drive faces touch
+    ("od15_a2_drive_face_ground_loop", "outside", 0.0063, 0.0215, 0.90,
+     [E("a2_drive_face_ground_loop", {"offset_m_s2": 0.1})]),
+    # 200 N*m/m above 0.30 m of the extension's peak since the stroke began (up to about 4 N*m)
+    ("od15_wheel_ratchet_cable_tensioner", "outside", 0.0085, 0.0345, 0.92,
+     [E("wheel_ratchet_cable_tensioner", {"coefficient_Nm_per_m": 200.0, "reference_m": 0.30})]),
+    # 4 N for 20 ms from each impact deeper than 4 mrad
+    ("od15_mass_knock_triggered_rail_brake", "outside", 0.0069, 0.0305, 0.95,
+     [E("mass_knock_triggered_rail_brake", {"force_N": 4.0, "trigger_penetration_rad": 0.004, "hold_s": 0.02})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -628,13 +659,14 @@ OUTSIDE_DEV11 = _suite(OUTSIDE_DEV11_ROWS, 11000, 4.0)
 OUTSIDE_DEV12 = _suite(OUTSIDE_DEV12_ROWS, 12000, 4.0)
 OUTSIDE_DEV13 = _suite(OUTSIDE_DEV13_ROWS, 13000, 4.0)
 OUTSIDE_DEV14 = _suite(OUTSIDE_DEV14_ROWS, 14000, 4.0)
+OUTSIDE_DEV15 = _suite(OUTSIDE_DEV15_ROWS, 15000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
           "outside_dev8": OUTSIDE_DEV8, "outside_dev9": OUTSIDE_DEV9,
           "outside_dev10": OUTSIDE_DEV10, "outside_dev11": OUTSIDE_DEV11,
           "outside_dev12": OUTSIDE_DEV12, "outside_dev13": OUTSIDE_DEV13,
-          "outside_dev14": OUTSIDE_DEV14}
+          "outside_dev14": OUTSIDE_DEV14, "outside_dev15": OUTSIDE_DEV15}
 
 
 def _outside_sealed():
@@ -721,10 +753,17 @@ def _outside_sealed14():
     return _suite(suite_rows(), 14100, 4.0)
 
 
+def _outside_sealed15():
+    """The fifteenth sealed half's suite, made from foreign_drives.outside_sealed15 on first use (its rows live there)."""
+    from .outside_sealed15 import suite_rows
+    return _suite(suite_rows(), 15100, 4.0)
+
+
 SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
                                "outside_sealed5", "outside_sealed6", "outside_sealed7", "outside_sealed8",
                                "outside_sealed9", "outside_sealed10", "outside_sealed11",
-                               "outside_sealed12", "outside_sealed13", "outside_sealed14")
+                               "outside_sealed12", "outside_sealed13", "outside_sealed14",
+                               "outside_sealed15")
 
 
 def suite(name: str) -> list:
@@ -756,6 +795,8 @@ def suite(name: str) -> list:
         return _outside_sealed13()
     if name == "outside_sealed14":
         return _outside_sealed14()
+    if name == "outside_sealed15":
+        return _outside_sealed15()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])

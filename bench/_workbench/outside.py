@@ -30,12 +30,13 @@ sealed one only with ``--sealed`` (run once, by others, at the end). ``--set 2``
 ``--set 10``: the tenth, outside_dev10 and (with ``--sealed``) outside_sealed10; ``--set 11``: the eleventh, outside_dev11
 and (with ``--sealed``) outside_sealed11; ``--set 12``: the twelfth, outside_dev12 and (with ``--sealed``)
 outside_sealed12; ``--set 13``: the thirteenth, outside_dev13 and (with ``--sealed``) outside_sealed13; ``--set 14``: the
-fourteenth, outside_dev14 and (with ``--sealed``) outside_sealed14. The sealed halves of sets 1-14 have been run once
-and are development data now (set 11's on 30 Nov, stop 48; set 12's at stop 49; set 13's at stop 50; set 14's at stop
-51); a new set's sealed half is UNSPENT (UNSPENT_SEALED names it until its one run).
+fourteenth, outside_dev14 and (with ``--sealed``) outside_sealed14; ``--set 15``: the fifteenth, outside_dev15 and (with
+``--sealed``) outside_sealed15. The sealed halves of sets 1-14 have been run once and are development data now (set 11's
+on 30 Nov, stop 48; set 12's at stop 49; set 13's at stop 50; set 14's at stop 51); set 15's sealed half is UNSPENT
+(UNSPENT_SEALED names it until its one run).
 
 The outside loop (``--loop``, goals outside_loop_width_error_after_mm and outside_loop_worse_count): the README's
-loop through the CLI on each development outside recording (the development halves of sets 1-14 and the spent sealed
+loop through the CLI on each development outside recording (the development halves of sets 1-15 and the spent sealed
 halves of sets 1-14; never an unspent sealed half unless ``--sealed``), the width error |fused width - true width|
 before and after; *worse*: after > before + the after's stated uncertainty. Its rows carry the proposal's fields too
 (verdict, law, right balance, consistent), from the CLI's diagnosis at the nominal conditions. Each recording is
@@ -289,9 +290,9 @@ SETS = {1: ("outside_dev", "outside_sealed"), 2: ("outside_dev2", "outside_seale
         8: ("outside_dev8", "outside_sealed8"), 9: ("outside_dev9", "outside_sealed9"),
         10: ("outside_dev10", "outside_sealed10"), 11: ("outside_dev11", "outside_sealed11"),
         12: ("outside_dev12", "outside_sealed12"), 13: ("outside_dev13", "outside_sealed13"),
-        14: ("outside_dev14", "outside_sealed14")}
-# the sealed halves not to be run but once, at the end (only with --sealed); sets 1-14 are spent
-UNSPENT_SEALED: tuple[str, ...] = ()
+        14: ("outside_dev14", "outside_sealed14"), 15: ("outside_dev15", "outside_sealed15")}
+# the sealed halves not to be run but once, at the end (only with --sealed); sets 1-14 are spent, set 15's is not
+UNSPENT_SEALED: tuple[str, ...] = ("outside_sealed15",)
 # the suites the outside loop runs on by default: every development one and the spent sealed halves, never the unspent
 # sealed half
 LOOP_DEVELOPMENT_SUITES = ("outside_dev", "outside_sealed", "outside_dev2", "outside_sealed2", "outside_dev3",
@@ -300,7 +301,7 @@ LOOP_DEVELOPMENT_SUITES = ("outside_dev", "outside_sealed", "outside_dev2", "out
                            "outside_sealed8", "outside_dev9", "outside_sealed9", "outside_dev10",
                            "outside_sealed10", "outside_dev11", "outside_sealed11", "outside_dev12",
                            "outside_sealed12", "outside_dev13", "outside_sealed13", "outside_dev14",
-                           "outside_sealed14")
+                           "outside_sealed14", "outside_dev15")
 
 
 def suite_name(sealed: bool, set_: int = 1) -> str:
@@ -546,7 +547,8 @@ def main(argv=None):
                          "outside_sealed7, 8 = outside_dev8 / outside_sealed8, 9 = outside_dev9 / outside_sealed9, 10 = "
                          "outside_dev10 / outside_sealed10, 11 = outside_dev11 / outside_sealed11, 12 = outside_dev12 / "
                          "outside_sealed12, 13 = outside_dev13 / outside_sealed13, 14 = outside_dev14 / "
-                         "outside_sealed14 (sets 1-14 spent: both halves development data now; default 1)")
+                         "outside_sealed14, 15 = outside_dev15 / outside_sealed15 (sets 1-14 spent: both halves "
+                         "development data now; set 15's sealed half unspent: run once; default 1)")
     ap.add_argument("--loop", action="store_true",
                     help="instead of the proposal rows: the README's loop through the CLI (diagnose, add-effect "
                          "[--accept-proposal | --accept-partial], train --model, analyze --library) on every development "
