@@ -43,7 +43,7 @@ from backlash_monitor.plant.mathlib import NUMPY_NAMESPACE
 import backlash_monitor.plant.mathlib as mathlib
 BASE_ROWS = ("beta", "wheel_inertia_kgm2", "mass_kg",   # per-scenario model values every kernel reads (the motor's
              "rotor_resistance_pu", "supply_voltage_scale")  # two that drift with temperature and the grid among them)
-GENERATOR_VERSION = "12"   # 11: the lags advanced only in a kernel whose terms name one (lags_used); 12: gated terms
+GENERATOR_VERSION = "13"   # 13: the coupling_torque_Nm balance (ungated, beside the jaw); 11: the lags advanced only in a kernel whose terms name one (lags_used); 12: gated terms
 
 
 def global_vector(cfg) -> np.ndarray:
@@ -127,8 +127,12 @@ def _body(effect_classes, indent: str, prefix: str = "_t_", gated=()) -> str:
     rim = total("rim_mass_force_N")
     lines.append("f = " + (rim if rim else "0.0 * z"))
     lm, tw, fm = total("motor_load_moment_pu"), total("wheel_torque_Nm"), total("mass_force_N")
-    lines.append("d4 = (te - tc / g_T_b - load_pu" + (f" - ({lm})" if lm else "") + ") / g_T_m")
-    lines.append("d8 = (tc - g_r * f" + (f" + ({tw})" if tw else "") + ") / wheel_inertia_kgm2")
+    # balance coupling_torque_Nm: a torque from the motor's shaft to the wheel's beside the jaw, ungated (in the zone
+    # too, either sign): the wheel takes it, the motor gives it up. Without such terms the source is as it was
+    tk = total("coupling_torque_Nm")
+    ts = f"(tc + ({tk}))" if tk else "tc"
+    lines.append(f"d4 = (te - {ts} / g_T_b - load_pu" + (f" - ({lm})" if lm else "") + ") / g_T_m")
+    lines.append(f"d8 = ({ts} - g_r * f" + (f" + ({tw})" if tw else "") + ") / wheel_inertia_kgm2")
     lines.append("d10 = (f" + (f" + ({fm})" if fm else "") + ") / mass_kg")
     lines += ["d5 = rel_speed", "d6 = omega1", "d7 = omega2", "d9 = v"]
     return textwrap.indent("\n".join(lines), indent)
@@ -165,7 +169,7 @@ def _gated_terms(effect_classes) -> list:
     kernel's step 1.95 -> 1.13 s of CPU, the catalogue's kernel 1.07 s (which has none: its source unchanged)."""
     rows = param_rows(effect_classes)
     known = set(STATE_NAMES) | set(_lags.LAG_NAMES) | {n for n, _ in _PRE_CLUTCH} | {
-        "load_pu", "pulse_time_s", "pulse_off_time_s"}
+        "load_pu", "pulse_time_s", "pulse_off_time_s", "beta"}
     out = []
     for c in effect_classes:
         if c.nominal or c.__module__.startswith("backlash_monitor.plant"):

@@ -7,7 +7,9 @@ one-line physical description, and, depending on its kind:
   variables (``MODEL_VARIABLES``) and the effect's own parameters, by name. The compiled kernels and
   the numpy form are generated from the enabled terms (:mod:`backlash_monitor.plant.codegen`);
   balances: ``motor_load_moment_pu``, ``clutch_torque_Nm`` (the contact law, gated by the
-  backlash_clutch), ``rim_mass_force_N``, ``wheel_torque_Nm``, ``mass_force_N``;
+  backlash_clutch), ``rim_mass_force_N``, ``wheel_torque_Nm``, ``mass_force_N``,
+  ``coupling_torque_Nm`` (a torque from the motor's shaft to the wheel's beside the jaw, in and out of
+  contact: a flexible element in parallel with it, a slip coupling);
 - ``kind = "held_input"``: an input held over each sample step, on the motor's load moment
   (pulse load, the two disturbance generators, a constant load), produced in
   :mod:`backlash_monitor.plant.disturbances`;
@@ -35,7 +37,10 @@ import numpy as np
 from . import lags as _lags
 from .mathlib import cos, exp, fabs, fmax, fmin, log, power, sign, sin, smooth_sign, sqrt, where  # noqa: F401 (terms run in Python too)
 
-BALANCES = ("motor_load_moment_pu", "clutch_torque_Nm", "rim_mass_force_N", "wheel_torque_Nm", "mass_force_N")
+# the balances of the terms (docs/effects.md "Kinds and balances"); coupling_torque_Nm last: the gated terms'
+# accumulator rows are in this order, the earlier ones keep their rows
+BALANCES = ("motor_load_moment_pu", "clutch_torque_Nm", "rim_mass_force_N", "wheel_torque_Nm", "mass_force_N",
+            "coupling_torque_Nm")
 SENSOR_BALANCE = "sensor_a1_a2"
 DRIFT_BALANCE = "parameter_drift"
 KINDS = ("term", "held_input", "drift", "sensor")

@@ -79,16 +79,22 @@ BALANCES = {
     "rim_mass_force_N": ("N", 3.0, 200.0),
     "wheel_torque_Nm": ("N*m", 0.5, 20.0),
     "mass_force_N": ("N", 3.0, 200.0),
+    # a torque from the motor's shaft to the wheel's beside the jaw, in the gap and in contact: a flexible element in
+    # parallel with it or a slip coupling carries a part of the transmitted torque (~10-35 N*m): a few N*m
+    "coupling_torque_Nm": ("N*m", 0.5, 50.0),
     # a term the sensor adds to one accelerometer (recorded terms: computed on the recorded events, not simulated)
     "sensor_a1_m_s2": ("m/s²", 0.5, 200.0),
     "sensor_a2_m_s2": ("m/s²", 0.5, 200.0),
 }
-SIMULATED_BALANCES = ("motor_load_moment_pu", "clutch_torque_Nm", "rim_mass_force_N", "wheel_torque_Nm", "mass_force_N")
+SIMULATED_BALANCES = ("motor_load_moment_pu", "clutch_torque_Nm", "rim_mass_force_N", "wheel_torque_Nm", "mass_force_N",
+                      "coupling_torque_Nm")
 BALANCE_WORDS = {"motor_load_moment_pu": "motor load moment", "clutch_torque_Nm": "clutch torque",
                  "rim_mass_force_N": "rim force", "wheel_torque_Nm": "wheel torque", "mass_force_N": "mass force",
-                 "sensor_a1_m_s2": "measured a1", "sensor_a2_m_s2": "measured a2"}
+                 "coupling_torque_Nm": "coupling torque", "sensor_a1_m_s2": "measured a1",
+                 "sensor_a2_m_s2": "measured a2"}
 SHORT = {"motor_load_moment_pu": "motor", "clutch_torque_Nm": "clutch", "rim_mass_force_N": "rim",
-         "wheel_torque_Nm": "wheel", "mass_force_N": "mass", "sensor_a1_m_s2": "a1", "sensor_a2_m_s2": "a2"}
+         "wheel_torque_Nm": "wheel", "mass_force_N": "mass", "coupling_torque_Nm": "coupling", "sensor_a1_m_s2": "a1",
+         "sensor_a2_m_s2": "a2"}
 CUBIC_SCALE_M_S2 = 50.0                       # an accelerometer's own signal by this in its cube: the jaw's impacts, ~50 m/s^2
 CHANNEL_SCALE_M_S2 = 10.0                     # the other accelerometer's signal by this: its event swing, ~10-50 m/s^2
 RECORD_TIME = "t/T"          # the time in the record over its length (0 at sample 0, 1 at its end)
@@ -155,10 +161,8 @@ def library(edges: bool = EDGES_IN_LIBRARY, memory: bool | None = None) -> tuple
                   "ẋ/(rΩ_mb)", "xdot", "motor_xdot", ("xdot",)))
     t += _harmonics("motor_load_moment_pu", "alpha1", "α₁")
     t += _harmonics("motor_load_moment_pu", "alpha2", "α₂", (1,))
-    # the wheel torque: its speed, the slip across the gap, both shafts' angles
+    # the wheel torque: its speed, both shafts' angles
     t += _speed_terms("wheel_torque_Nm", "omega2", "Ω₂", ws)
-    t.append(Term(f"{PREFIX}wheel_rel_speed", "wheel_torque_Nm", f"rel_speed / {REL_SPEED_SCALE_RAD_S}",
-                  f"(Ω₁−Ω₂)/{REL_SPEED_SCALE_RAD_S:g}", "rel_speed", "wheel_rel_speed", ("rel_speed",)))
     t += _harmonics("wheel_torque_Nm", "alpha2", "α₂")
     t += _harmonics("wheel_torque_Nm", "alpha1", "α₁", (1,))
     # the clutch's contact: a constant in contact (a preload), the penetration's powers, its rate, their product
@@ -174,6 +178,17 @@ def library(edges: bool = EDGES_IN_LIBRARY, memory: bool | None = None) -> tuple
                "clutch_rate", ("approach_speed",)),
           Term(f"{PREFIX}clutch_pen_rate", "clutch_torque_Nm", f"{p} * {q}", "(p/p₀)·(ṗ/ṗ₀)", "penetration rate",
                "clutch_pen_rate", ("penetration", "approach_speed"))]
+    # the coupling beside the jaw (a torque from the motor's shaft to the wheel's, in the gap and in contact, either
+    # sign; the clutch's own balance is gated, 0 in the gap, never pulling): the slip across it (a slip coupling, a
+    # drag between the halves; it was a wheel torque, which left the motor's side of it out) and the twist across it
+    # (a flexible element in parallel with the jaw -- a spider, a leaf spring, a torsion bar -- its linear and cubic
+    # stiffness one group: the twist Δ by the gap's half-width β is ±1 at the jaw's faces)
+    t.append(Term(f"{PREFIX}coupling_rel_speed", "coupling_torque_Nm", f"rel_speed / {REL_SPEED_SCALE_RAD_S}",
+                  f"(Ω₁−Ω₂)/{REL_SPEED_SCALE_RAD_S:g}", "rel_speed", "coupling_rel_speed", ("rel_speed",)))
+    t += [Term(f"{PREFIX}coupling_twist_1", "coupling_torque_Nm", "delta / beta", "Δ/β", "delta", "coupling_twist",
+               ("delta", "beta")),
+          Term(f"{PREFIX}coupling_twist_3", "coupling_torque_Nm", "(delta / beta) * (delta / beta) * (delta / beta)",
+               "(Δ/β)³", "delta", "coupling_twist", ("delta", "beta"))]
     # the clutch's contact locked to a shaft's angle: a torque in contact that comes and goes with the angle (the
     # gap's boundaries moving with it: a shaft at an angle, an eccentric jaw, a tooth of uneven pitch)
     t += _harmonics("clutch_torque_Nm", "alpha1", "α₁")
@@ -312,7 +327,7 @@ HINGE_STATES = {
                          (-1000.0, 1000.0)),
     "omega2": HingeState("wheel_torque_Nm", "omega2", "omega2", SPEED_DEVIATION_SCALE_RAD_S, "Ω₂", "rad/s",
                          (-1000.0, 1000.0)),
-    "rel_speed": HingeState("wheel_torque_Nm", "rel_speed", "rel_speed", REL_SPEED_SCALE_RAD_S, "(Ω₁−Ω₂)", "rad/s",
+    "rel_speed": HingeState("coupling_torque_Nm", "rel_speed", "rel_speed", REL_SPEED_SCALE_RAD_S, "(Ω₁−Ω₂)", "rad/s",
                             (-1000.0, 1000.0)),
     "xdot": HingeState("mass_force_N", "xdot", "(xdot / wheel_radius_m)", SPEED_DEVIATION_SCALE_RAD_S, "ẋ/r",
                        "rad/s", (-1000.0, 1000.0)),

@@ -474,7 +474,7 @@ TIE_SHARE = 0.05       # alike groups within this share of the best's held-out g
 TIE_KEEPS_BALANCE = True
 OWN_STATES = {"motor_load_moment_pu": ("omega1", "alpha1"), "wheel_torque_Nm": ("omega2", "alpha2"),
               "mass_force_N": ("xdot", "alpha2"), "clutch_torque_Nm": ("penetration", "penetration rate"),
-              "rim_mass_force_N": ("z", "v")}
+              "rim_mass_force_N": ("z", "v"), "coupling_torque_Nm": ("rel_speed", "delta")}
 
 
 def _preferred(GG, Gy, yy, groups: list, chosen: list, alike: list, terms: list) -> list:

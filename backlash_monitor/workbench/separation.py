@@ -11,6 +11,7 @@ from __future__ import annotations
 LOCATION_OF_BALANCE = {
     "motor_load_moment_pu": "motor",
     "clutch_torque_Nm": "coupling",
+    "coupling_torque_Nm": "coupling",
     "wheel_torque_Nm": "wheel",
     "rim_mass_force_N": "rim_mass",
     "mass_force_N": "mass",

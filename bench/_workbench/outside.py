@@ -138,11 +138,14 @@ def exact_law_source(order: int) -> str:
 # BALANCES, STATES); the rim force (between wheel and mass) is neither of the manifest's balances
 BALANCE_WORDS = {"motor_load_moment_pu": "motor_load_moment", "wheel_torque_Nm": "wheel_torque",
                  "clutch_torque_Nm": "clutch_torque", "mass_force_N": "mass_force", "sensor_a1_m_s2": "sensor",
+                 # the torque beside the jaw, in and out of contact: the foreign simulator's clutch balance is that
+                 # (kernel.py: the outside terms' clutch slot added to the jaw's torque, ungated)
+                 "coupling_torque_Nm": "clutch_torque",
                  "sensor_a2_m_s2": "sensor"}
 STATE_WORDS = {"omega1": ("motor_speed",), "omega2": ("wheel_speed",), "xdot": ("mass_speed",), "v": ("rim_speed",),
                "rel_speed": ("motor_speed", "wheel_speed"), "penetration": ("clutch_penetration",),
                "penetration rate": ("clutch_penetration",), "z": ("spring_extension",), "alpha1": ("motor_angle",),
-               "alpha2": ("wheel_angle",), "te": (), "time": ("time",), "constant": (), "load pulse": ("load_pulse",),
+               "alpha2": ("wheel_angle",), "delta": ("motor_angle", "wheel_angle"), "te": (), "time": ("time",), "constant": (), "load pulse": ("load_pulse",),
                "a1": ("motor_acceleration",), "a2": ("mass_acceleration",)}   # a1 = r dOmega1/dt, a2 = dv/dt
 
 

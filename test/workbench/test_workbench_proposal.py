@@ -26,10 +26,17 @@ def test_the_library_is_generic_and_covers_every_balance_and_both_shafts_angles(
     assert {(t.harmonic[0], t.harmonic[1]) for t in lib if t.harmonic and t.balance == "clutch_torque_Nm"} == {
         ("alpha1", 1), ("alpha1", 2)}
     # a gate on the jaw's side in every balance of a body (the load side ahead of its drive), one group each
-    gates = [t for t in lib if "delta" in t.variables]
+    gates = [t for t in lib if "delta" in t.variables and t.group.endswith("_overrun")]
     assert {t.balance for t in gates} == {"motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N"}
+    # beside the jaw, in the gap too (the coupling's balance, ungated): the slip across it, and the twist across it
+    # (linear and cubic, one group); the slip is no longer a wheel torque alone (the motor gives up what the wheel takes)
+    coupling = {t.name: t for t in lib if t.balance == "coupling_torque_Nm"}
+    assert {(t.state, t.group) for t in coupling.values()} == {("rel_speed", "coupling_rel_speed"),
+                                                               ("delta", "coupling_twist")}
+    assert not [t for t in lib if t.balance == "wheel_torque_Nm" and "rel_speed" in t.variables]
     # a harmonic's sine and cosine are one group: selected together, linear in their coefficients; so are the decays
-    # after one edge of the load pulse in one balance; every other group is one term
+    # after one edge of the load pulse in one balance, and the twist's linear and cubic stiffness; every other
+    # group is one term
     # (the edges' groups: written, not in the default library, candidate_terms.EDGES_IN_LIBRARY)
     with_edges = candidate_terms.library(edges=True)
     by = {t.name: t for t in with_edges}
@@ -41,7 +48,7 @@ def test_the_library_is_generic_and_covers_every_balance_and_both_shafts_angles(
         kinds = {by[n].harmonic is not None for n in names}
         assert len(kinds) == 1
         assert len(names) == (2 if kinds.pop() else len(candidate_terms.EDGE_DECAYS_S) if g in edges
-                              else len(LAG_TIMES_S) if g in memory else 1)
+                              else len(LAG_TIMES_S) if g in memory else 2 if g == "coupling_twist" else 1)
     # the responses after both edges of the load pulse, in the motor, wheel and mass balances, on the pulse clock
     assert {(t.balance, t.variables) for t in with_edges if t.group in edges} == {
         (b, (v,)) for b in ("motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N")
@@ -338,6 +345,32 @@ def test_a_load_brake_that_holds_the_wheel_while_the_load_runs_ahead_is_proposed
     gate = [t for t in prop["terms"] if t["balance"] == "wheel_torque_Nm" and t["group"] == "wheel_overrun"]
     assert gate, prop["law"]
     assert -6.0 < gate[0]["coefficients"][0] < -2.0          # the brake's -4 N*m, of its sign and size
+    assert prop["consistent"], prop["reason"]
+
+
+@pytest.mark.heavy      # make test-all (CI time); ~3 min CPU
+@pytest.mark.slow
+def test_a_spring_across_the_jaw_is_proposed_in_the_coupling_balance_as_its_twist():
+    """A leaf-spring coupling beside the jaw made by foreign_drives (not our simulator): k*(Omega1/Omega_n)^2*(alpha1 -
+    alpha2) between the shafts, in the gap and in contact (the fourteenth set's development row, spent). The catalogue
+    explains nothing; the proposal names the coupling's twist, the spring's sign (a positive stiffness: the motor's
+    shaft ahead pulls the wheel), and the model with it is consistent. (Before the coupling balance: a wheel torque of
+    sgn Omega2, not consistent.)"""
+    from foreign_drives.drive import make_recording
+    from foreign_drives.suites import suite
+
+    from backlash_monitor.workbench.diagnose import diagnose
+    from backlash_monitor.workbench.measurement import Measurement
+    from backlash_monitor.workbench.model import load_model
+    spec = next(s for s in suite("outside_dev14") if s.label == "od14_clutch_centrifugal_leaf_spring")
+    rec = make_recording(spec)
+    meas = Measurement("foreign:leaf", rec.sample_period_s, {k: np.asarray(v) for k, v in rec.signals.items()})
+    d = diagnose(meas, load_model(None, width_m=spec.width_m, eta_k=spec.eta_k, n1=spec.n1)).to_json()
+    prop = d["proposal"]
+    assert prop and prop["proposed"], d["message"]
+    twist = [t for t in prop["terms"] if t["balance"] == "coupling_torque_Nm" and t["group"] == "coupling_twist"]
+    assert twist, prop["law"]
+    assert twist[0]["coefficients"][0] > 0.0                  # a stiffness: Delta > 0 pulls the wheel forward
     assert prop["consistent"], prop["reason"]
 
 
