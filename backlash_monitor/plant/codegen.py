@@ -43,7 +43,8 @@ from backlash_monitor.plant.mathlib import NUMPY_NAMESPACE
 import backlash_monitor.plant.mathlib as mathlib
 BASE_ROWS = ("beta", "wheel_inertia_kgm2", "mass_kg",   # per-scenario model values every kernel reads (the motor's
              "rotor_resistance_pu", "supply_voltage_scale")  # two that drift with temperature and the grid among them)
-GENERATOR_VERSION = "13"   # 13: the coupling_torque_Nm balance (ungated, beside the jaw); 11: the lags advanced only in a kernel whose terms name one (lags_used); 12: gated terms
+GENERATOR_VERSION = "13"   # 11: the lags advanced only in a kernel whose terms name one (lags_used); 12: gated terms;
+                           # 13: the coupling_torque_Nm balance (ungated, beside the jaw)
 
 
 def global_vector(cfg) -> np.ndarray:
