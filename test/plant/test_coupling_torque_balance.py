@@ -25,15 +25,11 @@ class CouplingSpring(Effect):
         return stiffness_Nm_per_rad * delta + damping_Nms_per_rad * rel_speed
 
 
-class WheelSide(Effect):
+class WheelSide(CouplingSpring):
+    """The same law as a wheel torque (its term inherited)."""
     name = "test_wheel_side"
     balance = "wheel_torque_Nm"
     description = "the spring's torque on the wheel"
-    parameters = CouplingSpring.parameters
-
-    @staticmethod
-    def term(delta, rel_speed, stiffness_Nm_per_rad, damping_Nms_per_rad):
-        return stiffness_Nm_per_rad * delta + damping_Nms_per_rad * rel_speed
 
 
 class MotorSide(Effect):
