@@ -642,6 +642,38 @@ OUTSIDE_DEV15_ROWS = [
      [E("mass_knock_triggered_rail_brake", {"force_N": 4.0, "trigger_penetration_rad": 0.004, "hold_s": 0.02})]),
 ]
 
+# ---- issue 31 part 4, sixteenth set: mechanisms outside the catalogue of other kinds again (foreign_drives.outside_dev16;
+# the sixteenth sealed half's rows are in foreign_drives.outside_sealed16). One mechanism per row at its own nominal
+# conditions, one clean control. Seeds 16000+. Each strength set by one simulation against the clean drive of the same
+# seed (docs/foreign_drives.md "The sixteenth set"). The a-priori values are read off the fifteenth set's documented
+# clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80 m/s; the pulse 60 ms every
+# 0.25 s).
+OUTSIDE_DEV16_ROWS = [
+    # 3 N*m at 30 ms into each stroke, 5 ms half-width
+    ("od16_motor_flying_shear_cut", "outside", 0.0070, 0.0260, 0.93,
+     [E("motor_flying_shear_cut", {"torque_Nm": 3.0, "cut_delay_s": 0.03, "half_width_s": 0.005})]),
+    # 8.9e-5 N*m*s^2/rad^2 (about 2 N*m at 150 rad/s, helping the wheel)
+    ("od16_wheel_hydrostatic_booster", "outside", 0.0062, 0.0300, 0.91,
+     [E("wheel_hydrostatic_booster", {"coefficient_Nm_s2_per_rad2": 8.9e-5})]),
+    # 100 N*m/m above 0.28 m, tanh of the slip over 0.5 rad/s (up to about 4 N*m)
+    ("od16_clutch_cable_loaded_friction_plate", "outside", 0.0080, 0.0240, 0.94,
+     [E("clutch_cable_loaded_friction_plate", {"coefficient_Nm_per_m": 100.0, "reference_m": 0.28,
+                                               "slip_scale_rad_s": 0.5})]),
+    # 8.9e-5 N*s^2/rad^2 (2 N at 150 rad/s), phase 0.7
+    ("od16_mass_motor_unbalance_frame_shake", "outside", 0.0058, 0.0330, 0.92,
+     [E("mass_motor_unbalance_frame_shake", {"coefficient_N_s2_per_rad2": 8.9e-5, "phase_rad": 0.7})]),
+    ("od16_clean_w7.1_eta0.0285_n0.95", "clean", 0.0071, 0.0285, 0.95, []),
+    # 0.1 m/s^2, saturating over 0.5 m/s
+    ("od16_a2_drag_chain_triboelectric", "outside", 0.0086, 0.0210, 0.90,
+     [E("a2_drag_chain_triboelectric", {"offset_m_s2": 0.1, "speed_scale_m_s": 0.5})]),
+    # 4 N for 20 ms from each rise of the wheel speed through 152 rad/s
+    ("od16_mass_wheel_overspeed_timed_rail_brake", "outside", 0.0066, 0.0350, 0.96,
+     [E("mass_wheel_overspeed_timed_rail_brake", {"force_N": 4.0, "trip_speed_rad_s": 152.0, "hold_s": 0.02})]),
+    # 50 N*m/m above 0.30 m of the extension's peak since the stroke began (up to about 1 N*m)
+    ("od16_motor_peak_tension_regen_brake", "outside", 0.0076, 0.0225, 0.93,
+     [E("motor_peak_tension_regen_brake", {"coefficient_Nm_per_m": 50.0, "reference_m": 0.30})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -660,13 +692,15 @@ OUTSIDE_DEV12 = _suite(OUTSIDE_DEV12_ROWS, 12000, 4.0)
 OUTSIDE_DEV13 = _suite(OUTSIDE_DEV13_ROWS, 13000, 4.0)
 OUTSIDE_DEV14 = _suite(OUTSIDE_DEV14_ROWS, 14000, 4.0)
 OUTSIDE_DEV15 = _suite(OUTSIDE_DEV15_ROWS, 15000, 4.0)
+OUTSIDE_DEV16 = _suite(OUTSIDE_DEV16_ROWS, 16000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
           "outside_dev8": OUTSIDE_DEV8, "outside_dev9": OUTSIDE_DEV9,
           "outside_dev10": OUTSIDE_DEV10, "outside_dev11": OUTSIDE_DEV11,
           "outside_dev12": OUTSIDE_DEV12, "outside_dev13": OUTSIDE_DEV13,
-          "outside_dev14": OUTSIDE_DEV14, "outside_dev15": OUTSIDE_DEV15}
+          "outside_dev14": OUTSIDE_DEV14, "outside_dev15": OUTSIDE_DEV15,
+          "outside_dev16": OUTSIDE_DEV16}
 
 
 def _outside_sealed():
@@ -759,11 +793,17 @@ def _outside_sealed15():
     return _suite(suite_rows(), 15100, 4.0)
 
 
+def _outside_sealed16():
+    """The sixteenth sealed half's suite, made from foreign_drives.outside_sealed16 on first use (its rows live there)."""
+    from .outside_sealed16 import suite_rows
+    return _suite(suite_rows(), 16100, 4.0)
+
+
 SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
                                "outside_sealed5", "outside_sealed6", "outside_sealed7", "outside_sealed8",
                                "outside_sealed9", "outside_sealed10", "outside_sealed11",
                                "outside_sealed12", "outside_sealed13", "outside_sealed14",
-                               "outside_sealed15")
+                               "outside_sealed15", "outside_sealed16")
 
 
 def suite(name: str) -> list:
@@ -797,6 +837,8 @@ def suite(name: str) -> list:
         return _outside_sealed14()
     if name == "outside_sealed15":
         return _outside_sealed15()
+    if name == "outside_sealed16":
+        return _outside_sealed16()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])
