@@ -649,9 +649,9 @@ OUTSIDE_DEV15_ROWS = [
 # clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80 m/s; the pulse 60 ms every
 # 0.25 s).
 OUTSIDE_DEV16_ROWS = [
-    # 3 N*m at 30 ms into each stroke, 5 ms half-width
+    # 3 N*m at 30 ms into each stroke, 5 ms half-width a priori, a2 0.0203: scaled once x3.70
     ("od16_motor_flying_shear_cut", "outside", 0.0070, 0.0260, 0.93,
-     [E("motor_flying_shear_cut", {"torque_Nm": 3.0, "cut_delay_s": 0.03, "half_width_s": 0.005})]),
+     [E("motor_flying_shear_cut", {"torque_Nm": 11.09, "cut_delay_s": 0.03, "half_width_s": 0.005})]),
     # 8.9e-5 N*m*s^2/rad^2 (about 2 N*m at 150 rad/s, helping the wheel)
     ("od16_wheel_hydrostatic_booster", "outside", 0.0062, 0.0300, 0.91,
      [E("wheel_hydrostatic_booster", {"coefficient_Nm_s2_per_rad2": 8.9e-5})]),
@@ -669,9 +669,10 @@ OUTSIDE_DEV16_ROWS = [
     # 4 N for 20 ms from each rise of the wheel speed through 152 rad/s
     ("od16_mass_wheel_overspeed_timed_rail_brake", "outside", 0.0066, 0.0350, 0.96,
      [E("mass_wheel_overspeed_timed_rail_brake", {"force_N": 4.0, "trip_speed_rad_s": 152.0, "hold_s": 0.02})]),
-    # 50 N*m/m above 0.30 m of the extension's peak since the stroke began (up to about 1 N*m)
+    # 50 N*m/m above 0.30 m of the extension's peak since the stroke began (up to about 1 N*m) a priori, a2 0.0278:
+    # scaled once x2.70
     ("od16_motor_peak_tension_regen_brake", "outside", 0.0076, 0.0225, 0.93,
-     [E("motor_peak_tension_regen_brake", {"coefficient_Nm_per_m": 50.0, "reference_m": 0.30})]),
+     [E("motor_peak_tension_regen_brake", {"coefficient_Nm_per_m": 134.7, "reference_m": 0.30})]),
 ]
 
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
