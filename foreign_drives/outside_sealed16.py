@@ -14,8 +14,9 @@ Kinds (balance x what it reads, and how), the sealed half:
    brake's lever on the wheel: the lever's position m follows the extension only once the slack 2a is taken up, m ->
    min(max(m, z - a), z + a) every 0.2 ms (m = z at the run-in's start), and the brake pulls -c*max(0, m - z_0) (the
    twelfth set's lost-motion link is a play of the extension with a friction on the carriage; the fourteenth sealed
-   half's latch and the fifteenth set's ratchet brake the wheel from the extension with other memories; the third
-   set's governor linkage play is of the motor speed on the motor);
+   half's latch, the fifth sealed half's stroke sample and the fifteenth set's ratchet brake the wheel from the
+   extension with other memories, the second sealed half's drum stop without one; the fifth set's governor linkage play
+   is of the motor speed on the motor);
 6. clutch torque x the slip TIMES the motor speed through a LAG: an electromagnetic slip coupling beside the jaw whose
    field coil is fed from the motor's tacho-generator; the coil's inductance lags the excitation behind the speed:
    c*max(0, m - Omega_0)*(Omega1 - Omega2), m -> Omega1 + (m - Omega1)*exp(-dt/tau) every 0.2 ms (m = Omega1 at the
@@ -26,19 +27,26 @@ Kinds (balance x what it reads, and how), the sealed half:
    stroke's start and clamps a drag shoe on the carriage on every other stroke: -F*m, m -> 1 - m each time the pulse
    comes on (scanned every 0.2 ms; m = 0 at the run-in's start) (a force alternating stroke by stroke: the tenth set's
    impulse relay is toggled by the extension, the thirteenth sealed half's by the wheel speed; the n-th stroke pierce
-   counts strokes with a modulus, on the motor);
+   counts strokes with a modulus, on the motor; the earlier carriage forces of the pulse alone -- the first sealed
+   half's kick, the third set's hold-back, the eighth sealed half's coolant tray -- act alike at every stroke);
 10. a2 sensor x a2's own past through an AC COUPLING: a2's module has a DC-blocking input (a series capacitor into its
     input resistance, corner f_c): y[n] = q*(y[n-1] + x[n] - x[n-1]), q = exp(-2*pi*f_c/fs) (y = 0 at the pre-roll's
-    first sample) (a first-order high-pass of the signal: the fifth set's auto-zero subtracts a held mean at set times,
-    the median and the mains notch are other filters, the mounting resonance and the smoothing are low-passes);
+    first sample) (a first-order high-pass of a2: the nearest earlier kind is the third sealed half's charge amplifier,
+    the same first-order high-pass on a1 (bilinear, settled on the periodic drive): this is that kind on the other
+    channel, started from rest, a near repeat found after the list was written; the fifth set's auto-zero subtracts a
+    held mean at set times, the median and the mains notch are other filters, the mounting resonance and the smoothing
+    are low-passes);
 12. wheel torque x the spring extension through a SIGMOID: a tension-limiting pneumatic brake on the wheel, fed by a
     proportional valve that a lever on the spring's cable opens smoothly about z_s: -T*(1 + tanh((z - z_s)/w))/2 (a
-    smooth step of the extension on the wheel: the rope drum's layers step with the wheel's angle, the latch and the
-    ratchet hold, the overload band brake is a linear excess on the motor);
+    smooth step of the extension on the wheel: the second sealed half's drum stop brakes the wheel by the square of the
+    extension's overtravel (unbounded), this one saturates at T; the rope drum's layers step with the wheel's angle, the
+    latch and the ratchet hold, the overload band brake is a linear excess on the motor);
 14. clutch torque x the slip through a DEAD BAND: a vane damper beside the jaw whose vanes leak through a bypass up to
     a slip s_0 and damp beyond it: c*sign(s)*max(0, |s| - s_0), s = Omega1 - Omega2 (a viscous law of the slip with a
     dead band: the earlier slip couplings are linear from zero, overrunning (one-sided), hydrodynamic, gated or with a
-    memory; the ninth sealed half's dead zone is of the jaw's angle, rubber bumpers).
+    memory; the ninth sealed half's dead zone is of the jaw's angle, rubber bumpers; the fourteenth set's bypassed
+    retarder is this dead band of the wheel's own speed, on the wheel; the sixth set's torque limiter is a dead zone of
+    the contact torque).
 
 Visibility, measured as for the development half (4 s, against the same spec without the mechanism, same seed;
 criterion a2 >= 0.05, a1 >= 0.25 for an a1 row): 2 a2 0.0146 at its a-priori strength, scaled once x5.12 (a2 0.0698
