@@ -601,9 +601,11 @@ def main(argv=None):
         # conditions), per suite and over all of them: a set's run is one command
         diagnosed = [r for r in rows if "verdict" in r]
         strip = ("outside_per_recording", "explained_per_recording", "angle_locked_per_recording")
-        out["proposal"] = {k: v for k, v in summary(diagnosed, [], []).items() if k not in strip}
-        out["proposal_by_suite"] = {name: {k: v for k, v in summary([r for r in diagnosed if r["suite"] == name], [],
-                                                                       []).items() if k not in strip}
+
+        def goals(rs) -> dict:      # summary's figures without its per-recording lists (the loop's rows hold them)
+            return {k: v for k, v in summary(rs, [], []).items() if k not in strip}
+        out["proposal"] = goals(diagnosed)
+        out["proposal_by_suite"] = {name: goals([r for r in diagnosed if r["suite"] == name])
                                     for name in dict.fromkeys(r["suite"] for r in rows)}
         out["jobs"] = args.jobs
         out["wall_seconds"] = time.perf_counter() - t0
