@@ -58,4 +58,231 @@ down:
     first sealed half's anti-backlash spring is anchored at the gap's centre, the fourteenth set's friction slider
     re-anchors whenever the spring's torque exceeds its slip torque, the sixth sealed half's Dahl ring follows the
     angle's changes; the fifth sealed half's stroke sample is of the extension, on the wheel).
+
+Memory elements (one per recording) are advanced once per 0.2 ms input segment from the state at the segment's start
+(kernel.py "memory"), as in the fourth to sixteenth sets; the memory starts afresh at the run-in's first scan, 2 s
+before sample 0. The impact sample (11) is the tenth set's MK_IMPACT_SAMPLE on the slip; the re-anchored torsion bar
+(13) is the fifth set's MK_STROKE_SAMPLE on the jaw's angle difference. The staged brake's jumps (1) stall the settled
+start's Newton iteration (found by the 0.4 s smoke run: a residual 2.7e-10 after 12 iterations), so its term is left
+out of the settled start's period map, as the twelfth sealed half's staircase is: it acts from the run-in on. No kernel
+change for this set.
 """
+from __future__ import annotations
+
+import numpy as np
+
+from . import kernel as K
+from .forms import Param
+from .outside import OutsideForm, add_term
+from .outside_dev import _plugin
+from .outside_dev4 import set_memory
+
+
+# 1. motor load moment x the spring extension through a staircase
+class MotorTensionStagedEddyBrake(OutsideForm):
+    name = "motor_tension_staged_eddy_brake"
+    half = "dev17"
+    balance = "motor_load_moment"
+    depends_on = ("spring_extension",)
+    description = ("a staged eddy-current brake on the motor's free shaft end whose coils a multi-contact tension "
+                   "switch on the spring's cable guide switches in one by one: T per whole step dz of the extension "
+                   "above z_0, T*floor((z - z_0)/dz) for z > z_0, else 0, on the motor's load")
+    parameters = (Param("torque_per_stage_Nm", "N*m", (0.0, 20.0), "T"),
+                  Param("threshold_m", "m", (0.0, 1.0), "z_0"),
+                  Param("step_m", "m", (1e-4, 0.1), "dz"))
+    note = "a quantised (staircase) motor load of the spring's extension"
+
+    def apply(self, b, p):
+        add_term(b, "motor_load_moment", p["torque_per_stage_Nm"] / p["step_m"],
+                 (K.XS_SPRING_EXTENSION, K.XF_STAIRS, p["step_m"], p["threshold_m"], 0.0),
+                 nonperiodic=True)     # its jumps stall the settled start's Newton iteration: left to the run-in
+
+    @staticmethod
+    def torque(z, p):
+        z = np.asarray(z, dtype=np.float64)
+        stages = np.where(z > p["threshold_m"], np.floor((z - p["threshold_m"]) / p["step_m"]), 0.0)
+        return p["torque_per_stage_Nm"] * stages
+
+    def law(self, p):
+        return (f"motor load moment += {p['torque_per_stage_Nm']:.6g} N*m * floor((z - {p['threshold_m']:.6g} m)/"
+                f"{p['step_m']:.6g} m) for z above {p['threshold_m']:.6g} m, else 0, z the spring's extension")
+
+
+# 3. wheel torque x the unwrapped wheel angle at a fractional order 1/N
+class WheelGearedLubricatorCrank(OutsideForm):
+    name = "wheel_geared_lubricator_crank"
+    half = "dev17"
+    balance = "wheel_torque"
+    depends_on = ("wheel_angle",)
+    description = ("a chain lubricator's crank pump geared down 1:N from the wheel's shaft: -A*sin(alpha2_u/N + phi) "
+                   "on the wheel, alpha2_u the wheel's angle unwrapped from the run-in's start (order 1/N of the "
+                   "wheel's turn)")
+    parameters = (Param("torque_Nm", "N*m", (0.0, 20.0), "A"),
+                  Param("reduction", "-", (2.0, 50.0), "N (turns of the wheel per turn of the crank)"),
+                  Param("phase_rad", "rad", (-np.pi, np.pi), "phi"))
+    note = "a smooth torque on the wheel locked to its angle at a fractional order 1/N"
+
+    def apply(self, b, p):
+        add_term(b, "wheel_torque", -p["torque_Nm"],
+                 (K.XS_ALPHA2_UNWRAPPED, K.XF_SIN, 1.0 / p["reduction"], p["phase_rad"], 0.0), nonperiodic=True)
+
+    @staticmethod
+    def torque(alpha2_unwrapped, p):
+        return -p["torque_Nm"] * np.sin(np.asarray(alpha2_unwrapped, dtype=np.float64) / p["reduction"]
+                                        + p["phase_rad"])
+
+    def law(self, p):
+        return (f"wheel torque += -{p['torque_Nm']:.6g} N*m * sin(alpha2_u/{p['reduction']:.6g} + "
+                f"{p['phase_rad']:.6g}), alpha2_u the wheel's angle unwrapped from the run-in's start")
+
+
+# 5. clutch torque x the slip squared, signed
+class ClutchOrificeRotaryDamper(OutsideForm):
+    name = "clutch_orifice_rotary_damper"
+    half = "dev17"
+    balance = "clutch_torque"
+    depends_on = ("motor_speed", "wheel_speed")
+    description = ("a rotary hydraulic damper beside the jaw whose oil passes a sharp-edged orifice (turbulent flow: "
+                   "the pressure drop ~ flow^2): c*s*|s|, s = Omega1 - Omega2, from the motor to the wheel, in the gap "
+                   "and in contact")
+    parameters = (Param("coefficient_Nm_s2_per_rad2", "N*m*s^2/rad^2", (0.0, 100.0), "c"),)
+    note = "a slip coupling of the slip's second power"
+
+    def apply(self, b, p):
+        add_term(b, "clutch_torque", p["coefficient_Nm_s2_per_rad2"], (K.XS_JAW_SPEED, K.XF_POWER, 2.0, 0.0, 0.0))
+
+    @staticmethod
+    def torque(slip, p):
+        s = np.asarray(slip, dtype=np.float64)
+        return p["coefficient_Nm_s2_per_rad2"] * s * np.abs(s)
+
+    def law(self, p):
+        return (f"clutch torque += {p['coefficient_Nm_s2_per_rad2']:.6g} N*m*s^2/rad^2 * s*|s|, s = Omega1 - Omega2, "
+                "in the gap and in contact")
+
+
+# 7. mass force x the motor rim's speed minus the mass speed through a dry friction
+class MassMotorPinchRollDrag(OutsideForm):
+    name = "mass_motor_pinch_roll_drag"
+    half = "dev17"
+    balance = "mass_force"
+    depends_on = ("motor_speed", "mass_speed")
+    description = ("pinch rolls of the strip the carriage carries, driven from the motor's shaft end through a "
+                   "slipping friction drive, drag the carriage towards the motor rim's speed: F*tanh((r*Omega1 - v)/w) "
+                   "along x, r the wheel radius")
+    parameters = (Param("force_N", "N", (0.0, 100.0), "F"),
+                  Param("speed_scale_m_s", "m/s", (1e-3, 10.0), "w"))
+    note = "a dry friction of the motor rim's speed less the carriage's on the carriage"
+
+    def apply(self, b, p):
+        add_term(b, "mass_force", p["force_N"], (K.XS_MOTOR_RIM_MINUS_MASS, K.XF_TANH, p["speed_scale_m_s"], 0.0, 0.0))
+
+    @staticmethod
+    def force(omega1, v, r, p):
+        return p["force_N"] * np.tanh((r * np.asarray(omega1, dtype=np.float64) - np.asarray(v, dtype=np.float64))
+                                      / p["speed_scale_m_s"])
+
+    def law(self, p):
+        return (f"mass force += {p['force_N']:.6g} N * tanh((r*Omega1 - v)/{p['speed_scale_m_s']:.6g} m/s), r the "
+                "wheel radius, v the mass speed")
+
+    def plugin(self, p):
+        return _plugin("MassMotorPinchRollDrag", self.name, "mass_force_N", self.description, [
+            ("force_N", "N", (0.0, 100.0), "F"),
+            ("speed_scale_m_s", "m/s", (1e-3, 10.0), "w")],
+            "omega1, xdot, wheel_radius_m, force_N, speed_scale_m_s",
+            "force_N * (1.0 - 2.0 / (exp(2.0 * (wheel_radius_m * omega1 - xdot) / speed_scale_m_s) + 1.0))", "exp")
+
+
+# 9. a2 sensor x a2 times the spring extension
+class A2StrainSensitiveGain(OutsideForm):
+    name = "a2_strain_sensitive_gain"
+    half = "dev17"
+    stage = "sensor"
+    order = 0                      # the sensing element
+    uses_states = True
+    balance = "sensor"
+    depends_on = ("mass_acceleration", "spring_extension")
+    description = ("a2's piezoresistive element is bonded to the carriage's tow bracket, whose strain, with the "
+                   "cable's pull, changes the bridge's gauge factor: y = x*(1 + g*(z - z_c)), z the spring's extension")
+    parameters = (Param("gain_per_m", "1/m", (-20.0, 20.0), "g"),
+                  Param("reference_m", "m", (0.0, 1.0), "z_c"))
+    note = "a2's gain modulated by the spring's extension"
+
+    def apply_signal(self, sig, p, t, fs, states=None):
+        sig["a2"] = self.read(sig["a2"], states["spring_extension"], p)
+
+    @staticmethod
+    def read(a, z, p):
+        return np.asarray(a, dtype=np.float64) * (1.0 + p["gain_per_m"] * (np.asarray(z, dtype=np.float64)
+                                                                          - p["reference_m"]))
+
+    def law(self, p):
+        return (f"a2 sensor = a2 * (1 + {p['gain_per_m']:.6g} /m * (z - {p['reference_m']:.6g} m)), z the spring's "
+                "extension")
+
+
+# 11. wheel torque x the slip sampled at each jaw impact
+class WheelImpactSampledAntiClatter(OutsideForm):
+    name = "wheel_impact_sampled_anti_clatter"
+    half = "dev17"
+    balance = "wheel_torque"
+    depends_on = ("motor_speed", "wheel_speed", "clutch_penetration")
+    description = ("an anti-clatter actuator: a knock sensor on the coupling's housing triggers the PLC at each "
+                   "contact from the gap to sample the closing speed s = Omega1 - Omega2 and to set a hydraulic motor "
+                   "on the wheel's shaft that pushes the wheel towards the motor's speed until the next impact: +c*S, "
+                   "S the slip sampled at the 0.2 ms scan after each contact began (S = the slip at the run-in's start)")
+    parameters = (Param("coefficient_Nm_s_per_rad", "N*m*s/rad", (0.0, 100.0), "c"),)
+    note = "a wheel torque set by the slip sampled at each of the jaw's impacts, held until the next"
+
+    def apply(self, b, p):
+        set_memory(b, self.name, K.MK_IMPACT_SAMPLE, K.XS_JAW_SPEED, 0.0)
+        add_term(b, "wheel_torque", p["coefficient_Nm_s_per_rad"], (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0),
+                 nonperiodic=True)
+
+    def law(self, p):
+        return (f"wheel torque += {p['coefficient_Nm_s_per_rad']:.6g} N*m*s/rad * S, S = Omega1 - Omega2 sampled at "
+                "the 0.2 ms scan after each contact from the gap began, held until the next")
+
+
+# 13. clutch torque x the jaw's angle difference through a stroke sample
+class ClutchStrokeReanchoredTorsionBar(OutsideForm):
+    name = "clutch_stroke_reanchored_torsion_bar"
+    half = "dev17"
+    balance = "clutch_torque"
+    depends_on = ("clutch_penetration", "load_pulse")
+    description = ("a torsion bar bridging the jaw halves, clamped to the drive half by a pneumatic clamp that the "
+                   "press's valve releases for an instant at each stroke's start: -k*(D - S), S = D at each load "
+                   "pulse's first 0.2 ms scan, held (S = D at the run-in's start), D the jaw's angle difference")
+    parameters = (Param("stiffness_Nm_per_rad", "N*m/rad", (0.0, 1000.0), "k"),)
+    note = "a centring torque across the jaw about the angle it had at the stroke's start"
+
+    def apply(self, b, p):
+        set_memory(b, self.name, K.MK_STROKE_SAMPLE, K.XS_JAW_ANGLE, 0.0)
+        add_term(b, "clutch_torque", -p["stiffness_Nm_per_rad"], (K.XS_JAW_ANGLE, K.XF_X, 0.0, 0.0, 0.0),
+                 nonperiodic=True)
+        add_term(b, "clutch_torque", p["stiffness_Nm_per_rad"], (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0),
+                 nonperiodic=True)
+
+    @staticmethod
+    def anchors(d_at_scans, pulse_count_at_scans, s0=None, count0=None):
+        """The anchor S after each scan from D and the pulse count at the scans' starts (s0, count0 before the first;
+        None: the first scan is the run-in's start)."""
+        out, s, c = [], s0, count0
+        for d, k in zip(np.asarray(d_at_scans, dtype=np.float64).tolist(), np.asarray(pulse_count_at_scans).tolist()):
+            if s is None:
+                s = d
+            elif k != c:
+                s = d
+            c = k
+            out.append(s)
+        return np.array(out)
+
+    def law(self, p):
+        return (f"clutch torque += -{p['stiffness_Nm_per_rad']:.6g} N*m/rad * (D - S), S = D at each load pulse's "
+                "first 0.2 ms scan, held; D the jaw's angle difference, in the gap and in contact")
+
+
+FORM_CLASSES = (MotorTensionStagedEddyBrake, WheelGearedLubricatorCrank, ClutchOrificeRotaryDamper,
+                MassMotorPinchRollDrag, A2StrainSensitiveGain, WheelImpactSampledAntiClatter,
+                ClutchStrokeReanchoredTorsionBar)

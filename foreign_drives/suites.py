@@ -675,6 +675,37 @@ OUTSIDE_DEV16_ROWS = [
      [E("motor_peak_tension_regen_brake", {"coefficient_Nm_per_m": 134.7, "reference_m": 0.30})]),
 ]
 
+# ---- issue 31 part 4, seventeenth set: mechanisms outside the catalogue of other kinds again
+# (foreign_drives.outside_dev17; the seventeenth sealed half's rows are in foreign_drives.outside_sealed17). One mechanism
+# per row at its own nominal conditions, one clean control. Seeds 17000+. Each strength set by one simulation against
+# the clean drive of the same seed (docs/foreign_drives.md "The seventeenth set"). The a-priori values are read off the
+# fifteenth set's documented clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80
+# m/s; the pulse 60 ms every 0.25 s).
+OUTSIDE_DEV17_ROWS = [
+    # 1.5 N*m per whole centimetre of the extension above 0.28 m (up to about 6 N*m)
+    ("od17_motor_tension_staged_eddy_brake", "outside", 0.0069, 0.0265, 0.92,
+     [E("motor_tension_staged_eddy_brake", {"torque_per_stage_Nm": 1.5, "threshold_m": 0.28, "step_m": 0.01})]),
+    # 2 N*m at order 1/7 of the wheel's turn (about 3.4 Hz), phase 0.5
+    ("od17_wheel_geared_lubricator_crank", "outside", 0.0061, 0.0310, 0.94,
+     [E("wheel_geared_lubricator_crank", {"torque_Nm": 2.0, "reduction": 7.0, "phase_rad": 0.5})]),
+    # 0.2 N*m*s^2/rad^2 (5 N*m at 5 rad/s of slip)
+    ("od17_clutch_orifice_rotary_damper", "outside", 0.0083, 0.0235, 0.90,
+     [E("clutch_orifice_rotary_damper", {"coefficient_Nm_s2_per_rad2": 0.2})]),
+    # 3 N, saturating over 0.05 m/s of the speed difference
+    ("od17_mass_motor_pinch_roll_drag", "outside", 0.0064, 0.0345, 0.95,
+     [E("mass_motor_pinch_roll_drag", {"force_N": 3.0, "speed_scale_m_s": 0.05})]),
+    ("od17_clean_w7.3_eta0.0275_n0.93", "clean", 0.0073, 0.0275, 0.93, []),
+    # 2 /m about 0.30 m (a2's gain about -5 % ... +4 % over the extension's range)
+    ("od17_a2_strain_sensitive_gain", "outside", 0.0087, 0.0215, 0.96,
+     [E("a2_strain_sensitive_gain", {"gain_per_m": 2.0, "reference_m": 0.30})]),
+    # 1 N*m*s/rad of the slip sampled at each impact (a few N*m)
+    ("od17_wheel_impact_sampled_anti_clatter", "outside", 0.0067, 0.0300, 0.91,
+     [E("wheel_impact_sampled_anti_clatter", {"coefficient_Nm_s_per_rad": 1.0})]),
+    # 40 N*m/rad about the stroke's starting angle (a few N*m over the gap)
+    ("od17_clutch_stroke_reanchored_torsion_bar", "outside", 0.0077, 0.0250, 0.97,
+     [E("clutch_stroke_reanchored_torsion_bar", {"stiffness_Nm_per_rad": 40.0})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -694,6 +725,7 @@ OUTSIDE_DEV13 = _suite(OUTSIDE_DEV13_ROWS, 13000, 4.0)
 OUTSIDE_DEV14 = _suite(OUTSIDE_DEV14_ROWS, 14000, 4.0)
 OUTSIDE_DEV15 = _suite(OUTSIDE_DEV15_ROWS, 15000, 4.0)
 OUTSIDE_DEV16 = _suite(OUTSIDE_DEV16_ROWS, 16000, 4.0)
+OUTSIDE_DEV17 = _suite(OUTSIDE_DEV17_ROWS, 17000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
@@ -701,7 +733,7 @@ SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": 
           "outside_dev10": OUTSIDE_DEV10, "outside_dev11": OUTSIDE_DEV11,
           "outside_dev12": OUTSIDE_DEV12, "outside_dev13": OUTSIDE_DEV13,
           "outside_dev14": OUTSIDE_DEV14, "outside_dev15": OUTSIDE_DEV15,
-          "outside_dev16": OUTSIDE_DEV16}
+          "outside_dev16": OUTSIDE_DEV16, "outside_dev17": OUTSIDE_DEV17}
 
 
 def _outside_sealed():
@@ -800,11 +832,18 @@ def _outside_sealed16():
     return _suite(suite_rows(), 16100, 4.0)
 
 
+def _outside_sealed17():
+    """The seventeenth sealed half's suite, made from foreign_drives.outside_sealed17 on first use (its rows live
+    there)."""
+    from .outside_sealed17 import suite_rows
+    return _suite(suite_rows(), 17100, 4.0)
+
+
 SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
                                "outside_sealed5", "outside_sealed6", "outside_sealed7", "outside_sealed8",
                                "outside_sealed9", "outside_sealed10", "outside_sealed11",
                                "outside_sealed12", "outside_sealed13", "outside_sealed14",
-                               "outside_sealed15", "outside_sealed16")
+                               "outside_sealed15", "outside_sealed16", "outside_sealed17")
 
 
 def suite(name: str) -> list:
@@ -840,6 +879,8 @@ def suite(name: str) -> list:
         return _outside_sealed15()
     if name == "outside_sealed16":
         return _outside_sealed16()
+    if name == "outside_sealed17":
+        return _outside_sealed17()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])
