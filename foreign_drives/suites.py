@@ -688,16 +688,17 @@ OUTSIDE_DEV17_ROWS = [
     # 2 N*m at order 1/7 of the wheel's turn (about 3.4 Hz), phase 0.5
     ("od17_wheel_geared_lubricator_crank", "outside", 0.0061, 0.0310, 0.94,
      [E("wheel_geared_lubricator_crank", {"torque_Nm": 2.0, "reduction": 7.0, "phase_rad": 0.5})]),
-    # 0.2 N*m*s^2/rad^2 (5 N*m at 5 rad/s of slip)
+    # 0.2 N*m*s^2/rad^2 (5 N*m at 5 rad/s of slip) a priori, a2 0.0391: scaled once x1.92
     ("od17_clutch_orifice_rotary_damper", "outside", 0.0083, 0.0235, 0.90,
-     [E("clutch_orifice_rotary_damper", {"coefficient_Nm_s2_per_rad2": 0.2})]),
+     [E("clutch_orifice_rotary_damper", {"coefficient_Nm_s2_per_rad2": 0.3832})]),
     # 3 N, saturating over 0.05 m/s of the speed difference
     ("od17_mass_motor_pinch_roll_drag", "outside", 0.0064, 0.0345, 0.95,
      [E("mass_motor_pinch_roll_drag", {"force_N": 3.0, "speed_scale_m_s": 0.05})]),
     ("od17_clean_w7.3_eta0.0275_n0.93", "clean", 0.0073, 0.0275, 0.93, []),
-    # 2 /m about 0.30 m (a2's gain about -5 % ... +4 % over the extension's range)
+    # 2 /m about 0.30 m (a2's gain about -5 % ... +4 % over the extension's range) a priori, a2 0.0148: scaled once
+    # x5.06
     ("od17_a2_strain_sensitive_gain", "outside", 0.0087, 0.0215, 0.96,
-     [E("a2_strain_sensitive_gain", {"gain_per_m": 2.0, "reference_m": 0.30})]),
+     [E("a2_strain_sensitive_gain", {"gain_per_m": 10.11, "reference_m": 0.30})]),
     # 1 N*m*s/rad of the slip sampled at each impact (a few N*m)
     ("od17_wheel_impact_sampled_anti_clatter", "outside", 0.0067, 0.0300, 0.91,
      [E("wheel_impact_sampled_anti_clatter", {"coefficient_Nm_s_per_rad": 1.0})]),
