@@ -29,7 +29,8 @@ down:
    the wheel's shaft: -A*sin(alpha2_u/N + phi), alpha2_u the wheel's angle unwrapped from the run-in's start (a smooth
    torque locked to the wheel at order 1/N, once every N turns: the catalogue's ripples and the cam follower have whole
    orders, the ninth set's Geneva drive acts in a window once every N turns, the tenth sealed half's worn chain is a
-   random pattern link by link, the snail cam a sawtooth once per turn);
+   random pattern link by link, the snail cam a sawtooth once per turn; the fifth set's rope drum reads the unwrapped
+   angle too, times the extension, for the cable's lever arm);
 5. clutch torque x the slip SQUARED, SIGNED: a rotary hydraulic damper beside the jaw whose oil passes a sharp-edged
    orifice (turbulent flow: the pressure drop ~ flow^2): c*s*|s|, s = Omega1 - Omega2, from the motor to the wheel, in
    the gap and in contact (a slip coupling of the second power: the earlier slip couplings are linear from zero,
@@ -57,7 +58,8 @@ down:
     run-in's start), D the jaw's angle difference (a centring torque about a point that moves stroke by stroke: the
     first sealed half's anti-backlash spring is anchored at the gap's centre, the fourteenth set's friction slider
     re-anchors whenever the spring's torque exceeds its slip torque, the sixth sealed half's Dahl ring follows the
-    angle's changes; the fifth sealed half's stroke sample is of the extension, on the wheel).
+    angle's changes; the tenth set's anti-rattle leaf spring acts across the jaw only while the pulse is on, about the
+    gap's centre; the fifth sealed half's stroke sample is of the extension, on the wheel).
 
 Visibility, measured (one simulation of each suite row, 4 s, against the same spec without the mechanism, same seed; no
 diagnose; rms of the recorded signal's difference; criterion a2 >= 0.05 m/s^2, a1 >= 0.25 for an a1 row): 1 a2 0.109;
