@@ -46,6 +46,11 @@ Kinds (balance x what it reads, and how), the sealed half:
 Visibility, measured as for the development half (4 s, against the same spec without the mechanism, same seed;
 criterion a2 >= 0.05, a1 >= 0.25 for an a1 row): 2 a2 0.0950; 4 a2 0.0990; 6 a2 0.103; 8 a2 0.0155 at its a-priori
 strength, scaled once x4.83 (a2 0.0702 after); 10 a2 0.767; 12 a2 0.141; 14 a2 0.100 -- the others as written.
+
+Thin (read off the laws and the documented clean drive, no diagnose): the accumulator pump's sawtooth (14) has a mean of
+half its amplitude, a constant motor load beside its ramp (the ramp's rms about the mean is 0.29 of the amplitude); the
+cambered rail (12) reads the carriage's position, as the fifth sealed half's rail joints do, with a smooth shape instead
+of a knock per joint, and at the carriage's near-constant speed it is close to a fixed 10.3 Hz line.
 """
 from __future__ import annotations
 
