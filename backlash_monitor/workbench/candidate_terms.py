@@ -185,6 +185,12 @@ def library(edges: bool = EDGES_IN_LIBRARY, memory: bool | None = None) -> tuple
     # stiffness one group: the twist Δ by the gap's half-width β is ±1 at the jaw's faces)
     t.append(Term(f"{PREFIX}coupling_rel_speed", "coupling_torque_Nm", f"rel_speed / {REL_SPEED_SCALE_RAD_S}",
                   f"(Ω₁−Ω₂)/{REL_SPEED_SCALE_RAD_S:g}", "rel_speed", "coupling_rel_speed", ("rel_speed",)))
+    # the slip's sign: a dry friction across the coupling (a friction plate or a slipping disc beside the jaw, a brake
+    # between the halves), as every other speed of the library has its sign (_speed_terms); smoothed over the
+    # contact's closing speed (APPROACH_SCALE_RAD_S), where the slip crosses 0 in contact
+    t.append(Term(f"{PREFIX}coupling_rel_sign", "coupling_torque_Nm",
+                  f"smooth_sign(rel_speed, {APPROACH_SCALE_RAD_S!r})", "sgn(Ω₁−Ω₂)", "rel_speed", "coupling_rel_sign",
+                  ("rel_speed",)))
     t += [Term(f"{PREFIX}coupling_twist_1", "coupling_torque_Nm", "delta / beta", "Δ/β", "delta", "coupling_twist",
                ("delta", "beta")),
           Term(f"{PREFIX}coupling_twist_3", "coupling_torque_Nm", "(delta / beta) * (delta / beta) * (delta / beta)",
@@ -215,6 +221,8 @@ def library(edges: bool = EDGES_IN_LIBRARY, memory: bool | None = None) -> tuple
     xs = f"(wheel_radius_m * {SPEED_REF})"
     t += _speed_terms("mass_force_N", "xdot", "ẋ", xs)
     t += _harmonics("mass_force_N", "alpha2", "α₂", (1,))    # a roller or a link driven off the wheel shaft
+    t += _harmonics("mass_force_N", "alpha1", "α₁", (1,))    # the frame shaken by the motor's shaft (a rotor's
+                                                             # unbalance) felt by the carriage on its rails
     # the load pulse (the press stroke): a force or torque that comes and goes with it, in every balance but the
     # clutch's (a lag behind the pulse's edges is a change of the event's shape the pulse's own column holds in part)
     for balance, sym in (("motor_load_moment_pu", "m"), ("wheel_torque_Nm", "w"), ("mass_force_N", "x")):

@@ -28,11 +28,17 @@ def test_the_library_is_generic_and_covers_every_balance_and_both_shafts_angles(
     # a gate on the jaw's side in every balance of a body (the load side ahead of its drive), one group each
     gates = [t for t in lib if "delta" in t.variables and t.group.endswith("_overrun")]
     assert {t.balance for t in gates} == {"motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N"}
-    # beside the jaw, in the gap too (the coupling's balance, ungated): the slip across it, and the twist across it
-    # (linear and cubic, one group); the slip is no longer a wheel torque alone (the motor gives up what the wheel takes)
+    # beside the jaw, in the gap too (the coupling's balance, ungated): the slip across it and its sign (a viscous and
+    # a dry friction between the halves), and the twist across it (linear and cubic, one group); the slip is no longer
+    # a wheel torque alone (the motor gives up what the wheel takes)
     coupling = {t.name: t for t in lib if t.balance == "coupling_torque_Nm"}
     assert {(t.state, t.group) for t in coupling.values()} == {("rel_speed", "coupling_rel_speed"),
+                                                               ("rel_speed", "coupling_rel_sign"),
                                                                ("delta", "coupling_twist")}
+    # every body's balance holds a harmonic of each shaft's angle (a force on the carriage locked to the motor's
+    # shaft: the frame shaken by a rotor's unbalance)
+    for balance in ("motor_load_moment_pu", "wheel_torque_Nm", "mass_force_N"):
+        assert {t.harmonic[0] for t in lib if t.harmonic and t.balance == balance} == {"alpha1", "alpha2"}
     assert not [t for t in lib if t.balance == "wheel_torque_Nm" and "rel_speed" in t.variables]
     # a harmonic's sine and cosine are one group: selected together, linear in their coefficients; so are the decays
     # after one edge of the load pulse in one balance, and the twist's linear and cubic stiffness; every other
