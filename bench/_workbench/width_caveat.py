@@ -145,7 +145,7 @@ ALARM_SUITES = ("bench", "outside_dev", "outside_sealed", "outside_dev2", "outsi
                 "outside_dev9", "outside_sealed9", "outside_dev10",
                 "outside_sealed10", "outside_dev11", "outside_sealed11", "outside_dev12", "outside_sealed12",
                 "outside_dev13", "outside_sealed13", "outside_dev14", "outside_sealed14", "outside_dev15",
-                "outside_sealed15", "outside_dev16", "outside_dev17")
+                "outside_sealed15", "outside_dev16", "outside_sealed16", "outside_dev17")
 
 
 def alarm_suites() -> list[str]:
