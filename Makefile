@@ -68,8 +68,9 @@ lint: setup  ## the architecture's contracts (import-linter: .importlinter) and 
 # --durations wall times do) go to log/test-cpu.tsv (conftest's --cpu-log), summed at the end.
 TEST_WORKERS ?= 2
 # make test leaves out the tests marked heavy (setup.cfg: the whole-path workbench tests that bench/_workbench/
-# outside.py measures row by row, 1-3 min of CPU each with a cold kernel cache): the suite is CPU-bound on 2 cores and
-# was at 19 min with the first three of them. make test-all runs them too.
+# outside.py measures row by row, 1-3 min of CPU each with a cold kernel cache, and six foreign drives' whole diagnoses
+# that bench/_workbench/foreign.py measures on its own rows, 15-60 s each): the suite is CPU-bound on 2 cores and was at
+# 19 min with the first three of them, 17 min before the six (1 Dec). make test-all runs them too.
 TEST_EXCLUDE ?= and not heavy
 test: setup chromium lint  ## the contracts and ruff, then the test suite but the heavy tests (non-ros tests on TEST_WORKERS=2 workers at nice 10, the ros tests beside them)
 	@$(ACTIVATE) && rc=0 \

@@ -11,6 +11,7 @@ from test_workbench_foreign import SPECS, diagnosed, _named  # noqa: E402,F401
 
 
 @pytest.mark.slow
+@pytest.mark.heavy      # make test-all (CI time); bench/_workbench/foreign.py measures this behaviour on its own rows
 def test_a_hot_rotor_on_a_foreign_drive_is_named_a_weaker_motor_with_its_resistance():
     """The foreign motor's rotor resistance +45 % (its own dq-frame motor model, another width and absorber than the
     bench's): a weaker motor is discovered -- the rotor resistance drift, or the supply voltage drift with the note
@@ -30,6 +31,7 @@ def test_a_hot_rotor_on_a_foreign_drive_is_named_a_weaker_motor_with_its_resista
 
 
 @pytest.mark.slow
+@pytest.mark.heavy      # make test-all (CI time); bench/_workbench/foreign.py measures this behaviour on its own rows
 def test_a_second_order_sensor_filter_is_named_as_the_low_pass_family():
     """A 2nd-order Butterworth at 700 Hz on a1 (a first-order law explains it only in part): the low-pass family
     is named, in one of its forms (n identical first-order sections), with a corner near 700 Hz."""
@@ -43,6 +45,7 @@ def test_a_second_order_sensor_filter_is_named_as_the_low_pass_family():
 
 
 @pytest.mark.slow
+@pytest.mark.heavy      # make test-all (CI time); bench/_workbench/foreign.py measures this behaviour on its own rows
 def test_a_fixed_frequency_vibration_is_not_called_a_torque_ripple():
     """A line at 131 Hz that does not follow the motor's speed (5.4 x the rotation): not locked to the motor
     angle, so not a torque ripple; nothing in the catalogue is named."""
@@ -55,6 +58,7 @@ def test_a_fixed_frequency_vibration_is_not_called_a_torque_ripple():
 
 
 @pytest.mark.slow
+@pytest.mark.heavy      # make test-all (CI time); bench/_workbench/foreign.py measures this behaviour on its own rows
 def test_a_width_drift_is_reported_as_the_measurement_and_never_added():
     """The clutch wore from 6 to 7 mm: the diagnosis reports the width as the measurand (verdict 'width'), with
     the measured width, and hands on no effect."""
@@ -82,6 +86,7 @@ def test_a_width_change_beside_another_effect_names_the_effect_and_measures_the_
 
 
 @pytest.mark.slow
+@pytest.mark.heavy      # make test-all (CI time); bench/_workbench/foreign.py measures this behaviour on its own rows
 def test_an_accelerometer_offset_is_named_from_the_record_mean():
     """A constant +2 m/s^2 on a2 (a MEMS offset): an acceleration averages to zero over a period, so the record
     mean shows the offset; it is named with its value (the event average alone had it as a spring drift)."""
@@ -91,6 +96,7 @@ def test_an_accelerometer_offset_is_named_from_the_record_mean():
 
 
 @pytest.mark.slow
+@pytest.mark.heavy      # make test-all (CI time); bench/_workbench/foreign.py measures this behaviour on its own rows
 def test_a_heavier_load_on_a_recording_cut_inside_a_pulse_is_a_discovery_that_names_the_mass():
     """+30 % load mass; the recording starts 31 ms into a pulse. The model must run that pulse too
     (plant_adapter.pulse_lead_samples), and the load mass and the a2 gain are twins the recording cannot tell apart
