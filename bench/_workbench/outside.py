@@ -299,16 +299,9 @@ SETS = {1: ("outside_dev", "outside_sealed"), 2: ("outside_dev2", "outside_seale
         16: ("outside_dev16", "outside_sealed16"), 17: ("outside_dev17", "outside_sealed17")}
 # the sealed halves not to be run but once, at the end (only with --sealed); sets 1-16 are spent
 UNSPENT_SEALED: tuple[str, ...] = ("outside_sealed17",)
-# the suites the outside loop runs on by default: every development one and the spent sealed halves, never the unspent
-# sealed half
-LOOP_DEVELOPMENT_SUITES = ("outside_dev", "outside_sealed", "outside_dev2", "outside_sealed2", "outside_dev3",
-                           "outside_sealed3", "outside_dev4", "outside_sealed4", "outside_dev5", "outside_sealed5",
-                           "outside_dev6", "outside_sealed6", "outside_dev7", "outside_sealed7", "outside_dev8",
-                           "outside_sealed8", "outside_dev9", "outside_sealed9", "outside_dev10",
-                           "outside_sealed10", "outside_dev11", "outside_sealed11", "outside_dev12",
-                           "outside_sealed12", "outside_dev13", "outside_sealed13", "outside_dev14",
-                           "outside_sealed14", "outside_dev15", "outside_sealed15", "outside_dev16",
-                           "outside_sealed16", "outside_dev17")
+# the suites the outside loop runs on by default: every development one and the spent sealed halves, set by set (SETS
+# without UNSPENT_SEALED), never an unspent sealed half
+LOOP_DEVELOPMENT_SUITES = tuple(name for pair in SETS.values() for name in pair if name not in UNSPENT_SEALED)
 
 
 def suite_name(sealed: bool, set_: int = 1) -> str:
@@ -548,15 +541,11 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--sealed", action="store_true", help="run the sealed outside suite (once, at the end)")
     ap.add_argument("--set", dest="set_", type=int, default=1, choices=sorted(SETS),
-                    help="the set of outside mechanisms: 1 = outside_dev / outside_sealed, 2 = outside_dev2 / "
-                         "outside_sealed2, 3 = outside_dev3 / outside_sealed3, 4 = outside_dev4 / outside_sealed4, "
-                         "5 = outside_dev5 / outside_sealed5, 6 = outside_dev6 / outside_sealed6, 7 = outside_dev7 / "
-                         "outside_sealed7, 8 = outside_dev8 / outside_sealed8, 9 = outside_dev9 / outside_sealed9, 10 = "
-                         "outside_dev10 / outside_sealed10, 11 = outside_dev11 / outside_sealed11, 12 = outside_dev12 / "
-                         "outside_sealed12, 13 = outside_dev13 / outside_sealed13, 14 = outside_dev14 / "
-                         "outside_sealed14, 15 = outside_dev15 / outside_sealed15, 16 = outside_dev16 / outside_sealed16 "
-                         "(sets 1-16 spent: both halves development data now), 17 = outside_dev17 / outside_sealed17 "
-                         "(its sealed half UNSPENT: run once, at the end; default 1)")
+                    help="the set of outside mechanisms: " + ", ".join(
+                        f"{k} = {dev} / {sealed}" + (" (its sealed half UNSPENT: run once, at the end)"
+                                                     if sealed in UNSPENT_SEALED else "")
+                        for k, (dev, sealed) in SETS.items())
+                    + "; every other set spent: both halves development data now; default 1")
     ap.add_argument("--loop", action="store_true",
                     help="instead of the proposal rows: the README's loop through the CLI (diagnose, add-effect "
                          "[--accept-proposal | --accept-partial], train --model, analyze --library) on every development "

@@ -38,6 +38,7 @@ from foreign_drives.spec import EffectSpec as E  # noqa: E402
 from foreign_drives.spec import RecordingSpec  # noqa: E402
 
 from _workbench.foreign import _cli, log, score  # noqa: E402
+from _workbench.outside import LOOP_DEVELOPMENT_SUITES  # noqa: E402
 
 
 def _spec(i: int, label: str, nominal_m: float, width_change_m: float, effect: E, eta_k=0.025, n1=0.89,
@@ -139,13 +140,8 @@ def _alarm(level: str, true_width_m: float, warn_m: float, error_m: float) -> bo
     return (level == "WARN" and true_width_m < warn_m) or (level == "ERROR" and true_width_m < error_m)
 
 
-ALARM_SUITES = ("bench", "outside_dev", "outside_sealed", "outside_dev2", "outside_sealed2", "outside_dev3",
-                "outside_sealed3", "outside_dev4", "outside_sealed4", "outside_dev5", "outside_sealed5", "outside_dev6",
-                "outside_sealed6", "outside_dev7", "outside_sealed7", "outside_dev8", "outside_sealed8",
-                "outside_dev9", "outside_sealed9", "outside_dev10",
-                "outside_sealed10", "outside_dev11", "outside_sealed11", "outside_dev12", "outside_sealed12",
-                "outside_dev13", "outside_sealed13", "outside_dev14", "outside_sealed14", "outside_dev15",
-                "outside_sealed15", "outside_dev16", "outside_sealed16", "outside_dev17")
+ALARM_SUITES = ("bench",) + LOOP_DEVELOPMENT_SUITES   # the foreign bench and the outside loop's suites (never an
+                                                     # unspent sealed half: bench/_workbench/outside.py UNSPENT_SEALED)
 
 
 def alarm_suites() -> list[str]:
