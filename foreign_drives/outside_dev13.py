@@ -66,7 +66,7 @@ from . import kernel as K
 from .forms import Param
 from .outside import OutsideForm, add_term
 from .outside_dev import _plugin
-from .outside_dev4 import segments, set_memory
+from .outside_dev4 import oneshot_reference, segments, set_memory
 
 OMEGA_N_RAD_S = 150.0              # the speed the cable pickup's amplitude is stated at (9)
 
@@ -249,18 +249,7 @@ class MotorOverspeedTimedBrake(OutsideForm):
     @staticmethod
     def on(omega1_at_scans, p, dt):
         """The brake's state after each scan from Omega1 at the scans' starts (the first scan: the run-in's start)."""
-        n_h = round(p["hold_s"] / dt)
-        x = np.asarray(omega1_at_scans, dtype=np.float64).tolist()
-        out, m, since, prev = np.zeros(len(x)), 0.0, 0, None
-        for i, w in enumerate(x):
-            if m and since >= n_h:
-                m = 0.0
-            if prev is not None and not m and prev <= p["trip_speed_rad_s"] < w:
-                m, since = 1.0, 0
-            since += 1
-            prev = w
-            out[i] = m
-        return out
+        return oneshot_reference(omega1_at_scans, p["trip_speed_rad_s"], round(p["hold_s"] / dt))
 
     def law(self, p):
         return (f"motor load moment += {p['torque_Nm']:.6g} N*m for {p['hold_s']:.6g} s from each rise of Omega1 "

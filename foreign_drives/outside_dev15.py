@@ -74,7 +74,7 @@ from . import kernel as K
 from .forms import Param
 from .outside import OutsideForm, add_term
 from .outside_dev import _plugin
-from .outside_dev4 import segments, set_memory
+from .outside_dev4 import oneshot_reference, segments, set_memory
 
 
 # 1. motor load moment x the slip's magnitude
@@ -284,19 +284,7 @@ class MassKnockTriggeredRailBrake(OutsideForm):
         """The brake's state after each scan from the penetration depth at the scans' starts. ``state0`` = (on, scans
         since it fired, the depth at the scan before the first) before the first; None: the first scan is the run-in's
         start (off, no previous depth)."""
-        n_h = round(p["hold_s"] / dt)
-        x = np.asarray(depth_at_scans, dtype=np.float64).tolist()
-        m, since, prev = (0.0, 0, None) if state0 is None else state0
-        out = np.zeros(len(x))
-        for i, d in enumerate(x):
-            if m and since >= n_h:
-                m = 0.0
-            if prev is not None and not m and prev <= p["trigger_penetration_rad"] < d:
-                m, since = 1.0, 0
-            since += 1
-            prev = d
-            out[i] = m
-        return out
+        return oneshot_reference(depth_at_scans, p["trigger_penetration_rad"], round(p["hold_s"] / dt), state0)
 
     def law(self, p):
         return (f"mass force += -{p['force_N']:.6g} N for {p['hold_s']:.6g} s from each rise of the jaw's penetration "

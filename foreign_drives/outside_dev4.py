@@ -72,6 +72,25 @@ def segments(seconds: float, what: str) -> int:
     return int(round(n))
 
 
+def oneshot_reference(x_at_scans, threshold: float, hold_scans: int, state0=None) -> np.ndarray:
+    """The one-shot memory element (K.MK_ONESHOT) re-run scan by scan in Python, for the tests: on at a scan whose value
+    rises through ``threshold`` from the scan before while off, off again ``hold_scans`` scans after it fired. ``state0``
+    = (on, scans since it fired, the value at the scan before the first); None: off, no value before the first scan
+    (the run-in's start). -> the state after each scan."""
+    x = np.asarray(x_at_scans, dtype=np.float64).tolist()
+    m, since, prev = (0.0, 0, None) if state0 is None else state0
+    out = np.zeros(len(x))
+    for i, v in enumerate(x):
+        if m and since >= hold_scans:
+            m = 0.0
+        if prev is not None and not m and prev <= threshold < v:
+            m, since = 1.0, 0
+        since += 1
+        prev = v
+        out[i] = m
+    return out
+
+
 # 1. motor load moment x the stroke count
 class MotorNthStrokePierce(OutsideForm):
     name = "motor_nth_stroke_pierce"
