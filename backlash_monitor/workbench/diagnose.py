@@ -777,7 +777,11 @@ def diagnose(meas, model, seeds=None, effects=None, progress=None, second: bool 
     result = verdict_step(run, decision, up, ripple_fit, spec)
     if propose:
         basis = proposal_basis(run, up, result.verdict)
-        found = proposal.propose(run, up, basis) if basis is not None else None
+        # a sensor at its rail or stuck: its residual is the fault's, no term is fitted to it
+        gated = proposal.sensor_fault_gate(result.report.get("input_saturation")) if basis is not None else None
+        found = gated or (proposal.propose(run, up, basis) if basis is not None else None)
+        if gated is not None:
+            result.message += "; no term proposed: the residual is read off a faulty sensor (fix it, then diagnose again)"
         result.report["proposal"] = None if found is None else found.to_json()
         result.report["proposal_after"] = None if basis is None else PROPOSAL_AFTER[(result.verdict, basis)]
         if found is not None and found.proposed:

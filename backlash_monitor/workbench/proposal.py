@@ -97,6 +97,19 @@ class Proposal:
                           f"{BOOTSTRAP} resamples of the events (>= {STABILITY:.0%}), refined on the simulator"}
 
 
+def sensor_fault_gate(saturation: dict) -> Proposal | None:
+    """No term is proposed from a recording whose accelerometer sat at its rail or stuck at one value
+    (``saturation``: measurement.saturation_of, the diagnosis's ``input_saturation``): the residual there is the
+    sensor's fault, which no term of the drive's states reproduces (a sensor term adds to the signal; a clipped or
+    held signal has lost it). -> the Proposal that says so, or None (the recording's sensors are sound: propose)."""
+    if not saturation or not saturation.get("saturated"):
+        return None
+    faults = "; ".join(saturation.get("messages") or []) or "an accelerometer clipped or stuck"
+    return Proposal(False, f"not proposed: {faults}. The residual is read off a faulty sensor, not a missing "
+                           "physical term: repair or replace the sensor (or cut the faulty samples from the "
+                           "recording) and diagnose again")
+
+
 # ------------------------------------------------------------------------------------------ selection (pure numpy)
 def _per_event(G: np.ndarray, e: int) -> np.ndarray:
     """(E, D, M): a design the same for every event (D, M) repeated, or one per event as given."""

@@ -43,3 +43,22 @@ def test_a_stuck_sensor_is_named_in_the_conditions(recording):
     stuck["a1"][60_000:] = stuck["a1"][60_000]
     sat = Measurement("stuck", dt, stuck).saturation()
     assert sat["saturated"] and "a1 stuck" in sat["messages"][0] and "dead accelerometer" in sat["messages"][0]
+
+
+def test_no_term_is_proposed_from_a_clipped_or_stuck_sensor_and_the_user_is_told_why(recording):
+    # a clipped or held signal has lost what the drive did: no term of the drive's states reproduces it, so the
+    # residual is the sensor's fault; the proposal says so instead of fitting a law to it (a spent sealed row, an a2
+    # blanked during each stroke, got a rim force that made the model stop crossing its backlash)
+    from backlash_monitor.workbench.proposal import sensor_fault_gate
+    signals, dt = recording
+    assert sensor_fault_gate(Measurement("clean", dt, dict(signals)).saturation()) is None
+    assert sensor_fault_gate({}) is None
+    for name, faulty in (("clipped", np.clip(signals["a2"], -0.75 * np.abs(signals["a2"]).max(),
+                                             0.75 * np.abs(signals["a2"]).max())),
+                         ("stuck", np.where(np.arange(signals["a2"].size) >= 60_000, signals["a2"][60_000],
+                                            signals["a2"]))):
+        gated = sensor_fault_gate(Measurement(name, dt, {**signals, "a2": faulty}).saturation())
+        assert gated is not None and not gated.proposed and not gated.plugin_source and not gated.pieces
+        assert gated.reason.startswith("not proposed: a2 ") and "faulty sensor" in gated.reason
+        assert ("at its rail" if name == "clipped" else "stuck") in gated.reason
+        assert gated.to_json()["proposed"] is False
