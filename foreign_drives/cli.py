@@ -18,7 +18,7 @@ SUITE_CHOICES = ("bench", "widthloop", "test", "outside_dev", "outside_sealed", 
                  "outside_dev11", "outside_sealed11", "outside_dev12", "outside_sealed12",
                  "outside_dev13", "outside_sealed13", "outside_dev14", "outside_sealed14",
                  "outside_dev15", "outside_sealed15", "outside_dev16", "outside_sealed16",
-                 "outside_dev17", "outside_sealed17")
+                 "outside_dev17", "outside_sealed17", "outside_dev18", "outside_sealed18")
 
 DESCRIPTION = """\
 Foreign drives: recordings of the drive made by a second, independent simulator (docs/foreign_drives.md),
@@ -69,7 +69,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "13100+); outside_dev14 / outside_sealed14: a fourteenth (seeds 14000+ / 14100+); outside_dev15 / "
                         "outside_sealed15: a fifteenth (seeds 15000+ / 15100+); outside_dev16 / outside_sealed16: a "
                         "sixteenth (seeds 16000+ / 16100+); outside_dev17 / outside_sealed17: a seventeenth (seeds "
-                        "17000+ / 17100+)")
+                        "17000+ / 17100+); outside_dev18 / outside_sealed18: an eighteenth (seeds 18000+ / 18100+)")
     w.add_argument("--out", required=True, metavar="DIR", help="output directory (created if missing)")
     w.add_argument("--only", action="append", metavar="LABEL", default=None,
                    help="write only this recording (repeatable); the manifest then lists only these")
