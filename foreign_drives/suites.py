@@ -714,9 +714,10 @@ OUTSIDE_DEV17_ROWS = [
 # fifteenth set's documented clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80
 # m/s; the pulse 60 ms every 0.25 s).
 OUTSIDE_DEV18_ROWS = [
-    # 0.01 N*m*s/rad (1.5 N*m at 150 rad/s) on 0.4 m of every 1.2 m (about 19 Hz at the carriage's speed)
+    # 0.01 N*m*s/rad (1.5 N*m at 150 rad/s) on 0.4 m of every 1.2 m (about 19 Hz at the carriage's speed) a priori,
+    # a2 0.0181: scaled once x4.14
     ("od18_motor_rail_section_dynamo", "outside", 0.0070, 0.0260, 0.93,
-     [E("motor_rail_section_dynamo", {"coefficient_Nm_s_per_rad": 0.01, "pitch_m": 1.2, "live_m": 0.4,
+     [E("motor_rail_section_dynamo", {"coefficient_Nm_s_per_rad": 0.04142, "pitch_m": 1.2, "live_m": 0.4,
                                       "offset_m": 0.1})]),
     # 40 N*m*s/m of the stroke's peak carriage speed above 22.70 m/s (up to about 4 N*m)
     ("od18_wheel_stroke_peak_carriage_speed_brake", "outside", 0.0062, 0.0305, 0.95,
