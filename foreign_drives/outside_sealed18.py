@@ -55,6 +55,14 @@ Visibility, measured as for the development half (4 s, against the same spec wit
 criterion a2 >= 0.05, a1 >= 0.25 for an a1 row): 2 a2 0.0444 at its a-priori strength, scaled once x1.69 (a2 0.0706
 after); 4 a2 0.227; 6 a2 0.0428, scaled once x1.75 (a2 0.0695 after); 8 a2 0.0502; 10 a1 0.145, scaled once x2.59 (a1
 0.375 after); 12 a2 0.0668; 14 a2 0.0556 -- the others as written.
+
+Thin (read off the laws and the documented clean drive, no diagnose; recorded here only): the averaged tension brake
+(2) and the check-valve brake (14) read the extension (0.274-0.321 m) above 0.29 m, smoothed, so part of each is a
+constant load (their means); the synchronous motor (4) slips its poles at about p*(Omega_s - Omega2), some 12 rad/s
+(about 2 Hz, below the 4 Hz pulse train), a slow swing whose phase wanders with the wheel's speed; the far-side brake
+(12) acts only during the far face's short contacts at the onsets, so its load is brief pulses; the ringing (8) is
+barely above the criterion (a2 0.0502); the pyroelectric term (10) is a high-pass of t_e^2, zero on average, locked to
+the strokes.
 """
 from __future__ import annotations
 
