@@ -9,16 +9,10 @@ from pathlib import Path
 
 from . import forms as F
 from .spec import manifest
+from .suites import SUITE_NAMES
 
-SUITE_CHOICES = ("bench", "widthloop", "test", "outside_dev", "outside_sealed", "outside_dev2", "outside_sealed2",
-                 "outside_dev3", "outside_sealed3", "outside_dev4", "outside_sealed4",
-                 "outside_dev5", "outside_sealed5", "outside_dev6", "outside_sealed6", "outside_dev7",
-                 "outside_sealed7", "outside_dev8", "outside_sealed8", "outside_dev9",
-                 "outside_sealed9", "outside_dev10", "outside_sealed10",
-                 "outside_dev11", "outside_sealed11", "outside_dev12", "outside_sealed12",
-                 "outside_dev13", "outside_sealed13", "outside_dev14", "outside_sealed14",
-                 "outside_dev15", "outside_sealed15", "outside_dev16", "outside_sealed16",
-                 "outside_dev17", "outside_sealed17", "outside_dev18", "outside_sealed18")
+# every suite `suite()` makes (suites.SUITE_NAMES: the named suites, then the sealed halves made on first use)
+SUITE_CHOICES = SUITE_NAMES
 
 DESCRIPTION = """\
 Foreign drives: recordings of the drive made by a second, independent simulator (docs/foreign_drives.md),
@@ -69,7 +63,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "13100+); outside_dev14 / outside_sealed14: a fourteenth (seeds 14000+ / 14100+); outside_dev15 / "
                         "outside_sealed15: a fifteenth (seeds 15000+ / 15100+); outside_dev16 / outside_sealed16: a "
                         "sixteenth (seeds 16000+ / 16100+); outside_dev17 / outside_sealed17: a seventeenth (seeds "
-                        "17000+ / 17100+); outside_dev18 / outside_sealed18: an eighteenth (seeds 18000+ / 18100+)")
+                        "17000+ / 17100+)")
     w.add_argument("--out", required=True, metavar="DIR", help="output directory (created if missing)")
     w.add_argument("--only", action="append", metavar="LABEL", default=None,
                    help="write only this recording (repeatable); the manifest then lists only these")

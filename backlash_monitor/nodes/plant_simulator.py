@@ -28,6 +28,7 @@ from backlash_monitor.plant.config import parse_override
 from backlash_monitor.plant.simulate import check_runtime_change
 from backlash_monitor_msgs.msg import SignalChunk
 import rclpy
+from rclpy.duration import Duration
 
 TICK_PERIOD_S = 0.01      # the publishing timer; each tick publishes every chunk that is due
 MAX_CHUNKS_PER_TICK = 64  # bound on the catch-up after a stall
@@ -55,6 +56,11 @@ PARAMETERS = (
                   0.0, 1e7),
     ParameterSpec("qos", "sensor_data", "QoS of the chunk topics",
                   choices=("sensor_data", "reliable")),
+    ParameterSpec("finish_timeout_s", 10.0, "once duration_s is published: wait up to this long for every reliable "
+                  "subscriber to acknowledge every chunk before the node exits (a subscriber behind the stream -- "
+                  "stalled, loaded, across a network -- still gets its end: a reliable chunk still in the "
+                  "publisher's history is lost with the process); 0 = exit at once; with qos sensor_data there is "
+                  "nothing to wait for [s]", 0.0, 3600.0),
     ParameterSpec("backend", "numba-scalar", "integrator kernel for the one simulated drive: "
                   "'numba-scalar' (3x faster per chunk than 'numba', whose SIMD kernel computes "
                   "8 lanes for one drive; the same RK4 scheme, results agree with a batch run to "
@@ -246,10 +252,32 @@ class PlantSimulatorNode(Node):
         self.chunks_published += 1
 
 
+    def wait_delivered(self) -> bool:
+        """After the last chunk: wait (up to finish_timeout_s) until every subscriber of the chunk topics has
+        acknowledged every chunk; False, with a warning naming the topics, when one has not (best-effort topics
+        acknowledge nothing: True at once)."""
+        timeout_s = self.params["finish_timeout_s"]
+        if timeout_s <= 0:
+            return True
+        deadline = time.monotonic() + timeout_s
+        behind = []
+        for name, publisher in self.publishers_by_signal.items():
+            left = max(deadline - time.monotonic(), 1e-3)
+            if not publisher.wait_for_all_acked(Duration(seconds=left)):
+                behind.append(f"plant/{name}")
+        if behind:
+            self.get_logger().warning(f"exiting with chunks not acknowledged after {timeout_s:g} s on "
+                                      f"{', '.join(behind)}: a subscriber still behind the stream loses its end "
+                                      "(raise finish_timeout_s to wait longer)")
+        return not behind
+
+
 def main(args=None):
     def spin(node, executor):
         while rclpy.ok() and not node.finished:
             executor.spin_once(timeout_sec=0.1)
+        if node.finished:
+            node.wait_delivered()
     return run_node(PlantSimulatorNode, args=args, spin=spin)
 
 

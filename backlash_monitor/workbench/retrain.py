@@ -136,6 +136,7 @@ def describe(check: dict) -> list:
             continue
         out.append(f"check {c['model']} on {Path(c['measurement']).name}: retrained monitor "
                    f"{c['retrained_width_m'] * 1e3:.3f} mm, packaged {c['packaged_width_m'] * 1e3:.3f} mm, "
-                   f"diagnosis {c['diagnosed_width_m'] * 1e3:.3f} mm: {c['status'].upper()}"
+                   f"diagnosis {c['diagnosed_width_m'] * 1e3:.3f} ± {c['diagnosed_width_uncertainty_m'] * 1e3:.3f} mm: "
+                   f"{c['status'].upper()}"
                    + (" (" + "; ".join(c["reasons"]) + ")" if c["reasons"] else ""))
     return out

@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from backlash_monitor.workbench.retrain import judge
+from backlash_monitor.workbench.retrain import describe, judge
 
 MM = 1e-3
 
@@ -47,3 +47,14 @@ def test_the_switch_needs_the_whole_uncertainty(gain_over_unc):
     new = old + gain_over_unc * unc          # closer to the diagnosis at 8.0 mm by gain_over_unc * unc
     assert judge(8.0 * MM, unc, new, old, "partial")["not_shown_better"]
     assert not judge(8.0 * MM, unc, old + 1.01 * unc, old, "partial")["not_shown_better"]
+
+
+def test_the_check_line_states_the_diagnosis_with_its_uncertainty():
+    # the reference the check judges by is a measurement: the user reads its spread beside the two libraries' widths
+    j = judge(6.45 * MM, 0.26 * MM, 6.76 * MM, 5.89 * MM, "nothing_explains")
+    entry = {"model": "default v2", "measurement": "/x/drive.mcap", "retrained_width_m": 6.76 * MM,
+             "packaged_width_m": 5.89 * MM, "diagnosed_width_m": 6.45 * MM, "diagnosed_width_uncertainty_m": 0.26 * MM,
+             **j, "status": "flagged"}
+    (line,) = describe({"checked": [entry]})
+    assert "retrained monitor 6.760 mm, packaged 5.890 mm, diagnosis 6.450 ± 0.260 mm: FLAGGED" in line
+    assert "no reference to switch on" in line
