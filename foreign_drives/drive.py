@@ -133,7 +133,7 @@ def make_recording(spec: RecordingSpec, tol_scale: float = 1.0) -> Recording:
               "a1_physical": accel["a1"], "a2_physical": accel["a2"],
               "spring_extension": run.signal("spring_extension", pre_roll=True),
               "mass_speed": run.signal("mass_speed", pre_roll=True), "mode": run.signal("mode", pre_roll=True),
-              "pulse": pulse_indicator(t, spec.pulse_first_s)}
+              "te_pu": run.signal("te_pu", pre_roll=True), "pulse": pulse_indicator(t, spec.pulse_first_s)}
     sensed = apply_sensor_chain(spec, accel, t, fs, states=states)
     sig = {"a1": sensed["a1"][n_pre:], "a2": sensed["a2"][n_pre:],
            "omega1": run.signal("omega1").copy(), "omega2": run.signal("omega2").copy(),

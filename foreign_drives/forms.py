@@ -827,15 +827,17 @@ def _register_outside() -> None:
     .outside_sealed9, the tenth .outside_dev10, .outside_sealed10, the eleventh .outside_dev11, .outside_sealed11, the twelfth .outside_dev12,
     .outside_sealed12, the thirteenth .outside_dev13, .outside_sealed13, the fourteenth .outside_dev14,
     .outside_sealed14, the fifteenth .outside_dev15, .outside_sealed15, the sixteenth .outside_dev16,
-    .outside_sealed16 and the seventeenth .outside_dev17, .outside_sealed17)
+    .outside_sealed16, the seventeenth .outside_dev17, .outside_sealed17 and the eighteenth .outside_dev18,
+    .outside_sealed18)
     join FORMS. Imported here, at the end, because they build on Form and Param above."""
     from . import (outside_dev, outside_dev2, outside_dev3, outside_dev4, outside_dev5, outside_dev6, outside_dev7,
                    outside_dev8, outside_dev9, outside_dev10, outside_dev11, outside_dev12, outside_dev13, outside_dev14,
-                   outside_dev15, outside_dev16, outside_dev17, outside_sealed,
+                   outside_dev15, outside_dev16, outside_dev17, outside_dev18, outside_sealed,
                    outside_sealed2,
                    outside_sealed3, outside_sealed4, outside_sealed5, outside_sealed6, outside_sealed7, outside_sealed8,
                    outside_sealed9, outside_sealed10, outside_sealed11, outside_sealed12, outside_sealed13,
-                   outside_sealed14, outside_sealed15, outside_sealed16, outside_sealed17)
+                   outside_sealed14, outside_sealed15, outside_sealed16, outside_sealed17,
+                   outside_sealed18)
     for cls in (outside_dev.FORM_CLASSES + outside_sealed.FORM_CLASSES + outside_dev2.FORM_CLASSES
                 + outside_sealed2.FORM_CLASSES + outside_dev3.FORM_CLASSES + outside_sealed3.FORM_CLASSES
                 + outside_dev4.FORM_CLASSES + outside_sealed4.FORM_CLASSES + outside_dev5.FORM_CLASSES
@@ -847,7 +849,7 @@ def _register_outside() -> None:
                 + outside_dev13.FORM_CLASSES + outside_sealed13.FORM_CLASSES + outside_dev14.FORM_CLASSES
                 + outside_sealed14.FORM_CLASSES + outside_dev15.FORM_CLASSES + outside_sealed15.FORM_CLASSES
                 + outside_dev16.FORM_CLASSES + outside_sealed16.FORM_CLASSES + outside_dev17.FORM_CLASSES
-                + outside_sealed17.FORM_CLASSES):
+                + outside_sealed17.FORM_CLASSES + outside_dev18.FORM_CLASSES + outside_sealed18.FORM_CLASSES):
         FORMS[cls.name] = cls()
 
 

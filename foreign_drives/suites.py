@@ -707,6 +707,39 @@ OUTSIDE_DEV17_ROWS = [
      [E("clutch_stroke_reanchored_torsion_bar", {"stiffness_Nm_per_rad": 40.0})]),
 ]
 
+# ---- issue 31 part 4, eighteenth set: mechanisms outside the catalogue of other kinds again
+# (foreign_drives.outside_dev18; the eighteenth sealed half's rows are in foreign_drives.outside_sealed18). One mechanism
+# per row at its own nominal conditions, one clean control. Seeds 18000+. Each strength set by one simulation against
+# the clean drive of the same seed (docs/foreign_drives.md "The eighteenth set"). The a-priori values are read off the
+# fifteenth set's documented clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80
+# m/s; the pulse 60 ms every 0.25 s).
+OUTSIDE_DEV18_ROWS = [
+    # 0.01 N*m*s/rad (1.5 N*m at 150 rad/s) on 0.4 m of every 1.2 m (about 19 Hz at the carriage's speed) a priori,
+    # a2 0.0181: scaled once x4.14
+    ("od18_motor_rail_section_dynamo", "outside", 0.0070, 0.0260, 0.93,
+     [E("motor_rail_section_dynamo", {"coefficient_Nm_s_per_rad": 0.04142, "pitch_m": 1.2, "live_m": 0.4,
+                                      "offset_m": 0.1})]),
+    # 40 N*m*s/m of the stroke's peak carriage speed above 22.70 m/s (up to about 4 N*m)
+    ("od18_wheel_stroke_peak_carriage_speed_brake", "outside", 0.0062, 0.0305, 0.95,
+     [E("wheel_stroke_peak_carriage_speed_brake", {"coefficient_Nm_s_per_m": 40.0, "reference_speed_m_s": 22.70})]),
+    # 3 N*m pull-out at 2 rad/s of slip
+    ("od18_clutch_induction_slip_coupling", "outside", 0.0082, 0.0240, 0.91,
+     [E("clutch_induction_slip_coupling", {"pullout_torque_Nm": 3.0, "pullout_slip_rad_s": 2.0})]),
+    # 3 N from a carriage speed above 22.76 m/s to the next stroke
+    ("od18_mass_stroke_rearmed_overspeed_catch", "outside", 0.0066, 0.0340, 0.94,
+     [E("mass_stroke_rearmed_overspeed_catch", {"force_N": 3.0, "trip_speed_m_s": 22.76})]),
+    ("od18_clean_w7.4_eta0.0270_n0.92", "clean", 0.0074, 0.0270, 0.92, []),
+    # 0.01 s^2/m (a2's gain +-1 % per m/s^2 of a1)
+    ("od18_a2_reference_shared_with_a1", "outside", 0.0086, 0.0220, 0.97,
+     [E("a2_reference_shared_with_a1", {"gain_per_m_s2": 0.01})]),
+    # 40 N*m/rad about an anchor creeping at most 0.2 rad/s
+    ("od18_clutch_creeping_anchor_torsion_bar", "outside", 0.0078, 0.0285, 0.90,
+     [E("clutch_creeping_anchor_torsion_bar", {"stiffness_Nm_per_rad": 40.0, "creep_rad_s": 0.2})]),
+    # 3 N, a section every 0.6 m (about 38 sections a second), seed 7
+    ("od18_mass_rail_section_slopes", "outside", 0.0065, 0.0250, 0.96,
+     [E("mass_rail_section_slopes", {"force_N": 3.0, "section_m": 0.6, "offset_m": 0.0, "seed": 7.0})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -727,6 +760,7 @@ OUTSIDE_DEV14 = _suite(OUTSIDE_DEV14_ROWS, 14000, 4.0)
 OUTSIDE_DEV15 = _suite(OUTSIDE_DEV15_ROWS, 15000, 4.0)
 OUTSIDE_DEV16 = _suite(OUTSIDE_DEV16_ROWS, 16000, 4.0)
 OUTSIDE_DEV17 = _suite(OUTSIDE_DEV17_ROWS, 17000, 4.0)
+OUTSIDE_DEV18 = _suite(OUTSIDE_DEV18_ROWS, 18000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
@@ -734,7 +768,8 @@ SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": 
           "outside_dev10": OUTSIDE_DEV10, "outside_dev11": OUTSIDE_DEV11,
           "outside_dev12": OUTSIDE_DEV12, "outside_dev13": OUTSIDE_DEV13,
           "outside_dev14": OUTSIDE_DEV14, "outside_dev15": OUTSIDE_DEV15,
-          "outside_dev16": OUTSIDE_DEV16, "outside_dev17": OUTSIDE_DEV17}
+          "outside_dev16": OUTSIDE_DEV16, "outside_dev17": OUTSIDE_DEV17,
+          "outside_dev18": OUTSIDE_DEV18}
 
 
 def _outside_sealed():
@@ -840,11 +875,19 @@ def _outside_sealed17():
     return _suite(suite_rows(), 17100, 4.0)
 
 
+def _outside_sealed18():
+    """The eighteenth sealed half's suite, made from foreign_drives.outside_sealed18 on first use (its rows live
+    there)."""
+    from .outside_sealed18 import suite_rows
+    return _suite(suite_rows(), 18100, 4.0)
+
+
 SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
                                "outside_sealed5", "outside_sealed6", "outside_sealed7", "outside_sealed8",
                                "outside_sealed9", "outside_sealed10", "outside_sealed11",
                                "outside_sealed12", "outside_sealed13", "outside_sealed14",
-                               "outside_sealed15", "outside_sealed16", "outside_sealed17")
+                               "outside_sealed15", "outside_sealed16", "outside_sealed17",
+                               "outside_sealed18")
 
 
 def suite(name: str) -> list:
@@ -882,6 +925,8 @@ def suite(name: str) -> list:
         return _outside_sealed16()
     if name == "outside_sealed17":
         return _outside_sealed17()
+    if name == "outside_sealed18":
+        return _outside_sealed18()
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])
