@@ -251,7 +251,6 @@ class PlantSimulatorNode(Node):
             publisher.publish(msg)
         self.chunks_published += 1
 
-
     def wait_delivered(self) -> bool:
         """After the last chunk: wait (up to finish_timeout_s) until every subscriber of the chunk topics has
         acknowledged every chunk; False, with a warning naming the topics, when one has not (best-effort topics
