@@ -819,38 +819,20 @@ FORM_CLASSES = (WheelFrictionTanh, WheelFrictionLoadDependent, WheelDragPower, W
 FORMS = {cls.name: cls() for cls in FORM_CLASSES}
 
 
+# the sets of mechanisms outside the catalogue (issue 31): foreign_drives.outside_dev, .outside_sealed, then
+# .outside_devN, .outside_sealedN for N = 2 .. OUTSIDE_SETS, registered set by set, development half first
+OUTSIDE_SETS = 18
+OUTSIDE_MODULES = tuple(f"outside_{half}{'' if n == 1 else n}" for n in range(1, OUTSIDE_SETS + 1)
+                        for half in ("dev", "sealed"))
+
+
 def _register_outside() -> None:
-    """The mechanisms outside the catalogue of issue 31 (foreign_drives.outside_dev, .outside_sealed, the second set
-    .outside_dev2, .outside_sealed2, the third .outside_dev3, .outside_sealed3, the fourth .outside_dev4,
-    .outside_sealed4, the fifth .outside_dev5, .outside_sealed5, the sixth .outside_dev6, .outside_sealed6, the
-    seventh .outside_dev7, .outside_sealed7, the eighth .outside_dev8, .outside_sealed8, the ninth .outside_dev9,
-    .outside_sealed9, the tenth .outside_dev10, .outside_sealed10, the eleventh .outside_dev11, .outside_sealed11, the twelfth .outside_dev12,
-    .outside_sealed12, the thirteenth .outside_dev13, .outside_sealed13, the fourteenth .outside_dev14,
-    .outside_sealed14, the fifteenth .outside_dev15, .outside_sealed15, the sixteenth .outside_dev16,
-    .outside_sealed16, the seventeenth .outside_dev17, .outside_sealed17 and the eighteenth .outside_dev18,
-    .outside_sealed18)
-    join FORMS. Imported here, at the end, because they build on Form and Param above."""
-    from . import (outside_dev, outside_dev2, outside_dev3, outside_dev4, outside_dev5, outside_dev6, outside_dev7,
-                   outside_dev8, outside_dev9, outside_dev10, outside_dev11, outside_dev12, outside_dev13, outside_dev14,
-                   outside_dev15, outside_dev16, outside_dev17, outside_dev18, outside_sealed,
-                   outside_sealed2,
-                   outside_sealed3, outside_sealed4, outside_sealed5, outside_sealed6, outside_sealed7, outside_sealed8,
-                   outside_sealed9, outside_sealed10, outside_sealed11, outside_sealed12, outside_sealed13,
-                   outside_sealed14, outside_sealed15, outside_sealed16, outside_sealed17,
-                   outside_sealed18)
-    for cls in (outside_dev.FORM_CLASSES + outside_sealed.FORM_CLASSES + outside_dev2.FORM_CLASSES
-                + outside_sealed2.FORM_CLASSES + outside_dev3.FORM_CLASSES + outside_sealed3.FORM_CLASSES
-                + outside_dev4.FORM_CLASSES + outside_sealed4.FORM_CLASSES + outside_dev5.FORM_CLASSES
-                + outside_sealed5.FORM_CLASSES + outside_dev6.FORM_CLASSES + outside_sealed6.FORM_CLASSES
-                + outside_dev7.FORM_CLASSES + outside_sealed7.FORM_CLASSES + outside_dev8.FORM_CLASSES
-                + outside_sealed8.FORM_CLASSES + outside_dev9.FORM_CLASSES + outside_sealed9.FORM_CLASSES
-                + outside_dev10.FORM_CLASSES + outside_sealed10.FORM_CLASSES + outside_dev11.FORM_CLASSES
-                + outside_sealed11.FORM_CLASSES + outside_dev12.FORM_CLASSES + outside_sealed12.FORM_CLASSES
-                + outside_dev13.FORM_CLASSES + outside_sealed13.FORM_CLASSES + outside_dev14.FORM_CLASSES
-                + outside_sealed14.FORM_CLASSES + outside_dev15.FORM_CLASSES + outside_sealed15.FORM_CLASSES
-                + outside_dev16.FORM_CLASSES + outside_sealed16.FORM_CLASSES + outside_dev17.FORM_CLASSES
-                + outside_sealed17.FORM_CLASSES + outside_dev18.FORM_CLASSES + outside_sealed18.FORM_CLASSES):
-        FORMS[cls.name] = cls()
+    """The mechanisms outside the catalogue (OUTSIDE_MODULES, each module's FORM_CLASSES) join FORMS. Imported here,
+    at the end, because they build on Form and Param above."""
+    import importlib
+    for name in OUTSIDE_MODULES:
+        for cls in importlib.import_module(f".{name}", __package__).FORM_CLASSES:
+            FORMS[cls.name] = cls()
 
 
 _register_outside()

@@ -257,7 +257,7 @@ FORM_CLASSES = (MotorAveragedSpeedPump, WheelWornChainLinks, ClutchMisalignedDia
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 10100+ in this order (suites._outside_sealed10)."""
+    Seeds 10100+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         # 2 N*m per rad/s of the 10 ms mean speed above 151 rad/s (a clean drive's Omega1: 147.6-153.7 rad/s)

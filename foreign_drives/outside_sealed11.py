@@ -283,7 +283,7 @@ FORM_CLASSES = (MotorMagneticCouplingRotor, WheelTorqueSensingRampBrake, ClutchF
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 11100+ in this order (suites._outside_sealed11)."""
+    Seeds 11100+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         # a 4-pole-pair coupling of 10 N*m pull-out to a 0.02 kg*m^2 rotor loaded with 0.03 N*m*s/rad (~4.5 N*m)

@@ -249,7 +249,7 @@ FORM_CLASSES = (MotorRateLimitedConveyor, WheelStagedRetarder, ClutchFieldbusSli
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 12100+ in this order (suites._outside_sealed12)."""
+    Seeds 12100+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         # behind a 50 rad/s^2 ramp limit (a clean drive's Omega: 147.6-153.7 rad/s); 1 N*m*s/rad a priori, a2 0.0472:

@@ -246,7 +246,7 @@ FORM_CLASSES = (MotorTunedTorsionalAbsorber, WheelImpulseRelayBrake, ClutchSlipM
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 13100+ in this order (suites._outside_sealed13)."""
+    Seeds 13100+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         # a ring tuned to 100 Hz, zeta 0.05; 0.005 kg*m^2 a priori, a2 0.0289: scaled once x2.60

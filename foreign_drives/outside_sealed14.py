@@ -232,7 +232,7 @@ FORM_CLASSES = (MotorWheelPumpFedBrake, WheelExtensionLatchBrake, ClutchContactR
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 14100+ in this order (suites._outside_sealed14)."""
+    Seeds 14100+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         # a lag of Omega2, 20 ms rising, 200 ms falling; 0.03 N*m*s/rad a priori (about 4.5 N*m), a2 0.0179: scaled

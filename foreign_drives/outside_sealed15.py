@@ -243,7 +243,7 @@ FORM_CLASSES = (MotorPiSpeedLimitBrake, WheelDriveContactFillBrake, ClutchHeatTh
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 15100+ in this order (suites._outside_sealed15)."""
+    Seeds 15100+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         # brake-only PI above 152 rad/s; K_p 1 N*m*s/rad, K_i 20 N*m/rad, up to 5 N*m a priori, a2 0.0399: the three

@@ -241,7 +241,7 @@ FORM_CLASSES = (MotorStrokeSampledEnergyBrake, WheelSlackBowdenBrake, ClutchTach
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 16100+ in this order (suites._outside_sealed16)."""
+    Seeds 16100+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         # 0.5 N*m*s/rad above 148 rad/s of the stroke's sampled speed (up to about 3 N*m) a priori, a2 0.0146: scaled

@@ -246,7 +246,7 @@ FORM_CLASSES = (MotorTensionRunOnBrake, WheelSlipPeakEddyBrake, ClutchSlewLimite
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 17100+ in this order (suites._outside_sealed17)."""
+    Seeds 17100+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         # 2 N*m above 0.31 m and for 40 ms after

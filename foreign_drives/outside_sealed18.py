@@ -264,7 +264,7 @@ FORM_CLASSES = (MotorAveragedTensionBrake, WheelPoleSlippingSynchronousMotor, Cl
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 18100+ in this order (suites._outside_sealed18)."""
+    Seeds 18100+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         # 60 N*m/m of the extension's 10 ms mean above 0.29 m (up to about 2 N*m) a priori, a2 0.0444: scaled once

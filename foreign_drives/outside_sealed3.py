@@ -207,7 +207,7 @@ FORM_CLASSES = (MotorThrustBearingDrag, WheelBearingSpall, ClutchSqueezeFilm, Ma
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 7900+ in this order (suites._outside_sealed3)."""
+    Seeds 7900+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         ("os3_motor_thrust_bearing_drag", "outside", 0.0065, 0.03, 0.91,

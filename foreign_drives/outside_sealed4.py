@@ -253,7 +253,7 @@ FORM_CLASSES = (MotorBeltFlywheel, WheelFieldbusOverspeedBrake, ClutchHydraulicC
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 8100+ in this order (suites._outside_sealed4)."""
+    Seeds 8100+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         ("os4_motor_belt_flywheel", "outside", 0.007, 0.0225, 0.90,

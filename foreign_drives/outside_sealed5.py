@@ -211,7 +211,7 @@ FORM_CLASSES = (MotorViscoplasticStroke, WheelStrokeTensionControl, ClutchCentri
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 8300+ in this order (suites._outside_sealed5)."""
+    Seeds 8300+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         ("os5_motor_viscoplastic_stroke", "outside", 0.0075, 0.035, 0.90,

@@ -242,7 +242,7 @@ FORM_CLASSES = (MotorBatchBlankThickness, WheelPiSpeedBrake, ClutchDahlFrictionR
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 8500+ in this order (suites._outside_sealed6)."""
+    Seeds 8500+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         ("os6_motor_batch_blank_thickness", "outside", 0.0073, 0.033, 0.91,

@@ -242,7 +242,7 @@ FORM_CLASSES = (MotorBearingWarmup, WheelRunupChirp, ClutchInsertMullinsSoftenin
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 8700+ in this order (suites._outside_sealed7)."""
+    Seeds 8700+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         ("os7_motor_bearing_warmup", "outside", 0.0071, 0.031, 0.93,

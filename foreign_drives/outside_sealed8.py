@@ -241,7 +241,7 @@ FORM_CLASSES = (MotorShaftGeneratorConstantPower, WheelSnailCamKnockout, ClutchC
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 8900+ in this order (suites._outside_sealed8)."""
+    Seeds 8900+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         # 450 W a priori (3 N*m at 150 rad/s), a2 0.0138: scaled once x5.45 (16 N*m at 150 rad/s)

@@ -222,7 +222,7 @@ FORM_CLASSES = (MotorTensionParticleBrake, WheelCamTimedBrake, ClutchGapBumpers,
 
 def suite_rows():
     """The sealed suite's rows (label, kind, nominal width, eta_k, n1, effects): one per mechanism and a clean control.
-    Seeds 9100+ in this order (suites._outside_sealed9)."""
+    Seeds 9100+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
         # 0.05 N*m per rad/s per m of extension a priori, a2 0.0086: scaled once x8.72

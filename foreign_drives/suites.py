@@ -8,6 +8,8 @@ shaft encoders with an arbitrary zero).
 """
 from __future__ import annotations
 
+import importlib
+
 from .forms import ClutchContactHertz
 from .spec import EffectSpec as E
 from .spec import RecordingSpec, SensorNuisance
@@ -772,161 +774,41 @@ SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": 
           "outside_dev18": OUTSIDE_DEV18}
 
 
-def _outside_sealed():
-    """The sealed half's suite, made from foreign_drives.outside_sealed on first use (its rows live there)."""
-    from .outside_sealed import suite_rows
-    return _suite(suite_rows(), 7100, 4.0)
+# The sealed halves: each made on first use from its own module's rows (foreign_drives.<name>.suite_rows(), so that
+# nothing of it is read before it is asked for), 4 s recordings, seeds from this number on in its rows' order
+SEALED_FIRST_SEED = {
+    "outside_sealed": 7100,
+    "outside_sealed2": 7400,
+    "outside_sealed3": 7900,
+    "outside_sealed4": 8100,
+    "outside_sealed5": 8300,
+    "outside_sealed6": 8500,
+    "outside_sealed7": 8700,
+    "outside_sealed8": 8900,
+    "outside_sealed9": 9100,
+    "outside_sealed10": 10100,
+    "outside_sealed11": 11100,
+    "outside_sealed12": 12100,
+    "outside_sealed13": 13100,
+    "outside_sealed14": 14100,
+    "outside_sealed15": 15100,
+    "outside_sealed16": 16100,
+    "outside_sealed17": 17100,
+    "outside_sealed18": 18100,
+}
+
+SUITE_NAMES = tuple(SUITES) + tuple(SEALED_FIRST_SEED)
 
 
-def _outside_sealed2():
-    """The second sealed half's suite, made from foreign_drives.outside_sealed2 on first use (its rows live there)."""
-    from .outside_sealed2 import suite_rows
-    return _suite(suite_rows(), 7400, 4.0)
-
-
-def _outside_sealed3():
-    """The third sealed half's suite, made from foreign_drives.outside_sealed3 on first use (its rows live there)."""
-    from .outside_sealed3 import suite_rows
-    return _suite(suite_rows(), 7900, 4.0)
-
-
-def _outside_sealed4():
-    """The fourth sealed half's suite, made from foreign_drives.outside_sealed4 on first use (its rows live there)."""
-    from .outside_sealed4 import suite_rows
-    return _suite(suite_rows(), 8100, 4.0)
-
-
-def _outside_sealed5():
-    """The fifth sealed half's suite, made from foreign_drives.outside_sealed5 on first use (its rows live there)."""
-    from .outside_sealed5 import suite_rows
-    return _suite(suite_rows(), 8300, 4.0)
-
-
-def _outside_sealed6():
-    """The sixth sealed half's suite, made from foreign_drives.outside_sealed6 on first use (its rows live there)."""
-    from .outside_sealed6 import suite_rows
-    return _suite(suite_rows(), 8500, 4.0)
-
-
-def _outside_sealed7():
-    """The seventh sealed half's suite, made from foreign_drives.outside_sealed7 on first use (its rows live there)."""
-    from .outside_sealed7 import suite_rows
-    return _suite(suite_rows(), 8700, 4.0)
-
-
-def _outside_sealed8():
-    """The eighth sealed half's suite, made from foreign_drives.outside_sealed8 on first use (its rows live there)."""
-    from .outside_sealed8 import suite_rows
-    return _suite(suite_rows(), 8900, 4.0)
-
-
-def _outside_sealed9():
-    """The ninth sealed half's suite, made from foreign_drives.outside_sealed9 on first use (its rows live there)."""
-    from .outside_sealed9 import suite_rows
-    return _suite(suite_rows(), 9100, 4.0)
-
-
-def _outside_sealed10():
-    """The tenth sealed half's suite, made from foreign_drives.outside_sealed10 on first use (its rows live there)."""
-    from .outside_sealed10 import suite_rows
-    return _suite(suite_rows(), 10100, 4.0)
-
-
-def _outside_sealed11():
-    """The eleventh sealed half's suite, made from foreign_drives.outside_sealed11 on first use (its rows live there)."""
-    from .outside_sealed11 import suite_rows
-    return _suite(suite_rows(), 11100, 4.0)
-
-
-def _outside_sealed12():
-    """The twelfth sealed half's suite, made from foreign_drives.outside_sealed12 on first use (its rows live there)."""
-    from .outside_sealed12 import suite_rows
-    return _suite(suite_rows(), 12100, 4.0)
-
-
-def _outside_sealed13():
-    """The thirteenth sealed half's suite, made from foreign_drives.outside_sealed13 on first use (its rows live there)."""
-    from .outside_sealed13 import suite_rows
-    return _suite(suite_rows(), 13100, 4.0)
-
-
-def _outside_sealed14():
-    """The fourteenth sealed half's suite, made from foreign_drives.outside_sealed14 on first use (its rows live there)."""
-    from .outside_sealed14 import suite_rows
-    return _suite(suite_rows(), 14100, 4.0)
-
-
-def _outside_sealed15():
-    """The fifteenth sealed half's suite, made from foreign_drives.outside_sealed15 on first use (its rows live there)."""
-    from .outside_sealed15 import suite_rows
-    return _suite(suite_rows(), 15100, 4.0)
-
-
-def _outside_sealed16():
-    """The sixteenth sealed half's suite, made from foreign_drives.outside_sealed16 on first use (its rows live there)."""
-    from .outside_sealed16 import suite_rows
-    return _suite(suite_rows(), 16100, 4.0)
-
-
-def _outside_sealed17():
-    """The seventeenth sealed half's suite, made from foreign_drives.outside_sealed17 on first use (its rows live
-    there)."""
-    from .outside_sealed17 import suite_rows
-    return _suite(suite_rows(), 17100, 4.0)
-
-
-def _outside_sealed18():
-    """The eighteenth sealed half's suite, made from foreign_drives.outside_sealed18 on first use (its rows live
-    there)."""
-    from .outside_sealed18 import suite_rows
-    return _suite(suite_rows(), 18100, 4.0)
-
-
-SUITE_NAMES = tuple(SUITES) + ("outside_sealed", "outside_sealed2", "outside_sealed3", "outside_sealed4",
-                               "outside_sealed5", "outside_sealed6", "outside_sealed7", "outside_sealed8",
-                               "outside_sealed9", "outside_sealed10", "outside_sealed11",
-                               "outside_sealed12", "outside_sealed13", "outside_sealed14",
-                               "outside_sealed15", "outside_sealed16", "outside_sealed17",
-                               "outside_sealed18")
+def _sealed(name: str) -> list:
+    """A sealed half's suite, made from foreign_drives.<name> on first use (its rows live there)."""
+    rows = importlib.import_module(f".{name}", __package__).suite_rows()
+    return _suite(rows, SEALED_FIRST_SEED[name], 4.0)
 
 
 def suite(name: str) -> list:
-    if name == "outside_sealed":
-        return _outside_sealed()
-    if name == "outside_sealed2":
-        return _outside_sealed2()
-    if name == "outside_sealed3":
-        return _outside_sealed3()
-    if name == "outside_sealed4":
-        return _outside_sealed4()
-    if name == "outside_sealed5":
-        return _outside_sealed5()
-    if name == "outside_sealed6":
-        return _outside_sealed6()
-    if name == "outside_sealed7":
-        return _outside_sealed7()
-    if name == "outside_sealed8":
-        return _outside_sealed8()
-    if name == "outside_sealed9":
-        return _outside_sealed9()
-    if name == "outside_sealed10":
-        return _outside_sealed10()
-    if name == "outside_sealed11":
-        return _outside_sealed11()
-    if name == "outside_sealed12":
-        return _outside_sealed12()
-    if name == "outside_sealed13":
-        return _outside_sealed13()
-    if name == "outside_sealed14":
-        return _outside_sealed14()
-    if name == "outside_sealed15":
-        return _outside_sealed15()
-    if name == "outside_sealed16":
-        return _outside_sealed16()
-    if name == "outside_sealed17":
-        return _outside_sealed17()
-    if name == "outside_sealed18":
-        return _outside_sealed18()
+    if name in SEALED_FIRST_SEED:
+        return _sealed(name)
     if name not in SUITES:
         raise ValueError(f"unknown suite {name!r}; allowed: {', '.join(SUITE_NAMES)}")
     return list(SUITES[name])
