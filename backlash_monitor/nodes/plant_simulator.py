@@ -17,6 +17,7 @@ from rclpy.node import Node
 from rclpy.qos import QoSCompatibility, qos_check_compatible
 from std_msgs.msg import Float64
 
+from backlash_monitor.ros.delivery import wait_acknowledged
 from backlash_monitor.ros.conversions import SIGNAL_UNITS, stamp_of_sample, to_float64_array
 from backlash_monitor.ros.parameters import ParameterSpec, declare_and_validate, ParameterValueError
 from backlash_monitor.ros.qos import LATCHED, chunk_qos
@@ -28,7 +29,6 @@ from backlash_monitor.plant.config import parse_override
 from backlash_monitor.plant.simulate import check_runtime_change
 from backlash_monitor_msgs.msg import SignalChunk
 import rclpy
-from rclpy.duration import Duration
 
 TICK_PERIOD_S = 0.01      # the publishing timer; each tick publishes every chunk that is due
 MAX_CHUNKS_PER_TICK = 64  # bound on the catch-up after a stall
@@ -258,12 +258,8 @@ class PlantSimulatorNode(Node):
         timeout_s = self.params["finish_timeout_s"]
         if timeout_s <= 0:
             return True
-        deadline = time.monotonic() + timeout_s
-        behind = []
-        for name, publisher in self.publishers_by_signal.items():
-            left = max(deadline - time.monotonic(), 1e-3)
-            if not publisher.wait_for_all_acked(Duration(seconds=left)):
-                behind.append(f"plant/{name}")
+        behind = wait_acknowledged({f"plant/{name}": pub for name, pub in self.publishers_by_signal.items()},
+                                   timeout_s)
         if behind:
             self.get_logger().warning(f"exiting with chunks not acknowledged after {timeout_s:g} s on "
                                       f"{', '.join(behind)}: a subscriber still behind the stream loses its end "

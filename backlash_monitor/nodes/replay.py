@@ -24,12 +24,12 @@ import time
 import yaml
 
 import rclpy
-from rclpy.duration import Duration
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 from backlash_monitor.bag import BagReader
 from backlash_monitor.bag.errors import BagError, DamagedBagError, TruncatedBagError
+from backlash_monitor.ros.delivery import wait_acknowledged
 from backlash_monitor.ros.fast_dds import configure_fast_dds
 from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
@@ -197,7 +197,12 @@ class ReplayNode(Node):
                     self.wait_acked()
                     in_window = 0
         if rate == 0.0 or self.params["qos"] == "reliable":
-            self.wait_acked()
+            behind = self.wait_acked()
+            if behind:
+                self.get_logger().warning(
+                    f"exiting with messages not acknowledged after {self.params['wait_timeout_s']:g} s on "
+                    f"{', '.join(behind)}: a subscriber still behind the bag loses its end (raise wait_timeout_s "
+                    "to wait longer)")
 
     def _serve_until(self, deadline: float) -> None:
         """Serve the node's services until time.monotonic() reaches ``deadline``."""
@@ -207,9 +212,10 @@ class ReplayNode(Node):
     def _serve_for(self, seconds: float) -> None:
         self._serve_until(time.monotonic() + seconds)
 
-    def wait_acked(self) -> None:
-        for pub in self.publishers_by_topic.values():
-            pub.wait_for_all_acked(Duration(seconds=self.params["wait_timeout_s"] or 1e-3))
+    def wait_acked(self) -> list[str]:
+        """Wait (up to wait_timeout_s) until every reliable subscriber has acknowledged every message published so
+        far; -> the topics still behind (ros/delivery.py)."""
+        return wait_acknowledged(self.publishers_by_topic, self.params["wait_timeout_s"])
 
     def destroy_node(self):
         try:

@@ -54,3 +54,43 @@ def test_a_stalled_recorder_loses_no_message(ros_env, tmp_path):
     with BagReader(out) as bag:
         assert {t: i.count for t, i in bag.topics.items()} == result["published"], log
         assert all(s.gaps == [] for s in bag.read_signals().values())
+
+
+@pytest.mark.process
+@pytest.mark.ros
+def test_replay_names_the_topics_a_stalled_subscriber_has_not_acknowledged(ros_env, tmp_path):
+    """A replay ending while its subscriber is stopped (SIGSTOP) waits wait_timeout_s for the acknowledgements,
+    then says which topics' end that subscriber loses, and exits normally (ros/delivery.py)."""
+    from bag_helpers import write_sample_bag
+    from test_bag_record_replay import _start_recorder, _stop
+    src = tmp_path / "src.mcap"
+    write_sample_bag(src, n_chunks=250)          # 5 s at the recorded rate
+    rec = _start_recorder(ros_env, tmp_path / "out.mcap")
+    play = subprocess.Popen(
+        [sys.executable, "-m", "backlash_monitor.nodes.replay", "--ros-args", "-p", f"bag:={src}", "-p", "rate:=1.0",
+         "-p", "qos:=reliable", "-p", "wait_for_subscribers:=1", "-p", "wait_timeout_s:=3.0"],
+        env=ros_env, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    stopped = False
+    try:
+        seen = set()
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline and not any(t.startswith("/plant/") for t in seen):
+            line = rec.stdout.readline()
+            if not line:
+                break
+            if "recording /" in line:
+                seen.add(line.split("recording ", 1)[1].split()[0])
+        assert seen, "the recorder subscribed to nothing"
+        time.sleep(1.0)                          # replay plays (it waited for the subscription)
+        os.kill(rec.pid, signal.SIGSTOP)
+        stopped = True
+        out, _ = play.communicate(timeout=120)
+    finally:
+        if play.poll() is None:
+            play.kill()
+            play.communicate()
+        if stopped:
+            os.kill(rec.pid, signal.SIGCONT)
+        _stop(rec, timeout=60)
+    assert play.returncode == 0, out
+    assert "not acknowledged after 3 s on" in out and "/plant/" in out.split("not acknowledged", 1)[1], out
