@@ -82,8 +82,11 @@ test: setup chromium lint  ## the contracts and ruff, then the test suite but th
 	  && { python -m pytest test -q --run-slow -m "ros $(TEST_EXCLUDE)" --durations=10 --cpu-log log/test-cpu.tsv || rc=$$?; } \
 	  && { wait $$cores || rc=$$?; } \
 	  && echo "--- the tests not marked ros (log/test-cores.txt):" && cat log/test-cores.txt \
-	  && { awk -F'\t' '{ s += $$2 + $$3 } END { printf "test: %d tests, %.0f CPU s (log/test-cpu.tsv)\n", NR, s }' \
+	  && { awk -F'\t' '{ s += $$2 + $$3; if ($$5 > m) m = $$5; if ($$6 > c) c = $$6 } END { printf "test: %d tests, %.0f CPU s; peak memory %.0f MB in a test process, %.0f MB in a child (log/test-cpu.tsv)\n", NR, s, m, c }' \
 	         log/test-cpu.tsv || true; } \
+	  && { [ $$rc -eq 0 ] || { echo "--- on failure: the kernel's log of killed or crashed processes (a worker's 'node down')"; \
+	         dmesg 2>/dev/null | grep -iE 'out of memory|oom-kill|killed process|segfault|general protection|traps:' \
+	         | tail -20 || true; free -m || true; }; } \
 	  && exit $$rc
 
 test-all: setup chromium lint  ## make test with the heavy tests too (~4 min more on 2 cores)

@@ -2,6 +2,7 @@
 import itertools
 import os
 import pathlib
+import resource
 import sys
 import time
 
@@ -75,7 +76,8 @@ def pytest_addoption(parser):
         "--cpu-log", default=None, metavar="FILE",
         help="append one line per test to FILE: its node id, the CPU seconds of the test process and of the child "
              "processes it waited for (setup, call and teardown), and its wall seconds -- a test's cost that does "
-             "not grow with the machine's load, as --durations' wall times do (make test writes log/test-cpu.tsv).")
+             "not grow with the machine's load, as --durations' wall times do --, then the peak resident memory [MB] "
+             "so far of the test process and of its largest waited-for child (make test writes log/test-cpu.tsv).")
 
 
 _CPU_LOG: list = []          # the --cpu-log file, absolute (a test may change the working directory)
@@ -96,7 +98,12 @@ def pytest_runtest_protocol(item, nextitem):
     after = os.times()
     own = (after.user - before.user) + (after.system - before.system)
     children = (after.children_user - before.children_user) + (after.children_system - before.children_system)
-    line = f"{item.nodeid}\t{own:.2f}\t{children:.2f}\t{time.monotonic() - wall:.2f}\n"
+    # and the peak resident memory so far [MB] of the test process and of its largest waited-for child: a step in
+    # it names the test that raised it (a worker killed by the kernel for memory leaves no trace of its own)
+    peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    child_peak_mb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024.0
+    line = (f"{item.nodeid}\t{own:.2f}\t{children:.2f}\t{time.monotonic() - wall:.2f}\t{peak_mb:.0f}"
+            f"\t{child_peak_mb:.0f}\n")
     with open(_CPU_LOG[0], "a") as log:          # one short append per test: the xdist workers' lines do not interleave
         log.write(line)
 
