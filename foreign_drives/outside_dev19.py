@@ -73,3 +73,241 @@ down:
     ninth sealed half), the penetration (the seventh sealed half), the motor's speed (the fourteenth set) and the slip
     (the seventeenth sealed half); no earlier motor load reads the contact's power).
 """
+from __future__ import annotations
+
+import numpy as np
+
+from . import kernel as K
+from .forms import Param
+from .outside import OutsideForm, add_term
+from .outside_dev import _plugin
+from .outside_dev4 import set_memory
+
+
+# 1. motor load moment x the time since the latest stroke began through a ramp held at its top
+class MotorAccumulatorChargingPump(OutsideForm):
+    name = "motor_accumulator_charging_pump"
+    half = "dev19"
+    balance = "motor_load_moment"
+    depends_on = ("load_pulse",)
+    description = ("a pump on the motor's free shaft end charges the press's hydraulic accumulator, which the press "
+                   "empties at each stroke's start; its pressure, hence the pump's torque, rises linearly with the time "
+                   "since until the relief valve opens at full charge: T*min(1, (t - t_s)/T_c), t_s the latest load "
+                   "pulse's start (the pulse on or off)")
+    parameters = (Param("torque_Nm", "N*m", (0.0, 50.0), "T (at full charge)"),
+                  Param("charge_time_s", "s", (1e-3, 10.0), "T_c"))
+    note = "a motor load that ramps up after each stroke's start and holds"
+
+    def apply(self, b, p):
+        add_term(b, "motor_load_moment", p["torque_Nm"], (K.XS_PULSE_PHASE, K.XF_RAMP, p["charge_time_s"], 0.0, 0.0))
+
+    @staticmethod
+    def torque(since_stroke_s, p):
+        q = np.asarray(since_stroke_s, dtype=np.float64) / p["charge_time_s"]
+        return p["torque_Nm"] * np.clip(q, 0.0, 1.0)
+
+    def law(self, p):
+        return (f"motor load moment += {p['torque_Nm']:.6g} N*m * min(1, (t - t_s)/{p['charge_time_s']:.6g} s), t_s the "
+                "latest load pulse's start (on or off)")
+
+    def plugin(self, p):
+        return _plugin("MotorAccumulatorChargingPump", self.name, "motor_load_moment_pu", self.description, [
+            ("amplitude_pu", "p.u.", (0.0, 2.0), "T / T_b (T_b = 20 N*m)"),
+            ("charge_time_s", "s", (1e-3, 10.0), "T_c")],
+            "pulse_time_s, amplitude_pu, charge_time_s",
+            "amplitude_pu * fmin(1.0, pulse_time_s / charge_time_s)", "")
+
+
+# 3. wheel torque x the carriage's position through a half-wave rectified sine
+class WheelCableGuideRollers(OutsideForm):
+    name = "wheel_cable_guide_rollers"
+    half = "dev19"
+    balance = "wheel_torque"
+    depends_on = ("wheel_angle", "spring_extension")     # x = r*alpha2 - z
+    description = ("the tow cable runs from the drum along the track over spring-loaded guide rollers at a pitch L; "
+                   "where the cable's clamp rides over a roller it presses it down and drags on the cable, hence on the "
+                   "drum: -T*max(0, sin(2*pi*(x - x_0)/L))^2, x the carriage's position unwrapped from the run-in's "
+                   "start")
+    parameters = (Param("torque_Nm", "N*m", (0.0, 50.0), "T"),
+                  Param("pitch_m", "m", (0.01, 100.0), "L"),
+                  Param("offset_m", "m", (-100.0, 100.0), "x_0"))
+    note = "a wheel torque of the carriage's travel (a half-wave rectified sine)"
+
+    def apply(self, b, p):
+        k = 2.0 * np.pi / p["pitch_m"]
+        add_term(b, "wheel_torque", -p["torque_Nm"],
+                 (K.XS_MASS_POSITION, K.XF_SIN_POSITIVE, k, -k * p["offset_m"], 2.0), nonperiodic=True)
+
+    @staticmethod
+    def torque(x, p):
+        k = 2.0 * np.pi / p["pitch_m"]
+        s = np.sin(k * np.asarray(x, dtype=np.float64) - k * p["offset_m"])
+        return -p["torque_Nm"] * np.where(s > 0.0, s, 0.0) ** 2
+
+    def law(self, p):
+        return (f"wheel torque += -{p['torque_Nm']:.6g} N*m * max(0, sin(2*pi*(x - {p['offset_m']:.6g} m)/"
+                f"{p['pitch_m']:.6g} m))^2, x the carriage's position unwrapped from the run-in's start")
+
+
+# 5. clutch torque x the jaw's angle difference times the spring extension
+class ClutchTensionFedTorsionBellows(OutsideForm):
+    name = "clutch_tension_fed_torsion_bellows"
+    half = "dev19"
+    balance = "clutch_torque"
+    depends_on = ("clutch_penetration", "spring_extension")
+    description = ("a pneumatic torsion bellows bridges the jaw halves, fed from the cable's tension cylinder: its "
+                   "pressure, hence its centring stiffness, follows the cable's extension: -k*(z - z_0)*D, D the jaw's "
+                   "angle difference, in the gap and in contact")
+    parameters = (Param("stiffness_Nm_per_rad_m", "N*m/(rad*m)", (0.0, 1e5), "k (per m of extension)"),
+                  Param("reference_m", "m", (0.0, 1.0), "z_0"))
+    note = "a centring stiffness across the jaw scheduled by the load's cable"
+
+    def apply(self, b, p):
+        add_term(b, "clutch_torque", -p["stiffness_Nm_per_rad_m"], (K.XS_JAW_ANGLE, K.XF_X, 0.0, 0.0, 0.0),
+                 (K.XS_SPRING_EXTENSION, K.XF_CLIP, 10.0, -p["reference_m"], 0.0))   # z - z_0 (|z - z_0| < 10 m)
+
+    @staticmethod
+    def torque(d, z, p):
+        return -p["stiffness_Nm_per_rad_m"] * (np.asarray(z, dtype=np.float64) - p["reference_m"]) * np.asarray(
+            d, dtype=np.float64)
+
+    def law(self, p):
+        return (f"clutch torque += -{p['stiffness_Nm_per_rad_m']:.6g} N*m/(rad*m) * (z - {p['reference_m']:.6g} m) * D, "
+                "D the jaw's angle difference, in the gap and in contact")
+
+    def plugin(self, p):
+        return _plugin("ClutchTensionFedTorsionBellows", self.name, "coupling_torque_Nm", self.description, [
+            ("stiffness_Nm_per_rad_m", "N*m/(rad*m)", (0.0, 1e5), "k"),
+            ("reference_m", "m", (0.0, 1.0), "z_0")],
+            "delta, z, stiffness_Nm_per_rad_m, reference_m",
+            "-stiffness_Nm_per_rad_m * (z - reference_m) * delta", "")
+
+
+# 7. mass force x the wheel's angle through a once-per-turn window
+class MassDrumGroovingCrossover(OutsideForm):
+    name = "mass_drum_grooving_crossover"
+    half = "dev19"
+    balance = "mass_force"
+    depends_on = ("wheel_angle",)
+    description = ("the drum's rope grooving has a crossover: once per turn, over an arc w of the wheel's angle, the "
+                   "rope climbs it and jerks the tow cable back: -F while (alpha2 - alpha_0) mod 2*pi < w, else 0")
+    parameters = (Param("force_N", "N", (0.0, 100.0), "F"),
+                  Param("arc_rad", "rad", (0.0, 2.0 * np.pi), "w"),
+                  Param("angle_rad", "rad", (-np.pi, np.pi), "alpha_0"))
+    note = "a rectangular window of the wheel's angle on the carriage, once per turn"
+
+    def apply(self, b, p):
+        add_term(b, "mass_force", -p["force_N"],
+                 (K.XS_ALPHA2, K.XF_PERIODIC_GATE, 2.0 * np.pi, p["angle_rad"], p["arc_rad"]), nonperiodic=True)
+
+    @staticmethod
+    def force(alpha2, p):
+        q = np.mod(np.asarray(alpha2, dtype=np.float64) - p["angle_rad"], 2.0 * np.pi)
+        return np.where(q < p["arc_rad"], -p["force_N"], 0.0)
+
+    def law(self, p):
+        return (f"mass force += -{p['force_N']:.6g} N while (alpha2 - {p['angle_rad']:.6g}) mod 2*pi < "
+                f"{p['arc_rad']:.6g} rad, else 0")
+
+
+# 9. a2 sensor x the carriage's position through a cosine (a tilt into gravity)
+class A2WavyTrackTilt(OutsideForm):
+    name = "a2_wavy_track_tilt"
+    half = "dev19"
+    stage = "sensor"
+    order = 0                      # the sensing element's axis
+    uses_states = True
+    balance = "sensor"
+    channel = "a2"
+    depends_on = ("mass_acceleration", "wheel_angle", "spring_extension")     # x_c = r*alpha2 - z
+    description = ("the carriage's rail undulates with a wavelength L; the carriage pitches with the rail's slope, "
+                   "tilting a2's axis into gravity: y = x + A*cos(2*pi*(x_c - x_0)/L), x_c the carriage's position "
+                   "unwrapped from the run-in's start")
+    parameters = (Param("amplitude_m_s2", "m/s^2", (0.0, 10.0), "A (g times the slope's amplitude)"),
+                  Param("wavelength_m", "m", (0.01, 100.0), "L"),
+                  Param("offset_m", "m", (-100.0, 100.0), "x_0"))
+    note = "an additive a2 error locked to the carriage's travel (its tilt into gravity on a wavy rail)"
+
+    def apply_signal(self, sig, p, t, fs, states=None):
+        sig["a2"] = self.read(sig["a2"], states["mass_position"], p)
+
+    @staticmethod
+    def read(a2, x, p):
+        q = 2.0 * np.pi * (np.asarray(x, dtype=np.float64) - p["offset_m"]) / p["wavelength_m"]
+        return np.asarray(a2, dtype=np.float64) + p["amplitude_m_s2"] * np.cos(q)
+
+    def law(self, p):
+        return (f"a2 sensor = a2 + {p['amplitude_m_s2']:.6g} m/s^2 * cos(2*pi*(x - {p['offset_m']:.6g} m)/"
+                f"{p['wavelength_m']:.6g} m), x the carriage's position unwrapped from the run-in's start")
+
+
+# 11. wheel torque x the slip through a moving average
+class WheelSlipAveragingAntiClatter(OutsideForm):
+    name = "wheel_slip_averaging_anti_clatter"
+    half = "dev19"
+    balance = "wheel_torque"
+    depends_on = ("motor_speed", "wheel_speed")
+    description = ("an anti-clatter controller averages a slip monitor's reading over the last n 0.2 ms scans and "
+                   "drives a hydraulic torque motor on the wheel towards the motor's speed: +c*m, m the mean of "
+                   "s = Omega1 - Omega2 over the last n scans (all n = s at the run-in's start)")
+    parameters = (Param("coefficient_Nm_s_per_rad", "N*m*s/rad", (0.0, 100.0), "c"),
+                  Param("window_scans", "-", (1.0, float(K.MEMORY_RING)), "n (a whole number of 0.2 ms scans)"))
+    note = "a wheel torque of the slip averaged over a window (a boxcar)"
+
+    def apply(self, b, p):
+        set_memory(b, self.name, K.MK_MOVING_MEAN, K.XS_JAW_SPEED, float(int(p["window_scans"])))
+        add_term(b, "wheel_torque", p["coefficient_Nm_s_per_rad"], (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0),
+                 nonperiodic=True)
+
+    @staticmethod
+    def means(s_at_scans, n):
+        """The boxcar's output after each scan from the n-th on (the mean of the slip at the starts of that scan and the
+        n - 1 before it), from the slip at the scans' starts."""
+        s = np.asarray(s_at_scans, dtype=np.float64)
+        c = np.concatenate([[0.0], np.cumsum(s)])
+        return (c[int(n):] - c[:-int(n)]) / int(n)
+
+    def law(self, p):
+        return (f"wheel torque += {p['coefficient_Nm_s_per_rad']:.6g} N*m*s/rad * m, m the mean of Omega1 - Omega2 "
+                f"over the last {int(p['window_scans'])} 0.2 ms scans")
+
+
+# 13. motor load moment x the jaw's contact power through a decaying peak
+class MotorImpactSeverityBrake(OutsideForm):
+    name = "motor_impact_severity_brake"
+    half = "dev19"
+    balance = "motor_load_moment"
+    depends_on = ("clutch_penetration", "motor_speed", "wheel_speed")    # |T_c*D'|, D' = Omega1 - Omega2
+    description = ("an impact-severity meter on the coupling's guard, a peak hold with a bleed of the power the jaw's "
+                   "contact dissipates, sets the motor's eddy-current brake: c*m, m -> max(P, m*exp(-dt/tau)) every "
+                   "0.2 ms, P = |T_c*D'| the contact law's power (0 in the gap; m = P at the run-in's start)")
+    parameters = (Param("coefficient_Nm_per_W", "N*m/W", (0.0, 10.0), "c"),
+                  Param("decay_s", "s", (1e-4, 100.0), "tau"))
+    note = "a motor brake set by the jaw's recent peak contact power"
+
+    def apply(self, b, p):
+        set_memory(b, self.name, K.MK_PEAK, K.XS_CONTACT_POWER, p["decay_s"])
+        add_term(b, "motor_load_moment", p["coefficient_Nm_per_W"], (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0),
+                 nonperiodic=True)
+
+    @staticmethod
+    def peaks(power_at_scans, decay_s, dt, m0=None):
+        """The held peak m after each scan from the contact power at the scans' starts (m0 before the first; None: the
+        first scan is the run-in's start)."""
+        out, m, f = [], m0, float(np.exp(-dt / decay_s))
+        for x in np.asarray(power_at_scans, dtype=np.float64).tolist():
+            if m is None:
+                m = x
+            else:
+                m = max(x, m * f)
+            out.append(m)
+        return np.array(out)
+
+    def law(self, p):
+        return (f"motor load moment += {p['coefficient_Nm_per_W']:.6g} N*m/W * m, m -> max(P, m*exp(-0.2 ms/"
+                f"{p['decay_s']:.6g} s)) every 0.2 ms, P = |T_c*D'| the power the jaw's contact law dissipates (0 in "
+                "the gap)")
+
+
+FORM_CLASSES = (MotorAccumulatorChargingPump, WheelCableGuideRollers, ClutchTensionFedTorsionBellows,
+                MassDrumGroovingCrossover, A2WavyTrackTilt, WheelSlipAveragingAntiClatter, MotorImpactSeverityBrake)
