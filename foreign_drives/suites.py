@@ -749,12 +749,12 @@ OUTSIDE_DEV18_ROWS = [
 # documented clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80 m/s; the pulse
 # 60 ms every 0.25 s; the gap's half-width beta = w/r, about 0.045 rad).
 OUTSIDE_DEV19_ROWS = [
-    # 2 N*m at full charge, charged over 0.1 s after each stroke's start
+    # 2 N*m at full charge, charged over 0.1 s after each stroke's start a priori, a2 0.0498: scaled once x1.51
     ("od19_motor_accumulator_charging_pump", "outside", 0.0072, 0.0255, 0.93,
-     [E("motor_accumulator_charging_pump", {"torque_Nm": 2.0, "charge_time_s": 0.1})]),
-    # 2 N*m, a roller every 2 m (about 11 a second at the carriage's speed)
+     [E("motor_accumulator_charging_pump", {"torque_Nm": 3.011, "charge_time_s": 0.1})]),
+    # 2 N*m, a roller every 2 m (about 11 a second at the carriage's speed) a priori, a2 0.0415: scaled once x1.81
     ("od19_wheel_cable_guide_rollers", "outside", 0.0063, 0.0300, 0.95,
-     [E("wheel_cable_guide_rollers", {"torque_Nm": 2.0, "pitch_m": 2.0, "offset_m": 0.0})]),
+     [E("wheel_cable_guide_rollers", {"torque_Nm": 3.619, "pitch_m": 2.0, "offset_m": 0.0})]),
     # 1000 N*m/(rad*m) above 0.26 m (about 2 N*m at the faces)
     ("od19_clutch_tension_fed_torsion_bellows", "outside", 0.0081, 0.0240, 0.91,
      [E("clutch_tension_fed_torsion_bellows", {"stiffness_Nm_per_rad_m": 1000.0, "reference_m": 0.26})]),
@@ -765,9 +765,9 @@ OUTSIDE_DEV19_ROWS = [
     # 0.1 m/s^2 (a slope of 1 %), a wavelength of 1.5 m (about 15 Hz at the carriage's speed)
     ("od19_a2_wavy_track_tilt", "outside", 0.0085, 0.0225, 0.96,
      [E("a2_wavy_track_tilt", {"amplitude_m_s2": 0.1, "wavelength_m": 1.5, "offset_m": 0.0})]),
-    # 1 N*m*s/rad of the slip averaged over 10 ms
+    # 1 N*m*s/rad of the slip averaged over 10 ms a priori, a2 0.0493: scaled once x1.52
     ("od19_wheel_slip_averaging_anti_clatter", "outside", 0.0077, 0.0280, 0.90,
-     [E("wheel_slip_averaging_anti_clatter", {"coefficient_Nm_s_per_rad": 1.0, "window_scans": 50.0})]),
+     [E("wheel_slip_averaging_anti_clatter", {"coefficient_Nm_s_per_rad": 1.520, "window_scans": 50.0})]),
     # 0.04 N*m/W of the contact's peak power, bleeding over 50 ms
     ("od19_motor_impact_severity_brake", "outside", 0.0066, 0.0245, 0.97,
      [E("motor_impact_severity_brake", {"coefficient_Nm_per_W": 0.04, "decay_s": 0.05})]),
