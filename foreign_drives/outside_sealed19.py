@@ -188,6 +188,8 @@ class A1OwnClockSkew(OutsideForm):
 
     @staticmethod
     def read(a, t, p):
+        if p["skew"] == 0.0:
+            return np.asarray(a, dtype=np.float64)
         t = np.asarray(t, dtype=np.float64)
         return np.interp(t[0] + (1.0 + p["skew"]) * (t - t[0]), t, np.asarray(a, dtype=np.float64))
 
