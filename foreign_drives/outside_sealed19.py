@@ -50,6 +50,27 @@ Kinds (balance x what it reads, and how), the sealed half:
     pressed by the cable (the sixteenth set) or by the slip's own fill (the thirteenth set), or constant (the
     thirteenth set's hysteresis coupling); the twelfth set's hydrodynamic coupling is the slip times the motor's speed,
     viscous).
+
+Visibility, measured as for the development half (4 s, against the same spec without the mechanism, same seed;
+criterion a2 >= 0.05, a1 >= 0.25 for an a1 row): 2 a2 0.0726; 4 a2 0.0700; 6 a2 0.0940; 8 a2 0.137 at its first
+conditions, 0.0605 as re-written (below); 10 a1 12.8; 12 a2 0.160; 14 a2 0.0737 -- all as written, none scaled.
+
+The guide-shoe squeal's CONDITIONS (8) were re-written before any diagnose, as the fourteenth set's festoon loop's were:
+at z_c 0.29 m and g 20 /m it squealed through 97 % of the recording (|F| > 0.1 N), a steady 60 Hz tone that never
+died (the second set's fixed frequency on the carriage, in effect), because the extension (0.283-0.318 m on the clean
+drive, median 0.297 m) stays above 0.29 m most of the time and fell below it too little to damp the tone; now z_c
+0.306 m (about the clean drive's upper quartile) and g 200 /m: it squeals in bursts, 24 % of the recording. Its
+strength (F 2 N) is as written. A check that each memory switches (no figure used for a strength) found the latch (2)
+on 71 % of the recording, the on-delay (4) 34 %, the cut-out (6) switching 31 times in 4 s.
+
+Thin (read off the laws and the clean drive, no diagnose; recorded here only): the slip guard (2) trips at each stroke's
+gap traversal and holds to the next stroke's start, so 71 % of the recording it is on: mostly a constant brake with a
+stroke-locked gap; the debounced tension brake (4) and the squeal (8) read the extension through thresholds inside its
+range (0.30 m, 0.306 m), so each acts as a stroke-locked window; the clock skew (10) is far above the criterion (a1
+12.8, 200 ppm: a1's impacts are sharp, so 0.8 ms of drift by the end moves them a good deal), and its effect grows
+linearly over the recording; the coil's back-tension (12) steps once a stroke along a sine of five strokes (1.25 s), a
+slow pattern; the centrifugal clutch (14) acts mostly in the gap (in contact the slip is about 0, so tanh(s/w) is
+small), its pressing varying about twofold with the motor's speed (147-154 rad/s against 140 rad/s).
 """
 from __future__ import annotations
 
