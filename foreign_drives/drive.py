@@ -8,6 +8,7 @@ import numpy as np
 
 from . import constants as C
 from . import forms as F
+from . import kernel as K
 from . import noise as N
 from .physics import nominal_parameters
 from .simulation import DEFAULT_PRE_ROLL_S, simulate
@@ -104,6 +105,15 @@ def pulse_indicator(t: np.ndarray, pulse_first_s: float) -> np.ndarray:
     return N.pulse_train(s0, int(seg.max()) - s0 + 1, 1.0, pulse_first_s)[seg - s0]
 
 
+def mass_position(alpha2: np.ndarray, z: np.ndarray, P: np.ndarray) -> np.ndarray:
+    """The carriage's position unwrapped from the run-in's start [m] (the kernel's XS_MASS_POSITION) at each sample of
+    a run: r*alpha2 - z on the wheel's angle unwrapped, with the whole turns the integrator took off by the run's end
+    (P after the run: alpha2_turns) put back."""
+    theta = np.unwrap(alpha2)
+    end = alpha2[-1] + 2.0 * math.pi * P[K.P_A2TURNS]
+    return P[K.P_R] * (end - (theta[-1] - theta)) - z
+
+
 def measured_angle_difference(alpha1: np.ndarray, alpha2: np.ndarray, counts_per_rev: int, offset_rad: float):
     """alpha1 - alpha2 as two shaft encoders give it: each angle floored to its encoder's count (0 = exact),
     plus the encoders' zero offset. The angles come re-referenced by the same whole turns (integrator), which
@@ -133,7 +143,9 @@ def make_recording(spec: RecordingSpec, tol_scale: float = 1.0) -> Recording:
               "a1_physical": accel["a1"], "a2_physical": accel["a2"],
               "spring_extension": run.signal("spring_extension", pre_roll=True),
               "mass_speed": run.signal("mass_speed", pre_roll=True), "mode": run.signal("mode", pre_roll=True),
-              "te_pu": run.signal("te_pu", pre_roll=True), "pulse": pulse_indicator(t, spec.pulse_first_s)}
+              "te_pu": run.signal("te_pu", pre_roll=True), "pulse": pulse_indicator(t, spec.pulse_first_s),
+              "mass_position": mass_position(run.signal("alpha2", pre_roll=True),
+                                             run.signal("spring_extension", pre_roll=True), P)}
     sensed = apply_sensor_chain(spec, accel, t, fs, states=states)
     sig = {"a1": sensed["a1"][n_pre:], "a2": sensed["a2"][n_pre:],
            "omega1": run.signal("omega1").copy(), "omega2": run.signal("omega2").copy(),

@@ -742,6 +742,37 @@ OUTSIDE_DEV18_ROWS = [
      [E("mass_rail_section_slopes", {"force_N": 3.0, "section_m": 0.6, "offset_m": 0.0, "seed": 7.0})]),
 ]
 
+# ---- issue 31 part 4, nineteenth set: mechanisms outside the catalogue of other kinds again
+# (foreign_drives.outside_dev19; the nineteenth sealed half's rows are in foreign_drives.outside_sealed19). One mechanism
+# per row at its own nominal conditions, one clean control. Seeds 19000+. Each strength set by one simulation against
+# the clean drive of the same seed (docs/foreign_drives.md "The nineteenth set"). The a-priori values are read off the
+# documented clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80 m/s; the pulse
+# 60 ms every 0.25 s; the gap's half-width beta = w/r, about 0.045 rad).
+OUTSIDE_DEV19_ROWS = [
+    # 2 N*m at full charge, charged over 0.1 s after each stroke's start a priori, a2 0.0498: scaled once x1.51
+    ("od19_motor_accumulator_charging_pump", "outside", 0.0072, 0.0255, 0.93,
+     [E("motor_accumulator_charging_pump", {"torque_Nm": 3.011, "charge_time_s": 0.1})]),
+    # 2 N*m, a roller every 2 m (about 11 a second at the carriage's speed) a priori, a2 0.0415: scaled once x1.81
+    ("od19_wheel_cable_guide_rollers", "outside", 0.0063, 0.0300, 0.95,
+     [E("wheel_cable_guide_rollers", {"torque_Nm": 3.619, "pitch_m": 2.0, "offset_m": 0.0})]),
+    # 1000 N*m/(rad*m) above 0.26 m (about 2 N*m at the faces)
+    ("od19_clutch_tension_fed_torsion_bellows", "outside", 0.0081, 0.0240, 0.91,
+     [E("clutch_tension_fed_torsion_bellows", {"stiffness_Nm_per_rad_m": 1000.0, "reference_m": 0.26})]),
+    # 3 N over 0.6 rad of each turn (about 4 ms, 24 times a second)
+    ("od19_mass_drum_grooving_crossover", "outside", 0.0067, 0.0335, 0.94,
+     [E("mass_drum_grooving_crossover", {"force_N": 3.0, "arc_rad": 0.6, "angle_rad": 0.0})]),
+    ("od19_clean_w7.3_eta0.0265_n0.93", "clean", 0.0073, 0.0265, 0.93, []),
+    # 0.1 m/s^2 (a slope of 1 %), a wavelength of 1.5 m (about 15 Hz at the carriage's speed)
+    ("od19_a2_wavy_track_tilt", "outside", 0.0085, 0.0225, 0.96,
+     [E("a2_wavy_track_tilt", {"amplitude_m_s2": 0.1, "wavelength_m": 1.5, "offset_m": 0.0})]),
+    # 1 N*m*s/rad of the slip averaged over 10 ms a priori, a2 0.0493: scaled once x1.52
+    ("od19_wheel_slip_averaging_anti_clatter", "outside", 0.0077, 0.0280, 0.90,
+     [E("wheel_slip_averaging_anti_clatter", {"coefficient_Nm_s_per_rad": 1.520, "window_scans": 50.0})]),
+    # 0.04 N*m/W of the contact's peak power, bleeding over 50 ms
+    ("od19_motor_impact_severity_brake", "outside", 0.0066, 0.0245, 0.97,
+     [E("motor_impact_severity_brake", {"coefficient_Nm_per_W": 0.04, "decay_s": 0.05})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -763,6 +794,7 @@ OUTSIDE_DEV15 = _suite(OUTSIDE_DEV15_ROWS, 15000, 4.0)
 OUTSIDE_DEV16 = _suite(OUTSIDE_DEV16_ROWS, 16000, 4.0)
 OUTSIDE_DEV17 = _suite(OUTSIDE_DEV17_ROWS, 17000, 4.0)
 OUTSIDE_DEV18 = _suite(OUTSIDE_DEV18_ROWS, 18000, 4.0)
+OUTSIDE_DEV19 = _suite(OUTSIDE_DEV19_ROWS, 19000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
@@ -771,7 +803,7 @@ SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": 
           "outside_dev12": OUTSIDE_DEV12, "outside_dev13": OUTSIDE_DEV13,
           "outside_dev14": OUTSIDE_DEV14, "outside_dev15": OUTSIDE_DEV15,
           "outside_dev16": OUTSIDE_DEV16, "outside_dev17": OUTSIDE_DEV17,
-          "outside_dev18": OUTSIDE_DEV18}
+          "outside_dev18": OUTSIDE_DEV18, "outside_dev19": OUTSIDE_DEV19}
 
 
 # The sealed halves: each made on first use from its own module's rows (foreign_drives.<name>.suite_rows(), so that
@@ -795,6 +827,7 @@ SEALED_FIRST_SEED = {
     "outside_sealed16": 16100,
     "outside_sealed17": 17100,
     "outside_sealed18": 18100,
+    "outside_sealed19": 19100,
 }
 
 SUITE_NAMES = tuple(SUITES) + tuple(SEALED_FIRST_SEED)
