@@ -19,7 +19,7 @@ Each ``check_*`` takes one generated input and asserts the core's invariants:
 """
 from __future__ import annotations
 
-from collections import Counter
+from collections import Counter, namedtuple
 from functools import lru_cache
 
 import numpy as np
@@ -86,6 +86,18 @@ def chunk_streams(draw):
     return sizes, faults, tuple(order)
 
 
+# a chunk's header stamp, as builtin_interfaces/Time holds it
+Stamp = namedtuple("Stamp", "sec nanosec")
+# a restarted stream begins this long after the old one's last chunk [s] (a process restart takes
+# seconds; chain/stage.py STAMP_BACKSTEP_S)
+RESTART_DELAY_S = 1.0
+
+
+def stamp_at(seconds: float) -> Stamp:
+    ns = int(round(seconds * 1e9))
+    return Stamp(ns // 1_000_000_000, ns % 1_000_000_000)
+
+
 # the faults that move or lose ranges (swaps, gaps, duplicates, index jumps, restarts) and a bad
 # range; swaps and restarts twice as often (late chunks around a restart are what interacts)
 STREAM_FAULTS = ("swap", "swap", "restart", "restart", "lose_chunk", "lose_signal", "repeat", "jump",
@@ -107,16 +119,20 @@ def clustered_chunk_streams(draw, kinds=STREAM_FAULTS):
     return sizes, faults, tuple(draw(st.permutations(SIGNALS)))
 
 
-def run_stream(sizes, faults, order, resync_samples=50_000, trace=None):
+def run_stream(sizes, faults, order, resync_samples=50_000, trace=None, stamps=True):
     """Feeds the stream with its faults through ChunkJoiner + WindowingStage (as the node and
     analyze do); returns (windows, stage, joiner, clean_from: the sample index from which the
     stream was clean for good). ``trace``: a list to which (the range's place in the data, the
-    JoinedRange, whether the stage fed it to the detector) is appended for every joined range."""
+    JoinedRange, whether the stage fed it to the detector) is appended for every joined range.
+    ``stamps``: each chunk carries the header stamp of its first sample (its place in the data x
+    the period, plus RESTART_DELAY_S per restart before it), as the plant's publisher stamps them;
+    False: none, as an offline record without stamps."""
     data, _ = synthetic_stream()
     stage = WindowingStage(window_length=WINDOW_LENGTH, resync_samples=resync_samples)
     joiner = ChunkJoiner(stage.input_signals, faults=stage.faults)
     windows = []
     shift = 0                       # index shift of the chunks after a jump / restart
+    delay_s = 0.0                   # time added to the stamps by the restarts so far
     chunks = []
     lo = 0
     for i, size in enumerate(sizes):
@@ -157,13 +173,15 @@ def run_stream(sizes, faults, order, resync_samples=50_000, trace=None):
         elif fault == "restart":
             shift = -lo
             first = 0
+            delay_s += RESTART_DELAY_S
         elif fault == "bad_index":
             first = -5
         elif fault == "huge_index":
             first = 2 ** 64 - 1
         if fault != "none":
             last_fault_end = lo + size
-        out = [(first, arrays, periods, send, lo)]
+        stamp = stamp_at(lo * PERIOD_S + delay_s) if stamps else None
+        out = [(first, arrays, periods, send, lo, stamp)]
         if fault == "repeat":
             out = out + out
         if fault == "swap":
@@ -171,9 +189,9 @@ def run_stream(sizes, faults, order, resync_samples=50_000, trace=None):
             continue
         if pending_swap is not None:
             out, pending_swap = out + pending_swap, None
-        for first_, arrays_, periods_, send_, lo_ in out:
+        for first_, arrays_, periods_, send_, lo_, stamp_ in out:
             for name in send_:
-                joined = joiner.add(name, first_, periods_[name], arrays_[name])
+                joined = joiner.add(name, first_, periods_[name], arrays_[name], stamp=stamp_)
                 if joined is not None:
                     fed = stage.fed_samples
                     w, _ = stage.feed(joined)

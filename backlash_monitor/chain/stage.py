@@ -25,6 +25,15 @@ from backlash_monitor.windowing.saturation import SaturationCounter, SaturationS
 # its ranges dropped.
 RESTART_CONFIRM_RANGES = 2
 
+# While the stage is unsure (as above), a range that continues the stream followed by its index but
+# whose header stamp lies more than this before the time its place in that stream has (the stream's
+# time origin from the ranges placed, plus index x period) is a late range of an earlier stream whose
+# index happens to fill the new stream's next place (a chunk of the new stream lost), and is judged
+# as a range continuing neither. 0.5 s [s]: far above a publisher's stamp jitter (a chunk is stamped
+# within milliseconds of its first sample) and below the time a restarted stream needs to begin again
+# (a process restart takes seconds: docs/graph.md); a settled stream is never judged by its stamps.
+STAMP_BACKSTEP_S = 0.5
+
 
 class WindowingStage:
     """Entry detection + window capture of one drive (backlash_monitor.windowing).
@@ -51,7 +60,10 @@ class WindowingStage:
     stream followed goes on. Bad ranges take part with their own reason. The stage remembers the
     stream it left in turn. A stream with only its first range is unsure the same way (that range
     may be a restart whose old stream the stage never saw). Otherwise a range behind the stream is
-    dropped (``out_of_order``) and one ahead is a gap, as above.
+    dropped (``out_of_order``) and one ahead is a gap, as above. While unsure, a range that continues
+    the stream followed by its index but is stamped more than ``STAMP_BACKSTEP_S`` before its place
+    (the old stream's late chunk whose index fills the new stream's lost one) continues neither
+    stream; ranges without a stamp are placed by their index alone.
 
     So a stray chunk cannot move the place the stage expects for good: a clean stream after any
     cluster of swaps, gaps, duplicates, index jumps and restarts is fed again after at most
@@ -110,6 +122,7 @@ class WindowingStage:
         self._strays: dict[int, int] = {}     # ranges ahead continuing neither: end -> ranges in the chain
         self._switch_fed = 0                  # fed_samples at the last switch
         self._fresh = True                    # the stream followed has had no two ranges in a row yet
+        self._time_origin_s: float | None = None   # stamp of the stream followed's sample 0 [s], from its ranges
         if accelerometer_range_m_s2 is None:
             accelerometer_range_m_s2 = WINDOWING_DEFAULTS["sensors"]["accelerometer_range_m_s2"]
         limit = float(accelerometer_range_m_s2)
@@ -184,6 +197,10 @@ class WindowingStage:
         first = int(first)
         self._expire()
         verdict = self._judge(first)
+        stamp_s = _stamp_seconds(joined.stamp)
+        backstep_s = self._backstep_s(first, stamp_s, joined.sample_period_s) if verdict == "next" else 0.0
+        if backstep_s > STAMP_BACKSTEP_S and n > 0:
+            verdict = "stray"
         discarded: list = []
         if verdict == "restart":
             self.faults.add("stream_restart", f"index {first} after {self._next}")
@@ -195,11 +212,14 @@ class WindowingStage:
                 self._other_next, self._other_ranges = first + n, self._other_ranges + 1
                 ranges, where = self._other_ranges, "continues the stream before the restart"
             else:
-                ranges = self._strays.pop(first, 0) + 1     # (first == _next is 'next')
+                ranges = self._strays.pop(first, 0) + 1     # (first == _next: a stamp that stepped back)
                 self._strays[first + n] = ranges
                 if len(self._strays) > MAX_PENDING_RANGES:
                     del self._strays[next(iter(self._strays))]     # the oldest chain
-                where = "continues neither the stream nor the one before the restart"
+                where = ("continues neither the stream nor the one before the restart"
+                         if backstep_s <= STAMP_BACKSTEP_S else
+                         f"continues the stream by its index but is stamped {backstep_s:.3f} s before "
+                         f"its place: a late range of an earlier stream")
             if ranges < RESTART_CONFIRM_RANGES:
                 self.faults.add(reason or "out_of_order",
                                 f"range at sample {first} {where} (expected {self._next})")
@@ -227,14 +247,14 @@ class WindowingStage:
                 discarded += self._break(reason, first + n)
                 self._note_gap(first)
                 self.lost_samples += n
-                self._place(first, n)
+                self._place(first, n, stamp_s, joined.sample_period_s)
             return [], discarded
         if verdict == "behind":
             # late or repeated: dropped; the open windows keep their (complete) samples
             self.faults.add("out_of_order", f"range at sample {first}, expected {self._next}")
             return [], []
         self._note_gap(first)
-        self._place(first, n)
+        self._place(first, n, stamp_s, joined.sample_period_s)
         self.fed_samples += n
         # the range's samples are known finite here (check, or the block's samples_good): the
         # detector and the capture need not test them again
@@ -294,11 +314,23 @@ class WindowingStage:
             return "stray"
         return "behind" if first < self._next else "next"
 
-    def _place(self, first: int, n: int) -> None:
-        """The stream goes on at first + n. A stray chain ending there or before is forgotten: the
+    def _backstep_s(self, first: int, stamp_s: float | None, sample_period_s) -> float:
+        """How far [s] a range at ``first`` stamped ``stamp_s`` lies before the time of its place in
+        the stream followed; 0 when the stage is settled (one stream, two ranges in a row), when
+        the range or the stream has no stamp, or the period is bad."""
+        if (stamp_s is None or self._time_origin_s is None or self._next is None
+                or not (self._fresh or self._two_streams()) or not is_period(sample_period_s)):
+            return 0.0
+        return self._time_origin_s + first * float(sample_period_s) - stamp_s
+
+    def _place(self, first: int, n: int, stamp_s: float | None = None, sample_period_s=None) -> None:
+        """The stream goes on at first + n; its time origin (the stamp of its sample 0) from the
+        range's stamp when it has one. A stray chain ending there or before is forgotten: the
         stream followed goes on, what continues such a chain is a late or repeated range (and
         BlockFeeder's blocks leave the same chains as the ranges one by one)."""
         self._next = first + n
+        if stamp_s is not None and is_period(sample_period_s):
+            self._time_origin_s = stamp_s - first * float(sample_period_s)
         if self._strays:
             for end in [e for e in self._strays if e <= first + n]:
                 del self._strays[end]
@@ -310,6 +342,7 @@ class WindowingStage:
         if not keep_next:
             self._next = None
             self._fresh = True
+            self._time_origin_s = None
 
     def _is_restart(self, first: int, n: int) -> bool:
         """A stream starts at index 0: a range at 0 behind the stream, or one at least
@@ -332,6 +365,21 @@ class WindowingStage:
         if resume_at is not None:
             self.capture._restart(resume_at)
         return discarded
+
+
+def _stamp_seconds(stamp) -> float | None:
+    """A range's header stamp in seconds: a builtin_interfaces/Time (sec, nanosec) or a number;
+    None when there is none or it is not finite."""
+    if stamp is None:
+        return None
+    try:
+        if hasattr(stamp, "sec"):
+            seconds = float(stamp.sec) + float(stamp.nanosec) * 1e-9
+        else:
+            seconds = float(stamp)
+    except (TypeError, ValueError, AttributeError):
+        return None
+    return seconds if math.isfinite(seconds) else None
 
 
 def _common_length(arrays, names) -> int:

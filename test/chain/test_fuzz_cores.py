@@ -168,6 +168,40 @@ def test_the_old_stream_going_on_after_a_stray_restart_chunk_resumes():
     assert [w for w, index in windows if w.start_sample_index > 12_000 + RESTART_CONFIRM_RANGES * 1000]
 
 
+@pytest.mark.parametrize("order", [fc.SIGNALS, tuple(reversed(fc.SIGNALS))])
+def test_a_late_old_chunk_whose_index_fills_a_lost_new_one_is_told_by_its_stamp(order):
+    """bench/reliability.py (stop 50): chunks 0 and 1 swapped (0 lost, 1 late), a restart at 2, the
+    new stream's next chunk lost. The old chunk 1 arrives right after the restart chunk with the
+    index the lost one would have had: by index it continues the new stream, and without stamps it
+    was fed into it, silently (nothing counted). Its stamp lies a restart's delay before its place
+    in the new stream: it is dropped (out_of_order) and the lost chunk is a gap of its length."""
+    sizes, faults = [200] * 150, {0: "swap", 1: "swap", 2: "restart", 3: "lose_chunk"}
+    windows, stage, _, clean_from = fc.run_stream(sizes, faults, order)
+    assert stage.faults.counts == {"out_of_order": 1, "gap": 1}
+    assert stage.lost_samples == 200
+    (reason, detail), = [f for f in stage.faults.take() if f[0] == "out_of_order"]
+    assert "stamped 1.0" in detail and "late range of an earlier stream" in detail, detail
+    assert [w for w, lo in windows if lo >= clean_from]
+    # without stamps the two cannot be told apart: index alone places the old chunk in the new stream
+    _, blind, _, _ = fc.run_stream(sizes, faults, order, stamps=False)
+    assert blind.faults.total == 0 and blind.lost_samples == 0
+
+
+def test_a_stamp_that_steps_back_in_a_settled_stream_is_not_judged():
+    """A settled stream (two ranges in a row, no restart) is placed by index alone: a publisher
+    clock stepped back by 5 s (an NTP correction) loses nothing."""
+    data, _ = fc.synthetic_stream()
+    stage = WindowingStage(window_length=fc.WINDOW_LENGTH)
+    windows = []
+    for lo in range(0, 30_000, 1000):
+        arrays = {s: data[s][lo:lo + 1000].copy() for s in fc.SIGNALS}
+        stamp = fc.stamp_at(100.0 + lo * fc.PERIOD_S - (5.0 if lo >= 10_000 else 0.0))
+        w, _ = stage.feed(JoinedRange(lo, fc.PERIOD_S, arrays, stamp))
+        windows += w
+    assert stage.faults.total == 0 and stage.fed_samples == 30_000
+    assert [w for w in windows if w.start_sample_index > 10_000]
+
+
 def test_an_accelerometer_sample_beyond_its_declared_range_is_a_counted_fault():
     """A finite sample beyond sensors.accelerometer_range_m_s2 (config/windowing.yaml) in a1 is
     dropped and counted as a NaN is (out_of_range_samples); the windows resume after it. The same
