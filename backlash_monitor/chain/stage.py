@@ -9,6 +9,7 @@ import numpy as np
 
 from backlash_monitor.chain.joiner import MAX_PENDING_RANGES, RESYNC_SAMPLES, JoinedRange
 from backlash_monitor.signals import SIGNAL_UNITS
+from backlash_monitor.stream_time import sample_time_s, stamp_seconds, stream_origin_s
 from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing import BacklashEntryDetector, WindowCapture, default_window_offset
 from backlash_monitor.windowing.a1_chain import A1ChainCheck
@@ -197,7 +198,7 @@ class WindowingStage:
         first = int(first)
         self._expire()
         verdict = self._judge(first)
-        stamp_s = _stamp_seconds(joined.stamp)
+        stamp_s = stamp_seconds(joined.stamp)
         backstep_s = self._backstep_s(first, stamp_s, joined.sample_period_s) if verdict == "next" else 0.0
         if backstep_s > STAMP_BACKSTEP_S and n > 0:
             verdict = "stray"
@@ -321,7 +322,7 @@ class WindowingStage:
         if (stamp_s is None or self._time_origin_s is None or self._next is None
                 or not (self._fresh or self._two_streams()) or not is_period(sample_period_s)):
             return 0.0
-        return self._time_origin_s + first * float(sample_period_s) - stamp_s
+        return sample_time_s(self._time_origin_s, first, sample_period_s) - stamp_s
 
     def _place(self, first: int, n: int, stamp_s: float | None = None, sample_period_s=None) -> None:
         """The stream goes on at first + n; its time origin (the stamp of its sample 0) from the
@@ -330,7 +331,7 @@ class WindowingStage:
         BlockFeeder's blocks leave the same chains as the ranges one by one)."""
         self._next = first + n
         if stamp_s is not None and is_period(sample_period_s):
-            self._time_origin_s = stamp_s - first * float(sample_period_s)
+            self._time_origin_s = stream_origin_s(stamp_s, first, sample_period_s)
         if self._strays:
             for end in [e for e in self._strays if e <= first + n]:
                 del self._strays[end]
@@ -365,21 +366,6 @@ class WindowingStage:
         if resume_at is not None:
             self.capture._restart(resume_at)
         return discarded
-
-
-def _stamp_seconds(stamp) -> float | None:
-    """A range's header stamp in seconds: a builtin_interfaces/Time (sec, nanosec) or a number;
-    None when there is none or it is not finite."""
-    if stamp is None:
-        return None
-    try:
-        if hasattr(stamp, "sec"):
-            seconds = float(stamp.sec) + float(stamp.nanosec) * 1e-9
-        else:
-            seconds = float(stamp)
-    except (TypeError, ValueError, AttributeError):
-        return None
-    return seconds if math.isfinite(seconds) else None
 
 
 def _common_length(arrays, names) -> int:

@@ -46,6 +46,7 @@ from backlash_monitor.fleet.aggregator import (
 from backlash_monitor.fleet.caveat import width_text
 from backlash_monitor.ros.fast_dds import configure_fast_dds
 from backlash_monitor.ros.parameters import ParameterValueError
+from backlash_monitor.stream_time import stamp_seconds
 
 LAYOUTS = ("process", "single")
 DEFAULT_LAYOUT = "process"     # holds more drives in real time (docs/fleet.md)
@@ -264,7 +265,7 @@ class FleetMonitor:
     def on_estimate(self, hardware_id: str, msg) -> None:
         t = self.tally[hardware_id]
         if msg.entry_sample_index not in t.onsets_estimated and self.rate_factor == 1.0:
-            stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+            stamp = stamp_seconds(msg.header.stamp)
             t.lags_s.append((time.monotonic(), time.time() - (stamp + WINDOW_END_S)))
         t.onsets_estimated.add(msg.entry_sample_index)
         t.last_estimate_wall_s = time.time()

@@ -48,6 +48,7 @@ from backlash_monitor.watch.alarm import load_config, AlarmRule
 from backlash_monitor.workbench import reference as ref_mod
 from backlash_monitor.bag.cdr import Codec
 from backlash_monitor.chain.joiner import ChunkJoiner, pending_ranges_for
+from backlash_monitor.stream_time import sample_time_s, stamp_seconds, stream_origin_s
 from backlash_monitor.watch.core import ModelWatch
 from backlash_monitor.workbench.events import DC_SIGNALS, SEGMENT_SIGNALS
 from backlash_monitor.watch.snapshot import SIGNAL_CHUNK, SnapshotRecorder
@@ -242,9 +243,9 @@ class ModelWatchNode(Node):
         if self.a1_chain is not None:
             self.a1_chain.feed(joined.first_sample_index, arrays["a1"], arrays["omega1"], joined.sample_period_s,
                                finite=True)
-        if self.stream_start_s is None and joined.stamp is not None:
-            sec, nanosec = joined.stamp
-            self.stream_start_s = sec + nanosec * 1e-9 - joined.first_sample_index * joined.sample_period_s
+        stamp_s = None if self.stream_start_s is not None else stamp_seconds(joined.stamp)
+        if stamp_s is not None:
+            self.stream_start_s = stream_origin_s(stamp_s, joined.first_sample_index, joined.sample_period_s)
         for update in self.watch.feed(joined.first_sample_index, arrays["a1"], arrays["a2"],
                                       arrays["angle_difference"], arrays.get("omega1")):
             self.on_update(update)
@@ -253,7 +254,7 @@ class ModelWatchNode(Node):
     def stream_time(self, sample_index) -> float:
         if self.stream_start_s is None or sample_index is None:
             return time.time()
-        return self.stream_start_s + sample_index * self.reference.sample_period_s
+        return sample_time_s(self.stream_start_s, sample_index, self.reference.sample_period_s)
 
     def on_update(self, u) -> None:
         self.counts["evaluations"] += 1

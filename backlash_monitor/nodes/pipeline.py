@@ -32,6 +32,7 @@ from backlash_monitor.files.registry import RegistryError, find
 from backlash_monitor.files.outputs import OutputError, check_outputs
 from backlash_monitor.ros.parameters import ParameterValueError, ros_parameter_args
 from backlash_monitor.ros.fast_dds import configure_fast_dds
+from backlash_monitor.stream_time import stamp_seconds
 
 DEFAULTS = dict(width_m=0.005, eta_k=0.025, n1=0.89, seed=0, duration=10.0, rate_factor=1.0)
 
@@ -291,7 +292,7 @@ class PipelineConsole:
         streams: dict[float, list[float]] = {}
         for sec, nanosec, entry in self.onset_entries:
             t = entry * self.sample_period_s
-            streams.setdefault(round(sec + nanosec * 1e-9 - t, 3), []).append(t)
+            streams.setdefault(round(stamp_seconds((sec, nanosec)) - t, 3), []).append(t)   # by the stream's origin
         gaps = []
         for times in streams.values():
             times.sort()

@@ -36,6 +36,7 @@ from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
 from backlash_monitor.ros.qos import ESTIMATE_QOS
 from backlash_monitor.ros.runtime import run_node
 from backlash_monitor_msgs.msg import BacklashEstimate
+from backlash_monitor.stream_time import stamp_seconds
 
 
 PARAMETERS = (
@@ -90,7 +91,7 @@ class WidthTrendNode(Node):
         # the continuous width: wear shows as it grows, not as a jump from one candidate width to the next
         # (NaN: the mode gives none; 0: the message default of a publisher that does not set it)
         width = level_width(msg.fused_continuous_width_m, msg.fused_width_m)
-        self.trend.add(msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9, width)
+        self.trend.add(stamp_seconds(msg.header.stamp), width)
         if self.state_file and len(self.trend.points) != self.saved_points:
             self.save_state()        # a point closed: once per live_point_period_s
 

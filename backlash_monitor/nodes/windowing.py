@@ -33,8 +33,7 @@ import time
 from rclpy.node import Node
 from std_msgs.msg import Float64
 
-from backlash_monitor.ros.conversions import (from_float64_field, stamp_of_sample,
-                                                 seconds_from_time, to_float64_array)
+from backlash_monitor.ros.conversions import from_float64_field, stamp_of_sample, to_float64_array
 from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
@@ -42,6 +41,7 @@ from backlash_monitor.ros.qos import LATCHED, WINDOW_QOS, chunk_qos
 from backlash_monitor.ros.runtime import run_node
 from backlash_monitor.chain.joiner import ChunkJoiner, pending_ranges_for
 from backlash_monitor.chain.stage import WindowingStage
+from backlash_monitor.stream_time import sample_time_s, stamp_seconds, stream_origin_s
 from backlash_monitor.windowing.faults import FaultLog, InputHealth, is_period
 from backlash_monitor.windowing import DEFAULTS as WINDOWING_DEFAULTS
 from backlash_monitor.windowing.offset import implausible_offsets
@@ -155,8 +155,8 @@ class WindowingNode(Node):
                 # samples before it were not windowed here (docs/graph.md, process faults)
                 self.counts["joined_at_sample"] = joined.first_sample_index
             # the stream's time origin, from this range's stamp (again after a restart or a gap)
-            self.stream_start_s = (seconds_from_time(joined.stamp)
-                                   - joined.first_sample_index * joined.sample_period_s)
+            self.stream_start_s = stream_origin_s(stamp_seconds(joined.stamp), joined.first_sample_index,
+                                                  joined.sample_period_s)
         for window in windows:
             self.publish_window(window, joined.frame_id or self.params["drive_name"], joined.stamp)
         for item in discarded:
@@ -208,7 +208,7 @@ class WindowingNode(Node):
     def publish_window(self, window, frame_id: str, range_stamp=None):
         msg = BacklashWindow()
         seconds = (math.nan if self.stream_start_s is None else
-                   self.stream_start_s + window.entry_sample_index * window.sample_period_s)
+                   sample_time_s(self.stream_start_s, window.entry_sample_index, window.sample_period_s))
         if math.isfinite(seconds) and 0.0 <= seconds < 2.0 ** 31:
             msg.header.stamp = stamp_of_sample(self.stream_start_s, window.entry_sample_index,
                                                window.sample_period_s)

@@ -33,6 +33,7 @@ from backlash_monitor.errors import RunFailure, UsageError
 from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_warning, load_library as load
 from backlash_monitor.windowing import default_window_offset, DEFAULTS
 from backlash_monitor.signals import SIGNAL_UNITS
+from backlash_monitor.stream_time import stamp_seconds, stream_origin_s
 from backlash_monitor.windowing.faults import is_period
 from backlash_monitor.bag import (
     BagError,
@@ -414,8 +415,7 @@ def _ranges_one_by_one(chunks, topics: dict, source: SourceCheck, joiner, first_
         if not source_ok(m, name):
             continue
         if a1_topics and m.topic in a1_topics:
-            first_a1[0] = _first_sample_time(m.frame_id, m.stamp.sec, m.stamp.nanosec,
-                                             m.first_sample_index, m.sample_period_s)
+            first_a1[0] = _first_sample_time(m.frame_id, m.stamp, m.first_sample_index, m.sample_period_s)
             a1_topics = state["a1_topics"] = None
         joined = join(name, m.first_sample_index, m.sample_period_s, m.samples, m.stamp,
                       m.frame_id)
@@ -524,14 +524,14 @@ def _ranges_at_once(reader, topics: dict, source: SourceCheck, joiner, first_a1:
         a1 = [m for m in first_chunks if topics[m.topic] == "a1"]
         if a1:
             m = a1[0]
-            first_a1[0] = _first_sample_time(m.frame_id, m.stamp.sec, m.stamp.nanosec,
-                                             m.first_sample_index, m.sample_period_s)
+            first_a1[0] = _first_sample_time(m.frame_id, m.stamp, m.first_sample_index, m.sample_period_s)
     return ranges
 
 
-def _first_sample_time(frame_id, sec, nanosec, first_sample_index, sample_period_s):
-    """(frame_id, time of the stream's first sample [s]) from a chunk's stamp."""
-    return frame_id, sec + nanosec * 1e-9 - first_sample_index * sample_period_s
+def _first_sample_time(frame_id, stamp, first_sample_index, sample_period_s):
+    """(frame_id, time of the stream's sample 0 [s]: NaN without a usable stamp) from a chunk's stamp."""
+    stamp_s = stamp_seconds(stamp)
+    return frame_id, (math.nan if stamp_s is None else stream_origin_s(stamp_s, first_sample_index, sample_period_s))
 
 
 def _sensor_offsets(offsets: dict, periods: int, waiting: int) -> dict:

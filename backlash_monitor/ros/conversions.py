@@ -10,6 +10,8 @@ import math
 
 import numpy as np
 
+from backlash_monitor.stream_time import sample_time_s
+
 from builtin_interfaces.msg import Time
 
 from backlash_monitor.signals import SIGNAL_UNITS  # noqa: F401  (re-exported for the nodes)
@@ -32,10 +34,6 @@ def time_from_seconds(seconds: float) -> Time:
     return Time(sec=int(sec), nanosec=int(round((seconds - sec) * 1e9)) % 1_000_000_000)
 
 
-def seconds_from_time(stamp: Time) -> float:
-    return stamp.sec + stamp.nanosec * 1e-9
-
-
 def stamp_of_sample(start_time_s: float, sample_index: int, sample_period_s: float) -> Time:
     """The time stamp of sample ``sample_index`` of a stream that started at ``start_time_s``."""
-    return time_from_seconds(start_time_s + sample_index * sample_period_s)
+    return time_from_seconds(sample_time_s(start_time_s, sample_index, sample_period_s))
