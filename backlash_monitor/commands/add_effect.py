@@ -109,8 +109,11 @@ def _take_proposal(diag, src, adds, model, output):
         why = prop.get("reason") if isinstance(prop, dict) else "its verdict is not partial or nothing_explains"
         raise UsageError(f"diagnosis {src} proposes no term (--accept-proposal): {why}")
     if not prop.get("plugin_source"):
-        partial = (" (or take the partial explanation the term was fitted on, the nearer model: --accept-partial)"
-                   if diag.get("verdict") == "partial" else "")
+        # the step that remains, by the verdict: the partial effect the term was fitted on, or the discovered effect
+        partial = {"partial": " (or take the partial explanation the term was fitted on, the nearer model: "
+                              "--accept-partial)",
+                   "discovery": " (the discovered effect goes in alone without --accept-proposal: add-effect "
+                                f"{src} -o FILE)"}.get(diag.get("verdict"), "")
         raise UsageError(f"diagnosis {src}'s proposed term has no plug-in form (--accept-proposal): {prop.get('law')} "
                          "acts on a sensor's signal or changes with the time in the record, not in the drive's physics; "
                          "check that sensor (its mounting, wiring, calibration) instead of adding it to the model"

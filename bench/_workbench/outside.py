@@ -446,6 +446,10 @@ def loop_row(spec, workdir: Path, suite: str) -> dict:
         row["added"] = "partial"
         rc, out, _, cpu["add_effect_partial"] = _cli(["add-effect", d / "d.json", "--accept-partial", "-o",
                                                       d / "v2.yaml"], d)
+    elif rc != 0 and row["added"] == "proposal" and row["verdict"] == "discovery":
+        # the same beside a discovery: the refusal names the discovered effect alone (add-effect without the flag)
+        row["added"] = "catalogue"
+        rc, out, _, cpu["add_effect_discovery"] = _cli(["add-effect", d / "d.json", "-o", d / "v2.yaml"], d)
     if rc != 0:          # nothing to add (or refused): the monitor keeps its library
         row["added"] = "nothing"
         row["add_effect_said"] = (out.strip().splitlines() or [""])[-1][:300]

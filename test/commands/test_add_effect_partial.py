@@ -61,3 +61,26 @@ def test_a_sensor_term_proposed_after_a_partial_verdict_is_refused_with_the_part
     assert not out.exists()
     assert main(["add-effect", str(path), "--accept-partial", "-o", str(out)]) == 0
     assert out.exists()
+
+
+def test_a_sensor_term_proposed_beside_a_discovery_is_refused_with_the_discovery_named(tmp_path, capsys):
+    """Beside a discovered catalogue effect a proposal may come too (what the effect left); a sensor's term has no
+    plug-in form: --accept-proposal refuses it and names the step that remains, the discovered effect alone
+    (add-effect without the flag), which then works and writes the effect."""
+    path = _partial_diagnosis(tmp_path, change=0.25)
+    d = json.loads(path.read_text())
+    d["verdict"] = "discovery"
+    d["discovery"] = "working_resistance_drift"
+    d["additions"][0]["role"] = "discovery"
+    d["proposal"] = {"proposed": True, "law": "measured a2 += +200 m/s² · (a₂/50)³", "plugin_source": "",
+                     "on_top_of": ["working_resistance_drift"], "terms": []}
+    path.write_text(json.dumps(d))
+    out = tmp_path / "v2.yaml"
+    assert main(["add-effect", str(path), "--accept-proposal", "-o", str(out)]) == 2
+    said = capsys.readouterr()
+    assert "no plug-in form" in said.err and "without --accept-proposal" in said.err and "Traceback" not in said.err
+    assert "--accept-partial" not in said.err
+    assert not out.exists()
+    assert main(["add-effect", str(path), "-o", str(out)]) == 0
+    f0 = load_model(None).plant_config().load.working_resistance_N
+    assert load_model(out).plant_config().load.working_resistance_N == pytest.approx(f0 * 1.25)
