@@ -13,6 +13,9 @@ realtime_factor: the same graph with the simulator unthrottled-by-factor (rate_f
 reliable QoS; simulated seconds per wall second until the last expected estimate arrives, for a
 rising R; the result is the highest R whose run lost nothing (discarded_windows == 0 and every
 onset window classified).
+
+--check-a1-chain: the windowing node checks a1 against the motor speed (check_a1_chain:=true, as `pipeline` and
+`fleet` run it: it joins plant/omega1 too); without it, as `ros2 run` with config/drive.yaml starts it.
 """
 import json
 import os
@@ -47,15 +50,19 @@ TRIGGER = "contact_loss"
 WINDOW_OFFSET = default_window_offset(TRIGGER)
 
 
+CHECK_A1_CHAIN = False     # --check-a1-chain: the windowing node joins plant/omega1 and checks a1 against it
+
+
 def start_chain(trigger="contact_loss", one_process=False):
     """The windowing, denoise and classifier nodes: three processes, or the `chain` executable."""
     prefix = os.path.join(get_package_prefix("backlash_monitor"), "lib", "backlash_monitor")
+    check = ["-p", "check_a1_chain:=true"] if CHECK_A1_CHAIN else []
     if one_process:
-        specs = [("chain", ["-p", f"trigger:={trigger}", "-p", "qos:=reliable"])]
+        specs = [("chain", ["-p", f"trigger:={trigger}", "-p", "qos:=reliable", *check])]
     else:
         specs = [("classifier", ["-p", f"trigger:={trigger}"]),
                  ("denoise", []),
-                 ("windowing", ["-p", "qos:=reliable", "-p", f"trigger:={trigger}"])]
+                 ("windowing", ["-p", "qos:=reliable", "-p", f"trigger:={trigger}", *check])]
     return [subprocess.Popen([os.path.join(prefix, name), "--ros-args", *params],
                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             for name, params in specs]
@@ -118,7 +125,7 @@ def run_graph(duration_s, rate_factor, chunk=None, stages=None, one_process=Fals
         plant = PlantSimulatorNode(parameter_overrides=[
             Parameter("rate_factor", value=float(rate_factor)),
             Parameter("duration_s", value=float(duration_s)), Parameter("qos", value="reliable"),
-            Parameter("chunk_samples", value=chunk), Parameter("wait_for_subscriptions", value=3)])
+            Parameter("chunk_samples", value=chunk), Parameter("wait_for_subscriptions", value=4 if CHECK_A1_CHAIN else 3)])
         published = {}
         original = plant.publish_chunk
 
@@ -221,11 +228,15 @@ def main():
         "discarded_windows": best["discarded_windows"] if best else None,
         "throughput_runs": throughput,
         "goal": {"latency_p99_ms": 10.0, "realtime_factor": 10.0, "discarded_windows": 0},
+        "check_a1_chain": CHECK_A1_CHAIN,
     }))
 
 
 if __name__ == "__main__":
     # no options: --help says what it measures instead of starting the run
     import argparse
-    argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--check-a1-chain", action="store_true",
+                    help="the windowing node checks a1 against the motor speed (joins plant/omega1), as pipeline runs it")
+    CHECK_A1_CHAIN = ap.parse_args().check_a1_chain
     sys.exit(main())

@@ -81,13 +81,14 @@ class Drive:
         trigger = p.get("trigger", "contact_loss")
         plant = {k: p[k] for k in PLANT_KEYS if k in p}
         plant.setdefault("width_m", DEFAULT_WIDTH_M)
-        # the stream starts once this drive's windowing node takes its three signals (a live
+        # the stream starts once this drive's windowing node takes its four signals (a live
         # view or recorder subscribing first does not start it early)
         plant.update(drive_name=self.hardware_id, rate_factor=float(rate_factor),
                      duration_s=float(duration_s), qos="reliable",
-                     wait_for_subscribers=["windowing:a1,a2,angle_difference"])
+                     wait_for_subscribers=["windowing:a1,a2,angle_difference,omega1"])
+        # the simulated drive publishes its motor speed: a1 is checked against it (docs/classifier.md 5.4)
         windowing = dict(drive_name=self.hardware_id, qos="reliable", trigger=trigger,
-                         width_m=float(plant["width_m"]) if trigger == "paper" else 0.0)
+                         width_m=float(plant["width_m"]) if trigger == "paper" else 0.0, check_a1_chain=True)
         classifier = {k: p[k] for k in CLASSIFIER_KEYS if k in p}
         classifier["drive_name"] = self.hardware_id
         versions = p.get("versions")

@@ -39,7 +39,7 @@ from backlash_monitor.classifier.signal_check import source_text
 from backlash_monitor.fleet.caveat import width_text, with_caveat
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator, width_level
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
-from backlash_monitor.ros.conversions import from_float64_field, to_float64_array
+from backlash_monitor.ros.conversions import a1_chain_from_window, from_float64_field, to_float64_array
 from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.ros.history_subscription import HistorySubscription
 from backlash_monitor.ros.model_fit_caveat import follow_model_fit
@@ -162,8 +162,10 @@ class ClassifierNode(Node):
         # checked by the core (DriveEstimator.check_window): a bad window gives no estimate
         offsets = ((msg.a1_offset_m_s2, msg.a2_offset_m_s2) if msg.offset_periods > 0
                    else (math.nan, math.nan))
-        estimates = self.estimator.estimate(from_float64_field(msg.a1), from_float64_field(msg.a2),
-                                            msg.entry_kind, msg.sample_period_s, sensor_offsets=offsets)
+        # a1 checked against the motor speed upstream (check_a1_chain): a2's width where a1 does not follow it
+        estimates = self.estimator.estimate_many([(from_float64_field(msg.a1), from_float64_field(msg.a2),
+                                                   msg.entry_kind, msg.sample_period_s, offsets,
+                                                   a1_chain_from_window(msg))])[0]
         for estimate in estimates:
             self.publisher.publish(self.to_message(msg, estimate))
         if estimates and msg.saturated_samples:

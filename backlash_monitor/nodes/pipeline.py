@@ -179,7 +179,7 @@ def set_at_entries(groups) -> list[str]:
 
 
 WATCH_READS = "model_watch:a1,a2,angle_difference,omega1"    # --watch: what the model watch reads (omega1: snapshot)
-WINDOWING_READS = "windowing:a1,a2,angle_difference"   # the windowing node, measured angles
+WINDOWING_READS = "windowing:a1,a2,angle_difference,omega1"   # the windowing node: measured angles, a1 checked
 RECORD_NODE = "record"                                 # --record: records every plant signal
 NODE_ORDER = ("classifier", "denoise", "windowing", "plant_simulator")   # readers first
 WATCH_ORDER = ("model_watch",) + NODE_ORDER
@@ -208,8 +208,9 @@ def node_parameters(args) -> dict[str, dict]:
                                 wait_for_subscribers=[WINDOWING_READS]
                                 + ([RECORD_NODE] if args.record else [])
                                 + ([WATCH_READS] if getattr(args, "watch", False) else [])),
+        # the simulated drive publishes its motor speed: a1 is checked against it (docs/classifier.md 5.4)
         "windowing": dict(drive_name=args.drive_name, trigger=args.trigger, qos="reliable",
-                          width_m=args.width_m if args.trigger == "paper" else 0.0),
+                          width_m=args.width_m if args.trigger == "paper" else 0.0, check_a1_chain=True),
         "denoise": {},
         "classifier": dict(drive_name=args.drive_name, n1=args.n1, trigger=args.trigger,
                            **({"mode": args.mode} if args.mode else {}),

@@ -3,7 +3,8 @@
     ros2 run backlash_monitor windowing --ros-args -p trigger:=contact_loss
 
 Subscribes to ``plant/a1``, ``plant/a2`` and ``plant/angle_difference`` (or ``plant/omega1`` and
-``plant/omega2`` with ``angle_source:=integrated``), joins the chunks of one sample range, feeds the
+``plant/omega2`` with ``angle_source:=integrated``; and ``plant/omega1`` with ``check_a1_chain:=true``, a1 checked
+against the motor speed, each window carrying the check), joins the chunks of one sample range, feeds the
 windowing core (backlash_monitor.windowing) and publishes each captured window (a1 and a2, 2048
 samples from the entry + ``window_offset_samples``, tagged onset/return) on ``windows/raw``. A window that spans a dropped or
 out-of-order chunk is discarded with its reason (logged, counted on ``/diagnostics``), never used.
@@ -72,6 +73,10 @@ PARAMETERS = (
                   "largest accelerometer offset [m/s^2] taken as a sensor's own (a MEMS zero-g offset "
                   "reaches ~0.2 g); an estimate beyond it makes /diagnostics WARN (config/windowing.yaml "
                   "sensor_offset.plausible_abs_m_s2)", 0.0, 1000.0),
+    ParameterSpec("check_a1_chain", False, "check a1 against the motor speed, a1 = r·dΩ₁/dt (subscribes to "
+                  "plant/omega1 too: true only when the drive publishes it, else the windows wait for it); each "
+                  "window carries the check, and the classifier takes a2's width where a1 does not follow "
+                  "(docs/classifier.md 5.4)"),
 )
 
 
@@ -88,7 +93,8 @@ class WindowingNode(Node):
                 trigger=p["trigger"], width_m=p["width_m"] if p["trigger"] == "paper" else None,
                 angle_source=p["angle_source"], window_length=p["window_length"],
                 window_offset_samples=(None if p["window_offset_samples"] < 0
-                                       else p["window_offset_samples"]))
+                                       else p["window_offset_samples"]),
+                check_a1_chain=p["check_a1_chain"])
         except ValueError as error:
             raise ParameterValueError(str(error)) from None
         self.signals = self.stage.input_signals
@@ -228,6 +234,10 @@ class WindowingNode(Node):
         msg.a2_offset_m_s2 = window.sensor_offsets.get("a2", math.nan)
         msg.offset_periods = window.offset_periods
         msg.saturated_samples = min(window.saturated_samples, 2 ** 32 - 1)
+        chain = getattr(window, "a1_chain", None)
+        if chain is not None and chain.checked:
+            msg.a1_chain_seconds, msg.a1_chain_mismatch = chain.seconds, chain.mismatch
+            msg.a1_chain_gain, msg.a1_chain_lag, msg.a1_chain_radius_m = chain.gain, chain.lag, chain.radius_m
         self.publisher.publish(msg)
         if window.saturated_samples:
             self.counts["saturated_windows"] += 1

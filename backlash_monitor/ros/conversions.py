@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from backlash_monitor.stream_time import sample_time_s
+from backlash_monitor.windowing.a1_chain import A1ChainResult
 
 from builtin_interfaces.msg import Time
 
@@ -37,3 +38,13 @@ def time_from_seconds(seconds: float) -> Time:
 def stamp_of_sample(start_time_s: float, sample_index: int, sample_period_s: float) -> Time:
     """The time stamp of sample ``sample_index`` of a stream that started at ``start_time_s``."""
     return time_from_seconds(sample_time_s(start_time_s, sample_index, sample_period_s))
+
+
+def a1_chain_from_window(msg) -> A1ChainResult | None:
+    """A BacklashWindow's check of a1 against the motor speed (its ``a1_chain_*`` fields, set by the windowing node
+    with ``check_a1_chain``); None when the window carries none (0 seconds compared, or a mismatch that is not a
+    number)."""
+    seconds, mismatch = float(msg.a1_chain_seconds), float(msg.a1_chain_mismatch)
+    if not (seconds > 0 and math.isfinite(seconds) and math.isfinite(mismatch)):
+        return None
+    return A1ChainResult(mismatch, float(msg.a1_chain_gain), msg.a1_chain_lag, seconds, float(msg.a1_chain_radius_m))

@@ -53,6 +53,24 @@ def test_recorded_bag_holds_the_graph_topics(recorded_run):
 
 @pytest.mark.process
 @pytest.mark.ros
+def test_the_live_windows_carry_a1_checked_against_the_motor_speed(recorded_run):
+    """The pipeline's windowing node checks a1 against r·dΩ₁/dt (check_a1_chain, as analyze does on a bag with the
+    motor speed): the windows carry the check once it has compared a stretch of the stream (the last second of this
+    3 s run); the simulated drive's a1 follows its motor speed."""
+    from backlash_monitor.windowing.a1_chain import MAX_MISMATCH
+    _, bag = recorded_run
+    with BagReader(bag) as reader:
+        windows = [m.message for m in reader.messages(["/windows/raw"])]
+    checked = [w for w in windows if w.a1_chain_seconds > 0]
+    # (the check compares closed spans of the stream: its first result comes after ~2 s of it; 3 s are recorded)
+    assert len(checked) >= 4 and windows[-1].a1_chain_seconds > 0, \
+        [(w.entry_sample_index, w.a1_chain_seconds) for w in windows]
+    assert all(w.a1_chain_mismatch < MAX_MISMATCH and abs(w.a1_chain_gain - 1.0) < 0.1 for w in checked), \
+        [(w.a1_chain_mismatch, w.a1_chain_gain) for w in checked]
+
+
+@pytest.mark.process
+@pytest.mark.ros
 def test_offline_analysis_equals_the_live_estimates_exactly(recorded_run, tmp_path):
     _, bag = recorded_run
     out = tmp_path / "offline"
