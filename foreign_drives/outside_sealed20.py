@@ -45,6 +45,39 @@ Kinds (balance x what it reads, and how), the sealed half:
     w a small smoothing angle, D the jaw's angle difference, in the gap and in contact (the earlier laws of the jaw's
     angle alone are linear, a power, a sine (the eighth set's ball detent), a face pull (the seventh set), a dead zone
     (the ninth sealed half's bumpers) and a snap-through of the overlap (the ninth set), none a constant torque).
+
+Visibility, measured (one simulation of each suite row, 4 s, against the same spec without the mechanism, same seed; no
+diagnose; rms of the recorded signal's difference; criterion a2 >= 0.05 m/s^2, a1 >= 0.25 for an a1 row): 2 a2 0.0455
+at its a-priori strength, scaled once x1.65 (T 2 -> 3.295 N*m; a2 0.0750 after); 4 a2 0.0663; 6 a2 0.00046, BELOW;
+8 a2 0.0242, BELOW; 10 a2 1.12; 12 a2 0.108; 14 a2 0.0644 -- 4, 10, 12 and 14 as written.
+
+Two rows are left below the criterion, as written, and said so here rather than made visible by force:
+- the seal's squeal (6): its a-priori growth (2 s/rad) made a 0.4 s smoke run not finish in 500 s (the oscillator's
+  eight Euler steps a scan are unstable at that negative damping and the jaw's contact then chatters), so it was set to
+  0.2 s/rad before the visibility run; at that, the oscillator grows only in the gap traversals' slip peaks and rarely
+  reaches its limit cycle (|T| > 0.04 N*m over 18 % of the recording, at most 0.69 N*m), and a 120 Hz torque across
+  the jaw hardly reaches the carriage: a2 0.00046. One scaling would be x163 (326 N*m, beyond the torque's bound of
+  50 N*m). After the visibility run three other conditions were tried, once each, to see whether any would act (no
+  diagnose; none taken): 120 Hz at 0.4 s/rad and at 0.2 s/rad, both from a slip of 0, did not finish in 90 s and 60 s
+  (the same chatter), 60 Hz at 0.3 s/rad and 30 Hz at 0.5 s/rad from 0.5 rad/s gave a2 0.00085 and 0.0013, 10 Hz at
+  2 s/rad from 0.5 rad/s gave a2 0.0080 (15 Hz at 1 s/rad from 0 did not finish in 45 s). The row stays as committed
+  before the visibility run; it is the set's test of a mechanism the recording barely shows.
+- the tension-pumped hold-back (8): a tank of the extension is mostly a steady hold-back (the extension never nears 0:
+  the fill follows z^2 within about +-4 %), a2 0.0242. Scaled once (x3.09, F 9.282 N) the drive ran away: the
+  hold-back's rise with the extension outgrew the spring's (k z = 30 N + F*(a*z/b)^2 has no root), the hold-back
+  reaching 925 N and a2 9.4: not a drive. Left as written, below the criterion.
+
+A check that each memory moves (no figure used for a strength; the visibility run's recordings and the same specs
+without noise): the PWM brake (2) is open 45 % of the recording, switching about twice a period (799 switches in 4 s);
+the step trim (4) climbed in bursts to its top (6 steps) with the suite's noise, above 0 over 13 % of the recording, and
+noise-free steps to 1 in four bursts, 6 % of it; the tank's fill (8) stays within 1.21-1.33 (the hold-back moves the
+extension up to 0.325-0.353 m); the restorer (10) moves a2's mean by 0.93 m/s^2 with a spread of 0.61 m/s^2.
+
+Thin (read off the laws and the clean drive, no diagnose; recorded here only): the PWM brake (2) is a 100 Hz pulse train
+whose width follows the extension; the step trim (4) acts in bursts and rests at 0 most of the time; the restorer (10)
+shifts a2 by a slowly varying offset (a2's mean moves by about 0.9 m/s^2), far above the criterion; the gripper (12) is a
+window at a fixed delay in each stroke (periodic with the pulse train); the cartridge (14) is a torque of fixed size
+whose sign follows the jaw's side, so in contact it is a steady torque against the drive side, switching in the gap.
 """
 from __future__ import annotations
 
@@ -256,9 +289,9 @@ def suite_rows():
     Seeds 20100+ in this order (suites.SEALED_FIRST_SEED)."""
     from .spec import EffectSpec as E
     return [
-        # 2 N*m, the duty from 0 at 0.28 m to 1 at 0.32 m, a 10 ms period
+        # 2 N*m, the duty from 0 at 0.28 m to 1 at 0.32 m, a 10 ms period a priori, a2 0.0455: scaled once x1.65
         ("os20_motor_tension_pwm_eddy_brake", "outside", 0.0078, 0.0255, 0.95,
-         [E("motor_tension_pwm_eddy_brake", {"torque_Nm": 2.0, "zero_duty_m": 0.28, "full_duty_span_m": 0.04,
+         [E("motor_tension_pwm_eddy_brake", {"torque_Nm": 3.295, "zero_duty_m": 0.28, "full_duty_span_m": 0.04,
                                              "period_s": 0.01})]),
         # 0.5 N*m a step, up to 6 steps, around 22.73 m/s +- 0.03 m/s, a step each 10 ms
         ("os20_wheel_line_speed_step_trim", "outside", 0.0070, 0.0290, 0.92,
@@ -266,11 +299,14 @@ def suite_rows():
                                            "step_time_s": 0.01, "steps": 6.0})]),
         # 2 N*m at 120 Hz, growing above a slip of 1 rad/s by 0.2 s/rad (written 2 s/rad first: its 0.4 s smoke run did
         # not finish in 500 s, the oscillator's eight Euler steps a scan unstable at that negative damping; set to 0.2
-        # before any visibility run)
+        # before any visibility run); a2 0.00046 in the visibility run: left as written, BELOW the criterion (one scaling
+        # would be x163, 326 N*m, beyond its bounds; other conditions tried after, see the module's docstring)
         ("os20_clutch_dust_seal_squeal", "outside", 0.0084, 0.0230, 0.97,
          [E("clutch_dust_seal_squeal", {"torque_Nm": 2.0, "frequency_hz": 120.0, "growth_per_rad_s": 0.2,
                                         "onset_rad_s": 1.0})]),
-        # 3 N per unit of fill; the fill about 1 at 0.3 m, following the extension over about 50 ms
+        # 3 N per unit of fill; the fill about 1 at 0.3 m, following the extension over about 50 ms; a2 0.0242 in the
+        # visibility run: left as written, BELOW the criterion (scaled once, x3.09, the drive ran away: see the
+        # module's docstring)
         ("os20_mass_tension_pumped_holdback", "outside", 0.0065, 0.0310, 0.90,
          [E("mass_tension_pumped_holdback", {"force_N": 3.0, "inflow_per_m_s": 133.3, "outflow_per_s": 40.0})]),
         ("os20_clean_w7.5_eta0.0250_n0.92", "clean", 0.0075, 0.0250, 0.92, []),

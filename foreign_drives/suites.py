@@ -780,15 +780,16 @@ OUTSIDE_DEV19_ROWS = [
 # documented clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80 m/s; the pulse
 # 60 ms every 0.25 s; the gap's half-width beta = w/r, about 0.049 rad).
 OUTSIDE_DEV20_ROWS = [
-    # 2 N*m just before a mark, a mark every 1 m (about 23 a second at the carriage's speed)
+    # 2 N*m just before a mark, a mark every 1 m (about 23 a second at the carriage's speed) a priori, a2 0.0131:
+    # scaled once x5.73
     ("od20_motor_travel_marker_cylinder", "outside", 0.0074, 0.0260, 0.94,
-     [E("motor_travel_marker_cylinder", {"torque_Nm": 2.0, "pitch_m": 1.0, "offset_m": 0.0})]),
-    # 2 N*m once the slip is well above 1 rad/s (a width of 0.5 rad/s)
+     [E("motor_travel_marker_cylinder", {"torque_Nm": 11.46, "pitch_m": 1.0, "offset_m": 0.0})]),
+    # 2 N*m once the slip is well above 1 rad/s (a width of 0.5 rad/s) a priori, a2 0.0330: scaled once x2.27
     ("od20_wheel_gerotor_slip_assist", "outside", 0.0066, 0.0285, 0.92,
-     [E("wheel_gerotor_slip_assist", {"torque_Nm": 2.0, "onset_rad_s": 1.0, "width_rad_s": 0.5})]),
-    # 60 N*m/rad at the current's peak (about 3 N*m at the faces), 50 Hz mains
+     [E("wheel_gerotor_slip_assist", {"torque_Nm": 4.545, "onset_rad_s": 1.0, "width_rad_s": 0.5})]),
+    # 60 N*m/rad at the current's peak (about 3 N*m at the faces), 50 Hz mains a priori, a2 0.0419: scaled once x1.79
     ("od20_clutch_half_wave_magnet_centring", "outside", 0.0080, 0.0250, 0.96,
-     [E("clutch_half_wave_magnet_centring", {"stiffness_Nm_per_rad": 60.0, "mains_hz": 50.0, "phase_rad": 0.0})]),
+     [E("clutch_half_wave_magnet_centring", {"stiffness_Nm_per_rad": 107.4, "mains_hz": 50.0, "phase_rad": 0.0})]),
     # 5 N/m of the extension (up to 3 N), a level-wind cycle every 8 turns (about 3 a second)
     ("od20_mass_level_wind_fleet_angle", "outside", 0.0071, 0.0305, 0.90,
      [E("mass_level_wind_fleet_angle", {"coefficient_N_per_m": 5.0, "turns_per_cycle": 8.0, "angle_rad": 0.0})]),
