@@ -145,7 +145,8 @@ def make_recording(spec: RecordingSpec, tol_scale: float = 1.0) -> Recording:
               "mass_speed": run.signal("mass_speed", pre_roll=True), "mode": run.signal("mode", pre_roll=True),
               "te_pu": run.signal("te_pu", pre_roll=True), "pulse": pulse_indicator(t, spec.pulse_first_s),
               "mass_position": mass_position(run.signal("alpha2", pre_roll=True),
-                                             run.signal("spring_extension", pre_roll=True), P)}
+                                             run.signal("spring_extension", pre_roll=True), P),
+              "clutch_torque_Nm": run.signal("clutch_torque_Nm", pre_roll=True)}
     sensed = apply_sensor_chain(spec, accel, t, fs, states=states)
     sig = {"a1": sensed["a1"][n_pre:], "a2": sensed["a2"][n_pre:],
            "omega1": run.signal("omega1").copy(), "omega2": run.signal("omega2").copy(),

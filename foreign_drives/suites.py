@@ -773,6 +773,40 @@ OUTSIDE_DEV19_ROWS = [
      [E("motor_impact_severity_brake", {"coefficient_Nm_per_W": 0.04, "decay_s": 0.05})]),
 ]
 
+# ---- issue 31 part 4, twentieth set: mechanisms outside the catalogue of other kinds again
+# (foreign_drives.outside_dev20; the twentieth sealed half's rows are in foreign_drives.outside_sealed20). One mechanism
+# per row at its own nominal conditions, one clean control. Seeds 20000+. Each strength set by one simulation against
+# the clean drive of the same seed (docs/foreign_drives.md "The twentieth set"). The a-priori values are read off the
+# documented clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80 m/s; the pulse
+# 60 ms every 0.25 s; the gap's half-width beta = w/r, about 0.049 rad).
+OUTSIDE_DEV20_ROWS = [
+    # 2 N*m just before a mark, a mark every 1 m (about 23 a second at the carriage's speed) a priori, a2 0.0131:
+    # scaled once x5.73
+    ("od20_motor_travel_marker_cylinder", "outside", 0.0074, 0.0260, 0.94,
+     [E("motor_travel_marker_cylinder", {"torque_Nm": 11.46, "pitch_m": 1.0, "offset_m": 0.0})]),
+    # 2 N*m once the slip is well above 1 rad/s (a width of 0.5 rad/s) a priori, a2 0.0330: scaled once x2.27
+    ("od20_wheel_gerotor_slip_assist", "outside", 0.0066, 0.0285, 0.92,
+     [E("wheel_gerotor_slip_assist", {"torque_Nm": 4.545, "onset_rad_s": 1.0, "width_rad_s": 0.5})]),
+    # 60 N*m/rad at the current's peak (about 3 N*m at the faces), 50 Hz mains a priori, a2 0.0419: scaled once x1.79
+    ("od20_clutch_half_wave_magnet_centring", "outside", 0.0080, 0.0250, 0.96,
+     [E("clutch_half_wave_magnet_centring", {"stiffness_Nm_per_rad": 107.4, "mains_hz": 50.0, "phase_rad": 0.0})]),
+    # 5 N/m of the extension (up to 3 N), a level-wind cycle every 8 turns (about 3 a second)
+    ("od20_mass_level_wind_fleet_angle", "outside", 0.0071, 0.0305, 0.90,
+     [E("mass_level_wind_fleet_angle", {"coefficient_N_per_m": 5.0, "turns_per_cycle": 8.0, "angle_rad": 0.0})]),
+    ("od20_clean_w7.0_eta0.0270_n0.94", "clean", 0.0070, 0.0270, 0.94, []),
+    # 5e-5 rad per N*m (a web of about 20 kN*m/rad): about 0.17 m/s^2 per N*m of the jaw's torque at 150 rad/s
+    ("od20_a1_coupling_flange_twist", "outside", 0.0083, 0.0235, 0.95,
+     [E("a1_coupling_flange_twist", {"twist_rad_per_Nm": 5e-5})]),
+    # K_p 50 N*m/m, K_i 1000 N*m/(m*s), holding 0.30 m, at most 3 N*m
+    ("od20_wheel_tension_pi_brake", "outside", 0.0068, 0.0265, 0.91,
+     [E("wheel_tension_pi_brake", {"gain_Nm_per_m": 50.0, "integral_Nm_per_m_s": 1000.0, "reference_m": 0.30,
+                                   "max_torque_Nm": 3.0})]),
+    # 2 N*m full, the relay on above 1 rad/s and off below 0, filling over 20 ms, draining over 50 ms
+    ("od20_motor_slip_relay_cylinder_brake", "outside", 0.0076, 0.0245, 0.97,
+     [E("motor_slip_relay_cylinder_brake", {"torque_Nm": 2.0, "on_above_rad_s": 1.0, "off_below_rad_s": 0.0,
+                                            "fill_time_s": 0.02, "drain_time_s": 0.05})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -795,6 +829,7 @@ OUTSIDE_DEV16 = _suite(OUTSIDE_DEV16_ROWS, 16000, 4.0)
 OUTSIDE_DEV17 = _suite(OUTSIDE_DEV17_ROWS, 17000, 4.0)
 OUTSIDE_DEV18 = _suite(OUTSIDE_DEV18_ROWS, 18000, 4.0)
 OUTSIDE_DEV19 = _suite(OUTSIDE_DEV19_ROWS, 19000, 4.0)
+OUTSIDE_DEV20 = _suite(OUTSIDE_DEV20_ROWS, 20000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
@@ -803,7 +838,8 @@ SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": 
           "outside_dev12": OUTSIDE_DEV12, "outside_dev13": OUTSIDE_DEV13,
           "outside_dev14": OUTSIDE_DEV14, "outside_dev15": OUTSIDE_DEV15,
           "outside_dev16": OUTSIDE_DEV16, "outside_dev17": OUTSIDE_DEV17,
-          "outside_dev18": OUTSIDE_DEV18, "outside_dev19": OUTSIDE_DEV19}
+          "outside_dev18": OUTSIDE_DEV18, "outside_dev19": OUTSIDE_DEV19,
+          "outside_dev20": OUTSIDE_DEV20}
 
 
 # The sealed halves: each made on first use from its own module's rows (foreign_drives.<name>.suite_rows(), so that
@@ -828,6 +864,7 @@ SEALED_FIRST_SEED = {
     "outside_sealed17": 17100,
     "outside_sealed18": 18100,
     "outside_sealed19": 19100,
+    "outside_sealed20": 20100,
 }
 
 SUITE_NAMES = tuple(SUITES) + tuple(SEALED_FIRST_SEED)
