@@ -183,14 +183,15 @@ class DriveEstimator:
         return entry_kind == "onset"
 
     def estimate(self, a1, a2, entry_kind: str = "onset", sample_period_s: float | None = None,
-                 sensor_offsets=None) -> list[WidthEstimate]:
+                 sensor_offsets=None, a1_chain=None) -> list[WidthEstimate]:
         """Estimates of one denoised window (a1, a2: equal-length float arrays); [] for non-onsets
         and rejected windows (``last_reasons[0]``). ``sensor_offsets``: the window's (a1, a2)
         offsets [m/s^2] (a pair or a mapping with keys a1, a2; see the module docstring).
+        ``a1_chain``: the window's check of a1 against the motor speed (None: not checked).
 
         The batch of one of :meth:`estimate_many`: the live node's window-by-window estimates and
         ``analyze``'s batched ones run the same code."""
-        return self.estimate_many([(a1, a2, entry_kind, sample_period_s, sensor_offsets)])[0]
+        return self.estimate_many([(a1, a2, entry_kind, sample_period_s, sensor_offsets, a1_chain)])[0]
 
     def estimate_many(self, windows) -> list[list[WidthEstimate]]:
         """``estimate`` for a sequence of (a1, a2, entry_kind[, sample_period_s[, sensor_offsets[, a1_chain]]]),

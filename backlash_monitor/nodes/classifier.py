@@ -163,9 +163,9 @@ class ClassifierNode(Node):
         offsets = ((msg.a1_offset_m_s2, msg.a2_offset_m_s2) if msg.offset_periods > 0
                    else (math.nan, math.nan))
         # a1 checked against the motor speed upstream (check_a1_chain): a2's width where a1 does not follow it
-        estimates = self.estimator.estimate_many([(from_float64_field(msg.a1), from_float64_field(msg.a2),
-                                                   msg.entry_kind, msg.sample_period_s, offsets,
-                                                   a1_chain_from_window(msg))])[0]
+        estimates = self.estimator.estimate(from_float64_field(msg.a1), from_float64_field(msg.a2),
+                                            msg.entry_kind, msg.sample_period_s, sensor_offsets=offsets,
+                                            a1_chain=a1_chain_from_window(msg))
         for estimate in estimates:
             self.publisher.publish(self.to_message(msg, estimate))
         if estimates and msg.saturated_samples:

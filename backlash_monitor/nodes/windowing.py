@@ -34,7 +34,8 @@ import time
 from rclpy.node import Node
 from std_msgs.msg import Float64
 
-from backlash_monitor.ros.conversions import from_float64_field, stamp_of_sample, to_float64_array
+from backlash_monitor.ros.conversions import (from_float64_field, set_window_a1_chain, stamp_of_sample,
+                                                 to_float64_array)
 from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
 from backlash_monitor.ros.parameters import (ParameterSpec, ParameterValueError,
                                                declare_and_validate)
@@ -234,10 +235,7 @@ class WindowingNode(Node):
         msg.a2_offset_m_s2 = window.sensor_offsets.get("a2", math.nan)
         msg.offset_periods = window.offset_periods
         msg.saturated_samples = min(window.saturated_samples, 2 ** 32 - 1)
-        chain = getattr(window, "a1_chain", None)
-        if chain is not None and chain.checked:
-            msg.a1_chain_seconds, msg.a1_chain_mismatch = chain.seconds, chain.mismatch
-            msg.a1_chain_gain, msg.a1_chain_lag, msg.a1_chain_radius_m = chain.gain, chain.lag, chain.radius_m
+        set_window_a1_chain(msg, getattr(window, "a1_chain", None))
         self.publisher.publish(msg)
         if window.saturated_samples:
             self.counts["saturated_windows"] += 1

@@ -40,6 +40,15 @@ def stamp_of_sample(start_time_s: float, sample_index: int, sample_period_s: flo
     return time_from_seconds(sample_time_s(start_time_s, sample_index, sample_period_s))
 
 
+def set_window_a1_chain(msg, chain: A1ChainResult | None) -> None:
+    """Put a window's check of a1 against the motor speed into a BacklashWindow's ``a1_chain_*`` fields (left at 0,
+    "not checked", when ``chain`` is None or has not compared any of the stream yet); read back by
+    :func:`a1_chain_from_window`."""
+    if chain is not None and chain.checked:
+        msg.a1_chain_seconds, msg.a1_chain_mismatch = chain.seconds, chain.mismatch
+        msg.a1_chain_gain, msg.a1_chain_lag, msg.a1_chain_radius_m = chain.gain, chain.lag, chain.radius_m
+
+
 def a1_chain_from_window(msg) -> A1ChainResult | None:
     """A BacklashWindow's check of a1 against the motor speed (its ``a1_chain_*`` fields, set by the windowing node
     with ``check_a1_chain``); None when the window carries none (0 seconds compared, or a mismatch that is not a
