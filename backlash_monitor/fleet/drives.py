@@ -36,6 +36,10 @@ WATCH_KEYS = ("watch", "watch_reference", "snapshot_dir")   # the model watch: o
 # the drive registry's keys (files/registry.py, docs/registry.md): the fleet file is the registry; a drive's current
 # model version, its library (the classifier's) and watch reference, the versions before
 REGISTRY_KEYS = ("model", "library", "versions", "registered_utc")
+# the signals a simulated drive's windowing node reads (measured angles, a1 checked against the motor speed:
+# check_a1_chain): its plant streams once the node subscribes to them all (the pipeline's too). The windowing
+# stage's own rule (chain/stage.py input_signals) gives the same list (test_fleet_drives)
+SIMULATED_WINDOWING_READS = "windowing:a1,a2,angle_difference,omega1"
 DRIVE_KEYS = tuple(sorted(set(PLANT_KEYS + CLASSIFIER_KEYS + WINDOWING_KEYS + TREND_KEYS + WATCH_KEYS
                               + REGISTRY_KEYS)))
 
@@ -85,7 +89,7 @@ class Drive:
         # view or recorder subscribing first does not start it early)
         plant.update(drive_name=self.hardware_id, rate_factor=float(rate_factor),
                      duration_s=float(duration_s), qos="reliable",
-                     wait_for_subscribers=["windowing:a1,a2,angle_difference,omega1"])
+                     wait_for_subscribers=[SIMULATED_WINDOWING_READS])
         # the simulated drive publishes its motor speed: a1 is checked against it (docs/classifier.md 5.4)
         windowing = dict(drive_name=self.hardware_id, qos="reliable", trigger=trigger,
                          width_m=float(plant["width_m"]) if trigger == "paper" else 0.0, check_a1_chain=True)

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 
 from ament_index_python.packages import get_package_prefix
 
+from backlash_monitor.fleet.drives import SIMULATED_WINDOWING_READS
 from backlash_monitor.fleet.trend import PRIMARY_SIGNAL
 from backlash_monitor.process.supervisor import RESTART_POLICIES, Supervisor
 from backlash_monitor.errors import DeprecatedSpelling, UsageError, out_of_range
@@ -179,7 +180,6 @@ def set_at_entries(groups) -> list[str]:
 
 
 WATCH_READS = "model_watch:a1,a2,angle_difference,omega1"    # --watch: what the model watch reads (omega1: snapshot)
-WINDOWING_READS = "windowing:a1,a2,angle_difference,omega1"   # the windowing node: measured angles, a1 checked
 RECORD_NODE = "record"                                 # --record: records every plant signal
 NODE_ORDER = ("classifier", "denoise", "windowing", "plant_simulator")   # readers first
 WATCH_ORDER = ("model_watch",) + NODE_ORDER
@@ -205,7 +205,7 @@ def node_parameters(args) -> dict[str, dict]:
                                 effects_files=";".join(getattr(args, "effects_files", None) or []),
                                 # the readers the stream is for (not a count: another subscriber
                                 # in the domain must not start it early)
-                                wait_for_subscribers=[WINDOWING_READS]
+                                wait_for_subscribers=[SIMULATED_WINDOWING_READS]
                                 + ([RECORD_NODE] if args.record else [])
                                 + ([WATCH_READS] if getattr(args, "watch", False) else [])),
         # the simulated drive publishes its motor speed: a1 is checked against it (docs/classifier.md 5.4)

@@ -185,3 +185,17 @@ def test_drive_namespaces_and_hardware_ids_are_unique_and_reach_every_node():
     assert {params[n]["drive_name"] for n in ("plant_simulator", "windowing", "classifier")} \
         == {"line1/drive07"}
     assert params["plant_simulator"]["seed"] == 7
+
+
+def test_a_simulated_drives_plant_waits_for_every_signal_its_windowing_node_reads():
+    """The plant streams once its windowing node subscribes to what it reads (fleet and pipeline): with the a1 check
+    on, the motor speed too, as the windowing stage's own rule gives it; a signal left out would be read without its
+    stream's start."""
+    from backlash_monitor.chain.stage import WindowingStage
+    from backlash_monitor.fleet.drives import SIMULATED_WINDOWING_READS
+    params = drives_from_count(1)[0].node_parameters(duration_s=5.0)
+    assert params["windowing"]["check_a1_chain"] is True
+    node, signals = SIMULATED_WINDOWING_READS.split(":")
+    assert node == "windowing"
+    assert tuple(signals.split(",")) == WindowingStage(check_a1_chain=True).input_signals
+    assert params["plant_simulator"]["wait_for_subscribers"] == [SIMULATED_WINDOWING_READS]
