@@ -54,6 +54,18 @@ class OutsideForm(Form):
         return None
 
 
+def set_relay(b, name: str, selector: int, on: float, off: float, on_name: str = "", off_name: str = "") -> None:
+    """Set the drive's one relay (K.XS_RELAY: on above ``on``, off below ``off``) on the state ``selector``, for the
+    form ``name``; ``on_name``/``off_name``: the form's parameters giving them, named when off is above on (no check
+    without them). A second relay in one recording is refused."""
+    if on_name and off > on:
+        raise ValueError(f"{name}: {off_name} {off} is above {on_name} {on}; allowed: {off_name} <= {on_name}")
+    if b.P[K.P_RLYSEL] != 0.0:
+        raise ValueError(f"{name}: a second relay in one recording; allowed: one")
+    b.P[K.P_RLYSEL] = selector
+    b.P[K.P_RLYON], b.P[K.P_RLYOFF] = on, off
+
+
 def add_term(b, balance: str, amplitude: float, factor1=(K.XS_ONE, K.XF_ONE, 0.0, 0.0, 0.0),
              factor2=(K.XS_ONE, K.XF_ONE, 0.0, 0.0, 0.0), nonperiodic: bool = False) -> None:
     """Fill the next free outside slot of the drive's parameter vector: ``amplitude * f1 * f2`` into ``balance``;

@@ -105,7 +105,7 @@ import numpy as np
 from . import constants as C
 from . import kernel as K
 from .forms import Param
-from .outside import OutsideForm, add_term
+from .outside import OutsideForm, add_term, set_relay
 from .outside_dev import _plugin
 from .outside_dev4 import set_memory
 from .outside_dev6 import set_extra
@@ -329,13 +329,8 @@ class MotorSlipRelayCylinderBrake(OutsideForm):
     note = "a motor brake whose cylinder a slip relay fills and drains (a fill behind a relay)"
 
     def apply(self, b, p):
-        if p["off_below_rad_s"] > p["on_above_rad_s"]:
-            raise ValueError(f"{self.name}: off_below_rad_s {p['off_below_rad_s']} is above on_above_rad_s "
-                             f"{p['on_above_rad_s']}; allowed: off_below_rad_s <= on_above_rad_s")
-        if b.P[K.P_RLYSEL] != 0.0:
-            raise ValueError(f"{self.name}: a second relay in one recording; allowed: one")
-        b.P[K.P_RLYSEL] = K.XS_JAW_SPEED
-        b.P[K.P_RLYON], b.P[K.P_RLYOFF] = p["on_above_rad_s"], p["off_below_rad_s"]
+        set_relay(b, self.name, K.XS_JAW_SPEED, p["on_above_rad_s"], p["off_below_rad_s"], "on_above_rad_s",
+                  "off_below_rad_s")
         set_memory(b, self.name, K.MK_FILL, K.XS_RELAY, p["fill_time_s"], p["drain_time_s"])
         add_term(b, "motor_load_moment", p["torque_Nm"], (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0), nonperiodic=True)
 

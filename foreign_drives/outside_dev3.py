@@ -41,7 +41,7 @@ import numpy as np
 from . import constants as C
 from . import kernel as K
 from .forms import Param
-from .outside import OutsideForm, add_term
+from .outside import OutsideForm, add_term, set_relay
 
 _PHASE = Param("phase_rad", "rad", (-math.pi, math.pi), "phi (relative to the simulator's angle)")
 _SIGN_SPEED = 1.0      # rad/s: the speed below which a brake's sign(Omega) is smoothed (tanh); the drive runs > 140
@@ -215,13 +215,8 @@ class MotorSpeedRelayLoad(OutsideForm):
     note = "a memory in the drive: at the same speed the load is on or off depending on where the speed came from"
 
     def apply(self, b, p):
-        if p["off_below_rad_s"] > p["on_above_rad_s"]:
-            raise ValueError(f"{self.name}: off_below_rad_s {p['off_below_rad_s']} is above on_above_rad_s "
-                             f"{p['on_above_rad_s']}; allowed: off_below_rad_s <= on_above_rad_s")
-        if b.P[K.P_RLYSEL] != 0.0:
-            raise ValueError(f"{self.name}: a second relay in one recording; allowed: one")
-        b.P[K.P_RLYSEL] = K.XS_OMEGA1
-        b.P[K.P_RLYON], b.P[K.P_RLYOFF] = p["on_above_rad_s"], p["off_below_rad_s"]
+        set_relay(b, self.name, K.XS_OMEGA1, p["on_above_rad_s"], p["off_below_rad_s"], "on_above_rad_s",
+                  "off_below_rad_s")
         add_term(b, "motor_load_moment", p["torque_Nm"], (K.XS_RELAY, K.XF_X, 0.0, 0.0, 0.0), nonperiodic=True)
 
     def law(self, p):

@@ -59,7 +59,7 @@ import numpy as np
 
 from . import kernel as K
 from .forms import Param
-from .outside import OutsideForm, add_term
+from .outside import OutsideForm, add_term, set_relay
 from .outside_dev import _plugin
 from .outside_dev4 import set_memory
 from .outside_dev6 import set_extra
@@ -265,10 +265,7 @@ class ClutchOverCentreToggleSpring(OutsideForm):
     note = "a two-state, rate-independent hysteresis of the relative angle, with a jump"
 
     def apply(self, b, p):
-        if b.P[K.P_RLYSEL] != 0.0:
-            raise ValueError(f"{self.name}: a second relay in one recording; allowed: one")
-        b.P[K.P_RLYSEL] = K.XS_JAW_ANGLE
-        b.P[K.P_RLYON], b.P[K.P_RLYOFF] = p["switch_angle_rad"], -p["switch_angle_rad"]
+        set_relay(b, self.name, K.XS_JAW_ANGLE, p["switch_angle_rad"], -p["switch_angle_rad"])
         add_term(b, "clutch_torque", 2.0 * p["torque_Nm"], (K.XS_RELAY, K.XF_X, 0.0, 0.0, 0.0), nonperiodic=True)
         add_term(b, "clutch_torque", -p["torque_Nm"], nonperiodic=True)
 

@@ -58,7 +58,7 @@ import numpy as np
 
 from . import kernel as K
 from .forms import Param
-from .outside import OutsideForm, add_term
+from .outside import OutsideForm, add_term, set_relay
 from .outside_dev4 import segments, set_memory
 
 
@@ -149,13 +149,7 @@ class MassTensionSwitchDragShoe(OutsideForm):
     note = "a drag shoe on the carriage switched by the extension with hysteresis"
 
     def apply(self, b, p):
-        if p["off_below_m"] > p["on_above_m"]:
-            raise ValueError(f"{self.name}: off_below_m {p['off_below_m']} is above on_above_m {p['on_above_m']}; "
-                             "allowed: off_below_m <= on_above_m")
-        if b.P[K.P_RLYSEL] != 0.0:
-            raise ValueError(f"{self.name}: a second relay in one recording; allowed: one")
-        b.P[K.P_RLYSEL] = K.XS_SPRING_EXTENSION
-        b.P[K.P_RLYON], b.P[K.P_RLYOFF] = p["on_above_m"], p["off_below_m"]
+        set_relay(b, self.name, K.XS_SPRING_EXTENSION, p["on_above_m"], p["off_below_m"], "on_above_m", "off_below_m")
         add_term(b, "mass_force", -p["force_N"], (K.XS_RELAY, K.XF_X, 0.0, 0.0, 0.0), nonperiodic=True)
 
     def law(self, p):
