@@ -70,10 +70,23 @@ def checked_width(both_m: float, both_se_m: float, motor_m: float, motor_se_m: f
                   min_departure_m: float = MIN_DEPARTURE_M) -> CheckedWidth:
     """Both accelerometers' fused width unless it departs from the motor side's by more than ``sigmas`` combined
     standard errors and ``min_departure_m``, or its standard error is more than ``scatter_ratio`` times the motor
-    side's; then the motor side's. Not checked (both's kept, departure NaN) when either width or uncertainty is not finite (fewer than 3
-    events, or a width censored at the top of the range: +inf), or when the motor side's events gave one width
-    exactly (a spread of 0 is a stuck or clipped input, not a precision: a drive's windows scatter by ~0.1 mm)."""
+    side's; then the motor side's. Both together censored at the top of the range (uncertainty +inf: the width is at
+    least both_m) beside a finite motor side below it: the departure is at least both_m - motor_m, tested against the
+    motor side's error alone and the same floor. Not checked (both's kept, departure NaN) when either width or
+    uncertainty is otherwise not finite (fewer than 3 events; the motor side censored or unknown), or when the motor
+    side's events gave one width exactly (a spread of 0 is a stuck or clipped input, not a precision: a drive's windows
+    scatter by ~0.1 mm)."""
     values = (both_m, both_se_m, motor_m, motor_se_m)
+    if _censored_above(both_m, both_se_m, motor_m, motor_se_m):
+        # both together at the range's top (a censored width: at least both_m) beside a motor side read well inside
+        # the range: the departure is at least both_m - motor_m, known to the motor side's error alone
+        apart_m = both_m - motor_m
+        departure = apart_m / motor_se_m
+        if departure > sigmas and apart_m > min_departure_m:
+            return CheckedWidth(motor_m, motor_se_m, MOTOR_SIDE_SIGNAL, departure, math.inf,
+                                f"read at the top of the range (at least {both_m * 1e3:.2f} mm), {apart_m * 1e3:.2f} mm "
+                                f"above a1's ({departure:.0f} sigma)")
+        return CheckedWidth(both_m, both_se_m, BOTH_SIGNALS, departure, math.inf)
     if not all(isinstance(v, (int, float)) and math.isfinite(v) for v in values) or motor_se_m <= 0:
         return CheckedWidth(both_m, both_se_m, BOTH_SIGNALS, math.nan)
     apart_m = abs(both_m - motor_m)
@@ -85,6 +98,14 @@ def checked_width(both_m: float, both_se_m: float, motor_m: float, motor_se_m: f
     if reasons:
         return CheckedWidth(motor_m, motor_se_m, MOTOR_SIDE_SIGNAL, departure, ratio, " and ".join(reasons))
     return CheckedWidth(both_m, both_se_m, BOTH_SIGNALS, departure, ratio)
+
+
+def _censored_above(both_m, both_se_m, motor_m, motor_se_m) -> bool:
+    """Both together censored at the range's top (a finite width with an uncertainty of +inf:
+    fusion.fused_width_uncertainty_m) above a motor side with a finite, non-zero error."""
+    numbers = all(isinstance(v, (int, float)) for v in (both_m, both_se_m, motor_m, motor_se_m))
+    return (numbers and math.isfinite(both_m) and both_se_m == math.inf and math.isfinite(motor_m)
+            and math.isfinite(motor_se_m) and motor_se_m > 0 and motor_m < both_m)
 
 
 def a1_chain_checked(check: CheckedWidth, a1_chain, load_m: float, load_se_m: float) -> CheckedWidth:
@@ -113,5 +134,6 @@ def rule_text(sigmas: float = SIGNAL_CHECK_SIGMAS, min_departure_m: float = MIN_
     # deferred: the commands import this module before numpy (fleet/folder_analysis.limit_threads)
     from backlash_monitor.windowing.a1_chain import MAX_MISMATCH as A1_CHAIN_MAX_MISMATCH
     return (f"a1+a2 is replaced by a1 when the two depart by more than {sigmas:g} combined standard errors and "
-            f"{min_departure_m * 1e3:g} mm, or a1+a2 scatters more than {scatter_ratio:g}x as much as a1; by a2 when "
+            f"{min_departure_m * 1e3:g} mm (a1's error alone when a1+a2 is at the top of the range), or a1+a2 scatters "
+            f"more than {scatter_ratio:g}x as much as a1; by a2 when "
             f"a1 does not follow the motor speed r·dΩ₁/dt (more than {A1_CHAIN_MAX_MISMATCH:.0%} of its motion not in a1)")

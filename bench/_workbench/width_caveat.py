@@ -9,9 +9,11 @@ simulator), run through the commands as a user runs them.
    fleet's trend is per drive; the physics and the seed are the suite's). A *confident wrong width alarm*: the row's
    level is WARN with the true width below the trend's warn_width_m, or ERROR with it below error_width_m
    (config/trend.yaml), and neither the row's reason nor its width cell says that the model does not explain the
-   drive (fleet/caveat.py). The live classifier's own alarm (its last fused width against config/diagnostics.yaml's
+   drive (fleet/caveat.py). The live classifier's own alarm (its fused width against config/diagnostics.yaml's
    thresholds) is counted the same way from analyze's estimates, with the caveat the classifier adds from the same
-   model fit. Cost (profiled 29 Nov): the simulation (~8-16 s a recording) and the model fit's references (one per
+   model fit: on EVERY estimate of the recording, as the node sets its level on each (until stop 58 on the last
+   estimate only, kept beside it as ``confident_wrong_width_alarms_last_estimate``: an alarm raised in the middle of
+   a recording and gone by its end was not counted). Cost (profiled 29 Nov): the simulation (~8-16 s a recording) and the model fit's references (one per
    pattern width nearest a measured width, ~60 s of one core each, built once into .cache/watch); analyze's own
    work is ~1 s a recording.
 
@@ -223,6 +225,8 @@ def confident_wrong_width_alarms(workdir=None, only=None, jobs: int = 2, suites=
                                                   for r in ok if r["suite"] == name)}
                  for name in suites}
     return {"confident_wrong_width_alarms": sum(r["confident_wrong"] for r in ok),
+            # the classifier's level judged on its last estimate only (this check until stop 58)
+            "confident_wrong_width_alarms_last_estimate": sum(r["confident_wrong_last"] for r in ok),
             "confident_wrong_width_alarm_labels": [r["label"] for r in ok if r["confident_wrong"]],
             "wrong_width_alarms_with_caveat": sum((r["wrong_trend_alarm"] or r["wrong_classifier_alarm"])
                                                   and not r["confident_wrong"] for r in ok),
@@ -248,24 +252,35 @@ def _alarm_row(r: dict, out_dir: Path, truth: dict, rule, warn_c: float, error_c
     from backlash_monitor.estimation import level_width, width_level
     # the width the classifier node's level follows (estimation.level_width: the fused continuous width; the class
     # width only where the mode gives none)
-    fused = level_width(mine[-1].get("fused_continuous_width_m", math.nan), mine[-1]["fused_width_m"]) if mine \
-        else math.nan
+    widths = [level_width(e.get("fused_continuous_width_m", math.nan), e["fused_width_m"]) for e in mine]
+    fused = widths[-1] if widths else math.nan
     cls_level = width_level(fused, warn_c, error_c)
     cls_line = with_caveat(f"backlash {fused * 1e3:.2f} mm", fit)      # as the classifier node writes it
     t = truth[label]
     trend_wrong = _alarm(r["level"], t, rule.warn_width_m, rule.error_width_m)
-    cls_wrong = _alarm(cls_level, t, warn_c, error_c)
+    cls_wrong_last = _alarm(cls_level, t, warn_c, error_c)
+    # the classifier node sets its level on EVERY estimate (nodes/classifier.py set_width), not only the last: an
+    # alarm raised in the middle of a recording and gone by its end is an alarm the user saw
+    wrong_at = [e.get("entry_time_s") for e, w in zip(mine, widths) if _alarm(width_level(w, warn_c, error_c), t,
+                                                                              warn_c, error_c)]
+    cls_wrong = bool(wrong_at)
+    cls_says_fails = says_model_fails(with_caveat("backlash", fit))   # the caveat is the recording's, on every line
     row.update(true_width_mm=t * 1e3, width_mm=r["width_m"] * 1e3,
                width_uncertainty_mm=(math.nan if r.get("width_uncertainty_m") is None else r["width_uncertainty_m"]) * 1e3,
                level=r["level"], reason=r["reason"], model_fit=r.get("model_fit_level"),
                model_fit_ratio=r.get("model_fit_ratio"), caveat=r.get("width_caveat", ""),
                classifier_level=cls_level, classifier_fused_width_mm=fused * 1e3,
                wrong_trend_alarm=trend_wrong, wrong_classifier_alarm=cls_wrong,
+               wrong_classifier_alarm_last=cls_wrong_last, classifier_estimates=len(mine),
+               classifier_wrong_alarm_estimates=len(wrong_at), classifier_wrong_alarm_first_s=(wrong_at or [None])[0],
                confident_wrong=(trend_wrong and not says_model_fails(r["reason"]))
-               or (cls_wrong and not says_model_fails(cls_line)))
+               or (cls_wrong and not cls_says_fails),
+               confident_wrong_last=(trend_wrong and not says_model_fails(r["reason"]))
+               or (cls_wrong_last and not says_model_fails(cls_line)))
     log(f"[alarms] {label}: width {row['width_mm']:.2f} ± {row['width_uncertainty_mm']:.2f} mm (truth "
         f"{row['true_width_mm']:.2f}), {row['level']} / classifier {cls_level}, fit {row['model_fit']} "
-        f"{row['model_fit_ratio']}; confident wrong: {row['confident_wrong']}")
+        f"{row['model_fit_ratio']}; classifier wrong on {len(wrong_at)} of {len(mine)} estimates; confident wrong: "
+        f"{row['confident_wrong']}")
     return row
 
 

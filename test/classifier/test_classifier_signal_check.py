@@ -59,14 +59,31 @@ def test_widths_without_a_finite_uncertainty_are_not_checked(values):
     assert c.signal == BOTH_SIGNALS and c.width_m == values[0] and math.isnan(c.departure_sigmas)
 
 
-def _traces(label: str):
+def test_both_together_at_the_top_of_the_range_beside_a_motor_side_inside_it_takes_the_motor_side():
+    """A censored fused width (uncertainty +inf: the windows' median at the 20 mm clip, so the width is at least that)
+    beside a motor side read at 6.9 +- 0.1 mm departs by at least 13.1 mm, 131 of the motor side's errors: the motor
+    side's is taken (before, not checked: the drive read >= 20 mm). A motor side near the top itself keeps both (a
+    drive wider than the range); a censored motor side, or one above the censored value, leaves it unchecked."""
+    c = checked_width(20e-3, math.inf, 6.9e-3, 0.1e-3)
+    assert c.signal == MOTOR_SIDE_SIGNAL and c.width_m == 6.9e-3 and c.uncertainty_m == 0.1e-3
+    assert c.departure_sigmas == pytest.approx(131.0) and c.reason.startswith("read at the top of the range")
+    near = checked_width(20e-3, math.inf, 19.9e-3, 0.2e-3)     # 0.1 mm below it at 0.5 sigma: a wide drive
+    assert near.signal == BOTH_SIGNALS and near.width_m == 20e-3 and near.departure_sigmas == pytest.approx(0.5)
+    floor = checked_width(20e-3, math.inf, 19.85e-3, 0.01e-3)  # 15 sigma but 0.15 mm: within the regressions' floor
+    assert floor.signal == BOTH_SIGNALS
+    for motor in [(6.9e-3, math.inf), (6.9e-3, math.nan), (math.nan, 0.1e-3), (6.9e-3, 0.0)]:
+        kept = checked_width(20e-3, math.inf, *motor)
+        assert kept.signal == BOTH_SIGNALS and kept.width_m == 20e-3 and math.isnan(kept.departure_sigmas)
+
+
+def _traces(label: str, suite_name: str = "outside_sealed9"):
     from foreign_drives.drive import make_recording
     from foreign_drives.suites import suite
 
     from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS
     from backlash_monitor.workbench.measurement import Measurement
     from backlash_monitor.workbench.width import monitor_widths
-    spec = next(s for s in suite("outside_sealed9") if s.label == label)
+    spec = next(s for s in suite(suite_name) if s.label == label)
     rec = make_recording(spec)
     meas = Measurement(f"foreign:{label}", rec.sample_period_s, {k: np.asarray(v) for k, v in rec.signals.items()})
     both, motor = monitor_widths(meas, signal=BOTH_SIGNALS), monitor_widths(meas, signal=MOTOR_SIDE_SIGNAL)
@@ -90,6 +107,22 @@ def test_a_load_side_mechanism_outside_the_catalogue_gives_the_motor_sides_width
     err_checked = np.mean(np.abs(both.fused_continuous_m[full] - truth))
     err_unchecked = np.mean(np.abs(unchecked[full] - truth))
     assert err_checked < err_unchecked, (err_checked, err_unchecked)
+
+
+def test_a_load_side_sensor_that_drives_both_together_to_the_top_of_the_range_gives_the_motor_sides_width():
+    """An a2 whose conditioning restores its baseline (spent set 20; the other simulator's law, not ours): both
+    together read 20 mm, the top of the range, on most full fusions of a 6.9 mm drive (censored: +inf), the motor
+    side 6.9 mm. Checked, every full fusion is finite and the motor side's where both together were censored: the
+    live classifier's level no longer reads an ERROR of at least 20 mm on a drive below its warning."""
+    truth, both, motor, unchecked, full = _traces("os20_a2_baseline_restorer", "outside_sealed20")
+    assert full.sum() >= 5
+    top = np.isclose(unchecked, np.max(unchecked), rtol=0, atol=1e-9) & (np.max(unchecked) >= 19.9e-3)
+    assert top[full].sum() >= 2, unchecked[full]         # the case: both together censored at the top
+    took_motor = np.isclose(both.fused_continuous_m, motor.fused_continuous_m, rtol=0, atol=1e-12)
+    assert np.all(took_motor[full & top])
+    assert np.all(both.fused_continuous_m[full] < 19.9e-3)
+    assert np.max(np.abs(both.fused_continuous_m[full] - truth)) < 0.5e-3
+    assert np.mean(np.abs(unchecked[full] - truth)) > 3e-3
 
 
 def test_on_a_clean_drive_the_check_keeps_the_width_within_a_tenth_of_a_millimetre():
