@@ -50,6 +50,28 @@ Kinds (balance x what it reads, and how), the sealed half:
     the extension, the motor's speed, the contact mode and the slip; the earlier laws of the wheel's speed on the
     wheel are viscous, staged, a relief valve's clip, a bypass's dead zone and, behind memories, an overspeed latch,
     an off-delay, a peak, a tank, a PWM, a PI, a period tacho and a squeal).
+
+Visibility, measured (one simulation of each suite row, 4 s, against the same spec without the mechanism, same seed; no
+diagnose; rms of the recorded signal's difference; criterion a2 >= 0.05 m/s^2): 2 a2 0.100; 4 a2 0.0864; 6 a2 0.0727;
+8 a2 0.0917; 10 a2 0.0127, BELOW; 12 a2 0.140; 14 a2 0.0486 at its a-priori strength, scaled once x1.54 (T 2 -> 3.086
+N*m; a2 0.0671 after) -- 2, 4, 6, 8 and 12 as written.
+
+One row is left below the criterion, as written, and said so here rather than made visible by force: the packet loss
+(10): at 5 % of 2 ms packets lost a2 differs by 0.0127 rms; its single scaling, x5.90 (29.5 % lost), reached only a2
+0.0456, still below (a repeated packet differs from the lost one only by how much a2 moved over 2 ms, and the rms grows
+as the square root of the rate), so the row was set back to its a-priori 5 % and left there: visible (above a tenth of
+the criterion) but below it. No other condition was tried.
+
+A check that each memory moves (the same specs without noise, no figure used for a strength): the relay (2) is on over
+30 % of the scans; the PI coupling (6) passes torque over 30 % of the scans (up to 4.0 N*m); the packet loss (10)
+replaces 5.8 % of a2's samples.
+
+Implementation: the relay (2) is the third set's relay (XS_RELAY) on XS_OMEGA2, its term XS_OMEGA1 times XS_RELAY; the
+drum's brake (4) two slots, -c/2*Omega2 and c/2*Omega2*XF_COS of XS_TIME (sin^2 u = (1 - cos 2u)/2), both time-locked;
+the coupling (6) the sixth set's MK_PI_SAT of XS_JAW_SPEED (its reference in the ring's extra place, its output within
+[0, 1]) times XS_JAW_SPEED; the whirl (8) XF_LORENTZ of XS_OMEGA2; the packet loss (10) a sensor form in numpy
+(default_rng); the induction machine (12) XF_CLIP (a wide one: u itself) times XF_LORENTZ of XS_OMEGA1; the centrifugal
+brake (14) XF_SIGMOID of XS_OMEGA2. No kernel change.
 """
 from __future__ import annotations
 
@@ -284,14 +306,15 @@ def suite_rows():
         ("os21_mass_cable_span_whirl", "outside", 0.0078, 0.0300, 0.91,
          [E("mass_cable_span_whirl", {"force_N": 3.0, "resonance_rad_s": 152.0, "half_width_rad_s": 1.0})]),
         ("os21_clean_w7.4_eta0.0265_n0.95", "clean", 0.0074, 0.0265, 0.95, []),
-        # packets of 100 samples (2 ms), 5 % lost, seed 21
+        # packets of 100 samples (2 ms), 5 % lost, seed 21; a2 0.0127 in the visibility run, scaled once x5.90 (29.5 %
+        # lost) still below (a2 0.0456): left as written, BELOW the criterion (see the module's docstring)
         ("os21_a2_packet_loss_repetition", "outside", 0.0086, 0.0225, 0.93,
          [E("a2_packet_loss_repetition", {"packet_samples": 100.0, "loss_rate": 0.05, "seed": 21.0})]),
         # 2 N*m pull-out at a slip of 2 rad/s about 150.5 rad/s
         ("os21_motor_converter_fed_induction_machine", "outside", 0.0070, 0.0285, 0.97,
          [E("motor_converter_fed_induction_machine", {"pull_out_torque_Nm": 2.0, "synchronous_speed_rad_s": 150.5,
                                                       "pull_out_slip_rad_s": 2.0})]),
-        # 2 N*m, engaging around 152 rad/s over 0.5 rad/s
+        # 2 N*m, engaging around 152 rad/s over 0.5 rad/s a priori, a2 0.0486: scaled once x1.54
         ("os21_wheel_centrifugal_speed_brake", "outside", 0.0080, 0.0235, 0.90,
-         [E("wheel_centrifugal_speed_brake", {"torque_Nm": 2.0, "engage_rad_s": 152.0, "width_rad_s": 0.5})]),
+         [E("wheel_centrifugal_speed_brake", {"torque_Nm": 3.086, "engage_rad_s": 152.0, "width_rad_s": 0.5})]),
     ]
