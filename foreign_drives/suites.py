@@ -828,8 +828,8 @@ OUTSIDE_DEV21_ROWS = [
      [E("mass_averaged_speed_booster", {"gain_N_s_per_m": 100.0, "reference_m_s": 22.73, "limit_m_s": 0.05,
                                         "window_scans": 50.0})]),
     ("od21_clean_w7.7_eta0.0235_n0.92", "clean", 0.0077, 0.0235, 0.92, []),
-    # 0.5 m/s^2 per p.u. of torque (up to about 0.9 m/s^2 in a stroke), 50 Hz mains a priori, a1 0.2205: scaled once
-    # x1.70
+    # 0.5 m/s^2 per p.u. of torque (t_e about 0.4-0.95 p.u.: up to about 0.5 m/s^2), 50 Hz mains a priori, a1 0.2205:
+    # scaled once x1.70
     ("od21_a1_torque_following_hum", "outside", 0.0084, 0.0230, 0.96,
      [E("a1_torque_following_hum", {"coefficient_m_s2": 0.8503, "mains_hz": 50.0, "phase_rad": 0.0})]),
     # 64 pulses a turn (about 1.5 kHz at the drum's speed) a priori, a2 0.0108: scaled once x6.92 (its strength the
