@@ -807,6 +807,40 @@ OUTSIDE_DEV20_ROWS = [
                                             "fill_time_s": 0.02, "drain_time_s": 0.05})]),
 ]
 
+# ---- issue 31 part 4, twenty-first set: mechanisms outside the catalogue of other kinds again
+# (foreign_drives.outside_dev21; the twenty-first sealed half's rows are in foreign_drives.outside_sealed21). One
+# mechanism per row at its own nominal conditions, one clean control. Seeds 21000+. Each strength set by one simulation
+# against the clean drive of the same seed (docs/foreign_drives.md "The twenty-first set"). The a-priori values are read
+# off the documented clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80 m/s; the
+# pulse 60 ms every 0.25 s; the gap's half-width beta = w/r, about 0.043-0.056 rad).
+OUTSIDE_DEV21_ROWS = [
+    # 0.15 N*m per (rad/s)^2 above 150 rad/s (about 2.6 N*m at 154 rad/s) a priori, a2 0.0229: scaled once x3.28
+    ("od21_motor_self_excited_generator", "outside", 0.0073, 0.0255, 0.93,
+     [E("motor_self_excited_generator", {"coefficient_Nm_s2_per_rad2": 0.4913, "critical_speed_rad_s": 150.0})]),
+    # 3 N*m once the faces have been more than 10 mrad apart for 4 ms
+    ("od21_wheel_gap_guard_holding_brake", "outside", 0.0067, 0.0290, 0.95,
+     [E("wheel_gap_guard_holding_brake", {"torque_Nm": 3.0, "gap_rad": 0.01, "delay_s": 0.004})]),
+    # 30 N*m/rad (about 1.5 N*m across the gap), relaxing over 50 ms a priori, a2 0.0282: scaled once x2.66
+    ("od21_clutch_viscoelastic_boot", "outside", 0.0081, 0.0245, 0.91,
+     [E("clutch_viscoelastic_boot", {"stiffness_Nm_per_rad": 79.84, "relaxation_s": 0.05})]),
+    # 100 N per m/s of the speed's 10 ms mean from 22.73 m/s, within +-5 N
+    ("od21_mass_averaged_speed_booster", "outside", 0.0069, 0.0315, 0.94,
+     [E("mass_averaged_speed_booster", {"gain_N_s_per_m": 100.0, "reference_m_s": 22.73, "limit_m_s": 0.05,
+                                        "window_scans": 50.0})]),
+    ("od21_clean_w7.7_eta0.0235_n0.92", "clean", 0.0077, 0.0235, 0.92, []),
+    # 0.5 m/s^2 per p.u. of torque (t_e about 0.4-0.95 p.u.: up to about 0.5 m/s^2), 50 Hz mains a priori, a1 0.2205:
+    # scaled once x1.70
+    ("od21_a1_torque_following_hum", "outside", 0.0084, 0.0230, 0.96,
+     [E("a1_torque_following_hum", {"coefficient_m_s2": 0.8503, "mains_hz": 50.0, "phase_rad": 0.0})]),
+    # 64 pulses a turn (about 1.5 kHz at the drum's speed) a priori, a2 0.0108: scaled once x6.92 (its strength the
+    # hold's length, 1/N: 64/6.92 = 9.25 pulses a turn, taken whole, 9; about 215 Hz)
+    ("od21_a2_drum_encoder_clocked_hold", "outside", 0.0064, 0.0270, 0.90,
+     [E("a2_drum_encoder_clocked_hold", {"pulses_per_turn": 9.0, "angle_rad": 0.0})]),
+    # 1 N*m*s/rad aligned, a land of half-width 10 mrad a priori, a2 0.0482: scaled once x1.56
+    ("od21_clutch_metering_land_damper", "outside", 0.0079, 0.0260, 0.97,
+     [E("clutch_metering_land_damper", {"coefficient_Nm_s_per_rad": 1.557, "land_rad": 0.01})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -830,6 +864,7 @@ OUTSIDE_DEV17 = _suite(OUTSIDE_DEV17_ROWS, 17000, 4.0)
 OUTSIDE_DEV18 = _suite(OUTSIDE_DEV18_ROWS, 18000, 4.0)
 OUTSIDE_DEV19 = _suite(OUTSIDE_DEV19_ROWS, 19000, 4.0)
 OUTSIDE_DEV20 = _suite(OUTSIDE_DEV20_ROWS, 20000, 4.0)
+OUTSIDE_DEV21 = _suite(OUTSIDE_DEV21_ROWS, 21000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
@@ -839,7 +874,7 @@ SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": 
           "outside_dev14": OUTSIDE_DEV14, "outside_dev15": OUTSIDE_DEV15,
           "outside_dev16": OUTSIDE_DEV16, "outside_dev17": OUTSIDE_DEV17,
           "outside_dev18": OUTSIDE_DEV18, "outside_dev19": OUTSIDE_DEV19,
-          "outside_dev20": OUTSIDE_DEV20}
+          "outside_dev20": OUTSIDE_DEV20, "outside_dev21": OUTSIDE_DEV21}
 
 
 # The sealed halves: each made on first use from its own module's rows (foreign_drives.<name>.suite_rows(), so that
@@ -865,6 +900,7 @@ SEALED_FIRST_SEED = {
     "outside_sealed18": 18100,
     "outside_sealed19": 19100,
     "outside_sealed20": 20100,
+    "outside_sealed21": 21100,
 }
 
 SUITE_NAMES = tuple(SUITES) + tuple(SEALED_FIRST_SEED)
