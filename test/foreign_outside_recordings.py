@@ -12,12 +12,14 @@ import json
 from pathlib import Path
 
 import numpy as np
+from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm
 
+from foreign_drives import constants as C
 from foreign_drives import forms as F
+from foreign_drives import noise as N
 from foreign_drives import suites
 from foreign_drives.drive import make_recording
 from foreign_drives.spec import EffectSpec
-from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm
 
 OUTSIDE_BENCH = Path(__file__).resolve().parents[1] / "bench" / "_workbench" / "outside.py"
 
@@ -306,3 +308,33 @@ def assert_a_row_of_each_half_crosses_the_backlash(set_number: int, duration_s: 
         rec = make_recording(spec)
         assert all(np.all(np.isfinite(rec.signals[k])) for k in rec.signals)
         assert sum(k == "onset" for _, k in rec.true_entries()) >= 2
+
+
+# ------------------------------------------------------------------ small readings of a recording the sets' tests share
+def others_zero(rec, *terms) -> None:
+    """Each of ``terms`` (a balance term of the recording: foreign_balance_terms) is 0 on ``rec``: the mechanism acts
+    in no other balance."""
+    for term in terms:
+        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
+
+
+def held_per_segment(x):
+    """The spread of x within each whole 0.2 ms segment, the memory elements' scan (0 where it is held)."""
+    seg = N.SEGMENT_SAMPLES
+    n = x.size // seg
+    return np.ptp(x[:n * seg].reshape(n, seg), axis=1)
+
+
+def extra_clutch_Nm(rec):
+    """The clutch torque beyond the nominal contact law's [N*m]."""
+    return rec.internal["clutch_torque_Nm"] - contact_law_Nm(rec)
+
+
+def sample_times_s(rec):
+    """Each sample's time in the recording [s]."""
+    return np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
+
+
+def slip_rad_s(rec):
+    """The speed across the clutch, motor minus wheel [rad/s]."""
+    return rec.signals["omega1"] - rec.signals["omega2"]

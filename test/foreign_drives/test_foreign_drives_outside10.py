@@ -28,6 +28,7 @@ from foreign_outside_recordings import (OutsideSet, assert_acts_in_its_balance_o
 from foreign_outside_recordings import (assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_alarm_check_covers_both_halves,
                                         assert_bench_guards_unspent_sealed)
+from foreign_outside_recordings import held_per_segment, others_zero  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -37,21 +38,10 @@ DEV10, SEALED10, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
 
 
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
 def _pulse(rec):
     t = np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
     on = pulse_indicator(t, rec.spec.pulse_first_s)
     return on, pulse_phase_s(t, on)
-
-
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
 
 
 def _runs(flag):
@@ -63,7 +53,7 @@ def _runs(flag):
 
 def _binary_per_scan(x):
     """x (0 or 1 to 1e-9, held per segment) at the scans."""
-    assert np.max(_held_per_segment(x)) < 1e-9
+    assert np.max(held_per_segment(x)) < 1e-9
     s = x[::SEG]
     assert np.all((np.abs(s) < 1e-9) | (np.abs(s - 1.0) < 1e-9))
     return np.round(s)
@@ -147,7 +137,7 @@ def test_stroke_ring_is_a_decaying_oscillation_from_each_strokes_start_in_the_mo
     early, late = on.astype(bool) & (ph < p["decay_time_s"]), on.astype(bool) & (ph > 2.5 * p["decay_time_s"])
     assert np.max(np.abs(tx[early])) > 0.5 * p["amplitude_Nm"] > 5 * np.max(np.abs(tx[late]))   # it decays
     assert (tx[early] > 0).any() and (tx[early] < 0).any()          # and it rings: both signs
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_the_stroke_rings_plugin_is_the_law_in_the_projects_plugin_form(tmp_path):
@@ -170,7 +160,7 @@ def test_thermal_cutout_switches_the_brake_by_its_own_heat_with_the_laws_periods
     tx, w2 = wheel_term_Nm(rec), rec.signals["omega2"]
     c, tau, h_off, h_on = (p["coefficient_Nm_s_per_rad"], p["cooling_time_s"], p["off_above_J"], p["on_below_J"])
     on = _binary_per_scan(-tx / (c * w2))
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
     # off, the heat decays from H_off to H_on: tau*ln(H_off/H_on), whatever the drive does
     offs = [(a, b) for a, b in _runs(on == 0) if a > 0 and b < on.size]
     assert offs
@@ -203,7 +193,7 @@ def test_stroke_leaf_spring_is_a_stiffness_across_the_jaw_during_each_stroke_onl
     gap = (np.abs(d) < i["parameters"][K.P_BETA]) & (on == 1)
     assert gap.any() and np.max(np.abs(extra[gap])) > 0.5 * p["stiffness_Nm_per_rad"] * np.max(np.abs(d[gap]))
     assert np.all(extra[on == 0] == 0.0)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_impulse_relay_toggles_the_rail_brake_each_time_the_extension_rises_past_its_switch():
@@ -213,7 +203,7 @@ def test_impulse_relay_toggles_the_rail_brake_each_time_the_extension_rises_past
     rec = rec_of("mass_impulse_relay_brake", duration=1.2, **p)
     fx = mass_term_N(rec)
     on = _binary_per_scan(-fx / p["force_N"])
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
     z = rec.internal["spring_extension"][::SEG]
     # the relay's state at sample 0 comes from the run-in: one of the four initial states reproduces every scan
     fits = [np.array_equal(DEV10["mass_impulse_relay_brake"].toggled(z, p, on=on[0], armed=armed)[1:], on[1:])
@@ -248,7 +238,7 @@ def test_viscoelastic_coupling_passes_the_slip_relaxed_by_its_time_at_all_times(
     rec = rec_of("clutch_viscoelastic_coupling", **p)
     i = rec.internal
     extra = i["clutch_torque_Nm"] - contact_law_Nm(rec)
-    assert np.max(_held_per_segment(extra)) < 1e-6
+    assert np.max(held_per_segment(extra)) < 1e-6
     m = extra[::SEG] / p["coefficient_Nm_s_per_rad"]
     slip = (rec.signals["omega1"] - rec.signals["omega2"])[::SEG]
     law = DEV10["clutch_viscoelastic_coupling"].relaxed(np.concatenate(([m[0]], slip[1:])), p, DT)
@@ -256,14 +246,14 @@ def test_viscoelastic_coupling_passes_the_slip_relaxed_by_its_time_at_all_times(
     gap = np.abs(i["jaw_angle_difference"]) < i["parameters"][K.P_BETA]
     assert np.max(np.abs(extra[gap])) > 0.5                          # it couples the halves in the gap too
     assert np.max(np.abs(m - slip)) > 0.3 * np.max(np.abs(slip))     # and it lags the slip
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_contact_interlock_brake_rises_from_each_contacts_start_and_is_off_in_the_gap():
     p = _params("wheel_contact_interlock_brake")
     rec = rec_of("wheel_contact_interlock_brake", **p)
     tx, mode = wheel_term_Nm(rec), rec.internal["mode"]
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
     assert np.max(np.abs(tx[mode == 0])) < 1e-6 and np.all(tx < 1e-6)
     tau, dt = p["rise_time_s"], C.SAMPLE_PERIOD_S
     age = -tau * np.log1p(np.minimum(tx, 0.0) / p["torque_Nm"])     # t_c from the law, inverted

@@ -27,6 +27,7 @@ from foreign_outside_recordings import (OutsideSet, assert_acts_in_its_balance_o
 from foreign_outside_recordings import (assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_alarm_check_covers_both_halves,
                                         assert_bench_guards_unspent_sealed)
+from foreign_outside_recordings import held_per_segment, others_zero  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -37,20 +38,9 @@ DEV11, SEALED11, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
 
 
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
-
-
 def _binary_per_scan(x):
     """x (0 or 1 to 1e-9, held per segment) at the scans."""
-    assert np.max(_held_per_segment(x)) < 1e-9
+    assert np.max(held_per_segment(x)) < 1e-9
     s = x[::SEG]
     assert np.all((np.abs(s) < 1e-9) | (np.abs(s - 1.0) < 1e-9))
     return np.round(s)
@@ -156,7 +146,7 @@ def test_runaway_governor_loads_the_motor_with_the_wheels_overspeed():
     slip = np.abs(rec.signals["omega1"] - w2) > 1.0
     assert slip.any() and np.max(np.abs(tx - DEV11["motor_wheel_runaway_governor"].torque(rec.signals["omega1"], p))[
         slip]) > 0.5
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_off_delay_brake_holds_on_for_its_time_after_the_wheel_speed_falls_below_the_trip():
@@ -164,7 +154,7 @@ def test_off_delay_brake_holds_on_for_its_time_after_the_wheel_speed_falls_below
     rec = rec_of("wheel_off_delay_overspeed_brake", **p)
     tx = wheel_term_Nm(rec)
     on = _binary_per_scan(-tx / p["torque_Nm"])
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
     w = rec.signals["omega2"][::SEG]
     above = w > p["trip_speed_rad_s"]
     assert np.all(on[above] == 1.0)                                     # on at every scan above the trip
@@ -191,7 +181,7 @@ def test_overrunning_coupling_passes_the_slip_one_way_in_the_gap_and_in_contact(
     assert (slip < -0.5).any() and np.all(extra[slip < 0] == 0.0)       # freewheeling while the wheel overruns
     gap = np.abs(i["jaw_angle_difference"]) < i["parameters"][K.P_BETA]
     assert np.max(extra[gap]) > 0.5                                      # it couples the halves in the gap too
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_dead_band_switch_pushes_below_its_band_brakes_above_it_and_leaves_the_band_alone():
@@ -204,7 +194,7 @@ def test_dead_band_switch_pushes_below_its_band_brakes_above_it_and_leaves_the_b
     assert slow.any() and fast.any() and band.any()                      # three levels in one recording
     assert np.allclose(fx[slow], f, atol=0.01 * f) and np.allclose(fx[fast], -f, atol=0.01 * f)
     assert np.max(np.abs(fx[band])) < 0.01 * f
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_notch_removes_its_band_from_a2_and_passes_the_strokes():
@@ -244,7 +234,7 @@ def test_trapped_air_cushion_springs_from_the_extension_at_each_strokes_start():
     assert np.max(np.abs(fx[known] - law)) < 1e-6 * p["force_N"] * 10
     assert np.max(np.abs(fx[starts])) < 1e-6                             # no force where the air was just trapped
     assert np.max(np.abs(fx[known])) > 0.5
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_upstream_tension_is_a_random_staircase_of_the_time():
@@ -260,7 +250,7 @@ def test_upstream_tension_is_a_random_staircase_of_the_time():
     assert len(levels) >= 5 and all(np.ptp(x) < 1e-6 for x in levels)    # constant between its updates
     steps = np.abs(np.diff([x[0] for x in levels]))
     assert np.all(steps > 1e-3) and np.max(np.abs(tx)) <= p["torque_Nm"]  # a new level at each
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 # ------------------------------------------------------------------ the sealed half: in its balance only

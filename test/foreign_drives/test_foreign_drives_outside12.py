@@ -26,6 +26,7 @@ from foreign_outside_recordings import (OutsideSet, assert_acts_in_its_balance_o
 from foreign_outside_recordings import (assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_alarm_check_covers_both_halves,
                                         assert_bench_guards_unspent_sealed)
+from foreign_outside_recordings import held_per_segment, others_zero  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -33,17 +34,6 @@ DT = N.SEGMENT_S
 SET = OutsideSet(12, seed=212)
 DEV12, SEALED12, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
-
-
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
 
 
 # ------------------------------------------------------------------ registry and truth vocabulary
@@ -93,20 +83,20 @@ def test_choked_water_brake_is_quadratic_below_its_choke_and_linear_in_the_motor
     below = w1 < wc
     assert below.any() and np.allclose(tx[below] / w1[below] ** 2, c, rtol=1e-6)
     assert np.allclose(tx[~below] / w1[~below], c * wc, rtol=1e-6)
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_pump_fed_retarder_brakes_with_its_fill_which_the_wheel_speed_pumps_and_an_orifice_drains():
     p = _params("wheel_pump_fed_retarder")
     rec = rec_of("wheel_pump_fed_retarder", **p)
     tx = wheel_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-9                          # held between its 0.2 ms scans
+    assert np.max(held_per_segment(tx)) < 1e-9                          # held between its 0.2 ms scans
     m, w = -tx[::SEG] / p["torque_Nm_per_l"], rec.signals["omega2"][::SEG]
     pred = DEV12["wheel_pump_fed_retarder"].fill(w[1:], p, DT, m0=m[0])
     assert np.max(np.abs(pred - m[1:])) < 1e-6 * np.max(m)
     # settled (the run-in is 2 s): inflow = outflow, sqrt(m) = a*Omega2/b on the mean
     assert np.mean(m) == pytest.approx((p["inflow_l_per_rad"] * np.mean(w) / p["drain_l_s_per_sqrt_l"]) ** 2, rel=0.02)
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_hydrodynamic_coupling_passes_the_slip_times_the_pump_speed_in_the_gap_and_in_contact():
@@ -122,7 +112,7 @@ def test_hydrodynamic_coupling_passes_the_slip_times_the_pump_speed_in_the_gap_a
     assert np.allclose(extra[big] / slip[big], p["coefficient_Nm_s_per_rad"] * w1[big] / 150.0, rtol=1e-6)
     gap = np.abs(i["jaw_angle_difference"]) < i["parameters"][K.P_BETA]
     assert np.max(np.abs(extra[gap])) > 0.5
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_tacho_fed_eddy_brake_damps_the_mass_in_proportion_to_the_motor_speed():
@@ -133,7 +123,7 @@ def test_tacho_fed_eddy_brake_damps_the_mass_in_proportion_to_the_motor_speed():
     # the damping coefficient -F/v is c*Omega1/150 rad/s, not a constant: it spans the motor speed's range
     coef = -fx / v
     assert np.allclose(coef, p["coefficient_N_s_per_m"] * w1 / 150.0, rtol=1e-6) and np.ptp(coef) > 0.01 * coef.mean()
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_cable_echo_adds_one_delayed_copy_of_a2():
@@ -164,7 +154,7 @@ def test_lost_motion_link_springs_across_its_slot_and_drags_its_slider_at_the_sl
     assert np.max(np.abs(fx - f * (z - s) / a)) < 1e-6                   # a spring F/a across the slot in between
     at_end = np.abs(np.abs(fx[::SEG]) - f) < 1e-9
     assert at_end.any() and (~at_end).any()                               # dragging and inside the slot both occur
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_cushion_pump_loads_the_wheel_with_its_speed_only_while_the_pulse_is_on():
@@ -176,7 +166,7 @@ def test_cushion_pump_loads_the_wheel_with_its_speed_only_while_the_pulse_is_on(
     assert on.any() and (on == 0).any()
     assert np.max(np.abs(tx - DEV12["wheel_stroke_gated_cushion_pump"].torque(w2, on, p))) < 1e-6
     assert np.max(np.abs(tx[on == 0])) < 1e-9 and np.max(np.abs(tx[on > 0])) > 0.5
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 # ------------------------------------------------------------------ the sealed half: in its balance only

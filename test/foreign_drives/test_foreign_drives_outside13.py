@@ -22,6 +22,7 @@ from foreign_outside_recordings import (OutsideSet, assert_a_row_of_each_half_cr
                                         assert_set_suites, assert_suite_writes_one_recording)
 from foreign_outside_recordings import (assert_alarm_check_covers_both_halves,  # test/
                                         assert_bench_guards_unspent_sealed)
+from foreign_outside_recordings import held_per_segment, others_zero  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -29,17 +30,6 @@ DT = N.SEGMENT_S
 SET = OutsideSet(13, seed=213)
 DEV13, SEALED13, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
-
-
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
 
 
 # ------------------------------------------------------------------ registry and truth vocabulary
@@ -89,7 +79,7 @@ def test_paste_mixer_loads_the_motor_with_the_logarithm_of_its_speed_above_its_r
     tx, w1 = motor_term_Nm(rec), rec.signals["omega1"]
     assert np.all(w1 > w0) and np.max(np.abs(tx - law(w1, p))) < 1e-6 * np.max(np.abs(tx))
     assert np.allclose(np.exp(tx / c) * w0, w1, rtol=1e-6)        # the speed recovered from the load
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_relief_valve_pump_is_viscous_below_its_relief_speed_and_constant_above():
@@ -102,7 +92,7 @@ def test_relief_valve_pump_is_viscous_below_its_relief_speed_and_constant_above(
     assert below.any() and (~below).any()                      # the wheel runs on both sides of the relief speed
     assert np.allclose(tx[below] / w2[below], -c, rtol=1e-6)
     assert np.allclose(tx[~below], -c * wr * np.sign(w2[~below]), rtol=1e-6)
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_hysteresis_coupling_passes_a_torque_nearly_independent_of_the_slip_in_the_gap_and_in_contact():
@@ -120,7 +110,7 @@ def test_hysteresis_coupling_passes_a_torque_nearly_independent_of_the_slip_in_t
     assert np.all(np.sign(extra[slipping]) == np.sign(slip[slipping]))
     gap = i["mode"] == 0
     assert np.max(np.abs(extra[gap])) > 0.5 * p["torque_Nm"]
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_wheel_tracking_conveyor_drags_the_mass_towards_the_wheels_belt_speed():
@@ -132,7 +122,7 @@ def test_wheel_tracking_conveyor_drags_the_mass_towards_the_wheels_belt_speed():
     coef, *_ = np.linalg.lstsq(np.column_stack([w2, v]), fx, rcond=None)
     c = p["coefficient_N_s_per_m"]
     assert coef == pytest.approx([c * p["belt_radius_m"], -c], rel=1e-6)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_motor_magnet_pickup_adds_to_a2_a_wave_of_the_motor_angle_growing_with_the_motor_speed():
@@ -155,7 +145,7 @@ def test_overspeed_timed_brake_holds_its_torque_for_a_fixed_time_from_each_risin
     p = _params("motor_overspeed_timed_brake")
     rec = rec_of("motor_overspeed_timed_brake", **p)
     tx = motor_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-9                          # held between its 0.2 ms scans
+    assert np.max(held_per_segment(tx)) < 1e-9                          # held between its 0.2 ms scans
     on = tx[::SEG] / p["torque_Nm"]
     assert np.all((np.abs(on) < 1e-9) | (np.abs(on - 1.0) < 1e-9))      # off or the full torque
     on = np.round(on)
@@ -168,7 +158,7 @@ def test_overspeed_timed_brake_holds_its_torque_for_a_fixed_time_from_each_risin
     assert starts.size >= 2
     lengths = [e - s for s in starts for e in ends[ends > s][:1]]
     assert lengths and all(n == round(p["hold_s"] / DT) for n in lengths)
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_slip_pumped_plate_clutch_passes_a_friction_clamped_by_the_fill_the_slip_pumps_and_an_orifice_drains():
@@ -193,7 +183,7 @@ def test_slip_pumped_plate_clutch_passes_a_friction_clamped_by_the_fill_the_slip
     within = np.repeat(m_scan[:n // SEG], SEG)
     ok = np.isfinite(within) & clear[:n]
     assert np.allclose(m[:n][ok], within[ok], rtol=1e-6, atol=1e-9)     # held between the scans
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 # ------------------------------------------------------------------ the sealed half: in its balance only

@@ -15,12 +15,13 @@ import numpy as np
 import pytest
 
 from foreign_drives import noise as N
-from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (OutsideSet, assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_acts_in_its_balance_only, assert_forms_withholds_sealed,
                                         assert_recordings_repeat, assert_rows_visible, assert_set_registry,
                                         assert_set_suites, assert_suite_writes_one_recording)
 from foreign_outside_recordings import assert_alarm_check_covers_both_halves, assert_bench_guards_unspent_sealed  # test/
+from foreign_outside_recordings import extra_clutch_Nm, held_per_segment, others_zero  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -28,22 +29,6 @@ DT = N.SEGMENT_S
 SET = OutsideSet(14, seed=214)
 DEV14, SEALED14, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
-
-
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
-def _extra_clutch_Nm(rec):
-    """The clutch torque beyond the nominal contact law's."""
-    return rec.internal["clutch_torque_Nm"] - contact_law_Nm(rec)
 
 
 # ------------------------------------------------------------------ registry and truth vocabulary
@@ -90,7 +75,7 @@ def test_wheel_cam_brake_loads_the_motor_over_half_of_each_wheel_turn_only():
     basis = np.column_stack([np.sin(alpha1), np.cos(alpha1), np.ones_like(alpha1)])
     resid = tx - basis @ np.linalg.lstsq(basis, tx, rcond=None)[0]
     assert np.std(resid) > 0.3 * np.std(tx)
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_bypassed_retarder_is_zero_inside_its_band_and_viscous_beyond():
@@ -104,20 +89,20 @@ def test_bypassed_retarder_is_zero_inside_its_band_and_viscous_beyond():
     assert np.all(np.abs(tx[inside]) < 1e-9)
     slope = np.polyfit(w2[~inside], tx[~inside], 1)
     assert slope == pytest.approx([-c, c * wd], rel=1e-6)      # -c*(Omega2 - Omega_d) beyond
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_centrifugal_leaf_spring_is_a_stiffness_across_the_jaw_growing_with_the_motor_speed_squared():
     p = _params("clutch_centrifugal_leaf_spring")
     rec = rec_of("clutch_centrifugal_leaf_spring", **p)
-    extra, d, w1 = _extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"], rec.signals["omega1"]
+    extra, d, w1 = extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"], rec.signals["omega1"]
     law = DEV14["clutch_centrifugal_leaf_spring"].torque(d, w1, p)
     assert np.max(np.abs(extra - law)) < 1e-6 * np.max(np.abs(extra))
     # the stiffness seen, torque/angle, over (Omega1/150)^2 is k wherever the angle is clear of 0
     clear = np.abs(d) > 1e-3
     assert np.allclose(extra[clear] / d[clear] / (w1[clear] / 150.0) ** 2, p["stiffness_Nm_per_rad"], rtol=1e-6)
     assert np.max(np.abs(extra[rec.internal["mode"] == 0])) > 0.5          # in the gap too
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_festoon_cable_loop_ramps_with_the_extension_between_two_extensions_and_is_constant_outside():
@@ -130,7 +115,7 @@ def test_festoon_cable_loop_ramps_with_the_extension_between_two_extensions_and_
     assert ramp.any() and (low.any() or high.any())
     assert np.all(np.abs(fx[low]) < 1e-9) and np.allclose(fx[high], -2.0 * h * w)
     assert np.polyfit(z[ramp], fx[ramp], 1) == pytest.approx([-w, -w * (h - zc)], rel=1e-6)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_velocity_sensitivity_adds_to_a2_the_carriage_speed_less_its_zero():
@@ -149,7 +134,7 @@ def test_drag_pointer_governor_brake_follows_the_held_peak_of_the_motor_speed():
     c, ws = p["coefficient_Nm_s_per_rad"], p["set_speed_rad_s"]
     rec = rec_of("motor_drag_pointer_governor_brake", **p)
     tx = motor_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-9                          # held between its 0.2 ms scans
+    assert np.max(held_per_segment(tx)) < 1e-9                          # held between its 0.2 ms scans
     on = tx[::SEG]
     assert np.all(on >= -1e-12) and np.any(on > 0.1)
     i0 = int(np.argmax(on > 0.0))                                        # a scan whose peak is known: m = Omega_s + T/c
@@ -162,23 +147,23 @@ def test_drag_pointer_governor_brake_follows_the_held_peak_of_the_motor_speed():
     decay = np.exp(-DT / p["release_time_s"])
     m = ws + on / c
     assert np.all(m[1:][falling] >= m[:-1][falling] * decay - 1e-9)
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_friction_slider_spring_is_linear_in_the_twist_and_capped_at_its_slip_torque():
     p = _params("clutch_friction_slider_spring")
     k, a = p["stiffness_Nm_per_rad"], p["slip_twist_rad"]
     rec = rec_of("clutch_friction_slider_spring", **p)
-    extra, d = _extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"]
+    extra, d = extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"]
     q = d - extra / k                                                    # the hub's angle, held over each scan
-    assert np.max(_held_per_segment(q)) < 1e-9
+    assert np.max(held_per_segment(q)) < 1e-9
     q_scan, d_scan = q[::SEG], d[::SEG]
     assert np.all(np.abs(d_scan - q_scan) <= a + 1e-9)                  # at each scan within the slip twist
     slipping = np.abs(np.abs(d_scan - q_scan) - a) < 1e-9
     assert slipping.any() and (~slipping).any()                         # it sticks and it slips
     pred = DEV14["clutch_friction_slider_spring"].anchor(d_scan[1:], p, q0=q_scan[0])
     assert np.max(np.abs(pred - q_scan[1:])) < 1e-9
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 # ------------------------------------------------------------------ the sealed half: in its balance only

@@ -18,12 +18,13 @@ from foreign_drives import constants as C
 from foreign_drives import kernel as K
 from foreign_drives import noise as N
 from foreign_drives.drive import pulse_indicator
-from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (OutsideSet, assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_acts_in_its_balance_only, assert_forms_withholds_sealed,
                                         assert_recordings_repeat, assert_rows_visible, assert_set_registry,
                                         assert_set_suites, assert_suite_writes_one_recording)
 from foreign_outside_recordings import assert_alarm_check_covers_both_halves, assert_bench_guards_unspent_sealed  # test/
+from foreign_outside_recordings import extra_clutch_Nm, held_per_segment, others_zero  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -31,22 +32,6 @@ DT = N.SEGMENT_S
 SET = OutsideSet(15, seed=215)
 DEV15, SEALED15, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
-
-
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
-def _extra_clutch_Nm(rec):
-    """The clutch torque beyond the nominal contact law's."""
-    return rec.internal["clutch_torque_Nm"] - contact_law_Nm(rec)
 
 
 def _pulse(rec):
@@ -120,7 +105,7 @@ def test_slip_monitor_brake_loads_the_motor_with_the_slips_magnitude_either_way(
     assert ahead.any() and behind.any()
     assert np.polyfit(s[ahead], tx[ahead], 1) == pytest.approx([c, 0.0], abs=1e-6 * c * 100)
     assert np.polyfit(s[behind], tx[behind], 1) == pytest.approx([-c, 0.0], abs=1e-6 * c * 100)
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_carriage_runaway_brake_brakes_the_wheel_beyond_the_carriages_trip_speed_not_the_wheels():
@@ -137,13 +122,13 @@ def test_carriage_runaway_brake_brakes_the_wheel_beyond_the_carriages_trip_speed
     rim = C.WHEEL_RADIUS_M * rec.signals["omega2"]
     rim_only = (rim > v0 + 0.05) & ~over
     assert rim_only.any() and np.all(np.abs(tx[rim_only]) < 1e-6)
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_elastomer_spider_is_a_cubic_spring_across_the_jaw_in_the_gap_and_in_contact():
     p = _params("clutch_hardening_elastomer_spider")
     rec = rec_of("clutch_hardening_elastomer_spider", **p)
-    extra, d = _extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"]
+    extra, d = extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"]
     law = DEV15["clutch_hardening_elastomer_spider"].torque(d, p)
     assert np.max(np.abs(extra - law)) < 1e-6 * np.max(np.abs(extra))
     clear = np.abs(d) > 1e-3
@@ -155,7 +140,7 @@ def test_elastomer_spider_is_a_cubic_spring_across_the_jaw_in_the_gap_and_in_con
     big, small = clear & (np.abs(d) > 0.03), clear & (np.abs(d) < 0.015)
     assert big.any() and small.any()
     assert np.median(np.abs(extra[big] / d[big])) > 4.0 * np.median(np.abs(extra[small] / d[small]))
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_stroke_gas_spring_is_a_stiffness_on_the_carriage_during_the_pulse_only():
@@ -168,7 +153,7 @@ def test_stroke_gas_spring_is_a_stiffness_on_the_carriage_during_the_pulse_only(
     assert on.any() and (~on).any()
     assert np.all(np.abs(fx[~on]) < 1e-6)
     assert np.polyfit(z[on], fx[on], 1) == pytest.approx([kp, -kp * z0], rel=1e-5)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_ground_loop_shifts_a2s_zero_while_the_drive_faces_touch_and_only_then():
@@ -181,7 +166,7 @@ def test_ground_loop_shifts_a2s_zero_while_the_drive_faces_touch_and_only_then()
     assert drive.any() and (mode == -1).any() and (mode == 0).any()   # drive faces, far faces, the gap
     assert np.allclose(extra[drive], p["offset_m_s2"], rtol=0.0, atol=1e-12)
     assert np.all(np.abs(extra[~drive]) < 1e-12)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_ratchet_tensioner_brakes_the_wheel_by_the_extensions_peak_since_the_stroke_began():
@@ -189,7 +174,7 @@ def test_ratchet_tensioner_brakes_the_wheel_by_the_extensions_peak_since_the_str
     c, z0 = p["coefficient_Nm_per_m"], p["reference_m"]
     rec = rec_of("wheel_ratchet_cable_tensioner", **p)
     tx = wheel_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-9                          # held between its 0.2 ms scans
+    assert np.max(held_per_segment(tx)) < 1e-9                          # held between its 0.2 ms scans
     brake = -tx[::SEG]
     assert np.all(brake >= -1e-9) and np.any(brake > 0.5)
     z = rec.internal["spring_extension"][::SEG]                          # the extension at each scan's start
@@ -202,14 +187,14 @@ def test_ratchet_tensioner_brakes_the_wheel_by_the_extensions_peak_since_the_str
     # a ratchet: within a stroke the brake never lets go; it drops at a stroke's first scan only
     falls = np.flatnonzero(brake[i0 + 1:] < brake[i0:-1] - 1e-9) + i0 + 1
     assert falls.size and set(falls.tolist()) <= set(starts.tolist())
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_knock_triggered_rail_brake_fires_for_its_hold_time_at_the_jaws_impacts():
     p = _params("mass_knock_triggered_rail_brake")
     rec = rec_of("mass_knock_triggered_rail_brake", **p)
     fx = mass_term_N(rec)
-    assert np.max(_held_per_segment(fx)) < 1e-9
+    assert np.max(held_per_segment(fx)) < 1e-9
     on = -fx[::SEG] / p["force_N"]
     assert np.all((np.abs(on) < 1e-6) | (np.abs(on - 1.0) < 1e-6))     # all or nothing
     on = np.round(on)
@@ -230,7 +215,7 @@ def test_knock_triggered_rail_brake_fires_for_its_hold_time_at_the_jaws_impacts(
             assert np.all(on[r:r + n_h] == 1.0)
             retriggered = depth[r + n_h - 1] <= pt < depth[r + n_h]
             assert on[r + n_h] == (1.0 if retriggered else 0.0)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 # ------------------------------------------------------------------ the sealed half: in its balance only

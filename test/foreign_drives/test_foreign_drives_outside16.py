@@ -17,12 +17,13 @@ import pytest
 from foreign_drives import constants as C
 from foreign_drives import noise as N
 from foreign_drives.drive import pulse_indicator
-from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (OutsideSet, assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_acts_in_its_balance_only, assert_forms_withholds_sealed,
                                         assert_recordings_repeat, assert_rows_visible, assert_set_registry,
                                         assert_set_suites, assert_suite_writes_one_recording)
 from foreign_outside_recordings import assert_alarm_check_covers_both_halves, assert_bench_guards_unspent_sealed  # test/
+from foreign_outside_recordings import extra_clutch_Nm, held_per_segment, others_zero, sample_times_s  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -32,29 +33,9 @@ DEV16, SEALED16, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
 
 
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
-def _extra_clutch_Nm(rec):
-    """The clutch torque beyond the nominal contact law's."""
-    return rec.internal["clutch_torque_Nm"] - contact_law_Nm(rec)
-
-
-def _times(rec):
-    return np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
-
-
 def _pulse(rec):
     """The load pulse's indicator at each sample (the kernel's held one)."""
-    return pulse_indicator(_times(rec), rec.spec.pulse_first_s)
+    return pulse_indicator(sample_times_s(rec), rec.spec.pulse_first_s)
 
 
 # ------------------------------------------------------------------ registry and truth vocabulary
@@ -92,7 +73,7 @@ def test_neutral_setting_is_the_clean_drive(name):
 def test_flying_shear_loads_the_motor_with_a_peak_at_its_delay_into_each_stroke_and_not_between():
     p = _params("motor_flying_shear_cut")
     rec = rec_of("motor_flying_shear_cut", **p)
-    tx, pulse, t = motor_term_Nm(rec), _pulse(rec), _times(rec)
+    tx, pulse, t = motor_term_Nm(rec), _pulse(rec), sample_times_s(rec)
     first, period = rec.spec.pulse_first_s, C.PULSE_PERIOD_S
     age = t - (first + period * np.floor((t - first) / period))          # the time since the latest pulse began
     law = DEV16["motor_flying_shear_cut"].torque(age, pulse, p)
@@ -102,7 +83,7 @@ def test_flying_shear_loads_the_motor_with_a_peak_at_its_delay_into_each_stroke_
     assert np.all(np.abs(tx[~on]) < 1e-6)                               # nothing between the strokes
     assert np.max(tx) > 0.99 * p["torque_Nm"]                           # its peak reached ...
     assert abs(age[np.argmax(tx)] - p["cut_delay_s"]) <= C.SAMPLE_PERIOD_S   # ... at t_c into the stroke
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_hydrostatic_booster_drives_the_wheel_with_the_motor_speed_squared():
@@ -115,13 +96,13 @@ def test_hydrostatic_booster_drives_the_wheel_with_the_motor_speed_squared():
     assert np.allclose(tx / w1 ** 2, c, rtol=1e-6)
     # the motor's speed, not the wheel's: the term is no function of Omega2 where the two differ
     assert np.max(np.abs(tx - c * w2 ** 2)) > 100.0 * np.max(np.abs(tx - c * w1 ** 2))
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_friction_plate_is_a_dry_friction_of_the_slip_pressed_by_the_spring_extension():
     p = _params("clutch_cable_loaded_friction_plate")
     rec = rec_of("clutch_cable_loaded_friction_plate", **p)
-    extra, z = _extra_clutch_Nm(rec), rec.internal["spring_extension"]
+    extra, z = extra_clutch_Nm(rec), rec.internal["spring_extension"]
     s = rec.signals["omega1"] - rec.signals["omega2"]
     law = DEV16["clutch_cable_loaded_friction_plate"].torque(s, z, p)
     assert np.max(np.abs(extra - law)) < 1e-6 * np.max(np.abs(extra))
@@ -133,7 +114,7 @@ def test_friction_plate_is_a_dry_friction_of_the_slip_pressed_by_the_spring_exte
     press = p["coefficient_Nm_per_m"] * np.maximum(0.0, z[fast] - p["reference_m"])
     assert np.allclose(np.abs(extra[fast]), press, rtol=1e-3, atol=1e-6)
     assert np.all(np.sign(extra[fast]) == np.sign(s[fast]))              # it drags the faster half back
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_frame_shake_is_locked_to_the_motor_angle_and_grows_with_the_motor_speed_squared():
@@ -147,7 +128,7 @@ def test_frame_shake_is_locked_to_the_motor_angle_and_grows_with_the_motor_speed
     (cs, cc), *_ = np.linalg.lstsq(np.column_stack([np.sin(a1), np.cos(a1)]), q, rcond=None)
     assert np.hypot(cs, cc) == pytest.approx(p["coefficient_N_s2_per_rad2"], rel=1e-6)
     assert np.arctan2(cc, cs) == pytest.approx(p["phase_rad"], abs=1e-6)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_drag_chain_shifts_a2s_zero_by_the_carriage_speeds_direction():
@@ -163,14 +144,14 @@ def test_drag_chain_shifts_a2s_zero_by_the_carriage_speeds_direction():
                        -DEV16["a2_drag_chain_triboelectric"].read(np.zeros(3), np.array([1.0, 5.0, 20.0]), p))
     fast = np.abs(v) > 10.0 * p["speed_scale_m_s"]
     assert fast.any() and np.allclose(extra[fast], p["offset_m_s2"] * np.sign(v[fast]), rtol=1e-6)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_wheel_overspeed_fires_the_carriages_rail_brake_for_its_hold_time():
     p = _params("mass_wheel_overspeed_timed_rail_brake")
     rec = rec_of("mass_wheel_overspeed_timed_rail_brake", **p)
     fx = mass_term_N(rec)
-    assert np.max(_held_per_segment(fx)) < 1e-9
+    assert np.max(held_per_segment(fx)) < 1e-9
     on = -fx[::SEG] / p["force_N"]
     assert np.all((np.abs(on) < 1e-6) | (np.abs(on - 1.0) < 1e-6))     # all or nothing
     on = np.round(on)
@@ -186,7 +167,7 @@ def test_wheel_overspeed_fires_the_carriages_rail_brake_for_its_hold_time():
         assert w2[r - 1] <= wt < w2[r]                                   # fired by the wheel rising through Omega_t
         if r + n_h < on.size:
             assert np.all(on[r:r + n_h] == 1.0)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_peak_tension_brake_loads_the_motor_by_the_extensions_peak_since_the_stroke_began():
@@ -194,7 +175,7 @@ def test_peak_tension_brake_loads_the_motor_by_the_extensions_peak_since_the_str
     c, z0 = p["coefficient_Nm_per_m"], p["reference_m"]
     rec = rec_of("motor_peak_tension_regen_brake", **p)
     tx = motor_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6 * max(1.0, np.max(np.abs(tx)))   # held between its 0.2 ms scans
+    assert np.max(held_per_segment(tx)) < 1e-6 * max(1.0, np.max(np.abs(tx)))   # held between its 0.2 ms scans
     brake = tx[::SEG]
     assert np.all(brake >= -1e-6) and np.any(brake > 0.5)
     z = rec.internal["spring_extension"][::SEG]                          # the extension at each scan's start
@@ -207,7 +188,7 @@ def test_peak_tension_brake_loads_the_motor_by_the_extensions_peak_since_the_str
     # a peak hold: within a stroke the brake never lets go; it drops at a stroke's first scan only
     falls = np.flatnonzero(brake[i0 + 1:] < brake[i0:-1] - 1e-6) + i0 + 1
     assert set(falls.tolist()) <= set(starts.tolist())
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 # ------------------------------------------------------------------ the sealed half: in its balance only

@@ -17,12 +17,13 @@ import pytest
 from foreign_drives import constants as C
 from foreign_drives import noise as N
 from foreign_drives.drive import pulse_indicator
-from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (OutsideSet, assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_acts_in_its_balance_only, assert_forms_withholds_sealed,
                                         assert_recordings_repeat, assert_rows_visible, assert_set_registry,
                                         assert_set_suites, assert_suite_writes_one_recording)
 from foreign_outside_recordings import assert_alarm_check_covers_both_halves, assert_bench_guards_unspent_sealed  # test/
+from foreign_outside_recordings import extra_clutch_Nm, held_per_segment, others_zero, sample_times_s, slip_rad_s  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -32,33 +33,9 @@ DEV17, SEALED17, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
 
 
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
-def _extra_clutch_Nm(rec):
-    """The clutch torque beyond the nominal contact law's."""
-    return rec.internal["clutch_torque_Nm"] - contact_law_Nm(rec)
-
-
-def _times(rec):
-    return np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
-
-
 def _pulse(rec):
     """The load pulse's indicator at each sample (the kernel's held one)."""
-    return pulse_indicator(_times(rec), rec.spec.pulse_first_s)
-
-
-def _slip(rec):
-    return rec.signals["omega1"] - rec.signals["omega2"]
+    return pulse_indicator(sample_times_s(rec), rec.spec.pulse_first_s)
 
 
 def test_seventeenth_set_is_seven_and_seven_each_half_over_every_balance_in_the_benchs_words():
@@ -102,7 +79,7 @@ def test_staged_brake_loads_the_motor_by_whole_stages_of_the_extension_above_its
     assert np.allclose(stages, np.round(stages), atol=1e-6)              # whole stages only
     assert len(set(np.round(stages).astype(int).tolist())) >= 2          # the switch steps during the recording
     assert np.all(np.abs(tx[z <= p["threshold_m"]]) < 1e-9)            # nothing below the threshold
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_lubricator_crank_is_locked_to_the_wheel_angle_at_order_one_over_n():
@@ -125,13 +102,13 @@ def test_lubricator_crank_is_locked_to_the_wheel_angle_at_order_one_over_n():
     end = rec.internal["alpha2"][-1] + 2.0 * np.pi * rec.internal["parameters"][K.P_A2TURNS]
     law = DEV17["wheel_geared_lubricator_crank"].torque(end - (theta[-1] - theta), p)
     assert np.max(np.abs(tx - law)) < 1e-6 * p["torque_Nm"]
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_orifice_damper_passes_the_slip_squared_with_its_sign_in_the_gap_and_in_contact():
     p = _params("clutch_orifice_rotary_damper")
     rec = rec_of("clutch_orifice_rotary_damper", **p)
-    extra, s = _extra_clutch_Nm(rec), _slip(rec)
+    extra, s = extra_clutch_Nm(rec), slip_rad_s(rec)
     law = DEV17["clutch_orifice_rotary_damper"].torque(s, p)
     assert np.max(np.abs(extra - law)) < 1e-6 * np.max(np.abs(extra))
     gap = rec.internal["mode"] == 0
@@ -141,7 +118,7 @@ def test_orifice_damper_passes_the_slip_squared_with_its_sign_in_the_gap_and_in_
     # the second power: twice the slip, four times the torque
     big = np.abs(s) > 0.5 * np.max(np.abs(s))
     assert np.allclose(extra[big] / s[big] ** 2, p["coefficient_Nm_s2_per_rad2"] * np.sign(s[big]), rtol=1e-5)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_pinch_rolls_drag_the_carriage_towards_the_motor_rims_speed_with_a_dry_friction():
@@ -158,7 +135,7 @@ def test_pinch_rolls_drag_the_carriage_towards_the_motor_rims_speed_with_a_dry_f
     # the motor's rim, not the wheel's: the wheel speed's difference does not give it
     dv2 = C.WHEEL_RADIUS_M * rec.signals["omega2"] - v
     assert np.max(np.abs(fx - p["force_N"] * np.tanh(dv2 / p["speed_scale_m_s"]))) > 0.1 * p["force_N"]
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_strain_sensitive_gain_scales_a2_by_the_spring_extension():
@@ -173,7 +150,7 @@ def test_strain_sensitive_gain_scales_a2_by_the_spring_extension():
     ok = np.abs(a) > 0.1 * np.max(np.abs(a))
     assert np.allclose(rec.signals["a2"][ok] / a[ok], 1.0 + p["gain_per_m"] * (z[ok] - p["reference_m"]), rtol=1e-9)
     assert np.ptp(z) > 0.01                                              # the gain moves over the recording
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_anti_clatter_actuator_holds_the_slip_sampled_at_each_impact_on_the_wheel():
@@ -181,9 +158,9 @@ def test_anti_clatter_actuator_holds_the_slip_sampled_at_each_impact_on_the_whee
     c = p["coefficient_Nm_s_per_rad"]
     rec = rec_of("wheel_impact_sampled_anti_clatter", **p)
     tx = wheel_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6 * max(1.0, np.max(np.abs(tx)))   # held between its 0.2 ms scans
+    assert np.max(held_per_segment(tx)) < 1e-6 * max(1.0, np.max(np.abs(tx)))   # held between its 0.2 ms scans
     held = tx[::SEG] / c                                                 # S after each scan
-    s = _slip(rec)[::SEG]                                                # the slip at each scan's start
+    s = slip_rad_s(rec)[::SEG]                                                # the slip at each scan's start
     mode = rec.internal["mode"]
     changes = np.flatnonzero(np.abs(np.diff(held)) > 1e-9) + 1
     assert changes.size >= 2
@@ -196,16 +173,16 @@ def test_anti_clatter_actuator_holds_the_slip_sampled_at_each_impact_on_the_whee
     next_scans = set(((starts - 1) // SEG + 1).tolist())
     assert {k for k in next_scans if k < held.size} <= set(changes.tolist())
     assert np.any(held > 0.0) or np.any(held < 0.0)
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_torsion_bar_centres_the_jaw_on_its_angle_at_each_strokes_start():
     p = _params("clutch_stroke_reanchored_torsion_bar")
     k = p["stiffness_Nm_per_rad"]
     rec = rec_of("clutch_stroke_reanchored_torsion_bar", **p)
-    extra, d = _extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"]
+    extra, d = extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"]
     anchor = d + extra / k                                               # S = D + T/k
-    assert np.max(_held_per_segment(anchor)) < 1e-9                     # S held between scans
+    assert np.max(held_per_segment(anchor)) < 1e-9                     # S held between scans
     anchor = anchor[::SEG]
     dd = d[::SEG]                                                        # D at each scan's start
     starts = np.flatnonzero(np.diff(_pulse(rec)[::SEG]) > 0.5) + 1      # each load pulse's first scan
@@ -217,7 +194,7 @@ def test_torsion_bar_centres_the_jaw_on_its_angle_at_each_strokes_start():
     moves = np.flatnonzero(np.abs(np.diff(anchor)) > 1e-9) + 1
     assert set(moves.tolist()) <= set(starts.tolist())                   # it re-anchors at a stroke's start only
     assert np.max(np.abs(extra[rec.internal["mode"] == 0])) > 0.1        # a spring across the gap too
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 # ------------------------------------------------------------------ the sealed half: in its balance only

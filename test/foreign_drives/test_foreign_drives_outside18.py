@@ -18,12 +18,13 @@ from foreign_drives import constants as C
 from foreign_drives import kernel as K
 from foreign_drives import noise as N
 from foreign_drives.drive import pulse_indicator
-from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (OutsideSet, assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_acts_in_its_balance_only, assert_forms_withholds_sealed,
                                         assert_recordings_repeat, assert_rows_visible, assert_set_registry,
                                         assert_set_suites, assert_suite_writes_one_recording)
 from foreign_outside_recordings import assert_alarm_check_covers_both_halves, assert_bench_guards_unspent_sealed  # test/
+from foreign_outside_recordings import extra_clutch_Nm, held_per_segment, others_zero, sample_times_s, slip_rad_s  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -33,33 +34,9 @@ DEV18, SEALED18, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
 
 
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
-def _extra_clutch_Nm(rec):
-    """The clutch torque beyond the nominal contact law's."""
-    return rec.internal["clutch_torque_Nm"] - contact_law_Nm(rec)
-
-
-def _times(rec):
-    return np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
-
-
 def _pulse(rec):
     """The load pulse's indicator at each sample (the kernel's held one)."""
-    return pulse_indicator(_times(rec), rec.spec.pulse_first_s)
-
-
-def _slip(rec):
-    return rec.signals["omega1"] - rec.signals["omega2"]
+    return pulse_indicator(sample_times_s(rec), rec.spec.pulse_first_s)
 
 
 def _stroke_scans(rec):
@@ -123,7 +100,7 @@ def test_rail_section_dynamo_loads_the_motor_with_its_speed_while_the_carriage_i
     assert np.all(np.abs(tx[clear & ~live]) < 1e-6)
     # switched by the carriage's travel, not the time: the live share of the recording is the live share of a pitch
     assert live.sum() / clear.sum() == pytest.approx(p["live_m"] / p["pitch_m"], abs=0.05)
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_stroke_peak_brake_holds_the_carriages_highest_speed_since_each_stroke_began_on_the_wheel():
@@ -131,7 +108,7 @@ def test_stroke_peak_brake_holds_the_carriages_highest_speed_since_each_stroke_b
     c, vr = p["coefficient_Nm_s_per_m"], p["reference_speed_m_s"]
     rec = rec_of("wheel_stroke_peak_carriage_speed_brake", **p)
     tx = wheel_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6 * max(1.0, np.max(np.abs(tx)))   # held between its 0.2 ms scans
+    assert np.max(held_per_segment(tx)) < 1e-6 * max(1.0, np.max(np.abs(tx)))   # held between its 0.2 ms scans
     assert np.all(tx <= 1e-6)                                            # a brake
     starts, counts = _stroke_scans(rec)
     assert starts.size >= 2
@@ -146,14 +123,14 @@ def test_stroke_peak_brake_holds_the_carriages_highest_speed_since_each_stroke_b
     assert set(rises.tolist()) <= set(starts.tolist())
     # a peak, not the speed itself: the brake holds while the carriage slows down within a stroke
     assert np.max(np.abs(held + c * np.maximum(0.0, v[i0:] - vr))) > 0.1
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_induction_coupling_passes_a_torque_that_peaks_at_its_pullout_slip_in_the_gap_and_in_contact():
     p = _params("clutch_induction_slip_coupling")
     tk, sk = p["pullout_torque_Nm"], p["pullout_slip_rad_s"]
     rec = rec_of("clutch_induction_slip_coupling", **p)
-    extra, s = _extra_clutch_Nm(rec), _slip(rec)
+    extra, s = extra_clutch_Nm(rec), slip_rad_s(rec)
     law = DEV18["clutch_induction_slip_coupling"].torque(s, p)
     assert np.max(np.abs(extra - law)) < 1e-6 * np.max(np.abs(extra))
     gap = rec.internal["mode"] == 0
@@ -165,7 +142,7 @@ def test_induction_coupling_passes_a_torque_that_peaks_at_its_pullout_slip_in_th
     # linear at small slips (2*T_k/s_k per rad/s), not a dry friction
     small = moving & (np.abs(s) < 0.1 * sk)
     assert small.any() and np.allclose(extra[small] / s[small], 2.0 * tk / sk, rtol=0.02)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_overspeed_catch_drags_the_carriage_from_its_overspeed_to_the_next_strokes_start():
@@ -175,7 +152,7 @@ def test_overspeed_catch_drags_the_carriage_from_its_overspeed_to_the_next_strok
     f, vt = p["force_N"], p["trip_speed_m_s"]
     rec = rec_of("mass_stroke_rearmed_overspeed_catch", **p)
     fx = mass_term_N(rec)
-    assert np.max(_held_per_segment(fx)) < 1e-6 * f                     # held between its 0.2 ms scans
+    assert np.max(held_per_segment(fx)) < 1e-6 * f                     # held between its 0.2 ms scans
     m = -fx[::SEG] / f
     assert np.allclose(m, np.round(m), atol=1e-6) and set(np.round(m).astype(int).tolist()) == {0, 1}
     starts, counts = _stroke_scans(rec)
@@ -189,7 +166,7 @@ def test_overspeed_catch_drags_the_carriage_from_its_overspeed_to_the_next_strok
     # a latch: it stays on while the carriage is back below v_t
     on = np.round(m) == 1
     assert np.any(on & (v <= vt))
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_shared_reference_scales_a2_by_a1s_signal():
@@ -204,16 +181,16 @@ def test_shared_reference_scales_a2_by_a1s_signal():
     ok = np.abs(a2) > 0.1 * np.max(np.abs(a2))
     assert np.allclose(rec.signals["a2"][ok] / a2[ok], 1.0 + p["gain_per_m_s2"] * a1[ok], rtol=1e-9)
     assert np.ptp(p["gain_per_m_s2"] * a1) > 0.05                       # the gain moves by several per cent
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_torsion_bar_centres_the_jaw_on_an_anchor_creeping_at_most_its_rate():
     p = _params("clutch_creeping_anchor_torsion_bar")
     k, r = p["stiffness_Nm_per_rad"], p["creep_rad_s"]
     rec = rec_of("clutch_creeping_anchor_torsion_bar", **p)
-    extra, d = _extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"]
+    extra, d = extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"]
     anchor = d + extra / k                                               # m = D + T/k
-    assert np.max(_held_per_segment(anchor)) < 1e-9                     # m held between scans
+    assert np.max(held_per_segment(anchor)) < 1e-9                     # m held between scans
     anchor, dd = anchor[::SEG], d[::SEG]                                 # m after each scan, D at each scan's start
     pred = DEV18["clutch_creeping_anchor_torsion_bar"].anchors(dd[1:], r, DT, m0=anchor[0])
     assert np.max(np.abs(pred - anchor[1:])) < 1e-9
@@ -225,7 +202,7 @@ def test_torsion_bar_centres_the_jaw_on_an_anchor_creeping_at_most_its_rate():
     # angle, so a fixed-centre spring leaves a large residual
     fixed = -k * (d - np.mean(d))
     assert np.max(np.abs(extra - fixed)) > 0.2 * np.max(np.abs(extra))
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_rail_section_slopes_push_the_carriage_by_a_fixed_random_level_per_section():
@@ -246,7 +223,7 @@ def test_rail_section_slopes_push_the_carriage_by_a_fixed_random_level_per_secti
     assert max(np.ptp(v) for v in levels.values()) < 1e-6 * p["force_N"]
     means = np.array([np.mean(v) for v in levels.values()])
     assert np.ptp(means) > p["force_N"]                                  # random from section to section
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 # ------------------------------------------------------------------ the sealed half: in its balance only

@@ -18,12 +18,13 @@ from foreign_drives import constants as C
 from foreign_drives import kernel as K
 from foreign_drives import noise as N
 from foreign_drives.drive import pulse_indicator
-from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (OutsideSet, assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_acts_in_its_balance_only, assert_forms_withholds_sealed,
                                         assert_recordings_repeat, assert_rows_visible, assert_set_registry,
                                         assert_set_suites, assert_suite_writes_one_recording)
 from foreign_outside_recordings import assert_alarm_check_covers_both_halves, assert_bench_guards_unspent_sealed  # test/
+from foreign_outside_recordings import extra_clutch_Nm, held_per_segment, others_zero, sample_times_s, slip_rad_s  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -33,34 +34,10 @@ DEV19, SEALED19, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
 
 
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
-def _extra_clutch_Nm(rec):
-    """The clutch torque beyond the nominal contact law's."""
-    return rec.internal["clutch_torque_Nm"] - contact_law_Nm(rec)
-
-
-def _times(rec):
-    return np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
-
-
-def _slip(rec):
-    return rec.signals["omega1"] - rec.signals["omega2"]
-
-
 def _since_stroke_s(rec):
     """The time since the latest load pulse began, on or off [s] (the kernel's XS_PULSE_PHASE), from the pulse's
     rising edges (the one before the recording's first a period before its first)."""
-    t = _times(rec)
+    t = sample_times_s(rec)
     pulse = pulse_indicator(t, rec.spec.pulse_first_s)
     starts = t[np.flatnonzero(np.diff(pulse) > 0.5) + 1]
     assert starts.size >= 2
@@ -120,9 +97,9 @@ def test_accumulator_pump_loads_the_motor_with_a_ramp_from_each_strokes_start_he
     assert np.allclose(tx[full], tq, rtol=1e-6)                            # held at its top after T_c ...
     assert np.allclose(tx[ramp], tq * since[ramp] / tc, atol=1e-6 * tq)    # ... linear in the time before
     # the pump is timed by the stroke, the pulse on or off: it ramps on through the pulse's end
-    off = pulse_indicator(_times(rec), rec.spec.pulse_first_s) == 0
+    off = pulse_indicator(sample_times_s(rec), rec.spec.pulse_first_s) == 0
     assert np.any(ramp & off) and np.any(ramp & ~off)
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_guide_rollers_drag_the_wheel_by_a_half_wave_sine_of_the_carriages_travel():
@@ -137,14 +114,14 @@ def test_guide_rollers_drag_the_wheel_by_a_half_wave_sine_of_the_carriages_trave
     assert free.any() and np.all(np.abs(tx[free]) < 1e-6)
     # locked to the carriage's travel: several pitches pass in the recording
     assert np.ptp(x) > 2.0 * p["pitch_m"]
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_torsion_bellows_centres_the_jaw_with_a_stiffness_the_cables_extension_sets():
     p = _params("clutch_tension_fed_torsion_bellows")
     k, z0 = p["stiffness_Nm_per_rad_m"], p["reference_m"]
     rec = rec_of("clutch_tension_fed_torsion_bellows", **p)
-    extra, d, z = _extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"], rec.internal["spring_extension"]
+    extra, d, z = extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"], rec.internal["spring_extension"]
     law = DEV19["clutch_tension_fed_torsion_bellows"].torque(d, z, p)
     assert np.max(np.abs(extra - law)) < 1e-6 * np.max(np.abs(extra))
     gap = rec.internal["mode"] == 0
@@ -156,7 +133,7 @@ def test_torsion_bellows_centres_the_jaw_with_a_stiffness_the_cables_extension_s
     ratio = -extra[moved] / d[moved]
     assert np.allclose(ratio, k * (z[moved] - z0), rtol=1e-6)
     assert np.ptp(ratio) > 0.2 * np.mean(ratio)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_grooving_crossover_jerks_the_carriage_back_once_per_turn_of_the_wheel():
@@ -175,7 +152,7 @@ def test_grooving_crossover_jerks_the_carriage_back_once_per_turn_of_the_wheel()
     turns = np.ptp(np.unwrap(a2)) / (2.0 * np.pi)
     windows = np.count_nonzero(np.diff(on.astype(int)) == 1)
     assert turns > 5 and abs(windows - turns) <= 2
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_wavy_track_tilt_adds_a_cosine_of_the_carriages_travel_to_a2():
@@ -190,7 +167,7 @@ def test_wavy_track_tilt_adds_a_cosine_of_the_carriages_travel_to_a2():
     err = rec.signals["a2"] - a2
     assert np.max(np.abs(err)) == pytest.approx(p["amplitude_m_s2"], rel=0.01)
     assert np.ptp(x) > 2.0 * p["wavelength_m"]
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_anti_clatter_motor_drives_the_wheel_with_the_slip_averaged_over_its_window():
@@ -198,8 +175,8 @@ def test_anti_clatter_motor_drives_the_wheel_with_the_slip_averaged_over_its_win
     c, n = p["coefficient_Nm_s_per_rad"], int(p["window_scans"])
     rec = rec_of("wheel_slip_averaging_anti_clatter", **p)
     tx = wheel_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6 * max(1.0, np.max(np.abs(tx)))   # held between its 0.2 ms scans
-    s = _slip(rec)[::SEG]                                                 # the slip at each scan's start
+    assert np.max(held_per_segment(tx)) < 1e-6 * max(1.0, np.max(np.abs(tx)))   # held between its 0.2 ms scans
+    s = slip_rad_s(rec)[::SEG]                                                 # the slip at each scan's start
     pred = c * DEV19["wheel_slip_averaging_anti_clatter"].means(s, n)
     held = tx[::SEG][n - 1:]
     assert np.max(np.abs(pred - held)) < 1e-6 * max(1.0, np.max(np.abs(tx)))
@@ -207,7 +184,7 @@ def test_anti_clatter_motor_drives_the_wheel_with_the_slip_averaged_over_its_win
     # an average over a window, not the slip itself nor a first-order lag of it: it lags the slip's swings by about
     # half the window and forgets them after a whole one
     assert np.max(np.abs(held - c * s[n - 1:])) > 0.3 * np.max(np.abs(held))
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_impact_severity_brake_loads_the_motor_with_the_contacts_recent_peak_power():
@@ -215,9 +192,9 @@ def test_impact_severity_brake_loads_the_motor_with_the_contacts_recent_peak_pow
     c, tau = p["coefficient_Nm_per_W"], p["decay_s"]
     rec = rec_of("motor_impact_severity_brake", **p)
     tx = motor_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6 * max(1.0, np.max(np.abs(tx)))   # held between its 0.2 ms scans
+    assert np.max(held_per_segment(tx)) < 1e-6 * max(1.0, np.max(np.abs(tx)))   # held between its 0.2 ms scans
     assert np.all(tx >= -1e-6)                                              # a brake
-    power = np.abs(rec.internal["clutch_torque_Nm"] * _slip(rec))[::SEG]    # |T_c*D'| at each scan's start
+    power = np.abs(rec.internal["clutch_torque_Nm"] * slip_rad_s(rec))[::SEG]    # |T_c*D'| at each scan's start
     m = tx[::SEG] / c
     pred = DEV19["motor_impact_severity_brake"].peaks(power[1:], tau, DT, m0=m[0])
     assert np.max(np.abs(pred - m[1:])) < 1e-6 * np.max(m)
@@ -225,7 +202,7 @@ def test_impact_severity_brake_loads_the_motor_with_the_contacts_recent_peak_pow
     # a peak hold with a bleed: between impacts it decays by exp(-dt/tau) a scan
     falling = (m[2:] < m[1:-1]) & (m[1:-1] > 0.01 * np.max(m))
     assert falling.any() and np.allclose(m[2:][falling] / m[1:-1][falling], np.exp(-DT / tau), rtol=1e-6)
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 # ------------------------------------------------------------------ the sealed half: in its balance only

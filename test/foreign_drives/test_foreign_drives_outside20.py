@@ -17,12 +17,13 @@ import pytest
 from foreign_drives import constants as C
 from foreign_drives import kernel as K
 from foreign_drives import noise as N
-from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (OutsideSet, assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_acts_in_its_balance_only, assert_forms_withholds_sealed,
                                         assert_recordings_repeat, assert_rows_visible, assert_set_registry,
                                         assert_set_suites, assert_suite_writes_one_recording)
 from foreign_outside_recordings import assert_alarm_check_covers_both_halves, assert_bench_guards_unspent_sealed  # test/
+from foreign_outside_recordings import extra_clutch_Nm, held_per_segment, others_zero, sample_times_s, slip_rad_s  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -30,30 +31,6 @@ DT = N.SEGMENT_S
 SET = OutsideSet(20, seed=220)
 DEV20, SEALED20, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
-
-
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
-def _extra_clutch_Nm(rec):
-    """The clutch torque beyond the nominal contact law's."""
-    return rec.internal["clutch_torque_Nm"] - contact_law_Nm(rec)
-
-
-def _times(rec):
-    return np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
-
-
-def _slip(rec):
-    return rec.signals["omega1"] - rec.signals["omega2"]
 
 
 def _wheel_angle_unwrapped(rec):
@@ -116,14 +93,14 @@ def test_travel_marker_loads_the_motor_with_a_sawtooth_of_the_carriages_travel()
     assert marks >= 5 and abs(marks - np.ptp(x) / pitch) <= 1.5
     rising = clear[1:] & clear[:-1] & (np.diff(tx) > -0.5 * tq)
     assert np.allclose(np.diff(tx)[rising], tq / pitch * np.diff(x)[rising], atol=1e-6 * tq)
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_gerotor_assist_drives_the_wheel_by_a_smooth_step_of_the_slip():
     p = _params("wheel_gerotor_slip_assist")
     tq = p["torque_Nm"]
     rec = rec_of("wheel_gerotor_slip_assist", **p)
-    tx, s = wheel_term_Nm(rec), _slip(rec)
+    tx, s = wheel_term_Nm(rec), slip_rad_s(rec)
     law = DEV20["wheel_gerotor_slip_assist"].torque(s, p)
     assert np.max(np.abs(tx - law)) < 1e-6 * tq
     assert np.all(tx >= -1e-6) and np.all(tx <= tq * (1.0 + 1e-6))          # an assist, within 0..T
@@ -131,7 +108,7 @@ def test_gerotor_assist_drives_the_wheel_by_a_smooth_step_of_the_slip():
     below, above = s < p["onset_rad_s"] - 2.0 * p["width_rad_s"], s > p["onset_rad_s"] + p["width_rad_s"]
     assert below.any() and above.any()
     assert np.max(tx[below]) < 0.02 * tq and np.min(tx[above]) > 0.85 * tq
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_the_gerotor_assists_plugin_is_the_law_in_the_projects_plugin_form(tmp_path):
@@ -150,7 +127,7 @@ def test_half_wave_magnet_centres_the_jaw_with_a_stiffness_pulsating_with_the_ma
     p = _params("clutch_half_wave_magnet_centring")
     k, f = p["stiffness_Nm_per_rad"], p["mains_hz"]
     rec = rec_of("clutch_half_wave_magnet_centring", **p)
-    extra, d, t = _extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"], _times(rec)
+    extra, d, t = extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"], sample_times_s(rec)
     law = DEV20["clutch_half_wave_magnet_centring"].torque(d, t, p)
     assert np.max(np.abs(extra - law)) < 1e-6 * np.max(np.abs(extra))
     gap = rec.internal["mode"] == 0
@@ -162,7 +139,7 @@ def test_half_wave_magnet_centres_the_jaw_with_a_stiffness_pulsating_with_the_ma
     s = np.sin(2.0 * np.pi * f * t[moved] + p["phase_rad"])
     assert np.allclose(ratio, k * np.where(s > 0.0, s, 0.0) ** 2, atol=1e-6 * k)
     assert np.all(np.abs(ratio[s < 0.0]) < 1e-6 * k) and np.max(ratio) > 0.99 * k
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_level_wind_takes_a_slow_cosine_of_the_turns_off_the_cables_pull():
@@ -177,7 +154,7 @@ def test_level_wind_takes_a_slow_cosine_of_the_turns_off_the_cables_pull():
     g = -fx / (c * z)
     assert np.allclose(g, 1.0 - np.cos((theta - p["angle_rad"]) / n), atol=1e-6)
     assert np.ptp(theta) / (2.0 * np.pi * n) > 1.0 and np.min(g) < 0.05 and np.max(g) > 1.9
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_flange_twist_adds_the_jaws_torque_times_the_centripetal_acceleration_to_a1():
@@ -195,7 +172,7 @@ def test_flange_twist_adds_the_jaws_torque_times_the_centripetal_acceleration_to
     ratio = err[~gap] / tc[~gap]
     assert np.allclose(ratio, C.WHEEL_RADIUS_M * w1[~gap] ** 2 * p["twist_rad_per_Nm"], rtol=1e-6)
     assert np.max(np.abs(err)) > 0.25
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_tension_pi_brake_holds_the_extension_with_a_clamped_pi_law():
@@ -203,7 +180,7 @@ def test_tension_pi_brake_holds_the_extension_with_a_clamped_pi_law():
     kp, top = p["gain_Nm_per_m"], p["max_torque_Nm"]
     rec = rec_of("wheel_tension_pi_brake", **p)
     tx = wheel_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6 * top                       # held between its 0.2 ms scans
+    assert np.max(held_per_segment(tx)) < 1e-6 * top                       # held between its 0.2 ms scans
     u = -tx[::SEG]
     assert np.all(u >= -1e-6) and np.all(u <= top * (1.0 + 1e-6))          # a brake within 0..T_max
     z = rec.internal["spring_extension"][::SEG]                           # the extension at each scan's start
@@ -217,7 +194,7 @@ def test_tension_pi_brake_holds_the_extension_with_a_clamped_pi_law():
     assert inside.size > 0.2 * u.size and np.ptp(u) > 0.3 * top
     integral = u[inside] - kp * (z[inside] - p["reference_m"])
     assert np.ptp(integral) > 0.05 * top
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_slip_relay_fills_and_drains_the_motor_brakes_cylinder_at_the_laws_rates():
@@ -225,10 +202,10 @@ def test_slip_relay_fills_and_drains_the_motor_brakes_cylinder_at_the_laws_rates
     tq = p["torque_Nm"]
     rec = rec_of("motor_slip_relay_cylinder_brake", **p)
     tx = motor_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6 * tq                       # held between its 0.2 ms scans
+    assert np.max(held_per_segment(tx)) < 1e-6 * tq                       # held between its 0.2 ms scans
     m = tx[::SEG] / tq
     assert np.all(m >= -1e-6) and np.all(m <= 1.0 + 1e-6)
-    s = _slip(rec)[::SEG]                                                 # the slip at each scan's start
+    s = slip_rad_s(rec)[::SEG]                                                 # the slip at each scan's start
     # from the first scan with the slip below s_off (the relay off after it), the law scan by scan
     j = int(np.flatnonzero(s < p["off_below_rad_s"])[0])
     relay, pred = DEV20["motor_slip_relay_cylinder_brake"].fills(s[j + 1:], p, DT, on0=0.0, m0=m[j])
@@ -240,7 +217,7 @@ def test_slip_relay_fills_and_drains_the_motor_brakes_cylinder_at_the_laws_rates
     assert np.allclose(dm[up][(m[j + 1:][up] < 1.0 - 1e-9)], DT / p["fill_time_s"], rtol=1e-6)
     assert np.allclose(dm[down][(m[j + 1:][down] > 1e-9)], -DT / p["drain_time_s"], rtol=1e-6)
     assert np.max(m) > 0.2
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 # ------------------------------------------------------------------ the sealed half: in its balance only

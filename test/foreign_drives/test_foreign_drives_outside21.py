@@ -15,16 +15,16 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from foreign_drives import constants as C
 from foreign_drives import kernel as K
 from foreign_drives import noise as N
-from foreign_balance_terms import contact_law_Nm, mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
+from foreign_balance_terms import mass_term_N, motor_term_Nm, wheel_term_Nm   # test/
 from foreign_outside_recordings import (OutsideSet, assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_acts_in_its_balance_only, assert_forms_withholds_sealed,
                                         assert_recordings_repeat, assert_rows_visible, assert_set_registry,
                                         assert_set_suites, assert_suite_writes_one_recording)
 from foreign_outside_recordings import (assert_alarm_check_leaves_out_the_unspent_sealed_half,  # test/
                                         assert_bench_refuses_the_unspent_sealed_half)
+from foreign_outside_recordings import extra_clutch_Nm, held_per_segment, others_zero, sample_times_s, slip_rad_s  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -32,30 +32,6 @@ DT = N.SEGMENT_S
 SET = OutsideSet(21, seed=221)
 DEV21, SEALED21, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
-
-
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
-def _extra_clutch_Nm(rec):
-    """The clutch torque beyond the nominal contact law's."""
-    return rec.internal["clutch_torque_Nm"] - contact_law_Nm(rec)
-
-
-def _times(rec):
-    return np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
-
-
-def _slip(rec):
-    return rec.signals["omega1"] - rec.signals["omega2"]
 
 
 def _gap_distance(rec):
@@ -110,7 +86,7 @@ def test_self_excited_generator_brakes_the_motor_with_the_square_of_its_speeds_e
     assert np.max(np.abs(tx[below])) < 1e-6
     assert np.allclose(tx[above] / (w1[above] - wc) ** 2, c, rtol=1e-4)
     assert np.max(tx) > 0.5
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_gap_guard_applies_the_wheel_brake_once_the_jaw_has_stayed_open_for_its_delay():
@@ -118,7 +94,7 @@ def test_gap_guard_applies_the_wheel_brake_once_the_jaw_has_stayed_open_for_its_
     tq = p["torque_Nm"]
     rec = rec_of("wheel_gap_guard_holding_brake", **p)
     tx = wheel_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6 * tq                       # held between its 0.2 ms scans
+    assert np.max(held_per_segment(tx)) < 1e-6 * tq                       # held between its 0.2 ms scans
     m = -tx[::SEG] / tq
     assert np.all((np.abs(m) < 1e-6) | (np.abs(m - 1.0) < 1e-6))           # on or off
     gap = _gap_distance(rec)[::SEG]                                       # the gap distance at each scan's start
@@ -130,16 +106,16 @@ def test_gap_guard_applies_the_wheel_brake_once_the_jaw_has_stayed_open_for_its_
     # never on in contact
     assert pred.any() and np.count_nonzero(gap > p["gap_rad"]) > np.count_nonzero(pred)
     assert np.all(pred[gap[j + 1:] < 0.0] == 0.0)
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
 
 
 def test_viscoelastic_boot_passes_the_jaws_twist_less_its_relaxed_part():
     p = _params("clutch_viscoelastic_boot")
     k = p["stiffness_Nm_per_rad"]
     rec = rec_of("clutch_viscoelastic_boot", **p)
-    extra, d = _extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"]
+    extra, d = extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"]
     q = d - extra / k                                                     # the relaxed twist the term implies
-    assert np.max(_held_per_segment(q)) < 1e-9                            # advanced once a scan
+    assert np.max(held_per_segment(q)) < 1e-9                            # advanced once a scan
     qs, ds = q[::SEG], d[::SEG]
     pred = DEV21["clutch_viscoelastic_boot"].relaxed(ds[1:], p, DT, qs[0])
     assert np.max(np.abs(pred - qs[1:])) < 1e-9
@@ -147,7 +123,7 @@ def test_viscoelastic_boot_passes_the_jaws_twist_less_its_relaxed_part():
     gap = rec.internal["mode"] == 0
     assert gap.any() and np.max(np.abs(extra[gap])) > 0.1
     assert np.ptp(qs) > 0.2 * np.ptp(ds) and np.max(np.abs(ds - qs)) > 0.01
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_booster_pushes_the_carriage_by_the_limited_excess_of_its_averaged_speed():
@@ -155,7 +131,7 @@ def test_booster_pushes_the_carriage_by_the_limited_excess_of_its_averaged_speed
     kg, n = p["gain_N_s_per_m"], int(p["window_scans"])
     rec = rec_of("mass_averaged_speed_booster", **p)
     fx = mass_term_N(rec)
-    assert np.max(_held_per_segment(fx)) < 1e-9 * kg                      # held between its 0.2 ms scans
+    assert np.max(held_per_segment(fx)) < 1e-9 * kg                      # held between its 0.2 ms scans
     v = rec.internal["mass_speed"][::SEG]                                 # the carriage's speed at each scan's start
     mean = np.convolve(v, np.ones(n) / n, mode="valid")                   # over the last n scans, from scan n - 1
     law = DEV21["mass_averaged_speed_booster"].force(mean, p)
@@ -164,7 +140,7 @@ def test_booster_pushes_the_carriage_by_the_limited_excess_of_its_averaged_speed
     assert np.max(np.abs(fx)) <= kg * p["limit_m_s"] * (1.0 + 1e-9)
     now = DEV21["mass_averaged_speed_booster"].force(v[n - 1:], p)
     assert np.max(np.abs(now - fx[::SEG][n - 1:])) > 0.1
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_torque_following_hum_adds_the_motors_torque_times_a_mains_sine_to_a1():
@@ -172,7 +148,7 @@ def test_torque_following_hum_adds_the_motors_torque_times_a_mains_sine_to_a1():
     rec = rec_of("a1_torque_following_hum", **p)
     assert np.array_equal(rec.signals["a2"], clean().signals["a2"])
     assert np.array_equal(rec.internal["a1_physical"], clean().internal["a1_physical"])
-    a1, te, t = rec.internal["a1_physical"], rec.internal["te_pu"], _times(rec)
+    a1, te, t = rec.internal["a1_physical"], rec.internal["te_pu"], sample_times_s(rec)
     read = DEV21["a1_torque_following_hum"].read(a1, te, t, p)
     assert np.max(np.abs(rec.signals["a1"] - read)) < 1e-9 * np.max(np.abs(a1))
     # an additive hum whose amplitude is the torque: the error over the mains sine is k*t_e wherever the sine is large
@@ -181,7 +157,7 @@ def test_torque_following_hum_adds_the_motors_torque_times_a_mains_sine_to_a1():
     big = np.abs(s) > 0.5
     assert np.allclose(err[big] / s[big], p["coefficient_m_s2"] * te[big], rtol=1e-6, atol=1e-9)
     assert np.ptp(te) > 0.2 and np.max(np.abs(err)) > 0.3
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_drum_encoder_clocked_hold_samples_a2_at_the_encoders_pulses():
@@ -202,14 +178,14 @@ def test_drum_encoder_clocked_hold_samples_a2_at_the_encoders_pulses():
     held = rec.signals["a2"][marks[0]:]
     assert np.count_nonzero(np.diff(held)) == marks.size - 1
     assert np.max(np.abs(rec.signals["a2"] - a2)) > 0.05
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_metering_land_damps_the_slip_most_while_the_jaw_is_aligned():
     p = _params("clutch_metering_land_damper")
     c, w = p["coefficient_Nm_s_per_rad"], p["land_rad"]
     rec = rec_of("clutch_metering_land_damper", **p)
-    extra, d, s = _extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"], _slip(rec)
+    extra, d, s = extra_clutch_Nm(rec), rec.internal["jaw_angle_difference"], slip_rad_s(rec)
     law = DEV21["clutch_metering_land_damper"].torque(s, d, p)
     assert np.max(np.abs(extra - law)) < 1e-6 * max(1.0, np.max(np.abs(extra)))
     # a damping whose coefficient is a Lorentzian of the twist: c aligned, c/2 at w, and in the gap too
@@ -219,7 +195,7 @@ def test_metering_land_damps_the_slip_most_while_the_jaw_is_aligned():
     assert np.max(coeff) > 0.9 * c and np.min(coeff) < 0.5 * c
     gap = rec.internal["mode"] == 0
     assert gap.any() and np.max(np.abs(extra[gap])) > 0.1
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 # ------------------------------------------------------------------ the sealed half: in its balance only

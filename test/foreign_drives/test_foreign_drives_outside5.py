@@ -27,6 +27,7 @@ from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_o
                                        assert_forms_withholds_sealed, assert_set_registry, assert_set_suites,
                                        assert_suite_writes_one_recording,
                                        outside_bench, suite_effect)
+from foreign_outside_recordings import held_per_segment  # test/
 
 W = C.WHEEL_RADIUS_M
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
@@ -69,12 +70,6 @@ def _nominal_contact_Nm(rec):
     return np.where(mode > 0, k * (d - beta) + c * dd, np.where(mode < 0, -(k * (-d - beta) - c * dd), 0.0))
 
 
-def _held_per_segment(x):
-    """True where x is one value over each whole 0.2 ms segment."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
 # ------------------------------------------------------------------ registry and truth vocabulary
 def test_fifth_set_is_seven_and_seven_each_half_over_every_balance_in_the_benchs_words():
     assert_set_registry(5)
@@ -115,7 +110,7 @@ def test_governor_play_loads_the_motor_through_a_rate_independent_hysteresis():
     p = {"gain_Nms_per_rad": 4.0, "play_rad_s": 1.0, "set_speed_rad_s": 144.0}     # biting all the time
     rec = rec_of("motor_governor_linkage_play", **p)
     tx = motor_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6                        # the linkage scanned every 0.2 ms, held
+    assert np.max(held_per_segment(tx)) < 1e-6                        # the linkage scanned every 0.2 ms, held
     assert np.all(tx > -1e-6) and tx.max() > 4.0                        # a brake: it only loads the motor
     assert np.max(np.abs(wheel_term_Nm(rec))) < 1e-6 and np.max(np.abs(mass_term_N(rec))) < 1e-6
     w1 = rec.signals["omega1"][::SEG]                                   # Omega1 at each segment's start
@@ -163,7 +158,7 @@ def test_tuned_absorber_is_a_hidden_resonator_driven_by_the_carriages_motion():
     fa, zeta, ma = 40.0, 0.2, 2.0
     rec = rec_of("mass_tuned_absorber", mass_kg=ma, frequency_hz=fa, damping_ratio=zeta)
     fx = mass_term_N(rec)
-    assert np.max(_held_per_segment(fx)) < 1e-6 and np.max(np.abs(fx)) > 0.5
+    assert np.max(held_per_segment(fx)) < 1e-6 and np.max(np.abs(fx)) > 0.5
     assert np.max(np.abs(wheel_term_Nm(rec))) < 1e-6 and np.max(np.abs(motor_term_Nm(rec))) < 1e-6
     # the resonator from the mass speed at the segments' starts, from rest at the second segment: after 15 time
     # constants 1/(zeta*w) its start is forgotten

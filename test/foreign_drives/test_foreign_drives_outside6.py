@@ -26,6 +26,7 @@ from foreign_outside_recordings import (Recordings, assert_acts_in_its_balance_o
                                         assert_forms_withholds_sealed, assert_recordings_repeat,
                                         assert_rows_visible, assert_set_registry, assert_set_suites,
                                         assert_suite_writes_one_recording, outside_bench, suite_effect)
+from foreign_outside_recordings import held_per_segment  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 
@@ -61,12 +62,6 @@ def _nominal_contact_Nm(rec):
     beta = rec.truth.true_width_m / C.WHEEL_RADIUS_M
     k, c = C.CONTACT_STIFFNESS_NM_PER_RAD, C.CONTACT_DAMPING_NMS_PER_RAD
     return np.where(mode > 0, k * (d - beta) + c * dd, np.where(mode < 0, -(k * (-d - beta) - c * dd), 0.0))
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
 
 
 # ------------------------------------------------------------------ registry and truth vocabulary
@@ -111,7 +106,7 @@ def test_slip_hub_flywheel_sticks_below_its_slip_torque_and_passes_it_while_slip
     p = _suite_effect("motor_slip_hub_flywheel").parameters
     rec = rec_of("motor_slip_hub_flywheel", **p)
     tx = motor_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6                         # the hub's torque held over each 0.2 ms
+    assert np.max(held_per_segment(tx)) < 1e-6                         # the hub's torque held over each 0.2 ms
     assert np.max(np.abs(wheel_term_Nm(rec))) < 1e-6 and np.max(np.abs(mass_term_N(rec))) < 1e-6
     ts, jf, dt = p["slip_torque_Nm"], p["inertia_kgm2"], N.SEGMENT_S
     t_seg = tx[::SEG]
@@ -134,7 +129,7 @@ def test_idler_gear_rattles_in_its_backlash_and_takes_its_drag_through_the_drivi
     p = _suite_effect("wheel_idler_gear_rattle").parameters
     rec = rec_of("wheel_idler_gear_rattle", **p)
     tx = wheel_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6
+    assert np.max(held_per_segment(tx)) < 1e-6
     assert np.max(np.abs(motor_term_Nm(rec))) < 1e-6 and np.max(np.abs(mass_term_N(rec))) < 1e-6
     t_seg = tx[::SEG]
     ji, lam = p["inertia_kgm2"], p["drag_per_s"]
@@ -209,7 +204,7 @@ def test_pwm_brake_is_all_or_nothing_with_the_duty_of_the_speed_sampled_at_each_
     p = {"torque_Nm": 6.5, "carrier_period_s": 0.005, "zero_duty_speed_rad_s": 149.0, "full_duty_span_rad_s": 6.0}
     rec = rec_of("wheel_pwm_brake", **p)
     t_seg = wheel_term_Nm(rec)[::SEG]
-    assert np.max(_held_per_segment(wheel_term_Nm(rec))) < 1e-6
+    assert np.max(held_per_segment(wheel_term_Nm(rec))) < 1e-6
     assert np.all((np.abs(t_seg) < 1e-6) | (np.abs(t_seg + 6.5) < 1e-6))
     on = t_seg < -3.0
     assert 0.05 < on.mean() < 0.95

@@ -26,6 +26,7 @@ from foreign_outside_recordings import (OutsideSet, assert_acts_in_its_balance_o
 from foreign_outside_recordings import (assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_alarm_check_covers_both_halves,
                                         assert_bench_guards_unspent_sealed)
+from foreign_outside_recordings import held_per_segment  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -39,12 +40,6 @@ rec_of, clean, _suite_effect = SET.rec_of, SET.clean, SET.effect
 
 def _t(rec):
     return np.arange(rec.n_samples) * C.SAMPLE_PERIOD_S
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
 
 
 def _stroke_at_scans(rec):
@@ -156,7 +151,7 @@ def test_overspeed_latch_brakes_from_the_trip_until_the_next_stroke():
     p = {"torque_Nm": 4.0, "trip_speed_rad_s": trip}
     rec = rec_of("wheel_overspeed_latch_brake", **p)
     tx = wheel_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6
+    assert np.max(held_per_segment(tx)) < 1e-6
     assert np.max(np.abs(motor_term_Nm(rec))) < 1e-6 and np.max(np.abs(mass_term_N(rec))) < 1e-6
     on = tx[::SEG] < -2.0
     assert np.all((np.abs(tx[::SEG]) < 1e-6) | (np.abs(tx[::SEG] + 4.0) < 1e-6))
@@ -223,7 +218,7 @@ def test_metered_roll_feed_loads_the_motor_until_the_shaft_has_turned_the_feed_a
     p = {"torque_Nm": 6.0, "feed_angle_rad": 15.0}
     rec = rec_of("motor_metered_roll_feed", **p)
     tx = motor_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-5
+    assert np.max(held_per_segment(tx)) < 1e-5
     assert np.max(np.abs(wheel_term_Nm(rec))) < 1e-6 and np.max(np.abs(mass_term_N(rec))) < 1e-6
     on = tx[::SEG] > 3.0
     assert np.all((np.abs(tx[::SEG]) < 1e-5) | (np.abs(tx[::SEG] - 6.0) < 1e-5))

@@ -26,6 +26,7 @@ from foreign_outside_recordings import (OutsideSet, assert_acts_in_its_balance_o
 from foreign_outside_recordings import (assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_alarm_check_covers_both_halves,
                                         assert_bench_guards_unspent_sealed)
+from foreign_outside_recordings import held_per_segment, others_zero  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -37,22 +38,11 @@ BELOW_CRITERION = {"os8_clutch_cracked_jaw_tooth"}
 rec_of, clean, _suite_effect = SET.rec_of, SET.clean, SET.effect
 
 
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
 def _stroke_at_scans(rec):
     """The load pulse's number at each scan (the first pulse at or after sample 0 is 0; -1 before it)."""
     seg = np.arange(rec.n_samples // SEG)
     first = round(rec.spec.pulse_first_s / DT)
     return np.floor((seg - first) / round(C.PULSE_PERIOD_S / DT))
-
-
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
 
 
 # ------------------------------------------------------------------ registry and truth vocabulary
@@ -164,7 +154,7 @@ def test_fan_blade_flutter_is_a_load_peaked_at_its_resonance_speed():
     far = np.abs(w1 - p["resonance_speed_rad_s"]) > p["half_width_rad_s"]
     assert near.any() and np.min(tx[near]) > 0.98 * p["peak_torque_Nm"]
     assert far.any() and np.max(tx[far]) < 0.5 * p["peak_torque_Nm"] + 1e-6
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_period_tacho_brake_brakes_on_the_speed_of_the_last_whole_wheel_turn():
@@ -172,8 +162,8 @@ def test_period_tacho_brake_brakes_on_the_speed_of_the_last_whole_wheel_turn():
          "phase_rad": 0.5}
     rec = rec_of("wheel_period_tacho_brake", **p)
     tx = wheel_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    assert np.max(held_per_segment(tx)) < 1e-6
+    others_zero(rec, motor_term_Nm, mass_term_N)
     theta2 = np.unwrap(rec.internal["alpha2"])[::SEG]
     k = np.floor((theta2 - p["phase_rad"]) / (2 * math.pi))
     passes = np.flatnonzero(np.diff(k) != 0) + 1
@@ -201,7 +191,7 @@ def test_ball_detent_is_periodic_in_the_jaws_angle_difference_in_the_gap_and_in_
     # several wells across the gap: the torque changes sign more than once while D crosses the gap
     gap = np.abs(d) < i["parameters"][K.P_BETA]
     assert np.ptp(d[gap]) > 2 * p["pitch_rad"] and np.max(extra[gap]) > 0.9 * p["detent_torque_Nm"]
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_run_to_run_booster_changes_its_force_once_per_stroke_from_the_strokes_mean_speed():
@@ -209,8 +199,8 @@ def test_run_to_run_booster_changes_its_force_once_per_stroke_from_the_strokes_m
     p = {"gain_N_s_per_m": 10.0, "reference_speed_m_s": float(np.mean(v0)) - 0.05, "force_limit_N": 20.0}
     rec = rec_of("mass_run_to_run_booster", **p)
     fx = mass_term_N(rec)
-    assert np.max(_held_per_segment(fx)) < 1e-6
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    assert np.max(held_per_segment(fx)) < 1e-6
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
     k = _stroke_at_scans(rec)
     start = int(np.argmax(k == 0))                                      # the record's first stroke start
     v = rec.internal["mass_speed"][::SEG]
@@ -241,8 +231,8 @@ def test_brake_squeal_is_a_tone_of_its_own_that_grows_only_above_its_onset_speed
     p = _suite_effect("wheel_brake_squeal").parameters
     rec = rec_of("wheel_brake_squeal", **p)
     tx = wheel_term_Nm(rec)
-    assert np.max(_held_per_segment(tx)) < 1e-6
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    assert np.max(held_per_segment(tx)) < 1e-6
+    others_zero(rec, motor_term_Nm, mass_term_N)
     x = -tx[::SEG] / (0.5 * p["torque_Nm"])                              # the oscillator's state at the scans
     assert 1.5 < np.max(np.abs(x)) < 2.5                                 # grown to about its limit cycle
     big = np.abs(x) > 0.5

@@ -25,6 +25,7 @@ from foreign_outside_recordings import (OutsideSet, assert_acts_in_its_balance_o
 from foreign_outside_recordings import (assert_a_row_of_each_half_crosses_the_backlash,  # test/
                                         assert_alarm_check_covers_both_halves,
                                         assert_bench_guards_unspent_sealed)
+from foreign_outside_recordings import held_per_segment, others_zero  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
 DT = N.SEGMENT_S
@@ -32,17 +33,6 @@ DT = N.SEGMENT_S
 SET = OutsideSet(9, seed=197)
 DEV9, SEALED9, DURATION_S = SET.dev, SET.sealed, SET.duration_s
 rec_of, clean, _params = SET.rec_of, SET.clean, SET.params
-
-
-def _held_per_segment(x):
-    """The spread of x within each whole 0.2 ms segment (0 where it is held)."""
-    n = x.size // SEG
-    return np.ptp(x[:n * SEG].reshape(n, SEG), axis=1)
-
-
-def _others_zero(rec, *terms):
-    for term in terms:
-        assert np.max(np.abs(term(rec))) < 1e-6, term.__name__
 
 
 def _a_sensor_only(rec):
@@ -92,14 +82,14 @@ def test_centrifugal_clutch_blower_is_a_square_law_switched_on_by_the_speed():
     up, down = w1 > we + w, w1 < we - w
     assert up.any() and down.any()
     assert np.min(tx[up] / sq[up]) > 0.88 and np.max(tx[down] / sq[down]) < 0.12
-    _others_zero(rec, wheel_term_Nm, mass_term_N)
+    others_zero(rec, wheel_term_Nm, mass_term_N)
 
 
 def test_geneva_indexer_drags_the_wheel_in_one_window_every_n_turns():
     p = _params("wheel_geneva_indexer")
     rec = rec_of("wheel_geneva_indexer", **p)
     tx = wheel_term_Nm(rec)
-    _others_zero(rec, motor_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, mass_term_N)
     theta = np.unwrap(rec.internal["alpha2"])
     n, period = p["turns_per_index"], 2 * math.pi * p["turns_per_index"]
     # the record's unwrapped angle differs from the kernel's (from the run-in's start) by whole turns: one of n fits
@@ -135,7 +125,7 @@ def test_belleville_snap_through_adds_a_torque_that_falls_beyond_its_peak():
     assert np.max(t) == pytest.approx(0.77 * p["spring_torque_Nm"], rel=0.01)
     assert abs(t[1000]) < 1e-9 and np.all(t[1001:] < 0)
     assert np.allclose(DEV9["clutch_belleville_snap_through"].torque(-q * h, p), -t)
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm, mass_term_N)
 
 
 def test_check_valve_damper_follows_the_speed_fast_up_and_slow_down():
@@ -144,8 +134,8 @@ def test_check_valve_damper_follows_the_speed_fast_up_and_slow_down():
          "fall_time_s": 0.1}
     rec = rec_of("mass_check_valve_damper", **p)
     fx = mass_term_N(rec)
-    assert np.max(_held_per_segment(fx)) < 1e-6
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    assert np.max(held_per_segment(fx)) < 1e-6
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
     m = p["crack_speed_m_s"] - fx[::SEG] / p["coefficient_N_s_per_m"]          # the chamber's state at the scans
     x = rec.internal["mass_speed"][::SEG]
     law = DEV9["mass_check_valve_damper"].lagged(np.concatenate(([m[0]], x[1:])), p, DT)
@@ -177,7 +167,7 @@ def test_cable_guide_friction_is_the_spring_extension_times_the_sign_of_the_spee
     law = DEV9["mass_cable_guide_friction"].force(i["spring_extension"], i["mass_speed"], p)
     assert np.max(np.abs(fx - law)) < 1e-6 * p["coefficient_N_per_m"]
     assert np.ptp(fx) > 0.05 * np.max(np.abs(fx))                    # it follows z: not a constant force
-    _others_zero(rec, motor_term_Nm, wheel_term_Nm)
+    others_zero(rec, motor_term_Nm, wheel_term_Nm)
 
 
 def test_fixed_point_smoothing_moves_in_whole_steps_and_stalls_on_small_errors():
