@@ -99,6 +99,24 @@ def width_level(width_m: float, warn_width_m: float, error_width_m: float) -> st
     return "ERROR" if width_m >= error_width_m else "WARN" if width_m >= warn_width_m else "OK"
 
 
+# A width level needs a fusion of at least this many onset events (or the whole fusion, where a drive's
+# fusion_events is set shorter): below 3 the fused width has no standard error (classifier/fusion.py), the signal
+# check cannot test it (classifier/signal_check.py), and one or two windows -- a stream's first -- set the level alone.
+# Measured before the rule on the independent simulator's 391 recordings (the foreign bench and the outside sets 1-21's
+# development and spent halves; docs/classifier.md 5.2): 60 had a wrong WARN or ERROR on some estimate, 41 of them
+# only on estimates of 1 or 2 events (1 of the 55 clean drives); with the rule 19 (2 clean)
+LEVEL_MIN_EVENTS = 3
+
+
+def estimate_level(level_width_m: float, fused_events: int, warn_width_m: float, error_width_m: float,
+                   fusion_events: int = DEFAULT_FUSION_EVENTS) -> str:
+    """The drive's width level from one estimate: width_level of its level width once it fuses at least
+    min(LEVEL_MIN_EVENTS, fusion_events) onset events, else 'OK' (too few events to raise an alarm on)."""
+    if fused_events < min(LEVEL_MIN_EVENTS, fusion_events):
+        return "OK"
+    return width_level(level_width_m, warn_width_m, error_width_m)
+
+
 def default_signals(mode: str) -> tuple[str, ...]:
     return ("a1", "a2", "a1+a2") if mode == SHAPE else ("a1", "a2")
 

@@ -14,7 +14,9 @@ accelerometer offset cannot move the width. A window with ``offset_periods`` 0 (
 onset window, before one whole load period; or a publisher that does not set them) is not
 classified; ``/diagnostics`` counts them (``windows_waiting_for_offset``), it is no fault.
 
-ERROR means one thing: the fused width is at or beyond ``error_width_m``. A window that cannot be
+ERROR means one thing: the fused width is at or beyond ``error_width_m``, fused over at least 3 onset events
+(estimation.LEVEL_MIN_EVENTS; fewer give the width without a level: it has no uncertainty and the signal check
+cannot test it). A window that cannot be
 classified (not denoised, a1/a2 of unequal or the wrong length, another sample period than the
 library's, non-finite samples, an unknown entry kind; DriveEstimator.check_window) is dropped and
 counted with its reason and gives WARN with the reason while such windows come (``fault_hold_s``),
@@ -37,7 +39,8 @@ from rclpy.node import Node
 from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_warning, load_library
 from backlash_monitor.classifier.signal_check import source_text
 from backlash_monitor.fleet.caveat import width_text, with_caveat
-from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator, width_level
+from backlash_monitor.estimation import (DEFAULT_FUSION_EVENTS, DEFAULT_MODE, LEVEL_MIN_EVENTS, MODES, DriveEstimator,
+                                         estimate_level)
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
 from backlash_monitor.ros.conversions import a1_chain_from_window, from_float64_field, to_float64_array
 from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
@@ -200,12 +203,15 @@ class ClassifierNode(Node):
 
     def set_width(self, estimate):
         p = self.params
-        level = width_level(estimate.level_width_m, p["warn_width_m"], p["error_width_m"])
+        level = estimate_level(estimate.level_width_m, estimate.fused_events, p["warn_width_m"], p["error_width_m"],
+                               p["fusion_events"])
         cont = width_text(estimate.fused_continuous_width_m, estimate.fused_width_uncertainty_m)
         shown = f"{estimate.fused_width_m * 1e3:.2f} mm" if cont == "-" else cont
         # a1+a2's fusion checked against a1's (classifier/signal_check.py): say when the width is a1's
         source = source_text(estimate.fused_from_signal, estimate.signal_name, estimate.check_reason)
         source = f"; {source}" if source else ""
+        few = min(LEVEL_MIN_EVENTS, p["fusion_events"])
+        source += (f"; no level from fewer than {few} events" if estimate.fused_events < few else "")
         self.width_state = (level, f"backlash {shown} (fused over {estimate.fused_events} events{source}; nearest "
                                    f"pattern width {estimate.fused_width_m * 1e3:.2f} mm)", dict(
             fused_width_m=f"{estimate.fused_width_m:.5f}", last_width_m=f"{estimate.width_m:.5f}",

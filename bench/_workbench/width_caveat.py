@@ -249,7 +249,7 @@ def _alarm_row(r: dict, out_dir: Path, truth: dict, rule, warn_c: float, error_c
     fit = FitVerdict.from_recording(r.get("model_fit"))
     est = json.loads((out_dir / f"{label}.estimates.json").read_text())["estimates"]
     mine = [e for e in est if e["signal"] == "a1+a2"]
-    from backlash_monitor.estimation import level_width, width_level
+    from backlash_monitor.estimation import estimate_level, level_width, width_level
     # the width the classifier node's level follows (estimation.level_width: the fused continuous width; the class
     # width only where the mode gives none)
     widths = [level_width(e.get("fused_continuous_width_m", math.nan), e["fused_width_m"]) for e in mine]
@@ -261,8 +261,8 @@ def _alarm_row(r: dict, out_dir: Path, truth: dict, rule, warn_c: float, error_c
     cls_wrong_last = _alarm(cls_level, t, warn_c, error_c)
     # the classifier node sets its level on EVERY estimate (nodes/classifier.py set_width), not only the last: an
     # alarm raised in the middle of a recording and gone by its end is an alarm the user saw
-    wrong_at = [e.get("entry_time_s") for e, w in zip(mine, widths) if _alarm(width_level(w, warn_c, error_c), t,
-                                                                              warn_c, error_c)]
+    wrong_at = [e.get("entry_time_s") for e, w in zip(mine, widths)
+                if _alarm(estimate_level(w, e["fused_events"], warn_c, error_c), t, warn_c, error_c)]
     cls_wrong = bool(wrong_at)
     cls_says_fails = says_model_fails(with_caveat("backlash", fit))   # the caveat is the recording's, on every line
     row.update(true_width_mm=t * 1e3, width_mm=r["width_m"] * 1e3,
