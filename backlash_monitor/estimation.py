@@ -112,9 +112,15 @@ def estimate_level(level_width_m: float, fused_events: int, warn_width_m: float,
                    fusion_events: int = DEFAULT_FUSION_EVENTS) -> str:
     """The drive's width level from one estimate: width_level of its level width once it fuses at least
     min(LEVEL_MIN_EVENTS, fusion_events) onset events, else 'OK' (too few events to raise an alarm on)."""
-    if fused_events < min(LEVEL_MIN_EVENTS, fusion_events):
+    if fused_events < level_events(fusion_events):
         return "OK"
     return width_level(level_width_m, warn_width_m, error_width_m)
+
+
+def level_events(fusion_events: int = DEFAULT_FUSION_EVENTS) -> int:
+    """The fused onset events a width needs before a level or a trend follows it: LEVEL_MIN_EVENTS, or the whole
+    fusion where ``fusion_events`` is shorter."""
+    return min(LEVEL_MIN_EVENTS, int(fusion_events))
 
 
 def default_signals(mode: str) -> tuple[str, ...]:

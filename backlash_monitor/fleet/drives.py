@@ -106,6 +106,7 @@ class Drive:
         return {"plant_simulator": plant, "windowing": windowing, "denoise": {},
                 "classifier": classifier, "model_watch": watch,
                 "width_trend": {"drive_name": self.hardware_id,
+                                **({"fusion_events": int(p["fusion_events"])} if "fusion_events" in p else {}),
                                 **({"state_file": str(p["trend_state_file"])}
                                    if p.get("trend_state_file") else {})}}
 

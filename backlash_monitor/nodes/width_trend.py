@@ -9,7 +9,9 @@ stamp to the offline trend's core (backlash_monitor/fleet/trend.py: LiveTrend, d
 rule of config/trend.yaml) and publishes, once a second, the status ``<node>: width trend`` with
 hardware_id = the drive's name: WARN when the drive grows faster than ``warn_growth_m_per_day``
 (with the days left to ``error_width_m``) or is past ``warn_width_m``, ERROR past
-``error_width_m``, OK otherwise (also before the first estimate and while the points span less
+``error_width_m``, OK otherwise. A width fused over fewer than 3 onset events (a stream's first
+windows; ``fusion_events``: the classifier's, where it fuses fewer) is not followed, as the classifier
+raises no level from it (estimation.level_events) (also before the first estimate and while the points span less
 than ``live_min_span_s``: no rate yet). With ``state_file`` the trend's points are kept in that
 file (written when a point closes, once per ``live_point_period_s``, and at shutdown) and read at
 start: a restarted monitor goes on with the drive's history; without it the trend starts anew
@@ -25,7 +27,7 @@ import sys
 
 from rclpy.node import Node
 
-from backlash_monitor.estimation import level_width
+from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS, level_events, level_width
 from backlash_monitor.fleet.caveat import with_caveat
 from backlash_monitor.fleet.trend import (PRIMARY_SIGNAL, LiveTrend, load_live_points, load_rule,
                                           save_live_points)
@@ -46,6 +48,9 @@ PARAMETERS = (
                   "classifier publishes it, else the first signal it publishes)"),
     ParameterSpec("state_file", "", "file that keeps the trend's points over restarts (JSON, "
                   "written once per point period and at shutdown; empty: the trend starts anew)"),
+    ParameterSpec("fusion_events", DEFAULT_FUSION_EVENTS, "the classifier's fusion_events: a width fused over "
+                  "fewer than min(3, this) onset events is not followed (no uncertainty, not signal-checked; "
+                  "estimation.level_events), as the classifier raises no level from it", 1, 1000),
 )
 
 
@@ -66,6 +71,8 @@ class WidthTrendNode(Node):
                               if self.state_file else "")
         self.saved_points = len(self.trend.points)
         self.signal = p["signal"]
+        self.min_events = level_events(p["fusion_events"])
+        self.too_few_events = 0     # estimates not followed: fused over fewer than min_events (a stream's first)
         self.first_signal = ""
         self.create_subscription(BacklashEstimate, "estimate", self.on_estimate, ESTIMATE_QOS)
         self.model_fit = None       # the model watch's last FitVerdict (None: none heard)
@@ -87,6 +94,9 @@ class WidthTrendNode(Node):
             elif not self.first_signal:
                 self.first_signal = msg.signal_name
         if msg.signal_name != (self.signal or self.first_signal):
+            return
+        if 0 < msg.fused_events < self.min_events:      # 0: a publisher that does not set the field
+            self.too_few_events += 1
             return
         # the continuous width: wear shows as it grows, not as a jump from one candidate width to the next
         # (NaN: the mode gives none; 0: the message default of a publisher that does not set it)
@@ -127,6 +137,7 @@ class WidthTrendNode(Node):
             days_to_limit="" if not math.isfinite(t.days_to_limit) else f"{t.days_to_limit:.1f}",
             last_fused_width_m="" if math.isnan(t.last_width_m) else f"{t.last_width_m:.5f}",
             points=t.points, estimates_not_used=self.trend.ignored,
+            estimates_too_few_events=self.too_few_events,
             signal=self.signal or self.first_signal, state_file=self.state_file,
             warn_growth_m_per_day=rule.warn_growth_m_per_day,
             min_span_s=rule.live_min_span_s, point_period_s=rule.live_point_period_s)

@@ -225,3 +225,75 @@ def test_node_goes_on_with_its_saved_history_and_keeps_it(ros_env, tmp_path):
         bad.destroy_node()
     finally:
         rclpy.try_shutdown()
+
+
+@pytest.mark.ros
+def test_the_trend_does_not_follow_a_width_fused_over_fewer_than_three_events(ros_env, tmp_path):
+    """A stream's first two estimates fuse 1 and 2 onset events (no uncertainty, not signal-checked: the classifier
+    raises no level from them, estimation.level_events): read past the error threshold there, then 4 mm from 3
+    events on, the trend follows the 4 mm only and stays OK; with the classifier's fusion_events at 1 every estimate
+    is a whole fusion and is followed (a publisher that leaves fused_events unset, 0, is followed as before: the
+    test above)."""
+    os.environ["ROS_DOMAIN_ID"] = ros_env["ROS_DOMAIN_ID"]
+    import rclpy
+    from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+    from rclpy.parameter import Parameter
+
+    from backlash_monitor.estimation import level_events
+    from backlash_monitor.nodes.width_trend import WidthTrendNode
+    from backlash_monitor.ros.qos import ESTIMATE_QOS
+    from backlash_monitor_msgs.msg import BacklashEstimate
+    assert level_events() == 3 and level_events(1) == 1 and level_events(2) == 2
+    rclpy.init()
+    try:
+        drives = {"drive01": 8, "drive02": 1}           # the classifier's fusion_events
+        nodes = {d: WidthTrendNode(namespace=f"/line1/{d}", parameter_overrides=[
+            Parameter("drive_name", value=f"line1/{d}"), Parameter("fusion_events", value=n)])
+            for d, n in drives.items()}
+        probe = rclpy.create_node("probe")
+        statuses = {}
+        probe.create_subscription(DiagnosticArray, "/diagnostics", lambda m: statuses.update(
+            {s.hardware_id: s for s in m.status if s.name.endswith("width trend")}), 10)
+        pubs = {d: probe.create_publisher(BacklashEstimate, f"/line1/{d}/estimate", ESTIMATE_QOS) for d in nodes}
+        executor = rclpy.executors.SingleThreadedExecutor()
+        for node in (*nodes.values(), probe):
+            executor.add_node(node)
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline and not all(p.get_subscription_count() for p in pubs.values()):
+            executor.spin_once(timeout_sec=0.05)
+        t0 = 1_760_000_000
+        for k, (events, width) in enumerate([(1, 0.016), (2, 0.018), (3, 0.004)]):
+            for d in nodes:
+                msg = BacklashEstimate(signal_name="a1+a2", mode="shape", fused_width_m=0.005,
+                                       fused_continuous_width_m=width, fused_events=events)
+                msg.header.stamp.sec = t0 + k
+                pubs[d].publish(msg)
+            executor.spin_once(timeout_sec=0.01)
+        deadline = time.monotonic() + 10
+        values = {}
+        while time.monotonic() < deadline:
+            executor.spin_once(timeout_sec=0.1)
+            values = {d: {kv.key: kv.value for kv in statuses[f"line1/{d}"].values}
+                      for d in nodes if f"line1/{d}" in statuses}
+            if len(values) == 2 and values["drive01"].get("estimates_too_few_events") == "2" and \
+                    values["drive02"].get("last_fused_width_m"):
+                break
+        ruled, every = statuses["line1/drive01"], statuses["line1/drive02"]
+        assert values["drive01"]["estimates_too_few_events"] == "2"
+        assert ruled.level == DiagnosticStatus.OK, ruled.message
+        assert float(values["drive01"]["last_fused_width_m"]) == pytest.approx(0.004)
+        # fusion_events 1: each estimate is a whole fusion, every one followed: the open minute's median is 16 mm
+        assert values["drive02"]["estimates_too_few_events"] == "0"
+        assert float(values["drive02"]["last_fused_width_m"]) == pytest.approx(0.016)
+        assert every.level == DiagnosticStatus.ERROR, every.message
+    finally:
+        rclpy.shutdown()
+
+
+def test_a_fleet_drive_gives_its_trend_the_classifiers_fusion_events():
+    """The fleet starts each drive's width_trend with the classifier's fusion_events where the drive sets one, so
+    that the trend follows the same estimates the classifier raises a level from."""
+    from backlash_monitor.fleet.drives import Drive
+    short = Drive("line1", "drive01", {"fusion_events": 2}).node_parameters()
+    assert short["classifier"]["fusion_events"] == 2 and short["width_trend"]["fusion_events"] == 2
+    assert "fusion_events" not in Drive("line1", "drive02", {}).node_parameters()["width_trend"]
