@@ -841,6 +841,42 @@ OUTSIDE_DEV21_ROWS = [
      [E("clutch_metering_land_damper", {"coefficient_Nm_s_per_rad": 1.557, "land_rad": 0.01})]),
 ]
 
+# ---- issue 31 part 4, twenty-second set: mechanisms outside the catalogue of other kinds again
+# (foreign_drives.outside_dev22; the twenty-second sealed half's rows are in foreign_drives.outside_sealed22). One
+# mechanism per row at its own nominal conditions, one clean control. Seeds 22000+. Each strength set by one simulation
+# against the clean drive of the same seed (docs/foreign_drives.md "The twenty-second set"). The a-priori values are read
+# off the documented clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, z 0.274-0.321 m, v 22.66-22.80 m/s; the
+# pulse 60 ms every 0.25 s; T_b = 20 N*m, the rim's mean load r*F0 about 4.5 N*m).
+OUTSIDE_DEV22_ROWS = [
+    # 2 N*m once the jaw transmits more than about 6 N*m (over 2 N*m)
+    ("od22_motor_load_sensing_brake", "outside", 0.0074, 0.0250, 0.94,
+     [E("motor_load_sensing_brake", {"torque_Nm": 2.0, "threshold_Nm": 6.0, "width_Nm": 2.0})]),
+    # 3 N*m above 22.76 m/s and for 20 ms after
+    ("od22_wheel_carriage_overspeed_off_delay_brake", "outside", 0.0068, 0.0285, 0.92,
+     [E("wheel_carriage_overspeed_off_delay_brake", {"torque_Nm": 3.0, "trip_speed_m_s": 22.76,
+                                                     "off_delay_s": 0.02})]),
+    # 0.3 N*m*s^2/rad^2 a priori (up to about 3 N*m at a slip of 3 rad/s sampled and passed), a2 0.003812: scaled once
+    # x19.7
+    ("od22_clutch_stroke_set_eddy_coupling", "outside", 0.0080, 0.0240, 0.96,
+     [E("clutch_stroke_set_eddy_coupling", {"coefficient_Nm_s2_per_rad2": 5.9024})]),
+    # K_p 200 N*s/m, K_i 2000 N/m, at most 5 N, above 22.75 m/s
+    ("od22_mass_pi_speed_limiter", "outside", 0.0070, 0.0300, 0.93,
+     [E("mass_pi_speed_limiter", {"gain_N_s_per_m": 200.0, "integral_N_per_m": 2000.0, "max_force_N": 5.0,
+                                  "reference_m_s": 22.75})]),
+    ("od22_clean_w7.6_eta0.0245_n0.95", "clean", 0.0076, 0.0245, 0.95, []),
+    # 0.5 per (Omega1/150 rad/s)^2 - 1 (a gain within about -2 % .. +3 % over the speed's range)
+    ("od22_a1_centripetal_sensitivity", "outside", 0.0083, 0.0265, 0.90,
+     [E("a1_centripetal_sensitivity", {"gain_change": 0.5, "calibration_speed_rad_s": 150.0})]),
+    # full scale 100 m/s^2, a boxcar of 64 bits (1.3 ms)
+    ("od22_a2_sigma_delta_converter", "outside", 0.0065, 0.0255, 0.97,
+     [E("a2_sigma_delta_converter", {"full_scale_m_s2": 100.0, "window_samples": 64.0})]),
+    # 0.5 N*m at each of 12 teeth, decaying over 0.1 rad (about 290 clicks a second); a2 0.000357, left as written,
+    # INVISIBLE (below a tenth of the criterion): its single scaling, x210 (T 105 N*m), lies beyond the form's bound
+    # (50 N*m) and at five times the motor's base torque, so it was not made (docs/foreign_drives.md)
+    ("od22_motor_ratchet_backstop_clicks", "outside", 0.0078, 0.0235, 0.91,
+     [E("motor_ratchet_backstop_clicks", {"torque_Nm": 0.5, "teeth": 12.0, "angle_rad": 0.0, "decay_rad": 0.1})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -865,6 +901,7 @@ OUTSIDE_DEV18 = _suite(OUTSIDE_DEV18_ROWS, 18000, 4.0)
 OUTSIDE_DEV19 = _suite(OUTSIDE_DEV19_ROWS, 19000, 4.0)
 OUTSIDE_DEV20 = _suite(OUTSIDE_DEV20_ROWS, 20000, 4.0)
 OUTSIDE_DEV21 = _suite(OUTSIDE_DEV21_ROWS, 21000, 4.0)
+OUTSIDE_DEV22 = _suite(OUTSIDE_DEV22_ROWS, 22000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
@@ -874,7 +911,8 @@ SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": 
           "outside_dev14": OUTSIDE_DEV14, "outside_dev15": OUTSIDE_DEV15,
           "outside_dev16": OUTSIDE_DEV16, "outside_dev17": OUTSIDE_DEV17,
           "outside_dev18": OUTSIDE_DEV18, "outside_dev19": OUTSIDE_DEV19,
-          "outside_dev20": OUTSIDE_DEV20, "outside_dev21": OUTSIDE_DEV21}
+          "outside_dev20": OUTSIDE_DEV20, "outside_dev21": OUTSIDE_DEV21,
+          "outside_dev22": OUTSIDE_DEV22}
 
 
 # The sealed halves: each made on first use from its own module's rows (foreign_drives.<name>.suite_rows(), so that
@@ -901,6 +939,7 @@ SEALED_FIRST_SEED = {
     "outside_sealed19": 19100,
     "outside_sealed20": 20100,
     "outside_sealed21": 21100,
+    "outside_sealed22": 22100,
 }
 
 SUITE_NAMES = tuple(SUITES) + tuple(SEALED_FIRST_SEED)
