@@ -5,8 +5,9 @@ fusion of 8), and with the classifier's level rule (estimation.estimate_level: n
 LEVEL_MIN_EVENTS). Every estimate of a1+a2 as the monitor publishes it (workbench/width.monitor_widths, packaged
 library). One JSON object on stdout, progress on stderr.
 
-    python bench/_workbench/level_events_scan.py [SUITE ...]   # default: the foreign bench and every spent or
-                                                                # development outside suite
+    python bench/_workbench/level_events_scan.py [SUITE ...]   # default: the alarm check's suites (the foreign
+                                                                # bench and every outside suite, never an unspent
+                                                                # sealed half: width_caveat.alarm_suites)
 """
 from __future__ import annotations
 
@@ -18,15 +19,13 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "bench"))
 
-import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 
-import foreign_drives.forms  # noqa: E402,F401  (foreign_drives.outside needs the forms registered first)
-from foreign_drives.drive import make_recording  # noqa: E402
+from _workbench.outside import _measurement  # noqa: E402  (registers the forms first)
+from _workbench.width_caveat import alarm_suites  # noqa: E402
 from foreign_drives.suites import SUITE_NAMES, suite  # noqa: E402
 
 from backlash_monitor.estimation import estimate_level, level_width, width_level  # noqa: E402
-from backlash_monitor.workbench.measurement import Measurement  # noqa: E402
 from backlash_monitor.workbench.width import monitor_widths  # noqa: E402
 
 PARAMS = yaml.safe_load((ROOT / "config" / "diagnostics.yaml").read_text())["/**"]["ros__parameters"]
@@ -38,9 +37,8 @@ def _wrong(level: str, truth_m: float) -> bool:
 
 
 def row_of(name: str, spec) -> dict:
-    rec = make_recording(spec)
-    meas = Measurement(f"foreign:{spec.label}", rec.sample_period_s, {k: np.asarray(v) for k, v in rec.signals.items()})
-    truth = rec.truth.true_width_m
+    meas, truth_of = _measurement(spec)
+    truth = truth_of.true_width_m
     trace = monitor_widths(meas)
     widths = [level_width(c, f) for c, f in zip(trace.fused_continuous_m, trace.fused_m)]
     events = [int(n) for n in trace.fused_events]
@@ -75,9 +73,7 @@ def main(suites) -> dict:
 
 
 if __name__ == "__main__":
-    from _workbench.outside import UNSPENT_SEALED
-    names = sys.argv[1:] or [n for n in SUITE_NAMES
-                             if (n == "bench" or n.startswith("outside")) and n not in UNSPENT_SEALED]
+    names = sys.argv[1:] or alarm_suites()
     unknown = [n for n in names if n not in SUITE_NAMES]
     if unknown:
         sys.exit(f"level_events_scan: unknown suite(s) {', '.join(unknown)}; allowed: {', '.join(SUITE_NAMES)}")

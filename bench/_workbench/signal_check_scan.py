@@ -4,7 +4,9 @@ the full fusions of what the monitor publishes (workbench/width.monitor_widths, 
 under both rules on the same recording (the rule before: a censored a1+a2 never checked), and how many full fusions
 sit at the range's top. One JSON object on stdout, progress on stderr.
 
-    python bench/_workbench/signal_check_scan.py [SUITE ...]     # default: the foreign bench and every outside suite
+    python bench/_workbench/signal_check_scan.py [SUITE ...]     # default: the alarm check's suites (the foreign
+                                                                  # bench and every outside suite, never an unspent
+                                                                  # sealed half: width_caveat.alarm_suites)
 """
 from __future__ import annotations
 
@@ -15,25 +17,24 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "bench"))
 
 import numpy as np  # noqa: E402
 
-import foreign_drives.forms  # noqa: E402,F401  (foreign_drives.outside needs the forms registered first)
-from foreign_drives.drive import make_recording  # noqa: E402
+from _workbench.outside import _measurement  # noqa: E402  (registers the forms first)
+from _workbench.width_caveat import alarm_suites  # noqa: E402
 from foreign_drives.suites import SUITE_NAMES, suite  # noqa: E402
 
 from backlash_monitor.classifier import signal_check  # noqa: E402
 from backlash_monitor.estimation import DEFAULT_FUSION_EVENTS  # noqa: E402
-from backlash_monitor.workbench.measurement import Measurement  # noqa: E402
 from backlash_monitor.workbench.width import monitor_widths  # noqa: E402
 
 TOP_M = 19.9e-3     # a full fusion at the range's top (shape.continuous_top_m: 20 mm for the paper's grid)
 
 
 def row_of(name: str, spec) -> dict:
-    rec = make_recording(spec)
-    meas = Measurement(f"foreign:{spec.label}", rec.sample_period_s, {k: np.asarray(v) for k, v in rec.signals.items()})
-    truth = rec.truth.true_width_m
+    meas, truth_of = _measurement(spec)
+    truth = truth_of.true_width_m
     row = {"suite": name, "label": spec.label, "true_width_mm": truth * 1e3}
     rule = signal_check._censored_above
     try:
@@ -70,7 +71,7 @@ def main(suites) -> dict:
 
 
 if __name__ == "__main__":
-    names = sys.argv[1:] or [n for n in SUITE_NAMES if n == "bench" or n.startswith("outside")]
+    names = sys.argv[1:] or alarm_suites()
     unknown = [n for n in names if n not in SUITE_NAMES]
     if unknown:
         sys.exit(f"signal_check_scan: unknown suite(s) {', '.join(unknown)}; allowed: {', '.join(SUITE_NAMES)}")
