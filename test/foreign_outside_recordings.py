@@ -146,6 +146,19 @@ def assert_acts_in_its_balance_only(name: str, balance: str, rec, base) -> None:
         assert (v > 0.5) if bal == balance else (v < 1e-6), (name, bal, v)
 
 
+def assert_acts_in_its_balance_only_on_its_suite_row(name: str, balance: str, suite_name: str, params: dict,
+                                                     strength: str) -> None:
+    """A mechanism that acts now and then (in bursts, at times), which a set's short test drive hardly starts: checked
+    on its suite row's own drive without noise, at twice its suite strength (``params[strength]`` doubled), against
+    the same drive without it (assert_acts_in_its_balance_only)."""
+    p = dict(params)
+    p[strength] *= 2.0
+    row = next(s for s in suites.suite(suite_name) if any(e.form == name for e in s.effects))
+    rec = make_recording(dataclasses.replace(row, noise=False, effects=(EffectSpec(name, p),)))
+    base = make_recording(dataclasses.replace(row, noise=False, effects=(), kind="clean"))
+    assert_acts_in_its_balance_only(name, balance, rec, base)
+
+
 def assert_suite_writes_one_recording(out_dir: Path, suite_name: str) -> None:
     """``python -m foreign_drives write --suite SUITE --only LABEL --format npz`` on the suite's first outside row
     writes its recording (4 s at 50 kHz: 200,000 samples of a1, a2) and a manifest naming the suite, the label, the

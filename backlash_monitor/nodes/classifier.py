@@ -39,8 +39,8 @@ from rclpy.node import Node
 from backlash_monitor.classifier.patterns import PatternLibraryError, flagged_warning, load_library
 from backlash_monitor.classifier.signal_check import source_text
 from backlash_monitor.fleet.caveat import width_text, with_caveat
-from backlash_monitor.estimation import (DEFAULT_FUSION_EVENTS, DEFAULT_MODE, LEVEL_MIN_EVENTS, MODES, DriveEstimator,
-                                         estimate_level)
+from backlash_monitor.estimation import (DEFAULT_FUSION_EVENTS, DEFAULT_MODE, MODES, DriveEstimator, estimate_level,
+                                         level_events)
 from backlash_monitor.windowing.faults import FaultLog, InputHealth
 from backlash_monitor.ros.conversions import a1_chain_from_window, from_float64_field, to_float64_array
 from backlash_monitor.ros.drive_diagnostics import DriveDiagnostics
@@ -210,7 +210,7 @@ class ClassifierNode(Node):
         # a1+a2's fusion checked against a1's (classifier/signal_check.py): say when the width is a1's
         source = source_text(estimate.fused_from_signal, estimate.signal_name, estimate.check_reason)
         source = f"; {source}" if source else ""
-        few = min(LEVEL_MIN_EVENTS, p["fusion_events"])
+        few = level_events(p["fusion_events"])
         source += (f"; no level from fewer than {few} events" if estimate.fused_events < few else "")
         self.width_state = (level, f"backlash {shown} (fused over {estimate.fused_events} events{source}; nearest "
                                    f"pattern width {estimate.fused_width_m * 1e3:.2f} mm)", dict(

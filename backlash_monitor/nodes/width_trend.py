@@ -9,10 +9,10 @@ stamp to the offline trend's core (backlash_monitor/fleet/trend.py: LiveTrend, d
 rule of config/trend.yaml) and publishes, once a second, the status ``<node>: width trend`` with
 hardware_id = the drive's name: WARN when the drive grows faster than ``warn_growth_m_per_day``
 (with the days left to ``error_width_m``) or is past ``warn_width_m``, ERROR past
-``error_width_m``, OK otherwise. A width fused over fewer than 3 onset events (a stream's first
+``error_width_m``, OK otherwise (also before the first estimate and while the points span less
+than ``live_min_span_s``: no rate yet). A width fused over fewer than 3 onset events (a stream's first
 windows; ``fusion_events``: the classifier's, where it fuses fewer) is not followed, as the classifier
-raises no level from it (estimation.level_events) (also before the first estimate and while the points span less
-than ``live_min_span_s``: no rate yet). With ``state_file`` the trend's points are kept in that
+raises no level from it (estimation.level_events). With ``state_file`` the trend's points are kept in that
 file (written when a point closes, once per ``live_point_period_s``, and at shutdown) and read at
 start: a restarted monitor goes on with the drive's history; without it the trend starts anew
 when the node starts. The offline trend (`analyze FOLDER`) covers the recordings of any length

@@ -264,7 +264,6 @@ def _alarm_row(r: dict, out_dir: Path, truth: dict, rule, warn_c: float, error_c
     wrong_at = [e.get("entry_time_s") for e, w in zip(mine, widths)
                 if _alarm(estimate_level(w, e["fused_events"], warn_c, error_c), t, warn_c, error_c)]
     cls_wrong = bool(wrong_at)
-    cls_says_fails = says_model_fails(with_caveat("backlash", fit))   # the caveat is the recording's, on every line
     row.update(true_width_mm=t * 1e3, width_mm=r["width_m"] * 1e3,
                width_uncertainty_mm=(math.nan if r.get("width_uncertainty_m") is None else r["width_uncertainty_m"]) * 1e3,
                level=r["level"], reason=r["reason"], model_fit=r.get("model_fit_level"),
@@ -274,7 +273,7 @@ def _alarm_row(r: dict, out_dir: Path, truth: dict, rule, warn_c: float, error_c
                wrong_classifier_alarm_last=cls_wrong_last, classifier_estimates=len(mine),
                classifier_wrong_alarm_estimates=len(wrong_at), classifier_wrong_alarm_first_s=(wrong_at or [None])[0],
                confident_wrong=(trend_wrong and not says_model_fails(r["reason"]))
-               or (cls_wrong and not cls_says_fails),
+               or (cls_wrong and not says_model_fails(cls_line)),     # the caveat is the recording's, on every line
                confident_wrong_last=(trend_wrong and not says_model_fails(r["reason"]))
                or (cls_wrong_last and not says_model_fails(cls_line)))
     log(f"[alarms] {label}: width {row['width_mm']:.2f} ± {row['width_uncertainty_mm']:.2f} mm (truth "

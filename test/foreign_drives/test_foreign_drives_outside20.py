@@ -23,6 +23,7 @@ from foreign_outside_recordings import (OutsideSet, assert_a_row_of_each_half_cr
                                         assert_recordings_repeat, assert_rows_visible, assert_set_registry,
                                         assert_set_suites, assert_suite_writes_one_recording)
 from foreign_outside_recordings import assert_alarm_check_covers_both_halves, assert_bench_guards_unspent_sealed  # test/
+from foreign_outside_recordings import assert_acts_in_its_balance_only_on_its_suite_row  # test/
 from foreign_outside_recordings import extra_clutch_Nm, held_per_segment, others_zero, sample_times_s, slip_rad_s  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
@@ -231,17 +232,8 @@ def test_sealed20_mechanism_acts_in_its_recorded_balance_only(name):
     if name not in ON_ITS_SUITE_ROW:
         assert_acts_in_its_balance_only(name, SEALED20[name].balance, rec_of(name, **_params(name)), clean())
         return
-    import dataclasses
-
-    from foreign_drives import suites
-    from foreign_drives.drive import make_recording
-    from foreign_drives.spec import EffectSpec
-    row = next(s for s in suites.suite("outside_sealed20") if any(e.form == name for e in s.effects))
-    p = dict(_params(name))
-    p[ON_ITS_SUITE_ROW[name]] *= 2.0
-    rec = make_recording(dataclasses.replace(row, noise=False, effects=(EffectSpec(name, p),)))
-    base = make_recording(dataclasses.replace(row, noise=False, effects=(), kind="clean"))
-    assert_acts_in_its_balance_only(name, SEALED20[name].balance, rec, base)
+    assert_acts_in_its_balance_only_on_its_suite_row(name, SEALED20[name].balance, "outside_sealed20", _params(name),
+                                                     ON_ITS_SUITE_ROW[name])
 
 
 # ------------------------------------------------------------------ suites, recordings, forms, bench
