@@ -60,6 +60,8 @@ DEFAULTS: dict[str, Any] = {
         "rail_band_quanta": 4,
         "rail_overpopulation_ratio": 3.0,
         "stuck_min_run_samples": 1000,
+        "stuck_quiet_steps": 1,
+        "stuck_quiet_max_run_samples": 9500,
         "block_samples": 50000,
     },
 }

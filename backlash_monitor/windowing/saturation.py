@@ -15,6 +15,11 @@ as it does. So an extreme value is a **rail** when (config/windowing.yaml ``satu
 
 A **stuck** sensor repeats one value for ``stuck_min_run_samples`` samples or more, not at a rail (a
 dead sensor, a broken wire, a frozen driver): a signal of one value throughout is stuck, not saturated.
+A quantised signal's **quiet stretch** is not: behind a coarse ADC (10-12 bits over +-4 g) a2 between the
+load events moves less than one step and sits on one level for tens of ms. Such a run is entered and left
+by a change of at most ``stuck_quiet_steps`` quantisation steps (the signal drifts to the next level),
+and it is no longer than ``stuck_quiet_max_run_samples``; a dead sensor's hold ends where the signal has
+gone meanwhile (a load event moves a2 by many steps), or runs on past any quiet stretch.
 
 ``assess_signal(x, name)`` -> :class:`SignalSaturation` (one array: a window, a recording);
 ``assess(signals)`` for several; :class:`SaturationCounter` counts a stream in blocks of
@@ -40,6 +45,8 @@ class SaturationSettings:
     rail_band_quanta: int = 4
     rail_overpopulation_ratio: float = 3.0
     stuck_min_run_samples: int = 1000
+    stuck_quiet_steps: int = 1
+    stuck_quiet_max_run_samples: int = 9500
     block_samples: int = 50_000
 
     def __post_init__(self):
@@ -48,6 +55,8 @@ class SaturationSettings:
                                       ("rail_band_quanta", 1, 10_000, True),
                                       ("rail_overpopulation_ratio", 1.0, 1e6, False),
                                       ("stuck_min_run_samples", 2, 10_000_000, True),
+                                      ("stuck_quiet_steps", 0, 1000, True),
+                                      ("stuck_quiet_max_run_samples", 0, 100_000_000, True),
                                       ("block_samples", 2, 100_000_000, True)):
             value = getattr(self, name)
             ok = (not isinstance(value, bool) and isinstance(value, (int, float)) and math.isfinite(value)
@@ -192,6 +201,29 @@ def _rail(x: np.ndarray, side: int, median: float, step: float, runs: tuple,
     return value, int(lengths[good].sum()), int(good.size), mask
 
 
+def _quantised(diff: np.ndarray, step: float) -> bool:
+    """Every change between two samples a whole number of ``step`` (an ADC's output, maybe scaled)."""
+    changes = diff[diff > 0]
+    if step <= 0 or not changes.size:
+        return False
+    ratio = changes / step
+    return bool(np.all(np.abs(ratio - np.rint(ratio)) <= 1e-6 * np.maximum(ratio, 1.0)))
+
+
+def _quiet_quantised_runs(x, diff, step, starts, lengths, candidates, s: SaturationSettings) -> np.ndarray:
+    """The candidate runs that are a quantised signal's quiet stretch, not a hold: entered and left by at most
+    ``stuck_quiet_steps`` steps (a border the stretch does not have -- the block's first or last sample --
+    does not count against it) and no longer than ``stuck_quiet_max_run_samples``."""
+    if s.stuck_quiet_steps < 1 or not _quantised(diff, step):
+        return candidates[:0]
+    begin, end = starts[candidates], starts[candidates] + lengths[candidates]
+    limit = s.stuck_quiet_steps * step * (1 + 1e-6)
+    entered = np.where(begin > 0, np.abs(x[begin] - x[np.maximum(begin - 1, 0)]), 0.0)
+    left = np.where(end < x.size, np.abs(x[np.minimum(end, x.size - 1)] - x[end - 1]), 0.0)
+    quiet = (entered <= limit) & (left <= limit) & (lengths[candidates] <= s.stuck_quiet_max_run_samples)
+    return candidates[quiet]
+
+
 def assess_signal(x, name: str, settings: SaturationSettings | None = None) -> SignalSaturation:
     """Saturated and stuck samples of one signal's stretch (non-finite samples are not looked at)."""
     s = settings or SaturationSettings()
@@ -219,8 +251,11 @@ def assess_signal(x, name: str, settings: SaturationSettings | None = None) -> S
     for mask in (mask_up, mask_lo):
         if mask.size:
             railed |= mask
-    # stuck: runs of one value (not at a rail) at least stuck_min_run_samples long
+    # stuck: runs of one value (not at a rail) at least stuck_min_run_samples long, but a quantised signal's
+    # quiet stretch
     long_ = (lengths >= s.stuck_min_run_samples) & ~railed[starts]
+    if long_.any():
+        long_[_quiet_quantised_runs(x, diff, step, starts, lengths, np.flatnonzero(long_), s)] = False
     stuck = int(lengths[long_].sum())
     stuck_value = float(x[starts[long_][np.argmax(lengths[long_])]]) if stuck else None
     return SignalSaturation(name, int(x.size), n_up + n_lo, runs_up + runs_lo, up, lo, stuck, stuck_value)

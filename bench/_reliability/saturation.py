@@ -15,7 +15,16 @@
   half (other clip levels, seeds, drives, one-rail clips) is run with ``--sealed`` once, at the end, and
   reported as it came out: ``sealed_detected_rate``.
 
-`python bench/_reliability/saturation.py [--sealed]` prints the dict as JSON.
+- quantised (stop 59): a quiet signal behind a coarse ADC is not a stuck sensor, a dead one still is. Clean
+  recordings quantised to N bits over the accelerometers' ranges (a1 +-50 g, a2 +-4 g): ``quantised_false_stuck``
+  counts the signals flagged stuck; and on each of them a2 then a1 made dead three ways (dies in its longest quiet
+  run and holds to the end; holds 30 ms from 10 ms before its largest excursion; holds 0.2 s, entered and left by
+  one step): ``quantised_dead_detected_rate`` (flagged stuck or at a rail over at least the hold). Development:
+  the foreign bench's clean drives and the plant's at 8, 10 and 12 bits (written before the rule, tuned on
+  them); **sealed** (``--sealed-quantised``, run once at the end): the outside sets' clean drives and other plant
+  seeds at 9 and 11 bits.
+
+`python bench/_reliability/saturation.py [--sealed | --sealed-quantised]` prints the dict as JSON.
 """
 from __future__ import annotations
 
@@ -74,10 +83,11 @@ def _foreign(label: str) -> dict:
     return {s: np.asarray(rec.signals[s], dtype=float) for s in ("a1", "a2")}
 
 
-def _count(signals: dict) -> dict:
+def _count(signals: dict, **overrides) -> dict:
     from backlash_monitor.windowing import DEFAULTS
     from backlash_monitor.windowing.saturation import SaturationCounter, SaturationSettings
-    counter = SaturationCounter(("a1", "a2"), SaturationSettings.from_config(DEFAULTS["saturation"]))
+    counter = SaturationCounter(("a1", "a2"),
+                                SaturationSettings.from_config({**DEFAULTS["saturation"], **overrides}))
     for k in range(0, len(signals["a1"]), 5000):          # chunks, as a stream comes
         counter.feed({s: v[k:k + 5000] for s, v in signals.items()})
     counter.flush()
@@ -146,8 +156,108 @@ def _false_flags() -> tuple[int, list]:
     return flags, rows
 
 
-def run(sealed: bool = False) -> dict:
+RANGE_M_S2 = {"a1": 50 * 9.81, "a2": 4 * 9.81}
+QUANTISED_DEV = {"bits": (8, 10, 12), "plant_seeds": (41, 42, 43, 44)}
+QUANTISED_SEALED = {"bits": (9, 11), "plant_seeds": (61, 62, 63),
+                    "outside_clean": ("od_clean_w6.0_eta0.03_n0.92", "od2_clean_w5.8_eta0.028_n0.91",
+                                      "od3_clean_w7.8_eta0.04_n0.95", "od5_clean_w7.2_eta0.0325_n0.92",
+                                      "od7_clean_w7.6_eta0.0275_n0.93")}
+
+
+def _quantised_recordings(sealed: bool) -> dict:
+    """{name: {a1, a2}} unquantised: the development or the sealed clean drives."""
+    from foreign_drives.drive import make_recording
+    from foreign_drives.suites import BENCH, SUITES
+    recs = {}
+    if sealed:
+        specs = {s.label: s for suite in SUITES.values() for s in suite}
+        for label in QUANTISED_SEALED["outside_clean"]:
+            rec = make_recording(dataclasses.replace(specs[label], duration_s=DURATION_S))
+            recs[f"foreign:{label}"] = {s: np.asarray(rec.signals[s], dtype=float) for s in ("a1", "a2")}
+    else:
+        for spec in BENCH:
+            if spec.kind == "clean":
+                recs[f"foreign:{spec.label}"] = _foreign(spec.label)
+    cfg = QUANTISED_SEALED if sealed else QUANTISED_DEV
+    specs = [(0.004 + 0.001 * k, 0.02 + 0.01 * k, 0.9 + 0.02 * k, seed) for k, seed in enumerate(cfg["plant_seeds"])]
+    for spec, sig in zip(specs, _plant(specs)):
+        recs[f"plant:seed{spec[3]}"] = sig
+    return recs
+
+
+def _dead_versions(x: np.ndarray, step: float) -> dict:
+    """The signal made dead three ways: {how: (signal, samples held)}."""
+    starts = np.concatenate(([0], np.flatnonzero(np.diff(x)) + 1))
+    lengths = np.diff(np.concatenate((starts, [x.size])))
+    out = {}
+    i = int(starts[np.argmax(lengths)])
+    if i > x.size - 20_000:
+        i = x.size // 2
+    held = x.copy()
+    held[i:] = x[i]
+    out["holds_to_the_end"] = (held, x.size - i)
+    peak = int(np.argmax(np.abs(x - np.median(x))))
+    i = max(peak - 500, 1)
+    held = x.copy()
+    held[i:i + 1500] = x[i - 1]
+    out["holds_30ms_across_an_event"] = (held, 1500)
+    i = x.size // 3
+    held = x.copy()
+    held[i:i + 10_000] = x[i - 1]
+    held[i + 10_000] = x[i - 1] + step
+    out["holds_0.2s_left_by_one_step"] = (held, 10_000)
+    return out
+
+
+def _quantised(sealed: bool) -> dict:
+    from backlash_monitor.windowing.saturation import assess_signal
+    from backlash_monitor.windowing import DEFAULTS
+    from backlash_monitor.windowing.saturation import SaturationSettings
+    settings = SaturationSettings.from_config(DEFAULTS["saturation"])
+    cfg = QUANTISED_SEALED if sealed else QUANTISED_DEV
+    false_stuck, before, found_before, clean_rows, dead_rows = 0, 0, 0, [], []
+    for name, sig in _quantised_recordings(sealed).items():
+        for bits in cfg["bits"]:
+            adc = {}
+            for s in ("a1", "a2"):
+                step = 2 * RANGE_M_S2[s] / 2 ** bits
+                adc[s] = np.round(sig[s] / step) * step
+            totals = _count(adc)
+            flagged = [r.message() for r in totals.values() if r.stuck]
+            false_stuck += len(flagged)
+            before += sum(bool(r.stuck) for r in _count(adc, stuck_quiet_steps=0).values())
+            clean_rows.append({"recording": name, "bits": bits, "stuck": flagged,
+                               "rail": [r.message() for r in totals.values() if r.at_rail]})
+            if flagged:
+                _log("FALSE STUCK", name, bits, flagged)
+            for s in ("a2", "a1"):
+                step = 2 * RANGE_M_S2[s] / 2 ** bits
+                for how, (held, n) in _dead_versions(adc[s], step).items():
+                    r = assess_signal(held, s, settings)
+                    found = bool(r.stuck + r.at_rail >= n)
+                    off = assess_signal(held, s, dataclasses.replace(settings, stuck_quiet_steps=0))
+                    found_before += bool(off.stuck + off.at_rail >= n)
+                    dead_rows.append({"recording": name, "bits": bits, "signal": s, "how": how, "held": n,
+                                      "detected": found, "message": r.message()})
+                    if not found:
+                        _log("DEAD NOT FOUND", name, bits, s, how, r.message())
+    prefix = "sealed_" if sealed else ""
+    return {f"{prefix}quantised_false_stuck": false_stuck,
+            f"{prefix}quantised_false_stuck_without_quiet_rule": before,
+            f"{prefix}quantised_recordings": len(clean_rows),
+            f"{prefix}quantised_false_rail": sum(bool(r["rail"]) for r in clean_rows),
+            f"{prefix}quantised_dead_detected_rate": sum(r["detected"] for r in dead_rows) / len(dead_rows),
+            f"{prefix}quantised_dead_detected_rate_without_quiet_rule": found_before / len(dead_rows),
+            f"{prefix}quantised_dead_cases": len(dead_rows),
+            "details": {"quantised_clean": clean_rows, "quantised_dead": dead_rows}}
+
+
+def run(sealed: bool = False, sealed_quantised: bool = False) -> dict:
     started = time.perf_counter()
+    if sealed_quantised:
+        out = _quantised(True)
+        out["seconds"] = round(time.perf_counter() - started, 1)
+        return out
     cases = SEALED_CLIP_CASES if sealed else DEV_CLIP_CASES
     rate, rows = _clip_cases(cases, _recordings(cases))
     _log(f"{'sealed' if sealed else 'dev'} clip cases: {sum(r['detected'] for r in rows)} of {len(rows)} detected")
@@ -159,6 +269,9 @@ def run(sealed: bool = False) -> dict:
         out["saturation_false_flags"] = flags
         out["clean_recordings"] = len(clean_rows)
         details["clean"] = clean_rows
+        quantised = _quantised(False)
+        details.update(quantised.pop("details"))
+        out.update(quantised)
     out["clip_cases"] = len(rows)
     out["seconds"] = round(time.perf_counter() - started, 1)
     out["details"] = details
@@ -166,4 +279,5 @@ def run(sealed: bool = False) -> dict:
 
 
 if __name__ == "__main__":
-    print(json.dumps(run(sealed="--sealed" in sys.argv[1:]), indent=1))
+    print(json.dumps(run(sealed="--sealed" in sys.argv[1:], sealed_quantised="--sealed-quantised" in sys.argv[1:]),
+                     indent=1))
