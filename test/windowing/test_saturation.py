@@ -178,6 +178,10 @@ def test_settings_come_from_the_yaml():
     assert s == SaturationSettings()
     with pytest.raises(ValueError, match="rail_min_run_samples"):
         SaturationSettings(rail_min_run_samples=0)
+    with pytest.raises(ValueError, match=r"stuck_quiet_steps = -1; allowed: an integer in \[0, 1000\]"):
+        SaturationSettings(stuck_quiet_steps=-1)
+    with pytest.raises(ValueError, match="stuck_quiet_max_run_samples"):
+        SaturationSettings(stuck_quiet_max_run_samples=0.5)
 
 
 def test_a_rail_hit_on_a_few_samples_is_said_as_their_count_never_as_zero_percent():
