@@ -201,23 +201,28 @@ def _rail(x: np.ndarray, side: int, median: float, step: float, runs: tuple,
     return value, int(lengths[good].sum()), int(good.size), mask
 
 
-def _quantised(diff: np.ndarray, step: float) -> bool:
-    """Every change between two samples a whole number of ``step`` (an ADC's output, maybe scaled)."""
+def _quantised(x: np.ndarray, diff: np.ndarray, step: float) -> bool:
+    """Every change between two samples a whole number of ``step`` (an ADC's output, maybe scaled and offset),
+    to within the values' own representation (float32 holds 2^-24 of |x|: a float32 recording of an ADC's levels
+    is still quantised). An unquantised signal's smallest change is far below that: not quantised."""
     changes = diff[diff > 0]
     if step <= 0 or not changes.size:
         return False
+    representation = 2.0 ** -22 * float(np.max(np.abs(x))) / step     # in steps: a few float32 ulps of |x|
+    if representation > 0.05:
+        return False
     ratio = changes / step
-    return bool(np.all(np.abs(ratio - np.rint(ratio)) <= 1e-6 * np.maximum(ratio, 1.0)))
+    return bool(np.all(np.abs(ratio - np.rint(ratio)) <= 1e-6 * np.maximum(ratio, 1.0) + 2 * representation))
 
 
 def _quiet_quantised_runs(x, diff, step, starts, lengths, candidates, s: SaturationSettings) -> np.ndarray:
     """The candidate runs that are a quantised signal's quiet stretch, not a hold: entered and left by at most
     ``stuck_quiet_steps`` steps (a border the stretch does not have -- the block's first or last sample --
     does not count against it) and no longer than ``stuck_quiet_max_run_samples``."""
-    if s.stuck_quiet_steps < 1 or not _quantised(diff, step):
+    if s.stuck_quiet_steps < 1 or not _quantised(x, diff, step):
         return candidates[:0]
     begin, end = starts[candidates], starts[candidates] + lengths[candidates]
-    limit = s.stuck_quiet_steps * step * (1 + 1e-6)
+    limit = (s.stuck_quiet_steps + 0.5) * step          # whole steps: half a step apart
     entered = np.where(begin > 0, np.abs(x[begin] - x[np.maximum(begin - 1, 0)]), 0.0)
     left = np.where(end < x.size, np.abs(x[np.minimum(end, x.size - 1)] - x[end - 1]), 0.0)
     quiet = (entered <= limit) & (left <= limit) & (lengths[candidates] <= s.stuck_quiet_max_run_samples)

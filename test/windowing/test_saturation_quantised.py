@@ -75,6 +75,20 @@ def test_a_quiet_signal_behind_a_coarse_adc_is_not_at_a_rail(recordings, bits):
             assert r.at_rail == 0, (label, name, bits, r.message())
 
 
+@pytest.mark.parametrize("bits", [10, 12])
+def test_an_adc_recorded_as_float32_and_calibrated_is_still_quantised(recordings, bits):
+    """Added after the first rule missed it: a bag may hold a1/a2 as float32 (2^-24 of |x| off an ADC's level),
+    and a driver may scale and offset the levels (a calibration): the changes are still whole steps."""
+    for label, sig in recordings.items():
+        x = quantise(sig["a2"], lsb("a2", bits))
+        for how, y in (("float32", x.astype(np.float32)), ("calibrated float32", (0.98 * x + 0.013).astype(np.float32))):
+            r = assess_signal(np.asarray(y, dtype=float), "a2")
+            assert r.stuck == 0, (label, bits, how, r.message())
+            dead = np.asarray(y, dtype=float).copy()
+            dead[20_000:] = dead[20_000]
+            assert assess_signal(dead, "a2").stuck + assess_signal(dead, "a2").at_rail >= dead.size - 20_000
+
+
 def test_a_coarse_adc_counted_in_blocks_as_a_stream_is_not_stuck(recordings):
     for label, sig in recordings.items():
         counter = SaturationCounter(("a1", "a2"), SaturationSettings(block_samples=50_000))
