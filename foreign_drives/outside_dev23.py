@@ -65,3 +65,272 @@ Kinds (balance x what it reads, and how), the development half -- things a real 
     mean, a one-shot, an on-delay, a peak, a PI, a rate limiter, a squeal, a stroke sample, a tank and a thermostat --
     none a PWM).
 """
+from __future__ import annotations
+
+import numpy as np
+from scipy.signal import lfilter
+
+from . import kernel as K
+from .forms import Param
+from .outside import OutsideForm, add_term
+from .outside_dev4 import segments, set_memory
+from .outside_dev6 import set_extra
+from .outside_dev8 import MassRunToRunBooster
+
+
+# 1. motor load moment x the carriage's speed through a clipped linear law
+class MotorLineSpeedFollowerTrim(OutsideForm):
+    name = "motor_line_speed_follower_trim"
+    half = "dev23"
+    balance = "motor_load_moment"
+    depends_on = ("mass_speed",)
+    description = ("the drive's line-speed follower: a tacho wheel on the carriage feeds the motor's converter a torque "
+                   "trim proportional to the carriage's speed error over v_0, its authority limited to +-T by the "
+                   "converter's trim limit: T*clip((v - v_0)/dv, -1, 1), loading the motor while the carriage runs fast")
+    parameters = (Param("torque_Nm", "N*m", (0.0, 50.0), "T"),
+                  Param("reference_m_s", "m/s", (0.0, 100.0), "v_0"),
+                  Param("span_m_s", "m/s", (1e-4, 10.0), "dv: the speed error at the trim's limit"))
+    note = "a motor load of the carriage's speed error, clipped at the trim's limit (a clipped law of the carriage's speed)"
+
+    def apply(self, b, p):
+        add_term(b, "motor_load_moment", p["torque_Nm"] / p["span_m_s"],
+                 (K.XS_MASS_SPEED, K.XF_CLIP, p["span_m_s"], -p["reference_m_s"], 0.0))
+
+    @staticmethod
+    def torque(v, p):
+        q = (np.asarray(v, dtype=np.float64) - p["reference_m_s"]) / p["span_m_s"]
+        return p["torque_Nm"] * np.clip(q, -1.0, 1.0)
+
+    def law(self, p):
+        return (f"motor load moment += {p['torque_Nm']:.6g} N*m * clip((v - {p['reference_m_s']:.6g} m/s)/"
+                f"{p['span_m_s']:.6g} m/s, -1, 1), v the carriage's speed")
+
+
+# 3. wheel torque x the spring's extension through a run-to-run controller
+class WheelRunToRunTensionTrim(OutsideForm):
+    name = "wheel_run_to_run_tension_trim"
+    half = "dev23"
+    balance = "wheel_torque"
+    depends_on = ("spring_extension", "load_pulse")
+    description = ("an iterative-learning (stroke-to-stroke) tension trim: an auxiliary servo on the drum's shaft whose "
+                   "torque setpoint a PLC updates at each load pulse's first 0.2 ms scan from the mean extension over the "
+                   "scans since the last update: u_k = clip(u_{k-1} + g*(mean z - z_r), -U, U), held; -u on the wheel "
+                   "(u = 0 at the run-in's start)")
+    parameters = (Param("gain_Nm_per_m", "N*m/m", (0.0, 1e5), "g: the setpoint's change per m of the stroke's mean"),
+                  Param("reference_m", "m", (0.0, 1.0), "z_r"),
+                  Param("limit_Nm", "N*m", (0.0, 50.0), "U"))
+    note = "a wheel torque set once per stroke from the extension's mean over the stroke before (a run-to-run controller)"
+
+    def apply(self, b, p):
+        set_memory(b, self.name, K.MK_RUN_TO_RUN, K.XS_SPRING_EXTENSION, p["gain_Nm_per_m"], p["reference_m"],
+                   p["limit_Nm"])
+        add_term(b, "wheel_torque", 1.0, (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0), nonperiodic=True)
+
+    @staticmethod
+    def torque(z_at_scans, count_at_scans, p, t0=0.0):
+        """The wheel torque -u at each scan from the extension and the pulse count at the scans' starts (the first scan a
+        pulse's first: the mean starts there with the torque t0) (the eighth set's run-to-run element, re-run)."""
+        q = {"gain_N_s_per_m": p["gain_Nm_per_m"], "reference_speed_m_s": p["reference_m"],
+             "force_limit_N": p["limit_Nm"]}
+        return MassRunToRunBooster.force(z_at_scans, count_at_scans, q, t0)
+
+    def law(self, p):
+        return (f"wheel torque += -u, u -> clip(u + {p['gain_Nm_per_m']:.6g} N*m/m * (mean z since the last stroke's "
+                f"start - {p['reference_m']:.6g} m), +-{p['limit_Nm']:.6g} N*m) at each load pulse's first 0.2 ms scan, "
+                "held, z the spring's extension")
+
+
+# 5. clutch torque x the magnitude of the jaw's angle difference times the slip
+class ClutchTaperedVaneDamper(OutsideForm):
+    name = "clutch_tapered_vane_damper"
+    half = "dev23"
+    balance = "clutch_torque"
+    depends_on = ("motor_angle", "wheel_angle", "motor_speed", "wheel_speed")
+    description = ("a tapered-vane damper between the jaw's halves: the vane's clearance in its chamber narrows as the "
+                   "halves twist apart either way, so its damping grows with the twist: c*|D|*(Omega1 - Omega2) from "
+                   "the motor to the wheel, D the jaw's angle difference, in the gap and in contact")
+    parameters = (Param("coefficient_Nm_s_per_rad2", "N*m*s/rad^2", (0.0, 1e4), "c"),)
+    note = "a damping of the slip that grows with the jaw's twist either way (the magnitude of the jaw's angle times the slip)"
+
+    def apply(self, b, p):
+        add_term(b, "clutch_torque", p["coefficient_Nm_s_per_rad2"], (K.XS_JAW_ANGLE, K.XF_ABS, 0.0, 0.0, 0.0),
+                 (K.XS_JAW_SPEED, K.XF_X, 0.0, 0.0, 0.0))
+
+    @staticmethod
+    def torque(d, slip, p):
+        return (p["coefficient_Nm_s_per_rad2"] * np.abs(np.asarray(d, dtype=np.float64))
+                * np.asarray(slip, dtype=np.float64))
+
+    def law(self, p):
+        return (f"clutch torque += {p['coefficient_Nm_s_per_rad2']:.6g} N*m*s/rad^2 * |D| * (Omega1 - Omega2), D the "
+                "jaw's angle difference, in the gap and in contact")
+
+
+# 7. mass force x the spring's extension through a three-point step controller
+class MassTensionStepHoldback(OutsideForm):
+    name = "mass_tension_step_holdback"
+    half = "dev23"
+    balance = "mass_force"
+    depends_on = ("spring_extension",)
+    description = ("a hold-back magnet on the carriage whose excitation a raise/hold/lower controller of the tow cable's "
+                   "extension steps: one step up each t_s the extension stays above z_r + b, one down each t_s it stays "
+                   "below z_r - b, within 0..N steps (scanned every 0.2 ms): -F*m, m the steps (m = 0 at the run-in's "
+                   "start)")
+    parameters = (Param("force_per_step_N", "N", (0.0, 100.0), "F"),
+                  Param("reference_m", "m", (0.0, 1.0), "z_r"),
+                  Param("dead_band_m", "m", (0.0, 0.5), "b"),
+                  Param("step_time_s", "s", (2e-4, 10.0), "t_s"),
+                  Param("steps", "-", (1.0, 1000.0), "N (a whole number)"))
+    note = "a hold-back on the carriage stepped by a three-point controller of the cable's extension"
+
+    def apply(self, b, p):
+        set_memory(b, self.name, K.MK_STEP, K.XS_SPRING_EXTENSION, p["reference_m"], p["dead_band_m"],
+                   p["step_time_s"])
+        set_extra(b, float(int(p["steps"])))
+        add_term(b, "mass_force", -p["force_per_step_N"], (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0), nonperiodic=True)
+
+    @staticmethod
+    def steps(z_at_scans, p, dt, m0=0.0, run0=0, d0=0.0):
+        """The steps m after each scan from the extension at the scans' starts (the three-point controller re-run: m0
+        the steps, run0 the scans of the same direction d0 counted, before the first)."""
+        z = np.asarray(z_at_scans, dtype=np.float64).tolist()
+        hi, lo = p["reference_m"] + p["dead_band_m"], p["reference_m"] - p["dead_band_m"]
+        top, ts = float(int(p["steps"])), p["step_time_s"]
+        out, m, n, dprev = np.zeros(len(z)), m0, float(run0), d0
+        for i, x in enumerate(z):
+            d = 1.0 if x > hi else (-1.0 if x < lo else 0.0)
+            n = 0.0 if d == 0.0 else (n + 1.0 if d == dprev else 1.0)
+            dprev = d
+            if d != 0.0 and n * dt >= ts - 1e-12:
+                m = min(top, max(0.0, m + d))
+                n = 0.0
+            out[i] = m
+        return out
+
+    def law(self, p):
+        return (f"mass force += -{p['force_per_step_N']:.6g} N * m, m stepped up each {p['step_time_s']:.6g} s the "
+                f"extension stays above {p['reference_m']:.6g} + {p['dead_band_m']:.6g} m, down each "
+                f"{p['step_time_s']:.6g} s it stays below {p['reference_m']:.6g} - {p['dead_band_m']:.6g} m, within "
+                f"0..{int(p['steps'])} (scanned every 0.2 ms)")
+
+
+# 9. a1 sensor x the motor's electromagnetic torque, additive
+class A1StatorFieldPickup(OutsideForm):
+    name = "a1_stator_field_pickup"
+    half = "dev23"
+    stage = "sensor"
+    order = 1                      # the readout, after the sensing element
+    uses_states = True
+    balance = "sensor"
+    channel = "a1"
+    depends_on = ("motor_acceleration", "load_pulse")
+    description = ("a1's MEMS readout picks up the stray field of the stator's current (its demodulator's reference coil "
+                   "sits in the end winding's field): an offset proportional to the torque-producing current: y = x + "
+                   "k*t_e, t_e the motor's electromagnetic torque [p.u.]")
+    parameters = (Param("coefficient_m_s2", "m/s^2", (-100.0, 100.0), "k (per p.u. of torque)"),)
+    note = "an additive a1 error following the motor's electromagnetic torque (a stray field of the stator's current)"
+
+    def apply_signal(self, sig, p, t, fs, states=None):
+        sig["a1"] = self.read(sig["a1"], states["te_pu"], p)
+
+    @staticmethod
+    def read(a1, te, p):
+        a1 = np.asarray(a1, dtype=np.float64)
+        if p["coefficient_m_s2"] == 0.0:
+            return a1
+        return a1 + p["coefficient_m_s2"] * np.asarray(te, dtype=np.float64)
+
+    def law(self, p):
+        return f"a1 sensor = a1 + {p['coefficient_m_s2']:.6g} m/s^2 * t_e, t_e the motor's electromagnetic torque (p.u.)"
+
+
+# 11. a2 sensor x the signal's square through a lag, additive (vibration rectification)
+class A2VibrationRectification(OutsideForm):
+    name = "a2_vibration_rectification"
+    half = "dev23"
+    stage = "sensor"
+    order = 0                      # the sensing element itself
+    uses_states = False
+    balance = "sensor"
+    channel = "a2"
+    depends_on = ("mass_acceleration",)
+    description = ("a2's MEMS element rectifies vibration: an asymmetric squeeze film and a nonlinear spring shift its "
+                   "zero by a part of the recent mean square of the acceleration: y = x + k*m, m a first-order lag of "
+                   "x^2 of time constant tau sample by sample (m[n] = m[n-1] + (x[n]^2 - m[n-1])*(1 - exp(-1/(fs*tau))), "
+                   "m = x^2 at the pre-roll's first sample)")
+    parameters = (Param("coefficient_s2_per_m", "s^2/m", (0.0, 10.0), "k (offset per (m/s^2)^2)"),
+                  Param("time_constant_s", "s", (1e-4, 100.0), "tau"))
+    note = "an a2 zero shift following the lagged square of a2 (vibration rectification)"
+
+    def apply_signal(self, sig, p, t, fs, states=None):
+        sig["a2"] = self.read(sig["a2"], fs, p)
+
+    @staticmethod
+    def mean_square(x, fs, tau):
+        """The lagged square m of x at each sample (m = x[0]^2 at the first)."""
+        x2 = np.asarray(x, dtype=np.float64) ** 2
+        q = 1.0 - np.exp(-1.0 / (fs * tau))
+        m, _ = lfilter([q], [1.0, -(1.0 - q)], x2[1:], zi=[(1.0 - q) * x2[0]])
+        return np.concatenate((x2[:1], m))
+
+    @classmethod
+    def read(cls, a2, fs, p):
+        a2 = np.asarray(a2, dtype=np.float64)
+        if p["coefficient_s2_per_m"] == 0.0:
+            return a2
+        return a2 + p["coefficient_s2_per_m"] * cls.mean_square(a2, fs, p["time_constant_s"])
+
+    def law(self, p):
+        return (f"a2 sensor = a2 + {p['coefficient_s2_per_m']:.6g} s^2/m * m, m a first-order lag of a2^2 of time "
+                f"constant {p['time_constant_s']:.6g} s")
+
+
+# 13. clutch torque x the slip through a PWM actuator
+class ClutchPwmSlipCoupling(OutsideForm):
+    name = "clutch_pwm_slip_coupling"
+    half = "dev23"
+    balance = "clutch_torque"
+    depends_on = ("motor_speed", "wheel_speed")
+    description = ("an eddy-current slip coupling beside the jaw whose field a PWM chopper switches fully on or off: at "
+                   "each PWM period's start (n scans of 0.2 ms from the run-in's start) the PLC samples the slip s and "
+                   "sets the duty d = clip((s - s_0)/s_w, 0, 1); the field is on for the period's first round(d*n) scans: "
+                   "c*m*(Omega1 - Omega2) from the motor to the wheel, m = 1 while on, else 0")
+    parameters = (Param("coefficient_Nm_s_per_rad", "N*m*s/rad", (0.0, 100.0), "c"),
+                  Param("period_s", "s", (4e-4, 0.05), "the PWM period n*0.2 ms (a multiple of 0.2 ms)"),
+                  Param("zero_duty_slip_rad_s", "rad/s", (-50.0, 50.0), "s_0"),
+                  Param("full_duty_span_rad_s", "rad/s", (0.01, 50.0), "s_w"))
+    note = "a slip coupling switched on and off by a PWM chopper whose duty the sampled slip sets (a PWM of the slip)"
+
+    def apply(self, b, p):
+        per = segments(p["period_s"], f"{self.name}: period_s")
+        set_memory(b, self.name, K.MK_PWM, K.XS_JAW_SPEED, float(per), p["zero_duty_slip_rad_s"],
+                   p["full_duty_span_rad_s"])
+        add_term(b, "clutch_torque", p["coefficient_Nm_s_per_rad"], (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0),
+                 (K.XS_JAW_SPEED, K.XF_X, 0.0, 0.0, 0.0), nonperiodic=True)
+
+    @staticmethod
+    def gate(slip_at_scans, p, phase0=0):
+        """The field's state (0/1) at each scan from the slip at the scans' starts, the first scan at place ``phase0``
+        of its PWM period (the sixth set's PWM element, re-run; a period starting before the first scan: nan until the
+        next period's start)."""
+        per = segments(p["period_s"], "period_s")
+        s = np.asarray(slip_at_scans, dtype=np.float64)
+        out = np.full(s.size, np.nan)
+        duty = None
+        for i in range(s.size):
+            k = (phase0 + i) % per
+            if k == 0:
+                duty = min(1.0, max(0.0, (s[i] - p["zero_duty_slip_rad_s"]) / p["full_duty_span_rad_s"]))
+            if duty is not None:
+                out[i] = 1.0 if k < round(duty * per) else 0.0
+        return out
+
+    def law(self, p):
+        return (f"clutch torque += {p['coefficient_Nm_s_per_rad']:.6g} N*m*s/rad * m * (Omega1 - Omega2), m = 1 within "
+                f"the first d*{p['period_s']:.6g} s of each PWM period, else 0, d = clip((s - "
+                f"{p['zero_duty_slip_rad_s']:.6g} rad/s)/{p['full_duty_span_rad_s']:.6g} rad/s, 0, 1), s the slip "
+                "sampled at the period's start")
+
+
+FORM_CLASSES = (MotorLineSpeedFollowerTrim, WheelRunToRunTensionTrim, ClutchTaperedVaneDamper, MassTensionStepHoldback,
+                A1StatorFieldPickup, A2VibrationRectification, ClutchPwmSlipCoupling)
