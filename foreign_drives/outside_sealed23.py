@@ -39,6 +39,20 @@ Kinds (balance x what it reads, and how), the sealed half:
     takes up a part of the extension, the more the slacker the cable, so the pull on the carriage falls short of the
     spring's by F*(z_0/z)^2 (the earlier laws of the extension on the carriage are linear, clipped, an excess, a
     Lorentzian, a sine and, behind memories, many -- none an inverse power).
+Visibility, measured (one simulation of each suite row, 4 s, against the same spec without the mechanism, same seed; no
+diagnose; rms of the recorded signal's difference; criterion a2 >= 0.05 m/s^2, a1 >= 0.25 for an a1 row): 2 a2 0.0561;
+4 a2 0.295; 6 a2 0.157; 8 a2 0.0912; 10 a1 0.2167 at its a-priori strength, scaled once x1.73 (the full scale F 256 ->
+443.04 m/s^2), a1 0.222 after: STILL BELOW the criterion, left there (the block's shared exponent takes the full scale's
+scaling nearly all back: each block's range stays within a factor 2 of its peak, so the step relative to the signal
+hardly moves; the mantissa's bits set it, and the one scaling was spent on the full scale; not scaled again); 12 a2
+0.0800; 14 a2 0.0510 -- 2, 4, 6, 8, 12 and 14 as written. The codec (10) has no neutral value inside its bounds.
+
+Implementation: the knock-sampled brake (2) is the tenth set's MK_IMPACT_SAMPLE of XS_OMEGA1, its term XF_EXCESS_POWER
+(power 1) of XS_MEMORY; the release brake (4) XF_CUSHION of XS_OMEGA2; the lock-up (6) the seventh set's MK_LATCH of
+XS_PENETRATION_DEPTH, its term XS_MEMORY times XS_JAW_SPEED; the fairlead clamp (8) XF_PERIODIC_DECAY of XS_ALPHA2
+(period 2*pi; angle-locked, so left out of the settled start's period map); the codec (10) and the sign-magnitude
+converter (12) sensor forms in numpy on a1 and a2 alone; the sagging cable (14) XF_POWER (exponent -2) of
+XS_SPRING_EXTENSION. No kernel change.
 """
 from __future__ import annotations
 
@@ -285,9 +299,10 @@ def suite_rows():
         ("os23_mass_fairlead_clamp_jerk", "outside", 0.0083, 0.0250, 0.90,
          [E("mass_fairlead_clamp_jerk", {"force_N": 5.0, "angle_rad": 0.0, "decay_rad": 0.5})]),
         ("os23_clean_w7.5_eta0.0240_n0.93", "clean", 0.0075, 0.0240, 0.93, []),
-        # 256 m/s^2 full scale, 7-bit mantissas, blocks of 64 samples, 8 exponent steps
+        # 256 m/s^2 full scale a priori, 7-bit mantissas, blocks of 64 samples, 8 exponent steps; a1 0.2167: scaled
+        # once x1.73 (the full scale), a1 0.222 after: left below the criterion (the block exponent takes it back)
         ("os23_a1_block_floating_point_codec", "outside", 0.0070, 0.0280, 0.95,
-         [E("a1_block_floating_point_codec", {"full_scale_m_s2": 256.0, "mantissa_bits": 7.0, "block_samples": 64.0,
+         [E("a1_block_floating_point_codec", {"full_scale_m_s2": 443.04, "mantissa_bits": 7.0, "block_samples": 64.0,
                                               "exponent_steps": 8.0})]),
         # 0.08 m/s^2 with the sign
         ("os23_a2_sign_magnitude_offset", "outside", 0.0078, 0.0225, 0.91,
