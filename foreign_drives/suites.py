@@ -894,7 +894,8 @@ OUTSIDE_DEV23_ROWS = [
     # 40 N*m*s/rad^2 (about 2 N*m at a twist of 0.05 rad and a slip of 1 rad/s)
     ("od23_clutch_tapered_vane_damper", "outside", 0.0068, 0.0275, 0.91,
      [E("clutch_tapered_vane_damper", {"coefficient_Nm_s_per_rad2": 40.0})]),
-    # 1 N a step, 8 steps, about 0.299 m +-6 mm, a step each 10 ms outside the band
+    # 1 N a step, 8 steps (8 N of hold-back at the start, released step by step), about 0.299 m +-6 mm, a step each
+    # 10 ms outside the band
     ("od23_mass_tension_step_holdback", "outside", 0.0077, 0.0230, 0.97,
      [E("mass_tension_step_holdback", {"force_per_step_N": 1.0, "reference_m": 0.299, "dead_band_m": 0.006,
                                        "step_time_s": 0.01, "steps": 8.0})]),
