@@ -877,6 +877,41 @@ OUTSIDE_DEV22_ROWS = [
      [E("motor_ratchet_backstop_clicks", {"torque_Nm": 0.5, "teeth": 12.0, "angle_rad": 0.0, "decay_rad": 0.1})]),
 ]
 
+# ---- issue 31 part 4, twenty-third set: mechanisms outside the catalogue of other kinds again
+# (foreign_drives.outside_dev23; the twenty-third sealed half's rows are in foreign_drives.outside_sealed23). One
+# mechanism per row at its own nominal conditions, one clean control. Seeds 23000+. Each strength set by one simulation
+# against the clean drive of the same seed (docs/foreign_drives.md "The twenty-third set"). The a-priori values are read
+# off the documented clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, the slip within about +-5 rad/s, the
+# jaw's angle difference within +-0.064 rad, z 0.288-0.313 m, v 22.67-22.77 m/s, t_e 0.44-0.89 p.u.; a2 rms about 1
+# m/s^2; the pulse 60 ms every 0.25 s; T_b = 20 N*m).
+OUTSIDE_DEV23_ROWS = [
+    # +-2 N*m over +-0.03 m/s of the carriage's speed about 22.72 m/s
+    ("od23_motor_line_speed_follower_trim", "outside", 0.0071, 0.0255, 0.93,
+     [E("motor_line_speed_follower_trim", {"torque_Nm": 2.0, "reference_m_s": 22.72, "span_m_s": 0.03})]),
+    # 200 N*m per m of the stroke's mean extension over 0.296 m (about 0.5 N*m a stroke at first), within +-3 N*m
+    ("od23_wheel_run_to_run_tension_trim", "outside", 0.0082, 0.0240, 0.95,
+     [E("wheel_run_to_run_tension_trim", {"gain_Nm_per_m": 200.0, "reference_m": 0.296, "limit_Nm": 3.0})]),
+    # 40 N*m*s/rad^2 (about 2 N*m at a twist of 0.05 rad and a slip of 1 rad/s)
+    ("od23_clutch_tapered_vane_damper", "outside", 0.0068, 0.0275, 0.91,
+     [E("clutch_tapered_vane_damper", {"coefficient_Nm_s_per_rad2": 40.0})]),
+    # 1 N a step, 8 steps (8 N of hold-back at the start, released step by step), about 0.299 m +-6 mm, a step each
+    # 10 ms outside the band
+    ("od23_mass_tension_step_holdback", "outside", 0.0077, 0.0230, 0.97,
+     [E("mass_tension_step_holdback", {"force_per_step_N": 1.0, "reference_m": 0.299, "dead_band_m": 0.006,
+                                       "step_time_s": 0.01, "steps": 8.0})]),
+    ("od23_clean_w7.2_eta0.0250_n0.96", "clean", 0.0072, 0.0250, 0.96, []),
+    # 1 m/s^2 per p.u. of the torque (an offset of about 0.6 m/s^2 swinging by about +-0.2)
+    ("od23_a1_stator_field_pickup", "outside", 0.0085, 0.0265, 0.92,
+     [E("a1_stator_field_pickup", {"coefficient_m_s2": 1.0})]),
+    # 0.1 s^2/m of a2's mean square over 50 ms (a zero shift of about 0.1 m/s^2)
+    ("od23_a2_vibration_rectification", "outside", 0.0066, 0.0245, 0.94,
+     [E("a2_vibration_rectification", {"coefficient_s2_per_m": 0.1, "time_constant_s": 0.05})]),
+    # 2 N*m*s/rad when fully on, a 10 ms period, the duty from 0 at no slip to 1 at 3 rad/s
+    ("od23_clutch_pwm_slip_coupling", "outside", 0.0079, 0.0285, 0.90,
+     [E("clutch_pwm_slip_coupling", {"coefficient_Nm_s_per_rad": 2.0, "period_s": 0.01, "zero_duty_slip_rad_s": 0.0,
+                                     "full_duty_span_rad_s": 3.0})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -902,6 +937,7 @@ OUTSIDE_DEV19 = _suite(OUTSIDE_DEV19_ROWS, 19000, 4.0)
 OUTSIDE_DEV20 = _suite(OUTSIDE_DEV20_ROWS, 20000, 4.0)
 OUTSIDE_DEV21 = _suite(OUTSIDE_DEV21_ROWS, 21000, 4.0)
 OUTSIDE_DEV22 = _suite(OUTSIDE_DEV22_ROWS, 22000, 4.0)
+OUTSIDE_DEV23 = _suite(OUTSIDE_DEV23_ROWS, 23000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
@@ -912,7 +948,7 @@ SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": 
           "outside_dev16": OUTSIDE_DEV16, "outside_dev17": OUTSIDE_DEV17,
           "outside_dev18": OUTSIDE_DEV18, "outside_dev19": OUTSIDE_DEV19,
           "outside_dev20": OUTSIDE_DEV20, "outside_dev21": OUTSIDE_DEV21,
-          "outside_dev22": OUTSIDE_DEV22}
+          "outside_dev22": OUTSIDE_DEV22, "outside_dev23": OUTSIDE_DEV23}
 
 
 # The sealed halves: each made on first use from its own module's rows (foreign_drives.<name>.suite_rows(), so that
@@ -940,6 +976,7 @@ SEALED_FIRST_SEED = {
     "outside_sealed20": 20100,
     "outside_sealed21": 21100,
     "outside_sealed22": 22100,
+    "outside_sealed23": 23100,
 }
 
 SUITE_NAMES = tuple(SUITES) + tuple(SEALED_FIRST_SEED)
