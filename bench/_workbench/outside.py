@@ -38,9 +38,10 @@ outside_dev18 and (with ``--sealed``) outside_sealed18; ``--set 19``: the ninete
 ``--set 21``: the twenty-first, outside_dev21 and (with ``--sealed``) outside_sealed21; ``--set 22``: the
 twenty-second, outside_dev22 and (with ``--sealed``) outside_sealed22; ``--set 23``: the twenty-third, outside_dev23 and
 (with ``--sealed``) outside_sealed23. The sealed halves of sets 1-22 have been run once and are development data now
-(set 11's on 30 Nov, stop 48; set 12's at stop 49; set 13's at stop 50; set 14's at stop 51; set 15's on 1 Dec, stop 52; set 16's at stop 53; set 17's at stop 54; set 18's at stop 55; set 19's on
-2 Dec, stop 57; set 20's and set 21's at stop 58; set 22's at stop 59); the sealed half of set 23 is UNSPENT
-(UNSPENT_SEALED names it until its one run).
+(set 11's on 30 Nov, stop 48; set 12's at stop 49; set 13's at stop 50; set 14's at stop 51; set 15's on 1 Dec,
+stop 52; set 16's at stop 53; set 17's at stop 54; set 18's at stop 55; set 19's on 2 Dec, stop 57; set 20's and set
+21's at stop 58; set 22's at stop 59); the sealed half of set 23 is UNSPENT (UNSPENT_SEALED names it until its one
+run).
 
 The outside loop (``--loop``, goals outside_loop_width_error_after_mm and outside_loop_worse_count): the README's
 loop through the CLI on each development outside recording (the development halves of sets 1-23 and the spent sealed
