@@ -157,8 +157,11 @@ def test_an_unquantised_signal_held_is_stuck_as_before(recordings):
 def test_the_windows_of_a_coarse_adc_are_not_stuck(recordings, bits):
     """Each 2048-sample window checked as the windowing stage checks it (a run cut by the window's edge has one
     border; the window's own quantisation step). Behind 8 bits a quiet a2 holds one level for a whole window (41 ms)
-    at times: one value throughout a window is still called stuck (docs/windowing.md)."""
+    at times: one value throughout a window is still called stuck (docs/windowing.md) -- as is the noise-free
+    plant's settled start, one value until its first load pulse at 50 ms: a real sensor's noise is not there."""
     for label, sig in recordings.items():
+        if label == "plant_noise0":
+            continue
         adc = {s: quantise(sig[s], lsb(s, bits)) for s in ("a1", "a2")}
         counter = SaturationCounter(("a1", "a2"))
         for k in range(0, len(adc["a1"]), 2048):
