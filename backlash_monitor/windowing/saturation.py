@@ -13,6 +13,11 @@ as it does. So an extreme value is a **rail** when (config/windowing.yaml ``satu
   width max(``rail_band_fraction`` * |extreme - median|, ``rail_band_quanta`` * the signal's
   quantisation step near the extreme).
 
+Behind a **coarse ADC** -- where the band just inside is set by its steps (``rail_band_quanta`` steps wider than
+``rail_band_fraction`` of the excursion) -- one excursion held on the top level cannot be told from a clip that
+removed a few steps (a high-g accelerometer behind 12 bits: 1 m/s^2 steps on a 124 m/s^2 impact): there the
+extreme is a rail only when two runs or more reach it (a clip is hit by every excursion beyond it).
+
 A **stuck** sensor repeats one value for ``stuck_min_run_samples`` samples or more, not at a rail (a
 dead sensor, a broken wire, a frozen driver): a signal of one value throughout is stuck, not saturated.
 A quantised signal's **quiet stretch** is not: behind a coarse ADC (10-12 bits over +-4 g) a2 between the
@@ -174,7 +179,7 @@ def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _rail(x: np.ndarray, side: int, median: float, step: float, runs: tuple,
-          s: SaturationSettings) -> tuple[float | None, int, int, np.ndarray]:
+          s: SaturationSettings, quantised: bool = False) -> tuple[float | None, int, int, np.ndarray]:
     """The rail on one side (+1 upper, -1 lower): (value or None, samples in runs, runs, mask of them).
     ``step``: the signal's quantisation step (its smallest change between two samples; ~0 unquantised);
     ``runs``: (starts, lengths) of its runs of one value."""
@@ -188,7 +193,9 @@ def _rail(x: np.ndarray, side: int, median: float, step: float, runs: tuple,
     after = lengths[np.minimum(on + 1, lengths.size - 1)]
     hold = np.maximum(1, np.minimum(before, after))
     good = on[lengths[on] >= s.rail_min_run_samples * hold]
-    if not good.size:
+    # behind a coarse ADC (the band set by its steps) one excursion held on the top level is no rail
+    coarse = quantised and s.rail_band_quanta * step > s.rail_band_fraction * abs(value - median)
+    if not good.size or (coarse and good.size < 2):
         return None, 0, 0, x[:0].astype(bool)
     band = max(s.rail_band_fraction * abs(value - median), s.rail_band_quanta * step)
     inner = side * (value - x)                       # >= 0: how far inside the extreme
@@ -250,8 +257,9 @@ def assess_signal(x, name: str, settings: SaturationSettings | None = None) -> S
         return SignalSaturation(name, int(x.size))
     median = float(np.median(x))
     step = float(diff[change - 1].min())            # the smallest change: an ADC's step, ~0 unquantised
-    up, n_up, runs_up, mask_up = _rail(x, +1, median, step, (starts, lengths), s)
-    lo, n_lo, runs_lo, mask_lo = _rail(x, -1, median, step, (starts, lengths), s)
+    q = _quantised(x, diff, step)
+    up, n_up, runs_up, mask_up = _rail(x, +1, median, step, (starts, lengths), s, q)
+    lo, n_lo, runs_lo, mask_lo = _rail(x, -1, median, step, (starts, lengths), s, q)
     railed = np.zeros(x.size, dtype=bool)
     for mask in (mask_up, mask_lo):
         if mask.size:
