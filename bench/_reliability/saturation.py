@@ -24,7 +24,14 @@
   them); **sealed** (``--sealed-quantised``, run once at the end): the outside sets' clean drives and other plant
   seeds at 9 and 11 bits.
 
-`python bench/_reliability/saturation.py [--sealed | --sealed-quantised]` prints the dict as JSON.
+- rails behind a 12-bit ADC (stop 59): a1 over +-200 g (the range config/windowing.yaml names: 0.96 m/s^2 steps),
+  a2 over +-4 g, and behind 16 bits (a1 +-50 g). ``adc_false_rails``: clean drives read at a rail (development: the
+  35 clean drives of the foreign bench and the outside development suites); ``adc_clips_found`` of ``adc_clip_cases``:
+  8 of them with a1 or a2 clipped at 50/75/95 % of its peak on both rails or one, then unquantised, 12 or 16 bits.
+  Sealed (``--sealed-rails-adc``, run once): the spent outside sealed suites' clean drives, clips at 60/85/90 %.
+
+`python bench/_reliability/saturation.py [--sealed | --sealed-quantised | --sealed-rails-adc]` prints the dict as
+JSON.
 """
 from __future__ import annotations
 
@@ -252,8 +259,57 @@ def _quantised(sealed: bool) -> dict:
             "details": {"quantised_clean": clean_rows, "quantised_dead": dead_rows}}
 
 
-def run(sealed: bool = False, sealed_quantised: bool = False) -> dict:
+ADC_RANGES_M_S2 = {12: {"a1": 200 * 9.81, "a2": 4 * 9.81}, 16: {"a1": 50 * 9.81, "a2": 4 * 9.81}}
+
+
+def _adc(x: np.ndarray, bits, signal: str) -> np.ndarray:
+    if bits is None:
+        return x
+    step = 2 * ADC_RANGES_M_S2[bits][signal] / 2 ** bits
+    return np.round(x / step) * step
+
+
+def _rails_behind_adc(sealed: bool) -> dict:
+    from foreign_drives.drive import make_recording
+    from foreign_drives.suites import SEALED_FIRST_SEED, SUITES, suite
+    names = ([n for n in SEALED_FIRST_SEED if n.startswith("outside_sealed")] if sealed
+             else ["bench"] + [n for n in SUITES if n.startswith("outside_dev")])
+    if sealed:      # never an unspent sealed half
+        sys.path.insert(0, str(REPO / "bench"))
+        from _workbench.outside import UNSPENT_SEALED
+        names = [n for n in names if n not in UNSPENT_SEALED]
+    recs = {}
+    for spec in (s for n in names for s in suite(n) if s.kind == "clean"):
+        rec = make_recording(dataclasses.replace(spec, duration_s=DURATION_S))
+        recs[spec.label] = {s: np.asarray(rec.signals[s], dtype=float) for s in ("a1", "a2")}
+    false = []
+    for label, sig in recs.items():
+        for bits in (12, 16):
+            for r in _count({s: _adc(sig[s], bits, s) for s in ("a1", "a2")}).values():
+                if r.at_rail:
+                    false.append(f"{label} {bits}-bit: {r.message()}")
+    clips = []
+    for label in list(recs)[:: max(1, len(recs) // 8)][:8]:
+        for s in ("a1", "a2"):
+            for fraction in ((0.6, 0.85, 0.9) if sealed else (0.5, 0.75, 0.95)):
+                for rails in ("both", "one"):
+                    for bits in (None, 12, 16):
+                        clipped, _ = _clip(recs[label][s], fraction, rails)
+                        adc = {k: _adc(clipped if k == s else recs[label][k], bits, k) for k in ("a1", "a2")}
+                        clips.append({"case": f"{label}:{s}:{fraction}:{rails}:{bits or 'float'}",
+                                      "found": bool(_count(adc)[s].at_rail > 0)})
+    prefix = "sealed_" if sealed else ""
+    return {f"{prefix}adc_clean_drives": len(recs), f"{prefix}adc_false_rails": len(false),
+            f"{prefix}adc_clips_found": sum(c["found"] for c in clips), f"{prefix}adc_clip_cases": len(clips),
+            "details": {"adc_false_rails": false, "adc_clips_missed": [c["case"] for c in clips if not c["found"]]}}
+
+
+def run(sealed: bool = False, sealed_quantised: bool = False, sealed_rails_adc: bool = False) -> dict:
     started = time.perf_counter()
+    if sealed_rails_adc:
+        out = _rails_behind_adc(True)
+        out["seconds"] = round(time.perf_counter() - started, 1)
+        return out
     if sealed_quantised:
         out = _quantised(True)
         out["seconds"] = round(time.perf_counter() - started, 1)
@@ -272,6 +328,9 @@ def run(sealed: bool = False, sealed_quantised: bool = False) -> dict:
         quantised = _quantised(False)
         details.update(quantised.pop("details"))
         out.update(quantised)
+        rails = _rails_behind_adc(False)
+        details.update(rails.pop("details"))
+        out.update(rails)
     out["clip_cases"] = len(rows)
     out["seconds"] = round(time.perf_counter() - started, 1)
     out["details"] = details
@@ -279,5 +338,5 @@ def run(sealed: bool = False, sealed_quantised: bool = False) -> dict:
 
 
 if __name__ == "__main__":
-    print(json.dumps(run(sealed="--sealed" in sys.argv[1:], sealed_quantised="--sealed-quantised" in sys.argv[1:]),
-                     indent=1))
+    print(json.dumps(run(sealed="--sealed" in sys.argv[1:], sealed_quantised="--sealed-quantised" in sys.argv[1:],
+                         sealed_rails_adc="--sealed-rails-adc" in sys.argv[1:]), indent=1))
