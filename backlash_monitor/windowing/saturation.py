@@ -179,10 +179,10 @@ def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _rail(x: np.ndarray, side: int, median: float, step: float, runs: tuple,
-          s: SaturationSettings, quantised: bool = False) -> tuple[float | None, int, int, np.ndarray]:
+          s: SaturationSettings, quantised: bool) -> tuple[float | None, int, int, np.ndarray]:
     """The rail on one side (+1 upper, -1 lower): (value or None, samples in runs, runs, mask of them).
     ``step``: the signal's quantisation step (its smallest change between two samples; ~0 unquantised);
-    ``runs``: (starts, lengths) of its runs of one value."""
+    ``runs``: (starts, lengths) of its runs of one value; ``quantised``: _quantised's answer for the signal."""
     value = float(x.max() if side > 0 else x.min())
     starts, lengths = runs
     on = np.flatnonzero(x[starts] == value)          # the runs at the extreme
@@ -222,11 +222,12 @@ def _quantised(x: np.ndarray, diff: np.ndarray, step: float) -> bool:
     return bool(np.all(np.abs(ratio - np.rint(ratio)) <= 1e-6 * np.maximum(ratio, 1.0) + 2 * representation))
 
 
-def _quiet_quantised_runs(x, diff, step, starts, lengths, candidates, s: SaturationSettings) -> np.ndarray:
+def _quiet_quantised_runs(x, step, starts, lengths, candidates, s: SaturationSettings, quantised: bool) -> np.ndarray:
     """The candidate runs that are a quantised signal's quiet stretch, not a hold: entered and left by at most
     ``stuck_quiet_steps`` steps (a border the stretch does not have -- the block's first or last sample --
-    does not count against it) and no longer than ``stuck_quiet_max_run_samples``."""
-    if s.stuck_quiet_steps < 1 or not _quantised(x, diff, step):
+    does not count against it) and no longer than ``stuck_quiet_max_run_samples``. ``quantised``: _quantised's
+    answer for the signal (none is quiet in an unquantised one)."""
+    if s.stuck_quiet_steps < 1 or not quantised:
         return candidates[:0]
     begin, end = starts[candidates], starts[candidates] + lengths[candidates]
     limit = (s.stuck_quiet_steps + 0.5) * step          # whole steps: half a step apart
@@ -268,7 +269,7 @@ def assess_signal(x, name: str, settings: SaturationSettings | None = None) -> S
     # quiet stretch
     long_ = (lengths >= s.stuck_min_run_samples) & ~railed[starts]
     if long_.any():
-        long_[_quiet_quantised_runs(x, diff, step, starts, lengths, np.flatnonzero(long_), s)] = False
+        long_[_quiet_quantised_runs(x, step, starts, lengths, np.flatnonzero(long_), s, q)] = False
     stuck = int(lengths[long_].sum())
     stuck_value = float(x[starts[long_][np.argmax(lengths[long_])]]) if stuck else None
     return SignalSaturation(name, int(x.size), n_up + n_lo, runs_up + runs_lo, up, lo, stuck, stuck_value)

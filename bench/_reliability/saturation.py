@@ -82,12 +82,16 @@ def _plant(seeds_or_specs, noise=True) -> list[dict]:
     return [{s: np.concatenate([getattr(c, s)[i] for c in chunks]) for s in ("a1", "a2")} for i in range(len(scen))]
 
 
-def _foreign(label: str) -> dict:
+def _simulated(spec) -> dict:
+    """A foreign drive's a1, a2 over DURATION_S."""
     from foreign_drives.drive import make_recording
-    from foreign_drives.suites import BENCH
-    spec = next(s for s in BENCH if s.label == label)
     rec = make_recording(dataclasses.replace(spec, duration_s=DURATION_S))
     return {s: np.asarray(rec.signals[s], dtype=float) for s in ("a1", "a2")}
+
+
+def _foreign(label: str) -> dict:
+    from foreign_drives.suites import BENCH
+    return _simulated(next(s for s in BENCH if s.label == label))
 
 
 def _count(signals: dict, **overrides) -> dict:
@@ -163,7 +167,20 @@ def _false_flags() -> tuple[int, list]:
     return flags, rows
 
 
-RANGE_M_S2 = {"a1": 50 * 9.81, "a2": 4 * 9.81}
+# the accelerometers' full scales behind an ADC: the bench's own (foreign_drives/suites.py ADC16: a1 +-50 g, a2
+# +-4 g) and a high-g a1 (+-200 g, the range config/windowing.yaml names)
+FULL_SCALE_M_S2 = {"a1": 50 * 9.81, "a2": 4 * 9.81}
+HIGH_G_FULL_SCALE_M_S2 = {"a1": 200 * 9.81, "a2": 4 * 9.81}
+
+
+def _adc_step(signal: str, bits: int, full_scale: dict = FULL_SCALE_M_S2) -> float:
+    """An ADC's step [m/s^2] over a signal's full scale."""
+    return 2 * full_scale[signal] / 2 ** bits
+
+
+def _adc(x: np.ndarray, step: float | None) -> np.ndarray:
+    """x behind an undithered ADC of this step (None: unquantised)."""
+    return x if step is None else np.round(x / step) * step
 QUANTISED_DEV = {"bits": (8, 10, 12), "plant_seeds": (41, 42, 43, 44)}
 QUANTISED_SEALED = {"bits": (9, 11), "plant_seeds": (61, 62, 63),
                     "outside_clean": ("od_clean_w6.0_eta0.03_n0.92", "od2_clean_w5.8_eta0.028_n0.91",
@@ -173,14 +190,12 @@ QUANTISED_SEALED = {"bits": (9, 11), "plant_seeds": (61, 62, 63),
 
 def _quantised_recordings(sealed: bool) -> dict:
     """{name: {a1, a2}} unquantised: the development or the sealed clean drives."""
-    from foreign_drives.drive import make_recording
     from foreign_drives.suites import BENCH, SUITES
     recs = {}
     if sealed:
         specs = {s.label: s for suite in SUITES.values() for s in suite}
         for label in QUANTISED_SEALED["outside_clean"]:
-            rec = make_recording(dataclasses.replace(specs[label], duration_s=DURATION_S))
-            recs[f"foreign:{label}"] = {s: np.asarray(rec.signals[s], dtype=float) for s in ("a1", "a2")}
+            recs[f"foreign:{label}"] = _simulated(specs[label])
     else:
         for spec in BENCH:
             if spec.kind == "clean":
@@ -217,18 +232,14 @@ def _dead_versions(x: np.ndarray, step: float) -> dict:
 
 
 def _quantised(sealed: bool) -> dict:
-    from backlash_monitor.windowing.saturation import assess_signal
     from backlash_monitor.windowing import DEFAULTS
-    from backlash_monitor.windowing.saturation import SaturationSettings
+    from backlash_monitor.windowing.saturation import SaturationSettings, assess_signal
     settings = SaturationSettings.from_config(DEFAULTS["saturation"])
     cfg = QUANTISED_SEALED if sealed else QUANTISED_DEV
     false_stuck, before, found_before, clean_rows, dead_rows = 0, 0, 0, [], []
     for name, sig in _quantised_recordings(sealed).items():
         for bits in cfg["bits"]:
-            adc = {}
-            for s in ("a1", "a2"):
-                step = 2 * RANGE_M_S2[s] / 2 ** bits
-                adc[s] = np.round(sig[s] / step) * step
+            adc = {s: _adc(sig[s], _adc_step(s, bits)) for s in ("a1", "a2")}
             totals = _count(adc)
             flagged = [r.message() for r in totals.values() if r.stuck]
             false_stuck += len(flagged)
@@ -238,8 +249,7 @@ def _quantised(sealed: bool) -> dict:
             if flagged:
                 _log("FALSE STUCK", name, bits, flagged)
             for s in ("a2", "a1"):
-                step = 2 * RANGE_M_S2[s] / 2 ** bits
-                for how, (held, n) in _dead_versions(adc[s], step).items():
+                for how, (held, n) in _dead_versions(adc[s], _adc_step(s, bits)).items():
                     r = assess_signal(held, s, settings)
                     found = bool(r.stuck + r.at_rail >= n)
                     off = assess_signal(held, s, dataclasses.replace(settings, stuck_quiet_steps=0))
@@ -259,18 +269,15 @@ def _quantised(sealed: bool) -> dict:
             "details": {"quantised_clean": clean_rows, "quantised_dead": dead_rows}}
 
 
-ADC_RANGES_M_S2 = {12: {"a1": 200 * 9.81, "a2": 4 * 9.81}, 16: {"a1": 50 * 9.81, "a2": 4 * 9.81}}
+# the chains of the rails check: a high-g a1 behind 12 bits, the bench's own behind 16
+RAILS_FULL_SCALE_M_S2 = {12: HIGH_G_FULL_SCALE_M_S2, 16: FULL_SCALE_M_S2}
 
 
-def _adc(x: np.ndarray, bits, signal: str) -> np.ndarray:
-    if bits is None:
-        return x
-    step = 2 * ADC_RANGES_M_S2[bits][signal] / 2 ** bits
-    return np.round(x / step) * step
+def _rails_adc(x: np.ndarray, bits: int | None, signal: str) -> np.ndarray:
+    return _adc(x, None if bits is None else _adc_step(signal, bits, RAILS_FULL_SCALE_M_S2[bits]))
 
 
 def _rails_behind_adc(sealed: bool) -> dict:
-    from foreign_drives.drive import make_recording
     from foreign_drives.suites import SEALED_FIRST_SEED, SUITES, suite
     names = ([n for n in SEALED_FIRST_SEED if n.startswith("outside_sealed")] if sealed
              else ["bench"] + [n for n in SUITES if n.startswith("outside_dev")])
@@ -278,14 +285,11 @@ def _rails_behind_adc(sealed: bool) -> dict:
         sys.path.insert(0, str(REPO / "bench"))
         from _workbench.outside import UNSPENT_SEALED
         names = [n for n in names if n not in UNSPENT_SEALED]
-    recs = {}
-    for spec in (s for n in names for s in suite(n) if s.kind == "clean"):
-        rec = make_recording(dataclasses.replace(spec, duration_s=DURATION_S))
-        recs[spec.label] = {s: np.asarray(rec.signals[s], dtype=float) for s in ("a1", "a2")}
+    recs = {spec.label: _simulated(spec) for n in names for spec in suite(n) if spec.kind == "clean"}
     false = []
     for label, sig in recs.items():
         for bits in (12, 16):
-            for r in _count({s: _adc(sig[s], bits, s) for s in ("a1", "a2")}).values():
+            for r in _count({s: _rails_adc(sig[s], bits, s) for s in ("a1", "a2")}).values():
                 if r.at_rail:
                     false.append(f"{label} {bits}-bit: {r.message()}")
     clips = []
@@ -295,7 +299,7 @@ def _rails_behind_adc(sealed: bool) -> dict:
                 for rails in ("both", "one"):
                     for bits in (None, 12, 16):
                         clipped, _ = _clip(recs[label][s], fraction, rails)
-                        adc = {k: _adc(clipped if k == s else recs[label][k], bits, k) for k in ("a1", "a2")}
+                        adc = {k: _rails_adc(clipped if k == s else recs[label][k], bits, k) for k in ("a1", "a2")}
                         clips.append({"case": f"{label}:{s}:{fraction}:{rails}:{bits or 'float'}",
                                       "found": bool(_count(adc)[s].at_rail > 0)})
     prefix = "sealed_" if sealed else ""
