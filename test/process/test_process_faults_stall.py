@@ -13,6 +13,7 @@ the queue and executor code it exercises, so one hop under load stands for them.
 import os
 import re
 import signal
+import threading
 import time
 
 import pytest
@@ -56,17 +57,25 @@ def test_a_stalled_hop_loses_no_onset(node, ros_env, machine_load):
 
 _MONITOR = """
 import sys, time, rclpy
-from backlash_monitor.ros.qos import ESTIMATE_QOS
+from diagnostic_msgs.msg import DiagnosticArray
+from backlash_monitor.ros.qos import DIAGNOSTICS_DEPTH, ESTIMATE_QOS
 from backlash_monitor_msgs.msg import BacklashEstimate
 rclpy.init()
 node = rclpy.create_node("monitor")
 got = []
 node.create_subscription(BacklashEstimate, "estimate", got.append, ESTIMATE_QOS)
+# the chain's own account (its /diagnostics: chunks taken, windows made, ranges incomplete), printed
+# with the estimates so that a failure says which hop stopped
+last_status = {}
+node.create_subscription(DiagnosticArray, "/diagnostics",
+                         lambda m: last_status.update({s.name: s for s in m.status}), DIAGNOSTICS_DEPTH)
 deadline = time.monotonic() + float(sys.argv[2])
 while len(got) < int(sys.argv[1]) and time.monotonic() < deadline:
     rclpy.spin_once(node, timeout_sec=0.1)
 for m in got:
     print(m.entry_sample_index, m.entry_kind, m.signal_name)
+for name, s in sorted(last_status.items()):
+    print("diagnostics", name, s.message, " ".join(f"{v.key}={v.value}" for v in s.values))
 """
 
 
@@ -89,13 +98,19 @@ def test_a_stalled_chain_process_loses_no_onset(ros_env, machine_load):
                               "-p", "duration_s:=12.0", "-p", "rate_factor:=2.0",
                               "-p", "wait_for_subscribers:=['windowing:a1,a2,angle_difference']"],
                              env=ros_env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    plant_log = []
     try:
         started = None
         for line in plant.stderr:
+            plant_log.append(line)
             if "streaming" in line and ("subscribers there" in line or "without them" in line):
                 started = line
                 break
         assert started, "the plant did not start streaming"
+        # the rest of the plant's log is read as it comes (its end says whether the chain acknowledged
+        # every chunk; an unread pipe could also block the plant)
+        reader = threading.Thread(target=lambda: plant_log.extend(plant.stderr), daemon=True)
+        reader.start()
         time.sleep(2.0)
         os.kill(chain.pid, signal.SIGSTOP)
         try:
@@ -108,8 +123,9 @@ def test_a_stalled_chain_process_loses_no_onset(ros_env, machine_load):
             if proc.poll() is None:
                 proc.terminate()
         chain_out, _ = chain.communicate(timeout=60)
-        plant.communicate(timeout=60)
+        plant.wait(timeout=60)
     onsets = sorted({round((int(index) * 2e-5 - FIRST_ONSET_S) / ONSET_PERIOD_S)
-                     for index, kind, name in (row.split() for row in out.splitlines())
+                     for index, kind, name in (row.split()[:3] for row in out.splitlines()
+                                               if not row.startswith("diagnostics"))
                      if kind == "onset" and name == "a1+a2"})
-    assert onsets == events, out + err + chain_out
+    assert onsets == events, out + err + chain_out + "\n--- plant:\n" + "".join(plant_log)
