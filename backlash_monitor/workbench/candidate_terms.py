@@ -619,10 +619,11 @@ def _variables(expr: str, extra=()) -> list:
     return [v for v in MODEL_VARIABLES if v in names] + list(extra)
 
 
-def library_source() -> str:
+def library_source(memory: bool | None = None) -> str:
+    """The library as plug-in source (``memory``: as library's)."""
     parts = ['"""The candidate terms of a proposal (backlash_monitor/workbench/candidate_terms.py), generated."""\n'
              + HEADER]
-    for i, t in enumerate(library() + (hinge_terms() if HINGES_IN_PROPOSAL else ())):
+    for i, t in enumerate(library(memory=memory) + (hinge_terms() if HINGES_IN_PROPOSAL else ())):
         unit, _, bound = BALANCES[t.balance]
         c = coefficient_name(t)
         params = [f"Parameter({c!r}, {unit!r}, 0.0, ({-bound!r}, {bound!r}), 'the coefficient')"]
@@ -647,9 +648,10 @@ def cache_dir() -> Path:
     return d
 
 
-def library_file() -> Path:
-    """The library as a plug-in file in the cache (named by its content; written once, atomically)."""
-    src = library_source()
+def library_file(memory: bool | None = None) -> Path:
+    """The library as a plug-in file in the cache (named by its content; written once, atomically; ``memory``: as
+    library's)."""
+    src = library_source(memory)
     path = cache_dir() / f"candidate_terms_{hashlib.sha256(src.encode()).hexdigest()[:16]}.py"
     if not path.exists():
         tmp = path.with_suffix(f".{os.getpid()}.tmp")

@@ -46,6 +46,12 @@ ALIKE_COSINE = 0.95    # two groups whose per-event columns span (almost) the sa
                        # drive that never reverses), so they share their votes in the stability and are reported as one
 MIN_EXPLAINED_SHARE = 0.0   # a proposal must lower the event average's residual once in the model (share > 0)
 BOOTSTRAP_SEED = 31    # the resampling's seed: a diagnosis is reproducible
+# The terms with a memory (candidate_terms.memory_terms: first-order lags of the speeds, the penetration and the load
+# input) in a SECOND pass, run only when the library without them proposes nothing: in one pass with the rest they
+# took the selection from terms that were right (outside_dev3's a2 deadband, outside_dev6's torque limiter; docs/
+# workbench.md "Terms with memory"), and they cost every recording 9-18 s; a second pass cannot change a proposal the
+# first one made, and costs only the recordings where nothing was proposed
+MEMORY_SECOND_PASS = True
 BATCH_SETS = 6         # parameter sets simulated per batch (memory: a 4 s recording's set is ~0.2 GB over 8 seeds)
 
 
@@ -71,6 +77,8 @@ class Proposal:
     joint: dict = field(default_factory=dict)  # the partial explanation refitted jointly with the terms (_joint_refit)
     on_top_values: dict = field(default_factory=dict)       # candidate -> {parameter: value}: the partial explanation's
     on_top_uncertainty: dict = field(default_factory=dict)  # values beside the terms (what --accept-proposal writes)
+    selection_ran: bool = False   # the selection on the events was reached (not stopped by a precondition)
+    memory_pass: dict = field(default_factory=dict)   # the second pass with the terms with a memory, when it ran
     first_call_cpu_seconds: float = 0.0   # of cpu_seconds, the one-time first call of the library's kernel in this
                                           # process (its compile on a cold cache; plant.integrator.first_call_cpu_seconds)
 
@@ -89,7 +97,7 @@ class Proposal:
                 "consistent": self.consistent, "consistency_after": self.views_after,
                 "plugin_source": self.plugin_source, "plugin_values": self.plugin_values,
                 "on_top_of": self.on_top_of, "cpu_seconds": self.cpu_seconds, "simulated_sets": self.simulated_sets,
-                "form_stage": self.form, "joint_refit": self.joint,
+                "form_stage": self.form, "joint_refit": self.joint, "memory_pass": self.memory_pass,
                 "on_top_values": self.on_top_values, "on_top_uncertainty": self.on_top_uncertainty,
                 "kernel_first_call_cpu_seconds": self.first_call_cpu_seconds,
                 "per_recording_cpu_seconds": self.cpu_seconds - self.first_call_cpu_seconds,
@@ -243,9 +251,9 @@ def _stability_gram(GG, Gy, yy, groups: list, n: int = BOOTSTRAP, seed: int = BO
 
 
 # ------------------------------------------------------------------------------------------ the proposal of a run
-def _library_model(model):
+def _library_model(model, memory: bool = False):
     lib = copy.copy(model)
-    lib.effect_files = list(model.effect_files) + [candidate_terms.library_file()]
+    lib.effect_files = list(model.effect_files) + [candidate_terms.library_file(memory)]
     lib.effects_added = list(model.effects_added)
     return lib
 
@@ -749,12 +757,24 @@ def propose(run, up, verdict: str) -> Proposal | None:
     library kernel: bench/results.json proposal_cpu_first_call)."""
     c0 = first_call_cpu_seconds()
     out = _propose(run, up, verdict)
+    if (MEMORY_SECOND_PASS and not candidate_terms.MEMORY_IN_LIBRARY and out is not None and not out.proposed
+            and out.selection_ran):
+        first = out
+        again = _propose(run, up, verdict, memory=True)
+        if again.proposed:
+            out = again
+            out.reason += f" (with the terms with a memory, after the library without them: {first.reason})"
+        else:
+            out.reason += f" (with the terms with a memory as well: {again.reason})"
+        out.memory_pass = {"proposed": again.proposed, "reason": again.reason, "cpu_seconds": again.cpu_seconds}
+        out.cpu_seconds = first.cpu_seconds + again.cpu_seconds
+        out.simulated_sets = first.simulated_sets + again.simulated_sets
     if out is not None:
         out.first_call_cpu_seconds = first_call_cpu_seconds() - c0
     return out
 
 
-def _propose(run, up, verdict: str) -> Proposal | None:
+def _propose(run, up, verdict: str, memory: bool = False) -> Proposal | None:
     if verdict not in VERDICTS:
         return None
     t0 = time.process_time()
@@ -763,9 +783,9 @@ def _propose(run, up, verdict: str) -> Proposal | None:
         return Proposal(False, f"{p0.n_events} events: too few for a cross-validation over the events "
                                f"(at least {MIN_EVENTS})")
     p = copy.copy(p0)
-    p.model = _library_model(run.model)
+    p.model = _library_model(run.model, memory)
     base_sets, on_top = _base_sets(run, up) if verdict == "partial" else ({}, [])
-    terms = list(candidate_terms.library())
+    terms = list(candidate_terms.library(memory=memory))
     # the speed-deviation terms' operating point: the recording's mean speeds (candidate_terms._speed_deviations)
     centers = candidate_terms.centers(run.meas.signals)
     center_sets = {candidate_terms.center_key(t): centers[t.center] for t in terms if t.center in centers}
@@ -826,7 +846,7 @@ def _propose(run, up, verdict: str) -> Proposal | None:
     stab = {group_names[i]: float(freq[i]) for i in np.argsort(-freq) if freq[i] > 0}
     cv = [{"group": group_names[g], "held_out_gain": m, "z": z} for g, m, z in cv_steps]
     stable = _preferred(GG, Gy, yy, groups, [g for g in sel if freq[g] >= STABILITY], alike, d.terms)
-    out = Proposal(False, "", stability=stab, cv=cv, on_top_of=on_top)
+    out = Proposal(False, "", stability=stab, cv=cv, on_top_of=on_top, selection_ran=True)
     if pair_note is not None:
         out.joint = {"pair_variant": pair_note}
     if not stable:
