@@ -6,7 +6,7 @@ damper across the jaw, the three-point stepped hold-back on the carriage, a1's s
 rectification, the PWM slip coupling across the jaw), every sealed mechanism acting in its recorded balance only, the
 suites (made, written, deterministic, each mechanism row visible above the criterion its strength was set by, but one
 sealed row left below it after its single scaling), ``forms`` withholding the sealed laws, and the outside bench's set 23
-(its sealed half UNSPENT: the loop refuses it without --sealed, the alarm check leaves it out).
+(its sealed half spent: run once at stop 60, in the loop's default suites and the alarm check).
 
 This file names the sealed mechanisms only through the registry and the suite; it prints and states no sealed law."""
 from __future__ import annotations
@@ -22,8 +22,7 @@ from foreign_outside_recordings import (OutsideSet, assert_a_row_of_each_half_cr
                                         assert_acts_in_its_balance_only_on_its_suite_row,
                                         assert_forms_withholds_sealed, assert_recordings_repeat, assert_rows_visible,
                                         assert_set_registry, assert_set_suites, assert_suite_writes_one_recording)
-from foreign_outside_recordings import (assert_alarm_check_leaves_out_the_unspent_sealed_half,  # test/
-                                        assert_bench_refuses_the_unspent_sealed_half)
+from foreign_outside_recordings import assert_alarm_check_covers_both_halves, assert_bench_guards_unspent_sealed  # test/
 from foreign_outside_recordings import extra_clutch_Nm, held_per_segment, others_zero, slip_rad_s  # test/
 
 SEG = N.SEGMENT_SAMPLES            # samples per 0.2 ms segment (the memory elements' scan)
@@ -248,12 +247,14 @@ def test_forms_withholds_the_sealed_laws_and_shows_the_development_ones(capsys):
     assert_forms_withholds_sealed(capsys.readouterr().out, SEALED23, DEV23)
 
 
-def test_outside_bench_knows_set_23_and_refuses_its_unspent_sealed_half(capsys):
-    assert_bench_refuses_the_unspent_sealed_half(23, capsys)
+def test_outside_bench_knows_set_23_and_never_loops_on_an_unspent_sealed_half(capsys, monkeypatch):
+    # sets 1-23 are spent (set 23's sealed half ran once, 2 Dec, stop 60): each sealed half is development data, in
+    # the loop's default suites; the guard, for the next set's sealed half while it is unspent
+    assert_bench_guards_unspent_sealed(23, capsys, monkeypatch)
 
 
-def test_the_alarm_check_leaves_out_the_unspent_sealed_half():
-    assert_alarm_check_leaves_out_the_unspent_sealed_half(23)
+def test_the_alarm_check_covers_both_halves_once_the_sealed_one_is_spent():
+    assert_alarm_check_covers_both_halves(23)
 
 
 def test_a_row_of_each_half_simulates_at_its_own_conditions_and_crosses_the_backlash():
