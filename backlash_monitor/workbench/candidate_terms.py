@@ -422,7 +422,8 @@ MEMORY_IN_LIBRARY = False    # off by default: on the development rows they won 
                              # brake, now consistent) and lost two (outside_dev3's a2 deadband to a wheel-speed memory,
                              # outside_dev6's torque limiter: nothing stable with them, the clutch's penetration rate
                              # without), and the proposal's CPU rose to 52-67 s (goal <= 60); library(memory=True) has
-                             # them (docs/workbench.md "Terms with memory")
+                             # them, and the proposal runs it in a second pass where the first proposes nothing
+                             # (proposal.MEMORY_SECOND_PASS; docs/workbench.md "Terms with memory")
 MEMORY_SPEEDS = (("motor_load_moment_pu", "omega1", "Ω₁", f"{SPEED_DEVIATION_SCALE_RAD_S!r}"),
                  ("wheel_torque_Nm", "omega2", "Ω₂", f"{SPEED_DEVIATION_SCALE_RAD_S!r}"),
                  ("mass_force_N", "xdot", "ẋ", f"(wheel_radius_m * {SPEED_DEVIATION_SCALE_RAD_S!r})"))
