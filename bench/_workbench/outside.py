@@ -296,7 +296,7 @@ def run_angle_locked(rows) -> list:
 # set 14's at stop 51, lead a6051f3, set 15's at stop 52, lead e663230, set 16's at stop 53, main 29e77a6, set 17's at
 # stop 54, main a303c1a, set 18's at stop 55, main 593d8c9, set 19's at stop 57, main 5798d58, set 20's at stop
 # 58, main beecf27, set 21's at stop 58, main dc2aa43, set 22's at stop 59, main ca3a15b, set 23's at stop 60, main
-# 66246c0): they are development data now. A new set's sealed half goes into UNSPENT_SEALED until its run (none now).
+# da35d4d): they are development data now. A new set's sealed half goes into UNSPENT_SEALED until its run (none now).
 SETS = {1: ("outside_dev", "outside_sealed"), 2: ("outside_dev2", "outside_sealed2"), 3: ("outside_dev3", "outside_sealed3"),
         4: ("outside_dev4", "outside_sealed4"), 5: ("outside_dev5", "outside_sealed5"),
         6: ("outside_dev6", "outside_sealed6"), 7: ("outside_dev7", "outside_sealed7"),
