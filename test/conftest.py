@@ -35,10 +35,12 @@ def fresh_domain_id() -> int:
 @pytest.fixture
 def ros_env():
     """Environment for child processes that use DDS: loopback only, a domain of this test's own."""
+    from backlash_monitor.ros.fast_dds import profile_env
     env = dict(os.environ)
     env["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
     env["ROS_DOMAIN_ID"] = str(fresh_domain_id())
     env["PYTHONUNBUFFERED"] = "1"
+    profile_env(env)     # the project's Fast DDS profile for a test's own rclpy scripts too (ros/fast_dds.py)
     return env
 
 
