@@ -63,19 +63,23 @@ from backlash_monitor_msgs.msg import BacklashEstimate
 rclpy.init()
 node = rclpy.create_node("monitor")
 got = []
-node.create_subscription(BacklashEstimate, "estimate", got.append, ESTIMATE_QOS)
-# the chain's own account (its /diagnostics: chunks taken, windows made, ranges incomplete), printed
-# with the estimates so that a failure says which hop stopped
+start = time.monotonic()
+node.create_subscription(BacklashEstimate, "estimate", lambda m: got.append((m, time.monotonic() - start)),
+                         ESTIMATE_QOS)
+# the chain's own account (its /diagnostics: chunks taken, windows made, ranges incomplete), printed with the
+# estimates, each with when it came (s since the monitor's start: a chain alive after the stall keeps publishing
+# its diagnostics), so that a failure says which hop stopped
 last_status = {}
 node.create_subscription(DiagnosticArray, "/diagnostics",
-                         lambda m: last_status.update({s.name: s for s in m.status}), DIAGNOSTICS_DEPTH)
+                         lambda m: last_status.update({s.name: (s, time.monotonic() - start) for s in m.status}),
+                         DIAGNOSTICS_DEPTH)
 deadline = time.monotonic() + float(sys.argv[2])
 while len(got) < int(sys.argv[1]) and time.monotonic() < deadline:
     rclpy.spin_once(node, timeout_sec=0.1)
-for m in got:
-    print(m.entry_sample_index, m.entry_kind, m.signal_name)
-for name, s in sorted(last_status.items()):
-    print("diagnostics", name, s.message, " ".join(f"{v.key}={v.value}" for v in s.values))
+for m, t in got:
+    print(m.entry_sample_index, m.entry_kind, m.signal_name, f"at {t:.2f} s")
+for name, (s, t) in sorted(last_status.items()):
+    print("diagnostics", name, f"at {t:.1f} s:", s.message, " ".join(f"{v.key}={v.value}" for v in s.values))
 """
 
 
@@ -92,6 +96,7 @@ def test_a_stalled_chain_process_loses_no_onset(ros_env, machine_load):
     events = list(range(1, 48))                 # onsets 0.054 s + k 0.25 s < 12 s, from the second
     chain = subprocess.Popen([os.path.join(prefix, "chain"), "--ros-args", "-p", "qos:=reliable"],
                              env=ros_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    launched = time.monotonic()
     monitor = subprocess.Popen([sys.executable, "-c", _MONITOR, str(3 * len(events)), "300"],
                                env=ros_env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     plant = subprocess.Popen([os.path.join(prefix, "plant_simulator"), "--ros-args", "-p", "qos:=reliable",
@@ -113,10 +118,12 @@ def test_a_stalled_chain_process_loses_no_onset(ros_env, machine_load):
         reader.start()
         time.sleep(2.0)
         os.kill(chain.pid, signal.SIGSTOP)
+        stall = [time.monotonic() - launched]
         try:
             time.sleep(STALL_S)
         finally:
             os.kill(chain.pid, signal.SIGCONT)
+            stall.append(time.monotonic() - launched)
         out, err = monitor.communicate(timeout=400)
     finally:
         for proc in (plant, chain, monitor):
@@ -128,4 +135,5 @@ def test_a_stalled_chain_process_loses_no_onset(ros_env, machine_load):
                      for index, kind, name in (row.split()[:3] for row in out.splitlines()
                                                if not row.startswith("diagnostics"))
                      if kind == "onset" and name == "a1+a2"})
-    assert onsets == events, out + err + chain_out + "\n--- plant:\n" + "".join(plant_log)
+    assert onsets == events, (out + err + chain_out + "\n--- plant:\n" + "".join(plant_log)
+                              + f"\n--- the chain stopped {stall[0]:.1f}-{stall[-1]:.1f} s after the monitor's launch")
