@@ -18,6 +18,7 @@ heartbeat repairs what it lost. Other ranges keep Fast DDS's default locators (a
 """
 from __future__ import annotations
 
+import hashlib
 import os
 import tempfile
 
@@ -55,15 +56,15 @@ def profile_for_range(discovery_range: str | None) -> str:
 
 def profile_env(env) -> None:
     """Point ``env`` (os.environ or a child process's environment) at the project's profile for its
-    ROS_AUTOMATIC_DISCOVERY_RANGE (written once per kind into the temporary directory), unless it names a profile
+    ROS_AUTOMATIC_DISCOVERY_RANGE (written once into the temporary directory, named by its content), unless it names a profile
     file already (FASTRTPS_/FASTDDS_DEFAULT_PROFILES_FILE: the user's, left alone)."""
     if env.get("FASTRTPS_DEFAULT_PROFILES_FILE") or env.get("FASTDDS_DEFAULT_PROFILES_FILE"):
         return
     profile = profile_for_range(env.get("ROS_AUTOMATIC_DISCOVERY_RANGE"))
-    kind = "loopback" if profile is LOOPBACK_FAST_DDS_PROFILE else "default"
-    path = os.path.join(tempfile.gettempdir(), f"backlash_monitor_fastdds_{kind}_{os.getuid()}.xml")
+    digest = hashlib.sha256(profile.encode()).hexdigest()[:12]      # named by its content: never rewritten
+    path = os.path.join(tempfile.gettempdir(), f"backlash_monitor_fastdds_{digest}_{os.getuid()}.xml")
     try:
-        if not os.path.isfile(path) or open(path, encoding="utf-8").read() != profile:
+        if not os.path.isfile(path):
             with open(path + f".{os.getpid()}.tmp", "w", encoding="utf-8") as f:
                 f.write(profile)
             os.replace(path + f".{os.getpid()}.tmp", path)

@@ -26,15 +26,13 @@ import sys
 
 from ament_index_python.packages import get_package_prefix
 
-from backlash_monitor.ros.fast_dds import WRITER_PROFILE_XML
+from backlash_monitor.ros.fast_dds import HEADER_XML, WRITER_PROFILE_XML
 
 SUBNET = "10.231.{n}.{host}"
 
 
 def fast_dds_profile(own_address: str, peer_address: str) -> str:
-    return f"""<?xml version="1.0" encoding="UTF-8" ?>
-<profiles xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
-  <transport_descriptors>
+    return HEADER_XML + f"""  <transport_descriptors>
     <transport_descriptor>
       <transport_id>veth_udp</transport_id>
       <type>UDPv4</type>
