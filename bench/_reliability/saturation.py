@@ -30,8 +30,13 @@
   8 of them with a1 or a2 clipped at 50/75/95 % of its peak on both rails or one, then unquantised, 12 or 16 bits.
   Sealed (``--sealed-rails-adc``, run once): the spent outside sealed suites' clean drives, clips at 60/85/90 %.
 
-`python bench/_reliability/saturation.py [--sealed | --sealed-quantised | --sealed-rails-adc]` prints the dict as
-JSON.
+- rails behind a codec whose step grows with |x| (stop 61): float16 storage, a block floating-point codec (blocks of
+  64 samples, 10-bit mantissas), a 12-bit mu-law ADC (a1 +-200 g, a2 +-4 g); ``codec_false_rails`` on the same clean
+  drives as the ADC check, ``codec_clips_found`` of ``codec_clip_cases`` alike. Sealed (``--sealed-rails-codec``, run
+  once): blocks of 32 with 8-bit mantissas, a 12-bit A-law ADC, bfloat16, on the spent sealed suites' clean drives.
+
+`python bench/_reliability/saturation.py [--sealed | --sealed-quantised | --sealed-rails-adc | --sealed-rails-codec]`
+prints the dict as JSON.
 """
 from __future__ import annotations
 
@@ -308,8 +313,102 @@ def _rails_behind_adc(sealed: bool) -> dict:
             "details": {"adc_false_rails": false, "adc_clips_missed": [c["case"] for c in clips if not c["found"]]}}
 
 
-def run(sealed: bool = False, sealed_quantised: bool = False, sealed_rails_adc: bool = False) -> dict:
+# A codec whose step grows with |x| (stop 61): a recorder that stores a float16, a block floating-point codec (a
+# block's samples share one exponent, its largest sets the step), a companding ADC (mu-law, A-law). The step near an
+# impact's top is coarse while the signal's smallest change, far from it, is fine. Written before any rule was
+# changed for them; the sealed codecs are run once (--sealed-rails-codec).
+CODECS_DEV = ("float16", "block_float:64:10", "mu_law:12")
+CODECS_SEALED = ("block_float:32:8", "a_law:12", "bfloat16")
+
+
+def _block_float(x: np.ndarray, block: int, mantissa_bits: int) -> np.ndarray:
+    """Blocks of ``block`` samples sharing one exponent: a signed mantissa of ``mantissa_bits`` bits by the block's
+    largest |x|."""
+    out = np.empty_like(x)
+    top = 2 ** (mantissa_bits - 1) - 1
+    for k in range(0, x.size, block):
+        part = x[k:k + block]
+        peak = float(np.abs(part).max())
+        if peak == 0.0:
+            out[k:k + block] = 0.0
+            continue
+        step = 2.0 ** (np.floor(np.log2(peak)) + 1 - (mantissa_bits - 1))
+        out[k:k + block] = np.clip(np.round(part / step), -top, top) * step
+    return out
+
+
+def _companded(x: np.ndarray, full_scale: float, bits: int, law: str) -> np.ndarray:
+    """A companding ADC over +-full_scale: mu-law (mu = 255) or A-law (A = 87.6), ``bits`` bits, expanded back."""
+    u = np.clip(np.abs(x) / full_scale, 0.0, 1.0)
+    if law == "mu_law":
+        y = np.log1p(255.0 * u) / np.log1p(255.0)
+    else:
+        a = 87.6
+        y = np.where(u < 1 / a, a * u / (1 + np.log(a)), (1 + np.log(np.maximum(a * u, 1e-300))) / (1 + np.log(a)))
+    levels = 2 ** (bits - 1) - 1
+    q = np.round(y * levels) / levels
+    if law == "mu_law":
+        v = np.expm1(q * np.log1p(255.0)) / 255.0
+    else:
+        a = 87.6
+        t = q * (1 + np.log(a))
+        v = np.where(t < 1, t / a, np.exp(t - 1) / a)
+    return np.sign(x) * v * full_scale
+
+
+def _codec(x: np.ndarray, codec: str, signal: str) -> np.ndarray:
+    name, *args = codec.split(":")
+    if name == "float16":
+        return x.astype(np.float16).astype(float)
+    if name == "bfloat16":       # float32 with its low 16 bits cut: 8 significant bits
+        return (x.astype(np.float32).view(np.uint32) & np.uint32(0xFFFF0000)).view(np.float32).astype(float)
+    if name == "block_float":
+        return _block_float(x, int(args[0]), int(args[1]))
+    return _companded(x, HIGH_G_FULL_SCALE_M_S2[signal], int(args[0]), name)
+
+
+def _rails_behind_codec(sealed: bool) -> dict:
+    """False rails on clean drives behind each codec, and clips found behind it (as _rails_behind_adc)."""
+    from foreign_drives.suites import SEALED_FIRST_SEED, SUITES, suite
+    names = ([n for n in SEALED_FIRST_SEED if n.startswith("outside_sealed")] if sealed
+             else ["bench"] + [n for n in SUITES if n.startswith("outside_dev")])
+    if sealed:      # never an unspent sealed half
+        sys.path.insert(0, str(REPO / "bench"))
+        from _workbench.outside import UNSPENT_SEALED
+        names = [n for n in names if n not in UNSPENT_SEALED]
+    codecs = CODECS_SEALED if sealed else CODECS_DEV
+    recs = {spec.label: _simulated(spec) for n in names for spec in suite(n) if spec.kind == "clean"}
+    false = []
+    for label, sig in recs.items():
+        for codec in codecs:
+            for r in _count({s: _codec(sig[s], codec, s) for s in ("a1", "a2")}).values():
+                if r.at_rail:
+                    false.append(f"{label} {codec}: {r.message()}")
+                    _log("FALSE RAIL", false[-1])
+    clips = []
+    for label in list(recs)[:: max(1, len(recs) // 8)][:8]:
+        for s in ("a1", "a2"):
+            for fraction in ((0.6, 0.85, 0.9) if sealed else (0.5, 0.75, 0.95)):
+                for rails in ("both", "one"):
+                    for codec in codecs:
+                        clipped, _ = _clip(recs[label][s], fraction, rails)
+                        coded = {k: _codec(clipped if k == s else recs[label][k], codec, k) for k in ("a1", "a2")}
+                        clips.append({"case": f"{label}:{s}:{fraction}:{rails}:{codec}",
+                                      "found": bool(_count(coded)[s].at_rail > 0)})
+    prefix = "sealed_" if sealed else ""
+    return {f"{prefix}codec_clean_drives": len(recs), f"{prefix}codecs": list(codecs),
+            f"{prefix}codec_false_rails": len(false),
+            f"{prefix}codec_clips_found": sum(c["found"] for c in clips), f"{prefix}codec_clip_cases": len(clips),
+            "details": {"codec_false_rails": false, "codec_clips_missed": [c["case"] for c in clips if not c["found"]]}}
+
+
+def run(sealed: bool = False, sealed_quantised: bool = False, sealed_rails_adc: bool = False,
+        sealed_rails_codec: bool = False) -> dict:
     started = time.perf_counter()
+    if sealed_rails_codec:
+        out = _rails_behind_codec(True)
+        out["seconds"] = round(time.perf_counter() - started, 1)
+        return out
     if sealed_rails_adc:
         out = _rails_behind_adc(True)
         out["seconds"] = round(time.perf_counter() - started, 1)
@@ -335,6 +434,9 @@ def run(sealed: bool = False, sealed_quantised: bool = False, sealed_rails_adc: 
         rails = _rails_behind_adc(False)
         details.update(rails.pop("details"))
         out.update(rails)
+        codec = _rails_behind_codec(False)
+        details.update(codec.pop("details"))
+        out.update(codec)
     out["clip_cases"] = len(rows)
     out["seconds"] = round(time.perf_counter() - started, 1)
     out["details"] = details
@@ -343,4 +445,5 @@ def run(sealed: bool = False, sealed_quantised: bool = False, sealed_rails_adc: 
 
 if __name__ == "__main__":
     print(json.dumps(run(sealed="--sealed" in sys.argv[1:], sealed_quantised="--sealed-quantised" in sys.argv[1:],
-                         sealed_rails_adc="--sealed-rails-adc" in sys.argv[1:]), indent=1))
+                         sealed_rails_adc="--sealed-rails-adc" in sys.argv[1:],
+                         sealed_rails_codec="--sealed-rails-codec" in sys.argv[1:]), indent=1))
