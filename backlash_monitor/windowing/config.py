@@ -62,6 +62,8 @@ DEFAULTS: dict[str, Any] = {
         "stuck_min_run_samples": 1000,
         "stuck_quiet_steps": 1,
         "stuck_quiet_max_run_samples": 9500,
+        "local_step_levels": 8,
+        "local_step_tolerance": 0.1,
         "block_samples": 50000,
     },
 }

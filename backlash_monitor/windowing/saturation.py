@@ -11,7 +11,9 @@ as it does. So an extreme value is a **rail** when (config/windowing.yaml ``satu
 - it comes in runs of at least ``rail_min_run_samples`` identical samples, and
 - it holds at least ``rail_overpopulation_ratio`` times the samples of the band just inside it, of
   width max(``rail_band_fraction`` * |extreme - median|, ``rail_band_quanta`` * the signal's
-  quantisation step near the extreme).
+  quantisation step near the extreme) -- the step read from the occupied values there (``_step_at``), since a
+  codec whose step grows with |x| (float16, a block floating-point codec, a mu-law ADC) is coarse at the top
+  though fine elsewhere.
 
 Behind a **coarse ADC** -- where the band just inside is set by its steps (``rail_band_quanta`` steps wider than
 ``rail_band_fraction`` of the excursion) -- one excursion held on the top level cannot be told from a clip that
@@ -52,6 +54,8 @@ class SaturationSettings:
     stuck_min_run_samples: int = 1000
     stuck_quiet_steps: int = 1
     stuck_quiet_max_run_samples: int = 9500
+    local_step_levels: int = 8
+    local_step_tolerance: float = 0.1
     block_samples: int = 50_000
 
     def __post_init__(self):
@@ -62,6 +66,8 @@ class SaturationSettings:
                                       ("stuck_min_run_samples", 2, 10_000_000, True),
                                       ("stuck_quiet_steps", 0, 1000, True),
                                       ("stuck_quiet_max_run_samples", 0, 100_000_000, True),
+                                      ("local_step_levels", 2, 1000, True),
+                                      ("local_step_tolerance", 0.0, 0.49, False),
                                       ("block_samples", 2, 100_000_000, True)):
             value = getattr(self, name)
             ok = (not isinstance(value, bool) and isinstance(value, (int, float)) and math.isfinite(value)
@@ -179,10 +185,11 @@ def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _rail(x: np.ndarray, side: int, median: float, step: float, runs: tuple,
-          s: SaturationSettings, quantised: bool) -> tuple[float | None, int, int, np.ndarray]:
+          s: SaturationSettings, quantised: bool, levels) -> tuple[float | None, int, int, np.ndarray]:
     """The rail on one side (+1 upper, -1 lower): (value or None, samples in runs, runs, mask of them).
     ``step``: the signal's quantisation step (its smallest change between two samples; ~0 unquantised);
-    ``runs``: (starts, lengths) of its runs of one value; ``quantised``: _quantised's answer for the signal."""
+    ``runs``: (starts, lengths) of its runs of one value; ``quantised``: _quantised's answer for the signal;
+    ``levels()``: the signal's distinct values, sorted, and their runs' counts."""
     value = float(x.max() if side > 0 else x.min())
     starts, lengths = runs
     on = np.flatnonzero(x[starts] == value)          # the runs at the extreme
@@ -193,9 +200,16 @@ def _rail(x: np.ndarray, side: int, median: float, step: float, runs: tuple,
     after = lengths[np.minimum(on + 1, lengths.size - 1)]
     hold = np.maximum(1, np.minimum(before, after))
     good = on[lengths[on] >= s.rail_min_run_samples * hold]
+    if not good.size:
+        return None, 0, 0, x[:0].astype(bool)
+    # the step near this extreme: a codec whose step grows with |x| is coarse here though fine elsewhere
+    values = levels()
+    near = _step_at(values, values[0].size - 1 if side > 0 else 0, s)
+    if near > step:
+        step, quantised = near, True
     # behind a coarse ADC (the band set by its steps) one excursion held on the top level is no rail
     coarse = quantised and s.rail_band_quanta * step > s.rail_band_fraction * abs(value - median)
-    if not good.size or (coarse and good.size < 2):
+    if coarse and good.size < 2:
         return None, 0, 0, x[:0].astype(bool)
     band = max(s.rail_band_fraction * abs(value - median), s.rail_band_quanta * step)
     inner = side * (value - x)                       # >= 0: how far inside the extreme
@@ -206,6 +220,33 @@ def _rail(x: np.ndarray, side: int, median: float, step: float, runs: tuple,
     for start, length in zip(starts[good], lengths[good]):
         mask[start:start + length] = True
     return value, int(lengths[good].sum()), int(good.size), mask
+
+
+def _step_at(levels: tuple[np.ndarray, np.ndarray], index: int, s: SaturationSettings) -> float:
+    """The quantisation step at the occupied value ``levels[0][index]``, 0 when the values there are not on one.
+    ``levels``: a signal's distinct values, sorted, and how many runs of one value each has.
+
+    The gaps between the ``local_step_levels`` + 1 occupied values around it (at an extreme, the ones inside it)
+    are whole multiples of the smallest, to within ``local_step_tolerance`` of it (a companding ADC's levels widen
+    slowly with |x|); and either exactly so (a uniform quantiser: an ADC, a block floating-point codec, float16
+    within a power of two) or the signal comes back to one of those values in another run (a quantiser's level is
+    met again; an unquantised signal never repeats a value, and a smooth ramp's samples, nearly evenly spaced,
+    are met once each). A codec whose step grows with |x| -- float16 storage, a block floating-point codec, a
+    mu-law or A-law ADC -- is coarse at an impact's top though the signal's smallest change, far from it, is
+    fine."""
+    values, run_counts = levels
+    k = s.local_step_levels + 1
+    lo = max(0, min(index - k // 2, values.size - k))
+    gaps = np.diff(values[lo:lo + k])
+    if gaps.size < 2 or gaps.min() <= 0:
+        return 0.0
+    ratio = gaps / gaps.min()
+    off = np.abs(ratio - np.rint(ratio))
+    if not np.all(off <= s.local_step_tolerance * np.rint(ratio)):
+        return 0.0
+    exact = bool(np.all(off <= 1e-6 * np.rint(ratio)))
+    met_again = bool(np.any(np.delete(run_counts[lo:lo + k], index - lo) >= 2)) if lo <= index < lo + k else False
+    return float(gaps.min()) if exact or met_again else 0.0
 
 
 def _quantised(x: np.ndarray, diff: np.ndarray, step: float) -> bool:
@@ -222,18 +263,26 @@ def _quantised(x: np.ndarray, diff: np.ndarray, step: float) -> bool:
     return bool(np.all(np.abs(ratio - np.rint(ratio)) <= 1e-6 * np.maximum(ratio, 1.0) + 2 * representation))
 
 
-def _quiet_quantised_runs(x, step, starts, lengths, candidates, s: SaturationSettings, quantised: bool) -> np.ndarray:
+def _quiet_quantised_runs(x, step, starts, lengths, candidates, s: SaturationSettings, quantised: bool,
+                          levels) -> np.ndarray:
     """The candidate runs that are a quantised signal's quiet stretch, not a hold: entered and left by at most
     ``stuck_quiet_steps`` steps (a border the stretch does not have -- the block's first or last sample --
     does not count against it) and no longer than ``stuck_quiet_max_run_samples``. ``quantised``: _quantised's
-    answer for the signal (none is quiet in an unquantised one)."""
-    if s.stuck_quiet_steps < 1 or not quantised:
+    answer for the signal, whose steps are ``step``; where it is not on one step (a codec whose step grows with
+    |x|), the step at the run's value (_step_at; none is quiet where the values are on no step). ``levels()``: the
+    signal's distinct values, sorted, and their runs' counts."""
+    if s.stuck_quiet_steps < 1 or not candidates.size:
         return candidates[:0]
     begin, end = starts[candidates], starts[candidates] + lengths[candidates]
-    limit = (s.stuck_quiet_steps + 0.5) * step          # whole steps: half a step apart
+    here = np.full(candidates.size, step if quantised else 0.0)
+    values = levels()
+    for j, b in enumerate(begin):
+        here[j] = max(here[j], _step_at(values, int(np.searchsorted(values[0], x[b])), s))
+    limit = (s.stuck_quiet_steps + 0.5) * here          # whole steps: half a step apart
     entered = np.where(begin > 0, np.abs(x[begin] - x[np.maximum(begin - 1, 0)]), 0.0)
     left = np.where(end < x.size, np.abs(x[np.minimum(end, x.size - 1)] - x[end - 1]), 0.0)
-    quiet = (entered <= limit) & (left <= limit) & (lengths[candidates] <= s.stuck_quiet_max_run_samples)
+    quiet = ((here > 0) & (entered <= limit) & (left <= limit)
+             & (lengths[candidates] <= s.stuck_quiet_max_run_samples))
     return candidates[quiet]
 
 
@@ -259,8 +308,14 @@ def assess_signal(x, name: str, settings: SaturationSettings | None = None) -> S
     median = float(np.median(x))
     step = float(diff[change - 1].min())            # the smallest change: an ADC's step, ~0 unquantised
     q = _quantised(x, diff, step)
-    up, n_up, runs_up, mask_up = _rail(x, +1, median, step, (starts, lengths), s, q)
-    lo, n_lo, runs_lo, mask_lo = _rail(x, -1, median, step, (starts, lengths), s, q)
+    cache = []
+
+    def levels() -> tuple[np.ndarray, np.ndarray]:   # the distinct values, sorted, and their runs: found when asked
+        if not cache:
+            cache.append(np.unique(x[starts], return_counts=True))
+        return cache[0]
+    up, n_up, runs_up, mask_up = _rail(x, +1, median, step, (starts, lengths), s, q, levels)
+    lo, n_lo, runs_lo, mask_lo = _rail(x, -1, median, step, (starts, lengths), s, q, levels)
     railed = np.zeros(x.size, dtype=bool)
     for mask in (mask_up, mask_lo):
         if mask.size:
@@ -269,7 +324,7 @@ def assess_signal(x, name: str, settings: SaturationSettings | None = None) -> S
     # quiet stretch
     long_ = (lengths >= s.stuck_min_run_samples) & ~railed[starts]
     if long_.any():
-        long_[_quiet_quantised_runs(x, step, starts, lengths, np.flatnonzero(long_), s, q)] = False
+        long_[_quiet_quantised_runs(x, step, starts, lengths, np.flatnonzero(long_), s, q, levels)] = False
     stuck = int(lengths[long_].sum())
     stuck_value = float(x[starts[long_][np.argmax(lengths[long_])]]) if stuck else None
     return SignalSaturation(name, int(x.size), n_up + n_lo, runs_up + runs_lo, up, lo, stuck, stuck_value)

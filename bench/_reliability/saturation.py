@@ -378,13 +378,16 @@ def _rails_behind_codec(sealed: bool) -> dict:
         names = [n for n in names if n not in UNSPENT_SEALED]
     codecs = CODECS_SEALED if sealed else CODECS_DEV
     recs = {spec.label: _simulated(spec) for n in names for spec in suite(n) if spec.kind == "clean"}
-    false = []
+    false, stuck = [], []
     for label, sig in recs.items():
         for codec in codecs:
             for r in _count({s: _codec(sig[s], codec, s) for s in ("a1", "a2")}).values():
                 if r.at_rail:
                     false.append(f"{label} {codec}: {r.message()}")
                     _log("FALSE RAIL", false[-1])
+                if r.stuck:
+                    stuck.append(f"{label} {codec}: {r.message()}")
+                    _log("FALSE STUCK", stuck[-1])
     clips = []
     for label in list(recs)[:: max(1, len(recs) // 8)][:8]:
         for s in ("a1", "a2"):
@@ -397,9 +400,9 @@ def _rails_behind_codec(sealed: bool) -> dict:
                                       "found": bool(_count(coded)[s].at_rail > 0)})
     prefix = "sealed_" if sealed else ""
     return {f"{prefix}codec_clean_drives": len(recs), f"{prefix}codecs": list(codecs),
-            f"{prefix}codec_false_rails": len(false),
+            f"{prefix}codec_false_rails": len(false), f"{prefix}codec_false_stuck": len(stuck),
             f"{prefix}codec_clips_found": sum(c["found"] for c in clips), f"{prefix}codec_clip_cases": len(clips),
-            "details": {"codec_false_rails": false, "codec_clips_missed": [c["case"] for c in clips if not c["found"]]}}
+            "details": {"codec_false_rails": false, "codec_false_stuck": stuck, "codec_clips_missed": [c["case"] for c in clips if not c["found"]]}}
 
 
 def run(sealed: bool = False, sealed_quantised: bool = False, sealed_rails_adc: bool = False,
