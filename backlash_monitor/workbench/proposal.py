@@ -756,11 +756,12 @@ def propose(run, up, verdict: str) -> Proposal | None:
     its compile, ~40 s of one core once after a change of the library or of the plant's generator (the gated
     library kernel: bench/results.json proposal_cpu_first_call)."""
     c0 = first_call_cpu_seconds()
-    out = _propose(run, up, verdict)
+    sensitivities: dict = {}
+    out = _propose(run, up, verdict, sensitivities=sensitivities)
     if (MEMORY_SECOND_PASS and not candidate_terms.MEMORY_IN_LIBRARY and out is not None and not out.proposed
             and out.selection_ran):
         first = out
-        again = _propose(run, up, verdict, memory=True)
+        again = _propose(run, up, verdict, memory=True, sensitivities=sensitivities)
         if again.proposed:
             out = again
             out.reason += f" (with the terms with a memory, after the library without them: {first.reason})"
@@ -774,7 +775,35 @@ def propose(run, up, verdict: str) -> Proposal | None:
     return out
 
 
-def _propose(run, up, verdict: str, memory: bool = False) -> Proposal | None:
+REUSE_TOLERANCE = 1e-9   # the second pass's reference against the first's (relative, its largest sample): the same
+                         # model at zero coefficients, so the same runs; beyond it the first pass's columns are not used
+
+
+def _shared_predictions(p, shared: list, key: dict, steps: dict, sensitivities: dict) -> list:
+    """The reference's and every plain term's prediction at its step ([ref, term 1, ...]; None where the term stops
+    the drive crossing its backlash). ``sensitivities`` ({} on a first pass) holds a pass's predictions by term;
+    a later pass on a library with more terms simulates the reference and the terms it has not, and takes the
+    others from it when its reference is the same (it is: the same model at zero coefficients, common random
+    numbers; a reference that is not -- another kernel's rounding -- simulates them all)."""
+    known = sensitivities.get("by_term", {})
+    new = [t for t in shared if t.name not in known]
+    preds = _evaluate_each(p, [{}] + [{key[t.name]: float(steps[t.name])} for t in new])
+    ref, by = preds[0], dict(zip((t.name for t in new), preds[1:]))
+    old_ref = sensitivities.get("ref")
+    if known and (ref is None or old_ref is None
+                  or np.max(np.abs(ref - old_ref)) > REUSE_TOLERANCE * max(float(np.max(np.abs(old_ref))), 1e-300)):
+        rest = [t for t in shared if t.name not in by]
+        by.update(zip((t.name for t in rest), _evaluate_each(p, [{key[t.name]: float(steps[t.name])} for t in rest])))
+    else:
+        by.update({name: pred for name, pred in known.items() if name not in by})
+    if ref is not None and "ref" not in sensitivities:
+        sensitivities.update(ref=ref, by_term=dict(by))
+    return [ref] + [by[t.name] for t in shared]
+
+
+def _propose(run, up, verdict: str, memory: bool = False, sensitivities: dict | None = None) -> Proposal | None:
+    """One pass of the proposal on the library (with the terms with a memory or without); ``sensitivities``: see
+    _shared_predictions."""
     if verdict not in VERDICTS:
         return None
     t0 = time.process_time()
@@ -795,8 +824,7 @@ def _propose(run, up, verdict: str, memory: bool = False) -> Proposal | None:
     key = {t.name: f"{t.name}.{candidate_terms.coefficient_name(t)}" for t in terms}
     steps = {t.name: candidate_terms.BALANCES[t.balance][1] for t in terms}
     # 1. the shared sensitivities: the reference and every plain term at a small coefficient (common random numbers)
-    sets = [{}] + [{key[t.name]: float(steps[t.name])} for t in shared]
-    preds = _evaluate_each(p, sets)
+    preds = _shared_predictions(p, shared, key, steps, {} if sensitivities is None else sensitivities)
     if preds[0] is None:
         return Proposal(False, "the model (with the partial explanation) gives no onset window in a simulated run: "
                                "nothing to fit a term to", cpu_seconds=time.process_time() - t0)

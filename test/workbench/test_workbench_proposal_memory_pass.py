@@ -1,6 +1,7 @@
 """The terms with a memory in a second pass (proposal.MEMORY_SECOND_PASS): run only when the library without them
 proposes nothing after the selection ran; they never replace a proposal the first pass made, and their pass's
 result and cost are reported (docs/workbench.md "Terms with memory, in a second pass")."""
+import numpy as np
 import pytest
 
 from backlash_monitor.workbench import candidate_terms, proposal
@@ -10,7 +11,7 @@ from backlash_monitor.workbench.proposal import Proposal
 def _fake(first: Proposal, second: Proposal):
     calls = []
 
-    def fake(run, up, verdict, memory=False):
+    def fake(run, up, verdict, memory=False, sensitivities=None):
         calls.append(memory)
         return second if memory else first
     return fake, calls
@@ -78,3 +79,51 @@ def test_no_proposal_for_a_verdict_that_needs_none(monkeypatch):
     fake, calls = _fake(None, None)
     monkeypatch.setattr(proposal, "_propose", fake)
     assert proposal.propose(None, None, "consistent") is None and calls == [False]
+
+
+class _Term:
+    def __init__(self, name):
+        self.name = name
+
+
+def _simulator(offset=0.0):
+    """A stand-in for _evaluate_each: a set's prediction is its coefficient's value (the reference's: ``offset``);
+    every set it simulates is logged."""
+    log = []
+
+    def evaluate_each(p, sets):
+        log.extend(sets)
+        return [np.full(3, offset + sum(s.values())) for s in sets]
+    return evaluate_each, log
+
+
+def test_the_second_pass_simulates_only_the_reference_and_its_new_terms(monkeypatch):
+    plain = [_Term("a"), _Term("b")]
+    both = plain + [_Term("lag")]
+    key = {t.name: t.name + ".c" for t in both}
+    steps = {"a": 1.0, "b": 2.0, "lag": 3.0}
+    evaluate_each, log = _simulator()
+    monkeypatch.setattr(proposal, "_evaluate_each", evaluate_each)
+    cache: dict = {}
+    first = proposal._shared_predictions(None, plain, key, steps, cache)
+    assert [float(x[0]) for x in first] == [0.0, 1.0, 2.0] and len(log) == 3
+    log.clear()
+    second = proposal._shared_predictions(None, both, key, steps, cache)
+    assert [float(x[0]) for x in second] == [0.0, 1.0, 2.0, 3.0]
+    assert log == [{}, {"lag.c": 3.0}]          # the plain terms' runs taken from the first pass
+
+
+def test_a_second_pass_whose_reference_differs_simulates_every_term(monkeypatch):
+    plain = [_Term("a")]
+    both = plain + [_Term("lag")]
+    key = {t.name: t.name + ".c" for t in both}
+    steps = {"a": 1.0, "lag": 3.0}
+    evaluate_each, _ = _simulator()
+    monkeypatch.setattr(proposal, "_evaluate_each", evaluate_each)
+    cache: dict = {}
+    proposal._shared_predictions(None, plain, key, steps, cache)
+    evaluate_each, log = _simulator(offset=1e-3)           # another model: its reference moved
+    monkeypatch.setattr(proposal, "_evaluate_each", evaluate_each)
+    second = proposal._shared_predictions(None, both, key, steps, cache)
+    assert {k for s in log for k in s} == {"a.c", "lag.c"}
+    assert [float(x[0]) for x in second] == pytest.approx([1e-3, 1.001, 3.001])
