@@ -35,8 +35,12 @@
   drives as the ADC check, ``codec_clips_found`` of ``codec_clip_cases`` alike. Sealed (``--sealed-rails-codec``, run
   once): blocks of 32 with 8-bit mantissas, a 12-bit A-law ADC, bfloat16, on the spent sealed suites' clean drives.
 
-`python bench/_reliability/saturation.py [--sealed | --sealed-quantised | --sealed-rails-adc | --sealed-rails-codec]`
-prints the dict as JSON.
+- a rail with noise on it (stop 61): a sensor that saturates in its analog stage and is read with noise after it;
+  ``noisy_clips_found`` of ``noisy_clip_cases``, ``noisy_false_flags`` on the same drives unclipped (NOISY_DEV; the
+  sealed NOISY_SEALED with ``--sealed-noisy-rails``, run once).
+
+`python bench/_reliability/saturation.py [--sealed | --sealed-quantised | --sealed-rails-adc | --sealed-rails-codec |
+--sealed-noisy-rails]` prints the dict as JSON.
 """
 from __future__ import annotations
 
@@ -405,9 +409,86 @@ def _rails_behind_codec(sealed: bool) -> dict:
             "details": {"codec_false_rails": false, "codec_false_stuck": stuck, "codec_clips_missed": [c["case"] for c in clips if not c["found"]]}}
 
 
+# A sensor that saturates in its analog stage and is read with noise after it (stop 61): its rail is a level with the
+# front end's and the ADC's noise on it, not one value repeated. Cases written before any rule for them: a1 or a2
+# clipped at c * its peak |x| on both rails, then white noise of n * that peak, then the chain (unquantised, or an ADC;
+# sealed: a first-order 5 kHz anti-alias filter before the ADC too). Found: the clipped signal at a rail within
+# 4 noise sd + a step of the clip level, the other signal none. False flags: the same drives unclipped through the
+# same chains. Sealed (--sealed-noisy-rails): other drives, clip levels and noise, run once.
+NOISY_DEV = {"drives": (("plant", 21), ("plant", 22), ("foreign", "clean_w2.5_eta0.05_n0.97"),
+                        ("foreign", "clean_w5.0_eta0.025_n0.89"), ("foreign", "clean_w7.1_eta0.0125_n0.97")),
+             "fractions": (0.5, 0.75, 0.95), "noise_of_peak": (1e-4, 1e-3, 3e-3), "chains": ("float", "adc16")}
+NOISY_SEALED = {"drives": (("plant", 31), ("plant", 32), ("foreign", "clean_w3.1_eta0.0125_n0.89"),
+                           ("foreign", "clean_w8.3_eta0.0375_n0.95"), ("foreign", "clean_w10_eta0.05_n0.89")),
+                "fractions": (0.6, 0.85, 0.9), "noise_of_peak": (3e-4, 2e-3),
+                "chains": ("float", "adc12", "lowpass5k_adc16")}
+
+
+def _chain(x: np.ndarray, chain: str, signal: str) -> np.ndarray:
+    """After the noise: unquantised, an ADC of N bits over the bench's full scale, or a first-order 5 kHz low-pass
+    (the anti-alias filter) and then a 16-bit ADC."""
+    if chain == "float":
+        return x
+    if chain.startswith("lowpass5k"):
+        a = np.exp(-2 * np.pi * 5000.0 / 50_000.0)
+        y = np.empty_like(x)
+        acc = x[0]
+        for i, v in enumerate(x):          # y[i] = a*y[i-1] + (1-a)*x[i]
+            acc = a * acc + (1 - a) * v
+            y[i] = acc
+        x, chain = y, chain.split("_", 1)[1]
+    return _adc(x, _adc_step(signal, int(chain[3:])))
+
+
+def _noisy_rails(sealed: bool) -> dict:
+    cfg = NOISY_SEALED if sealed else NOISY_DEV
+    recs = {}
+    seeds = [d for src, d in cfg["drives"] if src == "plant"]
+    for seed, sig in zip(seeds, _plant([(0.005, 0.025, 0.89, seed) for seed in seeds])):
+        recs[("plant", seed)] = sig
+    for src, label in cfg["drives"]:
+        if src == "foreign":
+            recs[(src, label)] = _foreign(label)
+    rng = np.random.default_rng(61)
+    cases, false = [], []
+    for (src, drive), sig in recs.items():
+        for noise in cfg["noise_of_peak"]:
+            for chain in cfg["chains"]:
+                noisy = {s: v + noise * float(np.abs(v).max()) * rng.standard_normal(v.size) for s, v in sig.items()}
+                clean = {s: _chain(v, chain, s) for s, v in noisy.items()}
+                for r in _count(clean).values():
+                    if r.faulty:
+                        false.append(f"{src}:{drive}:{noise}:{chain}: {r.message()}")
+                        _log("NOISY FALSE FLAG", false[-1])
+                for s in ("a1", "a2"):
+                    peak = float(np.abs(sig[s]).max())
+                    for fraction in cfg["fractions"]:
+                        level = fraction * peak
+                        x = np.clip(sig[s], -level, level) + noise * peak * rng.standard_normal(sig[s].size)
+                        signals = dict(clean)
+                        signals[s] = _chain(x, chain, s)
+                        totals = _count(signals)
+                        other = "a2" if s == "a1" else "a1"
+                        tol = 4 * noise * peak + (0.0 if chain == "float" else _adc_step(s, int(chain[-2:])))
+                        found = [abs(v) for v in (totals[s].upper_rail, totals[s].lower_rail) if v is not None]
+                        ok = bool(totals[s].at_rail > 0 and totals[other].at_rail == 0 and found
+                                  and all(abs(v - level) <= tol for v in found))
+                        cases.append({"case": f"{src}:{drive}:{s}:{fraction}:{noise}:{chain}", "found": ok,
+                                      "message": totals[s].message()})
+    prefix = "sealed_" if sealed else ""
+    return {f"{prefix}noisy_clip_cases": len(cases), f"{prefix}noisy_clips_found": sum(c["found"] for c in cases),
+            f"{prefix}noisy_false_flags": len(false), f"{prefix}noisy_clean_chains": len(recs) * len(cfg["noise_of_peak"])
+            * len(cfg["chains"]),
+            "details": {"noisy_false_flags": false, "noisy_clips_missed": [c["case"] for c in cases if not c["found"]]}}
+
+
 def run(sealed: bool = False, sealed_quantised: bool = False, sealed_rails_adc: bool = False,
-        sealed_rails_codec: bool = False) -> dict:
+        sealed_rails_codec: bool = False, sealed_noisy_rails: bool = False) -> dict:
     started = time.perf_counter()
+    if sealed_noisy_rails:
+        out = _noisy_rails(True)
+        out["seconds"] = round(time.perf_counter() - started, 1)
+        return out
     if sealed_rails_codec:
         out = _rails_behind_codec(True)
         out["seconds"] = round(time.perf_counter() - started, 1)
@@ -440,6 +521,9 @@ def run(sealed: bool = False, sealed_quantised: bool = False, sealed_rails_adc: 
         codec = _rails_behind_codec(False)
         details.update(codec.pop("details"))
         out.update(codec)
+        noisy = _noisy_rails(False)
+        details.update(noisy.pop("details"))
+        out.update(noisy)
     out["clip_cases"] = len(rows)
     out["seconds"] = round(time.perf_counter() - started, 1)
     out["details"] = details
@@ -449,4 +533,5 @@ def run(sealed: bool = False, sealed_quantised: bool = False, sealed_rails_adc: 
 if __name__ == "__main__":
     print(json.dumps(run(sealed="--sealed" in sys.argv[1:], sealed_quantised="--sealed-quantised" in sys.argv[1:],
                          sealed_rails_adc="--sealed-rails-adc" in sys.argv[1:],
-                         sealed_rails_codec="--sealed-rails-codec" in sys.argv[1:]), indent=1))
+                         sealed_rails_codec="--sealed-rails-codec" in sys.argv[1:],
+                         sealed_noisy_rails="--sealed-noisy-rails" in sys.argv[1:]), indent=1))
