@@ -475,10 +475,30 @@ def _noisy_rails(sealed: bool) -> dict:
                                   and all(abs(v - level) <= tol for v in found))
                         cases.append({"case": f"{src}:{drive}:{s}:{fraction}:{noise}:{chain}", "found": ok,
                                       "message": totals[s].message()})
+    # and the clean drives of the ADC check (development: the bench's and the outside development suites'; sealed:
+    # the spent sealed suites') with noise of 1e-3 of each signal's peak, unquantised and behind a 16-bit ADC
+    from foreign_drives.suites import SEALED_FIRST_SEED, SUITES, suite
+    names = ([n for n in SEALED_FIRST_SEED if n.startswith("outside_sealed")] if sealed
+             else ["bench"] + [n for n in SUITES if n.startswith("outside_dev")])
+    if sealed:
+        sys.path.insert(0, str(REPO / "bench"))
+        from _workbench.outside import UNSPENT_SEALED
+        names = [n for n in names if n not in UNSPENT_SEALED]
+    wide = 0
+    for spec in (spec for n in names for spec in suite(n) if spec.kind == "clean"):
+        sig = _simulated(spec)
+        for chain in ("float", "adc16"):
+            wide += 1
+            noisy = {k: _chain(v + 1e-3 * float(np.abs(v).max()) * rng.standard_normal(v.size), chain, k)
+                     for k, v in sig.items()}
+            for r in _count(noisy).values():
+                if r.faulty:
+                    false.append(f"{spec.label}:0.001:{chain}: {r.message()}")
+                    _log("NOISY FALSE FLAG", false[-1])
     prefix = "sealed_" if sealed else ""
     return {f"{prefix}noisy_clip_cases": len(cases), f"{prefix}noisy_clips_found": sum(c["found"] for c in cases),
             f"{prefix}noisy_false_flags": len(false), f"{prefix}noisy_clean_chains": len(recs) * len(cfg["noise_of_peak"])
-            * len(cfg["chains"]),
+            * len(cfg["chains"]) + wide,
             "details": {"noisy_false_flags": false, "noisy_clips_missed": [c["case"] for c in cases if not c["found"]]}}
 
 
