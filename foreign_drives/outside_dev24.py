@@ -48,7 +48,7 @@ Kinds (balance x what it reads, and how), the development half -- things a real 
    count's residue, hashed steps -- none growing with the travel);
 9. a1 sensor x the SIGNAL through a CUBIC EXPANSION: a1's capacitive MEMS element has an electrostatic spring: the
    readout's bias voltage pulls the proof mass towards whichever electrode it nears, softening the suspension more the
-   further it is deflected, so the reading grows faster than the acceleration: y = x*(1 + (x/a_e)^2) (the earlier
+   further it is deflected, so the reading grows faster than the acceleration: y = x*(1 + k*x^2) (the earlier
    memoryless sensor errors of the signal's size are a dead zone, a bilinear gain, a compression (tanh), a quadratic,
    clips, kinks, a wrap-around, an exponential diode leak, a jump at zero and quantisers -- none a smooth odd
    expansion);
@@ -65,4 +65,260 @@ Kinds (balance x what it reads, and how), the development half -- things a real 
     sample, a lag, a latch, a moving mean, an off-delay, an on-delay, a one-shot, a PI, a rattle, a rate-and-state
     state, a resonator, a run-to-run controller, a since-stroke integral, a slip hub, a step controller and a stroke
     peak -- none a PWM).
+Memory elements (one per recording) are advanced once per 0.2 ms input segment from the state at the segment's start
+(kernel.py "memory"), as in the fourth to twenty-third sets; the memory starts afresh at the run-in's first scan, 2 s
+before sample 0. The jam guard (1) is the seventh set's MK_ON_DELAY of XS_PENETRATION_DEPTH (its output T*m on the
+motor); the metered brake (3) the seventh set's MK_SINCE_STROKE of XS_SPRING_EXTENSION (-c*m on the wheel); the tension
+clamp (11) the tenth set's MK_IMPACT_SAMPLE of XS_SPRING_EXTENSION, its term XF_EXCESS_POWER (power 1) of XS_MEMORY; the
+brake chopper (13) the sixth set's MK_PWM of XS_MASS_SPEED. The disc pack (5) is XS_JAW_ANGLE (k*D) plus XS_JAW_ANGLE
+times XF_SIN of XS_ALPHA1 (angle-locked, so left out of the settled start's period map); the cable reel (7)
+XF_EXCESS_POWER (power 1) of XS_MASS_POSITION (left out of the period map too); the electrostatic softening (9) a sensor
+form in numpy on a1 alone. No kernel change for this set.
 """
+from __future__ import annotations
+
+import numpy as np
+
+from . import kernel as K
+from .forms import Param
+from .outside import OutsideForm, add_term
+from .outside_dev4 import segments, set_memory
+
+
+# 1. motor load moment x the jaw's penetration depth through an on-delay
+class MotorJawJamGuardBrake(OutsideForm):
+    name = "motor_jaw_jam_guard_brake"
+    half = "dev24"
+    balance = "motor_load_moment"
+    depends_on = ("clutch_penetration",)
+    description = ("a jam guard: a proximity switch at the jaw sees it bottomed deeper than p_t; once the penetration "
+                   "depth has stayed beyond p_t for t_d (scanned every 0.2 ms) the guard's relay sets a shoe brake on "
+                   "the motor's shaft, released at the first scan the depth is back within p_t: T*m, m = 1 while set, "
+                   "else 0 (the depth on either side, 0 free)")
+    parameters = (Param("torque_Nm", "N*m", (0.0, 50.0), "T"),
+                  Param("threshold_rad", "rad", (0.0, 0.5), "p_t"),
+                  Param("delay_s", "s", (2e-4, 1.0), "t_d"))
+    note = "a motor brake set once the jaw has stayed deeply engaged for a while (an on-delay of the penetration depth)"
+
+    def apply(self, b, p):
+        set_memory(b, self.name, K.MK_ON_DELAY, K.XS_PENETRATION_DEPTH, p["threshold_rad"], p["delay_s"])
+        add_term(b, "motor_load_moment", p["torque_Nm"], (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0), nonperiodic=True)
+
+    @staticmethod
+    def held(depth_at_scans, p, dt, run0=0):
+        """The brake's state (0/1) after each scan from the penetration depth at the scans' starts (``run0`` scans
+        beyond p_t counted before the first)."""
+        x = np.asarray(depth_at_scans, dtype=np.float64).tolist()
+        out, n = np.zeros(len(x)), float(run0)
+        for i, v in enumerate(x):
+            n = n + 1.0 if v > p["threshold_rad"] else 0.0
+            out[i] = 1.0 if n > 0.0 and n * dt >= p["delay_s"] - 1e-12 else 0.0
+        return out
+
+    def law(self, p):
+        return (f"motor load moment += {p['torque_Nm']:.6g} N*m * m, m = 1 once the jaw's penetration depth has stayed "
+                f"above {p['threshold_rad']:.6g} rad for {p['delay_s']:.6g} s (scanned every 0.2 ms), 0 from the first "
+                "scan it is not")
+
+
+# 3. wheel torque x the spring's extension through a since-stroke integral
+class WheelStrokeDumpedMeteredBrake(OutsideForm):
+    name = "wheel_stroke_dumped_metered_brake"
+    half = "dev24"
+    balance = "wheel_torque"
+    depends_on = ("spring_extension", "load_pulse")
+    description = ("a stroke-dumped hydraulic drum brake: oil is metered into the brake's cylinder through a valve the "
+                   "tow's dancer opens in proportion to the cable's extension, and the press's valve dumps the cylinder "
+                   "at each load pulse's first 0.2 ms scan: -c*m on the wheel, m the integral of the extension z since "
+                   "the stroke's start (z at each scan's start, 0 at the run-in's start)")
+    parameters = (Param("coefficient_Nm_per_m_s", "N*m/(m*s)", (0.0, 1e4), "c"),)
+    note = "a drum brake whose pressure integrates the extension over each stroke (a since-stroke integral of the extension)"
+
+    def apply(self, b, p):
+        set_memory(b, self.name, K.MK_SINCE_STROKE, K.XS_SPRING_EXTENSION, 0.0)
+        add_term(b, "wheel_torque", -p["coefficient_Nm_per_m_s"], (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0), nonperiodic=True)
+
+    @staticmethod
+    def integral(z_at_scans, count_at_scans, dt, m0=0.0, count0=None):
+        """The integral m after each scan from the extension and the pulse count at the scans' starts (m0 and the
+        count before the first scan; None: the first scan starts it at 0)."""
+        z = np.asarray(z_at_scans, dtype=np.float64).tolist()
+        c = np.asarray(count_at_scans, dtype=np.float64).tolist()
+        out, m, prev = np.zeros(len(z)), m0, (c[0] if count0 is None else count0)
+        for i, (x, k) in enumerate(zip(z, c)):
+            if k != prev:
+                prev, m = k, 0.0
+            else:
+                m += x * dt
+            out[i] = m
+        return out
+
+    def law(self, p):
+        return (f"wheel torque += -{p['coefficient_Nm_per_m_s']:.6g} N*m/(m*s) * m, m the integral of the spring's "
+                "extension since the latest load pulse's first 0.2 ms scan")
+
+
+# 5. clutch torque x the jaw's angle difference times a sine of the motor's angle
+class ClutchLooseBoltDiscPack(OutsideForm):
+    name = "clutch_loose_bolt_disc_pack"
+    half = "dev24"
+    balance = "clutch_torque"
+    depends_on = ("motor_angle", "wheel_angle")
+    description = ("a thin laminated-disc anti-rattle spring across the jaw with one of its bolts loose: the pack's "
+                   "torsional stiffness varies once a motor turn as the loose bolt's side passes under load: "
+                   "k*(1 + e*sin(alpha1 + phi))*D from the motor to the wheel, D the jaw's angle difference, in the gap "
+                   "and in contact")
+    parameters = (Param("stiffness_Nm_per_rad", "N*m/rad", (0.0, 1e4), "k"),
+                  Param("modulation", "-", (0.0, 1.0), "e"),
+                  Param("phase_rad", "rad", (-np.pi, np.pi), "phi"))
+    note = "a stiffness across the jaw that varies with the motor's angle (the jaw's angle times a sine of the motor's)"
+
+    def apply(self, b, p):
+        k = p["stiffness_Nm_per_rad"]
+        add_term(b, "clutch_torque", k, (K.XS_JAW_ANGLE, K.XF_X, 0.0, 0.0, 0.0))
+        add_term(b, "clutch_torque", k * p["modulation"], (K.XS_JAW_ANGLE, K.XF_X, 0.0, 0.0, 0.0),
+                 (K.XS_ALPHA1, K.XF_SIN, 1.0, p["phase_rad"], 0.0), nonperiodic=True)
+
+    @staticmethod
+    def torque(d, alpha1, p):
+        return (p["stiffness_Nm_per_rad"] * (1.0 + p["modulation"] * np.sin(np.asarray(alpha1) + p["phase_rad"]))
+                * np.asarray(d, dtype=np.float64))
+
+    def law(self, p):
+        return (f"clutch torque += {p['stiffness_Nm_per_rad']:.6g} N*m/rad * (1 + {p['modulation']:.6g}*sin(alpha1 + "
+                f"{p['phase_rad']:.6g})) * D, D the jaw's angle difference, alpha1 the motor's angle")
+
+
+# 7. mass force x the carriage's position through a linear excess
+class MassSpringCableReel(OutsideForm):
+    name = "mass_spring_cable_reel"
+    half = "dev24"
+    balance = "mass_force"
+    depends_on = ("wheel_angle", "spring_extension")     # x_c = r*alpha2 - z
+    description = ("the carriage's trailing power cable is paid out from a spring-driven cable reel at the track's "
+                   "start; the reel's spring winds up as the cable pays out, so its pull back on the carriage grows with "
+                   "the carriage's travel beyond x_0: -k*max(0, x_c - x_0), x_c the carriage's position from the "
+                   "run-in's start")
+    parameters = (Param("stiffness_N_per_m", "N/m", (0.0, 10.0), "k: the reel's pull per m of cable paid out"),
+                  Param("start_m", "m", (0.0, 1000.0), "x_0: the carriage's position where the reel's spring is slack"))
+    note = "a pull on the carriage growing with its travel (a linear excess of the carriage's position)"
+
+    def apply(self, b, p):
+        add_term(b, "mass_force", -p["stiffness_N_per_m"],
+                 (K.XS_MASS_POSITION, K.XF_EXCESS_POWER, p["start_m"], 1.0, 0.0), nonperiodic=True)
+
+    @staticmethod
+    def force(x_c, p):
+        e = np.asarray(x_c, dtype=np.float64) - p["start_m"]
+        return -p["stiffness_N_per_m"] * np.where(e > 0.0, e, 0.0)
+
+    def law(self, p):
+        return (f"mass force += -{p['stiffness_N_per_m']:.6g} N/m * max(0, x_c - {p['start_m']:.6g} m), x_c the "
+                "carriage's position from the run-in's start")
+
+
+# 9. a1 sensor x the signal through a cubic expansion
+class A1ElectrostaticSoftening(OutsideForm):
+    name = "a1_electrostatic_softening"
+    half = "dev24"
+    stage = "sensor"
+    order = 0                      # the sensing element itself
+    uses_states = False
+    balance = "sensor"
+    channel = "a1"
+    depends_on = ("motor_acceleration",)
+    description = ("a1's capacitive MEMS element has an electrostatic spring: the readout's bias pulls the proof mass "
+                   "towards whichever electrode it nears, softening the suspension the more it is deflected, so the "
+                   "reading grows faster than the acceleration: y = x*(1 + k*x^2)")
+    parameters = (Param("coefficient_s4_per_m2", "s^4/m^2", (0.0, 1.0), "k (1/a_e^2, a_e the expansion's scale)"),)
+    note = "an a1 reading that grows faster than the acceleration (an odd cubic expansion of the signal)"
+
+    def apply_signal(self, sig, p, t, fs, states=None):
+        sig["a1"] = self.read(sig["a1"], p)
+
+    @staticmethod
+    def read(a1, p):
+        a1 = np.asarray(a1, dtype=np.float64)
+        if p["coefficient_s4_per_m2"] == 0.0:
+            return a1
+        return a1 * (1.0 + p["coefficient_s4_per_m2"] * a1 * a1)
+
+    def law(self, p):
+        return f"a1 sensor = a1 * (1 + {p['coefficient_s4_per_m2']:.6g} s^4/m^2 * a1^2)"
+
+
+# 11. mass force x the spring's extension through an impact sample
+class MassKnockSampledTensionClamp(OutsideForm):
+    name = "mass_knock_sampled_tension_clamp"
+    half = "dev24"
+    balance = "mass_force"
+    depends_on = ("spring_extension", "clutch_penetration")
+    description = ("a knock sensor on the jaw's guard triggers the tow's tension clamp: at each of the jaw's impacts "
+                   "(the first 0.2 ms scan after a contact from the gap began) the controller samples the cable's "
+                   "extension and sets a hold-back magnet on the carriage from its excess over z_r, held until the next "
+                   "impact: -k*max(0, z_k - z_r) (z_k = z at the run-in's start until the first impact)")
+    parameters = (Param("gain_N_per_m", "N/m", (0.0, 1e5), "k"),
+                  Param("reference_m", "m", (0.0, 1.0), "z_r"))
+    note = "a carriage hold-back set at each of the jaw's impacts from the extension then (an impact sample of the extension)"
+
+    def apply(self, b, p):
+        set_memory(b, self.name, K.MK_IMPACT_SAMPLE, K.XS_SPRING_EXTENSION, 0.0)
+        add_term(b, "mass_force", -p["gain_N_per_m"], (K.XS_MEMORY, K.XF_EXCESS_POWER, p["reference_m"], 1.0, 0.0),
+                 nonperiodic=True)
+
+    @staticmethod
+    def force(held_z, p):
+        e = np.asarray(held_z, dtype=np.float64) - p["reference_m"]
+        return -p["gain_N_per_m"] * np.where(e > 0.0, e, 0.0)
+
+    def law(self, p):
+        return (f"mass force += -{p['gain_N_per_m']:.6g} N/m * max(0, z_k - {p['reference_m']:.6g} m), z_k the spring's "
+                "extension sampled at the scan after each contact from the gap began, held")
+
+
+# 13. motor load moment x the carriage's speed through a PWM actuator
+class MotorLineOverspeedBrakeChopper(OutsideForm):
+    name = "motor_line_overspeed_brake_chopper"
+    half = "dev24"
+    balance = "motor_load_moment"
+    depends_on = ("mass_speed",)
+    description = ("the drive's dynamic-braking chopper: at each PWM period's start (n scans of 0.2 ms from the run-in's "
+                   "start) the controller samples the carriage's speed v and sets the braking resistor's duty d = "
+                   "clip((v - v_0)/v_w, 0, 1); the resistor is switched in for the period's first round(d*n) scans and "
+                   "loads the motor with T while in: T*m, m = 1 while in, else 0")
+    parameters = (Param("torque_Nm", "N*m", (0.0, 50.0), "T"),
+                  Param("period_s", "s", (4e-4, 0.05), "the PWM period n*0.2 ms (a multiple of 0.2 ms)"),
+                  Param("line_speed_m_s", "m/s", (0.0, 100.0), "v_0"),
+                  Param("full_duty_span_m_s", "m/s", (1e-4, 10.0), "v_w"))
+    note = "a motor brake chopped by a PWM whose duty the sampled carriage speed sets (a PWM of the carriage's speed)"
+
+    def apply(self, b, p):
+        per = segments(p["period_s"], f"{self.name}: period_s")
+        set_memory(b, self.name, K.MK_PWM, K.XS_MASS_SPEED, float(per), p["line_speed_m_s"], p["full_duty_span_m_s"])
+        add_term(b, "motor_load_moment", p["torque_Nm"], (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0), nonperiodic=True)
+
+    @staticmethod
+    def gate(v_at_scans, p, phase0=0):
+        """The resistor's state (0/1) at each scan from the carriage's speed at the scans' starts, the first scan at
+        place ``phase0`` of its PWM period (a period starting before the first scan: nan until the next period's
+        start)."""
+        per = segments(p["period_s"], "period_s")
+        v = np.asarray(v_at_scans, dtype=np.float64)
+        out = np.full(v.size, np.nan)
+        duty = None
+        for i in range(v.size):
+            k = (phase0 + i) % per
+            if k == 0:
+                duty = min(1.0, max(0.0, (v[i] - p["line_speed_m_s"]) / p["full_duty_span_m_s"]))
+            if duty is not None:
+                out[i] = 1.0 if k < round(duty * per) else 0.0
+        return out
+
+    def law(self, p):
+        return (f"motor load moment += {p['torque_Nm']:.6g} N*m * m, m = 1 within the first d*{p['period_s']:.6g} s of "
+                f"each PWM period, else 0, d = clip((v - {p['line_speed_m_s']:.6g} m/s)/{p['full_duty_span_m_s']:.6g} "
+                "m/s, 0, 1), v the carriage's speed sampled at the period's start")
+
+
+FORM_CLASSES = (MotorJawJamGuardBrake, WheelStrokeDumpedMeteredBrake, ClutchLooseBoltDiscPack, MassSpringCableReel,
+                A1ElectrostaticSoftening, MassKnockSampledTensionClamp, MotorLineOverspeedBrakeChopper)
