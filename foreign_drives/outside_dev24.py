@@ -54,9 +54,9 @@ Kinds (balance x what it reads, and how), the development half -- things a real 
    expansion);
 11. mass force x the SPRING's EXTENSION through an IMPACT SAMPLE: a knock sensor on the jaw's guard triggers the tow's
     tension clamp: at each of the jaw's impacts the controller samples the cable's extension and sets a hold-back
-    magnet on the carriage from its excess over z_r, held until the next impact: -F*max(0, z_k - z_r)/dz, z_k the
-    extension at the scan after the latest contact from the gap began (the earlier impact samples read the slip, the
-    carriage's speed and the motor's speed);
+    magnet on the carriage from its shortfall below z_r (holding the carriage back while the cable runs slack, to keep
+    it taut), held until the next impact: -k*max(0, z_r - z_k), z_k the extension at the scan after the latest contact
+    from the gap began (the earlier impact samples read the slip, the carriage's speed and the motor's speed);
 13. motor load moment x the CARRIAGE's SPEED through a PWM ACTUATOR: the drive's dynamic-braking chopper: at each PWM
     period's start (n scans of 0.2 ms) the controller samples the carriage's speed and sets the braking resistor's duty
     from its excess over the line speed v_0: duty = clip((v - v_0)/v_w, 0, 1); the resistor is switched in for the
@@ -69,7 +69,8 @@ Memory elements (one per recording) are advanced once per 0.2 ms input segment f
 (kernel.py "memory"), as in the fourth to twenty-third sets; the memory starts afresh at the run-in's first scan, 2 s
 before sample 0. The jam guard (1) is the seventh set's MK_ON_DELAY of XS_PENETRATION_DEPTH (its output T*m on the
 motor); the metered brake (3) the seventh set's MK_SINCE_STROKE of XS_SPRING_EXTENSION (-c*m on the wheel); the tension
-clamp (11) the tenth set's MK_IMPACT_SAMPLE of XS_SPRING_EXTENSION, its term XF_EXCESS_POWER (power 1) of XS_MEMORY; the
+clamp (11) the tenth set's MK_IMPACT_SAMPLE of XS_SPRING_EXTENSION, its term k*(m - z_r) less k times XF_EXCESS_POWER
+(power 1) of XS_MEMORY (three slots: XS_MEMORY, a constant, the excess); the
 brake chopper (13) the sixth set's MK_PWM of XS_MASS_SPEED. The disc pack (5) is XS_JAW_ANGLE (k*D) plus XS_JAW_ANGLE
 times XF_SIN of XS_ALPHA1 (angle-locked, so left out of the settled start's period map); the cable reel (7)
 XF_EXCESS_POWER (power 1) of XS_MASS_POSITION (left out of the period map too); the electrostatic softening (9) a sensor
@@ -255,24 +256,28 @@ class MassKnockSampledTensionClamp(OutsideForm):
     depends_on = ("spring_extension", "clutch_penetration")
     description = ("a knock sensor on the jaw's guard triggers the tow's tension clamp: at each of the jaw's impacts "
                    "(the first 0.2 ms scan after a contact from the gap began) the controller samples the cable's "
-                   "extension and sets a hold-back magnet on the carriage from its excess over z_r, held until the next "
-                   "impact: -k*max(0, z_k - z_r) (z_k = z at the run-in's start until the first impact)")
+                   "extension and sets a hold-back magnet on the carriage from its shortfall below z_r (holding the "
+                   "carriage back while the cable runs slack), held until the next impact: -k*max(0, z_r - z_k) (z_k = "
+                   "z at the run-in's start until the first impact)")
     parameters = (Param("gain_N_per_m", "N/m", (0.0, 1e5), "k"),
                   Param("reference_m", "m", (0.0, 1.0), "z_r"))
     note = "a carriage hold-back set at each of the jaw's impacts from the extension then (an impact sample of the extension)"
 
     def apply(self, b, p):
+        k, zr = p["gain_N_per_m"], p["reference_m"]
         set_memory(b, self.name, K.MK_IMPACT_SAMPLE, K.XS_SPRING_EXTENSION, 0.0)
-        add_term(b, "mass_force", -p["gain_N_per_m"], (K.XS_MEMORY, K.XF_EXCESS_POWER, p["reference_m"], 1.0, 0.0),
-                 nonperiodic=True)
+        # -k*max(0, z_r - m) = k*(m - z_r) - k*max(0, m - z_r): three slots
+        add_term(b, "mass_force", k, (K.XS_MEMORY, K.XF_X, 0.0, 0.0, 0.0), nonperiodic=True)
+        add_term(b, "mass_force", -k * zr, nonperiodic=True)
+        add_term(b, "mass_force", -k, (K.XS_MEMORY, K.XF_EXCESS_POWER, zr, 1.0, 0.0), nonperiodic=True)
 
     @staticmethod
     def force(held_z, p):
-        e = np.asarray(held_z, dtype=np.float64) - p["reference_m"]
+        e = p["reference_m"] - np.asarray(held_z, dtype=np.float64)
         return -p["gain_N_per_m"] * np.where(e > 0.0, e, 0.0)
 
     def law(self, p):
-        return (f"mass force += -{p['gain_N_per_m']:.6g} N/m * max(0, z_k - {p['reference_m']:.6g} m), z_k the spring's "
+        return (f"mass force += -{p['gain_N_per_m']:.6g} N/m * max(0, {p['reference_m']:.6g} m - z_k), z_k the spring's "
                 "extension sampled at the scan after each contact from the gap began, held")
 
 

@@ -937,7 +937,7 @@ OUTSIDE_DEV24_ROWS = [
     # 4e-6 s^4/m^2 (a_e = 500 m/s^2: about 6 % more at a1's peaks of 127 m/s^2)
     ("od24_a1_electrostatic_softening", "outside", 0.0086, 0.0247, 0.91,
      [E("a1_electrostatic_softening", {"coefficient_s4_per_m2": 4e-6})]),
-    # 300 N per m of the sampled extension over 0.295 m (up to about 5 N)
+    # 300 N per m of the sampled extension's shortfall below 0.295 m (up to about 4 N)
     ("od24_mass_knock_sampled_tension_clamp", "outside", 0.0068, 0.0229, 0.95,
      [E("mass_knock_sampled_tension_clamp", {"gain_N_per_m": 300.0, "reference_m": 0.295})]),
     # 2 N*m when switched in, a 10 ms period, the duty from 0 at 22.70 m/s to 1 at 22.76 m/s
