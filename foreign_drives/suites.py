@@ -921,18 +921,19 @@ OUTSIDE_DEV23_ROWS = [
 # carriage's position about 45-136 m over a 4 s recording; a1 within +-127 m/s^2; the pulse 60 ms every 0.25 s; T_b =
 # 20 N*m).
 OUTSIDE_DEV24_ROWS = [
-    # 2 N*m once the jaw has stayed more than 4 mrad deep for 4 ms
+    # 2 N*m a priori once the jaw has stayed more than 4 mrad deep for 4 ms; a2 0.0253: scaled once x2.96
     ("od24_motor_jaw_jam_guard_brake", "outside", 0.0070, 0.0257, 0.94,
-     [E("motor_jaw_jam_guard_brake", {"torque_Nm": 2.0, "threshold_rad": 0.004, "delay_s": 0.004})]),
+     [E("motor_jaw_jam_guard_brake", {"torque_Nm": 5.922, "threshold_rad": 0.004, "delay_s": 0.004})]),
     # 40 N*m per m*s of the extension's integral since the stroke's start (about 3 N*m at a stroke's end)
     ("od24_wheel_stroke_dumped_metered_brake", "outside", 0.0083, 0.0243, 0.92,
      [E("wheel_stroke_dumped_metered_brake", {"coefficient_Nm_per_m_s": 40.0})]),
     # 30 N*m/rad (about +-2 N*m over the jaw's angle range), modulated +-50 % once a motor turn
     ("od24_clutch_loose_bolt_disc_pack", "outside", 0.0066, 0.0268, 0.96,
      [E("clutch_loose_bolt_disc_pack", {"stiffness_Nm_per_rad": 30.0, "modulation": 0.5, "phase_rad": 0.0})]),
-    # 0.05 N per m paid out from the run-in's start (about 2.3-6.8 N over the recording)
+    # 0.05 N per m paid out from the run-in's start a priori (about 2.3-6.8 N over the recording); a2 0.0276: scaled
+    # once x2.72 (about 6.1-18.5 N)
     ("od24_mass_spring_cable_reel", "outside", 0.0078, 0.0236, 0.90,
-     [E("mass_spring_cable_reel", {"stiffness_N_per_m": 0.05, "start_m": 0.0})]),
+     [E("mass_spring_cable_reel", {"stiffness_N_per_m": 0.136, "start_m": 0.0})]),
     ("od24_clean_w7.3_eta0.0252_n0.93", "clean", 0.0073, 0.0252, 0.93, []),
     # 4e-6 s^4/m^2 (a_e = 500 m/s^2: about 6 % more at a1's peaks of 127 m/s^2)
     ("od24_a1_electrostatic_softening", "outside", 0.0086, 0.0247, 0.91,
