@@ -41,11 +41,14 @@ Kinds (balance x what it reads, and how), the development half -- things a real 
    loose bolt's side passes under load: k*(1 + e*sin(alpha1 + phi))*D from the motor to the wheel, D the jaw's angle
    difference (the earlier stiffnesses across the jaw are constant, hardening, set by the motor's speed, by the
    stroke, by a half-wave supply in time and by the tow's extension -- none by the shaft's own angle);
-7. mass force x the CARRIAGE's POSITION through a LINEAR EXCESS: the carriage's trailing power cable is paid out from a
-   spring-driven cable reel at the track's start; the reel's spring winds up as the cable pays out, so its pull back on
-   the carriage grows with the carriage's travel beyond x_0: -k*max(0, x_c - x_0), x_c the carriage's position from
-   the run-in's start (the earlier laws of the carriage's position are periodic: a gate, a sine, a rectified sine, a
-   count's residue, hashed steps -- none growing with the travel);
+7. mass force x the CARRIAGE's POSITION through a RESONANCE-SHAPED BUMP (a Lorentzian): a worn length of rail: a stretch
+   of the track re-laid with worn, rough rail centred at x_b, the wear fading out either side: the carriage's rolling
+   resistance rises as its wheels run onto it and falls after: -F/(1 + ((x_c - x_b)/w)^2), x_c the carriage's position
+   from the run-in's start (the earlier laws of the carriage's position are periodic: a gate, a sine, a rectified
+   sine, a count's residue, hashed steps -- none a single place on the track). Replaced, after its first visibility
+   run and before any diagnose, the row first written here: a spring-driven cable reel, -k*max(0, x_c - x_0), whose
+   pull at this drive's nearly constant speed is a ramp in time that the catalogue's working-resistance drift gives as
+   well (see "Visibility");
 9. a1 sensor x the SIGNAL through a CUBIC EXPANSION: a1's capacitive MEMS element has an electrostatic spring: the
    readout's bias voltage pulls the proof mass towards whichever electrode it nears, softening the suspension more the
    further it is deflected, so the reading grows faster than the acceleration: y = x*(1 + k*x^2) (the earlier
@@ -67,14 +70,18 @@ Kinds (balance x what it reads, and how), the development half -- things a real 
     peak -- none a PWM).
 Visibility, measured (one simulation of each suite row, 4 s, against the same spec without the mechanism, same seed; no
 diagnose; rms of the recorded signal's difference; criterion a2 >= 0.05 m/s^2, a1 >= 0.25 for an a1 row): 1 a2 0.0253,
-scaled once x2.96 (T 2 -> 5.922 N*m; a2 0.0809 after); 3 a2 0.0713; 5 a2 0.0632; 7 a2 0.0276, scaled once x2.72 (k 0.05
--> 0.136 N/m; a2 0.0727 after); 9 a1 1.09; 11 a2 0.0637; 13 a2 0.0853 -- 3, 5, 9, 11 and 13 as written
-(docs/foreign_drives.md "The twenty-fourth set"). Before it, a 0.4 s run of each row only checked that it simulates. The
-tension clamp (11) was first written with its direction wrong (-k*max(0, z_k - z_r), more hold-back the tighter the
-sampled cable: it tightened the cable it was to keep taut and ran away, the carriage down to 12 m/s, z up to 2.1 m; a2
-2.83 then); its law was corrected to the shortfall above (found on checking each row's speeds and extension in its
-visibility run, before any diagnose) and its one visibility run made again with the corrected law at the same a-priori
-strength (a2 0.0637).
+scaled once x2.96 (T 2 -> 5.922 N*m; a2 0.0809 after); 3 a2 0.0713; 5 a2 0.0632; 7 a2 0.0836 (the worn rail, as
+written); 9 a1 1.09; 11 a2 0.0637; 13 a2 0.0853 -- all but 1 as written (docs/foreign_drives.md "The twenty-fourth
+set"). Before it, a 0.4 s run of each row only checked that it simulates. Two rows changed after their first visibility
+run, before any diagnose, each measured once more at its a-priori strength: the tension clamp (11) was first written
+with its direction wrong (-k*max(0, z_k - z_r), more hold-back the tighter the sampled cable: it tightened the cable it
+was to keep taut and ran away, the carriage down to 12 m/s, z up to 2.1 m; a2 2.83 then); its law was corrected to the
+shortfall above (found on checking each row's speeds and extension in its visibility run) and measured again (a2
+0.0637). Row 7 was first a spring-driven cable reel on the carriage, -k*max(0, x_c - x_0) (a2 0.0276 at k 0.05 N/m,
+scaled once x2.72 to 0.136 N/m, a2 0.0727 after); on writing this set's documentation it was seen that at this drive's
+nearly constant carriage speed its pull is a ramp in time that the catalogue's working-resistance drift gives as well,
+so it was replaced by the worn rail above (the same balance, memoryless, a reading of the carriage's position) and that
+row's one visibility run made (a2 0.0836, as written).
 
 Memory elements (one per recording) are advanced once per 0.2 ms input segment from the state at the segment's start
 (kernel.py "memory"), as in the fourth to twenty-third sets; the memory starts afresh at the run-in's first scan, 2 s
@@ -83,8 +90,8 @@ motor); the metered brake (3) the seventh set's MK_SINCE_STROKE of XS_SPRING_EXT
 clamp (11) the tenth set's MK_IMPACT_SAMPLE of XS_SPRING_EXTENSION, its term k*(m - z_r) less k times XF_EXCESS_POWER
 (power 1) of XS_MEMORY (three slots: XS_MEMORY, a constant, the excess); the
 brake chopper (13) the sixth set's MK_PWM of XS_MASS_SPEED. The disc pack (5) is XS_JAW_ANGLE (k*D) plus XS_JAW_ANGLE
-times XF_SIN of XS_ALPHA1 (angle-locked, so left out of the settled start's period map); the cable reel (7)
-XF_EXCESS_POWER (power 1) of XS_MASS_POSITION (left out of the period map too); the electrostatic softening (9) a sensor
+times XF_SIN of XS_ALPHA1 (angle-locked, so left out of the settled start's period map); the worn rail (7) XF_LORENTZ
+of XS_MASS_POSITION (left out of the period map too); the electrostatic softening (9) a sensor
 form in numpy on a1 alone. No kernel change for this set.
 """
 from __future__ import annotations
@@ -201,32 +208,33 @@ class ClutchLooseBoltDiscPack(OutsideForm):
                 f"{p['phase_rad']:.6g})) * D, D the jaw's angle difference, alpha1 the motor's angle")
 
 
-# 7. mass force x the carriage's position through a linear excess
-class MassSpringCableReel(OutsideForm):
-    name = "mass_spring_cable_reel"
+# 7. mass force x the carriage's position through a Lorentzian bump
+class MassWornRailSection(OutsideForm):
+    name = "mass_worn_rail_section"
     half = "dev24"
     balance = "mass_force"
     depends_on = ("wheel_angle", "spring_extension")     # x_c = r*alpha2 - z
-    description = ("the carriage's trailing power cable is paid out from a spring-driven cable reel at the track's "
-                   "start; the reel's spring winds up as the cable pays out, so its pull back on the carriage grows with "
-                   "the carriage's travel beyond x_0: -k*max(0, x_c - x_0), x_c the carriage's position from the "
-                   "run-in's start")
-    parameters = (Param("stiffness_N_per_m", "N/m", (0.0, 10.0), "k: the reel's pull per m of cable paid out"),
-                  Param("start_m", "m", (0.0, 1000.0), "x_0: the carriage's position where the reel's spring is slack"))
-    note = "a pull on the carriage growing with its travel (a linear excess of the carriage's position)"
+    description = ("a worn length of rail: a stretch of the track re-laid with worn, rough rail centred at x_b, the wear "
+                   "fading out either side: the carriage's rolling resistance rises as its wheels run onto it and falls "
+                   "after: -F/(1 + ((x_c - x_b)/w)^2), x_c the carriage's position from the run-in's start")
+    parameters = (Param("force_N", "N", (0.0, 100.0), "F: the extra resistance at the section's centre"),
+                  Param("centre_m", "m", (0.0, 1000.0), "x_b: the section's centre, from the carriage's position at "
+                                                         "the run-in's start"),
+                  Param("half_width_m", "m", (0.01, 100.0), "w: the distance over which the wear halves"))
+    note = "a resistance at one place on the carriage's track (a Lorentzian of the carriage's position)"
 
     def apply(self, b, p):
-        add_term(b, "mass_force", -p["stiffness_N_per_m"],
-                 (K.XS_MASS_POSITION, K.XF_EXCESS_POWER, p["start_m"], 1.0, 0.0), nonperiodic=True)
+        add_term(b, "mass_force", -p["force_N"],
+                 (K.XS_MASS_POSITION, K.XF_LORENTZ, p["half_width_m"], p["centre_m"], 0.0), nonperiodic=True)
 
     @staticmethod
     def force(x_c, p):
-        e = np.asarray(x_c, dtype=np.float64) - p["start_m"]
-        return -p["stiffness_N_per_m"] * np.where(e > 0.0, e, 0.0)
+        q = (np.asarray(x_c, dtype=np.float64) - p["centre_m"]) / p["half_width_m"]
+        return -p["force_N"] / (1.0 + q * q)
 
     def law(self, p):
-        return (f"mass force += -{p['stiffness_N_per_m']:.6g} N/m * max(0, x_c - {p['start_m']:.6g} m), x_c the "
-                "carriage's position from the run-in's start")
+        return (f"mass force += -{p['force_N']:.6g} N / (1 + ((x_c - {p['centre_m']:.6g} m)/{p['half_width_m']:.6g} "
+                "m)^2), x_c the carriage's position from the run-in's start")
 
 
 # 9. a1 sensor x the signal through a cubic expansion
@@ -336,5 +344,5 @@ class MotorLineOverspeedBrakeChopper(OutsideForm):
                 "m/s, 0, 1), v the carriage's speed sampled at the period's start")
 
 
-FORM_CLASSES = (MotorJawJamGuardBrake, WheelStrokeDumpedMeteredBrake, ClutchLooseBoltDiscPack, MassSpringCableReel,
+FORM_CLASSES = (MotorJawJamGuardBrake, WheelStrokeDumpedMeteredBrake, ClutchLooseBoltDiscPack, MassWornRailSection,
                 A1ElectrostaticSoftening, MassKnockSampledTensionClamp, MotorLineOverspeedBrakeChopper)

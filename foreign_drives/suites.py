@@ -930,10 +930,10 @@ OUTSIDE_DEV24_ROWS = [
     # 30 N*m/rad (about +-2 N*m over the jaw's angle range), modulated +-50 % once a motor turn
     ("od24_clutch_loose_bolt_disc_pack", "outside", 0.0066, 0.0268, 0.96,
      [E("clutch_loose_bolt_disc_pack", {"stiffness_Nm_per_rad": 30.0, "modulation": 0.5, "phase_rad": 0.0})]),
-    # 0.05 N per m paid out from the run-in's start a priori (about 2.3-6.8 N over the recording); a2 0.0276: scaled
-    # once x2.72 (about 6.1-18.5 N)
-    ("od24_mass_spring_cable_reel", "outside", 0.0078, 0.0236, 0.90,
-     [E("mass_spring_cable_reel", {"stiffness_N_per_m": 0.136, "start_m": 0.0})]),
+    # 5 N at the section's centre 90 m from the run-in's start (about 2 s into the recording), halved 2 m either side
+    # (replacing the cable reel first written here: docs/foreign_drives.md "The twenty-fourth set")
+    ("od24_mass_worn_rail_section", "outside", 0.0078, 0.0236, 0.90,
+     [E("mass_worn_rail_section", {"force_N": 5.0, "centre_m": 90.0, "half_width_m": 2.0})]),
     ("od24_clean_w7.3_eta0.0252_n0.93", "clean", 0.0073, 0.0252, 0.93, []),
     # 4e-6 s^4/m^2 (a_e = 500 m/s^2: about 6 % more at a1's peaks of 127 m/s^2)
     ("od24_a1_electrostatic_softening", "outside", 0.0086, 0.0247, 0.91,
