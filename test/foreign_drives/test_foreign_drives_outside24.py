@@ -61,7 +61,7 @@ NEUTRAL = {"motor_jaw_jam_guard_brake": {"torque_Nm": 0.0},
            "mass_knock_sampled_tension_clamp": {"gain_N_per_m": 0.0},
            "motor_line_overspeed_brake_chopper": {"torque_Nm": 0.0},
            "motor_slip_held_brake_resistor": {"torque_Nm": 0.0},
-           "wheel_eccentric_drum": {"coefficient_Nm_per_m": 0.0},
+           "wheel_press_crank_traverse": {"torque_Nm": 0.0},
            "clutch_sprag_wet_band": {"torque_Nm": 0.0},
            "mass_drum_peak_tacho_holdback": {"coefficient_N_s_per_rad": 0.0},
            "a2_transmitter_squelch": {"threshold_m_s2": 0.0},
@@ -232,7 +232,7 @@ def test_brake_chopper_loads_the_motor_by_a_duty_the_sampled_carriage_speed_sets
 # the parameter each sealed mechanism's check doubles on its suite row's own drive (where it acts at its suite's
 # conditions, which this file's short drive may not reach)
 STRENGTH = {"motor_slip_held_brake_resistor": "torque_Nm",
-            "wheel_eccentric_drum": "coefficient_Nm_per_m",
+            "wheel_press_crank_traverse": "torque_Nm",
             "clutch_sprag_wet_band": "torque_Nm",
             "mass_drum_peak_tacho_holdback": "coefficient_N_s_per_rad",
             "a2_transmitter_squelch": "threshold_m_s2",
