@@ -81,18 +81,23 @@ shortfall above (found on checking each row's speeds and extension in its visibi
 scaled once x2.72 to 0.136 N/m, a2 0.0727 after); on writing this set's documentation it was seen that at this drive's
 nearly constant carriage speed its pull is a ramp in time that the catalogue's working-resistance drift gives as well,
 so it was replaced by the worn rail above (the same balance, memoryless, a reading of the carriage's position) and that
-row's one visibility run made (a2 0.0836, as written).
+row's one visibility run made (a2 0.0836, as written). Thin points (read off the laws and the rows' noise-free runs, no
+diagnose): the jam guard (1) acts in bursts (on 12 % of its row's time, a third of the pulses' time and a twentieth of
+the rest), so part of it rides on the strokes as a larger pulse load would; the metered brake's integral (3) is nearly
+the extension's mean times the time since the stroke began (z moves by about +-7 %), a stroke-locked sawtooth much like
+a law of the pulse's phase; the disc pack's mean part k*D (5) is the earlier anti-backlash spring, its once-a-turn
+modulation the new part; the worn rail (7) acts once, about 2 s into its row's recording; the softening (9) is far above
+the criterion.
 
 Memory elements (one per recording) are advanced once per 0.2 ms input segment from the state at the segment's start
 (kernel.py "memory"), as in the fourth to twenty-third sets; the memory starts afresh at the run-in's first scan, 2 s
 before sample 0. The jam guard (1) is the seventh set's MK_ON_DELAY of XS_PENETRATION_DEPTH (its output T*m on the
 motor); the metered brake (3) the seventh set's MK_SINCE_STROKE of XS_SPRING_EXTENSION (-c*m on the wheel); the tension
 clamp (11) the tenth set's MK_IMPACT_SAMPLE of XS_SPRING_EXTENSION, its term k*(m - z_r) less k times XF_EXCESS_POWER
-(power 1) of XS_MEMORY (three slots: XS_MEMORY, a constant, the excess); the
-brake chopper (13) the sixth set's MK_PWM of XS_MASS_SPEED. The disc pack (5) is XS_JAW_ANGLE (k*D) plus XS_JAW_ANGLE
-times XF_SIN of XS_ALPHA1 (angle-locked, so left out of the settled start's period map); the worn rail (7) XF_LORENTZ
-of XS_MASS_POSITION (left out of the period map too); the electrostatic softening (9) a sensor
-form in numpy on a1 alone. No kernel change for this set.
+(power 1) of XS_MEMORY (three slots: XS_MEMORY, a constant, the excess); the brake chopper (13) the sixth set's MK_PWM
+of XS_MASS_SPEED. The disc pack (5) is XS_JAW_ANGLE (k*D) plus XS_JAW_ANGLE times XF_SIN of XS_ALPHA1 (angle-locked, so
+left out of the settled start's period map); the worn rail (7) XF_LORENTZ of XS_MASS_POSITION (left out of the period
+map too); the electrostatic softening (9) a sensor form in numpy on a1 alone. No kernel change for this set.
 """
 from __future__ import annotations
 
