@@ -821,7 +821,7 @@ FORMS = {cls.name: cls() for cls in FORM_CLASSES}
 
 # the sets of mechanisms outside the catalogue (issue 31): foreign_drives.outside_dev, .outside_sealed, then
 # .outside_devN, .outside_sealedN for N = 2 .. OUTSIDE_SETS, registered set by set, development half first
-OUTSIDE_SETS = 23
+OUTSIDE_SETS = 24
 OUTSIDE_MODULES = tuple(f"outside_{half}{'' if n == 1 else n}" for n in range(1, OUTSIDE_SETS + 1)
                         for half in ("dev", "sealed"))
 

@@ -912,6 +912,41 @@ OUTSIDE_DEV23_ROWS = [
                                      "full_duty_span_rad_s": 3.0})]),
 ]
 
+# ---- issue 31 part 4, twenty-fourth set: mechanisms outside the catalogue of other kinds again
+# (foreign_drives.outside_dev24; the twenty-fourth sealed half's rows are in foreign_drives.outside_sealed24). One
+# mechanism per row at its own nominal conditions, one clean control. Seeds 24000+. Each strength set by one simulation
+# against the clean drive of the same seed (docs/foreign_drives.md "The twenty-fourth set"). The a-priori values are read
+# off the documented clean drive (Omega1 146.9-154.2, Omega2 148.2-153.9 rad/s, the slip within about +-5 rad/s, the
+# jaw's angle difference within +-0.064 rad about a gap of +-0.051 rad, z 0.288-0.313 m, v 22.67-22.77 m/s, the
+# carriage's position about 45-136 m over a 4 s recording; a1 within +-127 m/s^2; the pulse 60 ms every 0.25 s; T_b =
+# 20 N*m).
+OUTSIDE_DEV24_ROWS = [
+    # 2 N*m a priori once the jaw has stayed more than 4 mrad deep for 4 ms; a2 0.0253: scaled once x2.96
+    ("od24_motor_jaw_jam_guard_brake", "outside", 0.0070, 0.0257, 0.94,
+     [E("motor_jaw_jam_guard_brake", {"torque_Nm": 5.922, "threshold_rad": 0.004, "delay_s": 0.004})]),
+    # 40 N*m per m*s of the extension's integral since the stroke's start (about 3 N*m at a stroke's end)
+    ("od24_wheel_stroke_dumped_metered_brake", "outside", 0.0083, 0.0243, 0.92,
+     [E("wheel_stroke_dumped_metered_brake", {"coefficient_Nm_per_m_s": 40.0})]),
+    # 30 N*m/rad (about +-2 N*m over the jaw's angle range), modulated +-50 % once a motor turn
+    ("od24_clutch_loose_bolt_disc_pack", "outside", 0.0066, 0.0268, 0.96,
+     [E("clutch_loose_bolt_disc_pack", {"stiffness_Nm_per_rad": 30.0, "modulation": 0.5, "phase_rad": 0.0})]),
+    # 5 N at the section's centre 90 m from the run-in's start (about 2 s into the recording), halved 2 m either side
+    # (replacing the cable reel first written here: docs/foreign_drives.md "The twenty-fourth set")
+    ("od24_mass_worn_rail_section", "outside", 0.0078, 0.0236, 0.90,
+     [E("mass_worn_rail_section", {"force_N": 5.0, "centre_m": 90.0, "half_width_m": 2.0})]),
+    ("od24_clean_w7.3_eta0.0252_n0.93", "clean", 0.0073, 0.0252, 0.93, []),
+    # 4e-6 s^4/m^2 (a_e = 500 m/s^2: about 6 % more at a1's peaks of 127 m/s^2)
+    ("od24_a1_electrostatic_softening", "outside", 0.0086, 0.0247, 0.91,
+     [E("a1_electrostatic_softening", {"coefficient_s4_per_m2": 4e-6})]),
+    # 300 N per m of the sampled extension's shortfall below 0.295 m (up to about 4 N)
+    ("od24_mass_knock_sampled_tension_clamp", "outside", 0.0068, 0.0229, 0.95,
+     [E("mass_knock_sampled_tension_clamp", {"gain_N_per_m": 300.0, "reference_m": 0.295})]),
+    # 2 N*m when switched in, a 10 ms period, the duty from 0 at 22.70 m/s to 1 at 22.76 m/s
+    ("od24_motor_line_overspeed_brake_chopper", "outside", 0.0080, 0.0278, 0.97,
+     [E("motor_line_overspeed_brake_chopper", {"torque_Nm": 2.0, "period_s": 0.01, "line_speed_m_s": 22.70,
+                                               "full_duty_span_m_s": 0.06})]),
+]
+
 BENCH = _suite(BENCH_ROWS, 5000, 4.0)
 WIDTH_LOOP = _suite(WIDTH_LOOP_ROWS, 6000, 4.0)
 TEST = _suite(TEST_ROWS, 100, 1.2)
@@ -938,6 +973,7 @@ OUTSIDE_DEV20 = _suite(OUTSIDE_DEV20_ROWS, 20000, 4.0)
 OUTSIDE_DEV21 = _suite(OUTSIDE_DEV21_ROWS, 21000, 4.0)
 OUTSIDE_DEV22 = _suite(OUTSIDE_DEV22_ROWS, 22000, 4.0)
 OUTSIDE_DEV23 = _suite(OUTSIDE_DEV23_ROWS, 23000, 4.0)
+OUTSIDE_DEV24 = _suite(OUTSIDE_DEV24_ROWS, 24000, 4.0)
 SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": OUTSIDE_DEV,
           "outside_dev2": OUTSIDE_DEV2, "outside_dev3": OUTSIDE_DEV3, "outside_dev4": OUTSIDE_DEV4,
           "outside_dev5": OUTSIDE_DEV5, "outside_dev6": OUTSIDE_DEV6, "outside_dev7": OUTSIDE_DEV7,
@@ -948,7 +984,8 @@ SUITES = {"bench": BENCH, "widthloop": WIDTH_LOOP, "test": TEST, "outside_dev": 
           "outside_dev16": OUTSIDE_DEV16, "outside_dev17": OUTSIDE_DEV17,
           "outside_dev18": OUTSIDE_DEV18, "outside_dev19": OUTSIDE_DEV19,
           "outside_dev20": OUTSIDE_DEV20, "outside_dev21": OUTSIDE_DEV21,
-          "outside_dev22": OUTSIDE_DEV22, "outside_dev23": OUTSIDE_DEV23}
+          "outside_dev22": OUTSIDE_DEV22, "outside_dev23": OUTSIDE_DEV23,
+          "outside_dev24": OUTSIDE_DEV24}
 
 
 # The sealed halves: each made on first use from its own module's rows (foreign_drives.<name>.suite_rows(), so that
@@ -977,6 +1014,7 @@ SEALED_FIRST_SEED = {
     "outside_sealed21": 21100,
     "outside_sealed22": 22100,
     "outside_sealed23": 23100,
+    "outside_sealed24": 24100,
 }
 
 SUITE_NAMES = tuple(SUITES) + tuple(SEALED_FIRST_SEED)

@@ -271,7 +271,7 @@ def assert_bench_guards_unspent_sealed(set_number: int, capsys, monkeypatch) -> 
 
 def assert_bench_refuses_the_unspent_sealed_half(set_number: int, capsys) -> None:
     """bench/_workbench/outside.py knows the set, whose sealed half is UNSPENT until its one run (one of the
-    UNSPENT_SEALED, while a set's sealed half waits for its one run): the loop's default suites hold its development half
+    UNSPENT_SEALED: set 24's now): the loop's default suites hold its development half
     only and no unspent sealed half, and the loop refuses the sealed half without --sealed; each row's truth names a
     balance and a state exactly when it is outside."""
     import pytest
