@@ -64,6 +64,10 @@ DEFAULTS: dict[str, Any] = {
         "stuck_quiet_max_run_samples": 9500,
         "local_step_levels": 8,
         "local_step_tolerance": 0.1,
+        "rail_noise_band_sd": 2.0,
+        "rail_noise_shape_z": 4.0,
+        "rail_noise_event_gap_samples": 2048,
+        "rail_noise_min_visit_samples": 8,
         "block_samples": 50000,
     },
 }

@@ -56,6 +56,10 @@ class SaturationSettings:
     stuck_quiet_max_run_samples: int = 9500
     local_step_levels: int = 8
     local_step_tolerance: float = 0.1
+    rail_noise_band_sd: float = 2.0
+    rail_noise_shape_z: float = 4.0
+    rail_noise_event_gap_samples: int = 2048
+    rail_noise_min_visit_samples: int = 8
     block_samples: int = 50_000
 
     def __post_init__(self):
@@ -68,6 +72,10 @@ class SaturationSettings:
                                       ("stuck_quiet_max_run_samples", 0, 100_000_000, True),
                                       ("local_step_levels", 2, 1000, True),
                                       ("local_step_tolerance", 0.0, 0.49, False),
+                                      ("rail_noise_band_sd", 0.0, 100.0, False),
+                                      ("rail_noise_shape_z", 0.0, 1e6, False),
+                                      ("rail_noise_event_gap_samples", 0, 10_000_000, True),
+                                      ("rail_noise_min_visit_samples", 2, 10_000_000, True),
                                       ("block_samples", 2, 100_000_000, True)):
             value = getattr(self, name)
             ok = (not isinstance(value, bool) and isinstance(value, (int, float)) and math.isfinite(value)
@@ -124,6 +132,7 @@ class SignalSaturation:
     lower_rail: float | None = None
     stuck: int = 0
     stuck_value: float | None = None
+    rail_band: float = 0.0       # a rail with noise on it: samples within this of it are at it (0: the value itself)
 
     @property
     def rail_fraction(self) -> float:
@@ -167,7 +176,8 @@ class SignalSaturation:
                        upper_rail=extreme(self.upper_rail, other.upper_rail, max),
                        lower_rail=extreme(self.lower_rail, other.lower_rail, min),
                        stuck=self.stuck + other.stuck,
-                       stuck_value=self.stuck_value if other.stuck <= self.stuck else other.stuck_value)
+                       stuck_value=self.stuck_value if other.stuck <= self.stuck else other.stuck_value,
+                       rail_band=max(self.rail_band, other.rail_band))
 
     def as_dict(self) -> dict:
         """For JSON: counts, shares [%] and the rails [the signal's unit]."""
@@ -286,6 +296,82 @@ def _quiet_quantised_runs(x, step, starts, lengths, candidates, s: SaturationSet
     return candidates[quiet]
 
 
+def _noise_sd(diff: np.ndarray) -> float:
+    """The signal's noise [its unit], from its sample-to-sample changes (robust: their median, the quiet stretches';
+    a recorder's held samples, no change, left out): 0 where it does not change."""
+    changes = diff[diff > 0]
+    return float(np.median(changes)) * 1.4826 / math.sqrt(2.0) if changes.size else 0.0
+
+
+def _flat(y: np.ndarray, starts: np.ndarray, lengths: np.ndarray, sigma: float, z_max: float,
+          min_samples: int) -> bool:
+    """One visit to a level, its runs near it (``starts``, ``lengths``): from its first sample near the level to its
+    last (at least ``min_samples``), a line and a parabola fitted; flat when neither the slope nor the curvature is
+    ``z_max`` standard errors (of white noise ``sigma``) from 0."""
+    first, last = int(starts[0]), int(starts[-1] + lengths[-1])
+    n = last - first
+    if n < min_samples:       # too short to show a slope: a ramp of 1 sd a sample is 4 standard errors in 6 samples
+        return False
+    t = (np.arange(n) - (n - 1) / 2.0) / n
+    design = np.stack([np.ones(n), t, t * t - np.mean(t * t)], axis=1)
+    gram_inv = np.linalg.inv(design.T @ design)
+    coef = gram_inv @ (design.T @ y[first:last])
+    z = np.abs(coef[1:]) / (sigma * np.sqrt(np.diag(gram_inv)[1:]))
+    return bool(np.all(z <= z_max))
+
+
+def _noisy_rail(x: np.ndarray, side: int, median: float, sigma: float,
+                s: SaturationSettings) -> tuple[float | None, int, int, np.ndarray]:
+    """A rail with noise on it (+1 upper, -1 lower): a sensor that saturates in its analog stage, read with noise
+    ``sigma`` after it, holds a level +-noise, not one value. Its level: the median of the samples within
+    ``rail_noise_band_sd`` * 4 noise sd of the extreme. It is a rail when runs of at least ``rail_min_run_samples``
+    within ``rail_noise_band_sd`` sd of that level come two times or more (a clip is hit by every excursion beyond
+    it), and they hold ``rail_overpopulation_ratio`` times the samples of the band just inside them (as wide as
+    they: the clip's signal crosses it fast; a peak's rounded top spends about as long in each). (value or None,
+    samples in the runs, runs, mask of them.)"""
+    none = (None, 0, 0, x[:0].astype(bool))
+    if sigma <= 0:
+        return none
+    y = side * x
+    k = s.rail_noise_band_sd
+    top = float(y.max())
+    level = float(np.median(y[y >= top - 4 * k * sigma]))
+    near = y >= level - k * sigma
+    starts, lengths = _runs(near)
+    good = lengths >= s.rail_min_run_samples
+    band = max(2 * k * sigma, s.rail_band_fraction * abs(level - side * median))
+    # the excursions that reach the level: stretches above the band's lower edge (noise splits one visit to the level
+    # into several runs near it; the band holds them together)
+    ex_starts, _ = _runs(y >= level - k * sigma - band)
+    owner = np.searchsorted(ex_starts, starts[good], side="right") - 1
+    # each visit flat (a clipped level is constant under its noise; a peak's top near it is curved or sloped), and
+    # every visit at one level: a rail is one value for all of them (tops of the drive's own that happen to come near
+    # each other differ by more than their noise)
+    visits = [(starts[good][owner == e], lengths[good][owner == e]) for e in np.unique(owner)]
+    flat = [e for e, (st, ln) in zip(np.unique(owner), visits)
+            if _flat(y, st, ln, sigma, s.rail_noise_shape_z, s.rail_noise_min_visit_samples)]
+    # two events at least (a clip is hit by every one beyond it): visits further apart than rail_noise_event_gap
+    if len(flat) < 2 or np.count_nonzero(np.diff(ex_starts[flat]) > s.rail_noise_event_gap_samples) < 1:
+        return none
+    spans = [y[int(st[0]):int(st[-1] + ln[-1])] for e, (st, ln) in zip(np.unique(owner), visits) if e in flat]
+    means = np.array([v.mean() for v in spans])
+    counts = np.array([v.size for v in spans], dtype=float)
+    centre = float(np.sum(counts * means) / counts.sum())
+    chi2 = float(np.sum(counts * (means - centre) ** 2)) / sigma ** 2
+    dof = len(spans) - 1
+    if (chi2 - dof) / math.sqrt(2.0 * dof) > s.rail_noise_shape_z:
+        return none
+    good &= np.isin(np.searchsorted(ex_starts, starts, side="right") - 1, flat)
+    n_in = int(lengths[good].sum())
+    n_band = int(np.count_nonzero((y < level - k * sigma) & (y >= level - k * sigma - band)))
+    if n_in < s.rail_overpopulation_ratio * max(n_band, s.rail_min_run_samples):
+        return none
+    mask = np.zeros(x.size, dtype=bool)
+    for start, length in zip(starts[good], lengths[good]):
+        mask[start:start + length] = True
+    return side * level, n_in, int(good.sum()), mask
+
+
 def assess_signal(x, name: str, settings: SaturationSettings | None = None) -> SignalSaturation:
     """Saturated and stuck samples of one signal's stretch (non-finite samples are not looked at)."""
     s = settings or SaturationSettings()
@@ -296,26 +382,39 @@ def assess_signal(x, name: str, settings: SaturationSettings | None = None) -> S
         return SignalSaturation(name)
     diff = np.abs(np.diff(x))
     change = np.flatnonzero(diff) + 1
-    if change.size == x.size - 1:                    # no two neighbours equal: no run at all (a noisy signal)
-        return SignalSaturation(name, int(x.size))
     if not change.size:                              # one value throughout: stuck (dead), no rail
         stuck = x.size if x.size >= s.stuck_min_run_samples else 0
         return SignalSaturation(name, int(x.size), stuck=stuck, stuck_value=float(x[0]) if stuck else None)
     starts = np.concatenate(([0], change))          # runs of one value
     lengths = np.diff(np.concatenate((starts, [x.size])))
-    if lengths.max() < min(s.rail_min_run_samples, s.stuck_min_run_samples):
-        return SignalSaturation(name, int(x.size))
     median = float(np.median(x))
-    step = float(diff[change - 1].min())            # the smallest change: an ADC's step, ~0 unquantised
-    q = _quantised(x, diff, step)
-    cache = []
+    none = (None, 0, 0, x[:0].astype(bool))
+    up, n_up, runs_up, mask_up = lo, n_lo, runs_lo, mask_lo = none
+    step, q = 0.0, False
+    if lengths.max() >= min(s.rail_min_run_samples, s.stuck_min_run_samples):   # runs of one value: a rail, a hold
+        step = float(diff[change - 1].min())        # the smallest change: an ADC's step, ~0 unquantised
+        q = _quantised(x, diff, step)
+        cache = []
 
-    def levels() -> tuple[np.ndarray, np.ndarray]:   # the distinct values, sorted, and their runs: found when asked
-        if not cache:
-            cache.append(np.unique(x[starts], return_counts=True))
-        return cache[0]
-    up, n_up, runs_up, mask_up = _rail(x, +1, median, step, (starts, lengths), s, q, levels)
-    lo, n_lo, runs_lo, mask_lo = _rail(x, -1, median, step, (starts, lengths), s, q, levels)
+        def levels() -> tuple[np.ndarray, np.ndarray]:   # the distinct values, sorted, and their runs: when asked
+            if not cache:
+                cache.append(np.unique(x[starts], return_counts=True))
+            return cache[0]
+        up, n_up, runs_up, mask_up = _rail(x, +1, median, step, (starts, lengths), s, q, levels)
+        lo, n_lo, runs_lo, mask_lo = _rail(x, -1, median, step, (starts, lengths), s, q, levels)
+    else:
+        def levels() -> tuple[np.ndarray, np.ndarray]:
+            return np.unique(x[starts], return_counts=True)
+    # a rail with noise on it, where no value repeats at that extreme
+    band = 0.0
+    if s.rail_noise_band_sd > 0 and (up is None or lo is None):
+        sigma = _noise_sd(diff)
+        if up is None:
+            up, n_up, runs_up, mask_up = _noisy_rail(x, +1, median, sigma, s)
+            band = s.rail_noise_band_sd * sigma if up is not None else band
+        if lo is None:
+            lo, n_lo, runs_lo, mask_lo = _noisy_rail(x, -1, median, sigma, s)
+            band = s.rail_noise_band_sd * sigma if lo is not None else band
     railed = np.zeros(x.size, dtype=bool)
     for mask in (mask_up, mask_lo):
         if mask.size:
@@ -327,7 +426,7 @@ def assess_signal(x, name: str, settings: SaturationSettings | None = None) -> S
         long_[_quiet_quantised_runs(x, step, starts, lengths, np.flatnonzero(long_), s, q, levels)] = False
     stuck = int(lengths[long_].sum())
     stuck_value = float(x[starts[long_][np.argmax(lengths[long_])]]) if stuck else None
-    return SignalSaturation(name, int(x.size), n_up + n_lo, runs_up + runs_lo, up, lo, stuck, stuck_value)
+    return SignalSaturation(name, int(x.size), n_up + n_lo, runs_up + runs_lo, up, lo, stuck, stuck_value, band)
 
 
 def assess(signals: Mapping[str, np.ndarray], settings: SaturationSettings | None = None) -> dict[str, SignalSaturation]:
@@ -345,6 +444,7 @@ class SaturationCounter:
 
     def __init__(self, signals: Sequence[str], settings: SaturationSettings | None = None):
         self.settings = settings or SaturationSettings()
+        self._stuck_only = replace(self.settings, rail_noise_band_sd=0.0)
         self.signals = tuple(signals)
         self._parts: dict[str, list[np.ndarray]] = {s: [] for s in self.signals}
         self._held = 0
@@ -395,16 +495,17 @@ class SaturationCounter:
         for name in self.signals:
             x = np.asarray(signals[name], dtype=float).ravel()
             up, lo = self.rails().get(name, (None, None))
+            band = self._totals[name].rail_band if name in self._totals else 0.0
             at, runs = 0, 0
             for rail in (up, lo):
                 if rail is not None:
-                    _, lengths = _runs(x == rail)
+                    _, lengths = _runs(np.abs(x - rail) <= band)
                     long_ = lengths >= self.settings.rail_min_run_samples
                     at += int(lengths[long_].sum())
                     runs += int(long_.sum())
-            own = assess_signal(x, name, self.settings)
+            own = assess_signal(x, name, self._stuck_only)     # its stuck samples (its rails: the stream's)
             out[name] = SignalSaturation(name, int(x.size), at, runs, up if at else None, lo if at else None,
-                                         own.stuck, own.stuck_value)
+                                         own.stuck, own.stuck_value, band)
         return out
 
     def totals(self) -> dict[str, SignalSaturation]:

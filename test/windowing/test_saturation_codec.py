@@ -8,12 +8,12 @@ and mu-law; set 23's block floating-point a1, spent, "at its rail" in 45 of 2000
 extreme is now read from the occupied values there. The codecs here are written apart from the bench's (no shared
 code): float16 by numpy's cast, the block codec by frexp, mu-law by its table of levels.
 """
-import dataclasses
-
 import numpy as np
 import pytest
 
 from backlash_monitor.windowing.saturation import SaturationCounter, assess_signal
+
+from saturation_recordings import dev_drive_recordings                    # test/
 
 G = 9.81
 DEV_FOREIGN = ("clean_w2.5_eta0.05_n0.97", "clean_w5.0_eta0.025_n0.89", "clean_w10_eta0.05_n0.89")
@@ -52,19 +52,7 @@ CODECS = {"float16": lambda x, s: float16(x),
 
 @pytest.fixture(scope="module")
 def recordings():
-    pytest.importorskip("foreign_drives")
-    plant = pytest.importorskip("backlash_monitor.plant")
-    from foreign_drives.drive import make_recording
-    from foreign_drives.suites import BENCH
-    out = {}
-    for spec in (s for s in BENCH if s.label in DEV_FOREIGN):
-        rec = make_recording(dataclasses.replace(spec, duration_s=2.0))
-        out[spec.label] = {s: np.asarray(rec.signals[s], dtype=float) for s in ("a1", "a2")}
-    sim = plant.PlantSimulator([plant.Scenario(width_m=0.006, eta_k=0.03, n1=0.93, seed=5)],
-                               config=plant.load_plant_config(), noise=True)
-    chunks = [sim.run(10_000) for _ in range(10)]
-    out["plant"] = {s: np.concatenate([getattr(c, s)[0] for c in chunks]) for s in ("a1", "a2")}
-    return out
+    return dev_drive_recordings(DEV_FOREIGN)
 
 
 def counted(signals):

@@ -7,12 +7,12 @@ about 10^-3 m/s^2 (its noise), less than one step of an accelerometer's 10- or 1
 20 ms) read as a dead sensor. A sensor's quiet stretch begins and ends with a change of one step (the signal
 drifts to the next level); a dead sensor's hold ends where the signal has gone meanwhile, or runs on.
 """
-import dataclasses
-
 import numpy as np
 import pytest
 
 from backlash_monitor.windowing.saturation import SaturationCounter, SaturationSettings, assess_signal
+
+from saturation_recordings import dev_drive_recordings                    # test/
 
 G = 9.81
 RANGE_M_S2 = {"a1": 50 * G, "a2": 4 * G}      # the accelerometers' full scales (foreign_drives/suites.py ADC16)
@@ -35,20 +35,7 @@ def runs(x):
 
 @pytest.fixture(scope="module")
 def recordings():
-    pytest.importorskip("foreign_drives")
-    plant = pytest.importorskip("backlash_monitor.plant")
-    from foreign_drives.drive import make_recording
-    from foreign_drives.suites import BENCH
-    out = {}
-    for spec in (s for s in BENCH if s.label in DEV_FOREIGN):
-        rec = make_recording(dataclasses.replace(spec, duration_s=2.0))
-        out[spec.label] = {s: np.asarray(rec.signals[s], dtype=float) for s in ("a1", "a2")}
-    for noise in (True, False):
-        sim = plant.PlantSimulator([plant.Scenario(width_m=0.006, eta_k=0.03, n1=0.93, seed=5)],
-                                   config=plant.load_plant_config(), noise=noise)
-        chunks = [sim.run(10_000) for _ in range(10)]
-        out[f"plant_noise{int(noise)}"] = {s: np.concatenate([getattr(c, s)[0] for c in chunks]) for s in ("a1", "a2")}
-    return out
+    return dev_drive_recordings(DEV_FOREIGN, plant_noises=(True, False))
 
 
 @pytest.mark.parametrize("bits", [10, 12])
