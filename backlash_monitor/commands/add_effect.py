@@ -115,7 +115,8 @@ def _take_proposal(diag, src, adds, model, output):
                    "discovery": " (the discovered effect goes in alone without --accept-proposal: add-effect "
                                 f"{src} -o FILE)"}.get(diag.get("verdict"), "")
         raise UsageError(f"diagnosis {src}'s proposed term has no plug-in form (--accept-proposal): {prop.get('law')} "
-                         "acts on a sensor's signal or changes with the time in the record, not in the drive's physics; "
+                         "acts on a sensor's signal through the drive's states or the other channel, or changes with the time "
+                         "in the record, not in the drive's physics; "
                          "check that sensor (its mounting, wiring, calibration) instead of adding it to the model"
                          + partial)
     path = output.with_name(output.stem + "_proposed_term.py")
@@ -195,6 +196,9 @@ def run(args) -> int:
                       (conditions.measurement if conditions else diag.get("measurement")),
                       "width_m": float(width.get("width_m", model.nominal["width_m"])),
                       "width_uncertainty_m": width.get("uncertainty_m"), "verdict": verdict}
+        if args.accept_proposal:
+            # the proposed term taken: whether the model with it explains the recording (train's check reads it)
+            provenance["proposal_consistent"] = bool((diag.get("proposal") or {}).get("consistent"))
     else:
         model, _ = load(args, measurement=False)
         values = {}

@@ -725,7 +725,8 @@ def proposal_source(pieces, name: str = "proposed_term") -> tuple[str, dict]:
     for p in pieces:
         if p.terms[0].simulated:       # a sensor's term or one of the time in the record has no plug-in form yet
             by.setdefault(p.balance, []).append(p)
-    if not by:
+    own = [p for p in pieces if own_signal_sensor_piece(p)]     # but a channel's own cube: a sensor stage
+    if not by and not own:
         return "", {}
     parts = ['"""A term the workbench proposed from a residual (docs/workbench.md, "Proposing a missing term").\n'
              "Read it, edit it: each parameter is bounded, its default 0 does nothing; the fitted values are in the\n"
@@ -760,4 +761,42 @@ def proposal_source(pieces, name: str = "proposed_term") -> tuple[str, dict]:
         law = proposal_law(pieces_b)
         parts.append(_class_source(f"Proposed{j}", ename, balance, law, params, arglist, " + ".join(body)))
         values[ename] = vals
+    for j, sig in enumerate(sorted({p.terms[0].recorded[1] for p in own})):
+        ename = f"{name}_{sig}"
+        pieces_s = [p for p in own if p.terms[0].recorded[1] == sig]
+        params, body, vals = [], [], {}
+        for i, p in enumerate(pieces_s):
+            cn = f"c{i}_m_s2"
+            params.append(f"Parameter({cn!r}, 'm/s^2', 0.0, ({-BALANCES[p.balance][2]!r}, "
+                          f"{BALANCES[p.balance][2]!r}), {p.terms[0].symbol!r})")
+            body.append(f"values[{cn!r}][:, None] * (a / {CUBIC_SCALE_M_S2!r}) ** 3")
+            vals[cn] = float(p.coefficients[0])
+        parts.append(_sensor_class_source(f"ProposedSensor{j}", ename, sig, proposal_law(pieces_s), params,
+                                          " + ".join(body)))
+        values[ename] = vals
     return "\n\n".join(parts), values
+
+
+def own_signal_sensor_piece(piece) -> bool:
+    """A proposed sensor's term of its own signal alone (the channel's cube): a plug-in sensor stage holds it (a
+    stage sees only its signal: a term of the drive's states or of the other channel has no plug-in form)."""
+    return all(t.recorded is not None and t.recorded[0] == "sensor" and t.recorded[2] == ("cubic", t.recorded[1])
+               for t in piece.terms)
+
+
+def _sensor_class_source(cls_name, name, signal, description, params, body) -> str:
+    """A plug-in sensor stage (docs/effects.md: kind "sensor", apply) adding ``body`` to ``signal``, after the
+    built-in low-pass, gain and bias (order 3)."""
+    plist = ",\n                  ".join(params)
+    return (f"class {cls_name}(Effect):\n"
+            f"    name = {name!r}\n"
+            f"    balance = 'sensor_a1_a2'\n"
+            f"    kind = 'sensor'\n"
+            f"    order = 3\n"
+            f"    description = {description!r}\n"
+            f"    parameters = ({plist},)\n\n"
+            f"    @staticmethod\n"
+            f"    def apply(signal, a, values, state, h):\n"
+            f"        if signal != {signal!r}:\n"
+            f"            return a\n"
+            f"        return a + {body}\n")

@@ -32,7 +32,8 @@ from backlash_monitor.plant.integrator import first_call_cpu_seconds
 
 from . import candidate_terms, consistency, drive_terms, event_design, fitting, plant_adapter
 
-NO_PLUGIN_NOTE = "; no plug-in form (a sensor's term or one of the time in the record)"   # the reason's tail
+NO_PLUGIN_NOTE = ("; no plug-in form (a sensor's term of the drive's states or of the other channel, or one of the "
+                  "time in the record)")   # the reason's tail; a channel's own cube is a plug-in sensor stage
 
 VERDICTS = ("partial", "nothing_explains")
 CV_Z = 3.0             # a group enters when its held-out gain is CV_Z standard errors (over the events) above 0

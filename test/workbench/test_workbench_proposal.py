@@ -236,6 +236,8 @@ def test_add_effect_takes_a_proposal_only_when_asked_and_writes_its_plugin_file(
     assert cfg.effect_parameter("proposed_term_wheel", "amplitude0_Nm") == pytest.approx(np.hypot(2.0, 1.0))
     assert cfg.effect_parameter("proposed_term_wheel", "phase0_rad") == pytest.approx(np.arctan2(1.0, 2.0))
     assert any(str(f).endswith("v2_proposed_term.py") for f in yaml.safe_load(out.read_text())["effect_files"])
+    # whether the model with the term explains the recording goes with the version (train's check reads it)
+    assert v2.provenance["proposal_consistent"] is False
     nothing, _ = _diagnosis_with_proposal(tmp_path / ".." / tmp_path.name, proposed=False)
     assert main(["add-effect", str(nothing), "-o", str(tmp_path / "v3.yaml"), "--accept-proposal"]) == 2
     assert "proposes no term" in capsys.readouterr().err
@@ -465,3 +467,33 @@ def test_an_ac_coupled_accelerometer_is_proposed_as_its_channels_own_integral():
                                         * candidate_terms.CHANNEL_SCALE_M_S2)
     assert 1.0 < fc < 2.0, fc
     assert prop["consistent"], prop["reason"]
+
+
+def test_a_channels_own_cube_is_written_as_a_sensor_stage_that_runs_the_law(tmp_path):
+    """A proposed measured a1 += c (a1/50)^3 (a compressing or softening sensing element) sees only its own signal:
+    its plug-in is a sensor stage (kind "sensor") after the built-in ones, and the simulator's published a1 is the
+    plain run's a1 + c (a1/50)^3, sample by sample, a2 and the drive's states untouched. A sensor's term of the
+    drive's states (a harmonic of an angle) still has no plug-in form."""
+    from backlash_monitor.plant.scenarios import Scenario
+    from backlash_monitor.plant.simulate import PlantSimulator
+    by = candidate_terms.by_name()
+    cube = next(t for t in candidate_terms.recorded_terms() if t.recorded == ("sensor", "a1", ("cubic", "a1")))
+    piece = candidate_terms.ProposedPiece((cube,), (0.6,), (0.05,))
+    assert candidate_terms.proposal_law([piece]) == "measured a1 += +0.6 m/s² · (a₁/50)³"
+    src, values = candidate_terms.proposal_source([piece])
+    (name, vals), = values.items()
+    assert name == "proposed_term_a1" and vals == {"c0_m_s2": pytest.approx(0.6)}
+    f = tmp_path / "proposed.py"
+    f.write_text(src)
+    cat = builtin_catalogue().with_files([f])
+    runs = {}
+    for on in (False, True):
+        over = {"simulation.run_in_s": 0.0, **({f"effects.{name}": True, f"{name}.c0_m_s2": 0.6} if on else {})}
+        runs[on] = PlantSimulator([Scenario(0.005, seed=3)], config=load_plant_config(overrides=over, catalogue=cat),
+                                  noise=False).run(20_000)
+    plain, with_term = runs[False], runs[True]
+    assert np.max(np.abs(plain.a1)) > 50.0                     # the impacts reach the cube's scale
+    np.testing.assert_allclose(with_term.a1, plain.a1 + 0.6 * (plain.a1 / 50.0) ** 3, rtol=0, atol=1e-9)
+    assert np.array_equal(with_term.a2, plain.a2) and np.array_equal(with_term.omega1, plain.omega1)
+    harmonic = by["cand_a1_alpha1_sin1"]
+    assert candidate_terms.proposal_source([candidate_terms.ProposedPiece((harmonic,), (1.0,), (0.1,))]) == ("", {})

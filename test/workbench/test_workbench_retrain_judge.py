@@ -58,3 +58,23 @@ def test_the_check_line_states_the_diagnosis_with_its_uncertainty():
     (line,) = describe({"checked": [entry]})
     assert "retrained monitor 6.760 mm, packaged 5.890 mm, diagnosis 6.450 ± 0.260 mm: FLAGGED" in line
     assert "no reference to switch on" in line
+
+
+def test_a_version_whose_proposed_term_explains_the_recording_is_checked_as_after_a_discovery(monkeypatch, tmp_path):
+    """check_library: the verdict was nothing_explains, but the version holds a proposed term with which the model
+    is consistent (add-effect --accept-proposal writes proposal_consistent): a gain within the diagnosis's
+    uncertainty is handed on, as after a discovery (set 24's a1 softening: diagnosis 8.66 +- 0.53 mm, retrained 8.47,
+    packaged 8.94, truth 8.60). Without a consistent proposal the same widths are kept back."""
+    from types import SimpleNamespace
+
+    from backlash_monitor.workbench import retrain
+    widths = {"new": 8.47 * MM, "old": 8.94 * MM}
+    monkeypatch.setattr(retrain, "load_measurement", lambda path: path)
+    monkeypatch.setattr(retrain, "_published_width", lambda meas, lib: widths[lib])
+    prov = {"measurement": str(tmp_path / "drive.mcap"), "width_m": 8.66 * MM, "width_uncertainty_m": 0.53 * MM,
+            "verdict": "nothing_explains"}
+    for consistent, worse in ((True, False), (False, True)):
+        model = SimpleNamespace(provenance={**prov, "proposal_consistent": consistent}, label=lambda: "default v2",
+                                nominal={"width_m": 7.5 * MM})
+        (checked,) = retrain.check_library("new", [model], previous="old")["checked"]
+        assert checked["worse"] is worse
